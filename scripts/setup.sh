@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs every Debian package mbstream needs to build and test (idempotent).
+# Starts from a minimal Debian bookworm with only git; quiet when everything is present.
+set -euo pipefail
+
+PACKAGES=(
+  # toolchain
+  build-essential g++ cmake ccache pkg-config git clang-format
+  # core numerics
+  libeigen3-dev libsundials-dev libsuitesparse-dev
+  # model import, logging, command line, persistence
+  liburdfdom-dev libspdlog-dev libfmt-dev libcli11-dev libsqlite3-dev nlohmann-json3-dev
+  # wire contract
+  libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # viewer and headless rendering
+  libvtk9-dev xvfb xauth
+  # python client and charts (Debian's, for /usr/bin/python3)
+  python3 python3-grpcio python3-protobuf python3-numpy python3-matplotlib
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "setup: installing ${#missing[@]} missing packages: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "setup: done"

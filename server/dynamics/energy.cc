@@ -1,0 +1,33 @@
+#include "server/dynamics/energy.h"
+
+#include "server/common/check.h"
+#include "server/kinematics/joint_transform.h"
+
+namespace mbstream {
+
+double KineticEnergy(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& q,
+                     const Eigen::Ref<const Eigen::VectorXd>& qd) {
+  const int n = model.num_dofs();
+  MBSTREAM_CHECK(q.size() == n && qd.size() == n);
+  double energy = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const Body& body = model.bodies[i];
+    const Pose& X = data.X_parent[i] = JointTransform(body.joint, q(i));
+    data.v[i] = data.S[i] * qd(i);
+    if (body.parent != kBase) data.v[i] += MotionToChild(X, data.v[body.parent]);
+    energy += 0.5 * data.v[i].dot(body.inertia.Apply(data.v[i]));
+    energy += 0.5 * body.joint.armature * qd(i) * qd(i);
+  }
+  return energy;
+}
+
+double PotentialEnergy(const Model& model, const Data& data) {
+  double energy = 0.0;
+  for (int i = 0; i < model.num_dofs(); ++i) {
+    const RigidInertia& inertia = model.bodies[i].inertia;
+    energy -= inertia.mass * model.gravity.dot(data.X_world[i].Apply(inertia.com));
+  }
+  return energy;
+}
+
+}  // namespace mbstream

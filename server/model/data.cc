@@ -1,0 +1,39 @@
+#include "server/model/data.h"
+
+namespace mbstream {
+
+Data::Data(const Model& model) {
+  const size_t n = model.bodies.size();
+  X_parent.resize(n);
+  X_world.resize(n);
+  frame_world.resize(model.frames.size());
+  v.assign(n, Vector6d::Zero());
+  a.assign(n, Vector6d::Zero());
+  f.assign(n, Vector6d::Zero());
+  c.assign(n, Vector6d::Zero());
+  S.assign(n, Vector6d::Zero());
+  I.resize(n);
+  IA.assign(n, Matrix6d::Zero());
+  pA.assign(n, Vector6d::Zero());
+  U.assign(n, Vector6d::Zero());
+  D.assign(n, 0.0);
+  u.assign(n, 0.0);
+  for (size_t i = 0; i < n; ++i) {
+    I[i] = model.bodies[i].inertia.ToMatrix();
+    const Joint& joint = model.bodies[i].joint;
+    if (joint.type == JointType::kRevolute) {
+      S[i].head<3>() = joint.axis;
+    } else {
+      S[i].tail<3>() = joint.axis;
+    }
+  }
+  const auto dofs = static_cast<Eigen::Index>(n);
+  zeros = Eigen::VectorXd::Zero(dofs);
+  tau = Eigen::VectorXd::Zero(dofs);
+  qdd = Eigen::VectorXd::Zero(dofs);
+  gravity_torque = Eigen::VectorXd::Zero(dofs);
+  M = Eigen::MatrixXd::Zero(dofs, dofs);
+  J = Eigen::MatrixXd::Zero(6, dofs);
+}
+
+}  // namespace mbstream

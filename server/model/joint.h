@@ -1,0 +1,34 @@
+// A joint that moves a body relative to its parent: its type, axis and properties.
+#pragma once
+
+#include <limits>
+#include <string>
+
+#include "server/math/spatial.h"
+
+namespace mbstream {
+
+enum class JointType { kRevolute, kPrismatic };
+
+// "revolute" or "prismatic".
+const char* JointTypeName(JointType type);
+
+struct JointLimits {
+  // Position range: rad for revolute joints, m for prismatic; +-infinity when unlimited.
+  double lower = -std::numeric_limits<double>::infinity();
+  double upper = std::numeric_limits<double>::infinity();
+  double velocity = std::numeric_limits<double>::infinity();  // rad/s or m/s
+  double effort = std::numeric_limits<double>::infinity();    // N*m or N
+};
+
+struct Joint {
+  std::string name;
+  JointType type = JointType::kRevolute;
+  Pose X_PJ;                           // joint frame J in the parent body frame P (URDF origin)
+  Vector3d axis = Vector3d::UnitZ();   // unit vector in J (and in the child body frame)
+  JointLimits limits;
+  double damping = 0.0;   // viscous: N*m*s/rad or N*s/m; force -damping * qd
+  double armature = 0.0;  // rotor (reflected) inertia: kg*m^2 or kg, added to M(q)(i, i)
+};
+
+}  // namespace mbstream
