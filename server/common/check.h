@@ -32,9 +32,9 @@ namespace internal {
 }  // namespace mbstream
 
 // Checks an internal invariant in every build type; throws InternalError when it fails.
-#define MBSTREAM_CHECK(condition)                                                    \
-  do {                                                                               \
-    if (!(condition)) [[unlikely]]                                                   \
+#define MBSTREAM_CHECK(condition)                                                  \
+  do {                                                                             \
+    if (!(condition)) [[unlikely]]                                                 \
       ::mbstream::internal::ThrowCheckFailure(#condition, __FILE__, __LINE__, ""); \
   } while (0)
 

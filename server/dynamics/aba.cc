@@ -5,7 +5,8 @@
 
 namespace mbstream {
 
-const Eigen::VectorXd& Aba(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& q,
+const Eigen::VectorXd& Aba(const Model& model, Data& data,
+                           const Eigen::Ref<const Eigen::VectorXd>& q,
                            const Eigen::Ref<const Eigen::VectorXd>& qd,
                            const Eigen::Ref<const Eigen::VectorXd>& tau) {
   const int n = model.num_dofs();

@@ -20,8 +20,8 @@ const Eigen::VectorXd& Rnea(const Model& model, Data& data, ConstVectorRef q, Co
       data.a[i] = MotionToChild(X, a_base) + data.S[i] * qdd(i);
     } else {
       data.v[i] = MotionToChild(X, data.v[body.parent]) + vJ;
-      data.a[i] = MotionToChild(X, data.a[body.parent]) + data.S[i] * qdd(i) +
-                  CrossMotion(data.v[i], vJ);
+      data.a[i] =
+          MotionToChild(X, data.a[body.parent]) + data.S[i] * qdd(i) + CrossMotion(data.v[i], vJ);
     }
     const RigidInertia& inertia = body.inertia;
     data.f[i] = inertia.Apply(data.a[i]) + CrossForce(data.v[i], inertia.Apply(data.v[i]));

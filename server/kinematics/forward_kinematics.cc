@@ -5,8 +5,7 @@
 
 namespace mbstream {
 
-void ForwardKinematics(const Model& model, Data& data,
-                       const Eigen::Ref<const Eigen::VectorXd>& q) {
+void ForwardKinematics(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& q) {
   MBSTREAM_CHECK(q.size() == model.num_dofs());
   for (int i = 0; i < model.num_dofs(); ++i) {
     const Body& body = model.bodies[i];
@@ -16,8 +15,7 @@ void ForwardKinematics(const Model& model, Data& data,
   }
   for (size_t k = 0; k < model.frames.size(); ++k) {
     const Frame& frame = model.frames[k];
-    data.frame_world[k] =
-        frame.body == kBase ? frame.X_BF : data.X_world[frame.body] * frame.X_BF;
+    data.frame_world[k] = frame.body == kBase ? frame.X_BF : data.X_world[frame.body] * frame.X_BF;
   }
 }
 

@@ -4,8 +4,7 @@
 
 namespace mbstream {
 
-void PointJacobian(const Model& model, const Data& data, int frame,
-                   Eigen::Ref<Eigen::MatrixXd> J) {
+void PointJacobian(const Model& model, const Data& data, int frame, Eigen::Ref<Eigen::MatrixXd> J) {
   MBSTREAM_CHECK(frame >= 0 && frame < static_cast<int>(model.frames.size()));
   MBSTREAM_CHECK(J.rows() == 6 && J.cols() == model.num_dofs());
   J.setZero();

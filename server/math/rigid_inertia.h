@@ -7,9 +7,9 @@
 namespace mbstream {
 
 struct RigidInertia {
-  double mass = 0.0;                          // kg
-  Vector3d com = Vector3d::Zero();            // p_BoBcm_B, m
-  Matrix3d inertia_com = Matrix3d::Zero();    // I_Bcm_B, kg*m^2, about the centre of mass
+  double mass = 0.0;                        // kg
+  Vector3d com = Vector3d::Zero();          // p_BoBcm_B, m
+  Matrix3d inertia_com = Matrix3d::Zero();  // I_Bcm_B, kg*m^2, about the centre of mass
 
   // Spatial inertia about Bo in B: [[I_cm - m [c]x^2, m [c]x], [m [c]x^T, m 1]].
   Matrix6d ToMatrix() const {

@@ -14,31 +14,31 @@ struct Data {
   explicit Data(const Model& model);
 
   // Kinematics (ForwardKinematics).
-  std::vector<Pose> X_parent;       // X_PB: body in its parent body (or the base)
-  std::vector<Pose> X_world;        // X_WB: body in the base (world) frame
-  std::vector<Pose> frame_world;    // X_WF for every Model::frames entry
+  std::vector<Pose> X_parent;     // X_PB: body in its parent body (or the base)
+  std::vector<Pose> X_world;      // X_WB: body in the base (world) frame
+  std::vector<Pose> frame_world;  // X_WF for every Model::frames entry
 
   // Per-body spatial quantities, in the body's own frame (see server/math/spatial.h).
-  std::vector<Vector6d> v;          // spatial velocity
-  std::vector<Vector6d> a;          // spatial acceleration (gravity included as a base accel.)
-  std::vector<Vector6d> f;          // force transmitted by the body's joint
-  std::vector<Vector6d> c;          // velocity-product acceleration v x S qd
-  std::vector<Vector6d> S;          // joint motion subspace (axis), constant
-  std::vector<Matrix6d> I;          // body spatial inertia about its origin, constant
-  std::vector<Matrix6d> IA;         // articulated-body (ABA) or composite (CRBA) inertia
-  std::vector<Vector6d> pA;         // articulated bias force
-  std::vector<Vector6d> U;          // IA S
-  std::vector<double> D;            // S^T IA S + armature
-  std::vector<double> u;            // tau - S^T pA
+  std::vector<Vector6d> v;   // spatial velocity
+  std::vector<Vector6d> a;   // spatial acceleration (gravity included as a base accel.)
+  std::vector<Vector6d> f;   // force transmitted by the body's joint
+  std::vector<Vector6d> c;   // velocity-product acceleration v x S qd
+  std::vector<Vector6d> S;   // joint motion subspace (axis), constant
+  std::vector<Matrix6d> I;   // body spatial inertia about its origin, constant
+  std::vector<Matrix6d> IA;  // articulated-body (ABA) or composite (CRBA) inertia
+  std::vector<Vector6d> pA;  // articulated bias force
+  std::vector<Vector6d> U;   // IA S
+  std::vector<double> D;     // S^T IA S + armature
+  std::vector<double> u;     // tau - S^T pA
 
-  Eigen::VectorXd zeros;            // num_dofs zeros, for calls with qd = 0 or qdd = 0
+  Eigen::VectorXd zeros;  // num_dofs zeros, for calls with qd = 0 or qdd = 0
 
   // Results.
-  Eigen::VectorXd tau;              // Rnea: joint forces (N*m or N)
-  Eigen::VectorXd qdd;              // Aba: joint accelerations (rad/s^2 or m/s^2)
-  Eigen::VectorXd gravity_torque;   // GravityVector: g(q)
-  Eigen::MatrixXd M;                // Crba: joint-space mass matrix, symmetric (both halves)
-  Eigen::MatrixXd J;                // PointJacobian scratch/result, 6 x n
+  Eigen::VectorXd tau;             // Rnea: joint forces (N*m or N)
+  Eigen::VectorXd qdd;             // Aba: joint accelerations (rad/s^2 or m/s^2)
+  Eigen::VectorXd gravity_torque;  // GravityVector: g(q)
+  Eigen::MatrixXd M;               // Crba: joint-space mass matrix, symmetric (both halves)
+  Eigen::MatrixXd J;               // PointJacobian scratch/result, 6 x n
 };
 
 }  // namespace mbstream

@@ -24,8 +24,8 @@ struct JointLimits {
 struct Joint {
   std::string name;
   JointType type = JointType::kRevolute;
-  Pose X_PJ;                           // joint frame J in the parent body frame P (URDF origin)
-  Vector3d axis = Vector3d::UnitZ();   // unit vector in J (and in the child body frame)
+  Pose X_PJ;                          // joint frame J in the parent body frame P (URDF origin)
+  Vector3d axis = Vector3d::UnitZ();  // unit vector in J (and in the child body frame)
   JointLimits limits;
   double damping = 0.0;   // viscous: N*m*s/rad or N*s/m; force -damping * qd
   double armature = 0.0;  // rotor (reflected) inertia: kg*m^2 or kg, added to M(q)(i, i)

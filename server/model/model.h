@@ -19,26 +19,26 @@ namespace mbstream {
 inline constexpr int kBase = -1;
 
 struct Body {
-  std::string name;        // the URDF link's name
-  int parent = kBase;      // index of the parent body, or kBase
-  Joint joint;             // joint from the parent body's frame to this body's frame
-  RigidInertia inertia;    // in this body's frame, merged fixed links included
+  std::string name;      // the URDF link's name
+  int parent = kBase;    // index of the parent body, or kBase
+  Joint joint;           // joint from the parent body's frame to this body's frame
+  RigidInertia inertia;  // in this body's frame, merged fixed links included
 };
 
 // A frame fixed in a body (or in the base): every link, the TCP and probes.
 struct Frame {
   std::string name;
-  int body = kBase;        // the body it is fixed in, or kBase
-  Pose X_BF;               // the frame in that body's frame
+  int body = kBase;  // the body it is fixed in, or kBase
+  Pose X_BF;         // the frame in that body's frame
 };
 
 struct Model {
   std::string name;
-  std::string base_name;             // name of the fixed base link
-  std::vector<Body> bodies;          // one per degree of freedom, topological order
-  std::vector<Frame> frames;         // every link, then named points
-  Vector3d gravity{0.0, 0.0, -9.81}; // m/s^2 in the base frame
-  int tcp_frame = -1;                // index into frames of the tool centre point, or -1
+  std::string base_name;              // name of the fixed base link
+  std::vector<Body> bodies;           // one per degree of freedom, topological order
+  std::vector<Frame> frames;          // every link, then named points
+  Vector3d gravity{0.0, 0.0, -9.81};  // m/s^2 in the base frame
+  int tcp_frame = -1;                 // index into frames of the tool centre point, or -1
 
   int num_dofs() const { return static_cast<int>(bodies.size()); }
   // Index of the frame (or body) with this name, or -1.

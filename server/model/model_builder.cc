@@ -11,8 +11,8 @@ namespace mbstream {
 namespace {
 
 std::string Format(const Vector3d& v) {
-  return "(" + std::to_string(v.x()) + ", " + std::to_string(v.y()) + ", " +
-         std::to_string(v.z()) + ")";
+  return "(" + std::to_string(v.x()) + ", " + std::to_string(v.y()) + ", " + std::to_string(v.z()) +
+         ")";
 }
 
 }  // namespace
@@ -34,8 +34,7 @@ void ValidateRigidInertia(const RigidInertia& inertia, const std::string& what) 
   const Vector3d d = eig.eigenvalues();  // ascending
   if (d(0) <= 0.0) {
     throw InputError(what + ": inertia tensor is not positive definite (principal moments " +
-                     Format(d) +
-                     " kg*m^2); check ixx, iyy, izz and the products of inertia");
+                     Format(d) + " kg*m^2); check ixx, iyy, izz and the products of inertia");
   }
   const double tol = 1e-9 * d(2);
   if (d(0) + d(1) < d(2) - tol) {
@@ -56,7 +55,8 @@ ModelBuilder::ModelBuilder(std::string model_name, std::string base_link) {
 
 void ModelBuilder::CheckNewName(const std::string& link) const {
   if (names_.count(link) != 0) {
-    throw InputError("name '" + link + "' is used twice; every link, frame and point needs a "
+    throw InputError("name '" + link +
+                     "' is used twice; every link, frame and point needs a "
                      "unique name");
   }
 }

@@ -34,8 +34,8 @@ enum class Method {
 // q(t) for one joint (rad or m; t in s).
 struct Trajectory {
   enum class Kind {
-    kSine,        // q = offset + sum_k amplitude[k] * sin(omega[k] * t + phase[k])
-    kSpline,      // natural cubic spline through (times[k], values[k]), held constant outside
+    kSine,    // q = offset + sum_k amplitude[k] * sin(omega[k] * t + phase[k])
+    kSpline,  // natural cubic spline through (times[k], values[k]), held constant outside
   };
   Kind kind = Kind::kSine;
   double offset = 0.0;
@@ -52,16 +52,16 @@ struct DriveConfig {
     kPdServo,     // effort = kp (q_ref - q) + kd (qd_ref - qd), q_ref from `trajectory`
   };
   Kind kind = Kind::kPassive;
-  Trajectory trajectory;        // kPrescribed and kPdServo
+  Trajectory trajectory;  // kPrescribed and kPdServo
   // kPrescribed only: the seed's velocity-source drive. The drive imposes qd(t) and the
   // formulation integrates q from it (instead of imposing q(t) in closed form).
   bool velocity_source = false;
-  double kp = 0.0;              // N*m/rad or N/m
-  double kd = 0.0;              // N*m*s/rad or N*s/m
-  double constant = 0.0;        // kTorque
-  double amplitude = 0.0;       // kTorque
-  double omega = 0.0;           // kTorque, rad/s
-  double phase = 0.0;           // kTorque, rad
+  double kp = 0.0;         // N*m/rad or N/m
+  double kd = 0.0;         // N*m*s/rad or N*s/m
+  double constant = 0.0;   // kTorque
+  double amplitude = 0.0;  // kTorque
+  double omega = 0.0;      // kTorque, rad/s
+  double phase = 0.0;      // kTorque, rad
 };
 
 struct BaumgarteParameters {
@@ -70,22 +70,22 @@ struct BaumgarteParameters {
 };
 
 struct RunConfig {
-  double duration = 20.0;          // s
-  double output_interval = 0.05;   // s between output frames (first frame at t = 0)
-  double max_step = 0.0;           // s, largest internal step; 0 = no limit
+  double duration = 20.0;         // s
+  double output_interval = 0.05;  // s between output frames (first frame at t = 0)
+  double max_step = 0.0;          // s, largest internal step; 0 = no limit
   Formulation formulation = Formulation::kAuto;
   Method method = Method::kBdf;
-  std::string erk_table;           // ARKODE table name for kErk ("" = default order-4/5)
+  std::string erk_table;  // ARKODE table name for kErk ("" = default order-4/5)
   double rtol = 1e-6;
   double atol = 1e-8;
-  double fixed_step = 1e-3;        // s, for kRk4 and kEuler
+  double fixed_step = 1e-3;                  // s, for kRk4 and kEuler
   Eigen::Vector3d gravity{0.0, 0.0, -9.81};  // m/s^2, base frame
-  Eigen::VectorXd q0;              // initial joint positions (empty = zeros / trajectory)
-  Eigen::VectorXd qd0;             // initial joint velocities (empty = zeros / trajectory)
-  std::vector<DriveConfig> drives; // one per joint, in the model's joint order
-  bool want_torques = true;        // report drive efforts (needs dynamics)
+  Eigen::VectorXd q0;                        // initial joint positions (empty = zeros / trajectory)
+  Eigen::VectorXd qd0;              // initial joint velocities (empty = zeros / trajectory)
+  std::vector<DriveConfig> drives;  // one per joint, in the model's joint order
+  bool want_torques = true;         // report drive efforts (needs dynamics)
   BaumgarteParameters baumgarte;
-  long max_steps = 10'000'000;     // internal steps before the run stops (TOO_MUCH_WORK)
+  long max_steps = 10'000'000;  // internal steps before the run stops (TOO_MUCH_WORK)
 };
 
 const char* FormulationName(Formulation formulation);  // "auto", "kinematic", "joint", ...

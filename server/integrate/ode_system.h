@@ -1,0 +1,33 @@
+// An ordinary differential equation y' = f(t, y), as the integrators see it: no mechanics.
+#pragma once
+
+namespace mbstream {
+
+class OdeSystem {
+ public:
+  virtual ~OdeSystem() = default;
+
+  // Number of states (the length of y).
+  virtual int size() const = 0;
+
+  // ydot = f(t, y). Returns 0 on success, > 0 for a recoverable failure (the solver retries
+  // with a smaller step), < 0 for an unrecoverable one (the run stops). Called on the hot
+  // path: must not allocate.
+  virtual int Rhs(double t, const double* y, double* ydot) = 0;
+
+  // Optional own dense Jacobian df/dy, column-major, size x size; fy = f(t, y). Return
+  // false from HasJacobian to let the integrator use finite differences (SUNDIALS' internal
+  // difference quotients). Jacobian returns 0 on success, > 0 recoverable, < 0 not.
+  virtual bool HasJacobian() const { return false; }
+  virtual int Jacobian(double /*t*/, const double* /*y*/, const double* /*fy*/,
+                       double* /*jac_col_major*/) {
+    return -1;
+  }
+
+  // For the semi-implicit Euler method: the number of leading "position" states whose
+  // derivative is the following block of "velocity" states (y = [x; v; rest], x' = v).
+  // 0 = not second order (the method is then refused with a clear error).
+  virtual int num_positions() const { return 0; }
+};
+
+}  // namespace mbstream

@@ -1,0 +1,27 @@
+// Models built in code for the physics tests (independent of the URDF importer).
+#pragma once
+
+#include <random>
+
+#include <Eigen/Core>
+
+#include "server/model/model.h"
+
+namespace mbstream::testing {
+
+// The IRB 1600 kinematics of the seed (section 2) with plausible made-up inertias, a
+// named point "tcp" at (0.065, 0, 0) in link6; armature and damping zero.
+Model Irb1600Model();
+
+// A branching tree with revolute and prismatic joints about skew axes, fixed links and
+// armature: exercises everything the algorithms support.
+Model BranchingModel();
+
+// One rigid body on a revolute joint about y at the origin: mass m (kg) at (0, 0, -l) m,
+// rotational inertia about its centre of mass diag(i_cm, i_cm, i_cm) kg*m^2.
+Model SinglePendulum(double m, double l, double i_cm);
+
+// A uniformly random vector in [-scale, scale]^n, from a fixed-seed generator.
+Eigen::VectorXd RandomVector(std::mt19937& rng, int n, double scale);
+
+}  // namespace mbstream::testing
