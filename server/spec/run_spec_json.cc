@@ -26,7 +26,8 @@ v1::RunSpec ParseRunSpecJson(const std::string& json, const std::string& source)
 v1::RunSpec LoadRunSpecFile(const std::string& path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) {
-    throw InputError(path + ": cannot read the run spec: no such file; check the path");
+    throw InputError(
+        path + ": cannot read the run spec: no such file (or not a regular file); check the path");
   }
   std::ifstream file(path, std::ios::binary);
   std::ostringstream text;

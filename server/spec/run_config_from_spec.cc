@@ -1,0 +1,318 @@
+// RunSpec -> RunConfig: every field validated, defaults applied, drives matched to joints.
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <optional>
+
+#include "server/common/check.h"
+#include "server/spec/run_spec_json.h"
+
+namespace mbstream {
+namespace {
+
+std::string Format(double value) {
+  std::array<char, 32> buffer;
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  return std::string(buffer.data(), result.ptr);
+}
+
+std::string JoinNames(const std::vector<std::string>& names) {
+  std::string joined;
+  for (const std::string& name : names) joined += (joined.empty() ? "" : ", ") + name;
+  return joined.empty() ? "(none)" : joined;
+}
+
+std::string FormulationNames() {
+  std::vector<std::string> names;
+  for (auto f : {Formulation::kAuto, Formulation::kKinematic, Formulation::kJoint,
+                 Formulation::kBodyIndex3, Formulation::kBodyIndex2, Formulation::kBodyBaumgarte}) {
+    names.push_back(FormulationName(f));
+  }
+  return JoinNames(names);
+}
+
+std::string MethodNames() {
+  std::vector<std::string> names;
+  for (auto m : {Method::kBdf, Method::kAdams, Method::kErk, Method::kDirk, Method::kIda,
+                 Method::kRk4, Method::kEuler}) {
+    names.push_back(MethodName(m));
+  }
+  return JoinNames(names);
+}
+
+// Builds the messages: "<source>: <field>: <problem>; <what to do>".
+class Checker {
+ public:
+  explicit Checker(const std::string& source) : source_(source) {}
+
+  [[noreturn]] void Fail(const std::string& field, const std::string& problem) const {
+    throw InputError(source_ + ": " + field + ": " + problem);
+  }
+
+  double Finite(double value, const std::string& field, const std::string& unit) const {
+    if (!std::isfinite(value)) {
+      Fail(field,
+           "is " + Format(value) + ", not a finite number; give a finite value (" + unit + ")");
+    }
+    return value;
+  }
+
+  double Positive(double value, const std::string& field, const std::string& unit,
+                  const std::string& advice) const {
+    Finite(value, field, unit);
+    if (!(value > 0.0)) {
+      Fail(field, "must be > 0 (" + unit + "), got " + Format(value) + "; " + advice);
+    }
+    return value;
+  }
+
+  double NonNegative(double value, const std::string& field, const std::string& unit,
+                     const std::string& advice) const {
+    Finite(value, field, unit);
+    if (value < 0.0)
+      Fail(field, "must be >= 0 (" + unit + "), got " + Format(value) + "; " + advice);
+    return value;
+  }
+
+  double Tolerance(double value, const std::string& field, const std::string& advice) const {
+    Finite(value, field, "dimensionless");
+    if (!(value > 0.0 && value < 1.0)) {
+      Fail(field, "must be in (0, 1), got " + Format(value) + "; " + advice);
+    }
+    return value;
+  }
+
+ private:
+  const std::string& source_;
+};
+
+constexpr char kJointUnit[] = "rad or m";
+
+Eigen::VectorXd JointVector(const google::protobuf::RepeatedField<double>& values,
+                            const std::vector<std::string>& joint_names, const std::string& field,
+                            const std::string& unit, const Checker& check) {
+  const int n = static_cast<int>(joint_names.size());
+  if (!values.empty() && values.size() != n) {
+    check.Fail(field, "has " + std::to_string(values.size()) + " values but the model has " +
+                          std::to_string(n) + " joints (" + JoinNames(joint_names) +
+                          "); give none or one per joint (" + unit +
+                          ") in the model's joint order");
+  }
+  Eigen::VectorXd vector(values.size());
+  for (int i = 0; i < values.size(); ++i) {
+    vector[i] = check.Finite(values[i], field + "[" + std::to_string(i) + "]", unit);
+  }
+  return vector;
+}
+
+Trajectory ToTrajectory(const v1::Trajectory& spec, const std::string& field,
+                        const Checker& check) {
+  Trajectory trajectory;
+  switch (spec.kind_case()) {
+    case v1::Trajectory::kSumOfSines: {
+      const v1::SumOfSines& sines = spec.sum_of_sines();
+      const std::string where = field + ".sum_of_sines";
+      trajectory.kind = Trajectory::Kind::kSine;
+      trajectory.offset = check.Finite(sines.offset(), where + ".offset", kJointUnit);
+      for (int k = 0; k < sines.terms_size(); ++k) {
+        const std::string term = where + ".terms[" + std::to_string(k) + "]";
+        const v1::Sine& sine = sines.terms(k);
+        trajectory.amplitude.push_back(
+            check.Finite(sine.amplitude(), term + ".amplitude", kJointUnit));
+        trajectory.omega.push_back(check.Finite(sine.omega(), term + ".omega", "rad/s"));
+        trajectory.phase.push_back(check.Finite(sine.phase(), term + ".phase", "rad"));
+      }
+      return trajectory;
+    }
+    case v1::Trajectory::kSpline: {
+      const v1::Spline& spline = spec.spline();
+      const std::string where = field + ".spline";
+      trajectory.kind = Trajectory::Kind::kSpline;
+      if (spline.times_s_size() != spline.values_size()) {
+        check.Fail(where, "times_s has " + std::to_string(spline.times_s_size()) +
+                              " entries but values has " + std::to_string(spline.values_size()) +
+                              "; give one value per time");
+      }
+      if (spline.times_s_size() < 2) {
+        check.Fail(where, "needs at least 2 points, has " + std::to_string(spline.times_s_size()) +
+                              "; give at least 2 (times_s, values) pairs");
+      }
+      for (int k = 0; k < spline.times_s_size(); ++k) {
+        const std::string index = "[" + std::to_string(k) + "]";
+        trajectory.times.push_back(
+            check.Finite(spline.times_s(k), where + ".times_s" + index, "s"));
+        trajectory.values.push_back(
+            check.Finite(spline.values(k), where + ".values" + index, kJointUnit));
+        if (k > 0 && !(trajectory.times[k] > trajectory.times[k - 1])) {
+          check.Fail(where + ".times_s" + index,
+                     Format(trajectory.times[k]) + " s is not after times_s[" +
+                         std::to_string(k - 1) + "] (" + Format(trajectory.times[k - 1]) +
+                         " s); give strictly increasing times");
+        }
+      }
+      return trajectory;
+    }
+    case v1::Trajectory::KIND_NOT_SET:
+      break;
+  }
+  check.Fail(field, "missing; give a sum_of_sines or a spline");
+}
+
+DriveConfig ToDrive(const v1::Drive& spec, const std::string& field, const Checker& check) {
+  DriveConfig drive;
+  switch (spec.kind_case()) {
+    case v1::Drive::kPassive:
+      drive.kind = DriveConfig::Kind::kPassive;
+      return drive;
+    case v1::Drive::kPrescribed:
+      drive.kind = DriveConfig::Kind::kPrescribed;
+      drive.trajectory =
+          ToTrajectory(spec.prescribed().trajectory(), field + ".prescribed.trajectory", check);
+      drive.velocity_source = spec.prescribed().velocity_source();
+      return drive;
+    case v1::Drive::kTorque: {
+      const std::string where = field + ".torque";
+      const v1::Drive::Torque& torque = spec.torque();
+      drive.kind = DriveConfig::Kind::kTorque;
+      drive.constant = check.Finite(torque.constant(), where + ".constant", "N*m or N");
+      drive.amplitude = check.Finite(torque.amplitude(), where + ".amplitude", "N*m or N");
+      drive.omega = check.Finite(torque.omega(), where + ".omega", "rad/s");
+      drive.phase = check.Finite(torque.phase(), where + ".phase", "rad");
+      return drive;
+    }
+    case v1::Drive::kPdServo: {
+      const std::string where = field + ".pd_servo";
+      const v1::Drive::PdServo& servo = spec.pd_servo();
+      drive.kind = DriveConfig::Kind::kPdServo;
+      drive.kp = check.NonNegative(servo.kp(), where + ".kp", "N*m/rad or N/m",
+                                   "give a non-negative stiffness gain");
+      drive.kd = check.NonNegative(servo.kd(), where + ".kd", "N*m*s/rad or N*s/m",
+                                   "give a non-negative damping gain");
+      drive.trajectory = ToTrajectory(servo.trajectory(), where + ".trajectory", check);
+      return drive;
+    }
+    case v1::Drive::KIND_NOT_SET:
+      break;
+  }
+  check.Fail(field, "no drive kind; give one of prescribed, torque, pd_servo or passive");
+}
+
+std::vector<DriveConfig> ToDrives(const v1::RunSpec& spec,
+                                  const std::vector<std::string>& joint_names,
+                                  const Checker& check) {
+  const int n = static_cast<int>(joint_names.size());
+  if (spec.drives_size() > n) {
+    check.Fail("drives", "has " + std::to_string(spec.drives_size()) +
+                             " drives but the model has " + std::to_string(n) + " joints (" +
+                             JoinNames(joint_names) + "); give at most one drive per joint");
+  }
+  std::vector<DriveConfig> drives(n);  // passive unless a Drive says otherwise
+  std::vector<std::optional<int>> driven_by(n);
+  for (int i = 0; i < spec.drives_size(); ++i) {
+    const v1::Drive& drive = spec.drives(i);
+    const std::string field = "drives[" + std::to_string(i) + "]";
+    int joint = i;
+    if (!drive.joint().empty()) {
+      joint = 0;
+      while (joint < n && joint_names[joint] != drive.joint()) ++joint;
+      if (joint == n) {
+        check.Fail(field + ".joint", "the model has no joint named '" + drive.joint() +
+                                         "'; give one of " + JoinNames(joint_names));
+      }
+    }
+    if (driven_by[joint]) {
+      check.Fail(field, "joint '" + joint_names[joint] + "' already has a drive (drives[" +
+                            std::to_string(*driven_by[joint]) +
+                            "]); give each joint at most one drive");
+    }
+    driven_by[joint] = i;
+    drives[joint] = ToDrive(drive, field, check);
+  }
+  return drives;
+}
+
+}  // namespace
+
+RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& joint_names,
+                      const std::string& source) {
+  const Checker check(source);
+  RunConfig config;
+  if (spec.has_duration_s()) {
+    config.duration = check.Positive(spec.duration_s(), "duration_s", "s",
+                                     "give the simulated time span, e.g. 20");
+  }
+  if (spec.has_output_interval_s()) {
+    config.output_interval = check.Positive(spec.output_interval_s(), "output_interval_s", "s",
+                                            "give the time between output frames, e.g. 0.05");
+  }
+  if (config.output_interval > config.duration) {
+    check.Fail("output_interval_s", Format(config.output_interval) +
+                                        " s is longer than duration_s (" + Format(config.duration) +
+                                        " s); give an interval no longer than the duration");
+  }
+  if (spec.has_max_step_s()) {
+    config.max_step = check.NonNegative(spec.max_step_s(), "max_step_s", "s",
+                                        "give the largest internal step, or 0 for no limit");
+  }
+  if (!spec.formulation().empty() && !ParseFormulation(spec.formulation(), &config.formulation)) {
+    check.Fail("formulation",
+               "unknown name '" + spec.formulation() + "'; give one of " + FormulationNames());
+  }
+  if (!spec.method().empty() && !ParseMethod(spec.method(), &config.method)) {
+    check.Fail("method", "unknown name '" + spec.method() + "'; give one of " + MethodNames());
+  }
+  config.erk_table = spec.erk_table();
+  if (spec.has_rtol()) {
+    config.rtol = check.Tolerance(spec.rtol(), "rtol", "give a relative tolerance, e.g. 1e-6");
+  }
+  if (spec.has_atol()) {
+    config.atol = check.Tolerance(spec.atol(), "atol", "give an absolute tolerance, e.g. 1e-8");
+  }
+  if (spec.has_fixed_step_s()) {
+    config.fixed_step = check.Finite(spec.fixed_step_s(), "fixed_step_s", "s");
+    if ((config.method == Method::kRk4 || config.method == Method::kEuler) &&
+        !(config.fixed_step > 0.0)) {
+      check.Fail("fixed_step_s", std::string("must be > 0 (s) for method ") +
+                                     MethodName(config.method) + ", got " +
+                                     Format(config.fixed_step) + "; give the step, e.g. 0.001");
+    }
+  }
+  if (spec.has_gravity()) {
+    config.gravity = {check.Finite(spec.gravity().x(), "gravity.x", "m/s^2"),
+                      check.Finite(spec.gravity().y(), "gravity.y", "m/s^2"),
+                      check.Finite(spec.gravity().z(), "gravity.z", "m/s^2")};
+  }
+  config.q0 = JointVector(spec.initial_q(), joint_names, "initial_q", kJointUnit, check);
+  config.qd0 = JointVector(spec.initial_qd(), joint_names, "initial_qd", "rad/s or m/s", check);
+  config.drives = ToDrives(spec, joint_names, check);
+  config.want_torques = spec.has_want_torques() ? spec.want_torques() : true;
+  if (spec.has_baumgarte()) {
+    const v1::Baumgarte& baumgarte = spec.baumgarte();
+    if (baumgarte.has_alpha()) {
+      config.baumgarte.alpha = check.NonNegative(baumgarte.alpha(), "baumgarte.alpha", "1/s",
+                                                 "give a non-negative feedback gain, e.g. 10");
+    }
+    if (baumgarte.has_beta()) {
+      config.baumgarte.beta = check.NonNegative(baumgarte.beta(), "baumgarte.beta", "1/s^2",
+                                                "give a non-negative feedback gain, e.g. 25");
+    }
+  }
+  if (spec.has_max_internal_steps()) {
+    if (spec.max_internal_steps() <= 0) {
+      check.Fail("max_internal_steps", "must be > 0, got " +
+                                           std::to_string(spec.max_internal_steps()) +
+                                           "; give the most internal steps, e.g. 10000000");
+    }
+    config.max_steps = spec.max_internal_steps();
+  }
+  check.NonNegative(spec.realtime(), "realtime", "simulated s per wall-clock s",
+                    "give 0 for as fast as possible or 1 for real time");
+  if (spec.max_output_frames() < 0) {
+    check.Fail("max_output_frames", "must be >= 0, got " +
+                                        std::to_string(spec.max_output_frames()) +
+                                        "; give 0 for the server's limit");
+  }
+  return config;
+}
+
+}  // namespace mbstream
