@@ -1,0 +1,50 @@
+// Imports a URDF robot description into a Model.
+//
+// Supported: a fixed-base tree of revolute, continuous (revolute without limits),
+// prismatic and fixed joints; <limit> (position, velocity, effort), <dynamics damping>;
+// <inertial> (origin xyz + rpy, mass, inertia) in SI units. Links on fixed joints are
+// merged into the body they hang from and stay available as frames. mbstream extension:
+// <mbstream:rotor_inertia value="..."/> inside a <joint> gives the rotor (reflected)
+// inertia, kg*m^2 for revolute and kg for prismatic joints (declare
+// xmlns:mbstream="urn:mbstream" on <robot> for namespace-aware tools).
+//
+// The TCP is the link named "tcp" (any case) or "tool0"; otherwise the first leaf link on
+// a fixed joint of the last moving body; otherwise there is none (a warning says so).
+//
+// Bad input throws InputError with a message "FILE:LINE: joint 'NAME': what is wrong;
+// what to do" (or link 'NAME'; LINE when known): XML or URDF that TinyXML or urdfdom
+// cannot parse (urdfdom's own words quoted), a duplicate link or joint name, a link with
+// two parents or a closed loop, a floating or planar joint, a moving link without positive
+// mass, an unphysical inertia, a zero axis, lower limit > upper, negative limits or
+// damping, a referenced mesh that is not supplied. Input that is merely odd imports with
+// a warning in the same form: a non-unit axis (normalised), a revolute joint without
+// <limit> (unlimited), zero effort or velocity limits (read as none), an empty position
+// range, a mass below 1e-6 kg, a scaled mesh, ignored features (friction, <mimic>, limits
+// of a continuous joint), no TCP, no moving joint.
+#pragma once
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "server/model/model.h"
+
+namespace mbstream {
+
+struct UrdfImport {
+  Model model;
+  std::vector<std::string> warnings;
+};
+
+// Imports URDF XML `text`. `source` names the file in messages. `assets` are the mesh
+// files the user supplied, each as written in the URDF's filename attribute or as its
+// base name; a mesh referenced by a visual or collision and not among them is an error.
+UrdfImport ImportUrdf(const std::string& text, const std::string& source,
+                      const std::set<std::string>& assets);
+
+// Reads and imports the file at `path`. A mesh counts as supplied when its file exists,
+// looked up relative to the URDF's directory with any package:// or file:// prefix
+// stripped (for package://PKG/rest also as rest, and by base name).
+UrdfImport ImportUrdfFile(const std::string& path);
+
+}  // namespace mbstream

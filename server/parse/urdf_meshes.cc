@@ -1,0 +1,91 @@
+#include "server/parse/urdf_meshes.h"
+
+#include <memory>
+#include <string_view>
+#include <system_error>
+
+#include "server/common/check.h"
+
+namespace mbstream {
+
+namespace {
+
+constexpr std::string_view kPackage = "package://";
+constexpr std::string_view kFile = "file://";
+
+bool StartsWith(const std::string& s, std::string_view prefix) {
+  return s.compare(0, prefix.size(), prefix) == 0;
+}
+
+std::string WithoutScheme(const std::string& filename) {
+  if (StartsWith(filename, kPackage)) return filename.substr(kPackage.size());
+  if (StartsWith(filename, kFile)) return filename.substr(kFile.size());
+  return filename;
+}
+
+std::string BaseName(const std::string& filename) {
+  const size_t slash = filename.find_last_of('/');
+  return slash == std::string::npos ? filename : filename.substr(slash + 1);
+}
+
+bool IsFile(const std::filesystem::path& path) {
+  std::error_code error;
+  return std::filesystem::is_regular_file(path, error);
+}
+
+}  // namespace
+
+bool MeshSupplied(const std::string& filename, const std::set<std::string>& assets) {
+  return assets.count(filename) != 0 || assets.count(WithoutScheme(filename)) != 0 ||
+         assets.count(BaseName(filename)) != 0;
+}
+
+void CheckMeshes(const urdf::Link& link, const std::set<std::string>& assets,
+                 const UrdfDiagnostics& diagnostics) {
+  const auto check = [&](const urdf::GeometrySharedPtr& geometry, const char* part) {
+    const auto mesh = std::dynamic_pointer_cast<const urdf::Mesh>(geometry);
+    if (mesh == nullptr) return;
+    if (!MeshSupplied(mesh->filename, assets)) {
+      throw InputError(diagnostics.Link(link.name) + ": " + part + " mesh '" + mesh->filename +
+                       "' is not supplied; pass it with --asset " + BaseName(mesh->filename));
+    }
+    const urdf::Vector3& s = mesh->scale;
+    if (s.x != 1.0 || s.y != 1.0 || s.z != 1.0) {
+      diagnostics.Warn(diagnostics.Link(link.name) + ": " + part + " mesh '" + mesh->filename +
+                       "' is scaled by (" + FormatNumber(s.x) + " " + FormatNumber(s.y) + " " +
+                       FormatNumber(s.z) + "); the server ignores mesh geometry, so make " +
+                       "sure the viewer's scene draws it at that scale");
+    }
+  };
+  for (const urdf::VisualSharedPtr& visual : link.visual_array) {
+    if (visual != nullptr) check(visual->geometry, "visual");
+  }
+  for (const urdf::CollisionSharedPtr& collision : link.collision_array) {
+    if (collision != nullptr) check(collision->geometry, "collision");
+  }
+}
+
+std::set<std::string> ExistingMeshFiles(const std::vector<std::string>& mesh_files,
+                                        const std::filesystem::path& directory) {
+  std::set<std::string> found;
+  for (const std::string& filename : mesh_files) {
+    const std::string path = WithoutScheme(filename);
+    std::vector<std::filesystem::path> candidates = {directory / path,
+                                                     directory / BaseName(filename)};
+    const size_t slash = path.find('/');
+    if (StartsWith(filename, kPackage) && slash != std::string::npos) {
+      const std::string rest = path.substr(slash + 1);  // without the package name
+      candidates.push_back(directory / rest);
+      candidates.push_back(directory.parent_path() / rest);
+    }
+    for (const std::filesystem::path& candidate : candidates) {
+      if (IsFile(candidate)) {
+        found.insert(filename);
+        break;
+      }
+    }
+  }
+  return found;
+}
+
+}  // namespace mbstream

@@ -1,0 +1,30 @@
+// Mesh files referenced by a URDF: are they supplied, and where are they on disk.
+#pragma once
+
+#include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <urdf_model/link.h>
+
+#include "server/parse/urdf_diagnostics.h"
+
+namespace mbstream {
+
+// True if `filename` (a URDF <mesh filename>) is in `assets` as written, without its
+// package:// or file:// prefix, or as its base name.
+bool MeshSupplied(const std::string& filename, const std::set<std::string>& assets);
+
+// Throws InputError naming the link and the file for a visual or collision mesh of `link`
+// that is not supplied; warns about scaled meshes.
+void CheckMeshes(const urdf::Link& link, const std::set<std::string>& assets,
+                 const UrdfDiagnostics& diagnostics);
+
+// The files among `mesh_files` (as written in the URDF) that exist relative to
+// `directory`: the path without its package:// or file:// prefix; for package://PKG/REST
+// also REST in `directory` and in its parent; the base name in `directory`.
+std::set<std::string> ExistingMeshFiles(const std::vector<std::string>& mesh_files,
+                                        const std::filesystem::path& directory);
+
+}  // namespace mbstream
