@@ -1,6 +1,7 @@
 #include "server/dynamics/aba.h"
 
 #include "server/common/check.h"
+#include "server/kinematics/joint_inertia_transform.h"
 #include "server/kinematics/joint_transform.h"
 
 namespace mbstream {
@@ -15,7 +16,8 @@ const Eigen::VectorXd& Aba(const Model& model, Data& data,
   // Pass 1 (base to tips): velocities, velocity-product accelerations, bias forces.
   for (int i = 0; i < n; ++i) {
     const Body& body = model.bodies[i];
-    const Pose& X = data.X_parent[i] = JointTransform(body.joint, q(i));
+    JointTransform(body.joint, q(i), &data.X_parent[i]);
+    const Pose& X = data.X_parent[i];
     const Vector6d vJ = data.S[i] * qd(i);
     if (body.parent == kBase) {
       data.v[i] = vJ;
@@ -31,16 +33,23 @@ const Eigen::VectorXd& Aba(const Model& model, Data& data,
   // Pass 2 (tips to base): articulated inertias and bias forces.
   for (int i = n - 1; i >= 0; --i) {
     const Body& body = model.bodies[i];
-    data.U[i].noalias() = data.IA[i] * data.S[i];
-    data.D[i] = data.S[i].dot(data.U[i]) + body.joint.armature;
+    const int k = data.S_index[i];
+    if (k >= 0) {  // S is a coordinate unit vector: IA S is a column
+      data.U[i] = data.IA[i].col(k);
+      data.D[i] = data.U[i](k) + body.joint.armature;
+      data.u[i] = tau(i) - data.pA[i](k);
+    } else {
+      data.U[i].noalias() = data.IA[i] * data.S[i];
+      data.D[i] = data.S[i].dot(data.U[i]) + body.joint.armature;
+      data.u[i] = tau(i) - data.S[i].dot(data.pA[i]);
+    }
     MBSTREAM_CHECK_MSG(data.D[i] > 0.0, "articulated inertia of a joint is not positive");
-    data.u[i] = tau(i) - data.S[i].dot(data.pA[i]);
     if (body.parent != kBase) {
       const double inv_D = 1.0 / data.D[i];
-      Matrix6d Ia = data.IA[i];
+      Matrix6d& Ia = data.IA[i];  // no longer needed as IA: becomes the projected inertia
       Ia.noalias() -= (data.U[i] * inv_D) * data.U[i].transpose();
       const Vector6d pa = data.pA[i] + Ia * data.c[i] + data.U[i] * (data.u[i] * inv_D);
-      AddInertiaToParent(data.X_parent[i], Ia, &data.IA[body.parent]);
+      AddInertiaAcrossJoint(body.joint, data.X_parent[i], Ia, &data.IA[body.parent]);
       data.pA[body.parent] += ForceToParent(data.X_parent[i], pa);
     }
   }

@@ -1,6 +1,7 @@
 #include "server/dynamics/crba.h"
 
 #include "server/common/check.h"
+#include "server/kinematics/joint_inertia_transform.h"
 #include "server/kinematics/joint_transform.h"
 
 namespace mbstream {
@@ -10,12 +11,14 @@ const Eigen::MatrixXd& Crba(const Model& model, Data& data,
   const int n = model.num_dofs();
   MBSTREAM_CHECK(q.size() == n);
   for (int i = 0; i < n; ++i) {
-    data.X_parent[i] = JointTransform(model.bodies[i].joint, q(i));
+    JointTransform(model.bodies[i].joint, q(i), &data.X_parent[i]);
     data.IA[i] = data.I[i];
   }
   for (int i = n - 1; i >= 0; --i) {
     const int parent = model.bodies[i].parent;
-    if (parent != kBase) AddInertiaToParent(data.X_parent[i], data.IA[i], &data.IA[parent]);
+    if (parent != kBase) {
+      AddInertiaAcrossJoint(model.bodies[i].joint, data.X_parent[i], data.IA[i], &data.IA[parent]);
+    }
   }
   for (int i = 0; i < n; ++i) {
     Vector6d F = data.IA[i] * data.S[i];

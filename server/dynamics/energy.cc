@@ -12,7 +12,8 @@ double KineticEnergy(const Model& model, Data& data, const Eigen::Ref<const Eige
   double energy = 0.0;
   for (int i = 0; i < n; ++i) {
     const Body& body = model.bodies[i];
-    const Pose& X = data.X_parent[i] = JointTransform(body.joint, q(i));
+    JointTransform(body.joint, q(i), &data.X_parent[i]);
+    const Pose& X = data.X_parent[i];
     data.v[i] = data.S[i] * qd(i);
     if (body.parent != kBase) data.v[i] += MotionToChild(X, data.v[body.parent]);
     energy += 0.5 * data.v[i].dot(body.inertia.Apply(data.v[i]));

@@ -13,7 +13,8 @@ const Eigen::VectorXd& Rnea(const Model& model, Data& data, ConstVectorRef q, Co
   a_base.tail<3>() = -model.gravity;  // gravity as an upward acceleration of the base
   for (int i = 0; i < n; ++i) {
     const Body& body = model.bodies[i];
-    const Pose& X = data.X_parent[i] = JointTransform(body.joint, q(i));
+    JointTransform(body.joint, q(i), &data.X_parent[i]);
+    const Pose& X = data.X_parent[i];
     const Vector6d vJ = data.S[i] * qd(i);
     if (body.parent == kBase) {
       data.v[i] = vJ;

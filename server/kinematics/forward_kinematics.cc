@@ -9,7 +9,7 @@ void ForwardKinematics(const Model& model, Data& data, const Eigen::Ref<const Ei
   MBSTREAM_CHECK(q.size() == model.num_dofs());
   for (int i = 0; i < model.num_dofs(); ++i) {
     const Body& body = model.bodies[i];
-    data.X_parent[i] = JointTransform(body.joint, q(i));
+    JointTransform(body.joint, q(i), &data.X_parent[i]);
     data.X_world[i] =
         body.parent == kBase ? data.X_parent[i] : data.X_world[body.parent] * data.X_parent[i];
   }

@@ -2,17 +2,41 @@
 // then the joint's motion about (or along) its axis.
 #pragma once
 
+#include <cmath>
+
 #include "server/math/spatial.h"
 #include "server/model/joint.h"
 
 namespace mbstream {
 
-// X_PB = X_PJ * X_JB(q), q in rad (revolute) or m (prismatic).
-inline Pose JointTransform(const Joint& joint, double q) {
+// Rotation by angle (cos c, sin s) about coordinate axis k (0 = x, 1 = y, 2 = z).
+inline Matrix3d CoordinateRotation(int k, double c, double s) {
+  Matrix3d r = Matrix3d::Identity();
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  r(i, i) = c;
+  r(i, j) = -s;
+  r(j, i) = s;
+  r(j, j) = c;
+  return r;
+}
+
+// Writes X_PB = X_PJ * X_JB(q), q in rad (revolute) or m (prismatic), into *X_PB.
+inline void JointTransform(const Joint& joint, double q, Pose* X_PB) {
   if (joint.type == JointType::kRevolute) {
-    return Pose{joint.X_PJ.R * AxisAngleRotation(joint.axis, q), joint.X_PJ.p};
+    double s, c;
+    ::sincos(q, &s, &c);
+    if (joint.axis_index >= 0 && joint.origin_rotation_identity) {
+      X_PB->R = CoordinateRotation(joint.axis_index, c, s);
+    } else {
+      const Matrix3d R_JB = joint.axis_index >= 0 ? CoordinateRotation(joint.axis_index, c, s)
+                                                  : AxisAngleRotation(joint.axis, q);
+      X_PB->R.noalias() = joint.X_PJ.R * R_JB;
+    }
+    X_PB->p = joint.X_PJ.p;
+  } else {
+    X_PB->R = joint.X_PJ.R;
+    X_PB->p = joint.X_PJ.p + joint.X_PJ.R * (joint.axis * q);
   }
-  return Pose{joint.X_PJ.R, joint.X_PJ.p + joint.X_PJ.R * (joint.axis * q)};
 }
 
 }  // namespace mbstream

@@ -16,6 +16,7 @@ Data::Data(const Model& model) {
   IA.assign(n, Matrix6d::Zero());
   pA.assign(n, Vector6d::Zero());
   U.assign(n, Vector6d::Zero());
+  S_index.assign(n, -1);
   D.assign(n, 0.0);
   u.assign(n, 0.0);
   for (size_t i = 0; i < n; ++i) {
@@ -25,6 +26,9 @@ Data::Data(const Model& model) {
       S[i].head<3>() = joint.axis;
     } else {
       S[i].tail<3>() = joint.axis;
+    }
+    for (int k = 0; k < 6; ++k) {
+      if (S[i] == Vector6d::Unit(k)) S_index[i] = k;
     }
   }
   const auto dofs = static_cast<Eigen::Index>(n);

@@ -24,6 +24,7 @@ struct Data {
   std::vector<Vector6d> f;   // force transmitted by the body's joint
   std::vector<Vector6d> c;   // velocity-product acceleration v x S qd
   std::vector<Vector6d> S;   // joint motion subspace (axis), constant
+  std::vector<int> S_index;  // k when S is the unit vector e_k (a coordinate axis), else -1
   std::vector<Matrix6d> I;   // body spatial inertia about its origin, constant
   std::vector<Matrix6d> IA;  // articulated-body (ABA) or composite (CRBA) inertia
   std::vector<Vector6d> pA;  // articulated bias force

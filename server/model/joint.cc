@@ -12,4 +12,12 @@ const char* JointTypeName(JointType type) {
   return "unknown";
 }
 
+void DeriveJointShape(Joint& joint) {
+  joint.axis_index = -1;
+  for (int k = 0; k < 3; ++k) {
+    if (joint.axis == Vector3d::Unit(k)) joint.axis_index = k;
+  }
+  joint.origin_rotation_identity = joint.X_PJ.R == Matrix3d::Identity();
+}
+
 }  // namespace mbstream

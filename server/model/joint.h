@@ -29,6 +29,13 @@ struct Joint {
   JointLimits limits;
   double damping = 0.0;   // viscous: N*m*s/rad or N*s/m; force -damping * qd
   double armature = 0.0;  // rotor (reflected) inertia: kg*m^2 or kg, added to M(q)(i, i)
+
+  // Derived by ModelBuilder, for fast paths in the algorithms:
+  int axis_index = -1;                    // 0, 1, 2 when axis is exactly +x, +y, +z; else -1
+  bool origin_rotation_identity = false;  // X_PJ.R is exactly the identity
 };
+
+// Sets the derived fields of `joint` from its axis and origin.
+void DeriveJointShape(Joint& joint);
 
 }  // namespace mbstream

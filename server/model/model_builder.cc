@@ -93,6 +93,7 @@ void ModelBuilder::AddMovingLink(const std::string& link, const std::string& par
   body.parent = parent.body;
   body.joint = joint;
   body.joint.X_PJ = parent.X_BL * joint.X_PJ;  // re-expressed in the moving parent body
+  DeriveJointShape(body.joint);
   body.inertia = inertia;
   const int index = static_cast<int>(model_.bodies.size());
   model_.bodies.push_back(std::move(body));
