@@ -16,8 +16,9 @@ class OdeSystem {
   virtual int Rhs(double t, const double* y, double* ydot) = 0;
 
   // Optional own dense Jacobian df/dy, column-major, size x size; fy = f(t, y). Return
-  // false from HasJacobian to let the integrator use finite differences (SUNDIALS' internal
-  // difference quotients). Jacobian returns 0 on success, > 0 recoverable, < 0 not.
+  // false from HasJacobian to let the integrator use finite differences (SUNDIALS' difference
+  // quotients: size() evaluations of Rhs). Jacobian returns 0 on success, > 0 recoverable,
+  // < 0 unrecoverable. Called on the hot path: must not allocate.
   virtual bool HasJacobian() const { return false; }
   virtual int Jacobian(double /*t*/, const double* /*y*/, const double* /*fy*/,
                        double* /*jac_col_major*/) {

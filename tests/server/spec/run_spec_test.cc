@@ -71,7 +71,7 @@ TEST(RunSpecSceneTest, SeedRunIsTheSeedExperiment) {
   EXPECT_EQ(config.rtol, 1e-6);
   EXPECT_EQ(config.atol, 1e-8);
   EXPECT_EQ(config.gravity, Eigen::Vector3d(0.0, 0.0, -9.81));
-  EXPECT_TRUE(config.want_torques);
+  EXPECT_FALSE(config.want_torques);  // like the seed: states and TCP only
   EXPECT_EQ(config.q0.size(), 0);
   EXPECT_EQ(config.qd0.size(), 0);
   ASSERT_EQ(config.drives.size(), 6u);

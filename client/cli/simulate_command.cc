@@ -1,0 +1,84 @@
+#include "client/cli/simulate_command.h"
+
+#include <spdlog/spdlog.h>
+
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "client/cli/run_overrides.h"
+#include "server/common/check.h"
+#include "server/parse/urdf_import.h"
+#include "server/results/results_files.h"
+#include "server/sim/simulate.h"
+#include "server/spec/run_spec_json.h"
+
+namespace mbstream::cli {
+
+namespace {
+
+struct SimulateOptions {
+  std::string model_path;
+  std::string spec_path;
+  std::string out_dir;
+  RunOverrides overrides;
+};
+
+int RunSimulate(const SimulateOptions& options) {
+  UrdfImport import = ImportUrdfFile(options.model_path);
+  for (const std::string& warning : import.warnings) spdlog::warn("{}", warning);
+  v1::RunSpec spec;
+  std::string source = "(command line)";
+  if (!options.spec_path.empty()) {
+    spec = LoadRunSpecFile(options.spec_path);
+    source = options.spec_path;
+  }
+  options.overrides.ApplyTo(spec);
+  std::vector<std::string> joints;
+  for (const Body& body : import.model.bodies) joints.push_back(body.joint.name);
+  const RunConfig config = ToRunConfig(spec, joints, source);
+
+  const RunResult result = Simulate(import.model, config);
+  const RunProvenance provenance{import.model.name, options.model_path,
+                                 RunSpecToJson(ToRunSpec(config))};
+  WriteResultsDirectory(result, provenance, options.out_dir);
+
+  const RunStats& s = result.stats;
+  std::cout << RunStatusName(s.status) << ": " << result.num_frames()
+            << " frames to t = " << s.t_reached << " s, formulation " << s.formulation << " ("
+            << s.equations << " equations), method " << s.method << ", " << s.solver.steps
+            << " steps, cpu " << s.cpu_s * 1e3 << " ms";
+  if (s.tcp_error_max >= 0) std::cout << ", TCP error " << s.tcp_error_max << " m";
+  if (s.energy_error_max >= 0) std::cout << ", energy error " << s.energy_error_max;
+  std::cout << "\nresults in " << options.out_dir << "\n";
+  if (s.status != RunStatus::kFinished) {
+    std::cerr << "mbstream simulate: run " << RunStatusName(s.status) << ": " << s.message << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+void AddSimulateCommand(CLI::App& app, int* exit_code) {
+  auto options = std::make_shared<SimulateOptions>();
+  CLI::App* command = app.add_subcommand(
+      "simulate", "run the engine in-process (no server) and write the results files");
+  command->add_option("model", options->model_path, "the model's URDF file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--spec", options->spec_path, "run spec (protobuf JSON of RunSpec)")
+      ->check(CLI::ExistingFile);
+  command->add_option("--out", options->out_dir, "results directory")->required();
+  options->overrides.AddTo(*command);
+  command->callback([options, exit_code] {
+    try {
+      *exit_code = RunSimulate(*options);
+    } catch (const InputError& error) {
+      std::cerr << "mbstream simulate: " << error.what() << "\n";
+      *exit_code = 2;
+    }
+  });
+}
+
+}  // namespace mbstream::cli

@@ -1,0 +1,86 @@
+#include "server/integrate/cvode_integrator.h"
+
+#include <cmath>
+
+#include <cvode/cvode.h>
+#include <cvode/cvode_ls.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+
+namespace mbstream::sundials {
+
+CvodeIntegrator::CvodeIntegrator(Variant variant, OdeSystem& system, double t0, const double* y0,
+                                 const IntegratorOptions& options)
+    : SundialsIntegrator(system, t0, y0, options, Family::kCvode, variant == Variant::kBdf,
+                         variant == Variant::kAdams),
+      variant_(variant),
+      memory_(CVodeCreate(variant == Variant::kBdf ? CV_BDF : CV_ADAMS, context()), CVodeFree) {
+  void* cvode = memory_.get();
+  CheckCreated(cvode, "CVodeCreate");
+  CheckSetup(CVodeSetErrHandlerFn(cvode, ErrorSink::Handle, &errors()), "CVodeSetErrHandlerFn");
+  CheckSetup(CVodeInit(cvode, RhsCallback, t0, initial_state()), "CVodeInit");
+  callback_data().solver = cvode;
+  CheckSetup(CVodeSetUserData(cvode, &callback_data()), "CVodeSetUserData");
+  CheckSetup(CVodeSStolerances(cvode, options.rtol, options.atol), "CVodeSStolerances");
+  if (options.max_step > 0.0) {
+    CheckSetup(CVodeSetMaxStep(cvode, options.max_step), "CVodeSetMaxStep");
+  }
+  if (std::isfinite(options.t_final)) {
+    CheckSetup(CVodeSetStopTime(cvode, options.t_final), "CVodeSetStopTime");
+  }
+  const int n = system.size();
+  if (variant == Variant::kBdf) {
+    matrix_.reset(SUNDenseMatrix(n, n, context()));
+    CheckCreated(matrix_.get(), "SUNDenseMatrix");
+    linear_solver_.reset(SUNLinSol_Dense(initial_state(), matrix_.get(), context()));
+    CheckCreated(linear_solver_.get(), "SUNLinSol_Dense");
+    CheckSetup(CVodeSetLinearSolver(cvode, linear_solver_.get(), matrix_.get()),
+               "CVodeSetLinearSolver");
+    CheckSetup(CVodeSetJacFn(cvode, DenseJacobianCallback), "CVodeSetJacFn");
+  } else {
+    nonlinear_solver_.reset(SUNNonlinSol_FixedPoint(initial_state(), 0, context()));
+    CheckCreated(nonlinear_solver_.get(), "SUNNonlinSol_FixedPoint");
+    CheckSetup(CVodeSetNonlinearSolver(cvode, nonlinear_solver_.get()), "CVodeSetNonlinearSolver");
+  }
+}
+
+const char* CvodeIntegrator::name() const {
+  return variant_ == Variant::kBdf ? "CVODE BDF" : "CVODE Adams";
+}
+
+long CvodeIntegrator::NumSteps() const {
+  long steps = 0;
+  CVodeGetNumSteps(memory_.get(), &steps);
+  return steps;
+}
+
+double CvodeIntegrator::CurrentTime() const {
+  double t = 0.0;
+  CVodeGetCurrentTime(memory_.get(), &t);
+  return t;
+}
+
+int CvodeIntegrator::SetMaxNumSteps(long steps) {
+  return CVodeSetMaxNumSteps(memory_.get(), steps);
+}
+
+int CvodeIntegrator::Evolve(double t_out, N_Vector y, double* t_reached) {
+  return CVode(memory_.get(), t_out, y, t_reached, CV_NORMAL);
+}
+
+SolverStats CvodeIntegrator::stats() const {
+  void* cvode = memory_.get();
+  SolverStats stats;
+  CVodeGetNumSteps(cvode, &stats.steps);
+  stats.rhs_evals = rhs().num_evals();
+  if (variant_ == Variant::kBdf) CVodeGetNumJacEvals(cvode, &stats.jac_evals);
+  CVodeGetNumNonlinSolvIters(cvode, &stats.nonlinear_iterations);
+  CVodeGetNumErrTestFails(cvode, &stats.error_test_failures);
+  CVodeGetNumNonlinSolvConvFails(cvode, &stats.convergence_failures);
+  CVodeGetLastStep(cvode, &stats.last_step);
+  CVodeGetLastOrder(cvode, &stats.last_order);
+  return stats;
+}
+
+}  // namespace mbstream::sundials

@@ -1,0 +1,89 @@
+// The time-integration layer: advances an OdeSystem to requested output times with one of
+// the methods of the contract (SUNDIALS CVODE/ARKODE, fixed-step RK4, semi-implicit Euler).
+// It knows nothing of mechanics.
+#pragma once
+
+#include <limits>
+#include <memory>
+#include <string>
+
+#include "server/integrate/ode_system.h"
+#include "server/sim/run_config.h"
+
+namespace mbstream {
+
+struct IntegratorOptions {
+  Method method = Method::kBdf;
+  double rtol = 1e-6;        // relative tolerance (adaptive methods)
+  double atol = 1e-8;        // absolute tolerance, same for every state (adaptive methods)
+  double max_step = 0.0;     // s, largest internal step of adaptive methods; 0 = none
+  double fixed_step = 1e-3;  // s, the step of kRk4 and kEuler
+  // ARKODE table: for kErk an explicit table, for kDirk a diagonally implicit one ("" = the
+  // method's default). See ErkTableNames() / DirkTableNames() in butcher_tables.h.
+  std::string erk_table;
+  long max_steps = 10'000'000;  // internal steps in total, over all AdvanceTo calls
+  // s, the integrator never steps past it (CVodeSetStopTime etc.); AdvanceTo may not ask
+  // for a later time. Infinity = no stop time.
+  double t_final = std::numeric_limits<double>::infinity();
+  double divergence_limit = 1e10;  // |y_i| beyond this (or non-finite) = diverged
+};
+
+// The options of a run: RunConfig's solver fields, with the given stop time.
+IntegratorOptions IntegratorOptionsFrom(const RunConfig& config, double t_final);
+
+// Cumulative solver statistics since creation.
+struct SolverStats {
+  long steps = 0;                 // accepted internal steps
+  long rhs_evals = 0;             // calls of OdeSystem::Rhs, including finite-difference Jacobians
+  long jac_evals = 0;             // Jacobian evaluations (own or finite-difference)
+  long nonlinear_iterations = 0;  // Newton or fixed-point iterations
+  long error_test_failures = 0;
+  long convergence_failures = 0;  // nonlinear solver convergence failures
+  double last_step = 0.0;         // s, the last internal step size taken
+  int last_order = 0;             // method order used on the last step
+};
+
+enum class IntegratorStatus {
+  kOk,
+  kDiverged,             // the state became non-finite or exceeded the divergence limit
+  kTooMuchWork,          // the max_steps budget ran out
+  kErrorTestFailures,    // the local error test failed repeatedly / accuracy unreachable
+  kConvergenceFailures,  // the nonlinear or linear solver failed repeatedly
+  kRhsFailure,           // OdeSystem::Rhs failed (or returned non-finite derivatives)
+  kSetupFailure,         // bad input to the solver or an internal solver failure
+};
+
+// "ok", "diverged", "too_much_work", ...
+const char* IntegratorStatusName(IntegratorStatus status);
+
+struct AdvanceResult {
+  IntegratorStatus status = IntegratorStatus::kOk;
+  double t = 0.0;       // s, the time reached (the last good time on failure)
+  std::string message;  // on failure: what happened, when, and what to try; empty when ok
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+
+  // Advances to exactly t_out (t_out >= the previous output time, t_out <= t_final) and
+  // writes y(t_out) into y (size() doubles). Adaptive methods interpolate inside their last
+  // step: they are not stopped at each output. On failure status != kOk, `t` is the last
+  // good time and y the (finite) state there; later calls return the same failure. Does not
+  // allocate on the heap after the first call when it succeeds.
+  virtual AdvanceResult AdvanceTo(double t_out, double* y) = 0;
+
+  virtual SolverStats stats() const = 0;
+
+  // e.g. "CVODE BDF", "ARKODE ERK (Dormand-Prince 7-4-5)", "fixed-step RK4".
+  virtual const char* name() const = 0;
+};
+
+// Creates the integrator for `system` starting at (t0, y0); keeps a reference to `system`,
+// which must outlive it. Throws InputError for an unsupported combination (kIda, which is
+// not an ODE method; kEuler on a system with num_positions() == 0), an unknown table name
+// (the message lists the accepted ones) or invalid options.
+std::unique_ptr<Integrator> MakeIntegrator(OdeSystem& system, double t0, const double* y0,
+                                           const IntegratorOptions& options);
+
+}  // namespace mbstream

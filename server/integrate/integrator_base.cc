@@ -1,0 +1,59 @@
+#include "server/integrate/integrator_base.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "server/common/check.h"
+#include "server/integrate/failure_messages.h"
+#include "server/integrate/state_health.h"
+
+namespace mbstream {
+
+IntegratorBase::IntegratorBase(int size, double t0, const double* y0,
+                               const IntegratorOptions& options)
+    : size_(size), options_(options), last_t_(t0), last_y_(y0, y0 + size) {}
+
+AdvanceResult IntegratorBase::AdvanceTo(double t_out, double* y) {
+  MBSTREAM_CHECK_MSG(std::isfinite(t_out) && t_out >= last_t_,
+                     "AdvanceTo needs finite, non-decreasing output times");
+  const double t_final = options_.t_final;
+  MBSTREAM_CHECK_MSG(t_out <= t_final + 1e-12 * std::max(1.0, std::abs(t_final)),
+                     "AdvanceTo may not go past IntegratorOptions::t_final");
+  t_out = std::min(t_out, t_final);
+
+  if (failed_) {
+    std::copy(last_y_.begin(), last_y_.end(), y);
+    return failure_;
+  }
+  if (t_out == last_t_) {
+    std::copy(last_y_.begin(), last_y_.end(), y);
+    return {IntegratorStatus::kOk, t_out, {}};
+  }
+
+  AdvanceResult result = DoAdvance(t_out, y);
+  const double limit = options_.divergence_limit;
+  if (result.status == IntegratorStatus::kOk) {
+    if (IsHealthyState(y, size_, limit)) {
+      std::copy(y, y + size_, last_y_.begin());
+      last_t_ = t_out;
+      result.t = t_out;
+      return result;
+    }
+    result = {IntegratorStatus::kDiverged, last_t_,
+              DivergedMessage(name(), t_out, limit, method_kind())};
+  }
+
+  // Failure: y must hold the last good state, at result.t.
+  if (!(result.t >= last_t_ && result.t <= t_out) || !IsHealthyState(y, size_, limit)) {
+    std::copy(last_y_.begin(), last_y_.end(), y);
+    result.t = last_t_;
+  } else {
+    std::copy(y, y + size_, last_y_.begin());
+    last_t_ = result.t;
+  }
+  failed_ = true;
+  failure_ = result;
+  return result;
+}
+
+}  // namespace mbstream

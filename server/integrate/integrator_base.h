@@ -1,0 +1,44 @@
+// What every integrator shares: the last good output, the health check of each returned
+// state, the stop time and the sticky failure. Implementations supply DoAdvance.
+#pragma once
+
+#include <vector>
+
+#include "server/integrate/failure_messages.h"
+#include "server/integrate/integrator.h"
+
+namespace mbstream {
+
+class IntegratorBase : public Integrator {
+ public:
+  IntegratorBase(const IntegratorBase&) = delete;
+  IntegratorBase& operator=(const IntegratorBase&) = delete;
+
+  AdvanceResult AdvanceTo(double t_out, double* y) final;
+
+ protected:
+  IntegratorBase(int size, double t0, const double* y0, const IntegratorOptions& options);
+
+  // Advances from last_time() to t_out (last_time() < t_out <= t_final) and writes y(t_out)
+  // into y. On failure returns status != kOk with `t` = the last good time and y the state
+  // there; if that state is not healthy the base falls back to the last output.
+  virtual AdvanceResult DoAdvance(double t_out, double* y) = 0;
+
+  // Fixed-step, explicit or implicit: the advice on failures differs.
+  virtual MethodKind method_kind() const = 0;
+
+  int state_size() const { return size_; }
+  double last_time() const { return last_t_; }
+  const double* last_state() const { return last_y_.data(); }  // the last output, at last_time()
+  const IntegratorOptions& options() const { return options_; }
+
+ private:
+  int size_;
+  IntegratorOptions options_;
+  double last_t_;
+  std::vector<double> last_y_;  // the last good output, at last_t_
+  bool failed_ = false;
+  AdvanceResult failure_;
+};
+
+}  // namespace mbstream

@@ -1,0 +1,42 @@
+#include "server/integrate/rhs_adapter.h"
+
+#include "server/integrate/state_health.h"
+
+namespace mbstream {
+
+RhsAdapter::RhsAdapter(OdeSystem& system, double divergence_limit)
+    : system_(system), size_(system.size()), divergence_limit_(divergence_limit) {}
+
+int RhsAdapter::Fail(Event event, double t, int code) {
+  if (event_ == Event::kNone) {
+    event_ = event;
+    event_time_ = t;
+    event_code_ = code;
+  }
+  return code < 0 ? code : -1;
+}
+
+int RhsAdapter::Evaluate(double t, const double* y, double* ydot) {
+  ++num_evals_;
+  // The run is over after an unrecoverable failure. Keep failing, so that a solver that
+  // retries anyway (CVODE's fixed-point iteration treats every failure as recoverable)
+  // stops at once instead of creeping towards the failure time with ever smaller steps.
+  if (event_ != Event::kNone) return -1;
+  if (!IsHealthyState(y, size_, divergence_limit_)) return Fail(Event::kDiverged, t, -1);
+  const int code = system_.Rhs(t, y, ydot);
+  if (code < 0) return Fail(Event::kFailed, t, code);
+  if (code > 0) {
+    last_recoverable_code_ = code;
+    last_recoverable_time_ = t;
+    return code;
+  }
+  if (!IsFiniteState(ydot, size_)) return Fail(Event::kNonFiniteDerivative, t, -1);
+  return 0;
+}
+
+int RhsAdapter::EvaluateJacobian(double t, const double* y, const double* fy,
+                                 double* jac_col_major) {
+  return system_.Jacobian(t, y, fy, jac_col_major);
+}
+
+}  // namespace mbstream

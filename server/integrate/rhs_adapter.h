@@ -1,0 +1,58 @@
+// Calls an OdeSystem's right-hand side for an integrator: counts the calls, refuses
+// diverged states and non-finite derivatives (as unrecoverable failures, so that the run
+// stops at once) and remembers the first such event for the failure message. After an
+// unrecoverable failure every later call fails too.
+#pragma once
+
+#include "server/integrate/ode_system.h"
+
+namespace mbstream {
+
+class RhsAdapter {
+ public:
+  // What made an evaluation fail unrecoverably (the first such event is kept).
+  enum class Event {
+    kNone,
+    kDiverged,             // y non-finite or beyond the divergence limit
+    kNonFiniteDerivative,  // y healthy but f(t, y) non-finite
+    kFailed,               // OdeSystem::Rhs returned < 0
+  };
+
+  RhsAdapter(OdeSystem& system, double divergence_limit);
+  RhsAdapter(const RhsAdapter&) = delete;
+  RhsAdapter& operator=(const RhsAdapter&) = delete;
+
+  // ydot = f(t, y), with the checks above. Returns 0, > 0 (the system's recoverable
+  // failure) or < 0 (unrecoverable). Allocates nothing.
+  int Evaluate(double t, const double* y, double* ydot);
+
+  // The system's own Jacobian (column-major); returns its code. Allocates nothing.
+  int EvaluateJacobian(double t, const double* y, const double* fy, double* jac_col_major);
+
+  OdeSystem& system() const { return system_; }
+  int size() const { return size_; }
+  double divergence_limit() const { return divergence_limit_; }
+  long num_evals() const { return num_evals_; }
+
+  Event event() const { return event_; }
+  double event_time() const { return event_time_; }  // s, when `event` happened
+  int event_code() const { return event_code_; }     // the system's code for kFailed
+  // The last recoverable failure (code > 0) and its time; 0 when there was none.
+  int last_recoverable_code() const { return last_recoverable_code_; }
+  double last_recoverable_time() const { return last_recoverable_time_; }
+
+ private:
+  int Fail(Event event, double t, int code);
+
+  OdeSystem& system_;
+  int size_;
+  double divergence_limit_;
+  long num_evals_ = 0;
+  Event event_ = Event::kNone;
+  double event_time_ = 0.0;
+  int event_code_ = 0;
+  int last_recoverable_code_ = 0;
+  double last_recoverable_time_ = 0.0;
+};
+
+}  // namespace mbstream

@@ -1,0 +1,27 @@
+// Semi-implicit (symplectic) Euler with a fixed step, the game-engine baseline, for a
+// second-order system y = [x; v; rest] with x' = v (OdeSystem::num_positions() = size of x):
+//   v+ = v + h a(t, x, v);  x+ = x + h v+;  rest+ = rest + h rest'(t, y).
+#pragma once
+
+#include <vector>
+
+#include "server/integrate/fixed_step_integrator.h"
+
+namespace mbstream {
+
+class SemiImplicitEulerIntegrator final : public FixedStepIntegrator {
+ public:
+  // system.num_positions() must be > 0 and 2 * num_positions() <= size().
+  SemiImplicitEulerIntegrator(OdeSystem& system, double t0, const double* y0,
+                              const IntegratorOptions& options);
+
+  const char* name() const override { return "fixed-step semi-implicit Euler"; }
+
+ private:
+  int Step(double t, double h, const double* y, double* y_next) override;
+
+  int num_positions_;
+  std::vector<double> ydot_;
+};
+
+}  // namespace mbstream

@@ -1,0 +1,80 @@
+#include "server/integrate/sundials_callbacks.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+
+#include <arkode/arkode_arkstep.h>
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+namespace mbstream::sundials {
+
+namespace {
+
+// Forward differences, column by column, with SUNDIALS' increments:
+//   inc_j = max(sqrt(uround) |y_j|, min_inc / ewt_j),
+//   min_inc = 1000 |h| uround n ||fy||_wrms (or 1 when fy = 0).
+int FiniteDifferenceJacobian(const CallbackData& data, double t, N_Vector y, N_Vector fy,
+                             SUNMatrix jac, N_Vector y_shifted, N_Vector f_shifted,
+                             N_Vector weights) {
+  double h = 0.0;
+  int flag = data.family == Family::kCvode ? CVodeGetCurrentStep(data.solver, &h)
+                                           : ARKStepGetCurrentStep(data.solver, &h);
+  if (flag != 0) return -1;
+  flag = data.family == Family::kCvode ? CVodeGetErrWeights(data.solver, weights)
+                                       : ARKStepGetErrWeights(data.solver, weights);
+  if (flag != 0) return -1;
+
+  const int n = data.rhs->size();
+  const double uround = DBL_EPSILON;
+  const double fnorm = N_VWrmsNorm(fy, weights);
+  const double min_inc = fnorm != 0.0 ? 1000.0 * std::abs(h) * uround * n * fnorm : 1.0;
+  const double* ewt = N_VGetArrayPointer(weights);
+  const double* f0 = N_VGetArrayPointer(fy);
+  double* shifted = N_VGetArrayPointer(y_shifted);
+  double* f1 = N_VGetArrayPointer(f_shifted);
+  N_VScale(1.0, y, y_shifted);
+  for (int j = 0; j < n; ++j) {
+    const double yj = shifted[j];
+    shifted[j] = yj + std::max(std::sqrt(uround) * std::abs(yj), min_inc / ewt[j]);
+    const double inc = shifted[j] - yj;  // the increment actually represented
+    const int code = data.rhs->Evaluate(t, shifted, f1);
+    shifted[j] = yj;
+    if (code != 0) return code;
+    double* column = SUNDenseMatrix_Column(jac, j);
+    for (int i = 0; i < n; ++i) column[i] = (f1[i] - f0[i]) / inc;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int RhsCallback(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
+  const auto* data = static_cast<const CallbackData*>(user_data);
+  return data->rhs->Evaluate(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+}
+
+int DenseJacobianCallback(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix jac, void* user_data,
+                          N_Vector tmp1, N_Vector tmp2, N_Vector tmp3) {
+  const auto* data = static_cast<const CallbackData*>(user_data);
+  if (!data->own_jacobian) {
+    return FiniteDifferenceJacobian(*data, t, y, fy, jac, tmp1, tmp2, tmp3);
+  }
+  // SUNDenseMatrix stores its columns contiguously (column-major, leading dimension = rows).
+  return data->rhs->EvaluateJacobian(t, N_VGetArrayPointer(y), N_VGetArrayPointer(fy),
+                                     SUNDenseMatrix_Data(jac));
+}
+
+void ErrorSink::Handle(int error_code, const char* module, const char* function, char* message,
+                       void* sink) {
+  if (error_code >= 0) return;  // a warning (CV_WARNING, ARK_WARNING): not kept
+  auto* self = static_cast<ErrorSink*>(sink);
+  std::snprintf(self->message_, sizeof(self->message_), "%s (%s): %s",
+                module != nullptr ? module : "?", function != nullptr ? function : "?",
+                message != nullptr ? message : "");
+}
+
+}  // namespace mbstream::sundials

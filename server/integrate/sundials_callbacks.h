@@ -1,0 +1,45 @@
+// The C callbacks handed to SUNDIALS: right-hand side and dense Jacobian (user_data = a
+// CallbackData), and an error handler that keeps SUNDIALS quiet and stores its last message.
+#pragma once
+
+#include <sundials/sundials_matrix.h>
+#include <sundials/sundials_nvector.h>
+
+#include "server/integrate/rhs_adapter.h"
+#include "server/integrate/sundials_handles.h"
+
+namespace mbstream::sundials {
+
+// What the right-hand side and Jacobian callbacks reach through user_data.
+struct CallbackData {
+  RhsAdapter* rhs = nullptr;
+  void* solver = nullptr;  // the CVODE or ARKStep memory (for the finite differences)
+  Family family = Family::kCvode;
+  bool own_jacobian = false;  // the system's Jacobian, not finite differences
+};
+
+// CVRhsFn / ARKRhsFn.
+int RhsCallback(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data);
+
+// CVLsJacFn / ARKLsJacFn for a SUNDenseMatrix: the system's own Jacobian, or else forward
+// differences computed as SUNDIALS' internal ones (cvLsDenseDQJac / arkLsDenseDQJac: the
+// same increments, n evaluations of f) but without their allocation of a vector per call,
+// so that a step allocates nothing.
+int DenseJacobianCallback(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix jac, void* user_data,
+                          N_Vector tmp1, N_Vector tmp2, N_Vector tmp3);
+
+// Receives SUNDIALS' error messages instead of stderr (CVErrHandlerFn / ARKErrHandlerFn,
+// eh_data = this). Keeps the last error (warnings are dropped). Allocates nothing.
+class ErrorSink {
+ public:
+  static void Handle(int error_code, const char* module, const char* function, char* message,
+                     void* sink);
+
+  void Clear() { message_[0] = '\0'; }
+  const char* message() const { return message_; }  // "" when there was none
+
+ private:
+  char message_[512] = {};
+};
+
+}  // namespace mbstream::sundials

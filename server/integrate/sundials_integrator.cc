@@ -1,0 +1,91 @@
+#include "server/integrate/sundials_integrator.h"
+
+#include <algorithm>
+#include <limits>
+#include <string>
+
+#include <arkode/arkode.h>
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+
+#include "server/common/check.h"
+#include "server/integrate/failure_messages.h"
+
+namespace mbstream::sundials {
+
+namespace {
+
+Context CreateContext() {
+  SUNContext context = nullptr;
+  MBSTREAM_CHECK_MSG(SUNContext_Create(nullptr, &context) == 0 && context != nullptr,
+                     "SUNContext_Create failed");
+  return Context(context);
+}
+
+}  // namespace
+
+SundialsIntegrator::SundialsIntegrator(OdeSystem& system, double t0, const double* y0,
+                                       const IntegratorOptions& options, Family family,
+                                       bool implicit, bool fixed_point)
+    : IntegratorBase(system.size(), t0, y0, options),
+      rhs_(system, options.divergence_limit),
+      callback_data_{&rhs_, nullptr, family, system.HasJacobian()},
+      family_(family),
+      implicit_(implicit),
+      fixed_point_(fixed_point),
+      context_(CreateContext()) {
+  const int n = system.size();
+  y0_.reset(N_VNew_Serial(n, context()));
+  CheckCreated(y0_.get(), "N_VNew_Serial");
+  std::copy(y0, y0 + n, N_VGetArrayPointer(y0_.get()));
+  out_.reset(N_VMake_Serial(n, nullptr, context()));
+  CheckCreated(out_.get(), "N_VMake_Serial");
+}
+
+void SundialsIntegrator::CheckSetup(int flag, const char* call) const {
+  if (flag >= 0) return;
+  MBSTREAM_CHECK_MSG(false, FormatString("%s returned %d (%s)", call, flag, errors_.message()));
+}
+
+void SundialsIntegrator::CheckCreated(const void* object, const char* call) const {
+  MBSTREAM_CHECK_MSG(object != nullptr, FormatString("%s failed", call));
+}
+
+AdvanceResult SundialsIntegrator::DoAdvance(double t_out, double* y) {
+  errors_.Clear();
+  N_VSetArrayPointer(y, out_.get());
+
+  // max_steps is a budget over the whole run; the solvers count per call.
+  const long max_steps = options().max_steps;
+  const long remaining = max_steps - NumSteps();
+  int flag = 0;
+  double t_reached = CurrentTime();
+  if (remaining <= 0 && t_out > t_reached) {
+    // The budget is spent and t_out lies beyond the last internal step: stop at the last
+    // output.
+    flag = family_ == Family::kCvode ? CV_TOO_MUCH_WORK : ARK_TOO_MUCH_WORK;
+    t_reached = last_time();
+    std::copy(last_state(), last_state() + state_size(), y);
+  } else {
+    CheckSetup(SetMaxNumSteps(std::max(remaining, 1L)), "SetMaxNumSteps");
+    // A failure before the first step leaves y and t_reached unwritten: poison them so the
+    // base falls back to the last output.
+    std::fill(y, y + state_size(), std::numeric_limits<double>::quiet_NaN());
+    t_reached = std::numeric_limits<double>::quiet_NaN();
+    flag = Evolve(t_out, out_.get(), &t_reached);
+    if (flag >= 0) return {IntegratorStatus::kOk, t_out, {}};
+    if (family_ == Family::kArkode && flag != ARK_TOO_MUCH_WORK) {
+      // When a step fails ARKODE 6.4 returns the last step's state with the time of the
+      // failed stage (tcur), not the step's: the pair is inconsistent. Use the last output.
+      // (The step budget runs out between steps, where the pair is consistent.)
+      t_reached = last_time();
+      std::copy(last_state(), last_state() + state_size(), y);
+    }
+  }
+
+  FailureContext context{family_,   flag,  name(),    implicit_, fixed_point_,
+                         t_reached, t_out, max_steps, &rhs_,     errors_.message()};
+  return FailureResult(context);
+}
+
+}  // namespace mbstream::sundials

@@ -1,0 +1,55 @@
+// What the SUNDIALS integrators (CVODE, ARKODE's ARKStep) share: the context, the
+// state vectors, the callbacks' data, the step budget and the failure mapping.
+#pragma once
+
+#include "server/integrate/integrator_base.h"
+#include "server/integrate/rhs_adapter.h"
+#include "server/integrate/sundials_callbacks.h"
+#include "server/integrate/sundials_failure.h"
+#include "server/integrate/sundials_handles.h"
+
+namespace mbstream::sundials {
+
+class SundialsIntegrator : public IntegratorBase {
+ protected:
+  SundialsIntegrator(OdeSystem& system, double t0, const double* y0,
+                     const IntegratorOptions& options, Family family, bool implicit,
+                     bool fixed_point);
+
+  // The solver calls DoAdvance needs.
+  virtual long NumSteps() const = 0;
+  virtual double CurrentTime() const = 0;      // the solver's internal time
+  virtual int SetMaxNumSteps(long steps) = 0;  // per call of Evolve
+  // CVode / ARKStepEvolve in normal mode (interpolating at t_out).
+  virtual int Evolve(double t_out, N_Vector y, double* t_reached) = 0;
+
+  // Throws InternalError naming `call` and SUNDIALS' message when flag < 0 (set-up only).
+  void CheckSetup(int flag, const char* call) const;
+  // Throws InternalError when a constructor returned null.
+  void CheckCreated(const void* object, const char* call) const;
+
+  SUNContext context() const { return context_.get(); }
+  N_Vector initial_state() const { return y0_.get(); }
+  const RhsAdapter& rhs() const { return rhs_; }
+  ErrorSink& errors() { return errors_; }
+  // The callbacks' user_data; its `solver` is set by the derived class once created.
+  CallbackData& callback_data() { return callback_data_; }
+
+ private:
+  AdvanceResult DoAdvance(double t_out, double* y) final;
+  MethodKind method_kind() const final {
+    return implicit_ ? MethodKind::kImplicit : MethodKind::kExplicit;
+  }
+
+  RhsAdapter rhs_;
+  CallbackData callback_data_;
+  ErrorSink errors_;
+  Family family_;
+  bool implicit_;
+  bool fixed_point_;
+  Context context_;
+  Vector y0_;   // the initial state (owned data)
+  Vector out_;  // wraps the caller's output buffer (no data of its own)
+};
+
+}  // namespace mbstream::sundials

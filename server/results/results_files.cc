@@ -1,0 +1,137 @@
+#include "server/results/results_files.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+#include "server/common/check.h"
+
+#ifndef MBSTREAM_VERSION
+#define MBSTREAM_VERSION "unknown"
+#endif
+
+namespace mbstream {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Number(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.17g", x);
+  return buffer;
+}
+
+// Writes path atomically: to path.tmp, then rename.
+void WriteFile(const fs::path& path, const std::function<void(std::ostream&)>& write) {
+  const fs::path temporary = path.string() + ".tmp";
+  {
+    std::ofstream out(temporary);
+    if (!out) {
+      throw InputError("cannot write " + temporary.string() +
+                       ": check that the directory is writable");
+    }
+    write(out);
+    out.flush();
+    if (!out) throw InputError("writing " + temporary.string() + " failed: is the disk full?");
+  }
+  std::error_code error;
+  fs::rename(temporary, path, error);
+  if (error) throw InputError("cannot rename " + temporary.string() + ": " + error.message());
+}
+
+// A CSV with t and `width` columns per frame from a frame-major array.
+void WriteSeries(const fs::path& path, const std::string& header, const RunResult& result,
+                 const std::vector<double>& values, int width) {
+  WriteFile(path, [&](std::ostream& out) {
+    out << header << '\n';
+    for (int k = 0; k < result.num_frames(); ++k) {
+      out << Number(result.t[k]);
+      for (int j = 0; j < width; ++j) out << ',' << Number(values[k * width + j]);
+      out << '\n';
+    }
+  });
+}
+
+std::string JointHeader(const std::string& prefix, int n) {
+  std::string header = "t";
+  for (int i = 1; i <= n; ++i) header += "," + prefix + std::to_string(i);
+  return header;
+}
+
+nlohmann::json NumberOrNull(double value) {
+  return value >= 0.0 ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
+std::string StatsJson(const RunResult& result, const RunProvenance& provenance) {
+  const RunStats& s = result.stats;
+  nlohmann::ordered_json j;
+  j["status"] = RunStatusName(s.status);
+  j["message"] = s.message;
+  j["t_reached"] = s.t_reached;
+  j["frames"] = result.num_frames();
+  j["formulation"] = s.formulation;
+  j["formulation_reason"] = s.formulation_reason;
+  j["equations"] = s.equations;
+  j["jacobian_nnz"] = s.jacobian_nnz;
+  j["method"] = s.method;
+  j["integrator"] = s.integrator;
+  j["steps"] = s.solver.steps;
+  j["rhs_evals"] = s.solver.rhs_evals;
+  j["jac_evals"] = s.solver.jac_evals;
+  j["nonlinear_iterations"] = s.solver.nonlinear_iterations;
+  j["error_test_failures"] = s.solver.error_test_failures;
+  j["convergence_failures"] = s.solver.convergence_failures;
+  j["cpu_s"] = s.cpu_s;
+  j["wall_s"] = s.wall_s;
+  j["accuracy"] = {
+      {"tcp_error_max_m", NumberOrNull(s.tcp_error_max)},
+      {"energy_error_max_rel", NumberOrNull(s.energy_error_max)},
+      {"energy_work_approximate", s.energy_work_approximate},
+  };
+  j["joints"] = result.joint_names;
+  j["reproduce"] = {
+      {"mbstream_version", MBSTREAM_VERSION},
+      {"model", provenance.model_name},
+      {"model_source", provenance.model_source},
+      {"spec", provenance.spec_json.empty() ? nlohmann::ordered_json(nullptr)
+                                            : nlohmann::ordered_json::parse(provenance.spec_json)},
+  };
+  return j.dump(2) + "\n";
+}
+
+void WriteResultsDirectory(const RunResult& result, const RunProvenance& provenance,
+                           const std::string& directory) {
+  const fs::path dir(directory);
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error) {
+    throw InputError("cannot create results directory " + directory + ": " + error.message());
+  }
+  const int n = result.num_dofs;
+  WriteSeries(dir / "joints.csv", JointHeader("q", n), result, result.q, n);
+  WriteSeries(dir / "velocities.csv", JointHeader("qd", n), result, result.qd, n);
+  WriteSeries(dir / "tcp.csv", "t,x,y,z", result, result.tcp, 3);
+  if (result.has_torques) {
+    WriteSeries(dir / "torques.csv", JointHeader("tau", n), result, result.tau, n);
+  } else {
+    fs::remove(dir / "torques.csv", error);  // never leave a stale file from another run
+  }
+  if (result.has_energy) {
+    std::vector<double> energy;
+    energy.reserve(result.kinetic.size() * 2);
+    for (size_t k = 0; k < result.kinetic.size(); ++k) {
+      energy.push_back(result.kinetic[k]);
+      energy.push_back(result.potential[k]);
+    }
+    WriteSeries(dir / "energy.csv", "t,kinetic,potential", result, energy, 2);
+  }
+  WriteFile(dir / "stats.json", [&](std::ostream& out) { out << StatsJson(result, provenance); });
+}
+
+}  // namespace mbstream

@@ -1,0 +1,84 @@
+#include "server/sim/joint_space_ode.h"
+
+#include "server/dynamics/aba.h"
+#include "server/dynamics/crba.h"
+#include "server/dynamics/rnea.h"
+
+namespace mbstream {
+
+JointSpaceOde::JointSpaceOde(const Model& model, const DriveSet& drives)
+    : model_(model),
+      drives_(drives),
+      n_(model.num_dofs()),
+      data_(model),
+      q_(Eigen::VectorXd::Zero(n_)),
+      qd_(Eigen::VectorXd::Zero(n_)),
+      qdd_(Eigen::VectorXd::Zero(n_)),
+      effort_(Eigen::VectorXd::Zero(n_)),
+      tau_(Eigen::VectorXd::Zero(n_)) {
+  for (int i = 0; i < n_; ++i) {
+    if (!drives.prescribed(i)) free_.push_back(i);
+  }
+  const auto nf = static_cast<Eigen::Index>(free_.size());
+  M_free_ = Eigen::MatrixXd::Zero(nf, nf);
+  rhs_free_ = Eigen::VectorXd::Zero(nf);
+  llt_ = Eigen::LLT<Eigen::MatrixXd>(nf);
+}
+
+int JointSpaceOde::JacobianNonZeros() const { return n_ + static_cast<int>(free_.size()) * 2 * n_; }
+
+bool JointSpaceOde::Evaluate(double t, const double* y) {
+  for (int i = 0; i < n_; ++i) {
+    q_(i) = y[i];
+    qd_(i) = y[n_ + i];
+    if (drives_.prescribed(i)) {
+      const TrajectoryPoint ref = drives_.Reference(i, t);
+      if (!drives_.velocity_source(i)) q_(i) = ref.q;
+      qd_(i) = ref.qd;
+      qdd_(i) = ref.qdd;
+    }
+  }
+  // Applied efforts of the free joints: actuator minus damping.
+  for (int i : free_) {
+    effort_(i) = drives_.ActuatorEffort(i, t, q_(i), qd_(i));
+    tau_(i) = effort_(i) - drives_.damping(i) * qd_(i);
+  }
+  if (drives_.num_prescribed() == 0) {
+    qdd_ = Aba(model_, data_, q_, qd_, tau_);
+  } else {
+    // Bias with the prescribed accelerations and zero free ones, then solve
+    // M_ff qdd_f = tau_f - bias_f, and read the prescribed joints' efforts off RNEA.
+    for (int i : free_) qdd_(i) = 0.0;
+    if (!free_.empty()) {
+      const Eigen::VectorXd& bias = Rnea(model_, data_, q_, qd_, qdd_);
+      for (size_t a = 0; a < free_.size(); ++a) rhs_free_(a) = tau_(free_[a]) - bias(free_[a]);
+      const Eigen::MatrixXd& M = Crba(model_, data_, q_);
+      for (size_t a = 0; a < free_.size(); ++a) {
+        for (size_t b = 0; b < free_.size(); ++b) M_free_(a, b) = M(free_[a], free_[b]);
+      }
+      llt_.compute(M_free_);
+      llt_.solveInPlace(rhs_free_);
+      for (size_t a = 0; a < free_.size(); ++a) qdd_(free_[a]) = rhs_free_(a);
+    }
+  }
+  return qdd_.allFinite();
+}
+
+void JointSpaceOde::ComputePrescribedEfforts() {
+  if (drives_.num_prescribed() == 0) return;
+  const Eigen::VectorXd& tau = Rnea(model_, data_, q_, qd_, qdd_);
+  for (int i = 0; i < n_; ++i) {
+    if (drives_.prescribed(i)) effort_(i) = tau(i) + drives_.damping(i) * qd_(i);
+  }
+}
+
+int JointSpaceOde::Rhs(double t, const double* y, double* ydot) {
+  if (!Evaluate(t, y)) return 1;  // recoverable: the solver retries with a smaller step
+  for (int i = 0; i < n_; ++i) {
+    ydot[i] = qd_(i);
+    ydot[n_ + i] = qdd_(i);
+  }
+  return 0;
+}
+
+}  // namespace mbstream

@@ -1,0 +1,59 @@
+// The joint-space formulation: minimal coordinates, y = [q; qd] (2n states), with
+// M(q) qdd + h(q, qd) = tau_drive - damping * qd.
+//
+// Prescribed joints impose q_ref(t) (or, as velocity sources, impose qd_ref(t) and take q
+// from the state); the dynamics then solves for the free joints' accelerations and the
+// prescribed joints' drive efforts together (a partitioned system: RNEA for the bias, CRBA
+// and a Cholesky factorisation of the free-free block). With no prescribed joint it is
+// plain ABA. The Jacobian is left to the integrator's difference quotients.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include "server/integrate/ode_system.h"
+#include "server/model/data.h"
+#include "server/model/model.h"
+#include "server/sim/drive_set.h"
+
+namespace mbstream {
+
+class JointSpaceOde : public OdeSystem {
+ public:
+  // Keeps references to model and drives, which must outlive it.
+  JointSpaceOde(const Model& model, const DriveSet& drives);
+
+  int size() const override { return 2 * n_; }
+  int Rhs(double t, const double* y, double* ydot) override;
+  int num_positions() const override { return n_; }
+
+  // Structural non-zeros of df/dy: the identity of q' = qd, and full rows of the free
+  // joints' accelerations.
+  int JacobianNonZeros() const;
+
+  // Evaluates the mechanism at (t, y): fills q(), qd(), qdd() (prescribed joints from their
+  // references) and, for non-prescribed joints, drive_effort() (their actuator's effort).
+  // Returns false if any acceleration is not finite. Allocates nothing.
+  bool Evaluate(double t, const double* y);
+  // After Evaluate: the efforts the prescribed joints' drives must deliver (inverse
+  // dynamics, damping included) into drive_effort(). Allocates nothing.
+  void ComputePrescribedEfforts();
+  const Eigen::VectorXd& q() const { return q_; }
+  const Eigen::VectorXd& qd() const { return qd_; }
+  const Eigen::VectorXd& qdd() const { return qdd_; }
+  const Eigen::VectorXd& drive_effort() const { return effort_; }
+  Data& data() { return data_; }
+
+ private:
+  const Model& model_;
+  const DriveSet& drives_;
+  const int n_;
+  Data data_;
+  Eigen::VectorXd q_, qd_, qdd_, effort_, tau_;
+  std::vector<int> free_;   // indices of non-prescribed joints
+  Eigen::MatrixXd M_free_;  // free-free block of M
+  Eigen::VectorXd rhs_free_;
+  Eigen::LLT<Eigen::MatrixXd> llt_;
+};
+
+}  // namespace mbstream

@@ -1,0 +1,68 @@
+// What a run produces: output frames, statistics, accuracy figures and its status.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "server/integrate/integrator.h"
+
+namespace mbstream {
+
+enum class RunStatus {
+  kFinished,
+  kDiverged,             // the state became non-finite or exploded; stopped at the last good time
+  kTooMuchWork,          // the step budget ran out
+  kErrorTestFailures,    // the integrator could not meet the tolerance
+  kConvergenceFailures,  // the nonlinear/linear solver failed repeatedly
+  kFailed,               // any other failure (see the message)
+  kCancelled,
+};
+
+// "FINISHED", "DIVERGED", "TOO_MUCH_WORK", ...
+const char* RunStatusName(RunStatus status);
+
+struct RunStats {
+  RunStatus status = RunStatus::kFinished;
+  std::string message;     // on failure: what happened and what to try
+  double t_reached = 0.0;  // s, simulated time of the last good frame
+
+  std::string formulation;  // "kinematic", "joint", ...
+  std::string formulation_reason;
+  int equations = 0;       // states (ODE) or equations (DAE); 0 when nothing integrates
+  int jacobian_nnz = 0;    // structural non-zeros of the iteration Jacobian
+  std::string method;      // "bdf", ... or "none"
+  std::string integrator;  // e.g. "CVODE BDF"
+  SolverStats solver;
+  double cpu_s = 0.0;  // CPU time of the run's thread
+  double wall_s = 0.0;
+
+  // Accuracy, where a reference exists (negative = no reference).
+  double tcp_error_max = -1.0;     // m, TCP against direct kinematics of the prescribed motion
+  double energy_error_max = -1.0;  // relative energy-balance error over the run
+  bool energy_work_approximate = false;  // work of drives/damping integrated from outputs
+};
+
+// Frame-major arrays; frame k has time t[k], joints q[k*n .. k*n+n-1], and so on.
+struct RunResult {
+  int num_dofs = 0;
+  std::vector<std::string> joint_names;
+  bool has_torques = false;
+  bool has_energy = false;
+  std::vector<double> t;                   // s
+  std::vector<double> q, qd;               // rad, rad/s (or m, m/s)
+  std::vector<double> tcp;                 // m, world frame, 3 per frame
+  std::vector<double> tau;                 // drive efforts, N*m or N (when has_torques)
+  std::vector<double> kinetic, potential;  // J (when has_energy)
+  RunStats stats;
+
+  int num_frames() const { return static_cast<int>(t.size()); }
+};
+
+// Receives each frame as soon as it is computed (the server streams them).
+class FrameSink {
+ public:
+  virtual ~FrameSink() = default;
+  virtual void OnFrame(const RunResult& result, int frame) = 0;
+};
+
+}  // namespace mbstream
