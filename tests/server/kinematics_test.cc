@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "server/kinematics/point_jacobian.h"
+#include "tests/common/seed_kinematics.h"
 #include "tests/common/test_models.h"
 
 namespace mbstream {
@@ -20,19 +21,7 @@ Vector3d Tcp(const Model& model, Data& data, const Eigen::VectorXd& q) {
   return FramePosition(data, model.tcp_frame);
 }
 
-// The seed's closed form: Rz(q1) Tr(L2,0,L1) Ry(q2) Tr(0,0,L3) Ry(q3) Tr(L4,0,0) Rx(q4)
-// Ry(q5) Rx(q6) Tr(L5,0,0), written independently of the model.
-Vector3d SeedTcp(const Eigen::VectorXd& q) {
-  using Eigen::AngleAxisd;
-  const Eigen::Isometry3d T =
-      Eigen::Isometry3d(AngleAxisd(q(0), Vector3d::UnitZ())) *
-      Eigen::Translation3d(0.150, 0, 0.4865) * AngleAxisd(q(1), Vector3d::UnitY()) *
-      Eigen::Translation3d(0, 0, 0.475) * AngleAxisd(q(2), Vector3d::UnitY()) *
-      Eigen::Translation3d(0.600, 0, 0) * AngleAxisd(q(3), Vector3d::UnitX()) *
-      AngleAxisd(q(4), Vector3d::UnitY()) * AngleAxisd(q(5), Vector3d::UnitX()) *
-      Eigen::Translation3d(0.065, 0, 0);
-  return T.translation();
-}
+Vector3d SeedTcp(const Eigen::VectorXd& q) { return testing::SeedTcp(q.data()); }
 
 TEST(KinematicsTest, Irb1600ZeroPoseMatchesSeed) {
   const Model model = testing::Irb1600Model();

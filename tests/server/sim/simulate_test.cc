@@ -8,6 +8,7 @@
 
 #include "server/common/check.h"
 #include "server/dynamics/rnea.h"
+#include "tests/common/seed_kinematics.h"
 #include "tests/server/sim/scene_fixture.h"
 
 namespace mbstream {
@@ -15,19 +16,7 @@ namespace {
 
 using testing::Irb1600;
 using testing::Scene;
-
-// The seed's closed-form TCP (seed spec section 2), independent of the model code.
-Eigen::Vector3d SeedTcp(const double* q) {
-  using Eigen::AngleAxisd;
-  const Eigen::Isometry3d T =
-      Eigen::Isometry3d(AngleAxisd(q[0], Eigen::Vector3d::UnitZ())) *
-      Eigen::Translation3d(0.150, 0, 0.4865) * AngleAxisd(q[1], Eigen::Vector3d::UnitY()) *
-      Eigen::Translation3d(0, 0, 0.475) * AngleAxisd(q[2], Eigen::Vector3d::UnitY()) *
-      Eigen::Translation3d(0.600, 0, 0) * AngleAxisd(q[3], Eigen::Vector3d::UnitX()) *
-      AngleAxisd(q[4], Eigen::Vector3d::UnitY()) * AngleAxisd(q[5], Eigen::Vector3d::UnitX()) *
-      Eigen::Translation3d(0.065, 0, 0);
-  return T.translation();
-}
+using testing::SeedTcp;
 
 bool AllFinite(const std::vector<double>& v) {
   for (double x : v) {
