@@ -1,0 +1,83 @@
+// `mbstream simulate` as a user runs it: a real process, real files, its exit code.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int exit_code;
+  std::string stats;
+};
+
+Outcome Simulate(const std::string& args, const fs::path& out) {
+  fs::remove_all(out);
+  const std::string command = std::string(MBSTREAM_CLI) + " simulate " + args + " --out " +
+                              out.string() + " > " + out.string() + ".log 2>&1";
+  const int status = std::system(command.c_str());
+  std::ifstream in(out / "stats.json");
+  std::stringstream stats;
+  stats << in.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, stats.str()};
+}
+
+int Lines(const fs::path& file) {
+  std::ifstream in(file);
+  int lines = 0;
+  for (std::string line; std::getline(in, line);) ++lines;
+  return lines;
+}
+
+TEST(SimulateCliTest, SeedRunWritesTheResultsFiles) {
+  const fs::path out = fs::temp_directory_path() / "mbstream_cli_seed";
+  const Outcome outcome = Simulate(
+      "models/irb1600/irb1600.urdf --spec models/irb1600/seed-run.json --formulation joint "
+      "--rtol 1e-8 --atol 1e-10",
+      out);
+  EXPECT_EQ(outcome.exit_code, 0);
+  EXPECT_EQ(Lines(out / "joints.csv"), 402);  // header + 401 frames
+  EXPECT_EQ(Lines(out / "tcp.csv"), 402);
+  EXPECT_EQ(Lines(out / "velocities.csv"), 402);
+  EXPECT_FALSE(fs::exists(out / "torques.csv"));  // the seed run asks for no torques
+  EXPECT_NE(outcome.stats.find(R"("status": "FINISHED")"), std::string::npos);
+  EXPECT_NE(outcome.stats.find(R"("formulation": "joint")"), std::string::npos);
+  EXPECT_NE(outcome.stats.find(R"("equations": 12)"), std::string::npos);
+  EXPECT_NE(outcome.stats.find(R"("rtol": 1e-08)"), std::string::npos) << outcome.stats;
+}
+
+TEST(SimulateCliTest, DivergedRunExitsNonZeroAndKeepsGoodFrames) {
+  const fs::path out = fs::temp_directory_path() / "mbstream_cli_diverged";
+  const Outcome outcome = Simulate(
+      "models/irb1600/irb1600.urdf --spec models/irb1600/stiff-servo.json --method rk4 "
+      "--step 1e-3",
+      out);
+  EXPECT_EQ(outcome.exit_code, 1);
+  EXPECT_NE(outcome.stats.find(R"("status": "DIVERGED")"), std::string::npos) << outcome.stats;
+  const int frames = Lines(out / "joints.csv") - 1;
+  EXPECT_GT(frames, 0);
+  EXPECT_LT(frames, 201);
+  std::ifstream log(out.string() + ".log");
+  std::stringstream text;
+  text << log.rdbuf();
+  EXPECT_NE(text.str().find("DIVERGED"), std::string::npos) << text.str();
+}
+
+TEST(SimulateCliTest, BadSpecFieldIsNamed) {
+  const fs::path out = fs::temp_directory_path() / "mbstream_cli_bad";
+  const Outcome outcome =
+      Simulate("models/irb1600/irb1600.urdf --spec models/irb1600/seed-run.json --rtol 2", out);
+  EXPECT_EQ(outcome.exit_code, 2);
+  std::ifstream log(out.string() + ".log");
+  std::stringstream text;
+  text << log.rdbuf();
+  EXPECT_NE(text.str().find("rtol"), std::string::npos) << text.str();
+  EXPECT_FALSE(fs::exists(out / "stats.json"));
+}
+
+}  // namespace
