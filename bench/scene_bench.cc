@@ -1,0 +1,110 @@
+// Whole-scene timings on the IRB 1600 reference scenes (models/irb1600/*.json):
+//
+//   build/bench/scene_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only
+//
+// BM_Scene/<scene>/<formulation>/<method>: one Simulate of the scene per iteration, the
+// spec as shipped except for the formulation and method in the name ("auto" and "none"
+// keep the spec's choice; kinematic runs report drive torques by inverse dynamics at each
+// of the 401 outputs). Counters: the run's internal steps and its own CPU time (RunStats).
+// BM_RhsEval/seed-servo: one evaluation of the joint-space ODE's right-hand side.
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include "server/parse/urdf_import.h"
+#include "server/sim/drive_set.h"
+#include "server/sim/joint_space_ode.h"
+#include "server/sim/run_config.h"
+#include "server/sim/simulate.h"
+#include "server/spec/run_spec_json.h"
+
+namespace mbstream {
+namespace {
+
+const Model& Irb1600() {
+  static const Model model =
+      ImportUrdfFile(MBSTREAM_SOURCE_DIR "/models/irb1600/irb1600.urdf").model;
+  return model;
+}
+
+RunConfig LoadScene(const std::string& scene) {
+  std::vector<std::string> joints;
+  for (const Body& body : Irb1600().bodies) joints.push_back(body.joint.name);
+  const std::string path = MBSTREAM_SOURCE_DIR "/models/irb1600/" + scene + ".json";
+  return ToRunConfig(LoadRunSpecFile(path), joints, path);
+}
+
+void BM_Scene(benchmark::State& state, const RunConfig& config) {
+  const Model& model = Irb1600();
+  RunStats stats;
+  for (auto _ : state) {
+    RunResult result = Simulate(model, config);
+    benchmark::DoNotOptimize(result.tcp.data());
+    stats = result.stats;
+  }
+  if (stats.status != RunStatus::kFinished) {
+    state.SkipWithError((std::string(RunStatusName(stats.status)) + ": " + stats.message).c_str());
+    return;
+  }
+  state.counters["steps"] = static_cast<double>(stats.solver.steps);
+  state.counters["cpu_ms"] = stats.cpu_s * 1e3;
+}
+
+void BM_RhsEval(benchmark::State& state, const RunConfig& config) {
+  Model model = Irb1600();
+  model.gravity = config.gravity;
+  const DriveSet drives(model, config);
+  JointSpaceOde ode(model, drives);
+  const int size = ode.size();
+  std::vector<double> y(size, 0.0), ydot(size, 0.0);
+  for (int i = 0; i < model.num_dofs(); ++i) {
+    y[i] = 0.1 * (i + 1);
+    y[model.num_dofs() + i] = 0.3 - 0.05 * i;
+  }
+  double t = 0.0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(ode.Rhs(t, y.data(), ydot.data()));
+    benchmark::ClobberMemory();
+    t += 1e-3;
+  }
+}
+
+struct SceneCase {
+  const char* scene;
+  const char* formulation;  // "auto", "kinematic", "joint"
+  const char* method;       // "none" = the spec's (and unused by kinematic)
+};
+
+constexpr SceneCase kCases[] = {
+    {"seed-run", "auto", "bdf"},     {"seed-run", "kinematic", "none"},
+    {"seed-run", "joint", "bdf"},    {"seed-servo", "joint", "bdf"},
+    {"seed-servo", "joint", "erk"},  {"passive-swing", "joint", "bdf"},
+    {"stiff-servo", "joint", "bdf"}, {"stiff-servo", "joint", "erk"},
+};
+
+void RegisterAll() {
+  for (const SceneCase& c : kCases) {
+    RunConfig config = LoadScene(c.scene);
+    ParseFormulation(c.formulation, &config.formulation);
+    if (std::string(c.method) != "none") ParseMethod(c.method, &config.method);
+    if (config.formulation == Formulation::kKinematic) config.want_torques = true;
+    const std::string name =
+        std::string("BM_Scene/") + c.scene + "/" + c.formulation + "/" + c.method;
+    benchmark::RegisterBenchmark(name.c_str(), BM_Scene, config)->Unit(benchmark::kMillisecond);
+  }
+  benchmark::RegisterBenchmark("BM_RhsEval/seed-servo", BM_RhsEval, LoadScene("seed-servo"))
+      ->Unit(benchmark::kNanosecond);
+}
+
+}  // namespace
+}  // namespace mbstream
+
+int main(int argc, char** argv) {
+  mbstream::RegisterAll();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

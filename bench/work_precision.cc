@@ -1,0 +1,429 @@
+// Work-precision study of the four IRB 1600 reference scenes (models/irb1600/*.json): every
+// scene x formulation x method over a sweep of tolerances (adaptive methods) or steps
+// (fixed-step methods), one CSV row per run:
+//
+//   build/bench/work_precision --out docs/work_precision.csv
+//   /usr/bin/python3 scripts/plot_work_precision.py --csv docs/work_precision.csv --out-dir docs
+//
+// Columns: scene, formulation, method, rtol (adaptive runs; atol = rtol / 100), step
+// (fixed-step runs, s), error (m), cpu_s, steps, rhs_evals, status, then atol, t_reached (s),
+// energy_error (RunStats::energy_error_max, relative) and error_until (s).
+//
+// error: for seed-run, whose joints are all prescribed, RunStats::tcp_error_max (the TCP
+// against direct kinematics of the closed-form seed motion). For the other scenes, the
+// largest TCP distance from a reference solution over the output frames in [0, error_until]:
+// the reference is a tight run (ERK Fehlberg 13-7-8 at rtol 1e-14; for stiff-servo CVODE BDF
+// at rtol 1e-12) checked against an independent tight run (ERK Verner 8-5-6 at rtol 1e-13;
+// DIRK at rtol 1e-12), and trusted over the leading frames where the two agree within
+// 1e-8 m (all of them unless the motion is chaotic). Their agreement there is written as a
+// row with method "reference" and status REFERENCE: the floor below which errors mean
+// nothing. A failed run's error is taken over the frames it produced; status says why it
+// stopped. Once a tolerance runs out of steps (TOO_MUCH_WORK) the tighter ones of that
+// method are not run (status SKIPPED).
+// cpu_s is the median of three runs for runs under 0.5 s, else the single run's.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <Eigen/Core>
+
+#include "server/common/check.h"
+#include "server/parse/urdf_import.h"
+#include "server/sim/run_config.h"
+#include "server/sim/run_result.h"
+#include "server/sim/simulate.h"
+#include "server/spec/run_spec_json.h"
+
+namespace mbstream {
+namespace {
+
+constexpr double kQuickDuration = 1.0;  // s, the duration of every scene with --quick
+constexpr double kRepeatBelow = 0.5;    // s of CPU: runs faster than this are timed 3 times
+// m: the reference is trusted over the leading frames where its check agrees this well.
+constexpr double kReferenceAgreement = 1e-8;
+
+struct Options {
+  std::string out = "work_precision.csv";
+  std::string models_dir = MBSTREAM_SOURCE_DIR "/models/irb1600";
+  std::vector<std::string> scenes = {"seed-run", "seed-servo", "passive-swing", "stiff-servo"};
+  std::vector<std::string> methods;  // empty = all (or the quick subset)
+  bool quick = false;
+  double duration = 0.0;  // s, > 0: overrides every scene's duration
+  long max_steps = 2'000'000;
+};
+
+// One integrator setting: a method, with an ARKODE table for the ERK variants.
+struct MethodVariant {
+  std::string label;  // the CSV's method column
+  Method method;
+  std::string table;
+  bool fixed_step;
+};
+
+const std::vector<MethodVariant>& AllMethods() {
+  static const std::vector<MethodVariant> methods = {
+      {"bdf", Method::kBdf, "", false},    {"adams", Method::kAdams, "", false},
+      {"erk", Method::kErk, "", false},    {"erk-verner", Method::kErk, "verner", false},
+      {"dirk", Method::kDirk, "", false},  {"rk4", Method::kRk4, "", true},
+      {"euler", Method::kEuler, "", true},
+  };
+  return methods;
+}
+
+struct Scene {
+  std::string name;
+  RunConfig config;                   // as shipped (duration shortened with --quick)
+  bool closed_form = false;           // every joint prescribed: error = tcp_error_max
+  std::vector<double> reference_tcp;  // 3 per output frame (scenes without a closed form)
+  int window_frames = 0;              // errors are measured over these leading frames
+  double window_end = 0.0;            // s, the time of the last of them
+};
+
+struct Row {
+  std::string scene, formulation, method;
+  std::optional<double> rtol, atol, step;
+  double error = 0.0;
+  double error_until = 0.0;  // s, the end of the window the error is measured over
+  double cpu_s = 0.0;
+  long steps = 0, rhs_evals = 0;
+  std::string status;
+  double t_reached = 0.0;
+  double energy_error = -1.0;
+};
+
+std::string FormatOptional(const std::optional<double>& value) {
+  if (!value) return "";
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3g", *value);
+  return text;
+}
+
+// Largest distance between the TCP tracks of `result` and `reference_tcp` over the first
+// `frames` frames (or fewer, when the run stopped early).
+double TcpDistanceMax(const RunResult& result, const std::vector<double>& reference_tcp,
+                      int frames) {
+  const size_t count =
+      std::min({result.tcp.size() / 3, reference_tcp.size() / 3, static_cast<size_t>(frames)});
+  double error = 0.0;
+  for (size_t k = 0; k < count; ++k) {
+    double squared = 0.0;
+    for (size_t c = 0; c < 3; ++c) {
+      const double d = result.tcp[3 * k + c] - reference_tcp[3 * k + c];
+      squared += d * d;
+    }
+    error = std::max(error, std::sqrt(squared));
+  }
+  return error;
+}
+
+// Runs `config` once, or three times when it is fast, and returns the first result with
+// the median CPU time in its stats.
+RunResult TimedRun(const Model& model, const RunConfig& config) {
+  RunResult result = Simulate(model, config);
+  if (result.stats.cpu_s < kRepeatBelow) {
+    std::array<double, 3> cpu{result.stats.cpu_s, Simulate(model, config).stats.cpu_s,
+                              Simulate(model, config).stats.cpu_s};
+    std::sort(cpu.begin(), cpu.end());
+    result.stats.cpu_s = cpu[1];
+  }
+  return result;
+}
+
+RunConfig WithMethod(RunConfig config, const MethodVariant& variant) {
+  config.method = variant.method;
+  config.erk_table = variant.table;
+  return config;
+}
+
+RunResult MustFinish(const Model& model, const RunConfig& config, const std::string& what) {
+  RunResult result = Simulate(model, config);
+  if (result.stats.status != RunStatus::kFinished) {
+    throw std::runtime_error(what + " did not finish: " + RunStatusName(result.stats.status) +
+                             ": " + result.stats.message);
+  }
+  return result;
+}
+
+// How a scene's reference is computed: a tight run and an independent tight check.
+struct ReferencePlan {
+  MethodVariant reference, check;
+  double reference_rtol, check_rtol;
+};
+
+// Explicit high-order tables, except where stiffness makes them hopeless: in stiff-servo the
+// wrist servo's fast eigenvalue (about kd / J6 = 2e4 / 0.00375 = 5e6 1/s) holds explicit
+// steps below a microsecond, so its reference is implicit.
+ReferencePlan ReferencePlanFor(const std::string& scene) {
+  if (scene == "stiff-servo") {
+    return {{"bdf", Method::kBdf, "", false}, {"dirk", Method::kDirk, "", false}, 1e-12, 1e-12};
+  }
+  return {{"erk-fehlberg", Method::kErk, "fehlberg", false},
+          {"erk-verner", Method::kErk, "verner", false},
+          1e-14,
+          1e-13};
+}
+
+// Computes the scene's reference TCP track and the window over which it is trusted (the
+// leading frames where the check agrees within kReferenceAgreement), and returns the row
+// that reports how converged it is.
+Row ComputeReference(const Model& model, Scene& scene) {
+  RunConfig config = scene.config;
+  config.formulation = Formulation::kJoint;
+  config.max_steps = 50'000'000;
+  config.max_step = 0.0;
+  const ReferencePlan plan = ReferencePlanFor(scene.name);
+
+  RunConfig reference_config = WithMethod(config, plan.reference);
+  reference_config.rtol = plan.reference_rtol;
+  reference_config.atol = plan.reference_rtol * 1e-2;
+  const RunResult reference = MustFinish(model, reference_config, scene.name + " reference");
+  scene.reference_tcp = reference.tcp;
+
+  RunConfig check_config = WithMethod(config, plan.check);
+  check_config.rtol = plan.check_rtol;
+  check_config.atol = plan.check_rtol * 1e-2;
+  const RunResult check = MustFinish(model, check_config, scene.name + " reference check");
+  const int frames = reference.num_frames();
+  int window = 0;
+  double agreement = 0.0;       // over the window
+  double difference_max = 0.0;  // over the whole run
+  for (int k = 0; k < frames; ++k) {
+    const double d = (Eigen::Map<const Eigen::Vector3d>(&reference.tcp[3 * k]) -
+                      Eigen::Map<const Eigen::Vector3d>(&check.tcp[3 * k]))
+                         .norm();
+    difference_max = std::max(difference_max, d);
+    if (window == k && d <= kReferenceAgreement) {
+      ++window;
+      agreement = std::max(agreement, d);
+    }
+  }
+  scene.window_frames = window;
+  scene.window_end = reference.t[window - 1];
+  std::printf(
+      "%s: reference %s rtol %.0e atol %.0e (%ld steps, %.3g s CPU); check %s rtol %.0e: max "
+      "TCP difference %.3g m over the run",
+      scene.name.c_str(), plan.reference.label.c_str(), reference_config.rtol,
+      reference_config.atol, reference.stats.solver.steps, reference.stats.cpu_s,
+      plan.check.label.c_str(), check_config.rtol, difference_max);
+  if (window < frames) {
+    std::printf("; within %.0e m up to t = %.3g s: errors are measured over [0, %.3g] s\n",
+                kReferenceAgreement, scene.window_end, scene.window_end);
+  } else {
+    std::printf("\n");
+  }
+  std::fflush(stdout);
+
+  Row row;
+  row.scene = scene.name;
+  row.formulation = "joint";
+  row.method = "reference";
+  row.rtol = reference_config.rtol;
+  row.atol = reference_config.atol;
+  row.error = agreement;
+  row.error_until = scene.window_end;
+  row.cpu_s = reference.stats.cpu_s;
+  row.steps = reference.stats.solver.steps;
+  row.rhs_evals = reference.stats.solver.rhs_evals;
+  row.status = "REFERENCE";
+  row.t_reached = reference.stats.t_reached;
+  row.energy_error = reference.stats.energy_error_max;
+  return row;
+}
+
+Row RunOne(const Model& model, const Scene& scene, const RunConfig& config,
+           const std::string& method_label) {
+  Row row;
+  row.scene = scene.name;
+  row.formulation = FormulationName(config.formulation);
+  row.method = method_label;
+  try {
+    const RunResult result = TimedRun(model, config);
+    const RunStats& s = result.stats;
+    row.error = scene.closed_form
+                    ? s.tcp_error_max
+                    : TcpDistanceMax(result, scene.reference_tcp, scene.window_frames);
+    row.error_until = std::min(scene.window_end, s.t_reached);
+    row.cpu_s = s.cpu_s;
+    row.steps = s.solver.steps;
+    row.rhs_evals = s.solver.rhs_evals;
+    row.status = RunStatusName(s.status);
+    row.t_reached = s.t_reached;
+    row.energy_error = s.energy_error_max;
+  } catch (const InputError& e) {
+    row.status = "REFUSED";
+    std::fprintf(stderr, "%s %s: refused: %s\n", scene.name.c_str(), method_label.c_str(),
+                 e.what());
+  }
+  return row;
+}
+
+void PrintRow(const Row& row) {
+  std::printf("%-13s %-9s %-10s rtol %-7s step %-7s error %-9.3g cpu %9.4f s steps %8ld %s\n",
+              row.scene.c_str(), row.formulation.c_str(), row.method.c_str(),
+              FormatOptional(row.rtol).c_str(), FormatOptional(row.step).c_str(), row.error,
+              row.cpu_s, row.steps, row.status.c_str());
+  std::fflush(stdout);
+}
+
+void WriteCsv(const std::string& path, const std::vector<Row>& rows) {
+  FILE* file = std::fopen(path.c_str(), "w");
+  if (!file) throw std::runtime_error("cannot write " + path);
+  std::fprintf(file,
+               "scene,formulation,method,rtol,step,error,cpu_s,steps,rhs_evals,status,atol,"
+               "t_reached,energy_error,error_until\n");
+  for (const Row& r : rows) {
+    std::fprintf(file, "%s,%s,%s,%s,%s,%.6e,%.6e,%ld,%ld,%s,%s,%.6g,%.6e,%.6g\n", r.scene.c_str(),
+                 r.formulation.c_str(), r.method.c_str(), FormatOptional(r.rtol).c_str(),
+                 FormatOptional(r.step).c_str(), r.error, r.cpu_s, r.steps, r.rhs_evals,
+                 r.status.c_str(), FormatOptional(r.atol).c_str(), r.t_reached, r.energy_error,
+                 r.error_until);
+  }
+  if (std::fclose(file) != 0) throw std::runtime_error("cannot write " + path);
+}
+
+std::vector<MethodVariant> SelectedMethods(const Options& options) {
+  std::vector<std::string> names = options.methods;
+  if (names.empty() && options.quick) names = {"bdf", "rk4"};
+  if (names.empty()) return AllMethods();
+  std::vector<MethodVariant> selected;
+  for (const std::string& name : names) {
+    const auto it = std::find_if(AllMethods().begin(), AllMethods().end(),
+                                 [&](const MethodVariant& m) { return m.label == name; });
+    if (it == AllMethods().end()) throw InputError("unknown method '" + name + "'");
+    selected.push_back(*it);
+  }
+  return selected;
+}
+
+int Run(const Options& options) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const Model model = ImportUrdfFile(options.models_dir + "/irb1600.urdf").model;
+  std::vector<std::string> joints;
+  for (const Body& body : model.bodies) joints.push_back(body.joint.name);
+
+  const std::vector<double> tolerances =
+      options.quick ? std::vector<double>{1e-4, 1e-7}
+                    : std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+  const std::vector<double> steps =
+      options.quick ? std::vector<double>{1e-2, 1e-3}
+                    : std::vector<double>{1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5};
+  const std::vector<MethodVariant> methods = SelectedMethods(options);
+
+  std::vector<Row> rows;
+  for (const std::string& name : options.scenes) {
+    const std::string path = options.models_dir + "/" + name + ".json";
+    Scene scene;
+    scene.name = name;
+    scene.config = ToRunConfig(LoadRunSpecFile(path), joints, path);
+    if (options.quick) scene.config.duration = kQuickDuration;
+    if (options.duration > 0.0) scene.config.duration = options.duration;
+    scene.config.max_steps = options.max_steps;
+    bool all_prescribed = true;
+    for (const DriveConfig& drive : scene.config.drives) {
+      all_prescribed = all_prescribed && drive.kind == DriveConfig::Kind::kPrescribed;
+    }
+    scene.closed_form = all_prescribed;
+    scene.window_end = scene.config.duration;
+
+    if (scene.closed_form) {
+      // Closed form: no method, no tolerance (the spec's want_torques as shipped).
+      RunConfig config = scene.config;
+      config.formulation = Formulation::kKinematic;
+      rows.push_back(RunOne(model, scene, config, "none"));
+      PrintRow(rows.back());
+    } else {
+      rows.push_back(ComputeReference(model, scene));
+    }
+
+    for (const MethodVariant& variant : methods) {
+      RunConfig config = WithMethod(scene.config, variant);
+      config.formulation = Formulation::kJoint;
+      if (variant.fixed_step) {
+        for (double step : steps) {
+          const double needed = config.duration / step;
+          if (needed > static_cast<double>(options.max_steps) * (1.0 + 1e-9)) {
+            std::printf("%-13s %-9s %-10s step %.3g skipped: %.3g steps > %ld\n", name.c_str(),
+                        "joint", variant.label.c_str(), step, needed, options.max_steps);
+            continue;
+          }
+          config.fixed_step = step;
+          Row row = RunOne(model, scene, config, variant.label);
+          row.step = step;
+          rows.push_back(row);
+          PrintRow(row);
+        }
+      } else {
+        // Once a tolerance runs out of steps, tighter ones would too: they are not run.
+        bool out_of_steps = false;
+        for (double rtol : tolerances) {
+          config.rtol = rtol;
+          config.atol = rtol * 1e-2;
+          Row row;
+          if (out_of_steps) {
+            row.scene = name;
+            row.formulation = "joint";
+            row.method = variant.label;
+            row.status = "SKIPPED";
+          } else {
+            row = RunOne(model, scene, config, variant.label);
+            out_of_steps = row.status == "TOO_MUCH_WORK";
+          }
+          row.rtol = config.rtol;
+          row.atol = config.atol;
+          rows.push_back(row);
+          PrintRow(row);
+        }
+      }
+    }
+    WriteCsv(options.out, rows);  // after each scene, so a long run leaves partial results
+  }
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  std::printf("%zu rows written to %s in %.1f s\n", rows.size(), options.out.c_str(), wall);
+  return 0;
+}
+
+}  // namespace
+}  // namespace mbstream
+
+int main(int argc, char** argv) {
+  mbstream::Options options;
+  CLI::App app{
+      "Work-precision study of the IRB 1600 scenes: error against CPU time for every "
+      "formulation, method and tolerance; writes a CSV for scripts/plot_work_precision.py"};
+  app.add_flag("--quick", options.quick,
+               "a smoke run: 1 s of each scene, methods bdf and rk4, two tolerances/steps");
+  app.add_option("--out", options.out, "the CSV to write")->capture_default_str();
+  app.add_option("--scenes", options.scenes, "scenes to run (comma-separated)")
+      ->delimiter(',')
+      ->capture_default_str();
+  app.add_option("--methods", options.methods,
+                 "methods to run (comma-separated; default all): bdf, adams, erk, erk-verner, "
+                 "dirk, rk4, euler")
+      ->delimiter(',');
+  app.add_option("--duration", options.duration,
+                 "simulated time of every scene (s); default: each scene's own (1 s with --quick)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--models-dir", options.models_dir,
+                 "the folder of irb1600.urdf and the scenes' JSON files")
+      ->capture_default_str();
+  app.add_option("--max-steps", options.max_steps,
+                 "internal step budget of a run; fixed steps needing more are skipped")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  CLI11_PARSE(app, argc, argv);
+  try {
+    return mbstream::Run(options);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "work_precision: %s\n", e.what());
+    return 1;
+  }
+}
