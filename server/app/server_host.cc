@@ -1,0 +1,76 @@
+#include "server/app/server_host.h"
+
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/grpcpp.h>
+#include <grpcpp/health_check_service_interface.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+
+#include "server/common/check.h"
+#include "server/runs/model_registry.h"
+#include "server/runs/run_manager.h"
+#include "server/service/simulation_service.h"
+#include "server/store/store.h"
+
+namespace mbstream {
+
+namespace {
+
+// "host:port" -> (host, port); unix addresses have no port.
+bool SplitPort(const std::string& address, std::string* host, std::string* port) {
+  const size_t colon = address.rfind(':');
+  if (address.rfind("unix:", 0) == 0 || colon == std::string::npos) return false;
+  *host = address.substr(0, colon);
+  *port = address.substr(colon + 1);
+  return true;
+}
+
+}  // namespace
+
+std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
+  std::unique_ptr<ServerHost> host(new ServerHost());
+  host->store_ = Store::Open(config.data_dir);
+  host->models_ = std::make_unique<ModelRegistry>(host->store_.get(), config.limits);
+  const int stored = host->models_->LoadStored();
+  const int builtin =
+      config.models_dir.empty() ? 0 : host->models_->LoadBuiltins(config.models_dir);
+  spdlog::info("{} stored and {} built-in models loaded", stored, builtin);
+  host->runs_ =
+      std::make_unique<RunManager>(host->models_.get(), host->store_.get(), config.limits);
+  host->service_ = std::make_unique<SimulationService>(host->models_.get(), host->runs_.get());
+
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  int port = 0;
+  builder.AddListeningPort(config.listen, grpc::InsecureServerCredentials(), &port);
+  builder.RegisterService(host->service_.get());
+  builder.SetMaxReceiveMessageSize(config.max_message_bytes);
+  builder.SetMaxSendMessageSize(config.max_message_bytes);
+  host->server_ = builder.BuildAndStart();
+  std::string name, port_text;
+  const bool has_port = SplitPort(config.listen, &name, &port_text);
+  if (!host->server_ || (has_port && port == 0)) {
+    host->runs_->Shutdown("the server could not start");
+    throw InputError("cannot listen on " + config.listen +
+                     ": is the address valid and the port free? (use port 0 for any free port)");
+  }
+  host->address_ = has_port ? name + ":" + std::to_string(port) : config.listen;
+  return host;
+}
+
+ServerHost::~ServerHost() { Shutdown(); }
+
+void ServerHost::Shutdown() {
+  if (shut_down_) return;
+  shut_down_ = true;
+  spdlog::info("shutting down: interrupting runs and closing streams");
+  service_->Stop();
+  runs_->Shutdown("the server was shut down");
+  server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
+}
+
+void ServerHost::Wait() { server_->Wait(); }
+
+}  // namespace mbstream

@@ -1,0 +1,56 @@
+// A running simulation server: store, model registry, run manager and the gRPC server with
+// health checking and reflection. mbstream-server's main and the tests use it.
+#pragma once
+
+#include <grpcpp/server.h>
+
+#include <memory>
+#include <string>
+
+#include "server/runs/server_limits.h"
+
+namespace mbstream {
+
+class Store;
+class ModelRegistry;
+class RunManager;
+class SimulationService;
+
+struct ServerConfig {
+  std::string listen = "127.0.0.1:50051";  // host:port (port 0 = any free) or unix:/path
+  std::string data_dir = "mbstream-data";  // SQLite database and nothing else
+  std::string models_dir;                  // built-in models (one folder each); empty = none
+  ServerLimits limits;
+  int max_message_bytes = 64 << 20;  // largest gRPC message either way
+};
+
+class ServerHost {
+ public:
+  // Opens the store, loads stored and built-in models, marks interrupted runs, starts the
+  // workers and listens. Throws InputError naming what failed (data directory, address).
+  static std::unique_ptr<ServerHost> Start(const ServerConfig& config);
+  ~ServerHost();  // Shutdown()
+
+  // The address clients use: host:port with the port actually bound, or unix:/path.
+  const std::string& address() const { return address_; }
+
+  // Interrupts runs (stored as INTERRUPTED), ends streams with UNAVAILABLE, stops
+  // listening. Idempotent.
+  void Shutdown();
+  // Blocks until Shutdown() has been called (by another thread).
+  void Wait();
+
+  RunManager& runs() { return *runs_; }
+
+ private:
+  ServerHost() = default;
+  std::unique_ptr<Store> store_;
+  std::unique_ptr<ModelRegistry> models_;
+  std::unique_ptr<RunManager> runs_;
+  std::unique_ptr<SimulationService> service_;
+  std::unique_ptr<grpc::Server> server_;
+  std::string address_;
+  bool shut_down_ = false;
+};
+
+}  // namespace mbstream

@@ -1,0 +1,100 @@
+// mbstream-server: hosts models, integrates runs and streams them (design.md section 4).
+#include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
+
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include "server/app/server_host.h"
+#include "server/common/check.h"
+
+#ifndef MBSTREAM_DEFAULT_MODELS_DIR
+#define MBSTREAM_DEFAULT_MODELS_DIR ""
+#endif
+
+int main(int argc, char** argv) {
+  mbstream::ServerConfig config;
+  config.models_dir =
+      std::filesystem::exists(MBSTREAM_DEFAULT_MODELS_DIR) ? MBSTREAM_DEFAULT_MODELS_DIR : "";
+  mbstream::ServerLimits& limits = config.limits;
+  double max_model_mb = static_cast<double>(limits.max_model_bytes) / (1 << 20);
+  double max_message_mb = static_cast<double>(config.max_message_bytes) / (1 << 20);
+  std::string log_level = "info";
+
+  CLI::App app{"mbstream-server: simulate articulated mechanisms and stream their motion",
+               "mbstream-server"};
+  app.add_option("--listen", config.listen,
+                 "host:port (port 0 = any free port, printed) or unix:/path")
+      ->capture_default_str();
+  app.add_option("--data", config.data_dir, "directory of the SQLite store")->capture_default_str();
+  app.add_option("--models", config.models_dir,
+                 "directory of built-in models (one folder per model); \"\" = none")
+      ->capture_default_str();
+  app.add_option("--workers", limits.workers, "runs integrating at the same time")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  app.add_option("--max-queued-runs", limits.max_queued_runs, "runs waiting for a worker")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  app.add_option("--max-subscribers", limits.max_subscribers, "Subscribe and WatchRun streams")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  app.add_option("--max-model-mb", max_model_mb, "largest model bundle, MiB")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--max-links", limits.max_links, "most links and points of a model")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  app.add_option("--max-duration", limits.max_duration_s, "longest simulated time of a run, s")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--max-output-frames", limits.max_output_frames, "most frames of a run")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--max-message-mb", max_message_mb, "largest gRPC message, MiB")
+      ->check(CLI::Range(1.0, 2047.0))
+      ->capture_default_str();
+  app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
+      ->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  limits.max_model_bytes = static_cast<int64_t>(max_model_mb * (1 << 20));
+  config.max_message_bytes = static_cast<int>(max_message_mb * (1 << 20));
+  spdlog::set_level(spdlog::level::from_str(log_level));
+
+  // SIGINT/SIGTERM are handled by one thread (sigwait) that shuts the server down cleanly.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  std::unique_ptr<mbstream::ServerHost> host;
+  try {
+    host = mbstream::ServerHost::Start(config);
+  } catch (const mbstream::InputError& error) {
+    std::cerr << "mbstream-server: " << error.what() << "\n";
+    return 2;
+  }
+  std::cout << "listening on " << host->address() << std::endl;
+  spdlog::info("listening on {} (data in {})", host->address(), config.data_dir);
+  if (config.listen.rfind("unix:", 0) != 0 && config.listen.rfind("127.", 0) != 0 &&
+      config.listen.rfind("localhost:", 0) != 0 && config.listen.rfind("[::1]", 0) != 0) {
+    spdlog::warn(
+        "listening without TLS on a non-loopback address ({}): anyone who can reach "
+        "it can submit and run models",
+        config.listen);
+  }
+  std::thread signal_waiter([&] {
+    int signal = 0;
+    sigwait(&signals, &signal);
+    spdlog::info("signal {} received", signal == SIGINT ? "SIGINT" : "SIGTERM");
+    host->Shutdown();
+  });
+  host->Wait();
+  signal_waiter.join();
+  host.reset();
+  spdlog::info("stopped");
+  return 0;
+}

@@ -1,0 +1,97 @@
+#include "server/runs/run.h"
+
+#include <algorithm>
+
+#include "server/common/check.h"
+
+namespace mbstream {
+
+Run::Run(const v1::RunInfo& info, const RunConfig& config,
+         std::shared_ptr<const CompiledModel> model)
+    : id_(info.id()),
+      model_(std::move(model)),
+      config_(config),
+      realtime_(info.spec().realtime()),
+      info_(info) {
+  MBSTREAM_CHECK(model_ != nullptr);
+}
+
+v1::RunInfo Run::Info() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  v1::RunInfo info = info_;
+  info.set_subscribers(static_cast<int>(subscribers_.size()));
+  info.set_probe_reports(probe_count_);
+  return info;
+}
+
+void Run::Attach(const std::shared_ptr<Subscription>& subscriber, bool send_started) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (send_started) {  // a viewer (Subscribe): it will answer with probe reports
+    subscriber->Push({StreamEvent::Kind::kRunStarted, id_, nullptr});
+    ++viewers_;
+  }
+  if (ended_) {
+    subscriber->Push({StreamEvent::Kind::kRunEnded, id_, nullptr});
+    return;
+  }
+  if (!frames_.empty()) subscriber->Push({StreamEvent::Kind::kFrame, id_, frames_.back()});
+  subscribers_.push_back(subscriber);
+}
+
+void Run::Publish(std::shared_ptr<const v1::Frame> frame) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  frames_.push_back(frame);
+  info_.set_frames(static_cast<int64_t>(frames_.size()));
+  info_.set_t_s(frame->t_s());
+  // Detach subscribers whose streams have gone, then fan out.
+  subscribers_.erase(std::remove_if(subscribers_.begin(), subscribers_.end(),
+                                    [](const auto& s) { return s->cancelled(); }),
+                     subscribers_.end());
+  for (const auto& subscriber : subscribers_) {
+    subscriber->Push({StreamEvent::Kind::kFrame, id_, frame});
+  }
+}
+
+void Run::End() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  ended_ = true;
+  for (const auto& subscriber : subscribers_) {
+    subscriber->Push({StreamEvent::Kind::kRunEnded, id_, nullptr});
+  }
+  subscribers_.clear();
+}
+
+bool Run::ended() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return ended_;
+}
+
+int Run::subscriber_count() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return static_cast<int>(subscribers_.size());
+}
+
+void Run::AddProbes(const std::vector<v1::ProbeReport>& reports) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const v1::ProbeReport& report : reports) {
+      probes_.push_back(report);
+      last_probe_seq_ = std::max(last_probe_seq_, report.seq());
+    }
+    probe_count_ += static_cast<int64_t>(reports.size());
+  }
+  probes_arrived_.notify_all();
+}
+
+std::vector<v1::ProbeReport> Run::TakeProbes() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return std::move(probes_);
+}
+
+void Run::WaitForProbes(int64_t seq, std::chrono::duration<double> timeout) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (probe_count_ == 0 && viewers_ == 0) return;
+  probes_arrived_.wait_for(lock, timeout, [&] { return last_probe_seq_ >= seq; });
+}
+
+}  // namespace mbstream

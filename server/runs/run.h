@@ -1,0 +1,78 @@
+// One run on the server: its constant request, its live state and its fan-out channel.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "mbstream/v1/frame.pb.h"
+#include "mbstream/v1/run.pb.h"
+#include "server/runs/model_registry.h"
+#include "server/runs/subscription.h"
+#include "server/sim/run_config.h"
+
+namespace mbstream {
+
+class Run {
+ public:
+  Run(const v1::RunInfo& info, const RunConfig& config, std::shared_ptr<const CompiledModel> model);
+
+  const std::string& id() const { return id_; }
+  const CompiledModel& model() const { return *model_; }
+  std::shared_ptr<const CompiledModel> shared_model() const { return model_; }
+  const RunConfig& config() const { return config_; }
+  double realtime() const { return realtime_; }
+
+  // A snapshot of the run's info with live counters (frames, t, subscribers, probes).
+  v1::RunInfo Info() const;
+  // Changes the info under the run's lock.
+  template <typename Change>
+  void UpdateInfo(Change change) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    change(info_);
+  }
+
+  // Fan-out. Attach sends the run-started event (if asked), then the latest frame, then
+  // every later frame; a subscriber attached after the run ended gets only the run-ended
+  // event. Publish keeps the frame for the result and pushes it to every subscriber.
+  void Attach(const std::shared_ptr<Subscription>& subscriber, bool send_started);
+  void Publish(std::shared_ptr<const v1::Frame> frame);
+  // Marks the run ended: pushes the run-ended event and detaches every subscriber.
+  void End();
+  bool ended() const;
+  int subscriber_count() const;
+  const std::vector<std::shared_ptr<const v1::Frame>>& frames() const { return frames_; }
+
+  // Probe reports of viewers, kept until the run is stored.
+  void AddProbes(const std::vector<v1::ProbeReport>& reports);
+  std::vector<v1::ProbeReport> TakeProbes();
+  // Waits up to `timeout` until a probe report for frame `seq` or later arrived, when a
+  // viewer (a Subscribe stream) has attached to this run. Returns at once otherwise.
+  void WaitForProbes(int64_t seq, std::chrono::duration<double> timeout);
+
+  std::atomic<bool> cancel{false};       // CancelRun or shutdown: stop the integration
+  std::atomic<bool> interrupted{false};  // the server is shutting down
+
+ private:
+  const std::string id_;
+  const std::shared_ptr<const CompiledModel> model_;
+  const RunConfig config_;
+  const double realtime_;
+
+  mutable std::mutex mutex_;
+  std::condition_variable probes_arrived_;
+  v1::RunInfo info_;
+  std::vector<std::shared_ptr<const v1::Frame>> frames_;  // written by the run's thread only
+  std::vector<std::shared_ptr<Subscription>> subscribers_;
+  std::vector<v1::ProbeReport> probes_;
+  int64_t probe_count_ = 0;
+  int64_t last_probe_seq_ = -1;
+  int viewers_ = 0;  // Subscribe streams ever attached
+  bool ended_ = false;
+};
+
+}  // namespace mbstream

@@ -1,0 +1,140 @@
+// RunManager's worker side: executing one run and storing it.
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <thread>
+
+#include "server/common/check.h"
+#include "server/runs/run_manager.h"
+#include "server/sim/simulate.h"
+#include "server/store/store.h"
+#include "server/wire/frame_conversion.h"
+#include "server/wire/stats_conversion.h"
+
+namespace mbstream {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+int64_t NowUnixMs() {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+// Converts each frame to its wire form, paces it (realtime factor) and publishes it.
+class PublishingSink : public FrameSink {
+ public:
+  explicit PublishingSink(Run* run) : run_(run), start_(Clock::now()) {}
+
+  void OnFrame(const RunResult& result, int frame) override {
+    if (frame == 0) {
+      run_->UpdateInfo([&](v1::RunInfo& info) {
+        info.set_has_torques(result.has_torques);
+        info.set_has_energy(result.has_energy);
+      });
+    }
+    auto message = std::make_shared<v1::Frame>();
+    FrameToProto(result, frame, message.get());
+    Pace(result.t[frame]);
+    run_->Publish(std::move(message));
+  }
+
+ private:
+  // Realtime factor r > 0: frame at simulated time t goes out at wall time start + t / r.
+  // Sleeps in short slices so that a cancel is seen at once.
+  void Pace(double t) {
+    const double realtime = run_->realtime();
+    if (realtime <= 0.0) return;
+    const Clock::time_point due = start_ + std::chrono::duration_cast<Clock::duration>(
+                                               std::chrono::duration<double>(t / realtime));
+    for (Clock::time_point now = Clock::now(); now < due && !run_->cancel; now = Clock::now()) {
+      std::this_thread::sleep_for(
+          std::min<Clock::duration>(due - now, std::chrono::milliseconds(20)));
+    }
+  }
+
+  Run* run_;
+  Clock::time_point start_;
+};
+
+}  // namespace
+
+RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
+  Outcome outcome;
+  if (run->cancel) {  // cancelled or interrupted while queued
+    outcome.state = run->interrupted ? v1::INTERRUPTED : v1::CANCELLED;
+    outcome.message = run->interrupted ? stop_reason_ + " before this run started"
+                                       : "cancelled before it started";
+    return outcome;
+  }
+  run->UpdateInfo([&](v1::RunInfo& info) {
+    info.set_state(v1::RUNNING);
+    info.set_started_unix_ms(NowUnixMs());
+  });
+  store_->PutRun(run->Info());
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    followers_.erase(std::remove_if(followers_.begin(), followers_.end(),
+                                    [](const auto& f) { return f->cancelled(); }),
+                     followers_.end());
+    for (const auto& follower : followers_) run->Attach(follower, true);
+  }
+  spdlog::info("run {} started", run->id());
+
+  PublishingSink sink(run.get());
+  const RunResult result = Simulate(run->model().model, run->config(), &sink, &run->cancel);
+  const RunStats& stats = result.stats;
+  outcome.state = RunStateFromStatus(stats.status);
+  outcome.message = stats.message;
+  if (outcome.state == v1::CANCELLED && run->interrupted) {
+    outcome.state = v1::INTERRUPTED;
+    outcome.message = stop_reason_ +
+                      " during this run; the frames up to t = " + std::to_string(stats.t_reached) +
+                      " s are kept";
+  } else if (outcome.state == v1::CANCELLED) {
+    outcome.message = "cancelled at t = " + std::to_string(stats.t_reached) + " s";
+  }
+  outcome.stats = StatsToProto(stats);
+  return outcome;
+}
+
+void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome) {
+  const std::vector<std::shared_ptr<const v1::Frame>>& published = run->frames();
+  if (!published.empty() && !run->interrupted) {
+    run->WaitForProbes(published.back()->seq(),
+                       std::chrono::duration<double>(limits_.probe_grace_s));
+  }
+  // Store first, then show the final state: whoever sees a run ended can fetch its result.
+  v1::RunInfo info = run->Info();
+  info.set_state(outcome.state);
+  info.set_message(outcome.message);
+  *info.mutable_stats() = outcome.stats;
+  info.set_ended_unix_ms(NowUnixMs());
+  std::vector<v1::Frame> frames;
+  frames.reserve(published.size());
+  for (const auto& frame : published) frames.push_back(*frame);
+  try {
+    store_->AddProbes(run->TakeProbes());
+    store_->FinishRun(info, frames);
+  } catch (const std::exception& error) {
+    spdlog::error("run {}: storing the result failed: {}", run->id(), error.what());
+    info.set_state(v1::FAILED);
+    info.set_message(std::string("the result could not be stored: ") + error.what());
+  }
+  run->UpdateInfo([&](v1::RunInfo& live) { live = info; });
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    active_.erase(run->id());
+  }
+  run->End();
+  info = run->Info();
+  spdlog::info("run {} {}: {} frames to t = {} s, {} steps, cpu {:.3f} s, wall {:.3f} s{}{}",
+               run->id(), v1::RunState_Name(info.state()), info.frames(),
+               info.stats().t_reached_s(), info.stats().steps(), info.stats().cpu_s(),
+               info.stats().wall_s(), info.message().empty() ? "" : ": ", info.message());
+}
+
+}  // namespace mbstream

@@ -1,0 +1,291 @@
+#include "server/runs/run_manager.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <random>
+
+#include "server/common/check.h"
+#include "server/runs/request_error.h"
+#include "server/sim/drive_set.h"
+#include "server/sim/formulation_choice.h"
+#include "server/spec/run_spec_json.h"
+#include "server/store/store.h"
+#include "server/wire/stats_conversion.h"
+
+#ifndef MBSTREAM_VERSION
+#define MBSTREAM_VERSION "unknown"
+#endif
+
+namespace mbstream {
+
+namespace {
+
+int64_t NowUnixMs() {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+RequestError NotFound(const std::string& run_id) {
+  return RequestError(RequestErrorKind::kNotFound,
+                      "no run '" + run_id + "' on this server; `mbstream runs` lists them");
+}
+
+int64_t ExpectedFrames(const RunConfig& config) {
+  return static_cast<int64_t>(std::floor(config.duration / config.output_interval + 1e-9)) + 1;
+}
+
+}  // namespace
+
+RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& limits)
+    : models_(models), store_(store), limits_(limits) {
+  MBSTREAM_CHECK(models_ != nullptr && store_ != nullptr && limits_.workers > 0);
+  const int interrupted = store_->MarkUnfinishedRunsInterrupted(
+      "the server stopped while this run was queued or running; start it again");
+  if (interrupted > 0) spdlog::warn("{} runs of a previous server marked INTERRUPTED", interrupted);
+  for (int i = 0; i < limits_.workers; ++i) workers_.emplace_back([this] { WorkerLoop(); });
+}
+
+RunManager::~RunManager() { Shutdown("the server stopped"); }
+
+std::string RunManager::NewRunId() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char stamp[32];
+  std::strftime(stamp, sizeof(stamp), "%Y%m%d-%H%M%S", &utc);
+  static thread_local std::mt19937_64 random(std::random_device{}());
+  for (;;) {
+    char suffix[16];
+    std::snprintf(suffix, sizeof(suffix), "%04x", static_cast<unsigned>(random() & 0xffff));
+    std::string id = std::string("r-") + stamp + "-" + suffix;
+    if (!active_.count(id) && !store_->GetRun(id)) return id;
+  }
+}
+
+v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& spec) {
+  std::shared_ptr<const CompiledModel> model = models_->Find(model_ref);
+  RunConfig config = ToRunConfig(spec, model->joint_names, "spec");
+  ChooseFormulation(config, DriveSet(model->model, config));  // throws if unavailable
+  if (config.duration > limits_.max_duration_s) {
+    throw RequestError(RequestErrorKind::kResourceExhausted,
+                       "spec.duration_s " + std::to_string(config.duration) +
+                           " s exceeds this server's limit of " +
+                           std::to_string(limits_.max_duration_s) + " s; shorten the run");
+  }
+  const int64_t frames = ExpectedFrames(config);
+  if (spec.max_output_frames() > 0 && frames > spec.max_output_frames()) {
+    throw InputError("spec.max_output_frames is " + std::to_string(spec.max_output_frames()) +
+                     " but duration_s / output_interval_s gives " + std::to_string(frames) +
+                     " frames; raise max_output_frames or lengthen output_interval_s");
+  }
+  if (frames > limits_.max_output_frames) {
+    throw RequestError(RequestErrorKind::kResourceExhausted,
+                       "the run would produce " + std::to_string(frames) +
+                           " frames, more than this server's limit of " +
+                           std::to_string(limits_.max_output_frames) +
+                           "; lengthen spec.output_interval_s or shorten spec.duration_s");
+  }
+  config.max_steps = std::min(config.max_steps, limits_.max_internal_steps);
+
+  v1::RunInfo info;
+  info.set_model_id(model->info.id());
+  info.set_model_name(model->info.name());
+  *info.mutable_spec() = spec;
+  info.set_state(v1::QUEUED);
+  info.set_expected_frames(frames);
+  info.set_duration_s(config.duration);
+  info.set_num_dofs(model->model.num_dofs());
+  for (const std::string& name : model->joint_names) info.add_joint_names(name);
+  info.set_created_unix_ms(NowUnixMs());
+  info.set_mbstream_version(MBSTREAM_VERSION);
+
+  std::shared_ptr<Run> run;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (stopping_) {
+      throw RequestError(RequestErrorKind::kUnavailable,
+                         "the server is shutting down; start the run on another server");
+    }
+    if (static_cast<int>(queue_.size()) >= limits_.max_queued_runs) {
+      throw RequestError(RequestErrorKind::kResourceExhausted,
+                         "the run queue is full (" + std::to_string(limits_.max_queued_runs) +
+                             " runs waiting); wait for runs to finish or cancel some");
+    }
+    info.set_id(NewRunId());
+    run = std::make_shared<Run>(info, config, model);
+    store_->PutRun(info);
+    active_[info.id()] = run;
+    queue_.push_back(run);
+  }
+  work_.notify_one();
+  spdlog::info("run {} queued: model {} '{}', {} s, {} frames", info.id(), model->info.id(),
+               model->info.name(), config.duration, frames);
+  return info;
+}
+
+std::shared_ptr<Run> RunManager::FindActive(const std::string& run_id) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto found = active_.find(run_id);
+  return found == active_.end() ? nullptr : found->second;
+}
+
+v1::RunInfo RunManager::Cancel(const std::string& run_id) {
+  std::shared_ptr<Run> run = FindActive(run_id);
+  if (!run) return Get(run_id);
+  run->cancel = true;
+  spdlog::info("run {} cancel requested", run_id);
+  return run->Info();
+}
+
+v1::RunInfo RunManager::Get(const std::string& run_id) const {
+  if (std::shared_ptr<Run> run = FindActive(run_id)) return run->Info();
+  std::optional<v1::RunInfo> stored = store_->GetRun(run_id);
+  if (!stored) throw NotFound(run_id);
+  return *stored;
+}
+
+std::vector<v1::RunInfo> RunManager::List(const std::string& model, int limit) const {
+  std::string model_id;
+  if (!model.empty()) model_id = models_->Find(model)->info.id();
+  std::vector<v1::RunInfo> runs = store_->ListRuns();
+  std::vector<v1::RunInfo> out;
+  for (auto it = runs.rbegin(); it != runs.rend(); ++it) {
+    if (!model_id.empty() && it->model_id() != model_id) continue;
+    std::shared_ptr<Run> run = FindActive(it->id());
+    out.push_back(run ? run->Info() : *it);
+    if (limit > 0 && static_cast<int>(out.size()) >= limit) break;
+  }
+  return out;
+}
+
+RunManager::StoredResult RunManager::Result(const std::string& run_id) const {
+  std::shared_ptr<Run> run = FindActive(run_id);
+  if (run && !IsFinalState(run->Info().state())) {
+    throw RequestError(RequestErrorKind::kFailedPrecondition,
+                       "run " + run_id + " is " + v1::RunState_Name(run->Info().state()) +
+                           "; wait for it to end (`mbstream run --watch` or WatchRun)");
+  }
+  StoredResult result;
+  std::optional<v1::RunInfo> info = store_->GetRun(run_id);
+  if (!info) throw NotFound(run_id);
+  result.info = *info;
+  result.frames = store_->GetFrames(run_id);
+  result.probes = store_->GetProbes(run_id);
+  return result;
+}
+
+std::shared_ptr<Subscription> RunManager::SubscribeRun(const std::string& run_id,
+                                                       bool send_started) {
+  std::shared_ptr<Run> run = FindActive(run_id);
+  if (!run && !store_->GetRun(run_id)) throw NotFound(run_id);
+  auto subscriber = std::make_shared<Subscription>(limits_.subscriber_queue_frames);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (subscribers_ >= limits_.max_subscribers) {
+      throw RequestError(RequestErrorKind::kResourceExhausted,
+                         "this server already has " + std::to_string(subscribers_) +
+                             " subscribers, its limit; close a viewer or watcher and retry");
+    }
+    ++subscribers_;
+  }
+  if (run) {
+    run->Attach(subscriber, send_started);
+  } else {  // ended and stored
+    if (send_started) subscriber->Push({StreamEvent::Kind::kRunStarted, run_id, nullptr});
+    subscriber->Push({StreamEvent::Kind::kRunEnded, run_id, nullptr});
+  }
+  return subscriber;
+}
+
+std::shared_ptr<Subscription> RunManager::SubscribeFollow() {
+  auto subscriber = std::make_shared<Subscription>(limits_.subscriber_queue_frames);
+  std::shared_ptr<Run> running;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (subscribers_ >= limits_.max_subscribers) {
+      throw RequestError(RequestErrorKind::kResourceExhausted,
+                         "this server already has " + std::to_string(subscribers_) +
+                             " subscribers, its limit; close a viewer or watcher and retry");
+    }
+    ++subscribers_;
+    followers_.push_back(subscriber);
+    for (const auto& [id, run] : active_) {
+      if (run->Info().state() == v1::RUNNING &&
+          (!running || run->Info().started_unix_ms() > running->Info().started_unix_ms())) {
+        running = run;
+      }
+    }
+  }
+  if (running) running->Attach(subscriber, true);
+  return subscriber;
+}
+
+void RunManager::Unsubscribe(const std::shared_ptr<Subscription>& subscriber) {
+  subscriber->Cancel();
+  std::lock_guard<std::mutex> lock(mutex_);
+  followers_.erase(std::remove(followers_.begin(), followers_.end(), subscriber), followers_.end());
+  --subscribers_;
+}
+
+int RunManager::subscriber_count() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return subscribers_;
+}
+
+void RunManager::AddProbes(const std::string& run_id, const std::vector<v1::ProbeReport>& reports) {
+  if (reports.empty()) return;
+  std::shared_ptr<Run> run = FindActive(run_id);
+  if (run && !run->ended()) {
+    run->AddProbes(reports);
+    return;
+  }
+  if (store_->GetRun(run_id)) store_->AddProbes(reports);  // late reports of a stored run
+}
+
+void RunManager::Shutdown(const std::string& reason) {
+  std::vector<std::shared_ptr<Subscription>> followers;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (stopping_ && workers_.empty()) return;
+    stopping_ = true;
+    stop_reason_ = reason;
+    for (auto& [id, run] : active_) {
+      run->interrupted = true;
+      run->cancel = true;
+    }
+    followers = followers_;
+  }
+  work_.notify_all();
+  for (std::thread& worker : workers_) worker.join();
+  workers_.clear();
+  for (const auto& follower : followers) follower->Close();
+}
+
+void RunManager::WorkerLoop() {
+  for (;;) {
+    std::shared_ptr<Run> run;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      work_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+      if (queue_.empty()) return;  // stopping
+      run = queue_.front();
+      queue_.pop_front();
+    }
+    Outcome outcome;
+    try {
+      outcome = Execute(run);
+    } catch (const std::exception& error) {
+      spdlog::error("run {}: {}", run->id(), error.what());
+      outcome.state = v1::FAILED;
+      outcome.message = std::string("internal error: ") + error.what();
+    }
+    Finish(run, outcome);
+  }
+}
+
+}  // namespace mbstream

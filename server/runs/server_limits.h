@@ -1,0 +1,21 @@
+// The limits a server enforces on requests (set from mbstream-server's flags).
+#pragma once
+
+#include <cstdint>
+
+namespace mbstream {
+
+struct ServerLimits {
+  int64_t max_model_bytes = 64 << 20;     // URDF + scene + assets of one model, bytes
+  int max_links = 256;                    // frames (links and named points) of one model
+  int workers = 2;                        // runs integrating at the same time
+  int max_queued_runs = 64;               // runs waiting for a worker
+  int max_subscribers = 64;               // Subscribe + WatchRun streams at the same time
+  double max_duration_s = 24 * 3600.0;    // s, simulated time of one run
+  int64_t max_output_frames = 2'000'000;  // frames of one run
+  long max_internal_steps = 100'000'000;  // integrator steps of one run (budget cap)
+  int subscriber_queue_frames = 4096;     // frames buffered per subscriber before dropping
+  double probe_grace_s = 2.0;             // s a finished run waits for its viewers' last probes
+};
+
+}  // namespace mbstream

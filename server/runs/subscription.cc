@@ -1,0 +1,87 @@
+#include "server/runs/subscription.h"
+
+#include "server/common/check.h"
+
+namespace mbstream {
+
+Subscription::Subscription(int capacity_frames) : capacity_frames_(capacity_frames) {
+  MBSTREAM_CHECK(capacity_frames_ > 0);
+}
+
+void Subscription::Push(StreamEvent event) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (closed_ || cancelled_) return;
+    if (event.kind == StreamEvent::Kind::kFrame) {
+      if (frames_queued_ == capacity_frames_) {
+        // Drop the oldest frame (the queue holds frames and rare start/end markers).
+        for (auto it = events_.begin(); it != events_.end(); ++it) {
+          if (it->kind == StreamEvent::Kind::kFrame) {
+            events_.erase(it);
+            --frames_queued_;
+            ++missed_;
+            ++missed_total_;
+            break;
+          }
+        }
+      }
+      ++frames_queued_;
+    }
+    events_.push_back(std::move(event));
+  }
+  ready_.notify_one();
+}
+
+void Subscription::Close() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    closed_ = true;
+  }
+  ready_.notify_all();
+}
+
+void Subscription::Cancel() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    cancelled_ = true;
+    events_.clear();
+    frames_queued_ = 0;
+  }
+  ready_.notify_all();
+}
+
+bool Subscription::cancelled() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return cancelled_;
+}
+
+int64_t Subscription::missed_total() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return missed_total_;
+}
+
+bool Subscription::Pop(std::chrono::milliseconds timeout, int max_frames,
+                       std::deque<StreamEvent>* out, int64_t* missed) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  ready_.wait_for(lock, timeout, [&] { return !events_.empty() || closed_ || cancelled_; });
+  *missed = missed_;
+  missed_ = 0;
+  if (events_.empty()) return !(closed_ || cancelled_);
+  if (events_.front().kind != StreamEvent::Kind::kFrame) {
+    out->push_back(std::move(events_.front()));
+    events_.pop_front();
+    return true;
+  }
+  const std::string run_id = events_.front().run_id;
+  int taken = 0;
+  while (!events_.empty() && taken < max_frames &&
+         events_.front().kind == StreamEvent::Kind::kFrame && events_.front().run_id == run_id) {
+    out->push_back(std::move(events_.front()));
+    events_.pop_front();
+    --frames_queued_;
+    ++taken;
+  }
+  return true;
+}
+
+}  // namespace mbstream

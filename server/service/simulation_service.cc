@@ -1,0 +1,76 @@
+#include "server/service/simulation_service.h"
+
+#include <spdlog/spdlog.h>
+
+#include "server/common/check.h"
+#include "server/service/status_from_exception.h"
+
+namespace mbstream {
+
+SimulationService::SimulationService(ModelRegistry* models, RunManager* runs)
+    : models_(models), runs_(runs) {
+  MBSTREAM_CHECK(models_ != nullptr && runs_ != nullptr);
+}
+
+grpc::Status SimulationService::SubmitModel(grpc::ServerContext*,
+                                            const v1::SubmitModelRequest* request,
+                                            v1::ModelInfo* response) {
+  return Serve([&] {
+    *response = models_->Submit(request->bundle(), false)->info;
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status SimulationService::ListModels(grpc::ServerContext*, const v1::ListModelsRequest*,
+                                           v1::ListModelsResponse* response) {
+  return Serve([&] {
+    for (const v1::ModelInfo& info : models_->List()) *response->add_models() = info;
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status SimulationService::GetModel(grpc::ServerContext*, const v1::GetModelRequest* request,
+                                         v1::GetModelResponse* response) {
+  return Serve([&] {
+    std::shared_ptr<const CompiledModel> model = models_->Find(request->model());
+    *response->mutable_info() = model->info;
+    if (request->include_bundle()) *response->mutable_bundle() = model->bundle;
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status SimulationService::StartRun(grpc::ServerContext*, const v1::StartRunRequest* request,
+                                         v1::RunInfo* response) {
+  return Serve([&] {
+    *response = runs_->Start(request->model(), request->spec());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status SimulationService::CancelRun(grpc::ServerContext*, const v1::CancelRunRequest* request,
+                                          v1::RunInfo* response) {
+  return Serve([&] {
+    *response = runs_->Cancel(request->run_id());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status SimulationService::GetRun(grpc::ServerContext*, const v1::GetRunRequest* request,
+                                       v1::RunInfo* response) {
+  return Serve([&] {
+    *response = runs_->Get(request->run_id());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status SimulationService::ListRuns(grpc::ServerContext*, const v1::ListRunsRequest* request,
+                                         v1::ListRunsResponse* response) {
+  return Serve([&] {
+    for (const v1::RunInfo& info : runs_->List(request->model(), request->limit())) {
+      *response->add_runs() = info;
+    }
+    return grpc::Status::OK;
+  });
+}
+
+}  // namespace mbstream

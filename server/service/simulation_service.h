@@ -1,0 +1,49 @@
+// The Simulation gRPC service (proto/mbstream/v1/simulation_service.proto): translates
+// between messages and the model registry / run manager, and maps errors to status codes.
+#pragma once
+
+#include <atomic>
+
+#include "mbstream/v1/simulation_service.grpc.pb.h"
+#include "server/runs/model_registry.h"
+#include "server/runs/run_manager.h"
+
+namespace mbstream {
+
+class SimulationService final : public v1::Simulation::Service {
+ public:
+  // Neither is owned; both must outlive the service.
+  SimulationService(ModelRegistry* models, RunManager* runs);
+
+  grpc::Status SubmitModel(grpc::ServerContext* context, const v1::SubmitModelRequest* request,
+                           v1::ModelInfo* response) override;
+  grpc::Status ListModels(grpc::ServerContext* context, const v1::ListModelsRequest* request,
+                          v1::ListModelsResponse* response) override;
+  grpc::Status GetModel(grpc::ServerContext* context, const v1::GetModelRequest* request,
+                        v1::GetModelResponse* response) override;
+  grpc::Status StartRun(grpc::ServerContext* context, const v1::StartRunRequest* request,
+                        v1::RunInfo* response) override;
+  grpc::Status CancelRun(grpc::ServerContext* context, const v1::CancelRunRequest* request,
+                         v1::RunInfo* response) override;
+  grpc::Status GetRun(grpc::ServerContext* context, const v1::GetRunRequest* request,
+                      v1::RunInfo* response) override;
+  grpc::Status ListRuns(grpc::ServerContext* context, const v1::ListRunsRequest* request,
+                        v1::ListRunsResponse* response) override;
+  grpc::Status GetResult(grpc::ServerContext* context, const v1::GetResultRequest* request,
+                         grpc::ServerWriter<v1::ResultChunk>* writer) override;  // get_result.cc
+  grpc::Status WatchRun(grpc::ServerContext* context, const v1::WatchRunRequest* request,
+                        grpc::ServerWriter<v1::WatchEvent>* writer) override;  // watch_run.cc
+  grpc::Status Subscribe(grpc::ServerContext* context,
+                         grpc::ServerReaderWriter<v1::SubscribeEvent, v1::SubscribeRequest>* stream)
+      override;  // subscribe.cc
+
+  // Ends every stream at its next event (shutdown).
+  void Stop() { stopping_ = true; }
+
+ private:
+  ModelRegistry* models_;
+  RunManager* runs_;
+  std::atomic<bool> stopping_{false};
+};
+
+}  // namespace mbstream

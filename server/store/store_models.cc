@@ -1,0 +1,77 @@
+// Store: models and their bundles (assets in their own rows).
+#include <utility>
+
+#include "server/store/sqlite_transaction.h"
+#include "server/store/store.h"
+#include "server/store/store_impl.h"
+
+namespace mbstream {
+
+bool Store::PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle) {
+  v1::ModelInfo stored_info = info;
+  if (stored_info.created_unix_ms() == 0) stored_info.set_created_unix_ms(UnixNowMs());
+  // The bundle row holds everything but the assets, which may be large meshes.
+  v1::ModelBundle bundle_without_assets = bundle;
+  bundle_without_assets.clear_assets();
+  const std::string what = "model " + info.id();
+  const std::string info_bytes = SerializeForStore(stored_info, what);
+  const std::string bundle_bytes = SerializeForStore(bundle_without_assets, what + " bundle");
+
+  std::lock_guard lock(impl_->mutex);
+  SqliteTransaction transaction(impl_->db, "store " + what);
+  {
+    SqliteStatement& insert = impl_->insert_model;
+    ResetOnExit reset(insert);
+    insert.BindText(1, info.id());
+    insert.BindInt64(2, stored_info.created_unix_ms());
+    insert.BindBlob(3, info_bytes);
+    insert.BindBlob(4, bundle_bytes);
+    insert.Run();
+  }
+  if (impl_->db.Changes() == 0) return false;  // the first stored copy wins; rolls back
+  for (int i = 0; i < bundle.assets_size(); ++i) {
+    SqliteStatement& insert = impl_->insert_asset;
+    ResetOnExit reset(insert);
+    insert.BindText(1, info.id());
+    insert.BindInt64(2, i);
+    insert.BindText(3, bundle.assets(i).name());
+    insert.BindBlob(4, bundle.assets(i).data());
+    insert.Run();
+  }
+  transaction.Commit();
+  return true;
+}
+
+std::vector<v1::ModelInfo> Store::ListModels() const {
+  std::vector<v1::ModelInfo> models;
+  std::lock_guard lock(impl_->mutex);
+  SqliteStatement& select = impl_->select_model_infos;
+  ResetOnExit reset(select);
+  while (select.Step()) {
+    ParseFromStore(select.ColumnBlob(0), models.emplace_back(), "model info", impl_->db.path());
+  }
+  return models;
+}
+
+std::optional<v1::ModelBundle> Store::GetModelBundle(const std::string& model_id) const {
+  v1::ModelBundle bundle;
+  std::lock_guard lock(impl_->mutex);
+  {
+    SqliteStatement& select = impl_->select_model_bundle;
+    ResetOnExit reset(select);
+    select.BindText(1, model_id);
+    if (!select.Step()) return std::nullopt;
+    ParseFromStore(select.ColumnBlob(0), bundle, "bundle of model " + model_id, impl_->db.path());
+  }
+  SqliteStatement& select = impl_->select_model_assets;
+  ResetOnExit reset(select);
+  select.BindText(1, model_id);
+  while (select.Step()) {
+    v1::Asset* asset = bundle.add_assets();
+    asset->set_name(std::string(select.ColumnText(0)));
+    asset->set_data(std::string(select.ColumnBlob(1)));
+  }
+  return bundle;
+}
+
+}  // namespace mbstream

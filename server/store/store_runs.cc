@@ -1,0 +1,72 @@
+// Store: run rows (RunInfo with state and creation time as columns).
+#include "server/store/sqlite_transaction.h"
+#include "server/store/store.h"
+#include "server/store/store_impl.h"
+
+namespace mbstream {
+
+void UpsertRunLocked(Store::Impl& impl, const v1::RunInfo& info) {
+  const std::string bytes = SerializeForStore(info, "run " + info.id());
+  SqliteStatement& upsert = impl.upsert_run;
+  ResetOnExit reset(upsert);
+  upsert.BindText(1, info.id());
+  upsert.BindText(2, info.model_id());
+  upsert.BindInt64(3, info.state());
+  upsert.BindInt64(4, info.created_unix_ms());
+  upsert.BindBlob(5, bytes);
+  upsert.Run();
+}
+
+void Store::PutRun(const v1::RunInfo& info) {
+  std::lock_guard lock(impl_->mutex);
+  UpsertRunLocked(*impl_, info);
+}
+
+std::optional<v1::RunInfo> Store::GetRun(const std::string& run_id) const {
+  std::lock_guard lock(impl_->mutex);
+  SqliteStatement& select = impl_->select_run;
+  ResetOnExit reset(select);
+  select.BindText(1, run_id);
+  if (!select.Step()) return std::nullopt;
+  v1::RunInfo info;
+  ParseFromStore(select.ColumnBlob(0), info, "run " + run_id, impl_->db.path());
+  return info;
+}
+
+std::vector<v1::RunInfo> Store::ListRuns() const {
+  std::vector<v1::RunInfo> runs;
+  std::lock_guard lock(impl_->mutex);
+  SqliteStatement& select = impl_->select_runs;
+  ResetOnExit reset(select);
+  while (select.Step()) {
+    ParseFromStore(select.ColumnBlob(0), runs.emplace_back(), "run info", impl_->db.path());
+  }
+  return runs;
+}
+
+int Store::MarkUnfinishedRunsInterrupted(const std::string& message) {
+  const int64_t now_ms = UnixNowMs();
+  std::lock_guard lock(impl_->mutex);
+  SqliteTransaction transaction(impl_->db, "mark unfinished runs interrupted");
+  std::vector<v1::RunInfo> unfinished;
+  {
+    SqliteStatement& select = impl_->select_unfinished_runs;
+    ResetOnExit reset(select);
+    select.BindInt64(1, v1::QUEUED);
+    select.BindInt64(2, v1::RUNNING);
+    while (select.Step()) {
+      ParseFromStore(select.ColumnBlob(0), unfinished.emplace_back(), "run info", impl_->db.path());
+    }
+  }
+  for (v1::RunInfo& info : unfinished) {
+    info.set_state(v1::INTERRUPTED);
+    info.set_message(message);
+    info.set_ended_unix_ms(now_ms);
+    info.set_subscribers(0);
+    UpsertRunLocked(*impl_, info);
+  }
+  transaction.Commit();
+  return static_cast<int>(unfinished.size());
+}
+
+}  // namespace mbstream

@@ -1,0 +1,107 @@
+#include "server/store/store_schema.h"
+
+#include <string>
+
+#include "server/common/check.h"
+#include "server/store/sqlite_connection.h"
+#include "server/store/sqlite_statement.h"
+#include "server/store/sqlite_transaction.h"
+
+namespace mbstream {
+namespace {
+
+// Proto messages are stored as serialized blobs; columns exist only for what queries filter
+// or sort by. Times are Unix epoch milliseconds. `ord` (the rowid) keeps insertion order for
+// rows created in the same millisecond; upserts keep it.
+constexpr const char* kSchemaV1 = R"sql(
+CREATE TABLE models (
+  ord INTEGER PRIMARY KEY,
+  id TEXT NOT NULL UNIQUE,
+  created_unix_ms INTEGER NOT NULL,
+  info BLOB NOT NULL,     -- v1.ModelInfo
+  bundle BLOB NOT NULL    -- v1.ModelBundle without its assets (they are in model_assets)
+);
+CREATE TABLE model_assets (
+  model_id TEXT NOT NULL REFERENCES models(id) ON DELETE CASCADE,
+  position INTEGER NOT NULL,  -- index in ModelBundle.assets
+  name TEXT NOT NULL,
+  data BLOB NOT NULL,
+  PRIMARY KEY (model_id, position)
+);
+-- No foreign key to models: built-in models are loaded from files at start and may not be
+-- stored, yet their runs are.
+CREATE TABLE runs (
+  ord INTEGER PRIMARY KEY,
+  id TEXT NOT NULL UNIQUE,
+  model_id TEXT NOT NULL,
+  state INTEGER NOT NULL,  -- v1.RunState
+  created_unix_ms INTEGER NOT NULL,
+  info BLOB NOT NULL       -- v1.RunInfo
+);
+CREATE INDEX runs_by_created ON runs (created_unix_ms, ord);
+CREATE INDEX runs_by_state ON runs (state);
+CREATE INDEX runs_by_model ON runs (model_id);
+-- A run's frames in chunks of consecutive frames; each blob is a sequence of
+-- length-delimited serialized v1.Frame (see frame_chunks.h).
+CREATE TABLE frame_chunks (
+  run_id TEXT NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
+  chunk INTEGER NOT NULL,        -- 0, 1, 2, ... in seq order
+  first_seq INTEGER NOT NULL,    -- Frame.seq of the chunk's first frame
+  frame_count INTEGER NOT NULL,
+  data BLOB NOT NULL,
+  PRIMARY KEY (run_id, chunk)
+);
+-- No foreign key to runs: probe batches are written as they arrive, possibly before the
+-- writer of the run row got the lock.
+CREATE TABLE probes (
+  run_id TEXT NOT NULL,
+  seq INTEGER NOT NULL,   -- Frame.seq the probe was computed for
+  probe TEXT NOT NULL,
+  report BLOB NOT NULL,   -- v1.ProbeReport
+  PRIMARY KEY (run_id, seq, probe)
+) WITHOUT ROWID;
+)sql";
+
+int64_t QueryInt(SqliteConnection& connection, const std::string& sql) {
+  SqliteStatement statement(connection, sql, sql);
+  ResetOnExit reset(statement);
+  return statement.Step() ? statement.ColumnInt64(0) : 0;
+}
+
+}  // namespace
+
+void EnsureStoreSchema(SqliteConnection& connection) {
+  const std::string& path = connection.path();
+  SqliteTransaction transaction(connection, "check schema");
+  const int64_t application_id = QueryInt(connection, "PRAGMA application_id");
+  const int64_t version = QueryInt(connection, "PRAGMA user_version");
+  const int64_t tables = QueryInt(connection, "SELECT count(*) FROM sqlite_master");
+
+  if (application_id == 0 && version == 0 && tables == 0) {  // a new, empty database
+    connection.Exec(kSchemaV1, "create schema");
+    connection.Exec("PRAGMA application_id = " + std::to_string(kStoreApplicationId) +
+                        "; PRAGMA user_version = " + std::to_string(kStoreSchemaVersion),
+                    "write schema version");
+    transaction.Commit();
+    return;
+  }
+  if (application_id != kStoreApplicationId) {
+    throw InputError(path +
+                     " is a SQLite database of another program, not an mbstream database; "
+                     "move it away or start the server with another --data directory");
+  }
+  if (version > kStoreSchemaVersion) {
+    throw InputError(path + " has store schema version " + std::to_string(version) +
+                     ", newer than the " + std::to_string(kStoreSchemaVersion) +
+                     " this mbstream-server understands; run a newer mbstream-server or use "
+                     "another --data directory");
+  }
+  if (version < 1) {
+    throw InputError(path + " is an mbstream database with unknown schema version " +
+                     std::to_string(version) + "; move it away or use another --data directory");
+  }
+  // Version 1 is the only version so far: nothing to migrate.
+  transaction.Commit();
+}
+
+}  // namespace mbstream

@@ -1,0 +1,24 @@
+// The store's SQLite schema and its version check.
+#pragma once
+
+#include <cstdint>
+
+namespace mbstream {
+
+class SqliteConnection;
+
+// PRAGMA application_id of an mbstream database: "mbst" in ASCII. A SQLite file with another
+// id (and any tables) belongs to some other program.
+inline constexpr int32_t kStoreApplicationId = 0x6d627374;
+
+// PRAGMA user_version written by this build. Raise it with every schema change and migrate
+// older versions in EnsureStoreSchema.
+inline constexpr int32_t kStoreSchemaVersion = 1;
+
+// Creates the schema in a new (empty) database, or checks that an existing one is an mbstream
+// database this build can use. Throws InputError naming the file and what to do when it is
+// another program's database or has a newer schema version; SqliteError (SQLITE_NOTADB...)
+// when the file is not SQLite at all.
+void EnsureStoreSchema(SqliteConnection& connection);
+
+}  // namespace mbstream

@@ -1,0 +1,82 @@
+#include "server/wire/frame_conversion.h"
+
+#include <cmath>
+#include <string>
+
+#include "server/common/check.h"
+#include "server/wire/stats_conversion.h"
+
+namespace mbstream {
+
+namespace {
+
+void CopyFinite(const double* values, int count, google::protobuf::RepeatedField<double>* out) {
+  out->Resize(count, 0.0);
+  for (int i = 0; i < count; ++i) {
+    MBSTREAM_CHECK_MSG(std::isfinite(values[i]), "a non-finite value reached the wire");
+    out->Set(i, values[i]);
+  }
+}
+
+}  // namespace
+
+void FrameToProto(const RunResult& result, int k, v1::Frame* frame) {
+  const int n = result.num_dofs;
+  MBSTREAM_CHECK(k >= 0 && k < result.num_frames());
+  frame->set_seq(k);
+  frame->set_t_s(result.t[k]);
+  CopyFinite(&result.q[k * n], n, frame->mutable_q());
+  CopyFinite(&result.qd[k * n], n, frame->mutable_qd());
+  const double* p = &result.tcp[3 * k];
+  MBSTREAM_CHECK_MSG(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]),
+                     "a non-finite TCP reached the wire");
+  frame->mutable_tcp_m()->set_x(p[0]);
+  frame->mutable_tcp_m()->set_y(p[1]);
+  frame->mutable_tcp_m()->set_z(p[2]);
+  if (result.has_torques) {
+    CopyFinite(&result.tau[k * n], n, frame->mutable_tau());
+  } else {
+    frame->clear_tau();
+  }
+  if (result.has_energy) {
+    MBSTREAM_CHECK(std::isfinite(result.kinetic[k]) && std::isfinite(result.potential[k]));
+    frame->set_kinetic_j(result.kinetic[k]);
+    frame->set_potential_j(result.potential[k]);
+  }
+}
+
+RunResult ResultFromFrames(const v1::RunInfo& info, const std::vector<v1::Frame>& frames) {
+  RunResult result;
+  result.num_dofs = info.num_dofs();
+  result.joint_names.assign(info.joint_names().begin(), info.joint_names().end());
+  result.has_torques = info.has_torques();
+  result.has_energy = info.has_energy();
+  result.stats = StatsFromProto(info);
+  const int n = result.num_dofs;
+  const size_t count = frames.size();
+  result.t.reserve(count);
+  result.q.reserve(count * n);
+  result.qd.reserve(count * n);
+  result.tcp.reserve(count * 3);
+  for (const v1::Frame& frame : frames) {
+    const bool torques_ok = !result.has_torques || frame.tau_size() == n;
+    if (frame.q_size() != n || frame.qd_size() != n || !torques_ok) {
+      throw InputError("run " + info.id() + ": frame " + std::to_string(frame.seq()) + " has " +
+                       std::to_string(frame.q_size()) + " joint values, expected " +
+                       std::to_string(n) + "; the result is corrupt, run it again");
+    }
+    result.t.push_back(frame.t_s());
+    result.q.insert(result.q.end(), frame.q().begin(), frame.q().end());
+    result.qd.insert(result.qd.end(), frame.qd().begin(), frame.qd().end());
+    result.tcp.insert(result.tcp.end(), {frame.tcp_m().x(), frame.tcp_m().y(), frame.tcp_m().z()});
+    if (result.has_torques)
+      result.tau.insert(result.tau.end(), frame.tau().begin(), frame.tau().end());
+    if (result.has_energy) {
+      result.kinetic.push_back(frame.kinetic_j());
+      result.potential.push_back(frame.potential_j());
+    }
+  }
+  return result;
+}
+
+}  // namespace mbstream

@@ -1,0 +1,112 @@
+#include "server/wire/stats_conversion.h"
+
+#include <cmath>
+
+namespace mbstream {
+
+namespace {
+
+double FiniteOr(double value, double fallback) { return std::isfinite(value) ? value : fallback; }
+
+}  // namespace
+
+v1::RunState RunStateFromStatus(RunStatus status) {
+  switch (status) {
+    case RunStatus::kFinished:
+      return v1::FINISHED;
+    case RunStatus::kDiverged:
+      return v1::DIVERGED;
+    case RunStatus::kTooMuchWork:
+      return v1::TOO_MUCH_WORK;
+    case RunStatus::kErrorTestFailures:
+      return v1::ERROR_TEST_FAILURES;
+    case RunStatus::kConvergenceFailures:
+      return v1::CONVERGENCE_FAILURES;
+    case RunStatus::kFailed:
+      return v1::FAILED;
+    case RunStatus::kCancelled:
+      return v1::CANCELLED;
+  }
+  return v1::FAILED;
+}
+
+bool IsFinalState(v1::RunState state) {
+  return state != v1::RUN_STATE_UNSPECIFIED && state != v1::QUEUED && state != v1::RUNNING;
+}
+
+v1::RunStats StatsToProto(const RunStats& s) {
+  v1::RunStats out;
+  out.set_formulation(s.formulation);
+  out.set_formulation_reason(s.formulation_reason);
+  out.set_equations(s.equations);
+  out.set_jacobian_nnz(s.jacobian_nnz);
+  out.set_method(s.method);
+  out.set_integrator(s.integrator);
+  out.set_steps(s.solver.steps);
+  out.set_rhs_evals(s.solver.rhs_evals);
+  out.set_jac_evals(s.solver.jac_evals);
+  out.set_nonlinear_iterations(s.solver.nonlinear_iterations);
+  out.set_error_test_failures(s.solver.error_test_failures);
+  out.set_convergence_failures(s.solver.convergence_failures);
+  out.set_last_step_s(FiniteOr(s.solver.last_step, 0.0));
+  out.set_last_order(s.solver.last_order);
+  out.set_cpu_s(FiniteOr(s.cpu_s, 0.0));
+  out.set_wall_s(FiniteOr(s.wall_s, 0.0));
+  out.set_t_reached_s(FiniteOr(s.t_reached, 0.0));
+  out.set_tcp_error_max_m(FiniteOr(s.tcp_error_max, -1.0));
+  out.set_energy_error_max(FiniteOr(s.energy_error_max, -1.0));
+  out.set_energy_work_approximate(s.energy_work_approximate);
+  return out;
+}
+
+RunStats StatsFromProto(const v1::RunInfo& info) {
+  const v1::RunStats& in = info.stats();
+  RunStats s;
+  switch (info.state()) {
+    case v1::FINISHED:
+      s.status = RunStatus::kFinished;
+      break;
+    case v1::DIVERGED:
+      s.status = RunStatus::kDiverged;
+      break;
+    case v1::TOO_MUCH_WORK:
+      s.status = RunStatus::kTooMuchWork;
+      break;
+    case v1::ERROR_TEST_FAILURES:
+      s.status = RunStatus::kErrorTestFailures;
+      break;
+    case v1::CONVERGENCE_FAILURES:
+      s.status = RunStatus::kConvergenceFailures;
+      break;
+    case v1::CANCELLED:
+      s.status = RunStatus::kCancelled;
+      break;
+    default:
+      s.status = RunStatus::kFailed;
+      break;
+  }
+  s.message = info.message();
+  s.t_reached = in.t_reached_s();
+  s.formulation = in.formulation();
+  s.formulation_reason = in.formulation_reason();
+  s.equations = in.equations();
+  s.jacobian_nnz = in.jacobian_nnz();
+  s.method = in.method();
+  s.integrator = in.integrator();
+  s.solver.steps = in.steps();
+  s.solver.rhs_evals = in.rhs_evals();
+  s.solver.jac_evals = in.jac_evals();
+  s.solver.nonlinear_iterations = in.nonlinear_iterations();
+  s.solver.error_test_failures = in.error_test_failures();
+  s.solver.convergence_failures = in.convergence_failures();
+  s.solver.last_step = in.last_step_s();
+  s.solver.last_order = in.last_order();
+  s.cpu_s = in.cpu_s();
+  s.wall_s = in.wall_s();
+  s.tcp_error_max = in.tcp_error_max_m();
+  s.energy_error_max = in.energy_error_max();
+  s.energy_work_approximate = in.energy_work_approximate();
+  return s;
+}
+
+}  // namespace mbstream
