@@ -4,13 +4,24 @@
 #include <exception>
 #include <iostream>
 
+#include <memory>
+
+#include "client/cli/server_commands.h"
 #include "client/cli/simulate_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"mbstream: simulate articulated mechanisms and watch them move", "mbstream"};
   app.require_subcommand(1);
   int exit_code = 0;
+  auto client = std::make_shared<mbstream::cli::ClientOptions>();
+  app.add_option("--server", client->server, "server address: host:port or unix:/path")
+      ->envname("MBSTREAM_SERVER")
+      ->capture_default_str();
   mbstream::cli::AddSimulateCommand(app, &exit_code);
+  mbstream::cli::AddSubmitCommand(app, client, &exit_code);
+  mbstream::cli::AddListCommands(app, client, &exit_code);
+  mbstream::cli::AddRunCommand(app, client, &exit_code);
+  mbstream::cli::AddResultCommands(app, client, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

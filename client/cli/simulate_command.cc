@@ -40,7 +40,7 @@ int RunSimulate(const SimulateOptions& options) {
 
   const RunResult result = Simulate(import.model, config);
   const RunProvenance provenance{import.model.name, options.model_path,
-                                 RunSpecToJson(ToRunSpec(config))};
+                                 RunSpecToJson(ToRunSpec(config)), "", ""};
   WriteResultsDirectory(result, provenance, options.out_dir);
 
   const RunStats& s = result.stats;

@@ -99,6 +99,10 @@ std::string StatsJson(const RunResult& result, const RunProvenance& provenance) 
       {"mbstream_version", MBSTREAM_VERSION},
       {"model", provenance.model_name},
       {"model_source", provenance.model_source},
+      {"model_id", provenance.model_id.empty() ? nlohmann::ordered_json(nullptr)
+                                               : nlohmann::ordered_json(provenance.model_id)},
+      {"run_id", provenance.run_id.empty() ? nlohmann::ordered_json(nullptr)
+                                           : nlohmann::ordered_json(provenance.run_id)},
       {"spec", provenance.spec_json.empty() ? nlohmann::ordered_json(nullptr)
                                             : nlohmann::ordered_json::parse(provenance.spec_json)},
   };
@@ -106,7 +110,7 @@ std::string StatsJson(const RunResult& result, const RunProvenance& provenance) 
 }
 
 void WriteResultsDirectory(const RunResult& result, const RunProvenance& provenance,
-                           const std::string& directory) {
+                           const std::string& directory, const std::vector<ProbeRecord>& probes) {
   const fs::path dir(directory);
   std::error_code error;
   fs::create_directories(dir, error);
@@ -130,6 +134,17 @@ void WriteResultsDirectory(const RunResult& result, const RunProvenance& provena
       energy.push_back(result.potential[k]);
     }
     WriteSeries(dir / "energy.csv", "t,kinetic,potential", result, energy, 2);
+  }
+  if (!probes.empty()) {
+    WriteFile(dir / "probes.csv", [&](std::ostream& out) {
+      out << "seq,t,name,x,y,z,latency_us\n";
+      for (const ProbeRecord& p : probes) {
+        out << p.seq << ',' << Number(p.t) << ',' << p.name << ',' << Number(p.x) << ','
+            << Number(p.y) << ',' << Number(p.z) << ',' << p.latency_us << '\n';
+      }
+    });
+  } else {
+    fs::remove(dir / "probes.csv", error);
   }
   WriteFile(dir / "stats.json", [&](std::ostream& out) { out << StatsJson(result, provenance); });
 }

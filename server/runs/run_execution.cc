@@ -131,10 +131,10 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
   }
   run->End();
   info = run->Info();
-  spdlog::info("run {} {}: {} frames to t = {} s, {} steps, cpu {:.3f} s, wall {:.3f} s{}{}",
+  spdlog::info("run {} {}: {} frames to t = {} s, {} steps, cpu {:.3f} ms, wall {:.3f} ms{}{}",
                run->id(), v1::RunState_Name(info.state()), info.frames(),
-               info.stats().t_reached_s(), info.stats().steps(), info.stats().cpu_s(),
-               info.stats().wall_s(), info.message().empty() ? "" : ": ", info.message());
+               info.stats().t_reached_s(), info.stats().steps(), 1e3 * info.stats().cpu_s(),
+               1e3 * info.stats().wall_s(), info.message().empty() ? "" : ": ", info.message());
 }
 
 }  // namespace mbstream

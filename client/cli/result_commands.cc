@@ -1,0 +1,56 @@
+// `mbstream result RUN --out DIR` and `mbstream cancel RUN`.
+#include <iostream>
+
+#include "client/cli/result_download.h"
+#include "client/cli/server_commands.h"
+#include "server/common/check.h"
+
+namespace mbstream::cli {
+
+namespace {
+
+int Result(const ClientOptions& client, const std::string& run_id, const std::string& out_dir) {
+  v1::RunInfo info;
+  const grpc::Status status = DownloadResult(*ConnectSimulation(client), run_id, out_dir, &info);
+  if (!status.ok()) return ReportRpcError("result", client, status);
+  std::cerr << run_id << " " << v1::RunState_Name(info.state()) << ": " << info.frames()
+            << " frames, " << info.probe_reports() << " probe reports; results in " << out_dir
+            << "\n";
+  return info.state() == v1::FINISHED ? 0 : 1;
+}
+
+int Cancel(const ClientOptions& client, const std::string& run_id) {
+  grpc::ClientContext context;
+  v1::CancelRunRequest request;
+  request.set_run_id(run_id);
+  v1::RunInfo info;
+  const grpc::Status status = ConnectSimulation(client)->CancelRun(&context, request, &info);
+  if (!status.ok()) return ReportRpcError("cancel", client, status);
+  std::cout << run_id << " " << v1::RunState_Name(info.state()) << "\n";
+  return 0;
+}
+
+}  // namespace
+
+void AddResultCommands(CLI::App& app, std::shared_ptr<const ClientOptions> client, int* exit_code) {
+  auto run_id = std::make_shared<std::string>();
+  auto out_dir = std::make_shared<std::string>();
+  CLI::App* result = app.add_subcommand("result", "fetch an ended run's results files");
+  result->add_option("run", *run_id, "run id")->required();
+  result->add_option("--out", *out_dir, "results directory")->required();
+  result->callback([client, run_id, out_dir, exit_code] {
+    try {
+      *exit_code = Result(*client, *run_id, *out_dir);
+    } catch (const InputError& error) {
+      std::cerr << "mbstream result: " << error.what() << "\n";
+      *exit_code = 2;
+    }
+  });
+
+  auto cancel_id = std::make_shared<std::string>();
+  CLI::App* cancel = app.add_subcommand("cancel", "stop a queued or running run");
+  cancel->add_option("run", *cancel_id, "run id")->required();
+  cancel->callback([client, cancel_id, exit_code] { *exit_code = Cancel(*client, *cancel_id); });
+}
+
+}  // namespace mbstream::cli

@@ -1,0 +1,18 @@
+// Fetching a run's stored result and writing the results directory of the contract.
+#pragma once
+
+#include <string>
+
+#include "client/cli/server_connection.h"
+#include "mbstream/v1/run.pb.h"
+
+namespace mbstream::cli {
+
+// Streams GetResult for `run_id` and writes joints.csv, velocities.csv, tcp.csv,
+// torques.csv, probes.csv and stats.json into `directory` (the same files, bit for bit, as
+// `mbstream simulate` writes for the same model and spec). Fills *info. Returns the RPC's
+// status; throws InputError when the directory cannot be written.
+grpc::Status DownloadResult(v1::Simulation::Stub& stub, const std::string& run_id,
+                            const std::string& directory, v1::RunInfo* info);
+
+}  // namespace mbstream::cli

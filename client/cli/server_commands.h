@@ -1,0 +1,20 @@
+// The commands that talk to a server: submit, models, runs, run, result, cancel
+// (design.md section 4). Each callback stores its exit code in *exit_code.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <memory>
+
+#include "client/cli/server_connection.h"
+
+namespace mbstream::cli {
+
+void AddSubmitCommand(CLI::App& app, std::shared_ptr<const ClientOptions> options, int* exit_code);
+void AddListCommands(CLI::App& app, std::shared_ptr<const ClientOptions> options,
+                     int* exit_code);  // models, runs
+void AddRunCommand(CLI::App& app, std::shared_ptr<const ClientOptions> options, int* exit_code);
+void AddResultCommands(CLI::App& app, std::shared_ptr<const ClientOptions> options,
+                       int* exit_code);  // result, cancel
+
+}  // namespace mbstream::cli

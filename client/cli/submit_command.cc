@@ -1,0 +1,60 @@
+// `mbstream submit MODEL.urdf|DIR [--scene FILE] [--asset FILE]... [--name NAME]`
+#include <iostream>
+
+#include "client/cli/server_commands.h"
+#include "server/common/check.h"
+#include "server/wire/model_bundle_files.h"
+
+namespace mbstream::cli {
+
+namespace {
+
+struct SubmitOptions {
+  std::string model_path, scene_path, name;
+  std::vector<std::string> assets;
+};
+
+int Submit(const ClientOptions& client, const SubmitOptions& options) {
+  v1::SubmitModelRequest request;
+  *request.mutable_bundle() =
+      ReadModelBundle(options.model_path, options.scene_path, options.assets, options.name);
+  grpc::ClientContext context;
+  v1::ModelInfo info;
+  const grpc::Status status = ConnectSimulation(client)->SubmitModel(&context, request, &info);
+  if (!status.ok()) return ReportRpcError("submit", client, status);
+  std::cout << info.id() << "\n";
+  std::cerr << "model '" << info.name() << "': " << info.dofs() << " joints, " << info.links()
+            << " links, " << info.total_mass_kg() << " kg, TCP "
+            << (info.tcp_frame().empty() ? "none" : info.tcp_frame()) << ", scene "
+            << (info.has_scene() ? "yes" : "no") << ", " << info.num_assets() << " assets\n";
+  for (const std::string& warning : info.warnings()) std::cerr << "warning: " << warning << "\n";
+  return 0;
+}
+
+}  // namespace
+
+void AddSubmitCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client, int* exit_code) {
+  auto options = std::make_shared<SubmitOptions>();
+  CLI::App* command =
+      app.add_subcommand("submit", "compile and store a model on the server; prints its id");
+  command
+      ->add_option("model", options->model_path,
+                   "URDF file, or a model directory (one .urdf, its .scene and STL files)")
+      ->required()
+      ->check(CLI::ExistingPath);
+  command->add_option("--scene", options->scene_path, "scene script for viewers")
+      ->check(CLI::ExistingFile);
+  command->add_option("--asset", options->assets, "a mesh file the URDF or scene uses")
+      ->check(CLI::ExistingFile);
+  command->add_option("--name", options->name, "display name (default: the URDF's robot name)");
+  command->callback([client, options, exit_code] {
+    try {
+      *exit_code = Submit(*client, *options);
+    } catch (const InputError& error) {
+      std::cerr << "mbstream submit: " << error.what() << "\n";
+      *exit_code = 2;
+    }
+  });
+}
+
+}  // namespace mbstream::cli
