@@ -1,0 +1,144 @@
+// SubmitModel, ListModels, GetModel through a real server on port 0.
+#include <gmock/gmock.h>
+#include <grpcpp/generic/generic_stub.h>
+
+#include <future>
+
+#include "tests/server/service/server_fixture.h"
+
+namespace mbstream::testing {
+namespace {
+
+using ::testing::HasSubstr;
+
+// Calls grpc.health.v1.Health/Check for the whole server (empty request) with the generic
+// stub and returns the serialized response.
+std::string HealthCheck(const std::string& address) {
+  grpc::GenericStub generic(grpc::CreateChannel(address, grpc::InsecureChannelCredentials()));
+  grpc::ClientContext context;
+  grpc::ByteBuffer request, response;
+  grpc::Slice empty;
+  request = grpc::ByteBuffer(&empty, 1);
+  std::promise<grpc::Status> done;
+  generic.UnaryCall(&context, "/grpc.health.v1.Health/Check", grpc::StubOptions(), &request,
+                    &response, [&](grpc::Status status) { done.set_value(status); });
+  const grpc::Status status = done.get_future().get();
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  std::vector<grpc::Slice> slices;
+  EXPECT_TRUE(response.Dump(&slices).ok());
+  std::string bytes;
+  for (const grpc::Slice& slice : slices) {
+    bytes.append(reinterpret_cast<const char*>(slice.begin()), slice.size());
+  }
+  return bytes;
+}
+
+class ModelsServiceTest : public ServerTest {
+ protected:
+  void SetUp() override { StartServer(); }
+};
+
+TEST_F(ModelsServiceTest, SameBundleTwiceGivesTheSameId) {
+  v1::ModelBundle bundle = IrbBundle();
+  const v1::ModelInfo first = SubmitOk(bundle);
+  bundle.set_name("another name");
+  const v1::ModelInfo second = SubmitOk(bundle);
+  EXPECT_EQ(first.id(), second.id());
+  EXPECT_EQ(first.id().substr(0, 2), "m-");
+  EXPECT_EQ(first.dofs(), 6);
+  EXPECT_EQ(first.joints_size(), 6);
+  EXPECT_EQ(first.tcp_frame(), "tcp");
+  EXPECT_GT(first.total_mass_kg(), 0.0);
+  // A different URDF text is a different model.
+  bundle.set_urdf(bundle.urdf() + "\n<!-- changed -->\n");
+  EXPECT_NE(SubmitOk(bundle).id(), first.id());
+}
+
+TEST_F(ModelsServiceTest, BadUrdfIsInvalidArgumentWithTheImportersMessage) {
+  v1::ModelBundle bundle;
+  bundle.set_urdf_file_name("broken.urdf");
+  bundle.set_urdf(
+      "<robot name='r'>\n  <link name='a'/>\n  <joint name='j' type='revolute'>\n"
+      "    <parent link='a'/>\n    <child link='missing'/>\n  </joint>\n</robot>\n");
+  v1::ModelInfo info;
+  const grpc::Status status = Submit(bundle, &info);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("broken.urdf:"));
+  EXPECT_THAT(status.error_message(), HasSubstr("missing"));
+}
+
+TEST_F(ModelsServiceTest, EmptyUrdfAndDuplicateAssetsAreRejected) {
+  v1::ModelInfo info;
+  EXPECT_EQ(Submit(v1::ModelBundle(), &info).error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  v1::ModelBundle bundle = IrbBundle();
+  for (int i = 0; i < 2; ++i) {
+    v1::Asset* asset = bundle.add_assets();
+    asset->set_name("part.stl");
+    asset->set_data("solid x\nendsolid x\n");
+  }
+  const grpc::Status status = Submit(bundle, &info);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("'part.stl' is given twice"));
+}
+
+TEST_F(ModelsServiceTest, BuiltinModelsAreListedAndFoundByName) {
+  grpc::ClientContext context;
+  v1::ListModelsResponse list;
+  ASSERT_TRUE(stub().ListModels(&context, v1::ListModelsRequest(), &list).ok());
+  bool found = false;
+  for (const v1::ModelInfo& m : list.models()) found |= m.name() == "irb1600" && m.builtin();
+  EXPECT_TRUE(found);
+
+  grpc::ClientContext get_context;
+  v1::GetModelRequest request;
+  request.set_model("irb1600");
+  request.set_include_bundle(true);
+  v1::GetModelResponse model;
+  ASSERT_TRUE(stub().GetModel(&get_context, request, &model).ok());
+  EXPECT_EQ(model.info().name(), "irb1600");
+  EXPECT_THAT(model.bundle().urdf(), HasSubstr("<robot"));
+}
+
+TEST_F(ModelsServiceTest, UnknownModelIsNotFoundAndNamesTheKnownOnes) {
+  grpc::ClientContext context;
+  v1::GetModelRequest request;
+  request.set_model("nosuch");
+  v1::GetModelResponse model;
+  const grpc::Status status = stub().GetModel(&context, request, &model);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::NOT_FOUND);
+  EXPECT_THAT(status.error_message(), HasSubstr("irb1600"));
+}
+
+TEST_F(ModelsServiceTest, OversizedModelIsResourceExhaustedAndTheServerStaysHealthy) {
+  host_.reset();
+  ServerLimits limits;
+  limits.max_model_bytes = 1000;
+  StartServer(limits);
+  v1::ModelInfo info;
+  const grpc::Status status = Submit(IrbBundle(), &info);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_THAT(status.error_message(), HasSubstr("--max-model-mb"));
+  // Still serving.
+  EXPECT_EQ(HealthCheck(host().address()), "\x08\x01");  // HealthCheckResponse{SERVING}
+  grpc::ClientContext list_context;
+  v1::ListModelsResponse list;
+  EXPECT_TRUE(stub().ListModels(&list_context, v1::ListModelsRequest(), &list).ok());
+}
+
+TEST_F(ModelsServiceTest, HealthServiceSaysServing) {
+  EXPECT_EQ(HealthCheck(host().address()), "\x08\x01");
+}
+
+TEST_F(ModelsServiceTest, TooManyLinksIsResourceExhausted) {
+  host_.reset();
+  ServerLimits limits;
+  limits.max_links = 3;
+  StartServer(limits);
+  v1::ModelInfo info;
+  const grpc::Status status = Submit(IrbBundle(), &info);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_THAT(status.error_message(), HasSubstr("--max-links"));
+}
+
+}  // namespace
+}  // namespace mbstream::testing

@@ -1,0 +1,57 @@
+// An in-process mbstream server on port 0 with a fresh data directory, and client helpers.
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mbstream/v1/simulation_service.grpc.pb.h"
+#include "server/app/server_host.h"
+
+namespace mbstream::testing {
+
+// A fresh directory below the system's temp dir, removed by the destructor.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+class ServerTest : public ::testing::Test {
+ protected:
+  // Starts a server with the built-in models of models/ and `limits`.
+  void StartServer(const ServerLimits& limits = ServerLimits());
+  void TearDown() override;
+
+  v1::Simulation::Stub& stub() { return *stub_; }
+  ServerHost& host() { return *host_; }
+
+  // Client calls; each EXPECTs an OK status unless the call's status is returned.
+  v1::ModelInfo SubmitOk(const v1::ModelBundle& bundle);
+  grpc::Status Submit(const v1::ModelBundle& bundle, v1::ModelInfo* info);
+  grpc::Status StartRun(const std::string& model, const v1::RunSpec& spec, v1::RunInfo* info);
+  v1::RunInfo StartRunOk(const std::string& model, const v1::RunSpec& spec);
+  // Polls GetRun until the run ended (or 60 s passed); returns the last info.
+  v1::RunInfo WaitForEnd(const std::string& run_id);
+  // GetResult: info, frames and probes.
+  grpc::Status Result(const std::string& run_id, v1::RunInfo* info, std::vector<v1::Frame>* frames,
+                      std::vector<v1::ProbeReport>* probes);
+
+  // A spec from a JSON file of models/irb1600/ (e.g. "seed-run.json").
+  static v1::RunSpec SceneSpec(const std::string& file);
+  static v1::ModelBundle IrbBundle();
+
+  TempDir data_;
+  std::unique_ptr<ServerHost> host_;
+  std::unique_ptr<v1::Simulation::Stub> stub_;
+};
+
+}  // namespace mbstream::testing
