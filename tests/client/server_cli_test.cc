@@ -1,0 +1,157 @@
+// mbstream-server and the mbstream CLI as a user runs them: real processes on loopback,
+// real files, exit codes; a crash and a restart; reproducible results.
+#include <gmock/gmock.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include "tests/common/server_process.h"
+
+namespace mbstream::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+std::string ReadFile(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string FirstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
+
+class ServerCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::random_device random;
+    dir_ = fs::temp_directory_path() / ("mbstream-cli-" + std::to_string(random()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    server_.reset();
+    fs::remove_all(dir_);
+  }
+  void StartServer(const std::vector<std::string>& args = {}) {
+    server_ = std::make_unique<ServerProcess>(MBSTREAM_SERVER, (dir_ / "data").string(), args);
+  }
+  CommandOutcome Cli(const std::string& args) {
+    return RunCommand(std::string(MBSTREAM_CLI) + " --server " + server_->address() + " " + args);
+  }
+  std::string Out(const std::string& name) { return (dir_ / name).string(); }
+
+  fs::path dir_;
+  std::unique_ptr<ServerProcess> server_;
+};
+
+TEST_F(ServerCliTest, SubmitRunWatchOutGivesTheSameFilesAsSimulate) {
+  StartServer();
+  const CommandOutcome submit = Cli("submit models/irb1600");
+  ASSERT_EQ(submit.exit_code, 0) << submit.output;
+  EXPECT_THAT(submit.output, HasSubstr("m-"));
+  EXPECT_THAT(submit.output, HasSubstr("6 joints"));
+
+  const CommandOutcome run =
+      Cli("run irb1600 --spec models/irb1600/seed-servo.json --watch --out " + Out("server"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string run_id = FirstLine(run.output);
+  EXPECT_EQ(run_id.substr(0, 2), "r-");
+  EXPECT_THAT(run.output, HasSubstr("FINISHED"));
+
+  const CommandOutcome simulate = RunCommand(
+      std::string(MBSTREAM_CLI) +
+      " simulate models/irb1600/irb1600.urdf --spec models/irb1600/seed-servo.json --out " +
+      Out("local"));
+  ASSERT_EQ(simulate.exit_code, 0) << simulate.output;
+  for (const char* file : {"joints.csv", "velocities.csv", "tcp.csv", "torques.csv"}) {
+    const std::string served = ReadFile(dir_ / "server" / file);
+    EXPECT_FALSE(served.empty()) << file;
+    EXPECT_EQ(served, ReadFile(dir_ / "local" / file)) << file << " differs";
+  }
+  const std::string stats = ReadFile(dir_ / "server" / "stats.json");
+  EXPECT_THAT(stats, HasSubstr("\"run_id\": \"" + run_id + "\""));
+  EXPECT_THAT(stats, HasSubstr("\"model_id\": \"m-"));
+  EXPECT_THAT(stats, HasSubstr("\"mbstream_version\""));
+  EXPECT_THAT(stats, HasSubstr("\"pd_servo\""));
+
+  // `result` fetches the same files again.
+  const CommandOutcome result = Cli("result " + run_id + " --out " + Out("again"));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_EQ(ReadFile(dir_ / "again" / "torques.csv"), ReadFile(dir_ / "server" / "torques.csv"));
+
+  const CommandOutcome runs = Cli("runs");
+  EXPECT_THAT(runs.output, HasSubstr(run_id));
+  EXPECT_THAT(runs.output, HasSubstr("FINISHED"));
+  EXPECT_EQ(server_->Stop(), 0);  // SIGTERM: a clean exit
+}
+
+TEST_F(ServerCliTest, ConcurrentRunsAreBitIdentical) {
+  StartServer({"--workers", "2"});
+  std::string command = "(";
+  for (int i = 0; i < 3; ++i) {
+    command += std::string(MBSTREAM_CLI) + " --server " + server_->address() +
+               " run irb1600 --spec models/irb1600/seed-servo.json --out " +
+               Out("run" + std::to_string(i)) + " & ";
+  }
+  command += "wait)";
+  ASSERT_EQ(RunCommand(command).exit_code, 0);
+  for (int i = 1; i < 3; ++i) {
+    for (const char* file : {"joints.csv", "torques.csv"}) {
+      const std::string first = ReadFile(dir_ / "run0" / file);
+      EXPECT_FALSE(first.empty());
+      EXPECT_EQ(ReadFile(dir_ / ("run" + std::to_string(i)) / file), first) << file;
+    }
+  }
+}
+
+TEST_F(ServerCliTest, KilledServerRestartsWithEveryModelAndRunAndTheInterruptedOne) {
+  StartServer();
+  // A model of our own (a built-in's content under another name would be the built-in).
+  std::ofstream(dir_ / "mine.urdf")
+      << ReadFile("models/pendulum/double_pendulum.urdf") << "<!-- mine -->\n";
+  ASSERT_EQ(Cli("submit " + Out("mine.urdf") + " --name mine").exit_code, 0);
+  const CommandOutcome finished =
+      Cli("run irb1600 --spec models/irb1600/seed-run.json --out " + Out("finished"));
+  ASSERT_EQ(finished.exit_code, 0) << finished.output;
+  const std::string finished_id = FirstLine(finished.output);
+  const CommandOutcome slow = Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 1");
+  ASSERT_EQ(slow.exit_code, 0) << slow.output;
+  const std::string slow_id = FirstLine(slow.output);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  server_->Kill();  // a crash mid-run
+
+  StartServer();
+  const CommandOutcome models = Cli("models");
+  EXPECT_THAT(models.output, HasSubstr("mine"));
+  const CommandOutcome runs = Cli("runs");
+  ASSERT_EQ(runs.exit_code, 0) << runs.output;
+  EXPECT_THAT(runs.output, ::testing::ContainsRegex(finished_id + " +irb1600 +FINISHED"));
+  EXPECT_THAT(runs.output, ::testing::ContainsRegex(slow_id + " +irb1600 +INTERRUPTED"));
+  const CommandOutcome result = Cli("result " + finished_id + " --out " + Out("after"));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_EQ(ReadFile(dir_ / "after" / "joints.csv"), ReadFile(dir_ / "finished" / "joints.csv"));
+  // The interrupted run is never shown as finished: its result says so (exit code 1).
+  EXPECT_EQ(Cli("result " + slow_id + " --out " + Out("interrupted")).exit_code, 1);
+}
+
+TEST_F(ServerCliTest, ErrorsAreNamedWithExitCodes) {
+  StartServer();
+  CommandOutcome outcome = Cli("run nosuch");
+  EXPECT_EQ(outcome.exit_code, 2);
+  EXPECT_THAT(outcome.output, HasSubstr("no model 'nosuch'"));
+  outcome = Cli("run irb1600 --duration -1");
+  EXPECT_EQ(outcome.exit_code, 2);
+  EXPECT_THAT(outcome.output, HasSubstr("duration_s"));
+  outcome = Cli("result r-nosuch --out " + Out("x"));
+  EXPECT_EQ(outcome.exit_code, 2);
+  outcome = RunCommand(std::string(MBSTREAM_CLI) + " --server unix:" + Out("nosocket") + " models");
+  EXPECT_EQ(outcome.exit_code, 3);
+  EXPECT_THAT(outcome.output, HasSubstr("is mbstream-server running"));
+}
+
+}  // namespace
+}  // namespace mbstream::testing

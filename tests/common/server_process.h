@@ -1,0 +1,39 @@
+// A real mbstream-server process for end-to-end tests: started on port 0 with a data
+// directory, its address read from its "listening on ADDR" line; stopped with SIGTERM (or
+// killed with SIGKILL to simulate a crash).
+#pragma once
+
+#include <sys/types.h>
+
+#include <string>
+#include <vector>
+
+namespace mbstream::testing {
+
+class ServerProcess {
+ public:
+  // Starts `server_binary --listen 127.0.0.1:0 --data data_dir` plus `extra_args`; waits up
+  // to 30 s for its address. The log goes to data_dir + ".log".
+  ServerProcess(const std::string& server_binary, const std::string& data_dir,
+                const std::vector<std::string>& extra_args = {});
+  ~ServerProcess();  // Stop()
+
+  const std::string& address() const { return address_; }
+  // SIGTERM and wait; returns the exit status (as from waitpid), -1 if already stopped.
+  int Stop();
+  // SIGKILL and wait: a crash.
+  void Kill();
+
+ private:
+  pid_t pid_ = -1;
+  std::string address_;
+};
+
+// Runs a shell command; returns its exit code (-1 when killed) and its stdout+stderr.
+struct CommandOutcome {
+  int exit_code = -1;
+  std::string output;
+};
+CommandOutcome RunCommand(const std::string& command);
+
+}  // namespace mbstream::testing
