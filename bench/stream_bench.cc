@@ -1,0 +1,267 @@
+// Streaming through the real server over loopback TCP, against a bare gRPC baseline.
+//
+//   BM_StreamFrames          frames/s from an as-fast-as-possible run to one subscriber
+//   BM_BareStreamFrames      frames/s of a bare server stream of the same Frame messages
+//   BM_ProbeRoundTrip        frame out of the server -> probe back (p50_us, p99_us)
+//   BM_BarePingPong          a bare bidi echo of one Frame (p50_us, p99_us)
+#include <benchmark/benchmark.h>
+#include <grpcpp/grpcpp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "mbstream/v1/simulation_service.grpc.pb.h"
+#include "server/app/server_host.h"
+#include "server/runs/run_manager.h"
+#include "server/spec/run_spec_json.h"
+#include "stream_baseline.grpc.pb.h"
+
+namespace mbstream {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+namespace fs = std::filesystem;
+
+// One server for the whole program, on a fresh data directory.
+struct BenchServer {
+  BenchServer() {
+    data = fs::temp_directory_path() / ("mbstream-bench-" + std::to_string(getpid()));
+    ServerConfig config;
+    config.listen = "127.0.0.1:0";
+    config.data_dir = data.string();
+    config.models_dir = std::string(MBSTREAM_SOURCE_DIR) + "/models";
+    host = ServerHost::Start(config);
+    grpc::ChannelArguments arguments;
+    arguments.SetMaxReceiveMessageSize(256 << 20);
+    stub = v1::Simulation::NewStub(
+        grpc::CreateCustomChannel(host->address(), grpc::InsecureChannelCredentials(), arguments));
+  }
+  ~BenchServer() {
+    stub.reset();
+    host.reset();
+    fs::remove_all(data);
+  }
+  fs::path data;
+  std::unique_ptr<ServerHost> host;
+  std::unique_ptr<v1::Simulation::Stub> stub;
+};
+
+BenchServer& Server() {
+  static BenchServer server;
+  return server;
+}
+
+v1::RunSpec SeedSpec() {
+  return LoadRunSpecFile(std::string(MBSTREAM_SOURCE_DIR) + "/models/irb1600/seed-run.json");
+}
+
+using Stream = grpc::ClientReaderWriter<v1::SubscribeRequest, v1::SubscribeEvent>;
+
+std::unique_ptr<Stream> Follow(grpc::ClientContext* context, int max_batch) {
+  std::unique_ptr<Stream> stream = Server().stub->Subscribe(context);
+  v1::SubscribeRequest start;
+  start.mutable_start()->set_follow(true);
+  start.mutable_start()->set_max_batch(max_batch);
+  stream->Write(start);
+  while (Server().host->runs().subscriber_count() == 0) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return stream;
+}
+
+std::string StartRun(const v1::RunSpec& spec) {
+  grpc::ClientContext context;
+  v1::StartRunRequest request;
+  request.set_model("irb1600");
+  *request.mutable_spec() = spec;
+  v1::RunInfo info;
+  const grpc::Status status = Server().stub->StartRun(&context, request, &info);
+  if (!status.ok()) throw std::runtime_error(status.error_message());
+  return info.id();
+}
+
+void Percentiles(benchmark::State& state, std::vector<double> us) {
+  if (us.empty()) return;
+  std::sort(us.begin(), us.end());
+  state.counters["p50_us"] = us[us.size() / 2];
+  state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
+  state.counters["samples"] = static_cast<double>(us.size());
+}
+
+// A run of 100,001 frames (seed kinematics, output every 0.2 ms) as fast as possible, read
+// by one subscriber; range(0) = most frames per message.
+void BM_StreamFrames(benchmark::State& state) {
+  v1::RunSpec spec = SeedSpec();
+  spec.set_output_interval_s(2e-4);
+  int64_t received = 0, missed = 0;
+  for (auto _ : state) {
+    grpc::ClientContext context;
+    std::unique_ptr<Stream> stream = Follow(&context, static_cast<int>(state.range(0)));
+    StartRun(spec);
+    v1::SubscribeEvent event;
+    // Timed: run started -> last frame received (not the run's wait for probes after it).
+    Clock::time_point first{}, last{};
+    while (stream->Read(&event) && !event.has_run_ended()) {
+      if (event.has_run_started()) first = Clock::now();
+      if (event.has_frames()) last = Clock::now();
+      received += event.frames().frames_size();
+      missed += event.frames().missed();
+    }
+    state.SetIterationTime(std::chrono::duration<double>(last - first).count());
+    context.TryCancel();
+    stream->Finish();
+    while (Server().host->runs().subscriber_count() != 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  }
+  state.SetItemsProcessed(received);
+  state.counters["missed"] = static_cast<double>(missed);
+}
+BENCHMARK(BM_StreamFrames)
+    ->Arg(1)
+    ->Arg(256)
+    ->Arg(1024)
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime();
+
+// The viewer side: answer each frame with a probe at once; latencies as stored by the
+// server (frame written -> probe read). 401 frames paced at 100 frames/s of wall time.
+void BM_ProbeRoundTrip(benchmark::State& state) {
+  v1::RunSpec spec = SeedSpec();
+  spec.set_duration_s(4.0);
+  spec.set_output_interval_s(0.01);
+  spec.set_realtime(1.0);
+  std::vector<double> latencies;
+  for (auto _ : state) {
+    grpc::ClientContext context;
+    std::unique_ptr<Stream> stream = Follow(&context, 1);
+    const std::string run_id = StartRun(spec);
+    v1::SubscribeEvent event;
+    v1::SubscribeRequest reply;
+    while (stream->Read(&event) && !event.has_run_ended()) {
+      for (const v1::Frame& frame : event.frames().frames()) {
+        v1::ProbeReport* probe = reply.mutable_probe();
+        probe->set_run_id(run_id);
+        probe->set_seq(frame.seq());
+        probe->set_t_s(frame.t_s());
+        probe->set_probe("tcp");
+        *probe->mutable_position_m() = frame.tcp_m();
+        stream->Write(reply);
+      }
+    }
+    context.TryCancel();
+    stream->Finish();
+    state.PauseTiming();
+    grpc::ClientContext result_context;
+    v1::GetResultRequest request;
+    request.set_run_id(run_id);
+    auto reader = Server().stub->GetResult(&result_context, request);
+    v1::ResultChunk chunk;
+    while (reader->Read(&chunk)) {
+      for (const v1::ProbeReport& p : chunk.probes()) {
+        if (p.latency_us() >= 0) latencies.push_back(static_cast<double>(p.latency_us()));
+      }
+    }
+    reader->Finish();
+    while (Server().host->runs().subscriber_count() != 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    state.ResumeTiming();
+  }
+  Percentiles(state, latencies);
+}
+BENCHMARK(BM_ProbeRoundTrip)->Iterations(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The baseline server: bare gRPC, synchronous API like ours.
+class BaselineService final : public bench::Baseline::Service {
+ public:
+  grpc::Status StreamFrames(grpc::ServerContext*, const bench::StreamRequest* request,
+                            grpc::ServerWriter<v1::Frame>* writer) override {
+    v1::Frame frame = SampleFrame();
+    for (int64_t k = 0; k < request->frames(); ++k) {
+      frame.set_seq(k);
+      if (!writer->Write(frame)) break;
+    }
+    return grpc::Status::OK;
+  }
+  grpc::Status PingPong(grpc::ServerContext*,
+                        grpc::ServerReaderWriter<v1::Frame, v1::Frame>* stream) override {
+    v1::Frame frame;
+    while (stream->Read(&frame)) {
+      if (!stream->Write(frame)) break;
+    }
+    return grpc::Status::OK;
+  }
+  static v1::Frame SampleFrame() {
+    v1::Frame frame;
+    frame.set_t_s(1.25);
+    for (int j = 0; j < 6; ++j) {
+      frame.add_q(0.1 * j + 0.123456789);
+      frame.add_qd(0.2 * j + 0.987654321);
+    }
+    frame.mutable_tcp_m()->set_x(0.8);
+    frame.mutable_tcp_m()->set_y(0.1);
+    frame.mutable_tcp_m()->set_z(1.2);
+    return frame;
+  }
+};
+
+struct Baseline {
+  Baseline() {
+    grpc::ServerBuilder builder;
+    int port = 0;
+    builder.AddListeningPort("127.0.0.1:0", grpc::InsecureServerCredentials(), &port);
+    builder.RegisterService(&service);
+    server = builder.BuildAndStart();
+    stub = bench::Baseline::NewStub(grpc::CreateChannel("127.0.0.1:" + std::to_string(port),
+                                                        grpc::InsecureChannelCredentials()));
+  }
+  ~Baseline() { server->Shutdown(); }
+  BaselineService service;
+  std::unique_ptr<grpc::Server> server;
+  std::unique_ptr<bench::Baseline::Stub> stub;
+};
+
+Baseline& BareServer() {
+  static Baseline baseline;
+  return baseline;
+}
+
+void BM_BareStreamFrames(benchmark::State& state) {
+  int64_t received = 0;
+  for (auto _ : state) {
+    grpc::ClientContext context;
+    bench::StreamRequest request;
+    request.set_frames(100'001);
+    auto reader = BareServer().stub->StreamFrames(&context, request);
+    v1::Frame frame;
+    while (reader->Read(&frame)) ++received;
+    reader->Finish();
+  }
+  state.SetItemsProcessed(received);
+}
+BENCHMARK(BM_BareStreamFrames)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_BarePingPong(benchmark::State& state) {
+  std::vector<double> latencies;
+  grpc::ClientContext context;
+  auto stream = BareServer().stub->PingPong(&context);
+  v1::Frame frame = BaselineService::SampleFrame(), echo;
+  for (auto _ : state) {
+    const Clock::time_point sent = Clock::now();
+    stream->Write(frame);
+    stream->Read(&echo);
+    latencies.push_back(std::chrono::duration<double, std::micro>(Clock::now() - sent).count());
+  }
+  stream->WritesDone();
+  stream->Finish();
+  Percentiles(state, latencies);
+}
+BENCHMARK(BM_BarePingPong)->Iterations(2000)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+}  // namespace
+}  // namespace mbstream
+
+BENCHMARK_MAIN();
