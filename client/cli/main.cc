@@ -8,15 +8,14 @@
 
 #include "client/cli/server_commands.h"
 #include "client/cli/simulate_command.h"
+#include "server/common/check.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"mbstream: simulate articulated mechanisms and watch them move", "mbstream"};
   app.require_subcommand(1);
   int exit_code = 0;
   auto client = std::make_shared<mbstream::cli::ClientOptions>();
-  app.add_option("--server", client->server, "server address: host:port or unix:/path")
-      ->envname("MBSTREAM_SERVER")
-      ->capture_default_str();
+  mbstream::cli::AddClientOptions(app, client.get());
   mbstream::cli::AddSimulateCommand(app, &exit_code);
   mbstream::cli::AddSubmitCommand(app, client, &exit_code);
   mbstream::cli::AddListCommands(app, client, &exit_code);
@@ -26,6 +25,9 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     return app.exit(error);
+  } catch (const mbstream::InputError& error) {
+    std::cerr << "mbstream: " << error.what() << "\n";
+    return 2;
   } catch (const std::exception& error) {
     std::cerr << "mbstream: internal error: " << error.what() << "\n";
     return 3;

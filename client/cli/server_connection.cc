@@ -2,20 +2,41 @@
 
 #include <iostream>
 
+#include "net/tls_files.h"
+#include "server/common/check.h"
+
 namespace mbstream::cli {
 
+void AddClientOptions(CLI::App& app, ClientOptions* options) {
+  app.add_option("--server", options->server, "server address: host:port or unix:/path")
+      ->envname("MBSTREAM_SERVER")
+      ->capture_default_str();
+  app.add_option("--ca", options->security.ca_file, "PEM CA of the server's certificate (TLS)")
+      ->envname("MBSTREAM_CA")
+      ->check(CLI::ExistingFile);
+  app.add_option("--tls-cert", options->security.cert_file, "client certificate (PEM)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--tls-key", options->security.key_file, "client certificate's key (PEM)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--token-file", options->security.token_file,
+                 "file whose first word is the access token")
+      ->envname("MBSTREAM_TOKEN_FILE")
+      ->check(CLI::ExistingFile);
+}
+
 std::unique_ptr<v1::Simulation::Stub> ConnectSimulation(const ClientOptions& options) {
-  grpc::ChannelArguments arguments;
-  arguments.SetMaxReceiveMessageSize(256 << 20);
-  arguments.SetMaxSendMessageSize(256 << 20);
-  return v1::Simulation::NewStub(
-      grpc::CreateCustomChannel(options.server, grpc::InsecureChannelCredentials(), arguments));
+  try {
+    return v1::Simulation::NewStub(net::MakeChannel(options.server, options.security));
+  } catch (const net::SecurityConfigError& error) {
+    throw InputError(error.what());
+  }
 }
 
 int ReportRpcError(const std::string& command, const ClientOptions& options,
                    const grpc::Status& status) {
   std::cerr << "mbstream " << command << ": " << status.error_message();
-  if (status.error_code() == grpc::StatusCode::UNAVAILABLE) {
+  if (status.error_code() == grpc::StatusCode::UNAVAILABLE &&
+      status.error_message().find("shutting down") == std::string::npos) {
     std::cerr << " (server " << options.server
               << "; is mbstream-server running there? set --server or MBSTREAM_SERVER)";
   }
@@ -25,6 +46,8 @@ int ReportRpcError(const std::string& command, const ClientOptions& options,
     case grpc::StatusCode::NOT_FOUND:
     case grpc::StatusCode::FAILED_PRECONDITION:
     case grpc::StatusCode::RESOURCE_EXHAUSTED:
+    case grpc::StatusCode::UNAUTHENTICATED:
+    case grpc::StatusCode::PERMISSION_DENIED:
       return 2;
     case grpc::StatusCode::UNAVAILABLE:
     case grpc::StatusCode::DEADLINE_EXCEEDED:

@@ -5,11 +5,15 @@
 #include <grpcpp/health_check_service_interface.h>
 #include <spdlog/spdlog.h>
 
+#include <sys/stat.h>
+
 #include <chrono>
 
+#include "net/tls_files.h"
 #include "server/common/check.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/run_manager.h"
+#include "server/service/authorizer.h"
 #include "server/service/simulation_service.h"
 #include "server/store/store.h"
 
@@ -30,6 +34,15 @@ bool SplitPort(const std::string& address, std::string* host, std::string* port)
 
 std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   std::unique_ptr<ServerHost> host(new ServerHost());
+  std::shared_ptr<grpc::ServerCredentials> credentials;
+  try {
+    credentials = net::MakeServerCredentials(config.tls);
+  } catch (const net::SecurityConfigError& error) {
+    throw InputError(error.what());
+  }
+  host->authorizer_ = std::make_unique<Authorizer>(
+      config.token_file.empty() ? Authorizer::AllowAll()
+                                : Authorizer::FromTokenFile(config.token_file));
   host->store_ = Store::Open(config.data_dir);
   host->models_ = std::make_unique<ModelRegistry>(host->store_.get(), config.limits);
   const int stored = host->models_->LoadStored();
@@ -38,17 +51,22 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   spdlog::info("{} stored and {} built-in models loaded", stored, builtin);
   host->runs_ =
       std::make_unique<RunManager>(host->models_.get(), host->store_.get(), config.limits);
-  host->service_ = std::make_unique<SimulationService>(host->models_.get(), host->runs_.get());
+  host->service_ = std::make_unique<SimulationService>(host->models_.get(), host->runs_.get(),
+                                                       host->authorizer_.get());
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
   int port = 0;
-  builder.AddListeningPort(config.listen, grpc::InsecureServerCredentials(), &port);
+  builder.AddListeningPort(config.listen, credentials, &port);
   builder.RegisterService(host->service_.get());
   builder.SetMaxReceiveMessageSize(config.max_message_bytes);
   builder.SetMaxSendMessageSize(config.max_message_bytes);
+  // A unix socket is created owner-only (the umask applies while gRPC binds it).
+  const bool unix_socket = config.listen.rfind("unix:", 0) == 0;
+  const mode_t previous_mask = unix_socket ? umask(0077) : 0;
   host->server_ = builder.BuildAndStart();
+  if (unix_socket) umask(previous_mask);
   std::string name, port_text;
   const bool has_port = SplitPort(config.listen, &name, &port_text);
   if (!host->server_ || (has_port && port == 0)) {
@@ -63,7 +81,7 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
 ServerHost::~ServerHost() { Shutdown(); }
 
 void ServerHost::Shutdown() {
-  if (shut_down_) return;
+  if (shut_down_ || !server_) return;  // not started (Start threw) or already stopped
   shut_down_ = true;
   spdlog::info("shutting down: interrupting runs and closing streams");
   service_->Stop();

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "net/server_credentials.h"
 #include "server/runs/server_limits.h"
 
 namespace mbstream {
@@ -15,6 +16,7 @@ class Store;
 class ModelRegistry;
 class RunManager;
 class SimulationService;
+class Authorizer;
 
 struct ServerConfig {
   std::string listen = "127.0.0.1:50051";  // host:port (port 0 = any free) or unix:/path
@@ -22,12 +24,15 @@ struct ServerConfig {
   std::string models_dir;                  // built-in models (one folder each); empty = none
   ServerLimits limits;
   int max_message_bytes = 64 << 20;  // largest gRPC message either way
+  net::ServerTls tls;                // certificate and key files; empty = insecure
+  std::string token_file;            // tokens and roles (see authorizer.h); empty = none
 };
 
 class ServerHost {
  public:
   // Opens the store, loads stored and built-in models, marks interrupted runs, starts the
-  // workers and listens. Throws InputError naming what failed (data directory, address).
+  // workers and listens (a unix socket is made accessible to its owner only). Throws
+  // InputError naming what failed (data directory, address, TLS or token files).
   static std::unique_ptr<ServerHost> Start(const ServerConfig& config);
   ~ServerHost();  // Shutdown()
 
@@ -47,6 +52,7 @@ class ServerHost {
   std::unique_ptr<Store> store_;
   std::unique_ptr<ModelRegistry> models_;
   std::unique_ptr<RunManager> runs_;
+  std::unique_ptr<Authorizer> authorizer_;
   std::unique_ptr<SimulationService> service_;
   std::unique_ptr<grpc::Server> server_;
   std::string address_;

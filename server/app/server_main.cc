@@ -7,6 +7,7 @@
 #include <iostream>
 #include <thread>
 
+#include "net/tls_files.h"
 #include "server/app/server_host.h"
 #include "server/common/check.h"
 
@@ -56,6 +57,17 @@ int main(int argc, char** argv) {
   app.add_option("--max-message-mb", max_message_mb, "largest gRPC message, MiB")
       ->check(CLI::Range(1.0, 2047.0))
       ->capture_default_str();
+  app.add_option("--tls-cert", config.tls.cert_file, "PEM certificate chain (enables TLS)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--tls-key", config.tls.key_file, "PEM private key of --tls-cert")
+      ->check(CLI::ExistingFile);
+  app.add_option("--tls-client-ca", config.tls.client_ca_file,
+                 "PEM CA; clients must then present a certificate it signed")
+      ->check(CLI::ExistingFile);
+  app.add_option("--token-file", config.token_file,
+                 "tokens and roles, one `<token> <role>[,<role>]` per line (submit, run, view, "
+                 "admin)")
+      ->check(CLI::ExistingFile);
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);

@@ -12,6 +12,9 @@ grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
                                           const v1::GetResultRequest* request,
                                           grpc::ServerWriter<v1::ResultChunk>* writer) {
   return Serve([&] {
+    if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
+      return denied;
+    }
     RunManager::StoredResult result = runs_->Result(request->run_id());
     v1::ResultChunk chunk;
     *chunk.mutable_info() = result.info;

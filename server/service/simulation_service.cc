@@ -7,31 +7,43 @@
 
 namespace mbstream {
 
-SimulationService::SimulationService(ModelRegistry* models, RunManager* runs)
-    : models_(models), runs_(runs) {
-  MBSTREAM_CHECK(models_ != nullptr && runs_ != nullptr);
+SimulationService::SimulationService(ModelRegistry* models, RunManager* runs,
+                                     const Authorizer* authorizer)
+    : models_(models), runs_(runs), authorizer_(authorizer) {
+  MBSTREAM_CHECK(models_ != nullptr && runs_ != nullptr && authorizer_ != nullptr);
 }
 
-grpc::Status SimulationService::SubmitModel(grpc::ServerContext*,
+grpc::Status SimulationService::SubmitModel(grpc::ServerContext* context,
                                             const v1::SubmitModelRequest* request,
                                             v1::ModelInfo* response) {
   return Serve([&] {
+    if (grpc::Status denied = authorizer_->Check(*context, Role::kSubmit); !denied.ok()) {
+      return denied;
+    }
     *response = models_->Submit(request->bundle(), false)->info;
     return grpc::Status::OK;
   });
 }
 
-grpc::Status SimulationService::ListModels(grpc::ServerContext*, const v1::ListModelsRequest*,
+grpc::Status SimulationService::ListModels(grpc::ServerContext* context,
+                                           const v1::ListModelsRequest*,
                                            v1::ListModelsResponse* response) {
   return Serve([&] {
+    if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
+      return denied;
+    }
     for (const v1::ModelInfo& info : models_->List()) *response->add_models() = info;
     return grpc::Status::OK;
   });
 }
 
-grpc::Status SimulationService::GetModel(grpc::ServerContext*, const v1::GetModelRequest* request,
+grpc::Status SimulationService::GetModel(grpc::ServerContext* context,
+                                         const v1::GetModelRequest* request,
                                          v1::GetModelResponse* response) {
   return Serve([&] {
+    if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
+      return denied;
+    }
     std::shared_ptr<const CompiledModel> model = models_->Find(request->model());
     *response->mutable_info() = model->info;
     if (request->include_bundle()) *response->mutable_bundle() = model->bundle;
@@ -39,33 +51,48 @@ grpc::Status SimulationService::GetModel(grpc::ServerContext*, const v1::GetMode
   });
 }
 
-grpc::Status SimulationService::StartRun(grpc::ServerContext*, const v1::StartRunRequest* request,
+grpc::Status SimulationService::StartRun(grpc::ServerContext* context,
+                                         const v1::StartRunRequest* request,
                                          v1::RunInfo* response) {
   return Serve([&] {
+    if (grpc::Status denied = authorizer_->Check(*context, Role::kRun); !denied.ok()) {
+      return denied;
+    }
     *response = runs_->Start(request->model(), request->spec());
     return grpc::Status::OK;
   });
 }
 
-grpc::Status SimulationService::CancelRun(grpc::ServerContext*, const v1::CancelRunRequest* request,
+grpc::Status SimulationService::CancelRun(grpc::ServerContext* context,
+                                          const v1::CancelRunRequest* request,
                                           v1::RunInfo* response) {
   return Serve([&] {
+    if (grpc::Status denied = authorizer_->Check(*context, Role::kRun); !denied.ok()) {
+      return denied;
+    }
     *response = runs_->Cancel(request->run_id());
     return grpc::Status::OK;
   });
 }
 
-grpc::Status SimulationService::GetRun(grpc::ServerContext*, const v1::GetRunRequest* request,
-                                       v1::RunInfo* response) {
+grpc::Status SimulationService::GetRun(grpc::ServerContext* context,
+                                       const v1::GetRunRequest* request, v1::RunInfo* response) {
   return Serve([&] {
+    if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
+      return denied;
+    }
     *response = runs_->Get(request->run_id());
     return grpc::Status::OK;
   });
 }
 
-grpc::Status SimulationService::ListRuns(grpc::ServerContext*, const v1::ListRunsRequest* request,
+grpc::Status SimulationService::ListRuns(grpc::ServerContext* context,
+                                         const v1::ListRunsRequest* request,
                                          v1::ListRunsResponse* response) {
   return Serve([&] {
+    if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
+      return denied;
+    }
     for (const v1::RunInfo& info : runs_->List(request->model(), request->limit())) {
       *response->add_runs() = info;
     }

@@ -7,13 +7,14 @@
 #include "mbstream/v1/simulation_service.grpc.pb.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/run_manager.h"
+#include "server/service/authorizer.h"
 
 namespace mbstream {
 
 class SimulationService final : public v1::Simulation::Service {
  public:
-  // Neither is owned; both must outlive the service.
-  SimulationService(ModelRegistry* models, RunManager* runs);
+  // None is owned; all must outlive the service.
+  SimulationService(ModelRegistry* models, RunManager* runs, const Authorizer* authorizer);
 
   grpc::Status SubmitModel(grpc::ServerContext* context, const v1::SubmitModelRequest* request,
                            v1::ModelInfo* response) override;
@@ -43,6 +44,7 @@ class SimulationService final : public v1::Simulation::Service {
  private:
   ModelRegistry* models_;
   RunManager* runs_;
+  const Authorizer* authorizer_;
   std::atomic<bool> stopping_{false};
 };
 

@@ -64,6 +64,9 @@ grpc::Status SimulationService::Subscribe(
     grpc::ServerContext* context,
     grpc::ServerReaderWriter<v1::SubscribeEvent, v1::SubscribeRequest>* stream) {
   return Serve([&]() -> grpc::Status {
+    if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
+      return denied;
+    }
     v1::SubscribeRequest first;
     if (!stream->Read(&first) || !first.has_start()) {
       return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,

@@ -13,6 +13,9 @@ grpc::Status SimulationService::WatchRun(grpc::ServerContext* context,
                                          const v1::WatchRunRequest* request,
                                          grpc::ServerWriter<v1::WatchEvent>* writer) {
   return Serve([&] {
+    if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
+      return denied;
+    }
     using Clock = std::chrono::steady_clock;
     const std::string& run_id = request->run_id();
     v1::RunInfo info = runs_->Get(run_id);  // NOT_FOUND first

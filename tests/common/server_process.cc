@@ -14,9 +14,10 @@
 namespace mbstream::testing {
 
 ServerProcess::ServerProcess(const std::string& server_binary, const std::string& data_dir,
-                             const std::vector<std::string>& extra_args) {
-  const std::string log = data_dir + ".log";
-  std::vector<std::string> args = {server_binary, "--listen", "127.0.0.1:0", "--data", data_dir};
+                             const std::vector<std::string>& extra_args, const std::string& listen)
+    : log_(data_dir + ".log") {
+  const std::string& log = log_;
+  std::vector<std::string> args = {server_binary, "--listen", listen, "--data", data_dir};
   args.insert(args.end(), extra_args.begin(), extra_args.end());
   std::remove(log.c_str());  // a previous server's "listening on" line must not be read
   pid_ = fork();

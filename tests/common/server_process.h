@@ -12,13 +12,15 @@ namespace mbstream::testing {
 
 class ServerProcess {
  public:
-  // Starts `server_binary --listen 127.0.0.1:0 --data data_dir` plus `extra_args`; waits up
-  // to 30 s for its address. The log goes to data_dir + ".log".
+  // Starts `server_binary --listen LISTEN --data data_dir` plus `extra_args`; waits up to
+  // 30 s for its address. The log goes to log_path() = data_dir + ".log".
   ServerProcess(const std::string& server_binary, const std::string& data_dir,
-                const std::vector<std::string>& extra_args = {});
+                const std::vector<std::string>& extra_args = {},
+                const std::string& listen = "127.0.0.1:0");
   ~ServerProcess();  // Stop()
 
   const std::string& address() const { return address_; }
+  const std::string& log_path() const { return log_; }
   // SIGTERM and wait; returns the exit status (as from waitpid), -1 if already stopped.
   int Stop();
   // SIGKILL and wait: a crash.
@@ -27,6 +29,7 @@ class ServerProcess {
  private:
   pid_t pid_ = -1;
   std::string address_;
+  std::string log_;
 };
 
 // Runs a shell command; returns its exit code (-1 when killed) and its stdout+stderr.

@@ -1,0 +1,47 @@
+// Token authentication and roles: who may call what.
+//
+// Token file (mbstream-server --token-file): one token per line followed by its roles,
+//   <token> <role>[,<role>...]     roles: submit, run, view, admin (admin = all)
+// blank lines and lines starting with '#' are ignored. Clients send
+// `authorization: Bearer <token>`. Tokens never appear in logs or error messages.
+#pragma once
+
+#include <grpcpp/server_context.h>
+#include <grpcpp/support/status.h>
+
+#include <string>
+#include <unordered_map>
+
+namespace mbstream {
+
+enum class Role : unsigned {
+  kSubmit = 1,  // SubmitModel
+  kRun = 2,     // StartRun, CancelRun
+  kView = 4,    // List*, Get*, WatchRun, Subscribe (viewers)
+  kAdmin = 7,   // everything
+};
+
+class Authorizer {
+ public:
+  // No token file: every call is allowed (loopback and unix sockets; see the server's
+  // warning for other addresses).
+  static Authorizer AllowAll() { return Authorizer(); }
+  // Reads a token file. Throws InputError naming the file and line for a malformed line or
+  // an unknown role, and when the file has no token.
+  static Authorizer FromTokenFile(const std::string& path);
+
+  // OK, UNAUTHENTICATED (no or unknown token) or PERMISSION_DENIED (the token lacks `role`).
+  grpc::Status Check(const grpc::ServerContext& context, Role role) const;
+
+  bool enabled() const { return enabled_; }
+  size_t token_count() const { return roles_.size(); }
+
+ private:
+  Authorizer() = default;
+  bool enabled_ = false;
+  std::unordered_map<std::string, unsigned> roles_;  // token -> role bits
+};
+
+const char* RoleName(Role role);
+
+}  // namespace mbstream
