@@ -1,0 +1,30 @@
+// The mbstream-viewer commands that need no simulation server.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mbstream::viewer {
+
+// --check FILE [--asset-dir DIR]...: every error as FILE:LINE:COL: message on stderr
+// (returns 1), or the summary on stdout (returns 0).
+int RunCheck(const std::string& file, const std::vector<std::string>& asset_dirs);
+
+struct PoseOptions {
+  std::string scene_file;  // a scene script, or empty
+  std::string urdf_file;   // a URDF, or empty
+  std::vector<std::string> asset_dirs;
+  std::optional<std::string> pose;  // "Q1,Q2,...", degrees or mm
+  bool offscreen = false;
+  std::optional<std::string> snapshot;  // PNG path
+  int width = 960;
+  int height = 720;
+};
+
+// --scene FILE | --urdf FILE [--pose ...] [--offscreen] [--snapshot OUT.png]: poses the
+// scene, prints the probes, then snapshots, or shows the window until it is closed.
+// Returns 0, 1 (bad input) or 2 (no display).
+int RunPose(const PoseOptions& options);
+
+}  // namespace mbstream::viewer

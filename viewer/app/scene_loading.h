@@ -1,0 +1,27 @@
+// Loading a scene description for the command line: a scene script (translated, errors
+// printed as FILE:LINE:COL: message) or a URDF's visuals.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "viewer/model/scene_description.h"
+#include "viewer/script/translator.h"
+
+namespace mbstream::viewer {
+
+// Translates `file`, looking for STL parts in `asset_dirs` and then the script's own
+// directory. Prints every error to stderr.
+scene_script::Translation TranslateForCommandLine(const std::string& file,
+                                                  const std::vector<std::string>& asset_dirs);
+
+// The scene of a script or URDF file, or nullopt after printing what is wrong.
+std::optional<SceneDescription> LoadScene(const std::string& scene_file,
+                                          const std::string& urdf_file,
+                                          const std::vector<std::string>& asset_dirs);
+
+// "0,30,-45.5" -> values; nullopt after printing what is wrong.
+std::optional<std::vector<double>> ParsePose(const std::string& text);
+
+}  // namespace mbstream::viewer

@@ -1,0 +1,52 @@
+// The viewer's own kinematic chain (it never links the server's physics code).
+//
+// Frame 0 is the device base, placed in World; frame i+1 belongs to joint i and hangs from
+// frame `parent` (< i+1): frame = parent * pre * motion(q) * post, where motion is a
+// rotation about `axis` (revolute, q in rad) or a translation along it (prismatic, q in m).
+// Fixed joints (URDF) take no joint value. Lengths are metres.
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace mbstream::viewer {
+
+enum class ChainJointKind { kRevolute, kPrismatic, kFixed };
+
+struct ChainJoint {
+  std::string name;
+  int parent = 0;  // frame number
+  Eigen::Isometry3d pre = Eigen::Isometry3d::Identity();
+  ChainJointKind kind = ChainJointKind::kRevolute;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // unit, in the joint frame
+  Eigen::Isometry3d post = Eigen::Isometry3d::Identity();
+};
+
+class KinematicChain {
+ public:
+  KinematicChain() = default;
+  // Throws std::invalid_argument when a parent is not an earlier frame or an axis is zero.
+  KinematicChain(Eigen::Isometry3d base_in_world, std::vector<ChainJoint> joints);
+
+  int frame_count() const { return static_cast<int>(joints_.size()) + 1; }
+  // Number of joint values (moving joints), in joint order.
+  int dof() const { return static_cast<int>(dof_joints_.size()); }
+  const std::vector<ChainJoint>& joints() const { return joints_; }
+  // The joint of joint value `i`.
+  const ChainJoint& dof_joint(int i) const { return joints_[dof_joints_[i]]; }
+  const Eigen::Isometry3d& base_in_world() const { return base_in_world_; }
+
+  // Every frame in World for joint values `q` (size dof(), SI). `frames` has frame_count()
+  // entries. Allocates nothing.
+  void Compute(std::span<const double> q, std::span<Eigen::Isometry3d> frames) const;
+
+ private:
+  Eigen::Isometry3d base_in_world_ = Eigen::Isometry3d::Identity();
+  std::vector<ChainJoint> joints_;
+  std::vector<int> dof_joints_;  // joint index of each joint value
+};
+
+}  // namespace mbstream::viewer

@@ -1,0 +1,165 @@
+#include "viewer/scene/scene.h"
+
+#include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindowInteractor.h>
+#include <vtkSphereSource.h>
+#include <vtkUnsignedCharArray.h>
+
+#include "viewer/scene/camera_rig.h"
+#include "viewer/scene/image_capture.h"
+#include "viewer/scene/scene_error.h"
+#include "viewer/scene/visual_pipeline.h"
+
+namespace mbstream::viewer {
+
+namespace {
+
+void CopyToVtk(const Eigen::Isometry3d& t, vtkMatrix4x4* m) {
+  double elements[16];
+  Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>> view(elements);
+  view = t.matrix();
+  m->DeepCopy(elements);  // marks the matrix modified: the actor re-reads it
+}
+
+vtkSmartPointer<vtkActor> MakeProbeActor(double radius) {
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(radius);
+  sphere->SetThetaResolution(16);
+  sphere->SetPhiResolution(12);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(sphere->GetOutputPort());
+  mapper->StaticOn();
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(1.0, 0.9, 0.1);
+  actor->GetProperty()->SetAmbient(0.6);  // a small yellow light, as in the seed
+  actor->GetProperty()->SetDiffuse(0.6);
+  return actor;
+}
+
+}  // namespace
+
+Scene::Scene(SceneDescription description, SceneOptions options)
+    : description_(std::move(description)),
+      solver_(description_.chain, description_.probes),
+      pose_(solver_.MakePose()),
+      render_pose_(solver_.MakePose()) {
+  if (!description_.initial_q.empty()) solver_.Solve(description_.initial_q, &pose_);
+  version_ = 1;
+
+  renderer_ = vtkSmartPointer<vtkRenderer>::New();
+  renderer_->SetBackground(0.16, 0.18, 0.22);
+  renderer_->SetBackground2(0.52, 0.57, 0.65);
+  renderer_->GradientBackgroundOn();
+  window_ = vtkSmartPointer<vtkRenderWindow>::New();
+  window_->SetMultiSamples(0);  // 4x cheaper under Mesa's software rasteriser
+  window_->SetOffScreenRendering(options.offscreen ? 1 : 0);
+  window_->SetSize(options.width, options.height);
+  window_->SetWindowName(options.window_title.c_str());
+  window_->AddRenderer(renderer_);
+
+  for (int k = 0; k < solver_.chain().frame_count(); ++k) {
+    frame_matrices_.push_back(vtkSmartPointer<vtkMatrix4x4>::New());
+  }
+  for (const VisualPart& part : description_.visuals) {
+    vtkSmartPointer<vtkActor> actor = MakeVisualActor(part);
+    if (part.frame != kWorldFrame) actor->SetUserMatrix(frame_matrices_.at(part.frame));
+    renderer_->AddActor(actor);
+    part_actors_.push_back(actor);
+  }
+  const double marker = description_.scene_box_m ? 0.012 * *description_.scene_box_m : 0.015;
+  for (size_t i = 0; i < description_.probes.size(); ++i) {
+    probe_actors_.push_back(MakeProbeActor(marker));
+    renderer_->AddActor(probe_actors_.back());
+  }
+  SyncActors();
+
+  double bounds[6];
+  renderer_->ComputeVisiblePropBounds(bounds);
+  const Eigen::Isometry3d& base = render_pose_.frames[0];
+  PlaceCamera(renderer_, CameraSphereOf(description_, base, bounds), base);
+  AddLights(renderer_);
+}
+
+Scene::~Scene() = default;
+
+void Scene::SetJointValues(std::span<const double> q_si) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  solver_.Solve(q_si, &pose_);
+  ++version_;
+}
+
+std::vector<ProbeReport> Scene::ProbeReports() const {
+  std::vector<ProbeReport> reports;
+  ProbeReports(&reports);
+  return reports;
+}
+
+void Scene::ProbeReports(std::vector<ProbeReport>* out) const {
+  const std::vector<ProbePoint>& probes = solver_.probes();
+  out->resize(probes.size());
+  const std::lock_guard<std::mutex> lock(mutex_);
+  for (size_t i = 0; i < probes.size(); ++i) {
+    ProbeReport& report = (*out)[i];
+    if (report.name != probes[i].name) report.name = probes[i].name;
+    if (report.frame != probes[i].refer_name) report.frame = probes[i].refer_name;
+    report.position_m = pose_.probes[i];
+  }
+}
+
+std::uint64_t Scene::pose_version() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return version_;
+}
+
+void Scene::SyncActors() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (version_ == applied_version_) return;
+    render_pose_.frames = pose_.frames;  // same sizes: no allocation
+    render_pose_.probes_world = pose_.probes_world;
+    applied_version_ = version_;
+  }
+  for (size_t k = 0; k < frame_matrices_.size(); ++k) {
+    CopyToVtk(render_pose_.frames[k], frame_matrices_[k]);
+  }
+  for (size_t i = 0; i < probe_actors_.size(); ++i) {
+    probe_actors_[i]->SetPosition(render_pose_.probes_world[i].data());
+  }
+}
+
+void Scene::Render() {
+  SyncActors();
+  window_->Render();
+}
+
+RgbImage Scene::Capture() {
+  Render();
+  return CaptureWindow(window_);
+}
+
+void Scene::SnapshotPng(const std::filesystem::path& path) {
+  Render();
+  WritePng(window_, path);
+}
+
+std::string Scene::SnapshotPngBytes() {
+  Render();
+  return PngBytes(window_);
+}
+
+void Scene::Interact() {
+  vtkNew<vtkRenderWindowInteractor> interactor;
+  vtkNew<vtkInteractorStyleTrackballCamera> style;
+  interactor->SetInteractorStyle(style);
+  interactor->SetRenderWindow(window_);
+  interactor->Initialize();
+  Render();
+  interactor->Start();
+}
+
+}  // namespace mbstream::viewer

@@ -1,0 +1,97 @@
+// The VTK scene of one mechanism.
+//
+// Two sides, so that a network thread never waits for a render:
+//  - pose side (any thread, no VTK, no allocation per call): SetJointValues computes every
+//    link frame and every probe at once; ProbeReports returns the probes of the newest pose.
+//  - render side (the thread that created the Scene): Render applies the newest pose to
+//    the actors' user matrices (no pipeline is rebuilt) and draws; Capture/Snapshot read
+//    the pixels back.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <vtkActor.h>
+#include <vtkMatrix4x4.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+
+#include "viewer/kinematics/pose_solver.h"
+#include "viewer/model/scene_description.h"
+#include "viewer/scene/probe_report.h"
+#include "viewer/scene/rgb_image.h"
+
+namespace mbstream::viewer {
+
+struct SceneOptions {
+  int width = 960;
+  int height = 720;
+  bool offscreen = false;  // needs an X display all the same (Xvfb: xvfb-run -a)
+  std::string window_title = "mbstream viewer";
+};
+
+class Scene {
+ public:
+  // Builds every pipeline, the camera and the lights; poses the initial joint values.
+  // Throws SceneError (unreadable STL) or std::invalid_argument (bad description).
+  Scene(SceneDescription description, SceneOptions options);
+  ~Scene();
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+
+  const SceneDescription& description() const { return description_; }
+  int dof() const { return solver_.dof(); }
+
+  // ---- pose side: thread-safe, no VTK calls.
+  // Joint values in SI (rad, m), in the chain's joint order. Throws std::invalid_argument
+  // naming both counts when q_si.size() != dof().
+  void SetJointValues(std::span<const double> q_si);
+  std::vector<ProbeReport> ProbeReports() const;
+  // The same into `out`, reusing its storage.
+  void ProbeReports(std::vector<ProbeReport>* out) const;
+  // Increases with every SetJointValues.
+  std::uint64_t pose_version() const;
+
+  // ---- render side: the thread that created the Scene.
+  // Copies the newest pose into the actors' user matrices and the probe markers (no
+  // pipeline is touched); does nothing when the pose has not changed.
+  void SyncActors();
+  // SyncActors, then draws.
+  void Render();
+  RgbImage Capture();  // renders, then reads the frame
+  // Renders and writes a PNG file; throws SceneError when the file cannot be written.
+  void SnapshotPng(const std::filesystem::path& path);
+  std::string SnapshotPngBytes();  // renders, returns PNG bytes
+  // Window mode: mouse interaction (trackball camera) until the window is closed.
+  void Interact();
+
+  vtkRenderWindow* render_window() { return window_; }
+  vtkRenderer* renderer() { return renderer_; }
+  // Number of actors that show parts (probe markers excluded).
+  int part_actor_count() const { return static_cast<int>(part_actors_.size()); }
+
+ private:
+  SceneDescription description_;
+  PoseSolver solver_;
+
+  mutable std::mutex mutex_;  // guards pose_ and version_
+  Pose pose_;
+  std::uint64_t version_ = 0;
+
+  // Render side only.
+  Pose render_pose_;
+  std::uint64_t applied_version_ = ~std::uint64_t{0};
+  vtkSmartPointer<vtkRenderWindow> window_;
+  vtkSmartPointer<vtkRenderer> renderer_;
+  std::vector<vtkSmartPointer<vtkMatrix4x4>> frame_matrices_;  // one per frame
+  std::vector<vtkSmartPointer<vtkActor>> part_actors_;
+  std::vector<vtkSmartPointer<vtkActor>> probe_actors_;
+};
+
+}  // namespace mbstream::viewer
