@@ -1,0 +1,59 @@
+"""Model bundles from files, like the C++ CLI's ReadModelBundle
+(server/wire/model_bundle_files.cc)."""
+import os
+
+from ._stubs import model_pb2
+from .errors import MbstreamError
+
+
+def _read(path):
+    try:
+        with open(path, "rb") as f:
+            return f.read()
+    except OSError:
+        raise MbstreamError("INVALID_ARGUMENT",
+                            "cannot read %s: check the path and permissions" % path) from None
+
+
+def _files_with_extension(directory, ext):
+    return sorted(os.path.join(directory, n) for n in os.listdir(directory)
+                  if n.lower().endswith(ext) and os.path.isfile(os.path.join(directory, n)))
+
+
+def _add_asset(bundle, name, path):
+    if any(a.name == name for a in bundle.assets):
+        raise MbstreamError("INVALID_ARGUMENT", "asset '%s' (%s) is given twice; rename one of "
+                            "the files" % (name, path))
+    bundle.assets.add(name=name, data=_read(path))
+
+
+def read_model_bundle(urdf_path_or_dir, scene=None, assets=(), name=None):
+    """A ModelBundle from a URDF file, or from a directory holding exactly one .urdf (then its
+    one .scene, unless `scene` is given, and every .stl below it, named by their path
+    relative to the directory). `assets` are more files, named by their file name."""
+    path = os.fspath(urdf_path_or_dir)
+    bundle = model_pb2.ModelBundle(name=name or "")
+    urdf_path = path
+    if os.path.isdir(path):
+        urdfs = _files_with_extension(path, ".urdf")
+        if len(urdfs) != 1:
+            raise MbstreamError(
+                "INVALID_ARGUMENT", "%s: a model directory needs exactly one .urdf file, found "
+                "%d; name the URDF file instead" % (path, len(urdfs)))
+        urdf_path = urdfs[0]
+        scenes = _files_with_extension(path, ".scene")
+        if len(scenes) == 1 and not scene:
+            bundle.scene_script = _read(scenes[0]).decode("utf-8")
+        stls = []
+        for root, _, files in os.walk(path):
+            stls += [os.path.join(root, f) for f in files if f.lower().endswith(".stl")]
+        for stl in sorted(stls):
+            _add_asset(bundle, os.path.relpath(stl, path).replace(os.sep, "/"), stl)
+    bundle.urdf = _read(urdf_path).decode("utf-8")
+    bundle.urdf_file_name = urdf_path
+    if scene:
+        bundle.scene_script = _read(os.fspath(scene)).decode("utf-8")
+    for asset in assets:
+        asset = os.fspath(asset)
+        _add_asset(bundle, os.path.basename(asset), asset)
+    return bundle

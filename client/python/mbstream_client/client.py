@@ -1,0 +1,100 @@
+"""The client: one channel to a server and the calls of service mbstream.v1.Simulation."""
+from ._stubs import simulation_service_pb2 as service_pb2
+from ._stubs import simulation_service_pb2_grpc as service_grpc
+from .bundle import read_model_bundle
+from .channel import make_channel
+from .errors import rpc_errors
+from .run import Run
+from .spec import load_spec
+
+
+class Client:
+    """A connection to an mbstream server (see connect()). `stub` is the generated
+    SimulationStub for calls the client does not wrap. Use as a context manager or call
+    close()."""
+
+    def __init__(self, address=None, ca_file=None, token=None, token_file=None, cert_file=None,
+                 key_file=None):
+        self.address, self.channel = make_channel(address, ca_file, token, token_file, cert_file,
+                                                  key_file)
+        self.stub = service_grpc.SimulationStub(self.channel)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def close(self):
+        self.channel.close()
+
+    def submit(self, urdf_path_or_dir, scene=None, assets=(), name=None):
+        """Submits a model: a URDF file, or a directory with one .urdf (and its .scene and
+        STL files; see read_model_bundle). Returns the server's ModelInfo (id "m-...": the
+        same bundle gives the same id). A bad model raises MbstreamError INVALID_ARGUMENT
+        with the importer's messages."""
+        bundle = read_model_bundle(urdf_path_or_dir, scene, assets, name)
+        return self.submit_bundle(bundle)
+
+    def submit_bundle(self, bundle):
+        """Submits a ModelBundle message; returns its ModelInfo."""
+        with rpc_errors():
+            return self.stub.SubmitModel(service_pb2.SubmitModelRequest(bundle=bundle))
+
+    def models(self):
+        """Every model of the server (ModelInfo messages)."""
+        with rpc_errors():
+            return list(self.stub.ListModels(service_pb2.ListModelsRequest()).models)
+
+    def model(self, model, include_bundle=False):
+        """One model's ModelInfo by id or name (with include_bundle: the GetModelResponse,
+        info and bundle)."""
+        with rpc_errors():
+            response = self.stub.GetModel(
+                service_pb2.GetModelRequest(model=model, include_bundle=include_bundle))
+        return response if include_bundle else response.info
+
+    def runs(self, model="", limit=0):
+        """Runs of the server, newest first (RunInfo messages); only `model`'s when given,
+        at most `limit` when > 0."""
+        with rpc_errors():
+            return list(self.stub.ListRuns(
+                service_pb2.ListRunsRequest(model=model, limit=limit)).runs)
+
+    def run(self, model, spec=None, watch=False, **overrides):
+        """Starts a run of `model` (id or name) and returns its Run handle.
+
+        spec: None (the server's defaults), a dict, a JSON file path or a RunSpec; overrides:
+        RunSpec fields (rtol=1e-8, method="adams", drives=[...]) or the CLI's names
+        (duration, output_interval, max_step, step), applied over the spec.
+        watch=True opens the frame stream at once, so that `for frame in run:` sees the run
+        from its first frames; iterate the returned handle to get them as they arrive."""
+        request = service_pb2.StartRunRequest(model=model, spec=load_spec(spec, **overrides))
+        with rpc_errors():
+            info = self.stub.StartRun(request)
+            call = None
+            if watch:
+                call = self.stub.WatchRun(service_pb2.WatchRunRequest(run_id=info.id,
+                                                                      frames=True))
+        return Run(self, info, call)
+
+    def get_run(self, run_id):
+        """A Run handle on an existing run."""
+        with rpc_errors():
+            return Run(self, self.stub.GetRun(service_pb2.GetRunRequest(run_id=run_id)))
+
+    def result(self, run_id, wait=True, check=False):
+        """The result of run `run_id` (see Run.result)."""
+        return self.get_run(run_id).result(wait=wait, check=check)
+
+
+def connect(address=None, ca_file=None, token=None, **options):
+    """A Client for the server at `address` (host:port or unix:/path; default
+    $MBSTREAM_SERVER, else 127.0.0.1:50051).
+
+    ca_file: PEM CA of the server's certificate: TLS (grpc.ssl_channel_credentials);
+    without it the channel is plaintext, meant for loopback and unix sockets.
+    token: sent as `authorization: Bearer <token>` metadata on every call (refused in
+    plaintext to a non-local address). More options: token_file (its first word is the
+    token), cert_file and key_file (a client certificate for TLS)."""
+    return Client(address, ca_file, token, **options)

@@ -1,0 +1,312 @@
+#!/usr/bin/python3
+"""Tests of mbstream_client against a live mbstream-server ($MBSTREAM_SERVER).
+
+ctest runs them through run_with_server.py, which starts a fresh server on port 0 with a
+temporary data folder. Run by hand from the repository root:
+    PYTHONPATH=client/python:build/client/python/gen MBSTREAM_SERVER=127.0.0.1:PORT \
+        /usr/bin/python3 client/python/tests/client_test.py -v
+"""
+import concurrent.futures
+import math
+import os
+import queue
+import shutil
+import subprocess
+import sys
+import tempfile
+import threading
+import unittest
+
+import grpc
+import numpy as np
+
+import mbstream_client as mb
+from mbstream_client import simulation_service_pb2 as service_pb2
+from mbstream.v1 import simulation_service_pb2_grpc as service_grpc
+
+SEED_RUN = "models/irb1600/seed-run.json"
+SEED_SERVO = "models/irb1600/seed-servo.json"
+EXAMPLES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples")
+
+
+def rot(axis, angle):
+    c, s = math.cos(angle), math.sin(angle)
+    if axis == "x":
+        return np.array([[1, 0, 0], [0, c, -s], [0, s, c]])
+    if axis == "y":
+        return np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
+    return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+
+
+def seed_tcp(q):
+    """Closed-form FK of the seed chain: Rz(q1) Tr(0.150,0,0.4865) Ry(q2) Tr(0,0,0.475) Ry(q3)
+    Tr(0.600,0,0) Rx(q4) Ry(q5) Rx(q6) Tr(0.065,0,0), m and rad."""
+    steps = [("R", "z", q[0]), ("T", (0.150, 0, 0.4865)), ("R", "y", q[1]), ("T", (0, 0, 0.475)),
+             ("R", "y", q[2]), ("T", (0.600, 0, 0)), ("R", "x", q[3]), ("R", "y", q[4]),
+             ("R", "x", q[5]), ("T", (0.065, 0, 0))]
+    rotation, position = np.eye(3), np.zeros(3)
+    for step in steps:
+        if step[0] == "R":
+            rotation = rotation @ rot(step[1], step[2])
+        else:
+            position = position + rotation @ np.array(step[1], dtype=float)
+    return position
+
+
+def answer_probes(client, run_id, probe="tcp"):
+    """A stand-in for a viewer: subscribes to the run and answers every frame with a probe
+    at the frame's TCP. Returns the number of reports sent."""
+    replies = queue.Queue()
+
+    def requests():
+        start = service_pb2.SubscribeRequest()
+        start.start.run_id = run_id
+        yield start
+        while True:
+            reply = replies.get()
+            if reply is None:
+                return
+            yield reply
+
+    answered = 0
+    for event in client.stub.Subscribe(requests()):
+        kind = event.WhichOneof("event")
+        if kind == "frames":
+            for frame in event.frames.frames:
+                reply = service_pb2.SubscribeRequest()
+                reply.probe.run_id = run_id
+                reply.probe.seq = frame.seq
+                reply.probe.t_s = frame.t_s
+                reply.probe.probe = probe
+                reply.probe.position_m.CopyFrom(frame.tcp_m)
+                reply.probe.frame = "World"
+                replies.put(reply)
+                answered += 1
+        elif kind == "run_ended":
+            replies.put(None)
+    return answered
+
+
+class ClientTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.address = os.environ.get("MBSTREAM_SERVER")
+        if not cls.address:
+            raise unittest.SkipTest("set MBSTREAM_SERVER (run_with_server.py does)")
+        cls.client = mb.connect(cls.address)
+        cls.tmp = tempfile.mkdtemp(prefix="mbstream-pytest-")
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.client.close()
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def write(self, name, text):
+        path = os.path.join(self.tmp, name)
+        with open(path, "w") as f:
+            f.write(text)
+        return path
+
+    def test_submit_same_bundle_twice_gives_the_same_id(self):
+        first = self.client.submit("models/irb1600")
+        second = self.client.submit("models/irb1600")
+        self.assertTrue(first.id.startswith("m-"))
+        self.assertEqual(first.id, second.id)
+        self.assertEqual(first.dofs, 6)
+        self.assertTrue(first.has_scene)
+        self.assertIn(first.id, [m.id for m in self.client.models()])
+        with open("models/pendulum/double_pendulum.urdf") as f:
+            mine = self.write("mine.urdf", f.read() + "<!-- python test -->\n")
+        a = self.client.submit(mine, name="mine")
+        b = self.client.submit(mine, name="mine")
+        self.assertEqual(a.id, b.id)
+        self.assertNotEqual(a.id, first.id)
+        self.assertEqual(self.client.model("mine").id, a.id)
+
+    def test_bad_urdf_raises_invalid_argument_with_the_importers_message(self):
+        bad = self.write("bad.urdf", "<robot name='bad'><link name='a'/>"
+                         "<joint name='j' type='revolute'><parent link='a'/>"
+                         "<child link='nosuch'/></joint></robot>")
+        with self.assertRaises(mb.MbstreamError) as caught:
+            self.client.submit(bad)
+        self.assertEqual(caught.exception.code, "INVALID_ARGUMENT")
+        self.assertEqual(caught.exception.status, grpc.StatusCode.INVALID_ARGUMENT)
+        self.assertTrue(caught.exception.message)
+        self.assertIn(caught.exception.message, str(caught.exception))
+        # A local input error has the same shape.
+        empty = os.path.join(self.tmp, "empty")
+        os.makedirs(empty, exist_ok=True)
+        with self.assertRaises(mb.MbstreamError) as caught:
+            self.client.submit(empty)
+        self.assertEqual(caught.exception.code, "INVALID_ARGUMENT")
+        self.assertIn("exactly one .urdf", caught.exception.message)
+
+    def test_errors_carry_the_status_name_and_the_servers_message(self):
+        with self.assertRaises(mb.MbstreamError) as caught:
+            self.client.run("nosuch")
+        self.assertEqual(caught.exception.code, "NOT_FOUND")
+        self.assertIn("no model 'nosuch'", caught.exception.message)
+        with self.assertRaises(mb.MbstreamError) as caught:
+            self.client.run("irb1600", SEED_RUN, duration=-1)
+        self.assertEqual(caught.exception.code, "INVALID_ARGUMENT")
+        self.assertIn("duration_s", caught.exception.message)
+
+    def test_seed_run_tcp_matches_closed_form_kinematics(self):
+        result = self.client.run("irb1600", SEED_RUN).result(check=True)
+        self.assertEqual(result.t.shape, (401,))
+        amplitudes = [math.pi, math.pi / 3, math.pi / 4, math.pi, 0.6 * math.pi, math.pi]
+        omega = math.pi / 10
+        for k, t in enumerate(result.t):
+            self.assertAlmostEqual(t, 0.05 * k, delta=1e-12)
+            q = [a * math.sin(omega * t) for a in amplitudes]
+            np.testing.assert_allclose(result.q[k], q, rtol=0, atol=1e-9)
+            np.testing.assert_allclose(result.tcp[k], seed_tcp(q), rtol=0, atol=1e-9)
+        self.assertEqual(result.stats["formulation"], "kinematic")
+
+    def test_watch_yields_frames_in_order_as_they_arrive(self):
+        run = self.client.run("irb1600", SEED_RUN, duration=2, realtime=8, watch=True)
+        frames = list(run)
+        self.assertEqual(run.state, "FINISHED")
+        self.assertTrue(frames)
+        seqs = [f.seq for f in frames]
+        self.assertEqual(seqs, sorted(set(seqs)))  # strictly increasing
+        self.assertEqual(seqs[-1], 40)
+        self.assertLessEqual(len(frames) + run.missed, 41)
+        for f in frames:
+            self.assertAlmostEqual(f.t_s, 0.05 * f.seq, delta=1e-12)
+            self.assertEqual(len(f.q), 6)
+        # The frames are the stored result's frames.
+        result = run.result()
+        for f in frames:
+            np.testing.assert_array_equal(result.tcp[f.seq], [f.tcp_m.x, f.tcp_m.y, f.tcp_m.z])
+
+    def test_cancel_stops_a_run_and_keeps_its_partial_result(self):
+        run = self.client.run("irb1600", SEED_RUN, realtime=1)  # 20 s of wall time
+        with self.assertRaises(mb.MbstreamError) as caught:
+            run.result(wait=False)  # still running
+        self.assertEqual(caught.exception.code, "FAILED_PRECONDITION")
+        run.cancel()
+        info = run.wait()
+        self.assertEqual(mb.run_pb2.RunState.Name(info.state), "CANCELLED")
+        result = run.result()
+        self.assertEqual(result.state, "CANCELLED")
+        self.assertLess(len(result.t), 401)
+        with self.assertRaises(mb.MbstreamError) as caught:
+            run.result(check=True)
+        self.assertEqual(caught.exception.code, "CANCELLED")
+        self.assertEqual(self.client.get_run(run.id).state, "CANCELLED")
+
+    def test_result_arrays_have_the_documented_shapes(self):
+        run = self.client.run("irb1600", SEED_SERVO, duration=1)
+        result = run.result(check=True)
+        self.assertEqual(result.run_id, run.id)
+        self.assertEqual(result.t.shape, (21,))
+        self.assertEqual(result.seq.tolist(), list(range(21)))
+        for name in ("q", "qd", "tau"):
+            self.assertEqual(getattr(result, name).shape, (21, 6), name)
+        self.assertEqual(result.tcp.shape, (21, 3))
+        self.assertEqual(result.probes.shape, (0,))
+        self.assertEqual(len(result.joint_names), 6)
+        self.assertEqual(result.stats["state"], "FINISHED")
+        self.assertEqual(result.stats["formulation"], "joint")
+        self.assertGreater(result.stats["steps"], 0)
+        self.assertGreater(result.stats["cpu_s"], 0)
+        self.assertTrue(np.all(np.isfinite(result.tau)))
+        # A run without torques has an empty tau.
+        kinematic = self.client.run("irb1600", SEED_RUN, duration=1).result()
+        self.assertEqual(kinematic.tau.shape, (21, 0))
+        self.assertIn(run.id, [r.id for r in self.client.runs()])
+        self.assertEqual(self.client.runs(limit=1)[0].id, kinematic.run_id)
+
+    def test_concurrent_runs_from_threads(self):
+        with concurrent.futures.ThreadPoolExecutor(3) as pool:
+            results = list(pool.map(
+                lambda rtol: self.client.run("irb1600", SEED_SERVO, duration=1,
+                                             rtol=rtol).result(check=True),
+                [1e-4, 1e-6, 1e-8]))
+        self.assertEqual(len({r.run_id for r in results}), 3)
+        self.assertEqual([r.info.spec.rtol for r in results], [1e-4, 1e-6, 1e-8])
+
+    def test_probe_reports_come_back_in_the_result_and_tcp_vs_probe_plots_them(self):
+        run = self.client.run("irb1600", SEED_RUN, duration=2, realtime=8)
+        answered = answer_probes(self.client, run.id)
+        result = run.result(check=True)
+        self.assertGreaterEqual(answered, 40)  # the frame before joining may be missed
+        self.assertEqual(len(result.probes), answered)
+        tcp = result.probe("tcp")
+        np.testing.assert_array_equal(tcp["x"], result.tcp[tcp["seq"], 0])
+        self.assertTrue(np.all(tcp["latency_us"] >= 0))
+        out = os.path.join(self.tmp, "tcp_vs_probe.png")
+        done = subprocess.run(
+            [sys.executable, os.path.join(EXAMPLES, "tcp_vs_probe.py"), "--server", self.address,
+             "--run", run.id, "--out", out], capture_output=True, text=True, timeout=60)
+        self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
+        self.assertIn("median probe latency", done.stdout)
+        self.assertIn("max |probe - TCP| 0", done.stdout)
+        self.assertGreater(os.path.getsize(out), 1000)
+
+
+class SpecTest(unittest.TestCase):
+    def test_spec_from_path_dict_and_overrides(self):
+        spec = mb.load_spec(SEED_RUN, duration=2, rtol=1e-9, method="adams", realtime=0)
+        self.assertEqual(spec.duration_s, 2)
+        self.assertEqual(spec.rtol, 1e-9)
+        self.assertEqual(spec.method, "adams")
+        self.assertEqual(len(spec.drives), 6)
+        self.assertTrue(spec.HasField("output_interval_s"))
+        spec = mb.load_spec({"durationS": 3, "initial_q": [1, 2]}, initial_q=[0.5], step=0.01,
+                            gravity={"z": -1.0})
+        self.assertEqual(spec.duration_s, 3)
+        self.assertEqual(list(spec.initial_q), [0.5])  # replaced, not extended
+        self.assertEqual(spec.fixed_step_s, 0.01)
+        self.assertEqual(spec.gravity.z, -1.0)
+        self.assertFalse(mb.load_spec().HasField("duration_s"))  # absent: server defaults
+        with self.assertRaises(TypeError):
+            mb.load_spec(None, nosuch=1)
+        with self.assertRaises(mb.MbstreamError) as caught:
+            mb.load_spec({"duration_s": "soon"})
+        self.assertEqual(caught.exception.code, "INVALID_ARGUMENT")
+
+
+class _RecordingSimulation(service_grpc.SimulationServicer):
+    def __init__(self):
+        self.metadata = []
+
+    def ListModels(self, request, context):
+        self.metadata.append(dict(context.invocation_metadata()))
+        return service_pb2.ListModelsResponse()
+
+    def WatchRun(self, request, context):
+        self.metadata.append(dict(context.invocation_metadata()))
+        return iter(())
+
+
+class TokenTest(unittest.TestCase):
+    """The bearer token is sent on every call (a recording in-process gRPC server)."""
+
+    def test_token_is_sent_as_bearer_metadata_on_unary_and_streaming_calls(self):
+        servicer = _RecordingSimulation()
+        server = grpc.server(concurrent.futures.ThreadPoolExecutor(2))
+        service_grpc.add_SimulationServicer_to_server(servicer, server)
+        port = server.add_insecure_port("127.0.0.1:0")
+        server.start()
+        try:
+            with mb.connect("127.0.0.1:%d" % port, token="s3cret") as client:
+                self.assertEqual(client.models(), [])
+                self.assertEqual(list(client.stub.WatchRun(
+                    service_pb2.WatchRunRequest(run_id="r-x"))), [])
+            with mb.connect("127.0.0.1:%d" % port) as client:
+                client.models()
+        finally:
+            server.stop(None)
+        self.assertEqual([m.get("authorization") for m in servicer.metadata],
+                         ["Bearer s3cret", "Bearer s3cret", None])
+
+    def test_token_in_the_clear_to_a_remote_address_is_refused(self):
+        with self.assertRaises(mb.MbstreamError) as caught:
+            mb.connect("192.0.2.1:50051", token="s3cret")
+        self.assertIn("refusing to send a token in the clear", caught.exception.message)
+
+
+if __name__ == "__main__":
+    unittest.main()

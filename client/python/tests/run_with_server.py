@@ -1,0 +1,98 @@
+#!/usr/bin/python3
+"""Runs one command against a fresh mbstream-server (the ctest harness of the Python client).
+
+    run_with_server.py --server-binary PATH [--pythonpath DIRS] [--server-arg ARG]... -- CMD...
+
+Starts PATH --listen 127.0.0.1:0 --data <a temporary folder>, waits for its
+`listening on ADDR` line, runs CMD with MBSTREAM_SERVER=ADDR (and `--server ADDR`
+appended when CMD is an example script), then stops the server with SIGTERM and removes the
+folder. Exits with CMD's exit code, or 1 when the server fails to start or does not stop
+cleanly.
+"""
+import argparse
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+START_TIMEOUT_S = 30
+STOP_TIMEOUT_S = 20
+
+
+def start_server(binary, data_dir, extra_args):
+    command = [binary, "--listen", "127.0.0.1:0", "--data", data_dir] + extra_args
+    server = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=None, text=True)
+    address = []
+    found = threading.Event()
+
+    def read_stdout():
+        # Keeps draining stdout after the address so the server never blocks on a full pipe;
+        # its log lines go to stderr (ctest shows them with --output-on-failure).
+        for line in server.stdout:
+            if not found.is_set() and line.startswith("listening on "):
+                address.append(line.split("listening on ", 1)[1].strip())
+                found.set()
+            sys.stderr.write("server: " + line)
+        found.set()
+
+    threading.Thread(target=read_stdout, daemon=True).start()
+    found.wait(START_TIMEOUT_S)
+    if not address:
+        server.kill()
+        server.wait()
+        sys.exit("run_with_server: %s did not print 'listening on ADDR' within %d s (exit %s)"
+                 % (binary, START_TIMEOUT_S, server.poll()))
+    return server, address[0]
+
+
+def stop_server(server):
+    server.send_signal(signal.SIGTERM)
+    try:
+        return server.wait(STOP_TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        server.kill()
+        server.wait()
+        print("run_with_server: the server did not stop within %d s of SIGTERM" % STOP_TIMEOUT_S,
+              file=sys.stderr)
+        return -1
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--server-binary", required=True)
+    parser.add_argument("--pythonpath", default="", help="prepended to PYTHONPATH (':'-separated)")
+    parser.add_argument("--server-arg", action="append", default=[],
+                        help="an extra argument for the server (repeatable)")
+    parser.add_argument("command", nargs=argparse.REMAINDER)
+    args = parser.parse_args()
+    command = args.command[1:] if args.command[:1] == ["--"] else args.command
+    if not command:
+        parser.error("no command given after --")
+
+    with tempfile.TemporaryDirectory(prefix="mbstream-py-") as tmp:
+        server, address = start_server(args.server_binary, os.path.join(tmp, "data"),
+                                       args.server_arg)
+        env = dict(os.environ, MBSTREAM_SERVER=address)
+        if args.pythonpath:
+            env["PYTHONPATH"] = os.pathsep.join(
+                p for p in [args.pythonpath, env.get("PYTHONPATH", "")] if p)
+        if any(os.path.basename(os.path.dirname(c)) == "examples" and c.endswith(".py")
+               for c in command[:2]):
+            command = command + ["--server", address]
+        began = time.monotonic()
+        try:
+            code = subprocess.call(command, env=env)
+        finally:
+            stopped = stop_server(server)
+        print("run_with_server: command exited %d after %.1f s; server exited %d"
+              % (code, time.monotonic() - began, stopped), file=sys.stderr)
+        if code == 0 and stopped != 0:
+            return 1
+        return code
+
+
+if __name__ == "__main__":
+    sys.exit(main())
