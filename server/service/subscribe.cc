@@ -24,6 +24,11 @@ class ProbeReader {
       : thread_([this, stream, runs, sent] { Read(stream, runs, sent); }) {}
   ~ProbeReader() { thread_.join(); }
 
+  // Whether the client has half-closed (sent its last probe report).
+  bool done() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return done_;
+  }
   // Waits up to `timeout` for the client to half-close; returns whether it did.
   bool WaitDone(std::chrono::milliseconds timeout) {
     std::unique_lock<std::mutex> lock(mutex_);
@@ -107,6 +112,7 @@ grpc::Status SimulationService::Subscribe(
         status = grpc::Status(grpc::StatusCode::UNAVAILABLE, "the server is shutting down");
         break;
       }
+      if (reader.done()) break;  // the viewer said goodbye: end the stream with OK
       if (events.empty()) continue;
       const StreamEvent& head = events.front();
       if (head.kind == StreamEvent::Kind::kFrame) {

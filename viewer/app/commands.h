@@ -5,6 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "net/server_credentials.h"
+#include "viewer/link/render_loop.h"
+#include "viewer/link/subscriber_link.h"
+
 namespace mbstream::viewer {
 
 // --check FILE [--asset-dir DIR]...: every error as FILE:LINE:COL: message on stderr
@@ -26,5 +30,21 @@ struct PoseOptions {
 // scene, prints the probes, then snapshots, or shows the window until it is closed.
 // Returns 0, 1 (bad input) or 2 (no display).
 int RunPose(const PoseOptions& options);
+
+struct LinkCommandOptions {
+  LinkOptions link;        // --server, --run | --follow, security, --exit-after-runs
+  RenderOptions render;    // --fps, --record, --snapshots, --snapshot-every
+  std::string scene_file;  // --scene: instead of the model's own scene
+  std::vector<std::string> asset_dirs;
+  std::string listen;         // the Viewer control service; empty = none
+  net::ServerTls listen_tls;  // its TLS (--listen-tls-cert/--listen-tls-key)
+  bool offscreen = false;
+  int width = 960;
+  int height = 720;
+};
+
+// --server ADDR (--run ID | --follow) ...: shows runs live and answers their probes.
+// Returns 0, 1 (a fatal error, logged) or 2 (no display).
+int RunLink(const LinkCommandOptions& options);
 
 }  // namespace mbstream::viewer

@@ -1,6 +1,10 @@
 // mbstream-viewer: the VTK visualisation server's program.
 //
-// Without a server (this file's commands today):
+// With a simulation server:
+//   mbstream-viewer --server ADDR (--run ID | --follow) [--scene FILE] [--offscreen]
+//                   [--record FILE.ogv] [--snapshots DIR] [--listen ADDR] [--ca F]
+//                   [--token-file F] [--exit-after-runs N]
+// Without a server:
 //   mbstream-viewer --check FILE [--asset-dir DIR]...
 //   mbstream-viewer --scene FILE [--pose Q1,Q2,...] [--offscreen] [--snapshot OUT.png]
 //   mbstream-viewer --urdf FILE  [--pose Q1,Q2,...] [--offscreen] [--snapshot OUT.png]
@@ -41,11 +45,40 @@ int main(int argc, char** argv) {
   auto* snapshot = app.add_option("--snapshot", pose.snapshot, "Write the pose as a PNG and exit");
   app.add_option("--size", size, "Image size WIDTHxHEIGHT")->default_val("960x720");
 
-  // ---- The simulation-server link goes here (not yet built): --server ADDR, --run ID,
-  // --follow, --listen ADDR, --record FILE.ogv, --snapshots DIR. It will build a Scene the
-  // same way (LoadScene, or the script and assets the server sends), call
-  // Scene::SetJointValues + Scene::ProbeReports on its network thread for every frame, and
-  // Scene::Render on this thread at display rate.
+  // ---- The simulation-server link.
+  mbstream::viewer::LinkCommandOptions link;
+  auto* server = app.add_option("--server", link.link.server,
+                                "Simulation server to subscribe to: host:port or unix:/path");
+  auto* run = app.add_option("--run", link.link.run_id, "Show this run (then exit)");
+  auto* follow = app.add_flag("--follow", link.link.follow, "Show every run as it starts");
+  app.add_option("--exit-after-runs", link.link.exit_after_runs,
+                 "With --follow: exit after this many runs ended (0 = never)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--ca", link.link.security.ca_file, "PEM CA of the server's certificate (TLS)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--tls-cert", link.link.security.cert_file, "Client certificate (PEM)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--tls-key", link.link.security.key_file, "Client certificate's key (PEM)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--token-file", link.link.security.token_file,
+                 "File whose first word is the access token (role view)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--record", link.render.record_file, "Record the view as Ogg Theora (.ogv)");
+  app.add_option("--snapshots", link.render.snapshots_dir, "Write PNG snapshots into DIR");
+  app.add_option("--snapshot-every", link.render.snapshot_every, "Draws between snapshots")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--fps", link.render.fps, "Draws per second (and the video's frame rate)")
+      ->check(CLI::Range(1.0, 240.0));
+  app.add_flag(
+      "--no-hud", [&](int64_t) { link.render.hud = false; }, "Hide the status text");
+  app.add_option("--listen", link.listen,
+                 "Serve the Viewer control service (status, snapshot, load scene) on ADDR");
+  app.add_option("--listen-tls-cert", link.listen_tls.cert_file, "TLS certificate of --listen")
+      ->check(CLI::ExistingFile);
+  app.add_option("--listen-tls-key", link.listen_tls.key_file, "TLS key of --listen")
+      ->check(CLI::ExistingFile);
+  run->needs(server)->excludes(follow);
+  follow->needs(server);
 
   check->excludes(scene)->excludes(urdf)->excludes(pose_option)->excludes(snapshot);
   scene->excludes(urdf);
@@ -72,11 +105,23 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (!check_file.empty()) return mbstream::viewer::RunCheck(check_file, asset_dirs);
+  if (!link.link.server.empty()) {
+    if (link.link.run_id.empty() && !link.link.follow) {
+      std::cerr << "mbstream-viewer: --server needs --run ID or --follow\n";
+      return 2;
+    }
+    link.scene_file = pose.scene_file;
+    link.asset_dirs = asset_dirs;
+    link.offscreen = pose.offscreen;
+    link.width = pose.width;
+    link.height = pose.height;
+    return mbstream::viewer::RunLink(link);
+  }
   if (!pose.scene_file.empty() || !pose.urdf_file.empty()) {
     pose.asset_dirs = asset_dirs;
     return mbstream::viewer::RunPose(pose);
   }
   std::cerr << "mbstream-viewer: nothing to do: give --check FILE, --scene FILE or --urdf FILE "
-               "(the --server link is not built yet); see mbstream-viewer --help\n";
+               "or --server ADDR --follow; see mbstream-viewer --help\n";
   return 2;
 }

@@ -1,0 +1,107 @@
+// mbstream-viewer --server ADDR (--run ID | --follow): the network thread subscribes and
+// answers probes; this (main) thread renders; --listen serves the Viewer control service.
+#include <grpcpp/grpcpp.h>
+#include <spdlog/spdlog.h>
+
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include "net/server_credentials.h"
+#include "net/tls_files.h"
+#include "viewer/app/commands.h"
+#include "viewer/app/scene_loading.h"
+#include "viewer/link/render_loop.h"
+#include "viewer/link/subscriber_link.h"
+#include "viewer/link/viewer_control_service.h"
+
+namespace mbstream::viewer {
+
+namespace {
+
+std::atomic<SubscriberLink*> g_link{nullptr};
+
+void OnSignal(int) {
+  if (SubscriberLink* link = g_link.load()) link->Stop();
+}
+
+bool HasDisplay() {
+  const char* display = std::getenv("DISPLAY");
+  return display && *display;
+}
+
+}  // namespace
+
+int RunLink(const LinkCommandOptions& options) {
+  if (!HasDisplay()) {
+    std::cerr << "no X display (DISPLAY is not set): run under Xvfb with --offscreen, e.g. "
+                 "xvfb-run -a mbstream-viewer --server ADDR --follow --offscreen\n";
+    return 2;
+  }
+  RunSceneSource scenes;
+  scenes.asset_root =
+      std::filesystem::temp_directory_path() / ("mbstream-viewer-" + std::to_string(getpid()));
+  if (!options.scene_file.empty()) {
+    scenes.override_scene = LoadScene(options.scene_file, "", options.asset_dirs);
+    if (!scenes.override_scene) return 1;
+  }
+  SceneOptions scene_options;
+  scene_options.width = options.width;
+  scene_options.height = options.height;
+  scene_options.offscreen = options.offscreen;
+  scene_options.window_title = "mbstream viewer: " + options.link.server;
+  SceneSlot slot(scene_options);
+  LinkStatus status;
+
+  std::unique_ptr<ViewerControlService> control;
+  std::unique_ptr<grpc::Server> control_server;
+  if (!options.listen.empty()) {
+    control = std::make_unique<ViewerControlService>(&slot, &status);
+    grpc::ServerBuilder builder;
+    int port = 0;
+    try {
+      builder.AddListeningPort(options.listen, net::MakeServerCredentials(options.listen_tls),
+                               &port);
+    } catch (const net::SecurityConfigError& e) {
+      std::cerr << "mbstream-viewer: " << e.what() << "\n";
+      return 1;
+    }
+    builder.RegisterService(control.get());
+    control_server = builder.BuildAndStart();
+    if (!control_server) {
+      std::cerr << "mbstream-viewer: cannot listen on " << options.listen << "\n";
+      return 1;
+    }
+    const std::string address =
+        options.listen.rfind("unix:", 0) == 0
+            ? options.listen
+            : options.listen.substr(0, options.listen.rfind(':') + 1) + std::to_string(port);
+    std::cout << "control service listening on " << address << std::endl;
+  }
+
+  SubscriberLink link(options.link, std::move(scenes), &slot, &status);
+  g_link = &link;
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  std::atomic<bool> stop{false};
+  int exit_code = 0;
+  std::thread network([&] {
+    exit_code = link.Run();
+    stop = true;
+  });
+  RunRenderLoop(&slot, &status, options.render, stop);
+  network.join();
+  g_link = nullptr;
+  if (control_server) control_server->Shutdown();
+  std::error_code ignored;
+  std::filesystem::remove_all(
+      std::filesystem::temp_directory_path() / ("mbstream-viewer-" + std::to_string(getpid())),
+      ignored);
+  const v1::ViewerStatus final = status.Get();
+  spdlog::info("viewer done: {} runs, last run {}: {} frames, {} probe reports", final.runs_seen(),
+               final.run_id(), final.frames(), final.probe_reports());
+  return exit_code;
+}
+
+}  // namespace mbstream::viewer

@@ -1,0 +1,87 @@
+#include "viewer/link/render_loop.h"
+
+#include <spdlog/spdlog.h>
+#include <vtkNew.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <thread>
+
+#include "viewer/link/video_recorder.h"
+
+namespace mbstream::viewer {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string HudText(const v1::ViewerStatus& s) {
+  char text[256];
+  std::snprintf(text, sizeof(text),
+                "run %s  %s\nt = %.3f s   frames %lld (missed %lld)\nrender %.1f fps   "
+                "probe %.1f us",
+                s.run_id().empty() ? "-" : s.run_id().c_str(), s.state().c_str(), s.t_s(),
+                static_cast<long long>(s.frames()), static_cast<long long>(s.missed_frames()),
+                s.render_fps(), s.probe_compute_us());
+  return text;
+}
+
+}  // namespace
+
+void RunRenderLoop(SceneSlot* slot, LinkStatus* status, const RenderOptions& options,
+                   const std::atomic<bool>& stop) {
+  std::unique_ptr<VideoRecorder> recorder;
+  if (!options.record_file.empty()) {
+    recorder = std::make_unique<VideoRecorder>(options.record_file, static_cast<int>(options.fps));
+  }
+  if (!options.snapshots_dir.empty()) std::filesystem::create_directories(options.snapshots_dir);
+  vtkNew<vtkTextActor> hud;
+  hud->GetTextProperty()->SetFontSize(14);
+  hud->GetTextProperty()->SetColor(1.0, 1.0, 0.6);
+  hud->SetDisplayPosition(10, 10);
+
+  const auto period =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / options.fps));
+  Clock::time_point next = Clock::now();
+  Clock::time_point fps_window = next;
+  int draws = 0, window_draws = 0, snapshots = 0;
+  while (!stop) {
+    bool changed = false;
+    Scene* scene = slot->Service(&changed);
+    if (scene && changed && options.hud) scene->renderer()->AddActor2D(hud);
+    if (scene) {
+      if (options.hud) hud->SetInput(HudText(status->Get()).c_str());
+      scene->Render();
+      ++draws;
+      ++window_draws;
+      if (recorder) recorder->AddFrame(scene->render_window());
+      if (!options.snapshots_dir.empty() && draws % options.snapshot_every == 1) {
+        char name[64];
+        std::snprintf(name, sizeof(name), "frame_%05d.png", ++snapshots);
+        try {
+          scene->SnapshotPng(std::filesystem::path(options.snapshots_dir) / name);
+        } catch (const std::exception& e) {
+          spdlog::error("snapshot: {}", e.what());
+        }
+      }
+    }
+    const Clock::time_point now = Clock::now();
+    if (now - fps_window >= std::chrono::seconds(1)) {
+      status->SetRenderFps(window_draws / std::chrono::duration<double>(now - fps_window).count());
+      fps_window = now;
+      window_draws = 0;
+    }
+    next += period;
+    if (next < now) next = now;  // never try to catch up a backlog of draws
+    std::this_thread::sleep_until(next);
+  }
+  slot->Shutdown();
+  if (recorder) recorder->End();
+  slot->DestroyScene();
+}
+
+}  // namespace mbstream::viewer

@@ -1,0 +1,26 @@
+// The viewer's render thread (the main thread): builds scenes on request, draws the newest
+// pose at a fixed display rate with a HUD, records video and PNG snapshots. Probes never
+// wait for it: the network thread computes them from the scene's pose side.
+#pragma once
+
+#include <atomic>
+#include <string>
+
+#include "viewer/link/link_status.h"
+#include "viewer/link/scene_slot.h"
+
+namespace mbstream::viewer {
+
+struct RenderOptions {
+  double fps = 20.0;          // draws per second (the video's frame rate)
+  std::string record_file;    // .ogv; empty = no video
+  std::string snapshots_dir;  // PNG every `snapshot_every` draws; empty = none
+  int snapshot_every = 20;
+  bool hud = true;
+};
+
+// Runs until `stop` is set; returns after finishing the video. The scene is destroyed here.
+void RunRenderLoop(SceneSlot* slot, LinkStatus* status, const RenderOptions& options,
+                   const std::atomic<bool>& stop);
+
+}  // namespace mbstream::viewer

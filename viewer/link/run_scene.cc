@@ -1,0 +1,87 @@
+#include "viewer/link/run_scene.h"
+
+#include <fstream>
+#include <stdexcept>
+
+#include "viewer/model/script_scene.h"
+#include "viewer/model/urdf_scene.h"
+#include "viewer/script/asset_locator.h"
+#include "viewer/script/diagnostics.h"
+#include "viewer/script/translator.h"
+
+namespace mbstream::viewer {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Writes the bundle's assets below `dir` (names are relative paths; anything that would
+// leave `dir` is refused). Returns every directory that received a file.
+std::vector<fs::path> WriteAssets(const v1::ModelBundle& bundle, const fs::path& dir) {
+  std::vector<fs::path> dirs = {dir};
+  for (const v1::Asset& asset : bundle.assets()) {
+    const fs::path name = fs::path(asset.name()).lexically_normal();
+    if (name.empty() || name.is_absolute() || *name.begin() == "..") {
+      throw std::runtime_error("model asset '" + asset.name() +
+                               "' is not a relative path inside the bundle; rename it");
+    }
+    const fs::path path = dir / name;
+    fs::create_directories(path.parent_path());
+    std::ofstream(path, std::ios::binary) << asset.data();
+    if (std::find(dirs.begin(), dirs.end(), path.parent_path()) == dirs.end()) {
+      dirs.push_back(path.parent_path());
+    }
+  }
+  return dirs;
+}
+
+}  // namespace
+
+SceneDescription SceneFromBundle(const v1::ModelInfo& model, const v1::ModelBundle& bundle,
+                                 const RunSceneSource& source) {
+  SceneDescription scene;
+  if (source.override_scene) {
+    scene = *source.override_scene;
+  } else {
+    const fs::path dir = source.asset_root / model.id();
+    const std::vector<fs::path> dirs = WriteAssets(bundle, dir);
+    if (!bundle.scene_script().empty()) {
+      const scene_script::DirectoryAssetLocator assets(dirs);
+      scene_script::TranslateOptions options;
+      options.assets = &assets;
+      options.missing_asset_advice = "submit the model with that STL file as an asset";
+      const scene_script::Translation translation =
+          scene_script::TranslateScript(bundle.scene_script(), options);
+      if (!translation.ok()) {
+        std::string message = "the scene script of model '" + model.name() + "' (" + model.id() +
+                              ") does not translate:";
+        for (const scene_script::Diagnostic& error : translation.errors) {
+          message += "\n  " + scene_script::FormatDiagnostic(model.name() + ".scene", error);
+        }
+        throw std::runtime_error(message);
+      }
+      scene = SceneFromScript(translation.script);
+    } else {
+      scene = SceneFromUrdf(bundle.urdf(), model.name() + ".urdf", dir);
+    }
+  }
+  return scene;
+}
+
+void CheckJointCount(const SceneDescription& scene, const v1::ModelInfo& model) {
+  if (scene.chain.dof() != model.dofs()) {
+    throw std::runtime_error(
+        "scene '" + scene.title + "' has " + std::to_string(scene.chain.dof()) +
+        " joints but model '" + model.name() + "' (" + model.id() + ") has " +
+        std::to_string(model.dofs()) + "; use a scene whose Device matches the model's joints");
+  }
+}
+
+SceneDescription SceneForModel(const v1::ModelInfo& model, const v1::ModelBundle& bundle,
+                               const RunSceneSource& source) {
+  SceneDescription scene = SceneFromBundle(model, bundle, source);
+  CheckJointCount(scene, model);
+  return scene;
+}
+
+}  // namespace mbstream::viewer

@@ -1,0 +1,33 @@
+// The scene of a run from what the server sends (the model's scene script and assets, or
+// its URDF's visuals), or from a scene file given on the command line.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "mbstream/v1/model.pb.h"
+#include "viewer/model/scene_description.h"
+
+namespace mbstream::viewer {
+
+struct RunSceneSource {
+  std::optional<SceneDescription> override_scene;  // --scene FILE, already loaded
+  std::filesystem::path asset_root;  // where the bundles' assets are written (per model id)
+};
+
+// The scene for a model: the override, else the bundle's scene script (translated; every
+// error as "model NAME scene LINE:COL: message"), else its URDF's visuals. Checks that the
+// scene's joint count equals the model's and says both when not. Throws std::runtime_error
+// with the message.
+SceneDescription SceneForModel(const v1::ModelInfo& model, const v1::ModelBundle& bundle,
+                               const RunSceneSource& source);
+
+// The same without the joint-count check (a scene loaded by hand, no run to match).
+SceneDescription SceneFromBundle(const v1::ModelInfo& model, const v1::ModelBundle& bundle,
+                                 const RunSceneSource& source);
+
+// Throws std::runtime_error naming both counts when the scene does not fit the model.
+void CheckJointCount(const SceneDescription& scene, const v1::ModelInfo& model);
+
+}  // namespace mbstream::viewer

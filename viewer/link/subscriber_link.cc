@@ -1,0 +1,183 @@
+#include "viewer/link/subscriber_link.h"
+
+#include <grpcpp/grpcpp.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <thread>
+
+#include "mbstream/v1/simulation_service.grpc.pb.h"
+#include "net/tls_files.h"
+
+namespace mbstream::viewer {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+bool IsFatal(grpc::StatusCode code) {
+  return code == grpc::StatusCode::NOT_FOUND || code == grpc::StatusCode::INVALID_ARGUMENT ||
+         code == grpc::StatusCode::UNAUTHENTICATED || code == grpc::StatusCode::PERMISSION_DENIED;
+}
+
+}  // namespace
+
+SubscriberLink::SubscriberLink(LinkOptions options, RunSceneSource scenes, SceneSlot* slot,
+                               LinkStatus* status)
+    : options_(std::move(options)), scenes_(std::move(scenes)), slot_(slot), status_(status) {}
+
+void SubscriberLink::Stop() {
+  stop_ = true;
+  if (auto* context = static_cast<grpc::ClientContext*>(context_.load())) context->TryCancel();
+}
+
+int SubscriberLink::Run() {
+  status_->SetServer(options_.server);
+  int runs_ended = 0;
+  double backoff_s = 0.25;
+  while (!stop_) {
+    status_->SetState("connecting");
+    const Clock::time_point attempt = Clock::now();
+    StreamEnd end;
+    try {
+      end = Stream(&runs_ended);
+    } catch (const net::SecurityConfigError& e) {
+      spdlog::error("{}", e.what());
+      return 1;
+    }
+    if (end == StreamEnd::kDone) return 0;
+    if (end == StreamEnd::kFatal) return 1;
+    if (stop_) break;
+    if (Clock::now() - attempt > std::chrono::seconds(5)) backoff_s = 0.25;  // it was up
+    spdlog::warn("the server {} is not reachable; retrying in {:.2f} s", options_.server,
+                 backoff_s);
+    for (const auto until = Clock::now() + std::chrono::duration<double>(backoff_s);
+         Clock::now() < until && !stop_;) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    backoff_s = std::min(backoff_s * 2, 8.0);
+  }
+  return 0;
+}
+
+SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
+  auto stub = v1::Simulation::NewStub(net::MakeChannel(options_.server, options_.security));
+  grpc::ClientContext context;
+  context_ = &context;
+  struct ClearContext {
+    std::atomic<void*>* slot;
+    ~ClearContext() { *slot = nullptr; }
+  } clear{&context_};
+  if (stop_) return StreamEnd::kDone;
+  auto stream = stub->Subscribe(&context);
+  v1::SubscribeRequest start;
+  if (options_.follow) {
+    start.mutable_start()->set_follow(true);
+  } else {
+    start.mutable_start()->set_run_id(options_.run_id);
+  }
+  start.mutable_start()->set_max_batch(options_.max_batch);
+  stream->Write(start);
+  status_->SetState("waiting");
+
+  v1::SubscribeEvent event;
+  v1::SubscribeRequest reply;
+  std::vector<ProbeReport> probes;
+  std::vector<double> q;
+  std::string run_id;
+  bool showing = false;  // the current run has a scene
+  bool done = false;
+  bool fatal = false;
+  while (!done && stream->Read(&event)) {
+    if (event.has_run_started()) {
+      const auto& started = event.run_started();
+      run_id = started.run().id();
+      try {
+        SceneDescription scene = SceneForModel(started.model(), started.bundle(), scenes_);
+        const std::string title = scene.title;
+        const std::string error = slot_->Replace(std::move(scene));
+        if (!error.empty()) throw std::runtime_error(error);
+        status_->StartRun(run_id, started.model().id(), title, started.model().dofs());
+        showing = true;
+        spdlog::info("run {} of model '{}' ({}): showing scene '{}'", run_id,
+                     started.model().name(), started.model().id(), title);
+      } catch (const std::exception& e) {
+        showing = false;
+        spdlog::error("run {}: {}", run_id, e.what());
+        if (!options_.follow) {
+          fatal = true;
+          done = true;
+        }
+      }
+    } else if (event.has_frames()) {
+      if (!showing) continue;
+      const auto& batch = event.frames();
+      int sent = 0;
+      const Clock::time_point begin = Clock::now();
+      for (const v1::Frame& frame : batch.frames()) {
+        q.assign(frame.q().begin(), frame.q().end());
+        bool posed = false;
+        try {
+          posed = slot_->WithScene([&](Scene& scene) {
+            scene.SetJointValues(q);
+            scene.ProbeReports(&probes);
+          });
+        } catch (const std::exception& e) {
+          spdlog::error("run {} frame {}: {}", run_id, frame.seq(), e.what());
+          showing = false;
+          break;
+        }
+        if (!posed) continue;
+        for (const ProbeReport& probe : probes) {
+          v1::ProbeReport* report = reply.mutable_probe();
+          report->set_run_id(run_id);
+          report->set_seq(frame.seq());
+          report->set_t_s(frame.t_s());
+          report->set_probe(probe.name);
+          report->mutable_position_m()->set_x(probe.position_m.x());
+          report->mutable_position_m()->set_y(probe.position_m.y());
+          report->mutable_position_m()->set_z(probe.position_m.z());
+          report->set_frame(probe.frame);
+          if (!stream->Write(reply)) break;
+          ++sent;
+        }
+      }
+      const int64_t compute_ns =
+          std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - begin).count();
+      if (batch.frames_size() > 0) {
+        status_->AddFrames(batch.frames(batch.frames_size() - 1).t_s(), batch.frames_size(),
+                           batch.missed(), sent, compute_ns);
+      }
+    } else if (event.has_run_ended()) {
+      const v1::RunInfo& ended = event.run_ended();
+      ++*runs_ended;
+      status_->SetState("ended");
+      spdlog::info("run {} ended: {} ({} frames)", ended.id(), v1::RunState_Name(ended.state()),
+                   ended.frames());
+      if (!options_.follow ||
+          (options_.exit_after_runs > 0 && *runs_ended >= options_.exit_after_runs)) {
+        done = true;
+      }
+    }
+  }
+  // Half-close: the server ends the stream (also a follow stream) once it has read our last
+  // probe reports; drain what it still sends.
+  stream->WritesDone();
+  if (done) {
+    while (stream->Read(&event)) {
+    }
+    stream->Finish();
+    return fatal ? StreamEnd::kFatal : StreamEnd::kDone;
+  }
+  const grpc::Status status = stream->Finish();
+  if (stop_) return StreamEnd::kDone;
+  if (IsFatal(status.error_code())) {
+    spdlog::error("the server refused the subscription: {}", status.error_message());
+    return StreamEnd::kFatal;
+  }
+  spdlog::warn("the stream ended: {} ({})", status.error_message(),
+               static_cast<int>(status.error_code()));
+  return StreamEnd::kRetry;
+}
+
+}  // namespace mbstream::viewer
