@@ -18,6 +18,10 @@ PACKAGES=(
   libvtk9-dev xvfb xauth
   # python client and charts (Debian's, for /usr/bin/python3)
   python3 python3-grpcio python3-protobuf python3-numpy python3-matplotlib
+  # deploy/: validates the docker-compose demo (docker-compose config; no engine needed)
+  docker-compose
+  # deploy/multihost: network namespaces
+  iproute2
 )
 
 missing=()

@@ -93,9 +93,13 @@ grpc::Status SimulationService::Subscribe(
       ~Unsubscribe() { runs->Unsubscribe(s); }
     } unsubscribe{runs_, subscription};
 
+    v1::SubscribeEvent event;
+    event.set_subscribed(follow ? "follow" : start.run_id());
+    if (!stream->Write(event)) {
+      return grpc::Status(grpc::StatusCode::CANCELLED, "the subscriber went away");
+    }
     SentTimes sent;
     ProbeReader reader(stream, runs_, &sent);
-    v1::SubscribeEvent event;
     std::deque<StreamEvent> events;
     grpc::Status status = grpc::Status::OK;
     bool one_run_ended = false;

@@ -89,7 +89,9 @@ SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
   bool done = false;
   bool fatal = false;
   while (!done && stream->Read(&event)) {
-    if (event.has_run_started()) {
+    if (event.event_case() == v1::SubscribeEvent::kSubscribed) {
+      spdlog::info("subscribed to {}: {}", options_.server, event.subscribed());
+    } else if (event.has_run_started()) {
       const auto& started = event.run_started();
       run_id = started.run().id();
       try {

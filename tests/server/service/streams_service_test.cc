@@ -26,6 +26,9 @@ class StreamsServiceTest : public ServerTest {
     }
     start.mutable_start()->set_max_batch(max_batch);
     EXPECT_TRUE(stream->Write(start));
+    v1::SubscribeEvent acknowledgement;  // the subscription is registered
+    EXPECT_TRUE(stream->Read(&acknowledgement));
+    EXPECT_EQ(acknowledgement.subscribed(), run_id.empty() ? "follow" : run_id);
     return stream;
   }
 

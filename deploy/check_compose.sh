@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Validates deploy/docker-compose.yml with Debian's docker-compose (`config -q`: schema,
+# interpolation, references; no Docker engine needed). Exits 77 (skipped) when
+# docker-compose is not installed (scripts/setup.sh installs it).
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+if ! command -v docker-compose >/dev/null; then
+  echo "check_compose: SKIPPED: docker-compose is not installed (scripts/setup.sh installs it)"
+  exit 77
+fi
+docker-compose -f "$here/docker-compose.yml" config -q
+services=$(docker-compose -f "$here/docker-compose.yml" config --services | tr '\n' ' ')
+echo "check_compose: OK: deploy/docker-compose.yml is valid ($(docker-compose version --short)); services: $services"

@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# The IRB 1600 demo on this machine: the simulation server, an offscreen viewer (Xvfb) and
+# the CLI run the seed experiment (20 s of sine-driven joints, output every 50 ms).
+#
+#   scripts/demo.sh [--quick] [--no-build] [--out DIR]
+#
+# Installs what is missing, builds, starts everything, and leaves in out/demo/: robot.ogv,
+# snapshots/*.png, results/ (joints.csv, tcp.csv, probes.csv, stats.json ...),
+# tcp_vs_probe.png and the three logs. --quick runs the experiment at 10x real time
+# (2 s) instead of real time; --no-build uses the binaries already in build/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+quick=0 build=1 out=out/demo
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --quick) quick=1 ;;
+    --no-build) build=0 ;;
+    --out) out="$2"; shift ;;
+    *) echo "usage: scripts/demo.sh [--quick] [--no-build] [--out DIR]" >&2; exit 2 ;;
+  esac
+  shift
+done
+build_dir=${MBSTREAM_BUILD_DIR:-build}
+server=$build_dir/server/app/mbstream-server
+viewer=$build_dir/viewer/app/mbstream-viewer
+cli=$build_dir/client/mbstream
+
+if [ $build -eq 1 ]; then
+  scripts/setup.sh
+  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$build_dir" -j2 --target mbstream-server mbstream-viewer mbstream
+fi
+
+rm -rf "$out"
+mkdir -p "$out"
+data=$(mktemp -d)
+pids=()
+cleanup() {
+  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
+  wait 2>/dev/null || true
+  rm -rf "$data"
+}
+trap cleanup EXIT
+
+# Waits until FILE has a line matching PATTERN (or fails after 30 s).
+wait_for() {
+  for _ in $(seq 300); do
+    grep -q "$2" "$1" 2>/dev/null && return 0
+    sleep 0.1
+  done
+  echo "demo: timed out waiting for '$2' in $1" >&2
+  cat "$1" >&2
+  exit 1
+}
+
+echo "demo: starting the simulation server"
+"$server" --listen 127.0.0.1:0 --data "$data/store" >"$out/server.log" 2>&1 &
+pids+=($!)
+wait_for "$out/server.log" "^listening on "
+address=$(grep -m1 "^listening on " "$out/server.log" | cut -d' ' -f3)
+
+echo "demo: starting the offscreen viewer (Xvfb) on $address"
+xvfb-run -a -s "-screen 0 1024x768x24" "$viewer" --server "$address" --follow \
+  --exit-after-runs 1 --offscreen --size 640x480 --record "$out/robot.ogv" \
+  --snapshots "$out/snapshots" --snapshot-every 40 >"$out/viewer.log" 2>&1 &
+viewer_pid=$!
+pids+=($viewer_pid)
+wait_for "$out/viewer.log" "subscribed to"
+
+realtime=1
+[ $quick -eq 1 ] && realtime=10
+echo "demo: submitting models/irb1600 and running the seed experiment at ${realtime}x real time"
+"$cli" --server "$address" submit models/irb1600
+run=$("$cli" --server "$address" run irb1600 --spec models/irb1600/seed-run.json \
+  --realtime "$realtime" --watch --out "$out/results")
+wait "$viewer_pid"  # it exits after the run ended and its last probes went out
+# Fetch again: now with every probe report the viewer sent.
+"$cli" --server "$address" result "$run" --out "$out/results"
+/usr/bin/python3 scripts/plot_tcp_vs_probe.py --results "$out/results" --out "$out/tcp_vs_probe.png"
+
+echo "demo: done. In $out/:"
+echo "  robot.ogv            the viewer's recording"
+echo "  snapshots/           PNG snapshots"
+echo "  results/             joints.csv velocities.csv tcp.csv probes.csv stats.json"
+echo "  tcp_vs_probe.png     simulated TCP and the viewer's probe against time"
