@@ -28,6 +28,8 @@ def main():
     parser.add_argument("--realtime", type=float, default=1.0,
                         help="pace of a new seed run (1 = wall-clock, as the seed ran)")
     parser.add_argument("--out", default="tcp_vs_probe.png", help="PNG file to write")
+    parser.add_argument("--require-probes", action="store_true",
+                        help="exit 1 unless every frame has a probe within 1e-6 m of the TCP")
     args = parser.parse_args()
 
     with mb.connect(args.server, ca_file=args.ca, token=args.token) as server:
@@ -43,7 +45,7 @@ def main():
     if len(result.probes) == 0:
         print("no probe reports in run %s (start a viewer: mbstream-viewer --server %s "
               "--follow --offscreen, then run this again)" % (result.run_id, args.server))
-        return 0
+        return 1 if args.require_probes else 0
     probe = result.probe(args.probe)
     name = probe["name"][0]
     index = np.searchsorted(result.seq, probe["seq"])
@@ -56,6 +58,11 @@ def main():
           % (result.run_id, len(result.t), len(probe), name, ", ".join(frames)))
     print("max |probe - TCP| %.3g m; median probe latency %.3f ms (p99 %.3f ms)"
           % (gap.max(), latency_ms, np.percentile(probe["latency_us"], 99) / 1000.0))
+
+    if args.require_probes and (len(probe) != len(result.t) or gap.max() > 1e-6):
+        print("expected a probe within 1e-6 m of the TCP for each of the %d frames"
+              % len(result.t), file=sys.stderr)
+        return 1
 
     import matplotlib
     matplotlib.use("Agg")

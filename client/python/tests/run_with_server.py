@@ -1,12 +1,14 @@
 #!/usr/bin/python3
 """Runs one command against a fresh mbstream-server (the ctest harness of the Python client).
 
-    run_with_server.py --server-binary PATH [--pythonpath DIRS] [--server-arg ARG]... -- CMD...
+    run_with_server.py --server-binary PATH [--viewer-binary PATH] [--pythonpath DIRS]
+                       [--server-arg ARG]... -- CMD...
 
 Starts PATH --listen 127.0.0.1:0 --data <a temporary folder>, waits for its
 `listening on ADDR` line, runs CMD with MBSTREAM_SERVER=ADDR (and `--server ADDR`
 appended when CMD is an example script), then stops the server with SIGTERM and removes the
-folder. Exits with CMD's exit code, or 1 when the server fails to start or does not stop
+folder. With --viewer-binary, an offscreen viewer (xvfb-run) follows the server's runs
+while CMD runs. Exits with CMD's exit code, or 1 when the server fails to start or does not stop
 cleanly.
 """
 import argparse
@@ -48,6 +50,27 @@ def start_server(binary, data_dir, extra_args):
     return server, address[0]
 
 
+def start_viewer(binary, address):
+    command = ["xvfb-run", "-a", binary, "--server", address, "--follow", "--offscreen",
+               "--size", "320x240", "--no-hud"]
+    viewer = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                              text=True)
+    subscribed = threading.Event()
+
+    def read_stdout():
+        for line in viewer.stdout:
+            if "subscribed to" in line:
+                subscribed.set()
+            sys.stderr.write("viewer: " + line)
+        subscribed.set()
+
+    threading.Thread(target=read_stdout, daemon=True).start()
+    if not subscribed.wait(START_TIMEOUT_S) or viewer.poll() is not None:
+        viewer.kill()
+        sys.exit("run_with_server: the viewer did not subscribe within %d s" % START_TIMEOUT_S)
+    return viewer
+
+
 def stop_server(server):
     server.send_signal(signal.SIGTERM)
     try:
@@ -63,6 +86,7 @@ def stop_server(server):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--server-binary", required=True)
+    parser.add_argument("--viewer-binary", help="also run an offscreen viewer following runs")
     parser.add_argument("--pythonpath", default="", help="prepended to PYTHONPATH (':'-separated)")
     parser.add_argument("--server-arg", action="append", default=[],
                         help="an extra argument for the server (repeatable)")
@@ -75,6 +99,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="mbstream-py-") as tmp:
         server, address = start_server(args.server_binary, os.path.join(tmp, "data"),
                                        args.server_arg)
+        viewer = start_viewer(args.viewer_binary, address) if args.viewer_binary else None
         env = dict(os.environ, MBSTREAM_SERVER=address)
         if args.pythonpath:
             env["PYTHONPATH"] = os.pathsep.join(
@@ -86,6 +111,8 @@ def main():
         try:
             code = subprocess.call(command, env=env)
         finally:
+            if viewer:
+                stop_server(viewer)  # SIGTERM: the viewer stops its link and exits
             stopped = stop_server(server)
         print("run_with_server: command exited %d after %.1f s; server exited %d"
               % (code, time.monotonic() - began, stopped), file=sys.stderr)
