@@ -6,12 +6,17 @@
 // spec as shipped except for the formulation and method in the name ("auto" and "none"
 // keep the spec's choice; kinematic runs report drive torques by inverse dynamics at each
 // of the 401 outputs). Counters: the run's internal steps and its own CPU time (RunStats).
-// BM_RhsEval/seed-servo: one evaluation of the joint-space ODE's right-hand side.
+// BM_RhsEval/seed-servo: one evaluation of the joint-space ODE's right-hand side;
+// BM_ResidualEval/seed-run/body-index2 and BM_RhsEval/seed-servo/body-baumgarte: one
+// evaluation of the body formulations' DAE residual and ODE right-hand side.
 #include <benchmark/benchmark.h>
 
 #include <string>
 #include <vector>
 
+#include "server/body/body_baumgarte_ode.h"
+#include "server/body/body_dae.h"
+#include "server/body/consistent_init.h"
 #include "server/parse/urdf_import.h"
 #include "server/sim/drive_set.h"
 #include "server/sim/joint_space_ode.h"
@@ -72,16 +77,49 @@ void BM_RhsEval(benchmark::State& state, const RunConfig& config) {
 
 struct SceneCase {
   const char* scene;
-  const char* formulation;  // "auto", "kinematic", "joint"
+  const char* formulation;  // "auto", "kinematic", "joint", "body-index2", ...
   const char* method;       // "none" = the spec's (and unused by kinematic)
 };
 
 constexpr SceneCase kCases[] = {
-    {"seed-run", "auto", "bdf"},     {"seed-run", "kinematic", "none"},
-    {"seed-run", "joint", "bdf"},    {"seed-servo", "joint", "bdf"},
-    {"seed-servo", "joint", "erk"},  {"passive-swing", "joint", "bdf"},
-    {"stiff-servo", "joint", "bdf"}, {"stiff-servo", "joint", "erk"},
+    {"seed-run", "auto", "bdf"},
+    {"seed-run", "kinematic", "none"},
+    {"seed-run", "joint", "bdf"},
+    {"seed-servo", "joint", "bdf"},
+    {"seed-servo", "joint", "erk"},
+    {"passive-swing", "joint", "bdf"},
+    {"stiff-servo", "joint", "bdf"},
+    {"stiff-servo", "joint", "erk"},
+    // Body coordinates (the seed's kind of model): the DAE with IDA, the Baumgarte ODE.
+    {"seed-run", "body-index2", "ida"},
+    {"seed-servo", "body-baumgarte", "bdf"},
 };
+
+// One evaluation of the body-index2 DAE residual (seed-run) or of the body-baumgarte
+// right-hand side (seed-servo), at the consistent initial state.
+void BM_BodyEval(benchmark::State& state, const RunConfig& config, bool dae) {
+  Model model = Irb1600();
+  model.gravity = config.gravity;
+  const DriveSet drives(model, config);
+  Eigen::VectorXd q0(6), qd0(6);
+  for (int i = 0; i < 6; ++i) {
+    q0(i) = drives.prescribed(i) ? drives.Reference(i, 0.0).q : 0.1 * (i + 1);
+    qd0(i) = drives.prescribed(i) ? drives.Reference(i, 0.0).qd : 0.3 - 0.05 * i;
+  }
+  const BodyModel bm = MakeBodyModel(model, drives, q0);
+  BodyDae body_dae(bm, drives, ConstraintLevel::kVelocity);
+  BodyBaumgarteOde ode(bm, drives, config.baumgarte);
+  BodyInitialState init;
+  ConsistentInitialState(model, bm, body_dae.mechanics(), 0.0, q0, qd0, &init);
+  std::vector<double> out(bm.dae_size(), 0.0);
+  double t = 0.0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(dae ? body_dae.Residual(t, init.y.data(), init.yp.data(), out.data())
+                                 : ode.Rhs(t, init.y.data(), out.data()));
+    benchmark::ClobberMemory();
+    t += 1e-3;
+  }
+}
 
 void RegisterAll() {
   for (const SceneCase& c : kCases) {
@@ -94,6 +132,12 @@ void RegisterAll() {
     benchmark::RegisterBenchmark(name.c_str(), BM_Scene, config)->Unit(benchmark::kMillisecond);
   }
   benchmark::RegisterBenchmark("BM_RhsEval/seed-servo", BM_RhsEval, LoadScene("seed-servo"))
+      ->Unit(benchmark::kNanosecond);
+  benchmark::RegisterBenchmark("BM_ResidualEval/seed-run/body-index2", BM_BodyEval,
+                               LoadScene("seed-run"), true)
+      ->Unit(benchmark::kNanosecond);
+  benchmark::RegisterBenchmark("BM_RhsEval/seed-servo/body-baumgarte", BM_BodyEval,
+                               LoadScene("seed-servo"), false)
       ->Unit(benchmark::kNanosecond);
 }
 

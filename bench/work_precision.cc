@@ -7,7 +7,13 @@
 //
 // Columns: scene, formulation, method, rtol (adaptive runs; atol = rtol / 100), step
 // (fixed-step runs, s), error (m), cpu_s, steps, rhs_evals, status, then atol, t_reached (s),
-// energy_error (RunStats::energy_error_max, relative) and error_until (s).
+// energy_error (RunStats::energy_error_max, relative), error_until (s) and drift (m,
+// RunStats::drift_position_max of the body formulations: how far their joint points came
+// apart; -1 for the others).
+//
+// Formulations: joint with every method, kinematic (seed-run), and the body-coordinate
+// variants body-index3 and body-index2 with IDA and body-baumgarte with CVODE BDF (the
+// --methods names body-index3/ida, body-index2/ida, body-baumgarte/bdf).
 //
 // error: for seed-run, whose joints are all prescribed, RunStats::tcp_error_max (the TCP
 // against direct kinematics of the closed-form seed motion). For the other scenes, the
@@ -60,20 +66,40 @@ struct Options {
   long max_steps = 2'000'000;
 };
 
-// One integrator setting: a method, with an ARKODE table for the ERK variants.
+// One integrator setting: a formulation and a method, with an ARKODE table for the ERK
+// variants.
 struct MethodVariant {
   std::string label;  // the CSV's method column
   Method method;
   std::string table;
   bool fixed_step;
+  Formulation formulation = Formulation::kJoint;
+  long max_steps = 0;  // > 0: a smaller step budget than the study's (--max-steps)
+  // The name --methods selects it by: the label for the joint formulation, else
+  // "<formulation>/<label>".
+  std::string name() const {
+    return formulation == Formulation::kJoint
+               ? label
+               : std::string(FormulationName(formulation)) + "/" + label;
+  }
 };
+
+// body-index3 at loose tolerances fails the error test at almost every step (about 0.2 ms
+// each): its budget keeps a sweep to seconds per run.
+constexpr long kIndex3MaxSteps = 100'000;
 
 const std::vector<MethodVariant>& AllMethods() {
   static const std::vector<MethodVariant> methods = {
-      {"bdf", Method::kBdf, "", false},    {"adams", Method::kAdams, "", false},
-      {"erk", Method::kErk, "", false},    {"erk-verner", Method::kErk, "verner", false},
-      {"dirk", Method::kDirk, "", false},  {"rk4", Method::kRk4, "", true},
+      {"bdf", Method::kBdf, "", false},
+      {"adams", Method::kAdams, "", false},
+      {"erk", Method::kErk, "", false},
+      {"erk-verner", Method::kErk, "verner", false},
+      {"dirk", Method::kDirk, "", false},
+      {"rk4", Method::kRk4, "", true},
       {"euler", Method::kEuler, "", true},
+      {"ida", Method::kIda, "", false, Formulation::kBodyIndex3, kIndex3MaxSteps},
+      {"ida", Method::kIda, "", false, Formulation::kBodyIndex2},
+      {"bdf", Method::kBdf, "", false, Formulation::kBodyBaumgarte},
   };
   return methods;
 }
@@ -97,6 +123,7 @@ struct Row {
   std::string status;
   double t_reached = 0.0;
   double energy_error = -1.0;
+  double drift = -1.0;
 };
 
 std::string FormatOptional(const std::optional<double>& value) {
@@ -257,6 +284,7 @@ Row RunOne(const Model& model, const Scene& scene, const RunConfig& config,
     row.status = RunStatusName(s.status);
     row.t_reached = s.t_reached;
     row.energy_error = s.energy_error_max;
+    row.drift = s.drift_position_max;
   } catch (const InputError& e) {
     row.status = "REFUSED";
     std::fprintf(stderr, "%s %s: refused: %s\n", scene.name.c_str(), method_label.c_str(),
@@ -266,7 +294,7 @@ Row RunOne(const Model& model, const Scene& scene, const RunConfig& config,
 }
 
 void PrintRow(const Row& row) {
-  std::printf("%-13s %-9s %-10s rtol %-7s step %-7s error %-9.3g cpu %9.4f s steps %8ld %s\n",
+  std::printf("%-13s %-14s %-10s rtol %-7s step %-7s error %-9.3g cpu %9.4f s steps %8ld %s\n",
               row.scene.c_str(), row.formulation.c_str(), row.method.c_str(),
               FormatOptional(row.rtol).c_str(), FormatOptional(row.step).c_str(), row.error,
               row.cpu_s, row.steps, row.status.c_str());
@@ -278,25 +306,27 @@ void WriteCsv(const std::string& path, const std::vector<Row>& rows) {
   if (!file) throw std::runtime_error("cannot write " + path);
   std::fprintf(file,
                "scene,formulation,method,rtol,step,error,cpu_s,steps,rhs_evals,status,atol,"
-               "t_reached,energy_error,error_until\n");
+               "t_reached,energy_error,error_until,drift\n");
   for (const Row& r : rows) {
-    std::fprintf(file, "%s,%s,%s,%s,%s,%.6e,%.6e,%ld,%ld,%s,%s,%.6g,%.6e,%.6g\n", r.scene.c_str(),
-                 r.formulation.c_str(), r.method.c_str(), FormatOptional(r.rtol).c_str(),
-                 FormatOptional(r.step).c_str(), r.error, r.cpu_s, r.steps, r.rhs_evals,
-                 r.status.c_str(), FormatOptional(r.atol).c_str(), r.t_reached, r.energy_error,
-                 r.error_until);
+    std::fprintf(file, "%s,%s,%s,%s,%s,%.6e,%.6e,%ld,%ld,%s,%s,%.6g,%.6e,%.6g,%.6e\n",
+                 r.scene.c_str(), r.formulation.c_str(), r.method.c_str(),
+                 FormatOptional(r.rtol).c_str(), FormatOptional(r.step).c_str(), r.error, r.cpu_s,
+                 r.steps, r.rhs_evals, r.status.c_str(), FormatOptional(r.atol).c_str(),
+                 r.t_reached, r.energy_error, r.error_until, r.drift);
   }
   if (std::fclose(file) != 0) throw std::runtime_error("cannot write " + path);
 }
 
 std::vector<MethodVariant> SelectedMethods(const Options& options) {
   std::vector<std::string> names = options.methods;
-  if (names.empty() && options.quick) names = {"bdf", "rk4"};
+  if (names.empty() && options.quick) {
+    names = {"bdf", "rk4", "body-index3/ida", "body-index2/ida", "body-baumgarte/bdf"};
+  }
   if (names.empty()) return AllMethods();
   std::vector<MethodVariant> selected;
   for (const std::string& name : names) {
     const auto it = std::find_if(AllMethods().begin(), AllMethods().end(),
-                                 [&](const MethodVariant& m) { return m.label == name; });
+                                 [&](const MethodVariant& m) { return m.name() == name; });
     if (it == AllMethods().end()) throw InputError("unknown method '" + name + "'");
     selected.push_back(*it);
   }
@@ -345,13 +375,15 @@ int Run(const Options& options) {
 
     for (const MethodVariant& variant : methods) {
       RunConfig config = WithMethod(scene.config, variant);
-      config.formulation = Formulation::kJoint;
+      config.formulation = variant.formulation;
+      if (variant.max_steps > 0) config.max_steps = std::min(config.max_steps, variant.max_steps);
       if (variant.fixed_step) {
         for (double step : steps) {
           const double needed = config.duration / step;
           if (needed > static_cast<double>(options.max_steps) * (1.0 + 1e-9)) {
             std::printf("%-13s %-9s %-10s step %.3g skipped: %.3g steps > %ld\n", name.c_str(),
-                        "joint", variant.label.c_str(), step, needed, options.max_steps);
+                        FormulationName(variant.formulation), variant.label.c_str(), step, needed,
+                        options.max_steps);
             continue;
           }
           config.fixed_step = step;
@@ -369,7 +401,7 @@ int Run(const Options& options) {
           Row row;
           if (out_of_steps) {
             row.scene = name;
-            row.formulation = "joint";
+            row.formulation = FormulationName(variant.formulation);
             row.method = variant.label;
             row.status = "SKIPPED";
           } else {
@@ -400,14 +432,16 @@ int main(int argc, char** argv) {
       "Work-precision study of the IRB 1600 scenes: error against CPU time for every "
       "formulation, method and tolerance; writes a CSV for scripts/plot_work_precision.py"};
   app.add_flag("--quick", options.quick,
-               "a smoke run: 1 s of each scene, methods bdf and rk4, two tolerances/steps");
+               "a smoke run: 1 s of each scene, methods bdf and rk4 and the three body "
+               "variants, two tolerances/steps");
   app.add_option("--out", options.out, "the CSV to write")->capture_default_str();
   app.add_option("--scenes", options.scenes, "scenes to run (comma-separated)")
       ->delimiter(',')
       ->capture_default_str();
   app.add_option("--methods", options.methods,
                  "methods to run (comma-separated; default all): bdf, adams, erk, erk-verner, "
-                 "dirk, rk4, euler")
+                 "dirk, rk4, euler (joint formulation), body-index3/ida, body-index2/ida, "
+                 "body-baumgarte/bdf (body coordinates)")
       ->delimiter(',');
   app.add_option("--duration", options.duration,
                  "simulated time of every scene (s); default: each scene's own (1 s with --quick)")

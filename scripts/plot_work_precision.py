@@ -5,6 +5,7 @@
 
 Writes one PNG per scene, <out-dir>/work_precision_<scene>.png: error (m) against CPU time
 (s) on log-log axes, one line per formulation/method (points ordered by tolerance or step).
+The body-coordinate formulations (body-index3, body-index2, body-baumgarte) are dash-dotted.
 Runs that did not finish are red crosses at their CPU time on the top edge of the axes;
 runs with zero error (the closed form) sit on the bottom edge, labelled; the reference
 row's agreement is a dashed line, the floor below which errors are not resolved. For
@@ -36,6 +37,21 @@ STYLES = {
     "rk4": ("tab:purple", "P"),
     "euler": ("tab:pink", "X"),
 }
+# The body-coordinate formulations, by formulation/method; dash-dotted lines.
+BODY_STYLES = {
+    "body-index3/ida": ("tab:red", "h"),
+    "body-index2/ida": ("tab:olive", "p"),
+    "body-baumgarte/bdf": ("tab:gray", "8"),
+}
+
+
+def style(formulation, method):
+    """(colour, marker, linestyle) of a series."""
+    key = f"{formulation}/{method}"
+    if key in BODY_STYLES:
+        return BODY_STYLES[key] + ("-.",)
+    color, marker = STYLES.get(method, ("gray", "."))
+    return color, marker, "--" if formulation == "kinematic" else "-"
 FINISHED = "FINISHED"
 NOT_RUN = {"SKIPPED", "REFERENCE"}
 
@@ -85,8 +101,7 @@ def plot_panel(ax, groups, value_key, ylabel, reference=None):
     failed_label_done = False
     failed_row = 0  # each method's failures on their own row along the top edge
     for (formulation, method), rows in groups.items():
-        color, marker = STYLES.get(method, ("gray", "."))
-        linestyle = "--" if formulation == "kinematic" else "-"
+        color, marker, linestyle = style(formulation, method)
         ok = [r for r in rows if r["status"] == FINISHED]
         bad = [r for r in rows if r["status"] not in NOT_RUN and r["status"] != FINISHED]
         label = series_label(formulation, method, rows)
@@ -112,7 +127,8 @@ def plot_panel(ax, groups, value_key, ylabel, reference=None):
                     marker="x", color="red", markersize=8, markeredgewidth=1.5,
                     label=None if failed_label_done else "did not finish (at its CPU time)")
             failed_label_done = True
-            text = f"{method}: {len(bad)} x {'/'.join(sorted({r['status'] for r in bad}))}"
+            name = method if formulation in ("joint", "kinematic") else f"{formulation}/{method}"
+            text = f"{name}: {len(bad)} x {'/'.join(sorted({r['status'] for r in bad}))}"
             reached = max(r["t_reached"] for r in bad)
             if reached > 0:
                 text += f", at best to t = {reached:.3g} s"
@@ -120,9 +136,11 @@ def plot_panel(ax, groups, value_key, ylabel, reference=None):
             if skipped:
                 text += f" (+{skipped} tighter rtol not run)"
             # Text to the right of the crosses, or to their left near the right edge.
-            right = math.log(max(r["cpu_s"] for r in bad)) < 0.5 * (
+            # (beside the leftmost cross when that is in the left half, so the text stays
+            # inside the axes even when the crosses span the whole width).
+            right = math.log(min(r["cpu_s"] for r in bad)) < 0.5 * (
                 math.log(x_low) + math.log(x_high))
-            ax.annotate(text, ((max if right else min)(r["cpu_s"] for r in bad), y_fail),
+            ax.annotate(text, ((min if right else max)(r["cpu_s"] for r in bad), y_fail),
                         textcoords="offset points", xytext=(8 if right else -8, -3),
                         ha="left" if right else "right", fontsize=7, color="red")
     if reference:

@@ -1,6 +1,7 @@
 #include "server/sim/formulation_choice.h"
 
 #include "server/common/check.h"
+#include "server/integrate/failure_messages.h"
 
 namespace mbstream {
 
@@ -45,11 +46,36 @@ FormulationChoice ChooseFormulation(const RunConfig& config, const DriveSet& dri
     case Formulation::kJoint:
       return {Formulation::kJoint, "requested: joint-space ODE, 2n states"};
     case Formulation::kBodyIndex3:
-    case Formulation::kBodyIndex2:
+    case Formulation::kBodyIndex2: {
+      const std::string name = FormulationName(config.formulation);
+      if (config.method != Method::kIda) {
+        throw InputError("formulation " + name +
+                         " (body coordinates, a differential-algebraic system) needs method "
+                         "ida, not " +
+                         MethodName(config.method) +
+                         "; for an ODE method use formulation body-baumgarte or joint");
+      }
+      const bool index3 = config.formulation == Formulation::kBodyIndex3;
+      return {config.formulation,
+              "requested: body coordinates (every link a free body, joints as constraints "
+              "with Lagrange multipliers), " +
+                  std::string(index3 ? "position-level constraints (index-3 DAE)"
+                                     : "velocity-level constraints (index-2 DAE; the "
+                                       "position drift is measured)") +
+                  ", solved by IDA with a sparse (KLU) Jacobian"};
+    }
     case Formulation::kBodyBaumgarte:
-      throw InputError(std::string("formulation ") + FormulationName(config.formulation) +
-                       " (body coordinates) is not available in this version; use joint or "
-                       "auto");
+      if (config.method == Method::kIda) {
+        throw InputError(
+            "formulation body-baumgarte is an ODE (acceleration-level constraints with "
+            "Baumgarte stabilisation), and method ida is for DAEs: use an ODE method such as "
+            "bdf, or formulation body-index2 with ida");
+      }
+      return {Formulation::kBodyBaumgarte,
+              FormatString("requested: body coordinates with acceleration-level constraints and "
+                           "Baumgarte stabilisation (alpha = %g 1/s, beta = %g 1/s^2), an ODE; "
+                           "the constraint drift is measured",
+                           config.baumgarte.alpha, config.baumgarte.beta)};
   }
   MBSTREAM_CHECK_MSG(false, "unknown formulation");
   return {};

@@ -15,7 +15,8 @@ struct FormulationChoice {
 
 // Resolves config.formulation (kAuto included) for these drives. Throws InputError when the
 // requested formulation cannot answer the run (kinematic with a joint that is not
-// prescribed) or is not available, with what to use instead.
+// prescribed; a body formulation with a method of the wrong kind) or is not available, with
+// what to use instead.
 FormulationChoice ChooseFormulation(const RunConfig& config, const DriveSet& drives);
 
 }  // namespace mbstream

@@ -21,6 +21,9 @@ enum class RunStatus {
 // "FINISHED", "DIVERGED", "TOO_MUCH_WORK", ...
 const char* RunStatusName(RunStatus status);
 
+// The run status of an integrator's failure (kOk -> kFinished).
+RunStatus ToRunStatus(IntegratorStatus status);
+
 struct RunStats {
   RunStatus status = RunStatus::kFinished;
   std::string message;     // on failure: what happened and what to try
@@ -40,6 +43,13 @@ struct RunStats {
   double tcp_error_max = -1.0;     // m, TCP against direct kinematics of the prescribed motion
   double energy_error_max = -1.0;  // relative energy-balance error over the run
   bool energy_work_approximate = false;  // work of drives/damping integrated from outputs
+
+  // Constraint drift of the body formulations: the largest violation over the output frames
+  // (negative = not applicable: the formulation has no constraints).
+  double drift_position_max = -1.0;         // m, joint points apart (position level)
+  double drift_orientation_max = -1.0;      // rad (small angles), joint axes / drive angles
+  double drift_velocity_max = -1.0;         // m/s or rad/s, velocity-level constraints
+  double quaternion_norm_error_max = -1.0;  // max | |e| - 1 | of the orientation quaternions
 };
 
 // Frame-major arrays; frame k has time t[k], joints q[k*n .. k*n+n-1], and so on.

@@ -1,0 +1,34 @@
+#include "server/body/body_baumgarte_ode.h"
+
+#include "server/body/quaternion.h"
+
+namespace mbstream {
+
+BodyBaumgarteOde::BodyBaumgarteOde(const BodyModel& body_model, const DriveSet& drives,
+                                   const BaumgarteParameters& parameters)
+    : bm_(body_model), parameters_(parameters), mechanics_(body_model, drives) {}
+
+int BodyBaumgarteOde::JacobianNonZeros() const {
+  const int n = bm_.n;
+  return n * (3 + 4 * 7) + 6 * n * 13 * n;
+}
+
+int BodyBaumgarteOde::Rhs(double t, const double* y, double* ydot) {
+  BodyMechanics& mech = mechanics_;
+  mech.Load(t, y);
+  mech.EvaluateConstraints(/*acceleration_terms=*/true);
+  mech.EvaluateForces();
+  if (!mech.SolveAccelerations(parameters_.alpha, parameters_.beta)) return 1;
+  const int n = bm_.n;
+  for (int i = 0; i < n; ++i) {
+    const int p = BodyModel::position(i), e = BodyModel::quaternion(i);
+    for (int k = 0; k < 3; ++k) ydot[p + k] = mech.v(i)(k);
+    const Vector4d rate = QuaternionRate(mech.e(i), mech.w(i));
+    for (int k = 0; k < 4; ++k) ydot[e + k] = rate(k);
+  }
+  const Eigen::VectorXd& nu_dot = mech.nu_dot();
+  for (int k = 0; k < 6 * n; ++k) ydot[7 * n + k] = nu_dot(k);
+  return 0;
+}
+
+}  // namespace mbstream

@@ -1,0 +1,73 @@
+// The constant description of a mechanism in body coordinates: every moving link a free
+// rigid body (centre-of-mass position in the base frame, orientation quaternion, linear
+// velocity of the centre of mass in the base frame, angular velocity in the body frame),
+// every joint a set of constraints with Lagrange multipliers. Built once per run.
+//
+// State layout (n bodies, m constraint rows):
+//   y = [ x_0 (3), e_0 (4), ..., x_{n-1}, e_{n-1}      positions, 7n
+//         v_0 (3), w_0 (3), ..., v_{n-1}, w_{n-1}      velocities nu, 6n
+//         lambda (m) ]                                  multipliers (DAE variants only)
+// A revolute joint has 5 rows (3 for the common joint point, base frame; 2 keeping the axes
+// aligned) and a sixth when it is prescribed (the rheonomic drive constraint, whose
+// multiplier is the drive torque). A prismatic joint has 5 rows too (3 locking the relative
+// orientation; 2 keeping the child's origin on the axis line) and a sixth, the prescribed
+// displacement along the axis, whose multiplier is the drive force.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "server/math/spatial.h"
+#include "server/model/model.h"
+#include "server/sim/drive_set.h"
+
+namespace mbstream {
+
+struct BodyJoint {
+  JointType type = JointType::kRevolute;
+  int parent = kBase;  // body index, or kBase
+  int child = 0;       // the body this joint moves (= the joint's index)
+  Vector3d d_P;        // joint point (origin of J) from the parent's centre of mass, parent frame
+  Vector3d d_B;        // the child's origin from its centre of mass, child frame (m)
+  Vector3d a_P;        // joint axis in the parent frame
+  Vector3d a;          // joint axis in the child frame
+  Vector3d u1, u2;     // unit vectors perpendicular to a in the child frame, u2 = a x u1
+  Matrix3d R_PJ;       // the joint frame (the child frame at q = 0) in the parent frame
+  int row = 0;         // first constraint row
+  int rows = 5;        // 5, or 6 when prescribed
+  bool prescribed = false;
+  double q_offset = 0.0;  // rad: a velocity source started off its reference's q(0)
+  double damping = 0.0;   // N*m*s/rad or N*s/m
+  double armature = 0.0;  // kg*m^2 or kg, rotor inertia reflected to the joint
+};
+
+struct BodyModel {
+  int n = 0;                      // bodies
+  int m = 0;                      // constraint rows
+  std::vector<double> mass;       // kg
+  std::vector<Matrix3d> inertia;  // kg*m^2 about the centre of mass, body frame
+  std::vector<Vector3d> com;      // centre of mass from the body frame's origin, body frame
+  std::vector<BodyJoint> joints;  // joint i moves body i
+  std::vector<std::vector<int>> children;  // joints whose parent is body i
+  Vector3d gravity = Vector3d::Zero();
+  bool any_armature = false;
+  int tcp_body = kBase;                      // body of the model's TCP frame (kBase: none or fixed)
+  Vector3d tcp_from_com = Vector3d::Zero();  // TCP from that body's centre of mass, body frame
+  Vector3d tcp_fixed = Vector3d::Zero();     // TCP in the base when fixed to it
+
+  int ode_size() const { return 13 * n; }
+  int dae_size() const { return 13 * n + m; }
+  static int position(int body) { return 7 * body; }
+  static int quaternion(int body) { return 7 * body + 3; }
+  int velocity(int body) const { return 7 * n + 6 * body; }
+  int omega(int body) const { return 7 * n + 6 * body + 3; }
+  int multiplier(int row) const { return 13 * n + row; }
+};
+
+// Builds the body description of `model` with these drives. q0: the run's initial joint
+// positions (for velocity sources that start off their reference). Throws InputError for
+// what the body formulations do not model (massless links), saying what to use instead.
+BodyModel MakeBodyModel(const Model& model, const DriveSet& drives, const Eigen::VectorXd& q0);
+
+}  // namespace mbstream

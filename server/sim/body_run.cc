@@ -1,0 +1,137 @@
+#include "server/sim/body_run.h"
+
+#include <algorithm>
+#include <memory>
+#include <string>
+
+#include "server/body/body_baumgarte_ode.h"
+#include "server/body/body_dae.h"
+#include "server/body/body_model.h"
+#include "server/body/body_readout.h"
+#include "server/body/consistent_init.h"
+#include "server/integrate/failure_messages.h"
+#include "server/integrate/ida_integrator.h"
+#include "server/integrate/integrator.h"
+#include "server/sim/initial_state.h"
+
+namespace mbstream {
+
+namespace {
+
+// What to try when a body formulation's integration fails.
+std::string Advice(Formulation formulation) {
+  switch (formulation) {
+    case Formulation::kBodyIndex3:
+      return "; body-index3 (position-level constraints, a DAE of index 3) is known to defeat "
+             "IDA's error test and Newton iteration at tight tolerances: use formulation "
+             "body-index2 (method ida) or body-baumgarte (method bdf), or the joint "
+             "formulation, which has no constraints at all";
+    case Formulation::kBodyIndex2:
+      return "; try a looser rtol, formulation body-baumgarte (method bdf) or the joint "
+             "formulation";
+    default:
+      return "; try method bdf, different baumgarte parameters (alpha^2 = 4 beta, about the "
+             "motion's bandwidth) or the joint formulation";
+  }
+}
+
+}  // namespace
+
+bool IsBodyFormulation(Formulation formulation) {
+  return formulation == Formulation::kBodyIndex3 || formulation == Formulation::kBodyIndex2 ||
+         formulation == Formulation::kBodyBaumgarte;
+}
+
+void RunBody(const Model& model, const RunConfig& config, Formulation formulation,
+             const DriveSet& drives, const std::vector<double>& times, FrameRecorder& recorder,
+             RunResult& result, FrameSink* sink, const std::atomic<bool>* cancel) {
+  const int n = model.num_dofs();
+  const Eigen::VectorXd joint_state = InitialJointState(config, drives, n);
+  const Eigen::VectorXd q0 = joint_state.head(n), qd0 = joint_state.tail(n);
+  const BodyModel bm = MakeBodyModel(model, drives, q0);
+  const bool baumgarte = formulation == Formulation::kBodyBaumgarte;
+
+  std::unique_ptr<BodyBaumgarteOde> ode;
+  std::unique_ptr<BodyDae> dae;
+  BodyInitialState init;
+  bool consistent = false;
+  if (baumgarte) {
+    ode = std::make_unique<BodyBaumgarteOde>(bm, drives, config.baumgarte);
+    consistent = ConsistentInitialState(model, bm, ode->mechanics(), times.front(), q0, qd0, &init);
+    result.stats.equations = ode->size();
+    result.stats.jacobian_nnz = ode->JacobianNonZeros();
+  } else {
+    const ConstraintLevel level = formulation == Formulation::kBodyIndex3
+                                      ? ConstraintLevel::kPosition
+                                      : ConstraintLevel::kVelocity;
+    dae = std::make_unique<BodyDae>(bm, drives, level);
+    consistent = ConsistentInitialState(model, bm, dae->mechanics(), times.front(), q0, qd0, &init);
+    result.stats.equations = dae->size();
+    result.stats.jacobian_nnz = dae->JacobianNonZeros();
+  }
+  if (!consistent) {
+    result.stats.status = RunStatus::kFailed;
+    result.stats.message =
+        "the body formulation's constraints are singular at the initial pose (redundant or "
+        "degenerate joints): no consistent initial accelerations; use the joint formulation";
+    return;
+  }
+
+  Eigen::VectorXd y = baumgarte ? Eigen::VectorXd(init.y.head(bm.ode_size())) : init.y;
+  std::unique_ptr<Integrator> integrator;
+  const IntegratorOptions options = IntegratorOptionsFrom(config, times.back());
+  if (baumgarte) {
+    integrator = MakeIntegrator(*ode, times.front(), y.data(), options);
+  } else {
+    IdaOptions ida;
+    ida.base = options;
+    // IDA's own first step is tiny at tight tolerances (its estimate weighs the large
+    // accelerations against small absolute tolerances), and below about 1e-9 s the index-2
+    // iteration matrix is too ill-conditioned for Newton: start at a small fraction of the
+    // output interval instead (IDA shrinks it if the error test asks).
+    ida.initial_step = 1e-3 * config.output_interval;
+    if (config.max_step > 0.0) ida.initial_step = std::min(ida.initial_step, config.max_step);
+    integrator = MakeIdaIntegrator(*dae, times.front(), y.data(), init.yp.data(), ida);
+  }
+  result.stats.integrator = integrator->name();
+
+  BodyReadout readout(bm, drives);
+  readout.SetStart(q0);
+  const bool need_effort = result.has_torques || result.has_energy;
+  FrameExtras extras;
+  for (size_t k = 0; k < times.size(); ++k) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) {
+      result.stats.status = RunStatus::kCancelled;
+      result.stats.message = "cancelled at t = " + std::to_string(result.stats.t_reached) + " s";
+      break;
+    }
+    if (k > 0) {
+      const AdvanceResult advance = integrator->AdvanceTo(times[k], y.data());
+      if (advance.status != IntegratorStatus::kOk) {
+        result.stats.status = ToRunStatus(advance.status);
+        result.stats.message = advance.message + Advice(formulation);
+        break;
+      }
+    }
+    const bool finite = readout.Read(times[k], y.data(), need_effort);
+    extras.tcp = readout.tcp();
+    extras.kinetic = readout.kinetic();
+    extras.potential = readout.potential();
+    if (!finite || !recorder.Record(times[k], readout.q(), readout.qd(),
+                                    need_effort ? &readout.effort() : nullptr, &extras)) {
+      result.stats.status = RunStatus::kDiverged;
+      result.stats.message =
+          FormatString("the state became non-finite at t = %g s", times[k]) + Advice(formulation);
+      break;
+    }
+    if (sink) sink->OnFrame(result, result.num_frames() - 1);
+  }
+  result.stats.solver = integrator->stats();
+  const ConstraintDrift& drift = readout.drift();
+  result.stats.drift_position_max = drift.position;
+  result.stats.drift_orientation_max = drift.orientation;
+  result.stats.drift_velocity_max = drift.velocity;
+  result.stats.quaternion_norm_error_max = drift.quaternion_norm;
+}
+
+}  // namespace mbstream

@@ -1,0 +1,25 @@
+// The run loop of the body-coordinate formulations (body-index3, body-index2 with IDA;
+// body-baumgarte with an ODE method).
+#pragma once
+
+#include <atomic>
+#include <vector>
+
+#include "server/model/model.h"
+#include "server/sim/drive_set.h"
+#include "server/sim/frame_recorder.h"
+#include "server/sim/run_config.h"
+#include "server/sim/run_result.h"
+
+namespace mbstream {
+
+bool IsBodyFormulation(Formulation formulation);
+
+// Integrates `model` in body coordinates over `times` and records every good frame; sets
+// the result's equations, Jacobian non-zeros, solver statistics, status and constraint
+// drift. Throws InputError for a model the body formulations do not handle.
+void RunBody(const Model& model, const RunConfig& config, Formulation formulation,
+             const DriveSet& drives, const std::vector<double>& times, FrameRecorder& recorder,
+             RunResult& result, FrameSink* sink, const std::atomic<bool>* cancel);
+
+}  // namespace mbstream

@@ -1,0 +1,100 @@
+#include "server/sim/frame_recorder.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "server/dynamics/energy.h"
+#include "server/kinematics/forward_kinematics.h"
+
+namespace mbstream {
+
+FrameRecorder::FrameRecorder(const Model& model, const DriveSet& drives, RunResult& result,
+                             size_t frames, bool track_tcp_error)
+    : model_(model),
+      drives_(drives),
+      result_(result),
+      data_(model),
+      q_ref_(model.num_dofs()),
+      track_tcp_error_(track_tcp_error && drives.all_prescribed() && model.tcp_frame >= 0) {
+  const size_t n = static_cast<size_t>(model.num_dofs());
+  result_.t.reserve(frames);
+  result_.q.reserve(frames * n);
+  result_.qd.reserve(frames * n);
+  result_.tcp.reserve(frames * 3);
+  if (result_.has_torques) result_.tau.reserve(frames * n);
+  if (result_.has_energy) {
+    result_.kinetic.reserve(frames);
+    result_.potential.reserve(frames);
+  }
+  if (drives_.all_prescribed()) result_.stats.tcp_error_max = 0.0;
+  if (result_.has_energy) {
+    result_.stats.energy_error_max = 0.0;
+    result_.stats.energy_work_approximate = drives_.any_work();
+  }
+}
+
+bool FrameRecorder::Record(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                           const Eigen::VectorXd* effort, const FrameExtras* extras) {
+  if (!q.allFinite() || !qd.allFinite() || (effort && !effort->allFinite())) return false;
+  Vector3d tcp = Vector3d::Zero();
+  double kinetic = 0.0, potential = 0.0;
+  if (extras != nullptr) {
+    tcp = extras->tcp;
+    kinetic = extras->kinetic;
+    potential = extras->potential;
+    if (!tcp.allFinite() || !std::isfinite(kinetic) || !std::isfinite(potential)) return false;
+  } else {
+    ForwardKinematics(model_, data_, q);
+    if (model_.tcp_frame >= 0) tcp = FramePosition(data_, model_.tcp_frame);
+    if (result_.has_energy) {
+      potential = PotentialEnergy(model_, data_);
+      kinetic = KineticEnergy(model_, data_, q, qd);
+      if (!std::isfinite(kinetic) || !std::isfinite(potential)) return false;
+    }
+  }
+  result_.t.push_back(t);
+  result_.q.insert(result_.q.end(), q.data(), q.data() + q.size());
+  result_.qd.insert(result_.qd.end(), qd.data(), qd.data() + qd.size());
+  result_.tcp.insert(result_.tcp.end(), tcp.data(), tcp.data() + 3);
+  if (result_.has_torques) {
+    result_.tau.insert(result_.tau.end(), effort->data(), effort->data() + effort->size());
+  }
+  if (result_.has_energy) {
+    result_.kinetic.push_back(kinetic);
+    result_.potential.push_back(potential);
+    TrackEnergy(t, kinetic + potential, qd, effort);
+  }
+  if (track_tcp_error_) TrackTcpError(t, tcp);
+  result_.stats.t_reached = t;
+  return true;
+}
+
+// |E(t) - E(0) - W(t)| relative to the energy scale, W = work of drives and damping
+// (trapezoid rule over the output samples).
+void FrameRecorder::TrackEnergy(double t, double energy, const Eigen::VectorXd& qd,
+                                const Eigen::VectorXd* effort) {
+  double power = 0.0;
+  for (int i = 0; i < drives_.size(); ++i) {
+    const double drive = effort ? (*effort)(i) : 0.0;
+    power += (drive - drives_.damping(i) * qd(i)) * qd(i);
+  }
+  if (result_.t.size() == 1) {
+    energy0_ = energy;
+  } else {
+    work_ += 0.5 * (power + last_power_) * (t - last_t_);
+  }
+  last_power_ = power;
+  last_t_ = t;
+  scale_ = std::max({scale_, std::abs(energy0_), std::abs(energy)});
+  const double error = std::abs(energy - energy0_ - work_) / std::max(scale_, 1e-300);
+  result_.stats.energy_error_max = std::max(result_.stats.energy_error_max, error);
+}
+
+void FrameRecorder::TrackTcpError(double t, const Vector3d& tcp) {
+  for (int i = 0; i < drives_.size(); ++i) q_ref_(i) = drives_.Reference(i, t).q;
+  ForwardKinematics(model_, data_, q_ref_);
+  const double error = (tcp - FramePosition(data_, model_.tcp_frame)).norm();
+  result_.stats.tcp_error_max = std::max(result_.stats.tcp_error_max, error);
+}
+
+}  // namespace mbstream

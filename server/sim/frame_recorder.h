@@ -1,0 +1,49 @@
+// Appends a run's output frames to its RunResult: TCP, energies, and the accuracy figures
+// (TCP against direct kinematics of the prescribed motion, energy balance).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "server/model/data.h"
+#include "server/model/model.h"
+#include "server/sim/drive_set.h"
+#include "server/sim/run_result.h"
+
+namespace mbstream {
+
+// What a formulation that has them computes itself instead of the recorder (the body
+// formulations: TCP from the last body's pose, energies from the bodies' states).
+struct FrameExtras {
+  Vector3d tcp = Vector3d::Zero();
+  double kinetic = 0.0;    // J
+  double potential = 0.0;  // J
+};
+
+class FrameRecorder {
+ public:
+  // track_tcp_error: compare the TCP with direct kinematics of the prescribed motion (off
+  // when the states are that motion, as in the kinematic formulation: the error is 0).
+  FrameRecorder(const Model& model, const DriveSet& drives, RunResult& result, size_t frames,
+                bool track_tcp_error);
+
+  // Records a frame; `effort` (drive efforts) may be null when torques are not reported
+  // and no work is tracked; `extras`, if given, replaces the TCP and energies that would be
+  // computed from (q, qd). Returns false, recording nothing, if any value is not finite.
+  bool Record(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+              const Eigen::VectorXd* effort, const FrameExtras* extras = nullptr);
+
+ private:
+  void TrackEnergy(double t, double energy, const Eigen::VectorXd& qd,
+                   const Eigen::VectorXd* effort);
+  void TrackTcpError(double t, const Vector3d& tcp);
+
+  const Model& model_;
+  const DriveSet& drives_;
+  RunResult& result_;
+  Data data_;
+  Eigen::VectorXd q_ref_;
+  const bool track_tcp_error_;
+  double energy0_ = 0.0, work_ = 0.0, last_power_ = 0.0, last_t_ = 0.0, scale_ = 0.0;
+};
+
+}  // namespace mbstream
