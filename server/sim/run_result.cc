@@ -37,6 +37,8 @@ const char* RunStatusName(RunStatus status) {
       return "FAILED";
     case RunStatus::kCancelled:
       return "CANCELLED";
+    case RunStatus::kInterrupted:
+      return "INTERRUPTED";
   }
   return "FAILED";
 }

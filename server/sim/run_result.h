@@ -16,6 +16,7 @@ enum class RunStatus {
   kConvergenceFailures,  // the nonlinear/linear solver failed repeatedly
   kFailed,               // any other failure (see the message)
   kCancelled,
+  kInterrupted,  // the server stopped during the run (never produced by Simulate itself)
 };
 
 // "FINISHED", "DIVERGED", "TOO_MUCH_WORK", ...

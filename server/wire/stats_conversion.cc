@@ -26,6 +26,8 @@ v1::RunState RunStateFromStatus(RunStatus status) {
       return v1::FAILED;
     case RunStatus::kCancelled:
       return v1::CANCELLED;
+    case RunStatus::kInterrupted:
+      return v1::INTERRUPTED;
   }
   return v1::FAILED;
 }
@@ -84,6 +86,9 @@ RunStats StatsFromProto(const v1::RunInfo& info) {
       break;
     case v1::CANCELLED:
       s.status = RunStatus::kCancelled;
+      break;
+    case v1::INTERRUPTED:
+      s.status = RunStatus::kInterrupted;
       break;
     default:
       s.status = RunStatus::kFailed;

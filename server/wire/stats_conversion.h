@@ -14,8 +14,8 @@ bool IsFinalState(v1::RunState state);
 // The statistics as a message. Non-finite numbers become -1 ("unknown") or 0, never NaN.
 v1::RunStats StatsToProto(const RunStats& stats);
 
-// The core's view of a finished run's info: statistics, status (INTERRUPTED -> kFailed,
-// QUEUED/RUNNING -> kFailed) and message.
+// The core's view of a finished run's info: statistics, status (QUEUED/RUNNING -> kFailed)
+// and message.
 RunStats StatsFromProto(const v1::RunInfo& info);
 
 }  // namespace mbstream

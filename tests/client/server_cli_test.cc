@@ -136,6 +136,8 @@ TEST_F(ServerCliTest, KilledServerRestartsWithEveryModelAndRunAndTheInterruptedO
   EXPECT_EQ(ReadFile(dir_ / "after" / "joints.csv"), ReadFile(dir_ / "finished" / "joints.csv"));
   // The interrupted run is never shown as finished: its result says so (exit code 1).
   EXPECT_EQ(Cli("result " + slow_id + " --out " + Out("interrupted")).exit_code, 1);
+  EXPECT_THAT(ReadFile(dir_ / "interrupted" / "stats.json"),
+              HasSubstr("\"status\": \"INTERRUPTED\""));
 }
 
 TEST_F(ServerCliTest, ErrorsAreNamedWithExitCodes) {
