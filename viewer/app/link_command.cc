@@ -90,7 +90,9 @@ int RunLink(const LinkCommandOptions& options) {
     exit_code = link.Run();
     stop = true;
   });
-  RunRenderLoop(&slot, &status, options.render, stop);
+  RenderOptions render = options.render;
+  render.interactive = !options.offscreen;
+  RunRenderLoop(&slot, &status, render, stop);
   network.join();
   g_link = nullptr;
   if (control_server) control_server->Shutdown();

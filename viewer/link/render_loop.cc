@@ -1,7 +1,10 @@
 #include "viewer/link/render_loop.h"
 
 #include <spdlog/spdlog.h>
+#include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
+#include <vtkRenderWindowInteractor.h>
+#include <vtkSmartPointer.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 
@@ -48,11 +51,22 @@ void RunRenderLoop(SceneSlot* slot, LinkStatus* status, const RenderOptions& opt
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / options.fps));
   Clock::time_point next = Clock::now();
   Clock::time_point fps_window = next;
+  // Window mode: the interactor's pending mouse/keyboard events are handled every tick
+  // (ProcessEvents), so the user can turn the camera while frames keep coming.
+  vtkSmartPointer<vtkRenderWindowInteractor> interactor;
+  vtkNew<vtkInteractorStyleTrackballCamera> style;
   int draws = 0, window_draws = 0, snapshots = 0;
   while (!stop) {
     bool changed = false;
     Scene* scene = slot->Service(&changed);
     if (scene && changed && options.hud) scene->renderer()->AddActor2D(hud);
+    if (scene && changed && options.interactive) {
+      interactor = vtkSmartPointer<vtkRenderWindowInteractor>::New();
+      interactor->SetInteractorStyle(style);
+      interactor->SetRenderWindow(scene->render_window());
+      interactor->Initialize();
+    }
+    if (interactor) interactor->ProcessEvents();
     if (scene) {
       if (options.hud) hud->SetInput(HudText(status->Get()).c_str());
       scene->Render();
@@ -81,6 +95,7 @@ void RunRenderLoop(SceneSlot* slot, LinkStatus* status, const RenderOptions& opt
   }
   slot->Shutdown();
   if (recorder) recorder->End();
+  interactor = nullptr;
   slot->DestroyScene();
 }
 

@@ -17,6 +17,7 @@ struct RenderOptions {
   std::string snapshots_dir;  // PNG every `snapshot_every` draws; empty = none
   int snapshot_every = 20;
   bool hud = true;
+  bool interactive = false;  // window mode: mouse interaction (trackball camera)
 };
 
 // Runs until `stop` is set; returns after finishing the video. The scene is destroyed here.
