@@ -8,6 +8,8 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
+#include "server/integrate/fast_serial_ops.h"
+
 namespace mbstream::sundials {
 
 CvodeIntegrator::CvodeIntegrator(Variant variant, OdeSystem& system, double t0, const double* y0,
@@ -33,8 +35,10 @@ CvodeIntegrator::CvodeIntegrator(Variant variant, OdeSystem& system, double t0, 
   if (variant == Variant::kBdf) {
     matrix_.reset(SUNDenseMatrix(n, n, context()));
     CheckCreated(matrix_.get(), "SUNDenseMatrix");
+    InstallFastDenseMatrixOps(matrix_.get());
     linear_solver_.reset(SUNLinSol_Dense(initial_state(), matrix_.get(), context()));
     CheckCreated(linear_solver_.get(), "SUNLinSol_Dense");
+    InstallFastDenseSolverOps(linear_solver_.get());
     CheckSetup(CVodeSetLinearSolver(cvode, linear_solver_.get(), matrix_.get()),
                "CVodeSetLinearSolver");
     CheckSetup(CVodeSetJacFn(cvode, DenseJacobianCallback), "CVodeSetJacFn");

@@ -10,6 +10,7 @@
 
 #include "server/common/check.h"
 #include "server/integrate/failure_messages.h"
+#include "server/integrate/fast_serial_ops.h"
 
 namespace mbstream::sundials {
 
@@ -37,9 +38,13 @@ SundialsIntegrator::SundialsIntegrator(OdeSystem& system, double t0, const doubl
   const int n = system.size();
   y0_.reset(N_VNew_Serial(n, context()));
   CheckCreated(y0_.get(), "N_VNew_Serial");
+  // CVODE only: its vectors are clones of y0_ and inherit the table. (ARKODE's ERK would
+  // take other, differently rounded paths through the fused operations: left as it was.)
+  if (family == Family::kCvode) InstallFastSerialOps(y0_.get());
   std::copy(y0, y0 + n, N_VGetArrayPointer(y0_.get()));
   out_.reset(N_VMake_Serial(n, nullptr, context()));
   CheckCreated(out_.get(), "N_VMake_Serial");
+  if (family == Family::kCvode) InstallFastSerialOps(out_.get());
 }
 
 void SundialsIntegrator::CheckSetup(int flag, const char* call) const {

@@ -41,7 +41,82 @@ inline void RotateAboutCoordinateAxis(int k, double c, double s, Matrix3d& M) {
 
 }  // namespace internal
 
-// I_A += X_AB^T I_B X_AB, for X_AB = JointTransform(joint, q) (see joint_transform.h).
+namespace internal {
+
+// The fast path of AddInertiaAcrossJoint for X_AB = (R, p) with R a rotation by (c, s) about
+// coordinate axis K (K < 0: R = I). I_B = [A B; B^T C] with A and C symmetric (a spatial
+// inertia or an articulated one): only their upper triangles are read and computed.
+template <int K>
+inline void AddInertiaAcrossCoordinateJoint(double c, double s, const Vector3d& p,
+                                            const Matrix6d& I_B, Matrix6d* I_A) {
+  // Symmetric blocks in the parent's orientation: S' = R S R^T (6 entries each).
+  double a[3][3], cc[3][3];
+  for (int r = 0; r < 3; ++r) {
+    for (int q = r; q < 3; ++q) {
+      a[r][q] = a[q][r] = I_B(r, q);
+      cc[r][q] = cc[q][r] = I_B(3 + r, 3 + q);
+    }
+  }
+  Matrix3d B = I_B.topRightCorner<3, 3>();
+  if constexpr (K >= 0) {
+    constexpr int k = K, i = (K + 1) % 3, j = (K + 2) % 3;
+    const double cs = c * s, c2 = c * c, s2 = s * s;
+    for (auto* m : {&a, &cc}) {
+      double(&x)[3][3] = *m;
+      const double ki = x[k][i], kj = x[k][j], ii = x[i][i], jj = x[j][j], ij = x[i][j];
+      x[k][i] = x[i][k] = c * ki - s * kj;
+      x[k][j] = x[j][k] = s * ki + c * kj;
+      x[i][i] = c2 * ii - 2.0 * cs * ij + s2 * jj;
+      x[j][j] = s2 * ii + 2.0 * cs * ij + c2 * jj;
+      x[i][j] = x[j][i] = cs * (ii - jj) + (c2 - s2) * ij;
+    }
+    RotateAboutCoordinateAxis<K>(c, s, B);
+  }
+  // Shift the reference point from Bo to Ao by p (see AddInertiaToParent):
+  //   TL += A + T + T^T + W, TR += B + Q, BR += C, with
+  //   T = [p]x B^T, Q = [p]x C, W = [p]x C [p]x^T = Q [p]x^T.
+  const double px = p.x(), py = p.y(), pz = p.z();
+  // Q = [p]x C, row by row: [p]x = [0 -pz py; pz 0 -px; -py px 0].
+  double Q[3][3];
+  for (int col = 0; col < 3; ++col) {
+    Q[0][col] = -pz * cc[1][col] + py * cc[2][col];
+    Q[1][col] = pz * cc[0][col] - px * cc[2][col];
+    Q[2][col] = -py * cc[0][col] + px * cc[1][col];
+  }
+  // T = [p]x B^T: T(r, col) = ([p]x row r) . B(col, :).
+  double T[3][3];
+  for (int col = 0; col < 3; ++col) {
+    T[0][col] = -pz * B(col, 1) + py * B(col, 2);
+    T[1][col] = pz * B(col, 0) - px * B(col, 2);
+    T[2][col] = -py * B(col, 0) + px * B(col, 1);
+  }
+  // W = Q [p]x^T: W(r, q) = Q row r . ([p]x row q).
+  const double P[3][3] = {{0.0, -pz, py}, {pz, 0.0, -px}, {-py, px, 0.0}};
+  Matrix6d& out = *I_A;
+  for (int r = 0; r < 3; ++r) {
+    for (int q = r; q < 3; ++q) {
+      const double w = Q[r][0] * P[q][0] + Q[r][1] * P[q][1] + Q[r][2] * P[q][2];
+      const double tl = a[r][q] + T[r][q] + T[q][r] + w;
+      out(r, q) += tl;
+      if (q != r) out(q, r) += tl;
+      out(3 + r, 3 + q) += cc[r][q];
+      if (q != r) out(3 + q, 3 + r) += cc[r][q];
+    }
+  }
+  for (int r = 0; r < 3; ++r) {
+    for (int q = 0; q < 3; ++q) {
+      const double tr = B(r, q) + Q[r][q];
+      out(r, 3 + q) += tr;
+      out(3 + q, r) += tr;
+    }
+  }
+}
+
+}  // namespace internal
+
+// I_A += X_AB^T I_B X_AB, for X_AB = JointTransform(joint, q) (see joint_transform.h) and I_B
+// a symmetric spatial (or articulated-body) inertia: the fast path reads only the upper
+// triangles of its diagonal blocks.
 inline void AddInertiaAcrossJoint(const Joint& joint, const Pose& X_AB, const Matrix6d& I_B,
                                   Matrix6d* I_A) {
   const bool coordinate_rotation = joint.origin_rotation_identity &&
@@ -50,31 +125,21 @@ inline void AddInertiaAcrossJoint(const Joint& joint, const Pose& X_AB, const Ma
     AddInertiaToParent(X_AB, I_B, I_A);
     return;
   }
-  Matrix3d A = I_B.topLeftCorner<3, 3>();
-  Matrix3d B = I_B.topRightCorner<3, 3>();
-  Matrix3d C = I_B.bottomRightCorner<3, 3>();
-  if (joint.type == JointType::kRevolute) {
-    const int k = joint.axis_index;
-    const int i = (k + 1) % 3, j = (k + 2) % 3;
-    const double c = X_AB.R(i, i), s = X_AB.R(j, i);
-    internal::RotateAboutCoordinateAxis(k, c, s, A);
-    internal::RotateAboutCoordinateAxis(k, c, s, B);
-    internal::RotateAboutCoordinateAxis(k, c, s, C);
+  if (joint.type != JointType::kRevolute) {
+    internal::AddInertiaAcrossCoordinateJoint<-1>(1.0, 0.0, X_AB.p, I_B, I_A);
+    return;
   }
-  // Shift the reference point from Bo to Ao by p (see AddInertiaToParent), with cross
-  // products instead of skew-matrix products: T = [p]x B^T, Q = [p]x C, W = [p]x Q^T.
-  const Vector3d& p = X_AB.p;
-  Matrix3d T, Q, W;
-  for (int m = 0; m < 3; ++m) {
-    T.col(m) = p.cross(Vector3d(B.row(m).transpose()));
-    Q.col(m) = p.cross(Vector3d(C.col(m)));
+  const int k = joint.axis_index;
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  const double c = X_AB.R(i, i), s = X_AB.R(j, i);
+  switch (k) {
+    case 0:
+      return internal::AddInertiaAcrossCoordinateJoint<0>(c, s, X_AB.p, I_B, I_A);
+    case 1:
+      return internal::AddInertiaAcrossCoordinateJoint<1>(c, s, X_AB.p, I_B, I_A);
+    default:
+      return internal::AddInertiaAcrossCoordinateJoint<2>(c, s, X_AB.p, I_B, I_A);
   }
-  for (int m = 0; m < 3; ++m) W.col(m) = p.cross(Vector3d(Q.row(m).transpose()));
-  B += Q;
-  I_A->topLeftCorner<3, 3>() += A + T + T.transpose() + W;
-  I_A->topRightCorner<3, 3>() += B;
-  I_A->bottomLeftCorner<3, 3>() += B.transpose();
-  I_A->bottomRightCorner<3, 3>() += C;
 }
 
 }  // namespace mbstream

@@ -1,5 +1,9 @@
 #include "server/sim/joint_space_ode.h"
 
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+
 #include "server/dynamics/aba.h"
 #include "server/dynamics/crba.h"
 #include "server/dynamics/rnea.h"
@@ -23,6 +27,18 @@ JointSpaceOde::JointSpaceOde(const Model& model, const DriveSet& drives)
   M_free_ = Eigen::MatrixXd::Zero(nf, nf);
   rhs_free_ = Eigen::VectorXd::Zero(nf);
   llt_ = Eigen::LLT<Eigen::MatrixXd>(nf);
+  // Every drive law is affine in (q, qd) (servo: kp (q_ref - q) + kd (qd_ref - qd); torque
+  // laws and passive joints: constant in both), so two differences give its exact slopes.
+  effort_dq_ = Eigen::VectorXd::Zero(n_);
+  effort_dqd_ = Eigen::VectorXd::Zero(n_);
+  for (int i : free_) {
+    const double e0 = drives.ActuatorEffort(i, 0.0, 0.0, 0.0);
+    effort_dq_(i) = drives.ActuatorEffort(i, 0.0, 1.0, 0.0) - e0;
+    effort_dqd_(i) = drives.ActuatorEffort(i, 0.0, 0.0, 1.0) - e0 - drives.damping(i);
+  }
+  id0_ = Eigen::VectorXd::Zero(n_);
+  dqdd_ = Eigen::MatrixXd::Zero(n_, 2 * n_);
+  mass_llt_ = Eigen::LLT<Eigen::MatrixXd>(n_);
 }
 
 int JointSpaceOde::JacobianNonZeros() const { return n_ + static_cast<int>(free_.size()) * 2 * n_; }
@@ -77,6 +93,46 @@ int JointSpaceOde::Rhs(double t, const double* y, double* ydot) {
   for (int i = 0; i < n_; ++i) {
     ydot[i] = qd_(i);
     ydot[n_ + i] = qdd_(i);
+  }
+  return 0;
+}
+
+int JointSpaceOde::Jacobian(double /*t*/, const double* y, const double* fy,
+                            double* jac_col_major) {
+  if (!HasJacobian()) return -1;
+  for (int i = 0; i < n_; ++i) {
+    q_(i) = y[i];
+    qd_(i) = y[n_ + i];
+    qdd_(i) = fy[n_ + i];
+  }
+  id0_ = Rnea(model_, data_, q_, qd_, qdd_);
+  // Columns of -dID/dq, then -dID/dqd, plus the drive slopes on the diagonal.
+  const double sqrt_eps = std::sqrt(DBL_EPSILON);
+  for (int j = 0; j < 2 * n_; ++j) {
+    Eigen::VectorXd& x = j < n_ ? q_ : qd_;
+    const int k = j < n_ ? j : j - n_;
+    const double xk = x(k);
+    x(k) = xk + sqrt_eps * std::max(1.0, std::abs(xk));
+    const double inc = x(k) - xk;
+    const Eigen::VectorXd& id = Rnea(model_, data_, q_, qd_, qdd_);
+    x(k) = xk;
+    for (int i = 0; i < n_; ++i) dqdd_(i, j) = (id0_(i) - id(i)) / inc;
+    dqdd_(k, j) += j < n_ ? effort_dq_(k) : effort_dqd_(k);
+  }
+  mass_llt_.compute(Crba(model_, data_, q_));
+  if (mass_llt_.info() != Eigen::Success) return 1;
+  for (int j = 0; j < 2 * n_; ++j) {  // column by column: a matrix right-hand side allocates
+    auto column = dqdd_.col(j);
+    mass_llt_.solveInPlace(column);
+  }
+  if (!dqdd_.allFinite()) return 1;
+  // Column-major 2n x 2n: [0 I; dqdd/dq dqdd/dqd].
+  const int size = 2 * n_;
+  std::fill(jac_col_major, jac_col_major + size * size, 0.0);
+  for (int j = 0; j < size; ++j) {
+    double* column = jac_col_major + j * size;
+    if (j >= n_) column[j - n_] = 1.0;
+    for (int i = 0; i < n_; ++i) column[n_ + i] = dqdd_(i, j);
   }
   return 0;
 }

@@ -4,8 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
 #include "server/dynamics/rnea.h"
 #include "server/integrate/integrator.h"
+#include "server/kinematics/joint_inertia_transform.h"
+#include "server/kinematics/joint_transform.h"
 #include "server/parse/urdf_import.h"
 #include "server/sim/trajectory.h"
 #include "tests/common/allocation_counter.h"
@@ -67,6 +73,73 @@ TEST(JointSpaceOdeTest, SplineTrajectoryInterpolatesItsKnots) {
   // The derivative is the derivative of the value.
   const double t = 1.1;
   EXPECT_NEAR(evaluator.At(t).qd, (evaluator.At(t + h).q - evaluator.At(t - h).q) / (2 * h), 1e-6);
+}
+
+// The ODE's own Jacobian (seed-servo: every joint a PD servo) against central differences
+// of its right-hand side, and no allocation in it.
+TEST(JointSpaceOdeTest, JacobianMatchesDifferencesOfTheRightHandSide) {
+  const Model& model = testing::Irb1600();
+  const RunConfig config = testing::Scene("seed-servo");
+  const DriveSet drives(model, config);
+  JointSpaceOde ode(model, drives);
+  ASSERT_TRUE(ode.HasJacobian());
+  const int size = ode.size();
+  std::vector<double> y(size), fy(size), jac(size * size), yp, fp(size), fm(size);
+  for (int i = 0; i < 6; ++i) {
+    y[i] = 0.3 * (i + 1) - 0.7;
+    y[6 + i] = 0.8 - 0.25 * i;
+  }
+  const double t = 1.3;
+  ASSERT_EQ(ode.Rhs(t, y.data(), fy.data()), 0);
+  const long before = testing::AllocationCount();
+  ASSERT_EQ(ode.Jacobian(t, y.data(), fy.data(), jac.data()), 0);
+  EXPECT_EQ(testing::AllocationCount() - before, 0);
+  double max_abs = 0.0;
+  for (double v : jac) max_abs = std::max(max_abs, std::abs(v));
+  for (int j = 0; j < size; ++j) {
+    const double h = 1e-6;
+    yp = y;
+    yp[j] += h;
+    ASSERT_EQ(ode.Rhs(t, yp.data(), fp.data()), 0);
+    yp[j] -= 2 * h;
+    ASSERT_EQ(ode.Rhs(t, yp.data(), fm.data()), 0);
+    for (int i = 0; i < size; ++i) {
+      const double fd = (fp[i] - fm[i]) / (2 * h);
+      EXPECT_NEAR(jac[j * size + i], fd, 1e-6 * max_abs + 1e-6 * std::abs(fd))
+          << "row " << i << " column " << j;
+    }
+  }
+  // Columns of q' = qd: exactly [0 I].
+  for (int j = 0; j < size; ++j) {
+    for (int i = 0; i < 6; ++i) EXPECT_EQ(jac[j * size + i], j == 6 + i ? 1.0 : 0.0);
+  }
+  // A prescribed joint: the ODE leaves the Jacobian to the integrator.
+  RunConfig mixed = config;
+  mixed.drives[0].kind = DriveConfig::Kind::kPrescribed;
+  const DriveSet mixed_drives(model, mixed);
+  EXPECT_FALSE(JointSpaceOde(model, mixed_drives).HasJacobian());
+}
+
+// The fast path of AddInertiaAcrossJoint (coordinate axes, unrotated origin; used by the
+// joint-space ODE's ABA and CRBA) against the general congruence X^T I X.
+TEST(JointSpaceOdeTest, InertiaAcrossCoordinateJointsMatchesTheCongruence) {
+  Matrix6d L = Matrix6d::Random();
+  const Matrix6d I_B = L * L.transpose() + Matrix6d::Identity();  // symmetric, like IA
+  for (int axis = 0; axis < 4; ++axis) {
+    Joint joint;
+    joint.type = axis < 3 ? JointType::kRevolute : JointType::kPrismatic;
+    joint.axis = axis < 3 ? Vector3d(Vector3d::Unit(axis)) : Vector3d(0.6, 0.0, 0.8);
+    joint.X_PJ.p = Vector3d(0.3, -0.2, 0.7);
+    DeriveJointShape(joint);
+    ASSERT_TRUE(joint.origin_rotation_identity);
+    Pose X;
+    JointTransform(joint, 0.83, &X);
+    Matrix6d fast = Matrix6d::Identity(), general = Matrix6d::Identity();
+    AddInertiaAcrossJoint(joint, X, I_B, &fast);
+    AddInertiaToParent(X, I_B, &general);
+    EXPECT_LT((fast - general).cwiseAbs().maxCoeff(), 1e-12 * general.cwiseAbs().maxCoeff())
+        << "axis " << axis;
+  }
 }
 
 TEST(JointSpaceOdeTest, TimeStepsDoNotAllocate) {
