@@ -44,6 +44,11 @@ JointSpaceOde::JointSpaceOde(const Model& model, const DriveSet& drives)
 int JointSpaceOde::JacobianNonZeros() const { return n_ + static_cast<int>(free_.size()) * 2 * n_; }
 
 bool JointSpaceOde::Evaluate(double t, const double* y) {
+  EvaluateState(t, y);
+  return EvaluateAccelerations();
+}
+
+void JointSpaceOde::EvaluateState(double t, const double* y) {
   for (int i = 0; i < n_; ++i) {
     q_(i) = y[i];
     qd_(i) = y[n_ + i];
@@ -59,6 +64,9 @@ bool JointSpaceOde::Evaluate(double t, const double* y) {
     effort_(i) = drives_.ActuatorEffort(i, t, q_(i), qd_(i));
     tau_(i) = effort_(i) - drives_.damping(i) * qd_(i);
   }
+}
+
+bool JointSpaceOde::EvaluateAccelerations() {
   if (drives_.num_prescribed() == 0) {
     qdd_ = Aba(model_, data_, q_, qd_, tau_);
   } else {
@@ -78,6 +86,15 @@ bool JointSpaceOde::Evaluate(double t, const double* y) {
     }
   }
   return qdd_.allFinite();
+}
+
+bool JointSpaceOde::EvaluateOutputs(double t, const double* y, bool want_efforts) {
+  EvaluateState(t, y);
+  if (want_efforts && drives_.num_prescribed() > 0) {
+    if (!EvaluateAccelerations()) return false;
+    ComputePrescribedEfforts();
+  }
+  return q_.allFinite() && qd_.allFinite() && effort_.allFinite();
 }
 
 void JointSpaceOde::ComputePrescribedEfforts() {

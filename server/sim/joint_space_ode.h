@@ -45,6 +45,10 @@ class JointSpaceOde : public OdeSystem {
   // references) and, for non-prescribed joints, drive_effort() (their actuator's effort).
   // Returns false if any acceleration is not finite. Allocates nothing.
   bool Evaluate(double t, const double* y);
+  // What an output frame needs, without the dynamics when it can: q(), qd() and the
+  // drive efforts (the free joints' actuator laws; the prescribed joints' inverse dynamics
+  // only when `want_efforts`). Returns false when any of them is not finite.
+  bool EvaluateOutputs(double t, const double* y, bool want_efforts);
   // After Evaluate: the efforts the prescribed joints' drives must deliver (inverse
   // dynamics, damping included) into drive_effort(). Allocates nothing.
   void ComputePrescribedEfforts();
@@ -55,6 +59,8 @@ class JointSpaceOde : public OdeSystem {
   Data& data() { return data_; }
 
  private:
+  void EvaluateState(double t, const double* y);  // q_, qd_, reference qdd_, efforts, tau_
+  bool EvaluateAccelerations();                   // qdd_ of the free joints
   const Model& model_;
   const DriveSet& drives_;
   const int n_;

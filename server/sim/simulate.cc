@@ -95,8 +95,7 @@ void RunJointSpace(const Model& model, const RunConfig& config, const DriveSet& 
         break;
       }
     }
-    const bool finite = ode.Evaluate(times[k], y.data());
-    if (need_effort) ode.ComputePrescribedEfforts();
+    const bool finite = ode.EvaluateOutputs(times[k], y.data(), need_effort);
     if (!finite || !recorder.Record(times[k], ode.q(), ode.qd(),
                                     need_effort ? &ode.drive_effort() : nullptr)) {
       result.stats.status = RunStatus::kDiverged;
