@@ -1,4 +1,5 @@
 #include "server/runs/model_registry.h"
+#include "server/runs/unix_time.h"
 
 #include <spdlog/spdlog.h>
 
@@ -17,12 +18,6 @@
 namespace mbstream {
 
 namespace {
-
-int64_t NowUnixMs() {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 int64_t BundleBytes(const v1::ModelBundle& bundle) {
   int64_t bytes = static_cast<int64_t>(bundle.urdf().size() + bundle.scene_script().size());

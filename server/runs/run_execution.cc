@@ -7,6 +7,7 @@
 
 #include "server/common/check.h"
 #include "server/runs/run_manager.h"
+#include "server/runs/unix_time.h"
 #include "server/sim/simulate.h"
 #include "server/store/store.h"
 #include "server/wire/frame_conversion.h"
@@ -17,12 +18,6 @@ namespace mbstream {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-int64_t NowUnixMs() {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 // Converts each frame to its wire form, paces it (realtime factor) and publishes it.
 class PublishingSink : public FrameSink {

@@ -1,4 +1,5 @@
 #include "server/runs/run_manager.h"
+#include "server/runs/unix_time.h"
 
 #include <spdlog/spdlog.h>
 
@@ -23,12 +24,6 @@
 namespace mbstream {
 
 namespace {
-
-int64_t NowUnixMs() {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 RequestError NotFound(const std::string& run_id) {
   return RequestError(RequestErrorKind::kNotFound,
@@ -179,6 +174,15 @@ RunManager::StoredResult RunManager::Result(const std::string& run_id) const {
   return result;
 }
 
+void RunManager::CountSubscriber() {
+  if (subscribers_ >= limits_.max_subscribers) {
+    throw RequestError(RequestErrorKind::kResourceExhausted,
+                       "this server already has " + std::to_string(subscribers_) +
+                           " subscribers, its limit; close a viewer or watcher and retry");
+  }
+  ++subscribers_;
+}
+
 std::shared_ptr<Subscription> RunManager::SubscribeRun(const std::string& run_id,
                                                        bool send_started) {
   std::shared_ptr<Run> run = FindActive(run_id);
@@ -186,12 +190,7 @@ std::shared_ptr<Subscription> RunManager::SubscribeRun(const std::string& run_id
   auto subscriber = std::make_shared<Subscription>(limits_.subscriber_queue_frames);
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (subscribers_ >= limits_.max_subscribers) {
-      throw RequestError(RequestErrorKind::kResourceExhausted,
-                         "this server already has " + std::to_string(subscribers_) +
-                             " subscribers, its limit; close a viewer or watcher and retry");
-    }
-    ++subscribers_;
+    CountSubscriber();
   }
   if (run) {
     run->Attach(subscriber, send_started);
@@ -207,12 +206,7 @@ std::shared_ptr<Subscription> RunManager::SubscribeFollow() {
   std::shared_ptr<Run> running;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (subscribers_ >= limits_.max_subscribers) {
-      throw RequestError(RequestErrorKind::kResourceExhausted,
-                         "this server already has " + std::to_string(subscribers_) +
-                             " subscribers, its limit; close a viewer or watcher and retry");
-    }
-    ++subscribers_;
+    CountSubscriber();
     followers_.push_back(subscriber);
     for (const auto& [id, run] : active_) {
       if (run->Info().state() == v1::RUNNING &&

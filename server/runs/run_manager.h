@@ -78,6 +78,8 @@ class RunManager {
   Outcome Execute(const std::shared_ptr<Run>& run);
   void Finish(const std::shared_ptr<Run>& run, const Outcome& outcome);
   std::shared_ptr<Run> FindActive(const std::string& run_id) const;
+  // Counts one more subscriber (mutex_ held), or throws RESOURCE_EXHAUSTED at the limit.
+  void CountSubscriber();
   std::string NewRunId();
 
   ModelRegistry* models_;

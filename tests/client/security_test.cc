@@ -20,12 +20,7 @@ using ::testing::Not;
 constexpr char kAdminToken[] = "admin-token-0123456789abcdef";
 constexpr char kViewToken[] = "view-token-0123456789abcdef";
 
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string ReadFile(const fs::path& path) { return ReadTextFile(path.string()); }
 
 class SecurityTest : public ::testing::Test {
  protected:
@@ -149,8 +144,8 @@ TEST_F(SecurityTest, UnixSocketIsOwnerOnly) {
   struct stat info {};
   ASSERT_EQ(stat(socket.c_str(), &info), 0);
   EXPECT_TRUE(S_ISSOCK(info.st_mode));
-  EXPECT_EQ(info.st_mode & 077, 0u) << "group/other may use the socket: " << std::oct
-                                    << (info.st_mode & 0777);
+  EXPECT_EQ(info.st_mode & 077, 0u)
+      << "group/other may use the socket: " << std::oct << (info.st_mode & 0777);
   const CommandOutcome outcome = Cli("models");
   EXPECT_EQ(outcome.exit_code, 0) << outcome.output;
 }

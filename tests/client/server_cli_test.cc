@@ -16,12 +16,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string ReadFile(const fs::path& path) { return ReadTextFile(path.string()); }
 
 std::string FirstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
 

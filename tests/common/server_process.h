@@ -39,4 +39,7 @@ struct CommandOutcome {
 };
 CommandOutcome RunCommand(const std::string& command);
 
+// A file's whole text ("" when it cannot be read).
+std::string ReadTextFile(const std::string& path);
+
 }  // namespace mbstream::testing

@@ -19,12 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string ReadFile(const fs::path& path) { return ReadTextFile(path.string()); }
 
 // Waits up to 30 s for a line containing `marker` in `log`; returns the rest of that line.
 std::string WaitForLine(const fs::path& log, const std::string& marker) {
