@@ -12,6 +12,7 @@
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/ida_integrator.h"
 #include "server/integrate/integrator.h"
+#include "server/sim/advance_to_frame.h"
 #include "server/sim/initial_state.h"
 
 namespace mbstream {
@@ -100,18 +101,9 @@ void RunBody(const Model& model, const RunConfig& config, Formulation formulatio
   const bool need_effort = result.has_torques || result.has_energy;
   FrameExtras extras;
   for (size_t k = 0; k < times.size(); ++k) {
-    if (cancel && cancel->load(std::memory_order_relaxed)) {
-      result.stats.status = RunStatus::kCancelled;
-      result.stats.message = "cancelled at t = " + std::to_string(result.stats.t_reached) + " s";
+    if (!AdvanceToFrame(*integrator, times, k, y.data(), cancel, &result.stats,
+                        Advice(formulation))) {
       break;
-    }
-    if (k > 0) {
-      const AdvanceResult advance = integrator->AdvanceTo(times[k], y.data());
-      if (advance.status != IntegratorStatus::kOk) {
-        result.stats.status = ToRunStatus(advance.status);
-        result.stats.message = advance.message + Advice(formulation);
-        break;
-      }
     }
     const bool finite = readout.Read(times[k], y.data(), need_effort);
     extras.tcp = readout.tcp();

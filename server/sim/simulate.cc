@@ -9,6 +9,7 @@
 #include "server/common/check.h"
 #include "server/dynamics/rnea.h"
 #include "server/kinematics/forward_kinematics.h"
+#include "server/sim/advance_to_frame.h"
 #include "server/sim/body_run.h"
 #include "server/sim/drive_set.h"
 #include "server/sim/formulation_choice.h"
@@ -82,19 +83,7 @@ void RunJointSpace(const Model& model, const RunConfig& config, const DriveSet& 
   result.stats.integrator = integrator->name();
   const bool need_effort = result.has_torques || result.has_energy;
   for (size_t k = 0; k < times.size(); ++k) {
-    if (cancel && cancel->load(std::memory_order_relaxed)) {
-      result.stats.status = RunStatus::kCancelled;
-      result.stats.message = "cancelled at t = " + std::to_string(result.stats.t_reached) + " s";
-      break;
-    }
-    if (k > 0) {
-      const AdvanceResult advance = integrator->AdvanceTo(times[k], y.data());
-      if (advance.status != IntegratorStatus::kOk) {
-        result.stats.status = ToRunStatus(advance.status);
-        result.stats.message = advance.message;
-        break;
-      }
-    }
+    if (!AdvanceToFrame(*integrator, times, k, y.data(), cancel, &result.stats)) break;
     const bool finite = ode.EvaluateOutputs(times[k], y.data(), need_effort);
     if (!finite || !recorder.Record(times[k], ode.q(), ode.qd(),
                                     need_effort ? &ode.drive_effort() : nullptr)) {

@@ -1,0 +1,20 @@
+// The step between output frames, shared by the integrating formulations' run loops.
+#pragma once
+
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "server/integrate/integrator.h"
+#include "server/sim/run_result.h"
+
+namespace mbstream {
+
+// Before output frame k: stops when `cancel` is set (kCancelled), then, for k > 0, advances
+// `integrator` to times[k]. Returns false, with the status and message (plus `advice`) in
+// `stats`, when the run must stop there.
+bool AdvanceToFrame(Integrator& integrator, const std::vector<double>& times, size_t k, double* y,
+                    const std::atomic<bool>* cancel, RunStats* stats,
+                    const std::string& advice = "");
+
+}  // namespace mbstream
