@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 
@@ -70,6 +71,20 @@ std::string ReadTextFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   return text;
+}
+
+std::optional<std::string> WaitForLineIn(const std::string& path, const std::string& marker,
+                                         double timeout_s) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  do {
+    std::istringstream text(ReadTextFile(path));
+    for (std::string line; std::getline(text, line);) {
+      const size_t at = line.find(marker);
+      if (at != std::string::npos) return line.substr(at + marker.size());
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  } while (std::chrono::steady_clock::now() < deadline);
+  return std::nullopt;
 }
 
 CommandOutcome RunCommand(const std::string& command) {

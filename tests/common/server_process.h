@@ -5,6 +5,7 @@
 
 #include <sys/types.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,5 +42,10 @@ CommandOutcome RunCommand(const std::string& command);
 
 // A file's whole text ("" when it cannot be read).
 std::string ReadTextFile(const std::string& path);
+
+// Waits up to `timeout_s` for a line of the file at `path` (a growing log) that contains
+// `marker`; returns what follows the marker on that line, or nullopt.
+std::optional<std::string> WaitForLineIn(const std::string& path, const std::string& marker,
+                                         double timeout_s = 30.0);
 
 }  // namespace mbstream::testing

@@ -21,18 +21,11 @@ using ::testing::HasSubstr;
 
 std::string ReadFile(const fs::path& path) { return ReadTextFile(path.string()); }
 
-// Waits up to 30 s for a line containing `marker` in `log`; returns the rest of that line.
+// The rest of the line with `marker` in `log`, failing the test after 30 s without it.
 std::string WaitForLine(const fs::path& log, const std::string& marker) {
-  for (int i = 0; i < 300; ++i) {
-    std::stringstream text(ReadFile(log));
-    for (std::string line; std::getline(text, line);) {
-      const size_t at = line.find(marker);
-      if (at != std::string::npos) return line.substr(at + marker.size());
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  ADD_FAILURE() << "no '" << marker << "' in " << log << ":\n" << ReadFile(log);
-  return "";
+  const std::optional<std::string> rest = WaitForLineIn(log.string(), marker);
+  if (!rest) ADD_FAILURE() << "no '" << marker << "' in " << log << ":\n" << ReadFile(log);
+  return rest.value_or("");
 }
 
 TEST(ViewerControlTest, StatusSnapshotAndLoadScene) {

@@ -52,33 +52,58 @@ class ViewerLinkTest : public ::testing::Test {
   std::unique_ptr<ServerProcess> server_;
 };
 
-TEST_F(ViewerLinkTest, EveryFrameGetsAProbeEqualToTheTcp) {
-  const CommandOutcome started =
-      Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 5");
-  ASSERT_EQ(started.exit_code, 0) << started.output;
-  const std::string run = started.output.substr(0, started.output.find('\n'));
-  // --run: joins the run (possibly late), answers, exits when it ended.
-  const CommandOutcome viewer = RunCommand(Viewer("--run " + run));
-  ASSERT_EQ(viewer.exit_code, 0) << viewer.output;
-  EXPECT_THAT(viewer.output, HasSubstr("showing scene 'IRB1600'"));
-  const CommandOutcome result = Cli("result " + run + " --out " + (dir_ / "out").string());
-  ASSERT_EQ(result.exit_code, 0) << result.output;
-  const auto tcp = ReadCsv(dir_ / "out" / "tcp.csv");
-  const auto probes = ReadCsv(dir_ / "out" / "probes.csv");
-  ASSERT_EQ(tcp.size(), 401u);
-  ASSERT_FALSE(probes.empty());
-  int64_t first_seq = std::stoll(probes.front()[0]);
-  EXPECT_LT(first_seq, 20);  // joined within a second of the run's start
-  for (const auto& probe : probes) {
+// Checks the run's results: every frame from `first_seq` to `last_seq` has a probe
+// report within 1e-6 m of the TCP at the same time.
+void ExpectProbesMatchTcp(const fs::path& results, int64_t first_seq, int64_t last_seq) {
+  const auto tcp = ReadCsv(results / "tcp.csv");
+  const auto probes = ReadCsv(results / "probes.csv");
+  ASSERT_EQ(static_cast<int64_t>(probes.size()), last_seq - first_seq + 1);
+  for (size_t i = 0; i < probes.size(); ++i) {
+    const auto& probe = probes[i];
+    ASSERT_EQ(std::stoll(probe[0]), first_seq + static_cast<int64_t>(i));
     const auto& frame = tcp.at(std::stoul(probe[0]));
     EXPECT_EQ(probe[1], frame[0]);  // same simulated time
-    for (int i = 0; i < 3; ++i) {
-      EXPECT_NEAR(std::stod(probe[3 + i]), std::stod(frame[1 + i]), 1e-6) << "seq " << probe[0];
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_NEAR(std::stod(probe[3 + j]), std::stod(frame[1 + j]), 1e-6) << "seq " << probe[0];
     }
     EXPECT_GE(std::stoll(probe[6]), 0);
   }
-  // From the first answered frame on, none is missing.
-  EXPECT_EQ(static_cast<int64_t>(probes.size()), 401 - first_seq);
+}
+
+TEST_F(ViewerLinkTest, FollowingViewerAnswersEveryFrameWithTheTcp) {
+  const fs::path log = dir_ / "viewer.log";
+  ASSERT_EQ(
+      RunCommand(Viewer("--follow --exit-after-runs 1 > " + log.string() + " 2>&1 &")).exit_code,
+      0);
+  ASSERT_TRUE(WaitForLineIn(log.string(), "subscribed to")) << ReadTextFile(log.string());
+  const CommandOutcome run =
+      Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 5 --watch");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string run_id = run.output.substr(0, run.output.find('\n'));
+  ASSERT_TRUE(WaitForLineIn(log.string(), "viewer done")) << ReadTextFile(log.string());
+  const CommandOutcome result = Cli("result " + run_id + " --out " + (dir_ / "out").string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  ExpectProbesMatchTcp(dir_ / "out", 0, 400);
+}
+
+TEST_F(ViewerLinkTest, RunModeJoinsARunningRunAndAnswersFromThenOn) {
+  const CommandOutcome started =
+      Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 1");
+  ASSERT_EQ(started.exit_code, 0) << started.output;
+  const std::string run = started.output.substr(0, started.output.find('\n'));
+  const fs::path log = dir_ / "viewer.log";
+  ASSERT_EQ(RunCommand(Viewer("--run " + run + " > " + log.string() + " 2>&1 &")).exit_code, 0);
+  ASSERT_TRUE(WaitForLineIn(log.string(), "showing scene 'IRB1600'")) << ReadTextFile(log.string());
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ASSERT_EQ(Cli("cancel " + run).exit_code, 0);  // the viewer sees the end and exits
+  ASSERT_TRUE(WaitForLineIn(log.string(), "viewer done")) << ReadTextFile(log.string());
+  const CommandOutcome result = Cli("result " + run + " --out " + (dir_ / "out").string());
+  ASSERT_EQ(result.exit_code, 1) << result.output;  // CANCELLED
+  const auto probes = ReadCsv(dir_ / "out" / "probes.csv");
+  const auto tcp = ReadCsv(dir_ / "out" / "tcp.csv");
+  ASSERT_FALSE(probes.empty());
+  ExpectProbesMatchTcp(dir_ / "out", std::stoll(probes.front()[0]),
+                       static_cast<int64_t>(tcp.size()) - 1);
 }
 
 TEST_F(ViewerLinkTest, SceneThatDoesNotFitTheModelIsAnErrorNamingBoth) {
