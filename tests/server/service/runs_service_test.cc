@@ -157,7 +157,15 @@ TEST_F(RunsServiceTest, ServerLimitsAreResourceExhausted) {
   slow.set_duration_s(5.0);
   slow.set_realtime(1.0);
   const v1::RunInfo running = StartRunOk("irb1600", slow);
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  for (int i = 0; i < 1000; ++i) {  // until the worker has taken it off the queue
+    grpc::ClientContext context;
+    v1::GetRunRequest request;
+    request.set_run_id(running.id());
+    v1::RunInfo now;
+    ASSERT_TRUE(stub().GetRun(&context, request, &now).ok());
+    if (now.state() == v1::RUNNING) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   const v1::RunInfo queued = StartRunOk("irb1600", slow);
   status = StartRun("irb1600", slow, &info);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
