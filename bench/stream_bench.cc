@@ -261,6 +261,26 @@ void BM_BarePingPong(benchmark::State& state) {
 }
 BENCHMARK(BM_BarePingPong)->Iterations(2000)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
+// The same echo paced like BM_ProbeRoundTrip's frames (one every 10 ms): every round trip
+// then starts from sleeping threads, as a viewer's answer to a paced run does.
+void BM_BarePingPongPaced(benchmark::State& state) {
+  std::vector<double> latencies;
+  grpc::ClientContext context;
+  auto stream = BareServer().stub->PingPong(&context);
+  v1::Frame frame = BaselineService::SampleFrame(), echo;
+  for (auto _ : state) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    const Clock::time_point sent = Clock::now();
+    stream->Write(frame);
+    stream->Read(&echo);
+    latencies.push_back(std::chrono::duration<double, std::micro>(Clock::now() - sent).count());
+  }
+  stream->WritesDone();
+  stream->Finish();
+  Percentiles(state, latencies);
+}
+BENCHMARK(BM_BarePingPongPaced)->Iterations(400)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
 }  // namespace
 }  // namespace mbstream
 
