@@ -53,8 +53,9 @@ def start_server(binary, data_dir, extra_args):
 def start_viewer(binary, address):
     command = ["xvfb-run", "-a", binary, "--server", address, "--follow", "--offscreen",
                "--size", "320x240", "--no-hud"]
+    # Its own process group: SIGTERM then reaches the viewer, not only xvfb-run.
     viewer = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                              text=True)
+                              text=True, start_new_session=True)
     subscribed = threading.Event()
 
     def read_stdout():
@@ -69,6 +70,19 @@ def start_viewer(binary, address):
         viewer.kill()
         sys.exit("run_with_server: the viewer did not subscribe within %d s" % START_TIMEOUT_S)
     return viewer
+
+
+def stop_viewer(viewer):
+    """SIGTERM to the viewer's process group (xvfb-run, Xvfb and the viewer)."""
+    try:
+        os.killpg(viewer.pid, signal.SIGTERM)
+        viewer.wait(STOP_TIMEOUT_S)
+    except (ProcessLookupError, subprocess.TimeoutExpired):
+        try:
+            os.killpg(viewer.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        viewer.wait()
 
 
 def stop_server(server):
@@ -112,7 +126,7 @@ def main():
             code = subprocess.call(command, env=env)
         finally:
             if viewer:
-                stop_server(viewer)  # SIGTERM: the viewer stops its link and exits
+                stop_viewer(viewer)
             stopped = stop_server(server)
         print("run_with_server: command exited %d after %.1f s; server exited %d"
               % (code, time.monotonic() - began, stopped), file=sys.stderr)
