@@ -3,7 +3,7 @@
 //   BM_StreamFrames          frames/s from an as-fast-as-possible run to one subscriber
 //   BM_BareStreamFrames      frames/s of a bare server stream of the same Frame messages
 //   BM_ProbeRoundTrip        frame out of the server -> probe back (p50_us, p99_us)
-//   BM_BarePingPong          a bare bidi echo of one Frame (p50_us, p99_us)
+//   BM_BarePingPong/0, /10   a bare bidi echo of one Frame, hot or paced every 10 ms
 #include <benchmark/benchmark.h>
 #include <grpcpp/grpcpp.h>
 
@@ -244,12 +244,17 @@ void BM_BareStreamFrames(benchmark::State& state) {
 }
 BENCHMARK(BM_BareStreamFrames)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// A bare bidi echo of one Frame. range(0) = ms of pause before each echo: 0 is a hot loop
+// (the baseline); 10 paces it like BM_ProbeRoundTrip's frames, so that every round
+// trip starts from sleeping threads, as a viewer's answer to a paced run does.
 void BM_BarePingPong(benchmark::State& state) {
+  const auto pause = std::chrono::milliseconds(state.range(0));
   std::vector<double> latencies;
   grpc::ClientContext context;
   auto stream = BareServer().stub->PingPong(&context);
   v1::Frame frame = BaselineService::SampleFrame(), echo;
   for (auto _ : state) {
+    if (pause.count() > 0) std::this_thread::sleep_for(pause);
     const Clock::time_point sent = Clock::now();
     stream->Write(frame);
     stream->Read(&echo);
@@ -259,27 +264,8 @@ void BM_BarePingPong(benchmark::State& state) {
   stream->Finish();
   Percentiles(state, latencies);
 }
-BENCHMARK(BM_BarePingPong)->Iterations(2000)->Unit(benchmark::kMicrosecond)->UseRealTime();
-
-// The same echo paced like BM_ProbeRoundTrip's frames (one every 10 ms): every round trip
-// then starts from sleeping threads, as a viewer's answer to a paced run does.
-void BM_BarePingPongPaced(benchmark::State& state) {
-  std::vector<double> latencies;
-  grpc::ClientContext context;
-  auto stream = BareServer().stub->PingPong(&context);
-  v1::Frame frame = BaselineService::SampleFrame(), echo;
-  for (auto _ : state) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    const Clock::time_point sent = Clock::now();
-    stream->Write(frame);
-    stream->Read(&echo);
-    latencies.push_back(std::chrono::duration<double, std::micro>(Clock::now() - sent).count());
-  }
-  stream->WritesDone();
-  stream->Finish();
-  Percentiles(state, latencies);
-}
-BENCHMARK(BM_BarePingPongPaced)->Iterations(400)->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK(BM_BarePingPong)->Arg(0)->Iterations(2000)->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK(BM_BarePingPong)->Arg(10)->Iterations(400)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 }  // namespace
 }  // namespace mbstream

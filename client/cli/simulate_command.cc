@@ -12,6 +12,7 @@
 #include "server/results/results_files.h"
 #include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
+#include "server/wire/model_info.h"
 
 namespace mbstream::cli {
 
@@ -34,9 +35,7 @@ int RunSimulate(const SimulateOptions& options) {
     source = options.spec_path;
   }
   options.overrides.ApplyTo(spec);
-  std::vector<std::string> joints;
-  for (const Body& body : import.model.bodies) joints.push_back(body.joint.name);
-  const RunConfig config = ToRunConfig(spec, joints, source);
+  const RunConfig config = ToRunConfig(spec, JointNames(import.model), source);
 
   const RunResult result = Simulate(import.model, config);
   const RunProvenance provenance{import.model.name, options.model_path,

@@ -1,5 +1,4 @@
 #include "server/runs/model_registry.h"
-#include "server/runs/unix_time.h"
 
 #include <spdlog/spdlog.h>
 
@@ -11,6 +10,7 @@
 #include "server/parse/urdf_import.h"
 #include "server/runs/model_id.h"
 #include "server/runs/request_error.h"
+#include "server/runs/unix_time.h"
 #include "server/store/store.h"
 #include "server/wire/model_bundle_files.h"
 #include "server/wire/model_info.h"
@@ -48,8 +48,8 @@ ModelRegistry::ModelRegistry(Store* store, const ServerLimits& limits)
 }
 
 std::shared_ptr<const CompiledModel> ModelRegistry::Compile(const v1::ModelBundle& bundle,
-                                                            bool builtin,
-                                                            const std::string& id) const {
+                                                            bool builtin, const std::string& id,
+                                                            int64_t created_unix_ms) const {
   const int64_t bytes = BundleBytes(bundle);
   if (bytes > limits_.max_model_bytes) {
     throw RequestError(RequestErrorKind::kResourceExhausted,
@@ -90,7 +90,7 @@ std::shared_ptr<const CompiledModel> ModelRegistry::Compile(const v1::ModelBundl
   for (const v1::Asset& asset : bundle.assets()) asset_bytes += asset.data().size();
   info.set_asset_bytes(asset_bytes);
   info.set_builtin(builtin);
-  info.set_created_unix_ms(NowUnixMs());
+  info.set_created_unix_ms(created_unix_ms);
   return compiled;
 }
 
@@ -102,7 +102,7 @@ std::shared_ptr<const CompiledModel> ModelRegistry::Submit(const v1::ModelBundle
     auto found = by_id_.find(id);
     if (found != by_id_.end()) return found->second;
   }
-  std::shared_ptr<const CompiledModel> compiled = Compile(bundle, builtin, id);
+  std::shared_ptr<const CompiledModel> compiled = Compile(bundle, builtin, id, NowUnixMs());
   std::lock_guard<std::mutex> lock(mutex_);
   auto [it, inserted] = by_id_.emplace(id, compiled);
   if (!inserted) return it->second;  // submitted concurrently by another request
@@ -120,9 +120,8 @@ int ModelRegistry::LoadStored() {
     std::optional<v1::ModelBundle> bundle = store_->GetModelBundle(stored.id());
     if (!bundle) continue;
     try {
-      auto compiled =
-          std::make_shared<CompiledModel>(*Compile(*bundle, stored.builtin(), stored.id()));
-      compiled->info.set_created_unix_ms(stored.created_unix_ms());
+      std::shared_ptr<const CompiledModel> compiled =
+          Compile(*bundle, stored.builtin(), stored.id(), stored.created_unix_ms());
       std::lock_guard<std::mutex> lock(mutex_);
       if (by_id_.emplace(stored.id(), compiled).second) order_.push_back(stored.id());
       ++loaded;

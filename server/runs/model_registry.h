@@ -50,7 +50,8 @@ class ModelRegistry {
 
  private:
   std::shared_ptr<const CompiledModel> Compile(const v1::ModelBundle& bundle, bool builtin,
-                                               const std::string& id) const;
+                                               const std::string& id,
+                                               int64_t created_unix_ms) const;
 
   Store* store_;
   ServerLimits limits_;

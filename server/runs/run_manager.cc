@@ -1,5 +1,4 @@
 #include "server/runs/run_manager.h"
-#include "server/runs/unix_time.h"
 
 #include <spdlog/spdlog.h>
 
@@ -11,8 +10,10 @@
 
 #include "server/common/check.h"
 #include "server/runs/request_error.h"
+#include "server/runs/unix_time.h"
 #include "server/sim/drive_set.h"
 #include "server/sim/formulation_choice.h"
+#include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
 #include "server/store/store.h"
 #include "server/wire/stats_conversion.h"
@@ -28,10 +29,6 @@ namespace {
 RequestError NotFound(const std::string& run_id) {
   return RequestError(RequestErrorKind::kNotFound,
                       "no run '" + run_id + "' on this server; `mbstream runs` lists them");
-}
-
-int64_t ExpectedFrames(const RunConfig& config) {
-  return static_cast<int64_t>(std::floor(config.duration / config.output_interval + 1e-9)) + 1;
 }
 
 }  // namespace
@@ -72,7 +69,7 @@ v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& s
                            " s exceeds this server's limit of " +
                            std::to_string(limits_.max_duration_s) + " s; shorten the run");
   }
-  const int64_t frames = ExpectedFrames(config);
+  const int64_t frames = OutputFrameCount(config.duration, config.output_interval);
   if (spec.max_output_frames() > 0 && frames > spec.max_output_frames()) {
     throw InputError("spec.max_output_frames is " + std::to_string(spec.max_output_frames()) +
                      " but duration_s / output_interval_s gives " + std::to_string(frames) +

@@ -21,6 +21,11 @@ namespace mbstream {
 
 namespace {
 
+// Frames at 0, interval, 2 interval, ... up to `duration`.
+long RegularFrameCount(double duration, double interval) {
+  return static_cast<long>(std::floor(duration / interval * (1.0 + 1e-12))) + 1;
+}
+
 double ThreadCpuSeconds() {
   timespec ts{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
@@ -28,11 +33,12 @@ double ThreadCpuSeconds() {
 }
 
 // Output times k * interval up to the duration, the duration itself always last.
+// Frame k at k * interval, and a last one at `duration` when it is not a multiple.
 std::vector<double> OutputTimes(double duration, double interval) {
+  const long regular = RegularFrameCount(duration, interval);
   std::vector<double> times;
-  const auto count = static_cast<long>(std::floor(duration / interval * (1.0 + 1e-12)));
-  times.reserve(static_cast<size_t>(count) + 2);
-  for (long k = 0; k <= count; ++k) times.push_back(std::min(duration, k * interval));
+  times.reserve(static_cast<size_t>(OutputFrameCount(duration, interval)));
+  for (long k = 0; k < regular; ++k) times.push_back(std::min(duration, k * interval));
   if (duration - times.back() > 1e-12 * duration) times.push_back(duration);
   return times;
 }
@@ -98,6 +104,12 @@ void RunJointSpace(const Model& model, const RunConfig& config, const DriveSet& 
 }
 
 }  // namespace
+
+long OutputFrameCount(double duration, double interval) {
+  const long regular = RegularFrameCount(duration, interval);
+  const double last = std::min(duration, (regular - 1) * interval);
+  return regular + (duration - last > 1e-12 * duration ? 1 : 0);
+}
 
 RunResult Simulate(const Model& model_in, const RunConfig& config, FrameSink* sink,
                    const std::atomic<bool>* cancel) {

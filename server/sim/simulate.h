@@ -17,4 +17,8 @@ namespace mbstream {
 RunResult Simulate(const Model& model, const RunConfig& config, FrameSink* sink = nullptr,
                    const std::atomic<bool>* cancel = nullptr);
 
+// How many output frames a run of `duration` s with a frame every `interval` s has: one at
+// each multiple of the interval from 0, and one at `duration` when it is not a multiple.
+long OutputFrameCount(double duration, double interval);
+
 }  // namespace mbstream

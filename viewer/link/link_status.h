@@ -2,7 +2,6 @@
 // service (read).
 #pragma once
 
-#include <atomic>
 #include <mutex>
 #include <string>
 
@@ -33,12 +32,12 @@ class LinkStatus {
       s.set_missed_frames(0);
       s.set_probe_reports(0);
       s.set_runs_seen(s.runs_seen() + 1);
+      compute_ns_total_ = 0;
     });
-    compute_ns_total_ = 0;
   }
   void AddFrames(double t_s, int frames, int64_t missed, int probes, int64_t compute_ns) {
-    compute_ns_total_ += compute_ns;
     Set([&](v1::ViewerStatus& s) {
+      compute_ns_total_ += compute_ns;
       s.set_t_s(t_s);
       s.set_frames(s.frames() + frames);
       s.set_missed_frames(s.missed_frames() + missed);
@@ -63,7 +62,7 @@ class LinkStatus {
   }
   mutable std::mutex mutex_;
   v1::ViewerStatus status_;
-  std::atomic<int64_t> compute_ns_total_{0};
+  int64_t compute_ns_total_ = 0;  // this run's probe computation time, guarded by mutex_
 };
 
 }  // namespace mbstream::viewer

@@ -49,6 +49,10 @@ TEST_F(ModelsServiceTest, SameBundleTwiceGivesTheSameId) {
   EXPECT_EQ(first.joints_size(), 6);
   EXPECT_EQ(first.tcp_frame(), "tcp");
   EXPECT_GT(first.total_mass_kg(), 0.0);
+  ASSERT_EQ(first.formulations_size(), 2);
+  EXPECT_EQ(first.formulations(1).formulation(), "joint");
+  EXPECT_EQ(first.formulations(1).equations(), 12);
+  EXPECT_EQ(first.formulations(1).jacobian_nnz(), 78);  // what a joint/bdf run reports
   // A different URDF text is a different model.
   bundle.set_urdf(bundle.urdf() + "\n<!-- changed -->\n");
   EXPECT_NE(SubmitOk(bundle).id(), first.id());
@@ -110,7 +114,6 @@ TEST_F(ModelsServiceTest, UnknownModelIsNotFoundAndNamesTheKnownOnes) {
 }
 
 TEST_F(ModelsServiceTest, OversizedModelIsResourceExhaustedAndTheServerStaysHealthy) {
-  host_.reset();
   ServerLimits limits;
   limits.max_model_bytes = 1000;
   StartServer(limits);
@@ -130,7 +133,6 @@ TEST_F(ModelsServiceTest, HealthServiceSaysServing) {
 }
 
 TEST_F(ModelsServiceTest, TooManyLinksIsResourceExhausted) {
-  host_.reset();
   ServerLimits limits;
   limits.max_links = 3;
   StartServer(limits);

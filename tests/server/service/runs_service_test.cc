@@ -40,6 +40,19 @@ TEST_F(RunsServiceTest, SeedRunMatchesDirectKinematics) {
   EXPECT_EQ(info.stats().formulation(), "kinematic");
 }
 
+TEST_F(RunsServiceTest, ExpectedFramesIncludeTheLastFrameOfAnUnevenDuration) {
+  v1::RunSpec spec = SceneSpec("seed-run.json");
+  spec.set_duration_s(1.03);  // frames at 0, 0.05, ..., 1.0 and one at 1.03
+  const v1::RunInfo started = StartRunOk("irb1600", spec);
+  EXPECT_EQ(started.expected_frames(), 22);
+  const v1::RunInfo ended = WaitForEnd(started.id());
+  ASSERT_EQ(ended.state(), v1::FINISHED) << ended.message();
+  EXPECT_EQ(ended.frames(), 22);
+  spec.set_max_output_frames(21);
+  v1::RunInfo info;
+  EXPECT_EQ(StartRun("irb1600", spec, &info).error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+}
+
 TEST_F(RunsServiceTest, WatchRunStreamsProgressAndFramesToTheFinalState) {
   v1::RunSpec spec = SceneSpec("seed-run.json");
   spec.set_realtime(20.0);  // 1 s of wall time
@@ -133,7 +146,6 @@ TEST_F(RunsServiceTest, BadRequestsGetTheirStatusCodes) {
 }
 
 TEST_F(RunsServiceTest, ServerLimitsAreResourceExhausted) {
-  host_.reset();
   ServerLimits limits;
   limits.max_duration_s = 10.0;
   limits.max_output_frames = 1000;
@@ -184,9 +196,7 @@ TEST_F(RunsServiceTest, ShutdownInterruptsRunningRunsAndTheyStayListed) {
   spec.set_realtime(1.0);
   const v1::RunInfo started = StartRunOk("irb1600", spec);
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  const std::string data = (data_.path() / "data").string();
   host_->Shutdown();
-  host_.reset();
   StartServer();  // same data directory
   grpc::ClientContext context;
   v1::GetRunRequest request;

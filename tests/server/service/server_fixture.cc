@@ -25,6 +25,8 @@ TempDir::~TempDir() {
 }
 
 void ServerTest::StartServer(const ServerLimits& limits) {
+  stub_.reset();
+  host_.reset();  // a test may restart the server on the same data directory
   ServerConfig config;
   config.listen = "127.0.0.1:0";
   config.data_dir = (data_.path() / "data").string();

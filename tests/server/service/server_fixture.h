@@ -27,7 +27,8 @@ class TempDir {
 
 class ServerTest : public ::testing::Test {
  protected:
-  // Starts a server with the built-in models of models/ and `limits`.
+  // Starts (or restarts) a server with the built-in models of models/ and `limits`, on
+  // this test's data directory.
   void StartServer(const ServerLimits& limits = ServerLimits());
   void TearDown() override;
 
