@@ -1,9 +1,34 @@
 #include "server/dynamics/rnea.h"
 
 #include "server/common/check.h"
+#include "server/kinematics/joint_spatial_transform.h"
 #include "server/kinematics/joint_transform.h"
 
 namespace mbstream {
+
+namespace {
+
+// Body i's pose, velocity, acceleration and net force (base to tips), specialised on its
+// joint's Shape (see joint_spatial_transform.h).
+template <int Shape>
+void ForwardPass(const Body& body, int i, double q, double qd, double qdd, const Vector6d& a_base,
+                 Data& data) {
+  JointTransform(body.joint, q, &data.X_parent[i]);
+  const Pose& X = data.X_parent[i];
+  const Vector6d vJ = data.S[i] * qd;
+  if (body.parent == kBase) {
+    data.v[i] = vJ;
+    data.a[i] = MotionToChildAcross<Shape>(X, a_base) + data.S[i] * qdd;
+  } else {
+    data.v[i] = MotionToChildAcross<Shape>(X, data.v[body.parent]) + vJ;
+    data.a[i] = MotionToChildAcross<Shape>(X, data.a[body.parent]) + data.S[i] * qdd +
+                CrossMotion(data.v[i], vJ);
+  }
+  const RigidInertia& inertia = body.inertia;
+  data.f[i] = inertia.Apply(data.a[i]) + CrossForce(data.v[i], inertia.Apply(data.v[i]));
+}
+
+}  // namespace
 
 const Eigen::VectorXd& Rnea(const Model& model, Data& data, ConstVectorRef q, ConstVectorRef qd,
                             ConstVectorRef qdd) {
@@ -13,25 +38,17 @@ const Eigen::VectorXd& Rnea(const Model& model, Data& data, ConstVectorRef q, Co
   a_base.tail<3>() = -model.gravity;  // gravity as an upward acceleration of the base
   for (int i = 0; i < n; ++i) {
     const Body& body = model.bodies[i];
-    JointTransform(body.joint, q(i), &data.X_parent[i]);
-    const Pose& X = data.X_parent[i];
-    const Vector6d vJ = data.S[i] * qd(i);
-    if (body.parent == kBase) {
-      data.v[i] = vJ;
-      data.a[i] = MotionToChild(X, a_base) + data.S[i] * qdd(i);
-    } else {
-      data.v[i] = MotionToChild(X, data.v[body.parent]) + vJ;
-      data.a[i] =
-          MotionToChild(X, data.a[body.parent]) + data.S[i] * qdd(i) + CrossMotion(data.v[i], vJ);
-    }
-    const RigidInertia& inertia = body.inertia;
-    data.f[i] = inertia.Apply(data.a[i]) + CrossForce(data.v[i], inertia.Apply(data.v[i]));
+    DispatchJointShape(body.joint, [&](auto shape) {
+      ForwardPass<shape()>(body, i, q(i), qd(i), qdd(i), a_base, data);
+    });
   }
   for (int i = n - 1; i >= 0; --i) {
     const Body& body = model.bodies[i];
     data.tau(i) = data.S[i].dot(data.f[i]) + body.joint.armature * qdd(i);
     if (body.parent != kBase) {
-      data.f[body.parent] += ForceToParent(data.X_parent[i], data.f[i]);
+      DispatchJointShape(body.joint, [&](auto shape) {
+        data.f[body.parent] += ForceToParentAcross<shape()>(data.X_parent[i], data.f[i]);
+      });
     }
   }
   return data.tau;

@@ -23,7 +23,7 @@ struct RigidInertia {
   }
 
   // I * m for a motion vector m = [w; v_Bo]: the body's spatial momentum about Bo.
-  Vector6d Apply(const Vector6d& m) const {
+  [[gnu::always_inline]] Vector6d Apply(const Vector6d& m) const {
     const Vector3d w = m.head<3>();
     const Vector3d p = mass * (m.tail<3>() + w.cross(com));  // linear momentum
     Vector6d h;

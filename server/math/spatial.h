@@ -75,7 +75,7 @@ inline Vector6d ForceToParent(const Pose& X_AB, const Vector6d& f_B) {
 }
 
 // Motion cross product m1 x m2 (Featherstone's crm).
-inline Vector6d CrossMotion(const Vector6d& m1, const Vector6d& m2) {
+[[gnu::always_inline]] inline Vector6d CrossMotion(const Vector6d& m1, const Vector6d& m2) {
   Vector6d r;
   const Vector3d w = m1.head<3>(), v = m1.tail<3>();
   r.head<3>() = w.cross(m2.head<3>());
@@ -84,7 +84,7 @@ inline Vector6d CrossMotion(const Vector6d& m1, const Vector6d& m2) {
 }
 
 // Force cross product m x* f (Featherstone's crf).
-inline Vector6d CrossForce(const Vector6d& m, const Vector6d& f) {
+[[gnu::always_inline]] inline Vector6d CrossForce(const Vector6d& m, const Vector6d& f) {
   Vector6d r;
   const Vector3d w = m.head<3>(), v = m.tail<3>();
   r.head<3>() = w.cross(f.head<3>()) + v.cross(f.tail<3>());
