@@ -8,14 +8,20 @@ namespace mbstream {
 double KineticEnergy(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& q,
                      const Eigen::Ref<const Eigen::VectorXd>& qd) {
   const int n = model.num_dofs();
-  MBSTREAM_CHECK(q.size() == n && qd.size() == n);
+  MBSTREAM_CHECK(q.size() == n);
+  for (int i = 0; i < n; ++i) JointTransform(model.bodies[i].joint, q(i), &data.X_parent[i]);
+  return KineticEnergyAfterKinematics(model, data, qd);
+}
+
+double KineticEnergyAfterKinematics(const Model& model, Data& data,
+                                    const Eigen::Ref<const Eigen::VectorXd>& qd) {
+  const int n = model.num_dofs();
+  MBSTREAM_CHECK(qd.size() == n);
   double energy = 0.0;
   for (int i = 0; i < n; ++i) {
     const Body& body = model.bodies[i];
-    JointTransform(body.joint, q(i), &data.X_parent[i]);
-    const Pose& X = data.X_parent[i];
-    data.v[i] = data.S[i] * qd(i);
-    if (body.parent != kBase) data.v[i] += MotionToChild(X, data.v[body.parent]);
+    data.v[i] = data.S[i] * qd(i);  // spatial velocity in the body frame
+    if (body.parent != kBase) data.v[i] += MotionToChild(data.X_parent[i], data.v[body.parent]);
     energy += 0.5 * data.v[i].dot(body.inertia.Apply(data.v[i]));
     energy += 0.5 * body.joint.armature * qd(i) * qd(i);
   }

@@ -1,6 +1,8 @@
 #include "server/sim/drive_set.h"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "server/common/check.h"
 
@@ -20,6 +22,40 @@ DriveSet::DriveSet(const Model& model, const RunConfig& config) : drives_(config
     if (drive.kind == DriveConfig::Kind::kPrescribed) ++num_prescribed_;
     if (drive.kind != DriveConfig::Kind::kPassive || damping > 0.0) any_work_ = true;
   }
+  // The sine terms of ActuatorEfforts, sharing equal arguments. Equal means the same bits,
+  // so that sharing never changes a value (0.0 and -0.0 stay apart).
+  const auto argument_index = [this](double omega, double phase) {
+    const auto same = [](double a, double b) {
+      return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+    };
+    for (size_t k = 0; k < arguments_.size(); ++k) {
+      if (same(arguments_[k].omega, omega) && same(arguments_[k].phase, phase)) {
+        return static_cast<int>(k);
+      }
+    }
+    arguments_.push_back({omega, phase});
+    return static_cast<int>(arguments_.size()) - 1;
+  };
+  for (const DriveConfig& drive : drives_) {
+    EffortLaw law{drive.kind};
+    law.first_term = static_cast<int>(terms_.size());
+    if (drive.kind == DriveConfig::Kind::kTorque) {
+      law.base = drive.constant;
+      terms_.push_back({argument_index(drive.omega, drive.phase), drive.amplitude, 0.0});
+    } else if (drive.kind == DriveConfig::Kind::kPdServo) {
+      const Trajectory& ref = drive.trajectory;
+      law.spline_reference = ref.kind != Trajectory::Kind::kSine;
+      law.base = ref.offset;
+      law.kp = drive.kp;
+      law.kd = drive.kd;
+      for (size_t k = 0; !law.spline_reference && k < ref.amplitude.size(); ++k) {
+        terms_.push_back({argument_index(ref.omega[k], ref.phase[k]), ref.amplitude[k],
+                          ref.amplitude[k] * ref.omega[k]});
+      }
+    }
+    law.end_term = static_cast<int>(terms_.size());
+    laws_.push_back(law);
+  }
 }
 
 double DriveSet::ActuatorEffort(int joint, double t, double q, double qd) const {
@@ -36,6 +72,54 @@ double DriveSet::ActuatorEffort(int joint, double t, double q, double qd) const 
       return 0.0;
   }
   return 0.0;
+}
+
+DriveSet::Workspace DriveSet::MakeWorkspace() const {
+  Workspace workspace;
+  workspace.owner = this;
+  workspace.sin.assign(arguments_.size(), 0.0);
+  workspace.cos.assign(arguments_.size(), 0.0);
+  return workspace;
+}
+
+void DriveSet::ActuatorEfforts(double t, const double* q, const double* qd, Workspace& workspace,
+                               double* effort) const {
+  MBSTREAM_CHECK_MSG(workspace.owner == this, "a DriveSet::Workspace of another DriveSet");
+  double* const sin = workspace.sin.data();
+  double* const cos = workspace.cos.data();
+  for (size_t k = 0; k < arguments_.size(); ++k) {
+    ::sincos(arguments_[k].omega * t + arguments_[k].phase, &sin[k], &cos[k]);
+  }
+  const SineTerm* const terms = terms_.data();
+  const EffortLaw* const laws = laws_.data();
+  const int n = static_cast<int>(laws_.size());
+  for (int i = 0; i < n; ++i) {
+    const EffortLaw& law = laws[i];
+    // The sums of TrajectoryEvaluator::SineAt (servo: q_ref, qd_ref) or the torque law
+    // (constant + amplitude * sin), term by term in the same order.
+    double value = law.base, rate = 0.0;
+    for (int k = law.first_term; k < law.end_term; ++k) {
+      value += terms[k].amplitude * sin[terms[k].argument];
+      rate += terms[k].amplitude_omega * cos[terms[k].argument];
+    }
+    switch (law.kind) {
+      case DriveConfig::Kind::kTorque:
+        effort[i] = value;
+        break;
+      case DriveConfig::Kind::kPdServo:
+        if (law.spline_reference) {
+          const TrajectoryPoint ref = references_[i].At(t);
+          value = ref.q;
+          rate = ref.qd;
+        }
+        effort[i] = law.kp * (value - q[i]) + law.kd * (rate - qd[i]);
+        break;
+      case DriveConfig::Kind::kPassive:
+      case DriveConfig::Kind::kPrescribed:
+        effort[i] = 0.0;
+        break;
+    }
+  }
 }
 
 }  // namespace mbstream

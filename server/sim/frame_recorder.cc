@@ -44,11 +44,13 @@ bool FrameRecorder::Record(double t, const Eigen::VectorXd& q, const Eigen::Vect
     potential = extras->potential;
     if (!tcp.allFinite() || !std::isfinite(kinetic) || !std::isfinite(potential)) return false;
   } else {
-    ForwardKinematics(model_, data_, q);
-    if (model_.tcp_frame >= 0) tcp = FramePosition(data_, model_.tcp_frame);
+    // One pass of kinematics (the bodies' poses; the TCP alone of the frames) serves the
+    // TCP and both energies.
+    BodyKinematics(model_, data_, q);
+    if (model_.tcp_frame >= 0) tcp = FramePositionFromBodies(model_, data_, model_.tcp_frame);
     if (result_.has_energy) {
       potential = PotentialEnergy(model_, data_);
-      kinetic = KineticEnergy(model_, data_, q, qd);
+      kinetic = KineticEnergyAfterKinematics(model_, data_, qd);
       if (!std::isfinite(kinetic) || !std::isfinite(potential)) return false;
     }
   }
@@ -92,8 +94,8 @@ void FrameRecorder::TrackEnergy(double t, double energy, const Eigen::VectorXd& 
 
 void FrameRecorder::TrackTcpError(double t, const Vector3d& tcp) {
   for (int i = 0; i < drives_.size(); ++i) q_ref_(i) = drives_.Reference(i, t).q;
-  ForwardKinematics(model_, data_, q_ref_);
-  const double error = (tcp - FramePosition(data_, model_.tcp_frame)).norm();
+  BodyKinematics(model_, data_, q_ref_);
+  const double error = (tcp - FramePositionFromBodies(model_, data_, model_.tcp_frame)).norm();
   result_.stats.tcp_error_max = std::max(result_.stats.tcp_error_max, error);
 }
 

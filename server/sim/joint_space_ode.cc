@@ -19,9 +19,10 @@ JointSpaceOde::JointSpaceOde(const Model& model, const DriveSet& drives)
       qd_(Eigen::VectorXd::Zero(n_)),
       qdd_(Eigen::VectorXd::Zero(n_)),
       effort_(Eigen::VectorXd::Zero(n_)),
-      tau_(Eigen::VectorXd::Zero(n_)) {
+      tau_(Eigen::VectorXd::Zero(n_)),
+      drive_workspace_(drives.MakeWorkspace()) {
   for (int i = 0; i < n_; ++i) {
-    if (!drives.prescribed(i)) free_.push_back(i);
+    (drives.prescribed(i) ? prescribed_ : free_).push_back(i);
   }
   const auto nf = static_cast<Eigen::Index>(free_.size());
   M_free_ = Eigen::MatrixXd::Zero(nf, nf);
@@ -49,21 +50,22 @@ bool JointSpaceOde::Evaluate(double t, const double* y) {
 }
 
 void JointSpaceOde::EvaluateState(double t, const double* y) {
+  double* const q = q_.data();
+  double* const qd = qd_.data();
   for (int i = 0; i < n_; ++i) {
-    q_(i) = y[i];
-    qd_(i) = y[n_ + i];
-    if (drives_.prescribed(i)) {
-      const TrajectoryPoint ref = drives_.Reference(i, t);
-      if (!drives_.velocity_source(i)) q_(i) = ref.q;
-      qd_(i) = ref.qd;
-      qdd_(i) = ref.qdd;
-    }
+    q[i] = y[i];
+    qd[i] = y[n_ + i];
   }
-  // Applied efforts of the free joints: actuator minus damping.
-  for (int i : free_) {
-    effort_(i) = drives_.ActuatorEffort(i, t, q_(i), qd_(i));
-    tau_(i) = effort_(i) - drives_.damping(i) * qd_(i);
+  for (int i : prescribed_) {
+    const TrajectoryPoint ref = drives_.Reference(i, t);
+    if (!drives_.velocity_source(i)) q_(i) = ref.q;
+    qd_(i) = ref.qd;
+    qdd_(i) = ref.qdd;
   }
+  // Applied efforts of the free joints: actuator minus damping. The prescribed joints'
+  // entries become 0 here; ComputePrescribedEfforts fills them when asked.
+  drives_.ActuatorEfforts(t, q_.data(), qd_.data(), drive_workspace_, effort_.data());
+  for (int i : free_) tau_(i) = effort_(i) - drives_.damping(i) * qd_(i);
 }
 
 bool JointSpaceOde::EvaluateAccelerations() {

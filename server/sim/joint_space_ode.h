@@ -42,7 +42,8 @@ class JointSpaceOde : public OdeSystem {
   int JacobianNonZeros() const;
 
   // Evaluates the mechanism at (t, y): fills q(), qd(), qdd() (prescribed joints from their
-  // references) and, for non-prescribed joints, drive_effort() (their actuator's effort).
+  // references) and drive_effort() (the actuators' efforts; 0 for the prescribed joints
+  // until ComputePrescribedEfforts).
   // Returns false if any acceleration is not finite. Allocates nothing.
   bool Evaluate(double t, const double* y);
   // What an output frame needs, without the dynamics when it can: q(), qd() and the
@@ -66,8 +67,10 @@ class JointSpaceOde : public OdeSystem {
   const int n_;
   Data data_;
   Eigen::VectorXd q_, qd_, qdd_, effort_, tau_;
-  std::vector<int> free_;   // indices of non-prescribed joints
-  Eigen::MatrixXd M_free_;  // free-free block of M
+  std::vector<int> free_;                // indices of non-prescribed joints
+  std::vector<int> prescribed_;          // indices of prescribed joints
+  DriveSet::Workspace drive_workspace_;  // for DriveSet::ActuatorEfforts
+  Eigen::MatrixXd M_free_;               // free-free block of M
   Eigen::VectorXd rhs_free_;
   Eigen::LLT<Eigen::MatrixXd> llt_;
   // For Jacobian(): the drive laws' slopes d(effort)/dq and d(effort)/dqd, workspaces.
