@@ -8,6 +8,9 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "server/integrate/dense_lu.h"
+#include "server/integrate/structured_dense_solver.h"
+
 namespace mbstream::sundials {
 
 namespace {
@@ -17,27 +20,60 @@ namespace {
 inline sunindextype Length(N_Vector v) { return NV_LENGTH_S(v); }
 inline double* Data(N_Vector v) { return NV_DATA_S(v); }
 
-// z = a x + b y for kN > 0 elements (known at compile time: the loop unrolls) or n.
-template <int kN>
-inline void LinearSumN(sunindextype runtime_n, double a, const double* x, double b, const double* y,
-                       double* z) {
-  const sunindextype n = kN > 0 ? kN : runtime_n;
-  for (sunindextype i = 0; i < n; ++i) z[i] = a * x[i] + b * y[i];
+// Runs body(n) with the vectors' length n: Fixed<12> when it is 12 (the joint-space ODE of a
+// 6-DoF arm; the loops unroll), else the runtime value.
+template <typename Body>
+inline void WithLength(sunindextype n, Body body) {
+  if (n == 12) {
+    body(Fixed<12>());
+  } else {
+    body(n);
+  }
 }
 
-// CVODE's predictor and corrector call this some 25 times per step.
+// Two doubles in one SSE2 register (a GCC and Clang vector extension; arithmetic is lane by
+// lane, with a scalar operand broadcast). The 12-element kernels run on six pairs: GCC
+// vectorises the plain loops only behind run-time overlap checks, when at all.
+using Pair = double __attribute__((vector_size(16)));
+inline Pair Load(const double* p) {
+  Pair v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline void Store(double* p, Pair v) { std::memcpy(p, &v, sizeof v); }
+
+// z = op(x, y) element by element (op takes doubles or Pairs); z may be x or y.
+template <typename Op>
+inline void Map(sunindextype n, const double* x, const double* y, double* z, Op op) {
+  if (n == 12) {
+    for (int i = 0; i < 12; i += 2) Store(z + i, op(Load(x + i), Load(y + i)));
+  } else {
+    for (sunindextype i = 0; i < n; ++i) z[i] = op(x[i], y[i]);
+  }
+}
+
+// z = a x + b y. Of CVODE's calls (20 a step) most have a = b = 1 (the predictor, with z = x,
+// q (q + 1) / 2 a step; the Newton update) and most others b = 1 (the Newton residual):
+// multiplying by 1 is exact, so skipping it gives the plain formula's bits.
 void LinearSum(double a, N_Vector x, double b, N_Vector y, N_Vector z) {
   const sunindextype n = Length(z);
-  if (n == 12) {
-    LinearSumN<12>(n, a, Data(x), b, Data(y), Data(z));
+  const double* xd = Data(x);
+  const double* yd = Data(y);
+  double* zd = Data(z);
+  if (b == 1.0) {
+    if (a == 1.0) {
+      Map(n, xd, yd, zd, [](auto xi, auto yi) { return xi + yi; });
+    } else {
+      Map(n, xd, yd, zd, [a](auto xi, auto yi) { return a * xi + yi; });
+    }
   } else {
-    LinearSumN<0>(n, a, Data(x), b, Data(y), Data(z));
+    Map(n, xd, yd, zd, [a, b](auto xi, auto yi) { return a * xi + b * yi; });
   }
 }
 
 void Const(double c, N_Vector z) {
   double* zd = Data(z);
-  std::fill(zd, zd + Length(z), c);
+  WithLength(Length(z), [&](auto n) { std::fill(zd, zd + n, c); });
 }
 
 void Prod(N_Vector x, N_Vector y, N_Vector z) {
@@ -56,40 +92,28 @@ void Div(N_Vector x, N_Vector y, N_Vector z) {
   for (sunindextype i = 0; i < n; ++i) zd[i] = xd[i] / yd[i];
 }
 
-template <int kN>
-inline void ScaleN(sunindextype runtime_n, double c, const double* x, double* z) {
-  const sunindextype n = kN > 0 ? kN : runtime_n;
-  for (sunindextype i = 0; i < n; ++i) z[i] = c * x[i];
-}
-
 void Scale(double c, N_Vector x, N_Vector z) {
-  const sunindextype n = Length(z);
-  if (n == 12) {
-    ScaleN<12>(n, c, Data(x), Data(z));
-  } else {
-    ScaleN<0>(n, c, Data(x), Data(z));
-  }
+  const double* xd = Data(x);
+  Map(Length(z), xd, xd, Data(z), [c](auto xi, auto) { return c * xi; });
 }
 
+// Abs, Inv and AddConst: once a step each, for the error weights.
 void Abs(N_Vector x, N_Vector z) {
-  const sunindextype n = Length(z);
   const double* xd = Data(x);
   double* zd = Data(z);
-  for (sunindextype i = 0; i < n; ++i) zd[i] = std::abs(xd[i]);
+  WithLength(Length(z), [&](auto n) {
+    for (sunindextype i = 0; i < n; ++i) zd[i] = std::abs(xd[i]);
+  });
 }
 
 void Inv(N_Vector x, N_Vector z) {
-  const sunindextype n = Length(z);
   const double* xd = Data(x);
-  double* zd = Data(z);
-  for (sunindextype i = 0; i < n; ++i) zd[i] = 1.0 / xd[i];
+  Map(Length(z), xd, xd, Data(z), [](auto xi, auto) { return 1.0 / xi; });
 }
 
 void AddConst(N_Vector x, double b, N_Vector z) {
-  const sunindextype n = Length(z);
   const double* xd = Data(x);
-  double* zd = Data(z);
-  for (sunindextype i = 0; i < n; ++i) zd[i] = xd[i] + b;
+  Map(Length(z), xd, xd, Data(z), [b](auto xi, auto) { return xi + b; });
 }
 
 double DotProd(N_Vector x, N_Vector y) {
@@ -159,27 +183,36 @@ sunbooleantype InvTest(N_Vector x, N_Vector z) {
   return no_zero;
 }
 
-// z = sum_k c[k] X[k]; element by element, so any X[k] may be z.
+// z = sum_k c[k] X[k], summed in k order (CVodeGetDky, once an output); any X[k] may be z.
 int LinearCombination(int nvec, double* c, N_Vector* X, N_Vector z) {
   const sunindextype n = Length(z);
   double* zd = Data(z);
-  for (sunindextype i = 0; i < n; ++i) {
-    double sum = c[0] * Data(X[0])[i];
-    for (int k = 1; k < nvec; ++k) sum += c[k] * Data(X[k])[i];
-    zd[i] = sum;
+  if (n != 12) {
+    for (sunindextype i = 0; i < n; ++i) {
+      double sum = c[0] * Data(X[0])[i];
+      for (int k = 1; k < nvec; ++k) sum += c[k] * Data(X[k])[i];
+      zd[i] = sum;
+    }
+    return 0;
   }
+  // Term by term into six pairs of sums (the same operations per element, in registers).
+  Pair sum[6];
+  const double* x0 = Data(X[0]);
+  for (int p = 0; p < 6; ++p) sum[p] = c[0] * Load(x0 + 2 * p);
+  for (int k = 1; k < nvec; ++k) {
+    const double* xk = Data(X[k]);
+    for (int p = 0; p < 6; ++p) sum[p] += c[k] * Load(xk + 2 * p);
+  }
+  for (int p = 0; p < 6; ++p) Store(zd + 2 * p, sum[p]);
   return 0;
 }
 
-// Z[k] = a[k] x + Y[k].
+// Z[k] = a[k] x + Y[k] (cvCompleteStep, q + 1 terms with Z = Y: the Nordsieck history).
 int ScaleAddMulti(int nvec, double* a, N_Vector x, N_Vector* Y, N_Vector* Z) {
   const sunindextype n = Length(x);
+  const double* xd = Data(x);
   for (int k = 0; k < nvec; ++k) {
-    if (n == 12) {
-      LinearSumN<12>(n, a[k], Data(x), 1.0, Data(Y[k]), Data(Z[k]));
-    } else {
-      LinearSumN<0>(n, a[k], Data(x), 1.0, Data(Y[k]), Data(Z[k]));
-    }
+    Map(n, xd, Data(Y[k]), Data(Z[k]), [ak = a[k]](auto xi, auto yi) { return ak * xi + yi; });
   }
   return 0;
 }
@@ -237,79 +270,48 @@ SUNMatrix MatClone(SUNMatrix A) {
   return B;
 }
 
-// ---- dense LU (SUNDIALS' denseGETRF / denseGETRS, column-major) -----------------------------
+// ---- dense LU --------------------------------------------------------------------------------
 
-// kN > 0: the size at compile time (the loops unroll; CVODE's 12-state joint-space ODE calls
-// the solve about once per step), else `runtime_n`. Returns 0 or the 1-based column of a
-// zero pivot.
-template <int kN>
-sunindextype Factor(sunindextype runtime_n, double* a, sunindextype* pivots) {
-  const sunindextype n = kN > 0 ? kN : runtime_n;
-  for (sunindextype k = 0; k < n; ++k) {
-    double* col_k = a + k * n;
-    sunindextype l = k;
-    for (sunindextype i = k + 1; i < n; ++i) {
-      if (std::abs(col_k[i]) > std::abs(col_k[l])) l = i;
-    }
-    pivots[k] = l;
-    if (col_k[l] == 0.0) return k + 1;
-    if (l != k) {
-      for (sunindextype j = 0; j < n; ++j) std::swap(a[j * n + l], a[j * n + k]);
-    }
-    const double mult = 1.0 / col_k[k];
-    for (sunindextype i = k + 1; i < n; ++i) col_k[i] *= mult;
-    for (sunindextype j = k + 1; j < n; ++j) {
-      double* col_j = a + j * n;
-      const double a_kj = col_j[k];
-      if (a_kj != 0.0) {
-        for (sunindextype i = k + 1; i < n; ++i) col_j[i] -= a_kj * col_k[i];
-      }
-    }
-  }
-  return 0;
-}
-
-template <int kN>
-void Substitute(sunindextype runtime_n, const double* a, const sunindextype* pivots, double* x) {
-  const sunindextype n = kN > 0 ? kN : runtime_n;
-  for (sunindextype k = 0; k < n; ++k) {
-    if (pivots[k] != k) std::swap(x[k], x[pivots[k]]);
-  }
-  for (sunindextype k = 0; k < n - 1; ++k) {
-    const double* col_k = a + k * n;
-    const double xk = x[k];
-    for (sunindextype i = k + 1; i < n; ++i) x[i] -= col_k[i] * xk;
-  }
-  for (sunindextype k = n - 1; k > 0; --k) {
-    const double* col_k = a + k * n;
-    x[k] /= col_k[k];
-    const double xk = x[k];
-    for (sunindextype i = 0; i < k; ++i) x[i] -= col_k[i] * xk;
-  }
-  x[0] /= a[0];
-}
-
+// The structured (Schur complement) factorisation when the matrix has the form of a
+// second-order ODE's Newton matrix, else SUNDIALS' full LU; the solve follows the pivots.
 int LuSetup(SUNLinearSolver S, SUNMatrix A) {
   auto* content = static_cast<SUNLinearSolverContent_Dense>(S->content);
   if (SM_ROWS_D(A) != SM_COLUMNS_D(A)) return SUNLS_ILL_INPUT;
   const sunindextype n = SM_COLUMNS_D(A);
   double* a = SM_DATA_D(A);
   sunindextype* pivots = content->pivots;
-  const sunindextype zero_pivot = n == 12 ? Factor<12>(n, a, pivots) : Factor<0>(n, a, pivots);
+  sunindextype zero_pivot = FactorStructured(n, a, pivots);
+  if (zero_pivot == kNotStructured) {
+    zero_pivot =
+        n == 12 ? LuFactor(Fixed<12>(), Fixed<12>(), a, pivots) : LuFactor(n, n, a, pivots);
+  }
   content->last_flag = zero_pivot;
   return zero_pivot > 0 ? SUNLS_LUFACT_FAIL : SUNLS_SUCCESS;
+}
+
+// x = A^-1 b with the factors of a full LU.
+void Substitute(sunindextype n, const double* a, const sunindextype* pivots, const double* b,
+                double* x) {
+  if (n == 12) {  // in a local copy, which the compiler need not reload after every store
+    double v[12];
+    std::copy(b, b + 12, v);
+    LuSubstitute(Fixed<12>(), Fixed<12>(), a, pivots, v);
+    std::copy(v, v + 12, x);
+  } else {
+    if (x != b) std::copy(b, b + n, x);
+    LuSubstitute(n, n, a, pivots, x);
+  }
 }
 
 int LuSolve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, double /*tol*/) {
   auto* content = static_cast<SUNLinearSolverContent_Dense>(S->content);
   const sunindextype n = SM_COLUMNS_D(A);
   const double* a = SM_DATA_D(A);
-  double* xd = Data(x);
-  if (x != b) std::copy(Data(b), Data(b) + n, xd);
-  if (n == 12) {
-    Substitute<12>(n, a, content->pivots, xd);
+  const sunindextype* pivots = content->pivots;
+  if (IsStructuredFactor(n, pivots)) {
+    SolveStructured(n, a, pivots, Data(b), Data(x));
   } else {
-    Substitute<0>(n, a, content->pivots, xd);
+    Substitute(n, a, pivots, Data(b), Data(x));
   }
   content->last_flag = SUNLS_SUCCESS;
   return SUNLS_SUCCESS;

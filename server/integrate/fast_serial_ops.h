@@ -8,7 +8,10 @@
 // compute the same quantities with the same algorithms (the LU is SUNDIALS' own partial
 // pivoting, column by column), compiled with the project's flags; they also supply the fused
 // vector operations (linear combination, scale-add-multi), which CVODE otherwise emulates
-// with one linear sum per term. Nothing here allocates.
+// with one linear sum per term. The vector results are those of the plain formulas, bit for
+// bit (a x + b y, ...; the fast paths only skip multiplications by 1, which are exact). The
+// one change of algorithm: the Newton matrix of a second-order ODE, y = [q; qd], is factored
+// through its half-size Schur complement (structured_dense_solver.h). Nothing here allocates.
 #pragma once
 
 #include <sundials/sundials_linearsolver.h>
@@ -25,7 +28,7 @@ void InstallFastSerialOps(N_Vector vector);
 // A SUNDenseMatrix: zero, copy, scale-add-identity; clones inherit the replacements.
 void InstallFastDenseMatrixOps(SUNMatrix matrix);
 
-// A SUNLinSol_Dense: LU factorisation (setup) and solve.
+// A SUNLinSol_Dense: LU factorisation (setup; structured when the matrix allows) and solve.
 void InstallFastDenseSolverOps(SUNLinearSolver solver);
 
 }  // namespace mbstream::sundials
