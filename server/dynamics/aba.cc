@@ -17,7 +17,7 @@ namespace {
 // articulated inertia and bias force initialised to the body's own.
 template <int Shape>
 void ForwardPass(const Body& body, int i, double q, double qd, Data& data) {
-  JointTransform(body.joint, q, &data.X_parent[i]);
+  JointTransformOfShape<Shape>(body.joint, q, &data.X_parent[i]);
   const Vector6d vJ = data.S[i] * qd;
   if (body.parent == kBase) {
     data.v[i] = vJ;

@@ -13,7 +13,7 @@ namespace {
 template <int Shape>
 void ForwardPass(const Body& body, int i, double q, double qd, double qdd, const Vector6d& a_base,
                  Data& data) {
-  JointTransform(body.joint, q, &data.X_parent[i]);
+  JointTransformOfShape<Shape>(body.joint, q, &data.X_parent[i]);
   const Pose& X = data.X_parent[i];
   const Vector6d vJ = data.S[i] * qd;
   if (body.parent == kBase) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "server/kinematics/joint_spatial_transform.h"
 #include "server/math/spatial.h"
 #include "server/model/joint.h"
 
@@ -36,6 +37,27 @@ inline void JointTransform(const Joint& joint, double q, Pose* X_PB) {
   } else {
     X_PB->R = joint.X_PJ.R;
     X_PB->p = joint.X_PJ.p + joint.X_PJ.R * (joint.axis * q);
+  }
+}
+
+// JointTransform for Shape = JointShape(joint) known at compile time: a revolute joint about a
+// coordinate axis with an unrotated origin is one sincos and a plane rotation.
+template <int Shape>
+inline void JointTransformOfShape(const Joint& joint, double q, Pose* X_PB) {
+  if constexpr (Shape >= 0) {
+    double s, c;
+    ::sincos(q, &s, &c);
+    constexpr int i = (Shape + 1) % 3, j = (Shape + 2) % 3;
+    Matrix3d& R = X_PB->R;
+    R.setZero();
+    R(Shape, Shape) = 1.0;
+    R(i, i) = c;
+    R(i, j) = -s;
+    R(j, i) = s;
+    R(j, j) = c;
+    X_PB->p = joint.X_PJ.p;
+  } else {
+    JointTransform(joint, q, X_PB);
   }
 }
 

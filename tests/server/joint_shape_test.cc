@@ -46,6 +46,10 @@ TEST_P(JointShapeTest, SpecialisedTransformsMatchTheGeneralOnes) {
   const Matrix6d projected = I_B - U * U.transpose() * inv_D;
 
   DispatchJointShape(joint, [&](auto shape) {
+    Pose X_shape;
+    JointTransformOfShape<shape()>(joint, 0.83, &X_shape);
+    EXPECT_EQ(X_shape.R, X.R);  // bit for bit
+    EXPECT_EQ(X_shape.p, X.p);
     EXPECT_LT((MotionToChildAcross<shape()>(X, m) - MotionToChild(X, m)).norm(), 1e-14);
     EXPECT_LT((ForceToParentAcross<shape()>(X, f) - ForceToParent(X, f)).norm(), 1e-14);
 
