@@ -18,13 +18,13 @@ namespace internal {
 template <int K>
 inline void RotateAboutCoordinateAxis(double c, double s, Matrix3d& M) {
   constexpr int i = (K + 1) % 3, j = (K + 2) % 3;
-  #pragma GCC unroll 8
+#pragma GCC unroll 8
   for (int col = 0; col < 3; ++col) {
     const double mi = M(i, col), mj = M(j, col);
     M(i, col) = c * mi - s * mj;
     M(j, col) = s * mi + c * mj;
   }
-  #pragma GCC unroll 8
+#pragma GCC unroll 8
   for (int row = 0; row < 3; ++row) {
     const double mi = M(row, i), mj = M(row, j);
     M(row, i) = c * mi - s * mj;
@@ -61,25 +61,25 @@ inline void AddInertiaAcrossCoordinateJoint(double c, double s, const Vector3d& 
   Matrix3d B = I_B.topRightCorner<3, 3>();
   if constexpr (kProject) {
     double u[6], w[6];
-    #pragma GCC unroll 8
+#pragma GCC unroll 8
     for (int r = 0; r < 6; ++r) {
       u[r] = (*U)(r);
       w[r] = u[r] * inv_D;
     }
-    #pragma GCC unroll 8
+#pragma GCC unroll 8
     for (int r = 0; r < 3; ++r) {
-      #pragma GCC unroll 8
+#pragma GCC unroll 8
       for (int q = r; q < 3; ++q) {
         a[r][q] = a[q][r] = I_B(r, q) - w[r] * u[q];
         cc[r][q] = cc[q][r] = I_B(3 + r, 3 + q) - w[3 + r] * u[3 + q];
       }
-      #pragma GCC unroll 8
+#pragma GCC unroll 8
       for (int q = 0; q < 3; ++q) B(r, q) -= w[r] * u[3 + q];
     }
   } else {
-    #pragma GCC unroll 8
+#pragma GCC unroll 8
     for (int r = 0; r < 3; ++r) {
-      #pragma GCC unroll 8
+#pragma GCC unroll 8
       for (int q = r; q < 3; ++q) {
         a[r][q] = a[q][r] = I_B(r, q);
         cc[r][q] = cc[q][r] = I_B(3 + r, 3 + q);
@@ -89,7 +89,7 @@ inline void AddInertiaAcrossCoordinateJoint(double c, double s, const Vector3d& 
   if constexpr (K >= 0) {
     constexpr int k = K, i = (K + 1) % 3, j = (K + 2) % 3;
     const double cs = c * s, c2 = c * c, s2 = s * s;
-    #pragma GCC unroll 8
+#pragma GCC unroll 8
     for (auto* m : {&a, &cc}) {
       double(&x)[3][3] = *m;
       const double ki = x[k][i], kj = x[k][j], ii = x[i][i], jj = x[j][j], ij = x[i][j];
@@ -107,7 +107,7 @@ inline void AddInertiaAcrossCoordinateJoint(double c, double s, const Vector3d& 
   const double px = p.x(), py = p.y(), pz = p.z();
   // Q = [p]x C, row by row: [p]x = [0 -pz py; pz 0 -px; -py px 0].
   double Q[3][3];
-  #pragma GCC unroll 8
+#pragma GCC unroll 8
   for (int col = 0; col < 3; ++col) {
     Q[0][col] = -pz * cc[1][col] + py * cc[2][col];
     Q[1][col] = pz * cc[0][col] - px * cc[2][col];
@@ -115,7 +115,7 @@ inline void AddInertiaAcrossCoordinateJoint(double c, double s, const Vector3d& 
   }
   // T = [p]x B^T: T(r, col) = ([p]x row r) . B(col, :).
   double T[3][3];
-  #pragma GCC unroll 8
+#pragma GCC unroll 8
   for (int col = 0; col < 3; ++col) {
     T[0][col] = -pz * B(col, 1) + py * B(col, 2);
     T[1][col] = pz * B(col, 0) - px * B(col, 2);
@@ -124,9 +124,9 @@ inline void AddInertiaAcrossCoordinateJoint(double c, double s, const Vector3d& 
   // W = Q [p]x^T: W(r, q) = Q row r . ([p]x row q).
   const double P[3][3] = {{0.0, -pz, py}, {pz, 0.0, -px}, {-py, px, 0.0}};
   Matrix6d& out = *I_A;
-  #pragma GCC unroll 8
+#pragma GCC unroll 8
   for (int r = 0; r < 3; ++r) {
-    #pragma GCC unroll 8
+#pragma GCC unroll 8
     for (int q = r; q < 3; ++q) {
       const double w = Q[r][0] * P[q][0] + Q[r][1] * P[q][1] + Q[r][2] * P[q][2];
       const double tl = a[r][q] + T[r][q] + T[q][r] + w;
@@ -136,9 +136,9 @@ inline void AddInertiaAcrossCoordinateJoint(double c, double s, const Vector3d& 
       if (q != r) out(3 + q, 3 + r) += cc[r][q];
     }
   }
-  #pragma GCC unroll 8
+#pragma GCC unroll 8
   for (int r = 0; r < 3; ++r) {
-    #pragma GCC unroll 8
+#pragma GCC unroll 8
     for (int q = 0; q < 3; ++q) {
       const double tr = B(r, q) + Q[r][q];
       out(r, 3 + q) += tr;
