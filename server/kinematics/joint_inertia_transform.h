@@ -32,21 +32,6 @@ inline void RotateAboutCoordinateAxis(double c, double s, Matrix3d& M) {
   }
 }
 
-inline void RotateAboutCoordinateAxis(int k, double c, double s, Matrix3d& M) {
-  switch (k) {
-    case 0:
-      return RotateAboutCoordinateAxis<0>(c, s, M);
-    case 1:
-      return RotateAboutCoordinateAxis<1>(c, s, M);
-    default:
-      return RotateAboutCoordinateAxis<2>(c, s, M);
-  }
-}
-
-}  // namespace internal
-
-namespace internal {
-
 // The fast path of AddInertiaAcrossJoint for X_AB = (R, p) with R a rotation by (c, s) about
 // coordinate axis K (K < 0: R = I). I_B = [A B; B^T C] with A and C symmetric (a spatial
 // inertia or an articulated one): only their upper triangles are read and computed. With
@@ -147,6 +132,20 @@ inline void AddInertiaAcrossCoordinateJoint(double c, double s, const Vector3d& 
   }
 }
 
+// AddInertiaAcrossCoordinateJoint<K, kProject> for a joint of Shape >= kTranslatingJoint,
+// its (cos, sin) read from X_AB.R (see CoordinateRotation in joint_transform.h).
+template <int Shape, bool kProject>
+inline void AddInertiaAcrossShape(const Pose& X_AB, const Matrix6d& I_B, Matrix6d* I_A,
+                                  const Vector6d* U = nullptr, double inv_D = 0.0) {
+  if constexpr (Shape == kTranslatingJoint) {
+    AddInertiaAcrossCoordinateJoint<-1, kProject>(1.0, 0.0, X_AB.p, I_B, I_A, U, inv_D);
+  } else {
+    constexpr int i = (Shape + 1) % 3, j = (Shape + 2) % 3;
+    AddInertiaAcrossCoordinateJoint<Shape, kProject>(X_AB.R(i, i), X_AB.R(j, i), X_AB.p, I_B, I_A,
+                                                     U, inv_D);
+  }
+}
+
 }  // namespace internal
 
 // I_A += X_AB^T I_B X_AB for X_AB = JointTransform(joint, q) and Shape = JointShape(joint)
@@ -157,11 +156,8 @@ template <int Shape>
 inline void AddInertiaAcross(const Pose& X_AB, const Matrix6d& I_B, Matrix6d* I_A) {
   if constexpr (Shape == kGeneralJoint) {
     AddInertiaToParent(X_AB, I_B, I_A);
-  } else if constexpr (Shape == kTranslatingJoint) {
-    internal::AddInertiaAcrossCoordinateJoint<-1>(1.0, 0.0, X_AB.p, I_B, I_A);
   } else {
-    constexpr int i = (Shape + 1) % 3, j = (Shape + 2) % 3;
-    internal::AddInertiaAcrossCoordinateJoint<Shape>(X_AB.R(i, i), X_AB.R(j, i), X_AB.p, I_B, I_A);
+    internal::AddInertiaAcrossShape<Shape, false>(X_AB, I_B, I_A);
   }
 }
 
@@ -173,12 +169,8 @@ inline void AddProjectedInertiaAcross(const Pose& X_AB, Matrix6d& I_B, const Vec
   if constexpr (Shape == kGeneralJoint) {
     I_B.noalias() -= (U * inv_D) * U.transpose();
     AddInertiaToParent(X_AB, I_B, I_A);
-  } else if constexpr (Shape == kTranslatingJoint) {
-    internal::AddInertiaAcrossCoordinateJoint<-1, true>(1.0, 0.0, X_AB.p, I_B, I_A, &U, inv_D);
   } else {
-    constexpr int i = (Shape + 1) % 3, j = (Shape + 2) % 3;
-    internal::AddInertiaAcrossCoordinateJoint<Shape, true>(X_AB.R(i, i), X_AB.R(j, i), X_AB.p, I_B,
-                                                           I_A, &U, inv_D);
+    internal::AddInertiaAcrossShape<Shape, true>(X_AB, I_B, I_A, &U, inv_D);
   }
 }
 

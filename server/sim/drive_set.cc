@@ -58,20 +58,41 @@ DriveSet::DriveSet(const Model& model, const RunConfig& config) : drives_(config
   }
 }
 
-double DriveSet::ActuatorEffort(int joint, double t, double q, double qd) const {
-  const DriveConfig& drive = drives_[joint];
-  switch (drive.kind) {
+// The sums of TrajectoryEvaluator::SineAt (servo: q_ref, qd_ref) or the torque law
+// (constant + amplitude * sin), term by term in the same order; sin_cos(argument, &s, &c)
+// supplies the sine and cosine of each term's argument.
+template <typename SinCos>
+double DriveSet::LawEffort(int joint, double t, double q, double qd, SinCos&& sin_cos) const {
+  const EffortLaw& law = laws_[joint];
+  double value = law.base, rate = 0.0;
+  for (int k = law.first_term; k < law.end_term; ++k) {
+    const SineTerm& term = terms_[k];
+    double s, c;
+    sin_cos(term.argument, &s, &c);
+    value += term.amplitude * s;
+    rate += term.amplitude_omega * c;
+  }
+  switch (law.kind) {
     case DriveConfig::Kind::kTorque:
-      return drive.constant + drive.amplitude * std::sin(drive.omega * t + drive.phase);
-    case DriveConfig::Kind::kPdServo: {
-      const TrajectoryPoint ref = references_[joint].At(t);
-      return drive.kp * (ref.q - q) + drive.kd * (ref.qd - qd);
-    }
+      return value;
+    case DriveConfig::Kind::kPdServo:
+      if (law.spline_reference) {
+        const TrajectoryPoint ref = references_[joint].At(t);
+        value = ref.q;
+        rate = ref.qd;
+      }
+      return law.kp * (value - q) + law.kd * (rate - qd);
     case DriveConfig::Kind::kPassive:
     case DriveConfig::Kind::kPrescribed:
       return 0.0;
   }
   return 0.0;
+}
+
+double DriveSet::ActuatorEffort(int joint, double t, double q, double qd) const {
+  return LawEffort(joint, t, q, qd, [this, t](int argument, double* s, double* c) {
+    ::sincos(arguments_[argument].omega * t + arguments_[argument].phase, s, c);
+  });
 }
 
 DriveSet::Workspace DriveSet::MakeWorkspace() const {
@@ -84,42 +105,19 @@ DriveSet::Workspace DriveSet::MakeWorkspace() const {
 
 void DriveSet::ActuatorEfforts(double t, const double* q, const double* qd, Workspace& workspace,
                                double* effort) const {
-  MBSTREAM_CHECK_MSG(workspace.owner == this, "a DriveSet::Workspace of another DriveSet");
+  MBSTREAM_CHECK_MSG(
+      workspace.owner == this,
+      "a DriveSet::Workspace of another DriveSet: make it with this DriveSet's MakeWorkspace()");
   double* const sin = workspace.sin.data();
   double* const cos = workspace.cos.data();
   for (size_t k = 0; k < arguments_.size(); ++k) {
     ::sincos(arguments_[k].omega * t + arguments_[k].phase, &sin[k], &cos[k]);
   }
-  const SineTerm* const terms = terms_.data();
-  const EffortLaw* const laws = laws_.data();
-  const int n = static_cast<int>(laws_.size());
-  for (int i = 0; i < n; ++i) {
-    const EffortLaw& law = laws[i];
-    // The sums of TrajectoryEvaluator::SineAt (servo: q_ref, qd_ref) or the torque law
-    // (constant + amplitude * sin), term by term in the same order.
-    double value = law.base, rate = 0.0;
-    for (int k = law.first_term; k < law.end_term; ++k) {
-      value += terms[k].amplitude * sin[terms[k].argument];
-      rate += terms[k].amplitude_omega * cos[terms[k].argument];
-    }
-    switch (law.kind) {
-      case DriveConfig::Kind::kTorque:
-        effort[i] = value;
-        break;
-      case DriveConfig::Kind::kPdServo:
-        if (law.spline_reference) {
-          const TrajectoryPoint ref = references_[i].At(t);
-          value = ref.q;
-          rate = ref.qd;
-        }
-        effort[i] = law.kp * (value - q[i]) + law.kd * (rate - qd[i]);
-        break;
-      case DriveConfig::Kind::kPassive:
-      case DriveConfig::Kind::kPrescribed:
-        effort[i] = 0.0;
-        break;
-    }
-  }
+  const auto shared = [sin, cos](int argument, double* s, double* c) {
+    *s = sin[argument];
+    *c = cos[argument];
+  };
+  for (int i = 0; i < size(); ++i) effort[i] = LawEffort(i, t, q[i], qd[i], shared);
 }
 
 }  // namespace mbstream

@@ -56,6 +56,10 @@ class DriveSet {
   double damping(int joint) const { return damping_[joint]; }
 
  private:
+  // Joint's effort given how the sine and cosine of each of its terms' arguments are found.
+  template <typename SinCos>
+  double LawEffort(int joint, double t, double q, double qd, SinCos&& sin_cos) const;
+
   std::vector<DriveConfig> drives_;
   std::vector<TrajectoryEvaluator> references_;
   std::vector<double> damping_;

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -74,8 +75,25 @@ RunConfig MixedDrives() {
   return config;
 }
 
-// ActuatorEfforts against ActuatorEffort joint by joint at random (t, q, qd), bit for bit,
-// without allocating; each time twice (the workspace reused, as by Newton iterations).
+// The drive laws written out from the configuration and the reference trajectories
+// (TrajectoryEvaluator), independently of DriveSet's compact form.
+double LawFromConfig(const DriveSet& drives, const DriveConfig& drive, int joint, double t,
+                     double q, double qd) {
+  switch (drive.kind) {
+    case DriveConfig::Kind::kTorque:
+      return drive.constant + drive.amplitude * std::sin(drive.omega * t + drive.phase);
+    case DriveConfig::Kind::kPdServo: {
+      const TrajectoryPoint ref = drives.Reference(joint, t);
+      return drive.kp * (ref.q - q) + drive.kd * (ref.qd - qd);
+    }
+    default:
+      return 0.0;
+  }
+}
+
+// ActuatorEfforts and ActuatorEffort against the laws written out, joint by joint at random
+// (t, q, qd), bit for bit, without allocating; each time twice (the workspace reused, as by
+// Newton iterations).
 void ExpectEffortsMatchPerJointLaws(const Model& model, const RunConfig& config) {
   const DriveSet drives(model, config);
   DriveSet::Workspace workspace = drives.MakeWorkspace();
@@ -94,7 +112,9 @@ void ExpectEffortsMatchPerJointLaws(const Model& model, const RunConfig& config)
     drives.ActuatorEfforts(t, q.data(), qd.data(), workspace, effort.data());
     EXPECT_EQ(testing::AllocationCount() - before, 0);
     for (int i = 0; i < n; ++i) {
-      EXPECT_EQ(Bits(effort(i)), Bits(drives.ActuatorEffort(i, t, q(i), qd(i))))
+      const double expected = LawFromConfig(drives, config.drives[i], i, t, q(i), qd(i));
+      EXPECT_EQ(Bits(effort(i)), Bits(expected)) << "joint " << i << " at t = " << t;
+      EXPECT_EQ(Bits(drives.ActuatorEffort(i, t, q(i), qd(i))), Bits(expected))
           << "joint " << i << " at t = " << t;
     }
   }

@@ -10,7 +10,6 @@
 
 #include "server/dynamics/rnea.h"
 #include "server/integrate/integrator.h"
-#include "server/kinematics/joint_inertia_transform.h"
 #include "server/kinematics/joint_transform.h"
 #include "server/parse/urdf_import.h"
 #include "server/sim/trajectory.h"
@@ -118,28 +117,6 @@ TEST(JointSpaceOdeTest, JacobianMatchesDifferencesOfTheRightHandSide) {
   mixed.drives[0].kind = DriveConfig::Kind::kPrescribed;
   const DriveSet mixed_drives(model, mixed);
   EXPECT_FALSE(JointSpaceOde(model, mixed_drives).HasJacobian());
-}
-
-// The fast path of AddInertiaAcrossJoint (coordinate axes, unrotated origin; used by the
-// joint-space ODE's ABA and CRBA) against the general congruence X^T I X.
-TEST(JointSpaceOdeTest, InertiaAcrossCoordinateJointsMatchesTheCongruence) {
-  Matrix6d L = Matrix6d::Random();
-  const Matrix6d I_B = L * L.transpose() + Matrix6d::Identity();  // symmetric, like IA
-  for (int axis = 0; axis < 4; ++axis) {
-    Joint joint;
-    joint.type = axis < 3 ? JointType::kRevolute : JointType::kPrismatic;
-    joint.axis = axis < 3 ? Vector3d(Vector3d::Unit(axis)) : Vector3d(0.6, 0.0, 0.8);
-    joint.X_PJ.p = Vector3d(0.3, -0.2, 0.7);
-    DeriveJointShape(joint);
-    ASSERT_TRUE(joint.origin_rotation_identity);
-    Pose X;
-    JointTransform(joint, 0.83, &X);
-    Matrix6d fast = Matrix6d::Identity(), general = Matrix6d::Identity();
-    AddInertiaAcrossJoint(joint, X, I_B, &fast);
-    AddInertiaToParent(X, I_B, &general);
-    EXPECT_LT((fast - general).cwiseAbs().maxCoeff(), 1e-12 * general.cwiseAbs().maxCoeff())
-        << "axis " << axis;
-  }
 }
 
 TEST(JointSpaceOdeTest, TimeStepsDoNotAllocate) {
