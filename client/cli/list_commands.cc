@@ -22,21 +22,26 @@ int ListModels(const ClientOptions& client) {
   return 0;
 }
 
+// Pages through ListRuns (newest first) until `limit` runs (0 = all) are printed.
 int ListRuns(const ClientOptions& client, const std::string& model, int limit) {
-  grpc::ClientContext context;
+  std::unique_ptr<v1::Simulation::Stub> stub = ConnectSimulation(client);
   v1::ListRunsRequest request;
   request.set_model(model);
   request.set_limit(limit);
-  v1::ListRunsResponse response;
-  const grpc::Status status = ConnectSimulation(client)->ListRuns(&context, request, &response);
-  if (!status.ok()) return ReportRpcError("runs", client, status);
   std::printf("%-24s %-20s %-20s %9s %8s %s\n", "ID", "MODEL", "STATE", "T (s)", "FRAMES",
               "MESSAGE");
-  for (const v1::RunInfo& r : response.runs()) {
-    std::printf("%-24s %-20s %-20s %9.3f %8lld %s\n", r.id().c_str(), r.model_name().c_str(),
-                v1::RunState_Name(r.state()).c_str(), r.t_s(), static_cast<long long>(r.frames()),
-                r.message().c_str());
-  }
+  do {
+    grpc::ClientContext context;
+    v1::ListRunsResponse response;
+    const grpc::Status status = stub->ListRuns(&context, request, &response);
+    if (!status.ok()) return ReportRpcError("runs", client, status);
+    for (const v1::RunInfo& r : response.runs()) {
+      std::printf("%-24s %-20s %-20s %9.3f %8lld %s\n", r.id().c_str(), r.model_name().c_str(),
+                  v1::RunState_Name(r.state()).c_str(), r.t_s(), static_cast<long long>(r.frames()),
+                  r.message().c_str());
+    }
+    request.set_page_token(response.next_page_token());
+  } while (!request.page_token().empty());
   return 0;
 }
 

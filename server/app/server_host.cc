@@ -30,7 +30,30 @@ bool SplitPort(const std::string& address, std::string* host, std::string* port)
   return true;
 }
 
+bool IsLocal(const std::string& listen) {
+  for (const char* prefix : {"unix:", "127.", "localhost:", "[::1]:"}) {
+    if (listen.rfind(prefix, 0) == 0) return true;
+  }
+  return false;
+}
+
 }  // namespace
+
+std::vector<std::string> ExposureWarnings(const ServerConfig& config) {
+  std::vector<std::string> warnings;
+  if (IsLocal(config.listen)) return warnings;
+  if (config.tls.cert_file.empty()) {
+    warnings.push_back("listening without TLS on a network address (" + config.listen +
+                       "): requests, results and tokens cross the network in clear; give "
+                       "--tls-cert and --tls-key");
+  }
+  if (config.token_file.empty()) {
+    warnings.push_back("listening without tokens on a network address (" + config.listen +
+                       "): anyone who can reach it can submit and run models; give "
+                       "--token-file");
+  }
+  return warnings;
+}
 
 std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   std::unique_ptr<ServerHost> host(new ServerHost());

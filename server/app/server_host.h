@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "net/server_credentials.h"
 #include "server/runs/server_limits.h"
@@ -27,6 +28,11 @@ struct ServerConfig {
   net::ServerTls tls;                // certificate and key files; empty = insecure
   std::string token_file;            // tokens and roles (see authorizer.h); empty = none
 };
+
+// What an operator should know about who can reach the server as configured: one sentence
+// per exposure (no TLS on a network address, no tokens on a network address). Empty for a
+// loopback address or a unix socket, and for a network address with TLS and tokens.
+std::vector<std::string> ExposureWarnings(const ServerConfig& config);
 
 class ServerHost {
  public:

@@ -91,13 +91,7 @@ int main(int argc, char** argv) {
   }
   std::cout << "listening on " << host->address() << std::endl;
   spdlog::info("listening on {} (data in {})", host->address(), config.data_dir);
-  if (config.listen.rfind("unix:", 0) != 0 && config.listen.rfind("127.", 0) != 0 &&
-      config.listen.rfind("localhost:", 0) != 0 && config.listen.rfind("[::1]", 0) != 0) {
-    spdlog::warn(
-        "listening without TLS on a non-loopback address ({}): anyone who can reach "
-        "it can submit and run models",
-        config.listen);
-  }
+  for (const std::string& warning : mbstream::ExposureWarnings(config)) spdlog::warn("{}", warning);
   std::thread signal_waiter([&] {
     int signal = 0;
     sigwait(&signals, &signal);

@@ -26,6 +26,9 @@ v1::RunInfo Run::Info() const {
 
 void Run::Attach(const std::shared_ptr<Subscription>& subscriber, bool send_started) {
   std::lock_guard<std::mutex> lock(mutex_);
+  if (std::find(subscribers_.begin(), subscribers_.end(), subscriber) != subscribers_.end()) {
+    return;
+  }
   if (send_started) {  // a viewer (Subscribe): it will answer with probe reports
     subscriber->Push({StreamEvent::Kind::kRunStarted, id_, nullptr});
     ++viewers_;
@@ -71,9 +74,13 @@ int Run::subscriber_count() const {
   return static_cast<int>(subscribers_.size());
 }
 
-void Run::AddProbes(const std::vector<v1::ProbeReport>& reports) {
+bool Run::AddProbes(const std::vector<v1::ProbeReport>& reports, int64_t max_reports) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (ended_ || probes_taken_ ||
+        probe_count_ + static_cast<int64_t>(reports.size()) > max_reports) {
+      return false;
+    }
     for (const v1::ProbeReport& report : reports) {
       probes_.push_back(report);
       last_probe_seq_ = std::max(last_probe_seq_, report.seq());
@@ -81,10 +88,12 @@ void Run::AddProbes(const std::vector<v1::ProbeReport>& reports) {
     probe_count_ += static_cast<int64_t>(reports.size());
   }
   probes_arrived_.notify_all();
+  return true;
 }
 
 std::vector<v1::ProbeReport> Run::TakeProbes() {
   std::lock_guard<std::mutex> lock(mutex_);
+  probes_taken_ = true;
   return std::move(probes_);
 }
 

@@ -38,7 +38,8 @@ class Run {
 
   // Fan-out. Attach sends the run-started event (if asked), then the latest frame, then
   // every later frame; a subscriber attached after the run ended gets only the run-ended
-  // event. Publish keeps the frame for the result and pushes it to every subscriber.
+  // event. Attaching a subscriber that is attached already does nothing. Publish keeps the frame
+  // for the result and pushes it to every subscriber.
   void Attach(const std::shared_ptr<Subscription>& subscriber, bool send_started);
   void Publish(std::shared_ptr<const v1::Frame> frame);
   // Marks the run ended: pushes the run-ended event and detaches every subscriber.
@@ -47,9 +48,10 @@ class Run {
   int subscriber_count() const;
   const std::vector<std::shared_ptr<const v1::Frame>>& frames() const { return frames_; }
 
-  // Probe reports of viewers, kept until the run is stored.
-  void AddProbes(const std::vector<v1::ProbeReport>& reports);
-  std::vector<v1::ProbeReport> TakeProbes();
+  // Probe reports of viewers, kept until the run is stored: false (none kept) once the run
+  // has ended or when `max_reports` would be exceeded.
+  bool AddProbes(const std::vector<v1::ProbeReport>& reports, int64_t max_reports);
+  std::vector<v1::ProbeReport> TakeProbes();  // later reports are refused
   // Waits up to `timeout` until a probe report for frame `seq` or later arrived, when a
   // viewer (a Subscribe stream) has attached to this run. Returns at once otherwise.
   void WaitForProbes(int64_t seq, std::chrono::duration<double> timeout);
@@ -73,6 +75,7 @@ class Run {
   int64_t last_probe_seq_ = -1;
   int viewers_ = 0;  // Subscribe streams ever attached
   bool ended_ = false;
+  bool probes_taken_ = false;
 };
 
 }  // namespace mbstream

@@ -65,18 +65,19 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
                                        : "cancelled before it started";
     return outcome;
   }
-  run->UpdateInfo([&](v1::RunInfo& info) {
-    info.set_state(v1::RUNNING);
-    info.set_started_unix_ms(NowUnixMs());
-  });
-  store_->PutRun(run->Info());
   {
+    // One step under mutex_ with AttachFollow: each follower gets this run exactly once.
     std::lock_guard<std::mutex> lock(mutex_);
+    run->UpdateInfo([&](v1::RunInfo& info) {
+      info.set_state(v1::RUNNING);
+      info.set_started_unix_ms(NowUnixMs());
+    });
     followers_.erase(std::remove_if(followers_.begin(), followers_.end(),
                                     [](const auto& f) { return f->cancelled(); }),
                      followers_.end());
     for (const auto& follower : followers_) run->Attach(follower, true);
   }
+  store_->PutRun(run->Info());
   spdlog::info("run {} started", run->id());
 
   PublishingSink sink(run.get());

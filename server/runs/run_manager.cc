@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
 #include <random>
 
@@ -44,7 +45,7 @@ RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& 
 
 RunManager::~RunManager() { Shutdown("the server stopped"); }
 
-std::string RunManager::NewRunId() {
+std::string RunManager::NewRunId() const {
   const std::time_t now = std::time(nullptr);
   std::tm utc{};
   gmtime_r(&now, &utc);
@@ -55,11 +56,12 @@ std::string RunManager::NewRunId() {
     char suffix[16];
     std::snprintf(suffix, sizeof(suffix), "%04x", static_cast<unsigned>(random() & 0xffff));
     std::string id = std::string("r-") + stamp + "-" + suffix;
-    if (!active_.count(id) && !store_->GetRun(id)) return id;
+    if (!FindActive(id) && !store_->GetRun(id)) return id;
   }
 }
 
-v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& spec) {
+v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& spec,
+                              const std::string& owner) {
   std::shared_ptr<const CompiledModel> model = models_->Find(model_ref);
   RunConfig config = ToRunConfig(spec, model->joint_names, "spec");
   ChooseFormulation(config, DriveSet(model->model, config));  // throws if unavailable
@@ -68,6 +70,15 @@ v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& s
                        "spec.duration_s " + std::to_string(config.duration) +
                            " s exceeds this server's limit of " +
                            std::to_string(limits_.max_duration_s) + " s; shorten the run");
+  }
+  if (spec.realtime() > 0.0 && config.duration / spec.realtime() > limits_.max_duration_s) {
+    throw RequestError(RequestErrorKind::kResourceExhausted,
+                       "spec.realtime " + std::to_string(spec.realtime()) + " paces " +
+                           std::to_string(config.duration) + " s of simulated time over " +
+                           std::to_string(config.duration / spec.realtime()) +
+                           " s of wall time, more than this server's limit of " +
+                           std::to_string(limits_.max_duration_s) +
+                           " s; raise realtime or give 0 (unpaced)");
   }
   const int64_t frames = OutputFrameCount(config.duration, config.output_interval);
   if (spec.max_output_frames() > 0 && frames > spec.max_output_frames()) {
@@ -88,6 +99,7 @@ v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& s
   info.set_model_id(model->info.id());
   info.set_model_name(model->info.name());
   *info.mutable_spec() = spec;
+  info.mutable_spec()->DiscardUnknownFields();  // kept in every RunInfo: only what we read
   info.set_state(v1::QUEUED);
   info.set_expected_frames(frames);
   info.set_duration_s(config.duration);
@@ -95,24 +107,46 @@ v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& s
   for (const std::string& name : model->joint_names) info.add_joint_names(name);
   info.set_created_unix_ms(NowUnixMs());
   info.set_mbstream_version(MBSTREAM_VERSION);
+  info.set_owner(owner);
 
+  // No lock across the store's I/O: the id is checked free, then reserved in active_ under
+  // the lock (a reserved run counts against the queue limit), stored, and only then queued.
   std::shared_ptr<Run> run;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (stopping_) {
-      throw RequestError(RequestErrorKind::kUnavailable,
-                         "the server is shutting down; start the run on another server");
-    }
-    if (static_cast<int>(queue_.size()) >= limits_.max_queued_runs) {
-      throw RequestError(RequestErrorKind::kResourceExhausted,
-                         "the run queue is full (" + std::to_string(limits_.max_queued_runs) +
-                             " runs waiting); wait for runs to finish or cancel some");
-    }
+  for (;;) {
     info.set_id(NewRunId());
+    std::lock_guard<std::mutex> lock(mutex_);
+    CheckAccepting();
+    if (active_.count(info.id())) continue;
     run = std::make_shared<Run>(info, config, model);
-    store_->PutRun(info);
     active_[info.id()] = run;
-    queue_.push_back(run);
+    ++reserved_;
+    break;
+  }
+  bool queued = false;
+  std::string stop_reason;
+  try {
+    store_->PutRun(info);
+    std::lock_guard<std::mutex> lock(mutex_);
+    --reserved_;
+    if (!stopping_) {
+      queue_.push_back(run);
+      queued = true;
+    } else {
+      active_.erase(info.id());
+      stop_reason = stop_reason_;
+    }
+  } catch (...) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    --reserved_;
+    active_.erase(info.id());
+    throw;
+  }
+  if (!queued) {  // the server began to stop while the run was being stored
+    info.set_state(v1::INTERRUPTED);
+    info.set_message(stop_reason + " before this run started");
+    store_->PutRun(info);
+    throw RequestError(RequestErrorKind::kUnavailable,
+                       "the server is shutting down; start the run on another server");
   }
   work_.notify_one();
   spdlog::info("run {} queued: model {} '{}', {} s, {} frames", info.id(), model->info.id(),
@@ -141,18 +175,64 @@ v1::RunInfo RunManager::Get(const std::string& run_id) const {
   return *stored;
 }
 
-std::vector<v1::RunInfo> RunManager::List(const std::string& model, int limit) const {
+RunManager::RunPage RunManager::List(const std::string& model, int limit, int page_size,
+                                     const std::string& page_token) const {
+  constexpr int kDefaultPage = 100, kMaxPage = 1000;
+  if (limit < 0 || page_size < 0) {
+    throw InputError("ListRuns: limit and page_size must be >= 0 (0 = no limit / the default)");
+  }
+  // The token: "<last run id returned> <runs left of the limit, 0 = no limit>".
+  std::string after;
+  int64_t left = limit;
+  if (!page_token.empty()) {
+    const size_t space = page_token.find(' ');
+    char* end = nullptr;
+    left = space == std::string::npos ? -1 : std::strtoll(page_token.c_str() + space + 1, &end, 10);
+    if (left < 0 || *end != '\0') {
+      throw InputError(
+          "ListRuns: page_token is not one this server gave; pass "
+          "next_page_token unchanged, or none for the first page");
+    }
+    after = page_token.substr(0, space);
+  }
+  const int64_t size = std::min<int64_t>(
+      {page_size > 0 ? page_size : kDefaultPage, kMaxPage, left > 0 ? left : kMaxPage});
   std::string model_id;
   if (!model.empty()) model_id = models_->Find(model)->info.id();
-  std::vector<v1::RunInfo> runs = store_->ListRuns();
-  std::vector<v1::RunInfo> out;
-  for (auto it = runs.rbegin(); it != runs.rend(); ++it) {
-    if (!model_id.empty() && it->model_id() != model_id) continue;
-    std::shared_ptr<Run> run = FindActive(it->id());
-    out.push_back(run ? run->Info() : *it);
-    if (limit > 0 && static_cast<int>(out.size()) >= limit) break;
+  const std::vector<v1::RunInfo> runs = store_->ListRuns();
+  auto it = runs.rbegin();
+  if (!after.empty()) {
+    it = std::find_if(runs.rbegin(), runs.rend(),
+                      [&](const v1::RunInfo& r) { return r.id() == after; });
+    if (it == runs.rend()) {
+      throw InputError("ListRuns: page_token names run '" + after.substr(0, 64) +
+                       "', which this server does not have; start again without a token");
+    }
+    ++it;
   }
-  return out;
+  RunPage page;
+  size_t bytes = 0;
+  for (; it != runs.rend(); ++it) {
+    if (!model_id.empty() && it->model_id() != model_id) continue;
+    if (static_cast<int64_t>(page.runs.size()) == size) break;
+    std::shared_ptr<Run> run = FindActive(it->id());
+    v1::RunInfo info = run ? run->Info() : *it;
+    if (info.ByteSizeLong() > kMaxPageBytes / 4) {  // stored by an older server: spec unbounded
+      info.clear_spec();
+      info.set_message(info.message() + " [spec omitted from the list: too large; GetRun has it]");
+    }
+    bytes += info.ByteSizeLong();
+    if (bytes > kMaxPageBytes && !page.runs.empty()) break;
+    page.runs.push_back(std::move(info));
+  }
+  const int64_t remaining = left > 0 ? left - static_cast<int64_t>(page.runs.size()) : 0;
+  const bool more = std::any_of(it, runs.rend(), [&](const v1::RunInfo& r) {
+    return model_id.empty() || r.model_id() == model_id;
+  });
+  if (more && !page.runs.empty() && (left == 0 || remaining > 0)) {
+    page.next_page_token = page.runs.back().id() + " " + std::to_string(remaining);
+  }
+  return page;
 }
 
 RunManager::StoredResult RunManager::Result(const std::string& run_id) const {
@@ -171,6 +251,18 @@ RunManager::StoredResult RunManager::Result(const std::string& run_id) const {
   return result;
 }
 
+void RunManager::CheckAccepting() const {
+  if (stopping_) {
+    throw RequestError(RequestErrorKind::kUnavailable,
+                       "the server is shutting down; start the run on another server");
+  }
+  if (static_cast<int>(queue_.size()) + reserved_ >= limits_.max_queued_runs) {
+    throw RequestError(RequestErrorKind::kResourceExhausted,
+                       "the run queue is full (" + std::to_string(limits_.max_queued_runs) +
+                           " runs waiting); wait for runs to finish or cancel some");
+  }
+}
+
 void RunManager::CountSubscriber() {
   if (subscribers_ >= limits_.max_subscribers) {
     throw RequestError(RequestErrorKind::kResourceExhausted,
@@ -180,39 +272,50 @@ void RunManager::CountSubscriber() {
   ++subscribers_;
 }
 
-std::shared_ptr<Subscription> RunManager::SubscribeRun(const std::string& run_id,
-                                                       bool send_started) {
-  std::shared_ptr<Run> run = FindActive(run_id);
-  if (!run && !store_->GetRun(run_id)) throw NotFound(run_id);
-  auto subscriber = std::make_shared<Subscription>(limits_.subscriber_queue_frames);
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    CountSubscriber();
-  }
-  if (run) {
-    run->Attach(subscriber, send_started);
-  } else {  // ended and stored
-    if (send_started) subscriber->Push({StreamEvent::Kind::kRunStarted, run_id, nullptr});
-    subscriber->Push({StreamEvent::Kind::kRunEnded, run_id, nullptr});
-  }
-  return subscriber;
+std::shared_ptr<Subscription> RunManager::NewSubscription() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  CountSubscriber();
+  return std::make_shared<Subscription>(limits_.subscriber_queue_frames);
 }
 
-std::shared_ptr<Subscription> RunManager::SubscribeFollow() {
-  auto subscriber = std::make_shared<Subscription>(limits_.subscriber_queue_frames);
+void RunManager::AttachRun(const std::shared_ptr<Subscription>& subscriber,
+                           const std::string& run_id, bool send_started) {
+  if (std::shared_ptr<Run> run = FindActive(run_id)) {
+    run->Attach(subscriber, send_started);
+    return;
+  }
+  if (!store_->GetRun(run_id)) throw NotFound(run_id);
+  // Ended and stored (a run leaves active_ only after it is stored and has ended).
+  if (send_started) subscriber->Push({StreamEvent::Kind::kRunStarted, run_id, nullptr});
+  subscriber->Push({StreamEvent::Kind::kRunEnded, run_id, nullptr});
+}
+
+void RunManager::AttachFollow(const std::shared_ptr<Subscription>& subscriber) {
+  // Under mutex_, as the worker marks a run RUNNING and attaches the followers: the follower
+  // sees each run exactly once, either here or from the worker.
+  std::lock_guard<std::mutex> lock(mutex_);
+  followers_.push_back(subscriber);
   std::shared_ptr<Run> running;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    CountSubscriber();
-    followers_.push_back(subscriber);
-    for (const auto& [id, run] : active_) {
-      if (run->Info().state() == v1::RUNNING &&
-          (!running || run->Info().started_unix_ms() > running->Info().started_unix_ms())) {
-        running = run;
-      }
+  int64_t running_since = 0;
+  for (const auto& [id, run] : active_) {
+    const v1::RunInfo info = run->Info();
+    if (info.state() == v1::RUNNING && (!running || info.started_unix_ms() > running_since)) {
+      running = run;
+      running_since = info.started_unix_ms();
     }
   }
   if (running) running->Attach(subscriber, true);
+}
+
+std::shared_ptr<Subscription> RunManager::SubscribeRun(const std::string& run_id,
+                                                       bool send_started) {
+  std::shared_ptr<Subscription> subscriber = NewSubscription();
+  try {
+    AttachRun(subscriber, run_id, send_started);
+  } catch (...) {
+    Unsubscribe(subscriber);
+    throw;
+  }
   return subscriber;
 }
 
@@ -228,14 +331,9 @@ int RunManager::subscriber_count() const {
   return subscribers_;
 }
 
-void RunManager::AddProbes(const std::string& run_id, const std::vector<v1::ProbeReport>& reports) {
-  if (reports.empty()) return;
+bool RunManager::AddProbes(const std::string& run_id, const std::vector<v1::ProbeReport>& reports) {
   std::shared_ptr<Run> run = FindActive(run_id);
-  if (run && !run->ended()) {
-    run->AddProbes(reports);
-    return;
-  }
-  if (store_->GetRun(run_id)) store_->AddProbes(reports);  // late reports of a stored run
+  return run && run->AddProbes(reports, limits_.max_probe_reports);
 }
 
 void RunManager::Shutdown(const std::string& reason) {

@@ -33,12 +33,23 @@ class RunManager {
   // Validates the spec against the model and the limits, queues the run and returns its
   // info (state QUEUED). Throws InputError (bad spec), RequestError (unknown model, limits,
   // queue full, shutting down).
-  v1::RunInfo Start(const std::string& model, const v1::RunSpec& spec);
+  // `owner` is recorded in the run's info (RunInfo.owner).
+  v1::RunInfo Start(const std::string& model, const v1::RunSpec& spec,
+                    const std::string& owner = "");
   // Stops a queued or running run (state CANCELLED with the frames so far); an ended run is
   // returned unchanged. Throws RequestError(kNotFound).
   v1::RunInfo Cancel(const std::string& run_id);
   v1::RunInfo Get(const std::string& run_id) const;  // throws RequestError(kNotFound)
-  std::vector<v1::RunInfo> List(const std::string& model, int limit) const;  // newest first
+  // One page of runs, newest first (see ListRunsRequest): at most `page_size` runs
+  // (0 = 100, at most 1000) and kMaxPageBytes, of `model`'s runs (all when empty), at most
+  // `limit` overall (0 = no limit), after `page_token`. Throws InputError for a bad token.
+  struct RunPage {
+    std::vector<v1::RunInfo> runs;
+    std::string next_page_token;  // empty: no more runs
+  };
+  static constexpr size_t kMaxPageBytes = 4 << 20;
+  RunPage List(const std::string& model, int limit, int page_size,
+               const std::string& page_token) const;
 
   // The stored frames and probe reports of an ended run. Throws RequestError: kNotFound,
   // or kFailedPrecondition while the run is queued or running.
@@ -49,23 +60,31 @@ class RunManager {
   };
   StoredResult Result(const std::string& run_id) const;
 
-  // Subscriptions. A subscriber counts against limits.max_subscribers until Unsubscribe.
-  // SubscribeRun: the run's events (started if `send_started`, latest frame, frames, ended);
-  // an ended run gets started + ended at once. SubscribeFollow: every run that starts from
-  // now on, and the one running now (the newest), each with started/frames/ended.
+  // Subscriptions. A subscription counts against limits.max_subscribers from NewSubscription
+  // (RESOURCE_EXHAUSTED at the limit) until Unsubscribe, attached to something or not.
+  // AttachRun: the run's events (started if `send_started`, latest frame, frames, ended); an
+  // ended run gives started + ended at once; NOT_FOUND for an unknown run. AttachFollow:
+  // every run that starts from now on, and the one running now (the newest), each with
+  // started/frames/ended, each exactly once. SubscribeRun = NewSubscription + AttachRun.
+  std::shared_ptr<Subscription> NewSubscription();
+  void AttachRun(const std::shared_ptr<Subscription>& subscriber, const std::string& run_id,
+                 bool send_started);
+  void AttachFollow(const std::shared_ptr<Subscription>& subscriber);
   std::shared_ptr<Subscription> SubscribeRun(const std::string& run_id, bool send_started);
-  std::shared_ptr<Subscription> SubscribeFollow();
   void Unsubscribe(const std::shared_ptr<Subscription>& subscriber);
   int subscriber_count() const;
 
-  // A viewer's probe reports (latency already measured); kept with the run, stored with it.
-  void AddProbes(const std::string& run_id, const std::vector<v1::ProbeReport>& reports);
+  // A viewer's checked probe report (latency already measured), kept with its run until the
+  // run is stored. False (nothing kept) when the run is not integrating or waiting for its
+  // last probes any more, or already holds limits.max_probe_reports reports.
+  bool AddProbes(const std::string& run_id, const std::vector<v1::ProbeReport>& reports);
 
   // Stops accepting runs, interrupts queued and running ones (state INTERRUPTED, frames so
   // far stored), closes every subscription and joins the workers. Idempotent.
   void Shutdown(const std::string& reason);
 
   const ModelRegistry& models() const { return *models_; }
+  const ServerLimits& limits() const { return limits_; }
 
  private:
   // How a run ended, decided by Execute and applied by Finish after storing.
@@ -80,7 +99,10 @@ class RunManager {
   std::shared_ptr<Run> FindActive(const std::string& run_id) const;
   // Counts one more subscriber (mutex_ held), or throws RESOURCE_EXHAUSTED at the limit.
   void CountSubscriber();
-  std::string NewRunId();
+  // Throws UNAVAILABLE when stopping, RESOURCE_EXHAUSTED when the queue is full (mutex_ held).
+  void CheckAccepting() const;
+  // A run id used by no active or stored run (reads the store: call without mutex_).
+  std::string NewRunId() const;
 
   ModelRegistry* models_;
   Store* store_;
@@ -89,6 +111,7 @@ class RunManager {
   mutable std::mutex mutex_;
   std::condition_variable work_;
   std::deque<std::shared_ptr<Run>> queue_;
+  int reserved_ = 0;  // runs being stored by Start, not queued yet
   std::map<std::string, std::shared_ptr<Run>> active_;  // queued and running
   std::vector<std::shared_ptr<Subscription>> followers_;
   int subscribers_ = 0;

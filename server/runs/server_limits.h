@@ -16,6 +16,8 @@ struct ServerLimits {
   long max_internal_steps = 100'000'000;  // integrator steps of one run (budget cap)
   int subscriber_queue_frames = 4096;     // frames buffered per subscriber before dropping
   double probe_grace_s = 2.0;             // s a finished run waits for its viewers' last probes
+  double subscribe_start_s = 10.0;        // s a Subscribe stream may take to send `start`
+  int64_t max_probe_reports = 1'000'000;  // probe reports kept for one run
 };
 
 }  // namespace mbstream

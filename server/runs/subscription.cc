@@ -1,5 +1,7 @@
 #include "server/runs/subscription.h"
 
+#include <algorithm>
+
 #include "server/common/check.h"
 
 namespace mbstream {
@@ -13,23 +15,35 @@ void Subscription::Push(StreamEvent event) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (closed_ || cancelled_) return;
     if (event.kind == StreamEvent::Kind::kFrame) {
-      if (frames_queued_ == capacity_frames_) {
-        // Drop the oldest frame (the queue holds frames and rare start/end markers).
-        for (auto it = events_.begin(); it != events_.end(); ++it) {
-          if (it->kind == StreamEvent::Kind::kFrame) {
-            events_.erase(it);
-            --frames_queued_;
-            ++missed_;
-            ++missed_total_;
-            break;
-          }
-        }
-      }
+      if (frames_queued_ == capacity_frames_) DropOldestFrame();
       ++frames_queued_;
+    }
+    if (auto pending = pending_missed_.find(event.run_id); pending != pending_missed_.end()) {
+      event.missed += pending->second;
+      pending_missed_.erase(pending);
     }
     events_.push_back(std::move(event));
   }
   ready_.notify_one();
+}
+
+void Subscription::DropOldestFrame() {
+  auto oldest = std::find_if(events_.begin(), events_.end(), [](const StreamEvent& e) {
+    return e.kind == StreamEvent::Kind::kFrame;
+  });
+  MBSTREAM_CHECK(oldest != events_.end());
+  const int64_t dropped = 1 + oldest->missed;
+  const std::string run_id = std::move(oldest->run_id);
+  auto next = events_.erase(oldest);
+  --frames_queued_;
+  missed_total_ += 1;
+  next =
+      std::find_if(next, events_.end(), [&](const StreamEvent& e) { return e.run_id == run_id; });
+  if (next != events_.end()) {
+    next->missed += dropped;
+  } else {
+    pending_missed_[run_id] += dropped;
+  }
 }
 
 void Subscription::Close() {
@@ -46,6 +60,7 @@ void Subscription::Cancel() {
     cancelled_ = true;
     events_.clear();
     frames_queued_ = 0;
+    pending_missed_.clear();
   }
   ready_.notify_all();
 }
@@ -64,10 +79,10 @@ bool Subscription::Pop(std::chrono::milliseconds timeout, int max_frames,
                        std::deque<StreamEvent>* out, int64_t* missed) {
   std::unique_lock<std::mutex> lock(mutex_);
   ready_.wait_for(lock, timeout, [&] { return !events_.empty() || closed_ || cancelled_; });
-  *missed = missed_;
-  missed_ = 0;
+  *missed = 0;
   if (events_.empty()) return !(closed_ || cancelled_);
   if (events_.front().kind != StreamEvent::Kind::kFrame) {
+    *missed = events_.front().missed;
     out->push_back(std::move(events_.front()));
     events_.pop_front();
     return true;
@@ -76,6 +91,7 @@ bool Subscription::Pop(std::chrono::milliseconds timeout, int max_frames,
   int taken = 0;
   while (!events_.empty() && taken < max_frames &&
          events_.front().kind == StreamEvent::Kind::kFrame && events_.front().run_id == run_id) {
+    *missed += events_.front().missed;
     out->push_back(std::move(events_.front()));
     events_.pop_front();
     --frames_queued_;

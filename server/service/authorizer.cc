@@ -1,7 +1,13 @@
 #include "server/service/authorizer.h"
 
+#include <openssl/sha.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 #include "server/common/check.h"
 
@@ -21,6 +27,28 @@ bool ParseRole(const std::string& name, unsigned* bits) {
   else
     return false;
   return true;
+}
+
+std::string TokenId(const std::string& token) {
+  unsigned char digest[SHA256_DIGEST_LENGTH];
+  SHA256(reinterpret_cast<const unsigned char*>(token.data()), token.size(), digest);
+  std::string id = "t-";
+  char hex[3];
+  for (int i = 0; i < 6; ++i) {
+    std::snprintf(hex, sizeof(hex), "%02x", digest[i]);
+    id += hex;
+  }
+  return id;
+}
+
+// The token of an `authorization: Bearer <token>` value (scheme case-insensitive), or "".
+std::string BearerToken(std::string_view value) {
+  constexpr std::string_view kScheme = "bearer ";
+  if (value.size() <= kScheme.size()) return "";
+  const bool match = std::equal(kScheme.begin(), kScheme.end(), value.begin(), [](char a, char b) {
+    return a == std::tolower(static_cast<unsigned char>(b));
+  });
+  return match ? std::string(value.substr(kScheme.size())) : "";
 }
 
 }  // namespace
@@ -67,7 +95,9 @@ Authorizer Authorizer::FromTokenFile(const std::string& path) {
                        "the token is shorter than 16 characters; use a long random "
                        "one (e.g. `openssl rand -hex 32`)");
     }
-    authorizer.roles_[token] |= bits;
+    Authorizer::Grant& grant = authorizer.roles_[token];
+    grant.roles |= bits;
+    grant.id = TokenId(token);
   }
   if (authorizer.roles_.empty()) {
     throw InputError("the token file " + path + " has no token; add lines `<token> <role>`");
@@ -75,31 +105,50 @@ Authorizer Authorizer::FromTokenFile(const std::string& path) {
   return authorizer;
 }
 
+const Authorizer::Grant* Authorizer::Find(const grpc::ServerContext& context) const {
+  const auto& metadata = context.client_metadata();
+  const auto found = metadata.find("authorization");
+  if (found == metadata.end()) return nullptr;
+  const std::string token =
+      BearerToken(std::string_view(found->second.data(), found->second.size()));
+  const auto entry = token.empty() ? roles_.end() : roles_.find(token);
+  return entry == roles_.end() ? nullptr : &entry->second;
+}
+
 grpc::Status Authorizer::Check(const grpc::ServerContext& context, Role role) const {
   if (!enabled_) return grpc::Status::OK;
   const auto& metadata = context.client_metadata();
   const auto found = metadata.find("authorization");
-  static const std::string kBearer = "Bearer ";
-  if (found == metadata.end() || found->second.size() <= kBearer.size() ||
-      std::string(found->second.data(), kBearer.size()) != kBearer) {
+  if (found == metadata.end() ||
+      BearerToken(std::string_view(found->second.data(), found->second.size())).empty()) {
     return grpc::Status(grpc::StatusCode::UNAUTHENTICATED,
                         "this server needs a token: send `authorization: Bearer <token>` "
                         "(mbstream --token-file FILE)");
   }
-  const std::string token(found->second.data() + kBearer.size(),
-                          found->second.size() - kBearer.size());
-  const auto entry = roles_.find(token);
-  if (entry == roles_.end()) {
+  const Grant* grant = Find(context);
+  if (!grant) {
     return grpc::Status(grpc::StatusCode::UNAUTHENTICATED,
                         "the token is not known to this server; check the token file");
   }
   const unsigned needed = static_cast<unsigned>(role);
-  if ((entry->second & needed) != needed) {
+  if ((grant->roles & needed) != needed) {
     return grpc::Status(grpc::StatusCode::PERMISSION_DENIED,
                         std::string("the token lacks the role '") + RoleName(role) +
                             "' this call needs; ask the operator for a token with it");
   }
   return grpc::Status::OK;
+}
+
+std::string Authorizer::CallerId(const grpc::ServerContext& context) const {
+  const Grant* grant = enabled_ ? Find(context) : nullptr;
+  return grant ? grant->id : "";
+}
+
+bool Authorizer::CallerHas(const grpc::ServerContext& context, Role role) const {
+  if (!enabled_) return true;
+  const Grant* grant = Find(context);
+  const unsigned needed = static_cast<unsigned>(role);
+  return grant && (grant->roles & needed) == needed;
 }
 
 }  // namespace mbstream

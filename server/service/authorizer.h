@@ -31,15 +31,29 @@ class Authorizer {
   static Authorizer FromTokenFile(const std::string& path);
 
   // OK, UNAUTHENTICATED (no or unknown token) or PERMISSION_DENIED (the token lacks `role`).
+  // The scheme name "Bearer" is matched case-insensitively (RFC 6750 / RFC 7235).
   grpc::Status Check(const grpc::ServerContext& context, Role role) const;
+
+  // Who calls: the id of the caller's token ("t-" and 12 hex digits of its SHA-256, safe to
+  // store and log), "" without token checking or without a known token.
+  std::string CallerId(const grpc::ServerContext& context) const;
+  // Whether the caller's token has `role` (true without token checking).
+  bool CallerHas(const grpc::ServerContext& context, Role role) const;
 
   bool enabled() const { return enabled_; }
   size_t token_count() const { return roles_.size(); }
 
  private:
   Authorizer() = default;
+  struct Grant {
+    unsigned roles = 0;  // role bits
+    std::string id;      // the token's id (CallerId)
+  };
+  // The caller's grant, nullptr without a known token.
+  const Grant* Find(const grpc::ServerContext& context) const;
+
   bool enabled_ = false;
-  std::unordered_map<std::string, unsigned> roles_;  // token -> role bits
+  std::unordered_map<std::string, Grant> roles_;  // token -> grant
 };
 
 const char* RoleName(Role role);

@@ -58,7 +58,7 @@ grpc::Status SimulationService::StartRun(grpc::ServerContext* context,
     if (grpc::Status denied = authorizer_->Check(*context, Role::kRun); !denied.ok()) {
       return denied;
     }
-    *response = runs_->Start(request->model(), request->spec());
+    *response = runs_->Start(request->model(), request->spec(), authorizer_->CallerId(*context));
     return grpc::Status::OK;
   });
 }
@@ -69,6 +69,14 @@ grpc::Status SimulationService::CancelRun(grpc::ServerContext* context,
   return Serve([&] {
     if (grpc::Status denied = authorizer_->Check(*context, Role::kRun); !denied.ok()) {
       return denied;
+    }
+    const v1::RunInfo info = runs_->Get(request->run_id());  // NOT_FOUND first
+    if (!info.owner().empty() && info.owner() != authorizer_->CallerId(*context) &&
+        !authorizer_->CallerHas(*context, Role::kAdmin)) {
+      return grpc::Status(grpc::StatusCode::PERMISSION_DENIED,
+                          "run " + info.id() +
+                              " was started with another token; only that token or an admin "
+                              "token may cancel it");
     }
     *response = runs_->Cancel(request->run_id());
     return grpc::Status::OK;
@@ -93,9 +101,10 @@ grpc::Status SimulationService::ListRuns(grpc::ServerContext* context,
     if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
       return denied;
     }
-    for (const v1::RunInfo& info : runs_->List(request->model(), request->limit())) {
-      *response->add_runs() = info;
-    }
+    RunManager::RunPage page = runs_->List(request->model(), request->limit(), request->page_size(),
+                                           request->page_token());
+    for (v1::RunInfo& info : page.runs) *response->add_runs() = std::move(info);
+    response->set_next_page_token(page.next_page_token);
     return grpc::Status::OK;
   });
 }

@@ -1,9 +1,13 @@
 // SimulationService::Subscribe: the viewers' stream. Frames go out on this handler's thread;
-// probe reports come in on a reader thread, get their round-trip latency and go to the run.
+// the `start` message and then probe reports come in on a reader thread (so a stream costs
+// two threads: gRPC's handler thread and the reader). A stream counts against the
+// subscriber limit from its first moment, and one that sends no `start` within the limit's
+// deadline is ended, so idle streams cannot pile up threads.
 #include <spdlog/spdlog.h>
 
 #include <condition_variable>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "server/service/frame_batch.h"
@@ -15,15 +19,30 @@ namespace mbstream {
 namespace {
 
 constexpr int kDefaultBatch = 256;
+constexpr int kMaxBatch = 4096;
 
-// Reads probe reports until the client half-closes or the call ends.
-class ProbeReader {
+using Stream = grpc::ServerReaderWriter<v1::SubscribeEvent, v1::SubscribeRequest>;
+
+// Reads the stream's `start` message, then probe reports until the client half-closes or
+// the call ends. A report is checked against the frames this stream sent (SentFrames) and
+// kept with its run; refused reports are counted, never stored.
+class SubscribeReader {
  public:
-  ProbeReader(grpc::ServerReaderWriter<v1::SubscribeEvent, v1::SubscribeRequest>* stream,
-              RunManager* runs, const SentTimes* sent)
-      : thread_([this, stream, runs, sent] { Read(stream, runs, sent); }) {}
-  ~ProbeReader() { thread_.join(); }
+  SubscribeReader(grpc::ServerContext* context, Stream* stream, RunManager* runs, SentFrames* sent)
+      : context_(context), thread_([this, stream, runs, sent] { Read(stream, runs, sent); }) {}
+  // Ends the call first if the client has not half-closed, so that the reader returns.
+  ~SubscribeReader() {
+    if (!done()) context_->TryCancel();
+    thread_.join();
+  }
 
+  // Waits up to `timeout` for the first message; empty when it did not come (or the client
+  // half-closed or sent something else first).
+  std::optional<v1::SubscribeRequest> WaitStart(std::chrono::duration<double> timeout) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait_for(lock, timeout, [&] { return first_read_; });
+    return first_;
+  }
   // Whether the client has half-closed (sent its last probe report).
   bool done() {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -32,113 +51,172 @@ class ProbeReader {
   // Waits up to `timeout` for the client to half-close; returns whether it did.
   bool WaitDone(std::chrono::milliseconds timeout) {
     std::unique_lock<std::mutex> lock(mutex_);
-    return done_changed_.wait_for(lock, timeout, [&] { return done_; });
+    return changed_.wait_for(lock, timeout, [&] { return done_; });
   }
+  int64_t accepted() const { return accepted_; }
+  int64_t refused() const { return refused_; }
 
  private:
-  void Read(grpc::ServerReaderWriter<v1::SubscribeEvent, v1::SubscribeRequest>* stream,
-            RunManager* runs, const SentTimes* sent) {
+  void Read(Stream* stream, RunManager* runs, SentFrames* sent) {
     v1::SubscribeRequest request;
+    const bool started = stream->Read(&request) && request.has_start();
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (started) first_ = request;
+      first_read_ = true;
+      done_ = !started;
+    }
+    changed_.notify_all();
+    if (!started) return;
     std::vector<v1::ProbeReport> one(1);
     while (stream->Read(&request)) {
       if (!request.has_probe()) continue;
       v1::ProbeReport& report = one[0];
       report = std::move(*request.mutable_probe());
-      report.set_latency_us(
-          sent->LatencyUs(report.run_id(), report.seq(), SentTimes::Clock::now()));
-      try {
-        runs->AddProbes(report.run_id(), one);
-      } catch (const std::exception& error) {
-        spdlog::warn("probe report for run {} dropped: {}", report.run_id(), error.what());
+      const std::string refusal = sent->Accept(report, SentFrames::Clock::now());
+      if (refusal.empty() && runs->AddProbes(report.run_id(), one)) {
+        ++accepted_;
+      } else if (refused_++ == 0) {
+        spdlog::warn("probe report for frame {} refused: {}", report.seq(),
+                     refusal.empty() ? "its run has ended and been stored" : refusal);
       }
     }
     std::lock_guard<std::mutex> lock(mutex_);
     done_ = true;
-    done_changed_.notify_all();
+    changed_.notify_all();
   }
 
+  grpc::ServerContext* const context_;
   std::mutex mutex_;
-  std::condition_variable done_changed_;
+  std::condition_variable changed_;
+  std::optional<v1::SubscribeRequest> first_;
+  bool first_read_ = false;
   bool done_ = false;
+  std::atomic<int64_t> accepted_{0};
+  std::atomic<int64_t> refused_{0};
   std::thread thread_;
 };
 
+// What a Subscribe stream follows, and where it finds runs and models.
+struct SubscribeTarget {
+  RunManager* runs;
+  ModelRegistry* models;
+  const std::atomic<bool>* stopping_flag;
+  bool follow = false;
+  int max_batch = kDefaultBatch;
+
+  bool stopping() const { return *stopping_flag; }
+  void FillRunStarted(const std::string& run_id, v1::SubscribeEvent::RunStarted* started) const {
+    *started->mutable_run() = runs->Get(run_id);
+    std::shared_ptr<const CompiledModel> model = models->Find(started->run().model_id());
+    *started->mutable_model() = model->info;
+    *started->mutable_bundle() = model->bundle;
+  }
+};
+
+// Sends the subscription's events until its one run ended, the client left or said goodbye,
+// or the server stops.
+grpc::Status SendEvents(grpc::ServerContext* context, Stream* stream, const SubscribeTarget& target,
+                        Subscription* subscription, SubscribeReader* reader, SentFrames* sent) {
+  const grpc::Status gone(grpc::StatusCode::CANCELLED, "the subscriber went away");
+  v1::SubscribeEvent event;
+  std::deque<StreamEvent> events;
+  for (;;) {
+    if (context->IsCancelled()) return gone;
+    events.clear();
+    int64_t missed = 0;
+    const bool open =
+        subscription->Pop(std::chrono::milliseconds(100), target.max_batch, &events, &missed);
+    if (!open || target.stopping()) {
+      const std::string reason = "the server is shutting down; reconnect later";
+      event.set_closing(reason);
+      (void)stream->Write(event);  // the viewer half-closes; the call ends UNAVAILABLE
+      return grpc::Status(grpc::StatusCode::UNAVAILABLE, reason);
+    }
+    if (reader->done()) return grpc::Status::OK;  // the viewer said goodbye
+    if (events.empty()) continue;
+    const StreamEvent& head = events.front();
+    if (head.kind == StreamEvent::Kind::kFrame || missed > 0) {
+      FillFrameBatch(events, missed, event.mutable_frames(), sent);
+      if (!stream->Write(event)) return gone;
+    }
+    if (head.kind == StreamEvent::Kind::kFrame) continue;
+    if (head.kind == StreamEvent::Kind::kRunStarted) {
+      target.FillRunStarted(head.run_id, event.mutable_run_started());
+    } else {
+      *event.mutable_run_ended() = target.runs->Get(head.run_id);
+    }
+    if (!stream->Write(event)) return gone;
+    if (head.kind == StreamEvent::Kind::kRunEnded && !target.follow) return grpc::Status::OK;
+  }
+}
+
 }  // namespace
 
-grpc::Status SimulationService::Subscribe(
-    grpc::ServerContext* context,
-    grpc::ServerReaderWriter<v1::SubscribeEvent, v1::SubscribeRequest>* stream) {
+grpc::Status SimulationService::Subscribe(grpc::ServerContext* context, Stream* stream) {
   return Serve([&]() -> grpc::Status {
     if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
       return denied;
     }
-    v1::SubscribeRequest first;
-    if (!stream->Read(&first) || !first.has_start()) {
-      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
-                          "Subscribe: the first message must be `start` with a run_id or "
-                          "follow = true");
-    }
-    const v1::SubscribeRequest::Start& start = first.start();
-    const bool follow = start.target_case() == v1::SubscribeRequest::Start::kFollow;
-    if (!follow && start.run_id().empty()) {
-      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
-                          "Subscribe: start.run_id is empty; give a run id or follow = true");
-    }
-    const int max_batch = start.max_batch() > 0 ? start.max_batch() : kDefaultBatch;
-    std::shared_ptr<Subscription> subscription =
-        follow ? runs_->SubscribeFollow() : runs_->SubscribeRun(start.run_id(), true);
+    // Counted before anything is read: idle streams count against the subscriber limit.
+    std::shared_ptr<Subscription> subscription = runs_->NewSubscription();
     struct Unsubscribe {
       RunManager* runs;
       std::shared_ptr<Subscription> s;
       ~Unsubscribe() { runs->Unsubscribe(s); }
     } unsubscribe{runs_, subscription};
 
-    v1::SubscribeEvent event;
-    event.set_subscribed(follow ? "follow" : start.run_id());
-    if (!stream->Write(event)) {
-      return grpc::Status(grpc::StatusCode::CANCELLED, "the subscriber went away");
-    }
-    SentTimes sent;
-    ProbeReader reader(stream, runs_, &sent);
-    std::deque<StreamEvent> events;
-    grpc::Status status = grpc::Status::OK;
-    bool one_run_ended = false;
-    while (!one_run_ended) {
-      if (context->IsCancelled()) {
-        status = grpc::Status(grpc::StatusCode::CANCELLED, "the subscriber went away");
-        break;
+    SentFrames sent;
+    SubscribeReader reader(context, stream, runs_, &sent);
+    const grpc::Status status = Serve([&]() -> grpc::Status {
+      const std::optional<v1::SubscribeRequest> first =
+          reader.WaitStart(std::chrono::duration<double>(runs_->limits().subscribe_start_s));
+      if (!first) {
+        return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                            "Subscribe: the first message must be `start` with a run_id or "
+                            "follow = true, sent within " +
+                                std::to_string(runs_->limits().subscribe_start_s) + " s");
       }
-      events.clear();
-      int64_t missed = 0;
-      const bool open =
-          subscription->Pop(std::chrono::milliseconds(100), max_batch, &events, &missed);
-      if (!open || stopping_) {
-        status = grpc::Status(grpc::StatusCode::UNAVAILABLE, "the server is shutting down");
-        break;
+      const v1::SubscribeRequest::Start& start = first->start();
+      SubscribeTarget target{runs_, models_, &stopping_};
+      target.follow = start.target_case() == v1::SubscribeRequest::Start::kFollow;
+      if (!target.follow && start.run_id().empty()) {
+        return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                            "Subscribe: start.run_id is empty; give a run id or follow = true");
       }
-      if (reader.done()) break;  // the viewer said goodbye: end the stream with OK
-      if (events.empty()) continue;
-      const StreamEvent& head = events.front();
-      if (head.kind == StreamEvent::Kind::kFrame) {
-        FillFrameBatch(events, missed, event.mutable_frames(), &sent);
-      } else if (head.kind == StreamEvent::Kind::kRunStarted) {
-        v1::SubscribeEvent::RunStarted* started = event.mutable_run_started();
-        *started->mutable_run() = runs_->Get(head.run_id);
-        std::shared_ptr<const CompiledModel> model = models_->Find(started->run().model_id());
-        *started->mutable_model() = model->info;
-        *started->mutable_bundle() = model->bundle;
+      if (start.max_batch() < 0 || start.max_batch() > kMaxBatch) {
+        return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                            "Subscribe: start.max_batch is " + std::to_string(start.max_batch()) +
+                                "; give 0 (the server's choice) up to " +
+                                std::to_string(kMaxBatch));
+      }
+      target.max_batch = start.max_batch() > 0 ? start.max_batch() : kDefaultBatch;
+      if (target.follow) {
+        runs_->AttachFollow(subscription);
       } else {
-        *event.mutable_run_ended() = runs_->Get(head.run_id);
-        one_run_ended = !follow;
+        runs_->AttachRun(subscription, start.run_id(), true);
       }
+      v1::SubscribeEvent event;
+      event.set_subscribed(target.follow ? "follow" : start.run_id());
       if (!stream->Write(event)) {
-        status = grpc::Status(grpc::StatusCode::CANCELLED, "the subscriber went away");
-        break;
+        return grpc::Status(grpc::StatusCode::CANCELLED, "the subscriber went away");
       }
+      return SendEvents(context, stream, target, subscription.get(), &reader, &sent);
+    });
+    // A one-run subscriber half-closes after run_ended (its last probes arrive before), and
+    // every viewer after `closing`; otherwise, or if it does not, end the call so that the
+    // reader returns (the client then sees CANCELLED).
+    const bool goodbye_expected =
+        status.ok() || status.error_code() == grpc::StatusCode::UNAVAILABLE;
+    if (!reader.done() &&
+        (!goodbye_expected ||
+         !reader.WaitDone(status.ok() ? std::chrono::seconds(10) : std::chrono::seconds(2)))) {
+      context->TryCancel();
     }
-    // A one-run subscriber half-closes after run_ended (its last probes arrive before);
-    // otherwise, or if it does not, end the call so the reader returns.
-    if (!status.ok() || !reader.WaitDone(std::chrono::seconds(10))) context->TryCancel();
+    if (reader.refused() > 0) {
+      spdlog::warn("Subscribe stream ended: {} probe reports stored, {} refused", reader.accepted(),
+                   reader.refused());
+    }
     return status;
   });
 }

@@ -1,13 +1,36 @@
 // SimulationService::WatchRun: progress (and optionally frames) of one run until it ends.
+//
+// With frames, the stream ends only after the subscription's run-ended event, which comes
+// after the run's last frame: every frame is delivered or counted in a batch's `missed`
+// before the final progress event.
 #include <chrono>
+#include <cmath>
 #include <thread>
 
+#include "server/common/check.h"
 #include "server/service/frame_batch.h"
 #include "server/service/simulation_service.h"
 #include "server/service/status_from_exception.h"
 #include "server/wire/stats_conversion.h"
 
 namespace mbstream {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// s of wall time between progress events: 0 = the default; otherwise within the bounds.
+Clock::duration ProgressInterval(double interval_s) {
+  constexpr double kDefault = 0.2, kMin = 0.01, kMax = 60.0;
+  if (interval_s == 0.0) interval_s = kDefault;
+  if (!(interval_s >= kMin && interval_s <= kMax)) {
+    throw InputError("WatchRun progress_interval_s is " + std::to_string(interval_s) +
+                     "; give 0 (the default, 0.2 s) or a value from 0.01 to 60 s");
+  }
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(interval_s));
+}
+
+}  // namespace
 
 grpc::Status SimulationService::WatchRun(grpc::ServerContext* context,
                                          const v1::WatchRunRequest* request,
@@ -16,11 +39,9 @@ grpc::Status SimulationService::WatchRun(grpc::ServerContext* context,
     if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
       return denied;
     }
-    using Clock = std::chrono::steady_clock;
+    const Clock::duration interval = ProgressInterval(request->progress_interval_s());
     const std::string& run_id = request->run_id();
     v1::RunInfo info = runs_->Get(run_id);  // NOT_FOUND first
-    const auto interval = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
-        request->progress_interval_s() > 0 ? request->progress_interval_s() : 0.2));
     std::shared_ptr<Subscription> frames;
     if (request->frames()) frames = runs_->SubscribeRun(run_id, false);
     struct Unsubscribe {
@@ -31,21 +52,25 @@ grpc::Status SimulationService::WatchRun(grpc::ServerContext* context,
       }
     } unsubscribe{runs_, frames};
 
+    const grpc::Status gone(grpc::StatusCode::CANCELLED, "client gone");
     v1::WatchEvent event;
     Clock::time_point next_progress = Clock::now();
     std::deque<StreamEvent> events;
     for (;;) {
-      if (context->IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "client gone");
+      if (context->IsCancelled()) return gone;
       if (stopping_) {
         return grpc::Status(grpc::StatusCode::UNAVAILABLE,
                             "the server is shutting down; the run is INTERRUPTED");
       }
       if (Clock::now() >= next_progress) {
         info = runs_->Get(run_id);
-        *event.mutable_progress() = info;
-        if (!writer->Write(event)) return grpc::Status(grpc::StatusCode::CANCELLED, "client gone");
-        if (IsFinalState(info.state())) return grpc::Status::OK;
-        next_progress += interval;
+        next_progress = Clock::now() + interval;
+        // With frames, the final state goes out after the run-ended event (below).
+        if (!frames || !IsFinalState(info.state())) {
+          *event.mutable_progress() = info;
+          if (!writer->Write(event)) return gone;
+          if (IsFinalState(info.state())) return grpc::Status::OK;
+        }
       }
       const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(
           std::max(next_progress - Clock::now(), Clock::duration::zero()));
@@ -58,13 +83,15 @@ grpc::Status SimulationService::WatchRun(grpc::ServerContext* context,
       int64_t missed = 0;
       frames->Pop(std::min(wait, std::chrono::milliseconds(50)), 1024, &events, &missed);
       if (events.empty()) continue;
-      if (events.front().kind == StreamEvent::Kind::kRunEnded) {
-        next_progress = Clock::now();  // the final progress event right away
-        continue;
+      const StreamEvent::Kind kind = events.front().kind;
+      if (kind == StreamEvent::Kind::kFrame || missed > 0) {
+        FillFrameBatch(events, missed, event.mutable_frames());
+        if (!writer->Write(event)) return gone;
       }
-      if (events.front().kind != StreamEvent::Kind::kFrame) continue;
-      FillFrameBatch(events, missed, event.mutable_frames());
-      if (!writer->Write(event)) return grpc::Status(grpc::StatusCode::CANCELLED, "client gone");
+      if (kind == StreamEvent::Kind::kRunEnded) {
+        *event.mutable_progress() = runs_->Get(run_id);
+        return writer->Write(event) ? grpc::Status::OK : gone;
+      }
     }
   });
 }

@@ -16,6 +16,12 @@ std::string Format(double value) {
   return std::string(buffer.data(), result.ptr);
 }
 
+// A name from the request as it may appear in a message: at most 64 bytes, then "...".
+std::string Quote(const std::string& name) {
+  constexpr size_t kShown = 64;
+  return "'" + (name.size() <= kShown ? name : name.substr(0, kShown) + "...") + "'";
+}
+
 std::string JoinNames(const std::vector<std::string>& names) {
   std::string joined;
   for (const std::string& name : names) joined += (joined.empty() ? "" : ", ") + name;
@@ -39,6 +45,15 @@ std::string MethodNames() {
   }
   return JoinNames(names);
 }
+
+constexpr size_t kMaxNameBytes = 256;      // joint, method, formulation and table names
+constexpr int kMaxSineTerms = 64;          // terms of one sum of sines
+constexpr int kMaxSplinePoints = 100000;   // points of one spline
+constexpr size_t kMaxSpecBytes = 4 << 20;  // the whole spec, encoded
+constexpr double kMaxDuration = 1e9;       // s, simulated
+constexpr double kMaxFrames = 1e9;         // duration_s / output_interval_s
+constexpr double kMinRealtime = 1e-3;      // simulated s per wall-clock s (0 = unpaced)
+constexpr double kMaxRealtime = 1e9;
 
 // Builds the messages: "<source>: <field>: <problem>; <what to do>".
 class Checker {
@@ -72,6 +87,23 @@ class Checker {
     if (value < 0.0)
       Fail(field, "must be >= 0 (" + unit + "), got " + Format(value) + "; " + advice);
     return value;
+  }
+
+  // A name field: at most kMaxNameBytes bytes.
+  const std::string& Name(const std::string& value, const std::string& field) const {
+    if (value.size() > kMaxNameBytes) {
+      Fail(field, "is " + std::to_string(value.size()) + " bytes long, more than " +
+                      std::to_string(kMaxNameBytes) + "; give a name (" + Quote(value) + ")");
+    }
+    return value;
+  }
+
+  // A repeated field: at most `max` entries.
+  void Count(int count, int max, const std::string& field, const std::string& advice) const {
+    if (count > max) {
+      Fail(field, "has " + std::to_string(count) + " entries, more than " + std::to_string(max) +
+                      "; " + advice);
+    }
   }
 
   double Tolerance(double value, const std::string& field, const std::string& advice) const {
@@ -114,6 +146,8 @@ Trajectory ToTrajectory(const v1::Trajectory& spec, const std::string& field,
       const std::string where = field + ".sum_of_sines";
       trajectory.kind = Trajectory::Kind::kSine;
       trajectory.offset = check.Finite(sines.offset(), where + ".offset", kJointUnit);
+      check.Count(sines.terms_size(), kMaxSineTerms, where + ".terms",
+                  "a trajectory of many harmonics is better given as a spline");
       for (int k = 0; k < sines.terms_size(); ++k) {
         const std::string term = where + ".terms[" + std::to_string(k) + "]";
         const v1::Sine& sine = sines.terms(k);
@@ -133,6 +167,8 @@ Trajectory ToTrajectory(const v1::Trajectory& spec, const std::string& field,
                               " entries but values has " + std::to_string(spline.values_size()) +
                               "; give one value per time");
       }
+      check.Count(spline.times_s_size(), kMaxSplinePoints, where + ".times_s",
+                  "resample the trajectory more coarsely");
       if (spline.times_s_size() < 2) {
         check.Fail(where, "needs at least 2 points, has " + std::to_string(spline.times_s_size()) +
                               "; give at least 2 (times_s, values) pairs");
@@ -212,12 +248,12 @@ std::vector<DriveConfig> ToDrives(const v1::RunSpec& spec,
     const v1::Drive& drive = spec.drives(i);
     const std::string field = "drives[" + std::to_string(i) + "]";
     int joint = i;
-    if (!drive.joint().empty()) {
+    if (!check.Name(drive.joint(), field + ".joint").empty()) {
       joint = 0;
       while (joint < n && joint_names[joint] != drive.joint()) ++joint;
       if (joint == n) {
-        check.Fail(field + ".joint", "the model has no joint named '" + drive.joint() +
-                                         "'; give one of " + JoinNames(joint_names));
+        check.Fail(field + ".joint", "the model has no joint named " + Quote(drive.joint()) +
+                                         "; give one of " + JoinNames(joint_names));
       }
     }
     if (driven_by[joint]) {
@@ -237,9 +273,17 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& j
                       const std::string& source) {
   const Checker check(source);
   RunConfig config;
+  if (const size_t bytes = spec.ByteSizeLong(); bytes > kMaxSpecBytes) {
+    check.Fail("(spec)", "is " + std::to_string(bytes) + " bytes encoded, more than " +
+                             std::to_string(kMaxSpecBytes) + "; give fewer or shorter fields");
+  }
   if (spec.has_duration_s()) {
     config.duration = check.Positive(spec.duration_s(), "duration_s", "s",
                                      "give the simulated time span, e.g. 20");
+    if (config.duration > kMaxDuration) {
+      check.Fail("duration_s", "is " + Format(config.duration) + " s, more than " +
+                                   Format(kMaxDuration) + " s; give a shorter span");
+    }
   }
   if (spec.has_output_interval_s()) {
     config.output_interval = check.Positive(spec.output_interval_s(), "output_interval_s", "s",
@@ -250,18 +294,23 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& j
                                         " s is longer than duration_s (" + Format(config.duration) +
                                         " s); give an interval no longer than the duration");
   }
+  if (config.duration / config.output_interval > kMaxFrames) {
+    check.Fail("output_interval_s", Format(config.output_interval) + " s over duration_s " +
+                                        Format(config.duration) + " s gives more than " +
+                                        Format(kMaxFrames) + " frames; give a longer interval");
+  }
   if (spec.has_max_step_s()) {
     config.max_step = check.NonNegative(spec.max_step_s(), "max_step_s", "s",
                                         "give the largest internal step, or 0 for no limit");
   }
   if (!spec.formulation().empty() && !ParseFormulation(spec.formulation(), &config.formulation)) {
     check.Fail("formulation",
-               "unknown name '" + spec.formulation() + "'; give one of " + FormulationNames());
+               "unknown name " + Quote(spec.formulation()) + "; give one of " + FormulationNames());
   }
   if (!spec.method().empty() && !ParseMethod(spec.method(), &config.method)) {
-    check.Fail("method", "unknown name '" + spec.method() + "'; give one of " + MethodNames());
+    check.Fail("method", "unknown name " + Quote(spec.method()) + "; give one of " + MethodNames());
   }
-  config.erk_table = spec.erk_table();
+  config.erk_table = check.Name(spec.erk_table(), "erk_table");
   if (spec.has_rtol()) {
     config.rtol = check.Tolerance(spec.rtol(), "rtol", "give a relative tolerance, e.g. 1e-6");
   }
@@ -307,6 +356,14 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& j
   }
   check.NonNegative(spec.realtime(), "realtime", "simulated s per wall-clock s",
                     "give 0 for as fast as possible or 1 for real time");
+  if (spec.realtime() != 0.0 &&
+      !(spec.realtime() >= kMinRealtime && spec.realtime() <= kMaxRealtime)) {
+    check.Fail("realtime", "is " + Format(spec.realtime()) +
+                               "; give 0 (as fast as possible) or a "
+                               "factor from " +
+                               Format(kMinRealtime) + " to " + Format(kMaxRealtime) +
+                               " (1 = real time)");
+  }
   if (spec.max_output_frames() < 0) {
     check.Fail("max_output_frames", "must be >= 0, got " +
                                         std::to_string(spec.max_output_frames()) +

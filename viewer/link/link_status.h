@@ -45,6 +45,10 @@ class LinkStatus {
       s.set_probe_compute_us(s.frames() > 0 ? 1e-3 * compute_ns_total_ / s.frames() : 0.0);
     });
   }
+  // Frames the server dropped for this viewer with no frame of the batch left to show.
+  void AddMissed(int64_t missed) {
+    Set([&](v1::ViewerStatus& s) { s.set_missed_frames(s.missed_frames() + missed); });
+  }
   void SetRenderFps(double fps) {
     Set([&](v1::ViewerStatus& s) { s.set_render_fps(fps); });
   }

@@ -91,6 +91,9 @@ SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
   while (!done && stream->Read(&event)) {
     if (event.event_case() == v1::SubscribeEvent::kSubscribed) {
       spdlog::info("subscribed to {}: {}", options_.server, event.subscribed());
+    } else if (event.event_case() == v1::SubscribeEvent::kClosing) {
+      spdlog::warn("{}: {}", options_.server, event.closing());
+      break;  // half-close below; the stream ends UNAVAILABLE and the link reconnects
     } else if (event.has_run_started()) {
       const auto& started = event.run_started();
       run_id = started.run().id();
@@ -149,6 +152,8 @@ SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
       if (batch.frames_size() > 0) {
         status_->AddFrames(batch.frames(batch.frames_size() - 1).t_s(), batch.frames_size(),
                            batch.missed(), sent, compute_ns);
+      } else if (batch.missed() > 0) {  // frames dropped just before the run's end
+        status_->AddMissed(batch.missed());
       }
     } else if (event.has_run_ended()) {
       const v1::RunInfo& ended = event.run_ended();

@@ -57,9 +57,15 @@ class Client:
     def runs(self, model="", limit=0):
         """Runs of the server, newest first (RunInfo messages); only `model`'s when given,
         at most `limit` when > 0."""
+        runs = []
+        request = service_pb2.ListRunsRequest(model=model, limit=limit)
         with rpc_errors():
-            return list(self.stub.ListRuns(
-                service_pb2.ListRunsRequest(model=model, limit=limit)).runs)
+            while True:  # one page at a time (a page never exceeds the message limit)
+                response = self.stub.ListRuns(request)
+                runs.extend(response.runs)
+                if not response.next_page_token:
+                    return runs
+                request.page_token = response.next_page_token
 
     def run(self, model, spec=None, watch=False, **overrides):
         """Starts a run of `model` (id or name) and returns its Run handle.

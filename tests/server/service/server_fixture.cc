@@ -24,7 +24,7 @@ TempDir::~TempDir() {
   fs::remove_all(path_, error);
 }
 
-void ServerTest::StartServer(const ServerLimits& limits) {
+void ServerTest::StartServer(const ServerLimits& limits, const std::string& token_file) {
   stub_.reset();
   host_.reset();  // a test may restart the server on the same data directory
   ServerConfig config;
@@ -32,6 +32,7 @@ void ServerTest::StartServer(const ServerLimits& limits) {
   config.data_dir = (data_.path() / "data").string();
   config.models_dir = std::string(MBSTREAM_SOURCE_DIR) + "/models";
   config.limits = limits;
+  config.token_file = token_file;
   host_ = ServerHost::Start(config);
   grpc::ChannelArguments arguments;
   arguments.SetMaxReceiveMessageSize(256 << 20);

@@ -28,8 +28,8 @@ class TempDir {
 class ServerTest : public ::testing::Test {
  protected:
   // Starts (or restarts) a server with the built-in models of models/ and `limits`, on
-  // this test's data directory.
-  void StartServer(const ServerLimits& limits = ServerLimits());
+  // this test's data directory; with `token_file`, calls need tokens.
+  void StartServer(const ServerLimits& limits = ServerLimits(), const std::string& token_file = "");
   void TearDown() override;
 
   v1::Simulation::Stub& stub() { return *stub_; }
