@@ -23,16 +23,26 @@ constexpr int kMaxBatch = 4096;
 
 using Stream = grpc::ServerReaderWriter<v1::SubscribeEvent, v1::SubscribeRequest>;
 
-// Reads the stream's `start` message, then probe reports until the client half-closes or
-// the call ends. A report is checked against the frames this stream sent (SentFrames) and
-// kept with its run; refused reports are counted, never stored.
+// Reads the stream's `start` message; then, once the handler has accepted it (Go), probe
+// reports until the client half-closes or the call ends. A report is checked against the
+// frames this stream sent (SentFrames) and kept with its run; refused reports are counted,
+// never stored. Until Go the reader is not reading, so the handler may refuse the start with
+// its own status.
 class SubscribeReader {
  public:
   SubscribeReader(grpc::ServerContext* context, Stream* stream, RunManager* runs, SentFrames* sent)
       : context_(context), thread_([this, stream, runs, sent] { Read(stream, runs, sent); }) {}
-  // Ends the call first if the client has not half-closed, so that the reader returns.
+  // A reader blocked in Read (no first message yet, or reading probes) returns only when the
+  // call ends: end it first (the client then sees CANCELLED).
   ~SubscribeReader() {
-    if (!done()) context_->TryCancel();
+    bool blocked = false;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      blocked = !first_read_ || (go_ && !done_);
+      stop_ = true;
+    }
+    changed_.notify_all();
+    if (blocked) context_->TryCancel();
     thread_.join();
   }
 
@@ -43,7 +53,20 @@ class SubscribeReader {
     changed_.wait_for(lock, timeout, [&] { return first_read_; });
     return first_;
   }
-  // Whether the client has half-closed (sent its last probe report).
+  // The start was accepted: read probe reports from now on.
+  void Go() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      go_ = true;
+    }
+    changed_.notify_all();
+  }
+  // Whether the reader reads probe reports still (Go, and the client has not half-closed).
+  bool reading() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return go_ && !done_;
+  }
+  // Whether the client has half-closed (or sent no start).
   bool done() {
     std::lock_guard<std::mutex> lock(mutex_);
     return done_;
@@ -61,13 +84,15 @@ class SubscribeReader {
     v1::SubscribeRequest request;
     const bool started = stream->Read(&request) && request.has_start();
     {
-      std::lock_guard<std::mutex> lock(mutex_);
+      std::unique_lock<std::mutex> lock(mutex_);
       if (started) first_ = request;
       first_read_ = true;
       done_ = !started;
+      changed_.notify_all();
+      if (!started) return;
+      changed_.wait(lock, [&] { return go_ || stop_; });
+      if (!go_) return;
     }
-    changed_.notify_all();
-    if (!started) return;
     std::vector<v1::ProbeReport> one(1);
     while (stream->Read(&request)) {
       if (!request.has_probe()) continue;
@@ -91,6 +116,8 @@ class SubscribeReader {
   std::condition_variable changed_;
   std::optional<v1::SubscribeRequest> first_;
   bool first_read_ = false;
+  bool go_ = false;
+  bool stop_ = false;
   bool done_ = false;
   std::atomic<int64_t> accepted_{0};
   std::atomic<int64_t> refused_{0};
@@ -196,6 +223,7 @@ grpc::Status SimulationService::Subscribe(grpc::ServerContext* context, Stream* 
       } else {
         runs_->AttachRun(subscription, start.run_id(), true);
       }
+      reader.Go();
       v1::SubscribeEvent event;
       event.set_subscribed(target.follow ? "follow" : start.run_id());
       if (!stream->Write(event)) {
@@ -208,7 +236,7 @@ grpc::Status SimulationService::Subscribe(grpc::ServerContext* context, Stream* 
     // reader returns (the client then sees CANCELLED).
     const bool goodbye_expected =
         status.ok() || status.error_code() == grpc::StatusCode::UNAVAILABLE;
-    if (!reader.done() &&
+    if (reader.reading() &&
         (!goodbye_expected ||
          !reader.WaitDone(status.ok() ? std::chrono::seconds(10) : std::chrono::seconds(2)))) {
       context->TryCancel();

@@ -185,5 +185,19 @@ TEST_F(StreamsServiceTest, FirstMessageMustBeStart) {
   EXPECT_THAT(status.error_message(), ::testing::HasSubstr("start"));
 }
 
+TEST_F(StreamsServiceTest, UnknownRunIsNotFoundWhileTheViewerStillStreams) {
+  grpc::ClientContext context;
+  std::unique_ptr<Stream> stream = stub().Subscribe(&context);
+  v1::SubscribeRequest start;
+  start.mutable_start()->set_run_id("r-nosuch");
+  ASSERT_TRUE(stream->Write(start));  // and no half-close: the viewer would send probes
+  v1::SubscribeEvent event;
+  EXPECT_FALSE(stream->Read(&event));
+  const grpc::Status status = stream->Finish();
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::NOT_FOUND);
+  EXPECT_THAT(status.error_message(), ::testing::HasSubstr("r-nosuch"));
+  WaitForSubscribers(0);
+}
+
 }  // namespace
 }  // namespace mbstream::testing
