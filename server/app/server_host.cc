@@ -3,6 +3,7 @@
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/grpcpp.h>
 #include <grpcpp/health_check_service_interface.h>
+#include <grpcpp/resource_quota.h>
 #include <spdlog/spdlog.h>
 
 #include <sys/stat.h>
@@ -29,6 +30,8 @@ bool SplitPort(const std::string& address, std::string* host, std::string* port)
   *port = address.substr(colon + 1);
   return true;
 }
+
+constexpr int kUnaryThreads = 32;  // gRPC threads beyond the streams, for unary calls
 
 bool IsLocal(const std::string& listen) {
   for (const char* prefix : {"unix:", "127.", "localhost:", "[::1]:"}) {
@@ -83,6 +86,12 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   int port = 0;
   builder.AddListeningPort(config.listen, credentials, &port);
   builder.RegisterService(host->service_.get());
+  // gRPC's handler threads: one per open stream (each also counted against
+  // max_subscribers, with a reader thread of its own for Subscribe) plus room for unary
+  // calls; past this, gRPC refuses new calls with RESOURCE_EXHAUSTED instead of growing.
+  grpc::ResourceQuota quota("mbstream-server");
+  quota.SetMaxThreads(config.limits.max_subscribers + kUnaryThreads);
+  builder.SetResourceQuota(quota);
   builder.SetMaxReceiveMessageSize(config.max_message_bytes);
   builder.SetMaxSendMessageSize(config.max_message_bytes);
   // A unix socket is created owner-only (the umask applies while gRPC binds it).

@@ -42,6 +42,14 @@ int main(int argc, char** argv) {
   app.add_option("--max-subscribers", limits.max_subscribers, "Subscribe and WatchRun streams")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  app.add_option("--subscribe-start-s", limits.subscribe_start_s,
+                 "s a Subscribe stream may take to send its start message")
+      ->check(CLI::Range(0.01, 3600.0))
+      ->capture_default_str();
+  app.add_option("--max-probe-reports", limits.max_probe_reports,
+                 "most probe reports kept for one run")
+      ->check(CLI::Range(int64_t{1}, int64_t{1} << 40))
+      ->capture_default_str();
   app.add_option("--max-model-mb", max_model_mb, "largest model bundle, MiB")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

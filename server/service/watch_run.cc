@@ -42,15 +42,16 @@ grpc::Status SimulationService::WatchRun(grpc::ServerContext* context,
     const Clock::duration interval = ProgressInterval(request->progress_interval_s());
     const std::string& run_id = request->run_id();
     v1::RunInfo info = runs_->Get(run_id);  // NOT_FOUND first
-    std::shared_ptr<Subscription> frames;
-    if (request->frames()) frames = runs_->SubscribeRun(run_id, false);
+    // Every watch counts against the subscriber limit (it holds a thread); only a watch
+    // with frames is attached to the run.
+    std::shared_ptr<Subscription> slot =
+        request->frames() ? runs_->SubscribeRun(run_id, false) : runs_->NewSubscription();
     struct Unsubscribe {
       RunManager* runs;
       std::shared_ptr<Subscription> s;
-      ~Unsubscribe() {
-        if (s) runs->Unsubscribe(s);
-      }
-    } unsubscribe{runs_, frames};
+      ~Unsubscribe() { runs->Unsubscribe(s); }
+    } unsubscribe{runs_, slot};
+    Subscription* frames = request->frames() ? slot.get() : nullptr;
 
     const grpc::Status gone(grpc::StatusCode::CANCELLED, "client gone");
     v1::WatchEvent event;

@@ -22,6 +22,7 @@ class ServerProcess {
 
   const std::string& address() const { return address_; }
   const std::string& log_path() const { return log_; }
+  pid_t pid() const { return pid_; }
   // SIGTERM and wait; returns the exit status (as from waitpid), -1 if already stopped.
   int Stop();
   // SIGKILL and wait: a crash.
