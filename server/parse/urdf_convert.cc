@@ -1,10 +1,13 @@
 #include "server/parse/urdf_convert.h"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "server/common/check.h"
 #include "server/model/model_builder.h"
+#include "server/parse/urdf_repairs.h"
 
 namespace mbstream {
 
@@ -14,6 +17,13 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 std::string Format(const Vector3d& v) {
   return "(" + FormatNumber(v.x()) + " " + FormatNumber(v.y()) + " " + FormatNumber(v.z()) + ")";
+}
+
+// The principal moments of a symmetric tensor, ascending: "(a b c)".
+std::string PrincipalMoments(const Matrix3d& I) {
+  return Format(
+      Eigen::SelfAdjointEigenSolver<Matrix3d>(0.5 * (I + I.transpose()), Eigen::EigenvaluesOnly)
+          .eigenvalues());
 }
 
 struct Units {
@@ -68,9 +78,14 @@ Vector3d UnitAxis(const urdf::Joint& joint, const std::string& where,
 // A velocity or effort limit: negative is an error, 0 means "not given" (unlimited).
 double RateLimit(double value, const char* what, const char* unit, const std::string& where,
                  const UrdfDiagnostics& diagnostics) {
+  if (value < 0.0 && diagnostics.repair()) {
+    diagnostics.Warn(where + ": repaired: " + what + " limit " + FormatNumber(value) + " " + unit +
+                     " is negative; read as no limit");
+    return kInfinity;
+  }
   if (value < 0.0) {
     throw InputError(where + ": " + what + " limit " + FormatNumber(value) + " " + unit +
-                     " is negative; give the largest " + what + " as a number > 0");
+                     " is negative; give the largest " + what + " as a number > 0" + kRepairHint);
   }
   if (value == 0.0) {
     diagnostics.Warn(where + ": " + what + " limit is 0, read as no limit (taken literally " +
@@ -164,11 +179,19 @@ RigidInertia ConvertInertia(const urdf::Link& link, const std::string& moving_jo
   }
   const urdf::Inertial& inertial = *link.inertial;
   const double mass = inertial.mass;
+  if (moving && mass == 0.0 && diagnostics.repair()) {
+    const StandInInertia stand_in = StandInForMasslessLink(link);
+    diagnostics.Warn(where + ": repaired: mass 0 kg" + moved_by + "; given " +
+                     FormatNumber(stand_in.mass) + " kg spread over a box of " +
+                     Format(stand_in.size) + " m (its visual's, or 2 cm) at the link origin");
+    return RigidInertia{stand_in.mass, Vector3d::Zero(), stand_in.inertia};
+  }
   if (!std::isfinite(mass) || mass < 0.0 || (moving && mass == 0.0)) {
     throw InputError(where + ": mass is " + FormatNumber(mass) + " kg" +
                      (moving ? moved_by + "; a moving link needs a positive mass"
                              : std::string("; a mass cannot be negative")) +
-                     ": give <mass value=\"...\"/> > 0 (kg)");
+                     ": give <mass value=\"...\"/> > 0 (kg)" +
+                     (moving && mass == 0.0 ? kRepairHint : ""));
   }
   Matrix3d I;
   I << inertial.ixx, inertial.ixy, inertial.ixz,  //
@@ -185,7 +208,23 @@ RigidInertia ConvertInertia(const urdf::Link& link, const std::string& moving_jo
                      "the value and its unit (kg)");
   }
   const Pose X_LC = ToPose(inertial.origin);  // the inertial frame C in the link frame L
-  const Matrix3d I_L = X_LC.R * I * X_LC.R.transpose();
+  Matrix3d I_L = X_LC.R * I * X_LC.R.transpose();
+  if (I_L.allFinite()) {
+    if (const std::optional<Matrix3d> nearest = NearestPhysicalInertia(I_L, mass)) {
+      if (diagnostics.repair()) {
+        diagnostics.Warn(where + ": repaired: inertia principal moments " + PrincipalMoments(I_L) +
+                         " kg*m^2 moved to the nearest physical tensor, " +
+                         PrincipalMoments(*nearest) + " kg*m^2 (same principal axes)");
+        I_L = *nearest;
+      } else {
+        try {
+          ValidateRigidInertia(RigidInertia{mass, X_LC.p, 0.5 * (I_L + I_L.transpose())}, where);
+        } catch (const InputError& error) {
+          throw InputError(error.what() + std::string(kRepairHint));
+        }
+      }
+    }
+  }
   const RigidInertia result{mass, X_LC.p, 0.5 * (I_L + I_L.transpose())};
   ValidateRigidInertia(result, where);
   return result;

@@ -110,10 +110,11 @@ void Guarded(const std::string& source, Call call) {
 }  // namespace
 
 UrdfImport ImportUrdf(const std::string& text, const std::string& source,
-                      const std::set<std::string>& assets) {
+                      const std::set<std::string>& assets, const UrdfImportOptions& options) {
   UrdfImport result;
   const UrdfXmlFacts facts = ScanUrdfXml(text, source, &result.warnings);
-  const UrdfDiagnostics diagnostics(source, facts.link_lines, facts.joint_lines, &result.warnings);
+  const UrdfDiagnostics diagnostics(source, facts.link_lines, facts.joint_lines, &result.warnings,
+                                    options.repair);
   const std::shared_ptr<urdf::ModelInterface> urdf =
       ParseWithUrdfdom(facts.urdfdom_text, diagnostics);
   const JointList joints = JointsParentFirst(*urdf, facts, diagnostics);
@@ -147,7 +148,7 @@ UrdfImport ImportUrdf(const std::string& text, const std::string& source,
   return result;
 }
 
-UrdfImport ImportUrdfFile(const std::string& path) {
+UrdfImport ImportUrdfFile(const std::string& path, const UrdfImportOptions& options) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error)) {
     throw InputError(path + ": is a directory; give the path of a .urdf file");
@@ -164,7 +165,7 @@ UrdfImport ImportUrdfFile(const std::string& path) {
   const UrdfXmlFacts facts = ScanUrdfXml(text, path, &ignored);
   const std::set<std::string> assets =
       ExistingMeshFiles(facts.mesh_files, std::filesystem::path(path).parent_path());
-  return ImportUrdf(text, path, assets);
+  return ImportUrdf(text, path, assets, options);
 }
 
 }  // namespace mbstream

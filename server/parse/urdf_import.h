@@ -36,15 +36,22 @@ struct UrdfImport {
   std::vector<std::string> warnings;
 };
 
+struct UrdfImportOptions {
+  // Repair the defects published URDFs commonly carry (server/parse/urdf_repairs.h): an
+  // unphysical inertia tensor, a negative velocity or effort limit, a moving link without
+  // mass; each repair is a warning "FILE:LINE: link 'NAME': repaired: ...". Off: errors.
+  bool repair = false;
+};
+
 // Imports URDF XML `text`. `source` names the file in messages. `assets` are the mesh
 // files the user supplied, each as written in the URDF's filename attribute or as its
 // base name; a mesh referenced by a visual or collision and not among them is an error.
 UrdfImport ImportUrdf(const std::string& text, const std::string& source,
-                      const std::set<std::string>& assets);
+                      const std::set<std::string>& assets, const UrdfImportOptions& options = {});
 
 // Reads and imports the file at `path`. A mesh counts as supplied when its file exists,
 // looked up relative to the URDF's directory with any package:// or file:// prefix
 // stripped (for package://PKG/rest also as rest, and by base name).
-UrdfImport ImportUrdfFile(const std::string& path);
+UrdfImport ImportUrdfFile(const std::string& path, const UrdfImportOptions& options = {});
 
 }  // namespace mbstream
