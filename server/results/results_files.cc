@@ -56,9 +56,22 @@ void WriteSeries(const fs::path& path, const std::string& header, const RunResul
   });
 }
 
-std::string JointHeader(const std::string& prefix, int n) {
+// A CSV field (RFC 4180): quoted when it holds a comma, a quote or a line break.
+std::string CsvField(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+// "t" and the joints' names in the model's joint order (the order of stats.json's
+// "joints"); `prefix` and the joint's number where a name is missing.
+std::string JointHeader(const std::vector<std::string>& names, const std::string& prefix, int n) {
   std::string header = "t";
-  for (int i = 1; i <= n; ++i) header += "," + prefix + std::to_string(i);
+  for (int i = 0; i < n; ++i) {
+    const bool named = i < static_cast<int>(names.size()) && !names[i].empty();
+    header += "," + (named ? CsvField(names[i]) : prefix + std::to_string(i + 1));
+  }
   return header;
 }
 
@@ -122,11 +135,13 @@ void WriteResultsDirectory(const RunResult& result, const RunProvenance& provena
     throw InputError("cannot create results directory " + directory + ": " + error.message());
   }
   const int n = result.num_dofs;
-  WriteSeries(dir / "joints.csv", JointHeader("q", n), result, result.q, n);
-  WriteSeries(dir / "velocities.csv", JointHeader("qd", n), result, result.qd, n);
+  WriteSeries(dir / "joints.csv", JointHeader(result.joint_names, "q", n), result, result.q, n);
+  WriteSeries(dir / "velocities.csv", JointHeader(result.joint_names, "qd", n), result, result.qd,
+              n);
   WriteSeries(dir / "tcp.csv", "t,x,y,z", result, result.tcp, 3);
   if (result.has_torques) {
-    WriteSeries(dir / "torques.csv", JointHeader("tau", n), result, result.tau, n);
+    WriteSeries(dir / "torques.csv", JointHeader(result.joint_names, "tau", n), result, result.tau,
+                n);
   } else {
     fs::remove(dir / "torques.csv", error);  // never leave a stale file from another run
   }
@@ -143,7 +158,7 @@ void WriteResultsDirectory(const RunResult& result, const RunProvenance& provena
     WriteFile(dir / "probes.csv", [&](std::ostream& out) {
       out << "seq,t,name,x,y,z,latency_us\n";
       for (const ProbeRecord& p : probes) {
-        out << p.seq << ',' << Number(p.t) << ',' << p.name << ',' << Number(p.x) << ','
+        out << p.seq << ',' << Number(p.t) << ',' << CsvField(p.name) << ',' << Number(p.x) << ','
             << Number(p.y) << ',' << Number(p.z) << ',' << p.latency_us << '\n';
       }
     });

@@ -44,6 +44,11 @@ TEST(SimulateCliTest, SeedRunWritesTheResultsFiles) {
   EXPECT_EQ(Lines(out / "joints.csv"), 402);  // header + 401 frames
   EXPECT_EQ(Lines(out / "tcp.csv"), 402);
   EXPECT_EQ(Lines(out / "velocities.csv"), 402);
+  // The columns name the joints, in the order of stats.json's "joints".
+  std::ifstream joints(out / "joints.csv");
+  std::string header;
+  std::getline(joints, header);
+  EXPECT_EQ(header, "t,joint1,joint2,joint3,joint4,joint5,joint6");
   EXPECT_FALSE(fs::exists(out / "torques.csv"));  // the seed run asks for no torques
   EXPECT_NE(outcome.stats.find(R"("status": "FINISHED")"), std::string::npos);
   EXPECT_NE(outcome.stats.find(R"("formulation": "joint")"), std::string::npos);
