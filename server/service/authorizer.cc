@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "server/common/check.h"
+#include "server/service/rpc_roles.h"
 
 namespace mbstream {
 
@@ -52,6 +53,13 @@ std::string BearerToken(std::string_view value) {
 }
 
 }  // namespace
+
+Role RoleOf(std::string_view method) {
+  for (const RpcRole& entry : kRpcRoles) {
+    if (entry.method == method) return entry.role;
+  }
+  throw InternalError("RPC '" + std::string(method) + "' has no role in kRpcRoles");
+}
 
 const char* RoleName(Role role) {
   switch (role) {

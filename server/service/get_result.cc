@@ -11,10 +11,7 @@ constexpr size_t kChunkBytes = 1 << 20;  // about 1 MiB of frames or probes per 
 grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
                                           const v1::GetResultRequest* request,
                                           grpc::ServerWriter<v1::ResultChunk>* writer) {
-  return Serve([&] {
-    if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
-      return denied;
-    }
+  return Admit(*context, "GetResult", [&]() -> grpc::Status {
     RunManager::StoredResult result = runs_->Result(request->run_id());
     v1::ResultChunk chunk;
     *chunk.mutable_info() = result.info;

@@ -16,10 +16,7 @@ SimulationService::SimulationService(ModelRegistry* models, RunManager* runs,
 grpc::Status SimulationService::SubmitModel(grpc::ServerContext* context,
                                             const v1::SubmitModelRequest* request,
                                             v1::ModelInfo* response) {
-  return Serve([&] {
-    if (grpc::Status denied = authorizer_->Check(*context, Role::kSubmit); !denied.ok()) {
-      return denied;
-    }
+  return Admit(*context, "SubmitModel", [&]() -> grpc::Status {
     *response = models_->Submit(request->bundle(), false)->info;
     return grpc::Status::OK;
   });
@@ -28,10 +25,7 @@ grpc::Status SimulationService::SubmitModel(grpc::ServerContext* context,
 grpc::Status SimulationService::ListModels(grpc::ServerContext* context,
                                            const v1::ListModelsRequest*,
                                            v1::ListModelsResponse* response) {
-  return Serve([&] {
-    if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
-      return denied;
-    }
+  return Admit(*context, "ListModels", [&]() -> grpc::Status {
     for (const v1::ModelInfo& info : models_->List()) *response->add_models() = info;
     return grpc::Status::OK;
   });
@@ -40,10 +34,7 @@ grpc::Status SimulationService::ListModels(grpc::ServerContext* context,
 grpc::Status SimulationService::GetModel(grpc::ServerContext* context,
                                          const v1::GetModelRequest* request,
                                          v1::GetModelResponse* response) {
-  return Serve([&] {
-    if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
-      return denied;
-    }
+  return Admit(*context, "GetModel", [&]() -> grpc::Status {
     std::shared_ptr<const CompiledModel> model = models_->Find(request->model());
     *response->mutable_info() = model->info;
     if (request->include_bundle()) *response->mutable_bundle() = model->bundle;
@@ -54,10 +45,7 @@ grpc::Status SimulationService::GetModel(grpc::ServerContext* context,
 grpc::Status SimulationService::StartRun(grpc::ServerContext* context,
                                          const v1::StartRunRequest* request,
                                          v1::RunInfo* response) {
-  return Serve([&] {
-    if (grpc::Status denied = authorizer_->Check(*context, Role::kRun); !denied.ok()) {
-      return denied;
-    }
+  return Admit(*context, "StartRun", [&]() -> grpc::Status {
     *response = runs_->Start(request->model(), request->spec(), authorizer_->CallerId(*context));
     return grpc::Status::OK;
   });
@@ -66,10 +54,7 @@ grpc::Status SimulationService::StartRun(grpc::ServerContext* context,
 grpc::Status SimulationService::CancelRun(grpc::ServerContext* context,
                                           const v1::CancelRunRequest* request,
                                           v1::RunInfo* response) {
-  return Serve([&] {
-    if (grpc::Status denied = authorizer_->Check(*context, Role::kRun); !denied.ok()) {
-      return denied;
-    }
+  return Admit(*context, "CancelRun", [&]() -> grpc::Status {
     const v1::RunInfo info = runs_->Get(request->run_id());  // NOT_FOUND first
     if (!info.owner().empty() && info.owner() != authorizer_->CallerId(*context) &&
         !authorizer_->CallerHas(*context, Role::kAdmin)) {
@@ -85,10 +70,7 @@ grpc::Status SimulationService::CancelRun(grpc::ServerContext* context,
 
 grpc::Status SimulationService::GetRun(grpc::ServerContext* context,
                                        const v1::GetRunRequest* request, v1::RunInfo* response) {
-  return Serve([&] {
-    if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
-      return denied;
-    }
+  return Admit(*context, "GetRun", [&]() -> grpc::Status {
     *response = runs_->Get(request->run_id());
     return grpc::Status::OK;
   });
@@ -97,10 +79,7 @@ grpc::Status SimulationService::GetRun(grpc::ServerContext* context,
 grpc::Status SimulationService::ListRuns(grpc::ServerContext* context,
                                          const v1::ListRunsRequest* request,
                                          v1::ListRunsResponse* response) {
-  return Serve([&] {
-    if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
-      return denied;
-    }
+  return Admit(*context, "ListRuns", [&]() -> grpc::Status {
     RunManager::RunPage page = runs_->List(request->model(), request->limit(), request->page_size(),
                                            request->page_token());
     for (v1::RunInfo& info : page.runs) *response->add_runs() = std::move(info);

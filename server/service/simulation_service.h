@@ -8,6 +8,8 @@
 #include "server/runs/model_registry.h"
 #include "server/runs/run_manager.h"
 #include "server/service/authorizer.h"
+#include "server/service/rpc_roles.h"
+#include "server/service/status_from_exception.h"
 
 namespace mbstream {
 
@@ -42,6 +44,16 @@ class SimulationService final : public v1::Simulation::Service {
   void Stop() { stopping_ = true; }
 
  private:
+  // The gate of every handler: the caller's token must have the role kRpcRoles gives
+  // `method`; then `body` runs, its exceptions mapped to status codes.
+  template <typename Body>
+  grpc::Status Admit(const grpc::ServerContext& context, std::string_view method, Body body) {
+    if (grpc::Status denied = authorizer_->Check(context, RoleOf(method)); !denied.ok()) {
+      return denied;
+    }
+    return Serve(body);
+  }
+
   ModelRegistry* models_;
   RunManager* runs_;
   const Authorizer* authorizer_;

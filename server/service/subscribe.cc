@@ -181,10 +181,7 @@ grpc::Status SendEvents(grpc::ServerContext* context, Stream* stream, const Subs
 }  // namespace
 
 grpc::Status SimulationService::Subscribe(grpc::ServerContext* context, Stream* stream) {
-  return Serve([&]() -> grpc::Status {
-    if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
-      return denied;
-    }
+  return Admit(*context, "Subscribe", [&]() -> grpc::Status {
     // Counted before anything is read: idle streams count against the subscriber limit.
     std::shared_ptr<Subscription> subscription = runs_->NewSubscription();
     struct Unsubscribe {

@@ -35,10 +35,7 @@ Clock::duration ProgressInterval(double interval_s) {
 grpc::Status SimulationService::WatchRun(grpc::ServerContext* context,
                                          const v1::WatchRunRequest* request,
                                          grpc::ServerWriter<v1::WatchEvent>* writer) {
-  return Serve([&] {
-    if (grpc::Status denied = authorizer_->Check(*context, Role::kView); !denied.ok()) {
-      return denied;
-    }
+  return Admit(*context, "WatchRun", [&]() -> grpc::Status {
     const Clock::duration interval = ProgressInterval(request->progress_interval_s());
     const std::string& run_id = request->run_id();
     v1::RunInfo info = runs_->Get(run_id);  // NOT_FOUND first

@@ -1,0 +1,32 @@
+// The role every RPC of mbstream.v1.Simulation needs: the one list the service's gate reads
+// (SimulationService::Admit). A test checks that it names every method of the service.
+#pragma once
+
+#include <string_view>
+
+#include "server/service/authorizer.h"
+
+namespace mbstream {
+
+struct RpcRole {
+  std::string_view method;  // the method's name in simulation_service.proto
+  Role role;
+};
+
+inline constexpr RpcRole kRpcRoles[] = {
+    {"SubmitModel", Role::kSubmit},  // compiles and stores a model
+    {"ListModels", Role::kView},     //
+    {"GetModel", Role::kView},       //
+    {"StartRun", Role::kRun},        // occupies a worker
+    {"CancelRun", Role::kRun},       // the run's own token, or admin (checked in the handler)
+    {"GetRun", Role::kView},         //
+    {"ListRuns", Role::kView},       //
+    {"GetResult", Role::kView},      //
+    {"WatchRun", Role::kView},       //
+    {"Subscribe", Role::kView},      // viewers; their probe reports are checked per stream
+};
+
+// The role of `method`; a method missing from kRpcRoles is a bug (InternalError).
+Role RoleOf(std::string_view method);
+
+}  // namespace mbstream

@@ -1,0 +1,147 @@
+// The gate: kRpcRoles names every RPC of the service, and each RPC refuses a token without
+// its role (PERMISSION_DENIED) and lets one with it through, RPC by RPC.
+#include "server/service/rpc_roles.h"
+
+#include <gmock/gmock.h>
+#include <google/protobuf/descriptor.h>
+
+#include <fstream>
+#include <functional>
+#include <map>
+#include <set>
+
+#include "server/common/check.h"
+#include "tests/server/service/server_fixture.h"
+
+namespace mbstream::testing {
+namespace {
+
+TEST(RpcRolesTest, EveryMethodOfTheServiceHasARole) {
+  const google::protobuf::ServiceDescriptor* service =
+      google::protobuf::DescriptorPool::generated_pool()->FindServiceByName(
+          v1::Simulation::service_full_name());
+  ASSERT_NE(service, nullptr);
+  std::set<std::string> methods, listed;
+  for (int i = 0; i < service->method_count(); ++i) methods.insert(service->method(i)->name());
+  for (const RpcRole& entry : kRpcRoles) listed.insert(std::string(entry.method));
+  EXPECT_EQ(methods, listed);
+  EXPECT_THROW(RoleOf("NoSuchMethod"), InternalError);
+}
+
+// A token per role: "<role>-token-0123456789".
+class RpcGateTest : public ServerTest {
+ protected:
+  void SetUp() override {
+    const std::string file = (data_.path() / "tokens").string();
+    std::ofstream(file) << "submit-token-0123456789 submit\nrun-token-0123456789 run\n"
+                        << "view-token-0123456789 view\n";
+    StartServer(ServerLimits(), file);
+  }
+
+  // Calls `method` with `token` and returns the status (streams: read to the end).
+  grpc::Status Call(const std::string& method, const std::string& token) {
+    grpc::ClientContext context;
+    context.AddMetadata("authorization", "Bearer " + token);
+    auto finish = [](auto reader, auto event) {
+      while (reader->Read(&event)) {
+      }
+      return reader->Finish();
+    };
+    const std::map<std::string, std::function<grpc::Status()>> calls = {
+        {"SubmitModel",
+         [&] {
+           v1::SubmitModelRequest request;
+           *request.mutable_bundle() = IrbBundle();
+           v1::ModelInfo info;
+           return stub().SubmitModel(&context, request, &info);
+         }},
+        {"ListModels",
+         [&] {
+           v1::ListModelsResponse response;
+           return stub().ListModels(&context, v1::ListModelsRequest(), &response);
+         }},
+        {"GetModel",
+         [&] {
+           v1::GetModelRequest request;
+           request.set_model("irb1600");
+           v1::GetModelResponse response;
+           return stub().GetModel(&context, request, &response);
+         }},
+        {"StartRun",
+         [&] {
+           v1::StartRunRequest request;
+           request.set_model("single_pendulum");
+           v1::RunInfo info;
+           return stub().StartRun(&context, request, &info);
+         }},
+        {"CancelRun",
+         [&] {
+           v1::CancelRunRequest request;
+           request.set_run_id("r-nosuch");
+           v1::RunInfo info;
+           return stub().CancelRun(&context, request, &info);
+         }},
+        {"GetRun",
+         [&] {
+           v1::GetRunRequest request;
+           request.set_run_id("r-nosuch");
+           v1::RunInfo info;
+           return stub().GetRun(&context, request, &info);
+         }},
+        {"ListRuns",
+         [&] {
+           v1::ListRunsResponse response;
+           return stub().ListRuns(&context, v1::ListRunsRequest(), &response);
+         }},
+        {"GetResult",
+         [&] {
+           v1::GetResultRequest request;
+           request.set_run_id("r-nosuch");
+           return finish(stub().GetResult(&context, request), v1::ResultChunk());
+         }},
+        {"WatchRun",
+         [&] {
+           v1::WatchRunRequest request;
+           request.set_run_id("r-nosuch");
+           return finish(stub().WatchRun(&context, request), v1::WatchEvent());
+         }},
+        {"Subscribe",
+         [&] {
+           auto stream = stub().Subscribe(&context);
+           v1::SubscribeRequest start;
+           start.mutable_start()->set_run_id("r-nosuch");
+           stream->Write(start);
+           stream->WritesDone();
+           return finish(std::move(stream), v1::SubscribeEvent());
+         }},
+    };
+    return calls.at(method)();
+  }
+};
+
+TEST_F(RpcGateTest, EachRpcNeedsItsRoleAndNoOther) {
+  const std::map<Role, std::string> token_of = {{Role::kSubmit, "submit-token-0123456789"},
+                                                {Role::kRun, "run-token-0123456789"},
+                                                {Role::kView, "view-token-0123456789"}};
+  for (const RpcRole& entry : kRpcRoles) {
+    const std::string method(entry.method);
+    for (const auto& [role, token] : token_of) {
+      const grpc::Status status = Call(method, token);
+      if (role == entry.role) {
+        EXPECT_NE(status.error_code(), grpc::StatusCode::PERMISSION_DENIED)
+            << method << " with its role: " << status.error_message();
+        EXPECT_NE(status.error_code(), grpc::StatusCode::UNAUTHENTICATED) << method;
+      } else {
+        EXPECT_EQ(status.error_code(), grpc::StatusCode::PERMISSION_DENIED)
+            << method << " with the role " << RoleName(role);
+        EXPECT_THAT(status.error_message(), ::testing::HasSubstr(RoleName(entry.role)));
+      }
+    }
+    EXPECT_EQ(Call(method, "unknown-token-0123456789").error_code(),
+              grpc::StatusCode::UNAUTHENTICATED)
+        << method;
+  }
+}
+
+}  // namespace
+}  // namespace mbstream::testing
