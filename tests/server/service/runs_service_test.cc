@@ -14,6 +14,23 @@ using ::testing::HasSubstr;
 class RunsServiceTest : public ServerTest {
  protected:
   void SetUp() override { StartServer(); }
+
+  // Waits (polling GetRun) until the run is RUNNING with at least `frames` frames.
+  void WaitForFrames(const std::string& run_id, int64_t frames) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::chrono::steady_clock::now() < deadline) {
+      grpc::ClientContext context;
+      v1::GetRunRequest request;
+      request.set_run_id(run_id);
+      v1::RunInfo now;
+      ASSERT_TRUE(stub().GetRun(&context, request, &now).ok());
+      if (now.state() == v1::RUNNING && now.frames() >= frames) return;
+      ASSERT_EQ(now.state() == v1::QUEUED || now.state() == v1::RUNNING, true)
+          << v1::RunState_Name(now.state());
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    FAIL() << "run " << run_id << " has no frame after 60 s";
+  }
 };
 
 TEST_F(RunsServiceTest, SeedRunMatchesDirectKinematics) {
@@ -95,7 +112,7 @@ TEST_F(RunsServiceTest, CancelStopsARunningRunAndKeepsItsFrames) {
   v1::RunSpec spec = SceneSpec("seed-run.json");
   spec.set_realtime(1.0);  // 20 s of wall time unless cancelled
   const v1::RunInfo started = StartRunOk("irb1600", spec);
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  WaitForFrames(started.id(), 1);  // running, with a frame to keep
   grpc::ClientContext context;
   v1::CancelRunRequest request;
   request.set_run_id(started.id());
@@ -169,15 +186,7 @@ TEST_F(RunsServiceTest, ServerLimitsAreResourceExhausted) {
   slow.set_duration_s(5.0);
   slow.set_realtime(1.0);
   const v1::RunInfo running = StartRunOk("irb1600", slow);
-  for (int i = 0; i < 1000; ++i) {  // until the worker has taken it off the queue
-    grpc::ClientContext context;
-    v1::GetRunRequest request;
-    request.set_run_id(running.id());
-    v1::RunInfo now;
-    ASSERT_TRUE(stub().GetRun(&context, request, &now).ok());
-    if (now.state() == v1::RUNNING) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  WaitForFrames(running.id(), 1);  // the worker has taken it off the queue
   const v1::RunInfo queued = StartRunOk("irb1600", slow);
   status = StartRun("irb1600", slow, &info);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
@@ -195,7 +204,7 @@ TEST_F(RunsServiceTest, ShutdownInterruptsRunningRunsAndTheyStayListed) {
   v1::RunSpec spec = SceneSpec("seed-run.json");
   spec.set_realtime(1.0);
   const v1::RunInfo started = StartRunOk("irb1600", spec);
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  WaitForFrames(started.id(), 1);
   host_->Shutdown();
   StartServer();  // same data directory
   grpc::ClientContext context;
