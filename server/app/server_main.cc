@@ -2,6 +2,7 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
@@ -10,17 +11,20 @@
 #include "net/tls_files.h"
 #include "server/app/server_host.h"
 #include "server/common/check.h"
+#include "server/runs/release_memory.h"
 
 #ifndef MBSTREAM_DEFAULT_MODELS_DIR
 #define MBSTREAM_DEFAULT_MODELS_DIR ""
 #endif
 
 int main(int argc, char** argv) {
+  mbstream::UseMappingsForLargeBlocks();
   mbstream::ServerConfig config;
   config.models_dir =
       std::filesystem::exists(MBSTREAM_DEFAULT_MODELS_DIR) ? MBSTREAM_DEFAULT_MODELS_DIR : "";
   mbstream::ServerLimits& limits = config.limits;
   double max_model_mb = static_cast<double>(limits.max_model_bytes) / (1 << 20);
+  double max_models_mb = static_cast<double>(limits.max_total_model_bytes) / (1 << 20);
   double max_message_mb = static_cast<double>(config.max_message_bytes) / (1 << 20);
   std::string log_level = "info";
 
@@ -53,6 +57,16 @@ int main(int argc, char** argv) {
   app.add_option("--max-model-mb", max_model_mb, "largest model bundle, MiB")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--max-models", limits.max_models, "most models users may store (built-ins apart)")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  app.add_option("--max-models-mb", max_models_mb, "largest total size of the stored models, MiB")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--model-cache", limits.compiled_models_cached,
+                 "compiled models kept in memory (stored models compile on first use)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   app.add_option("--max-links", limits.max_links, "most links and points of a model")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
@@ -81,6 +95,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   limits.max_model_bytes = static_cast<int64_t>(max_model_mb * (1 << 20));
   config.max_message_bytes = static_cast<int>(max_message_mb * (1 << 20));
+  limits.max_total_model_bytes = static_cast<int64_t>(std::min(max_models_mb, 1e12) * (1 << 20));
   spdlog::set_level(spdlog::level::from_str(log_level));
 
   // SIGINT/SIGTERM are handled by one thread (sigwait) that shuts the server down cleanly.

@@ -113,6 +113,7 @@ UrdfImport ImportUrdf(const std::string& text, const std::string& source,
                       const std::set<std::string>& assets, const UrdfImportOptions& options) {
   UrdfImport result;
   const UrdfXmlFacts facts = ScanUrdfXml(text, source, &result.warnings);
+  result.mesh_files = facts.mesh_files;
   const UrdfDiagnostics diagnostics(source, facts.link_lines, facts.joint_lines, &result.warnings,
                                     options.repair);
   const std::shared_ptr<urdf::ModelInterface> urdf =

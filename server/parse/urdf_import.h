@@ -34,6 +34,7 @@ namespace mbstream {
 struct UrdfImport {
   Model model;
   std::vector<std::string> warnings;
+  std::vector<std::string> mesh_files;  // every visual/collision <mesh filename>, as written
 };
 
 struct UrdfImportOptions {

@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include "server/common/check.h"
+#include "server/parse/asset_references.h"
 
 namespace mbstream {
 
@@ -36,8 +37,7 @@ bool IsFile(const std::filesystem::path& path) {
 }  // namespace
 
 bool MeshSupplied(const std::string& filename, const std::set<std::string>& assets) {
-  return assets.count(filename) != 0 || assets.count(WithoutScheme(filename)) != 0 ||
-         assets.count(BaseName(filename)) != 0;
+  return AnySupplied(UrdfMeshAssetNames(filename), assets);
 }
 
 void CheckMeshes(const urdf::Link& link, const std::set<std::string>& assets,

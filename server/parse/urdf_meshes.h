@@ -12,8 +12,8 @@
 
 namespace mbstream {
 
-// True if `filename` (a URDF <mesh filename>) is in `assets` as written, without its
-// package:// or file:// prefix, or as its base name.
+// True if `filename` (a URDF <mesh filename>) is in `assets` under one of the names
+// UrdfMeshAssetNames gives (asset_references.h).
 bool MeshSupplied(const std::string& filename, const std::set<std::string>& assets);
 
 // Throws InputError naming the link and the file for a visual or collision mesh of `link`

@@ -2,11 +2,13 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <set>
 
 #include "server/common/check.h"
+#include "server/parse/asset_references.h"
 #include "server/parse/urdf_import.h"
 #include "server/runs/model_id.h"
 #include "server/runs/request_error.h"
@@ -40,6 +42,94 @@ void ValidateAssetNames(const v1::ModelBundle& bundle) {
   }
 }
 
+std::string SourceName(const v1::ModelBundle& bundle) {
+  return bundle.urdf_file_name().empty() ? std::string("model.urdf") : bundle.urdf_file_name();
+}
+
+// Imports the bundle's URDF (assets by name; their data is not needed) and checks the link
+// limit.
+UrdfImport ImportBundle(const v1::ModelBundle& bundle, const ServerLimits& limits) {
+  std::set<std::string> assets;
+  for (const v1::Asset& asset : bundle.assets()) assets.insert(asset.name());
+  const std::string source = SourceName(bundle);
+  UrdfImport import = ImportUrdf(bundle.urdf(), source, assets);
+  const int links = static_cast<int>(import.model.frames.size());
+  if (links > limits.max_links) {
+    throw RequestError(RequestErrorKind::kResourceExhausted,
+                       source + ": the model has " + std::to_string(links) +
+                           " links and points, more than this server's limit of " +
+                           std::to_string(limits.max_links) +
+                           "; ask the operator to raise --max-links");
+  }
+  return import;
+}
+
+std::shared_ptr<CompiledModel> MakeCompiled(UrdfImport import) {
+  auto compiled = std::make_shared<CompiledModel>();
+  compiled->model = std::move(import.model);
+  compiled->joint_names = JointNames(compiled->model);
+  return compiled;
+}
+
+// A submitted bundle checked and compiled: what is stored and the model.
+struct Prepared {
+  v1::ModelBundle bundle;  // without the assets nothing refers to
+  std::shared_ptr<CompiledModel> compiled;
+};
+
+Prepared Prepare(const v1::ModelBundle& submitted, bool builtin, const ServerLimits& limits) {
+  const int64_t bytes = BundleBytes(submitted);
+  if (bytes > limits.max_model_bytes) {
+    throw RequestError(RequestErrorKind::kResourceExhausted,
+                       "the model bundle has " + std::to_string(bytes) +
+                           " bytes, more than this server's limit of " +
+                           std::to_string(limits.max_model_bytes) +
+                           "; simplify the meshes or ask the operator to raise --max-model-mb");
+  }
+  if (submitted.urdf().empty()) {
+    throw InputError("bundle.urdf is empty; send the URDF text of the model");
+  }
+  ValidateAssetNames(submitted);
+  UrdfImport import = ImportBundle(submitted, limits);
+
+  // Assets nothing refers to are dropped (not stored, not sent to viewers), with a warning:
+  // `mbstream submit FOLDER` sends every mesh of the folder, so spare files are ordinary.
+  Prepared prepared;
+  prepared.bundle = submitted;
+  std::vector<std::string> names;
+  for (const v1::Asset& asset : submitted.assets()) names.push_back(asset.name());
+  const std::vector<std::string> unreferenced =
+      UnreferencedAssets(names, import.mesh_files, submitted.scene_script());
+  if (!unreferenced.empty()) {
+    const std::set<std::string> drop(unreferenced.begin(), unreferenced.end());
+    prepared.bundle.clear_assets();
+    for (const v1::Asset& asset : submitted.assets()) {
+      if (drop.count(asset.name()) == 0) *prepared.bundle.add_assets() = asset;
+    }
+    for (const std::string& name : unreferenced) {
+      import.warnings.push_back("asset '" + name +
+                                "' is referenced by neither the URDF's meshes nor the scene "
+                                "script's Part commands; it was not stored");
+    }
+  }
+  const std::vector<std::string> warnings = import.warnings;
+  prepared.compiled = MakeCompiled(std::move(import));
+  v1::ModelInfo& info = prepared.compiled->info;
+  DescribeModel(prepared.compiled->model, warnings, &info);
+  info.set_id(ModelContentId(prepared.bundle));
+  info.set_name(submitted.name().empty() ? prepared.compiled->model.name : submitted.name());
+  prepared.bundle.set_name(info.name());
+  info.set_has_scene(!submitted.scene_script().empty());
+  info.set_num_assets(prepared.bundle.assets_size());
+  int64_t asset_bytes = 0;
+  for (const v1::Asset& asset : prepared.bundle.assets()) asset_bytes += asset.data().size();
+  info.set_asset_bytes(asset_bytes);
+  info.set_builtin(builtin);
+  return prepared;
+}
+
+std::string MiB(int64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB"; }
+
 }  // namespace
 
 ModelRegistry::ModelRegistry(Store* store, const ServerLimits& limits)
@@ -47,88 +137,76 @@ ModelRegistry::ModelRegistry(Store* store, const ServerLimits& limits)
   MBSTREAM_CHECK(store_ != nullptr);
 }
 
-std::shared_ptr<const CompiledModel> ModelRegistry::Compile(const v1::ModelBundle& bundle,
-                                                            bool builtin, const std::string& id,
-                                                            int64_t created_unix_ms) const {
-  const int64_t bytes = BundleBytes(bundle);
-  if (bytes > limits_.max_model_bytes) {
+void ModelRegistry::CheckCapacityLocked(int64_t bytes) const {
+  int models = 0;
+  int64_t total = 0;
+  for (const auto& [id, entry] : by_id_) {
+    if (entry.info.builtin()) continue;  // the operator's own models do not count
+    ++models;
+    total += entry.bytes;
+  }
+  if (models >= limits_.max_models) {
     throw RequestError(RequestErrorKind::kResourceExhausted,
-                       "the model bundle has " + std::to_string(bytes) +
-                           " bytes, more than this server's limit of " +
-                           std::to_string(limits_.max_model_bytes) +
-                           "; simplify the meshes or ask the operator to raise --max-model-mb");
+                       "this server already stores " + std::to_string(models) +
+                           " models, its limit; run an existing model (`mbstream models` lists "
+                           "them) or ask the operator to raise --max-models");
   }
-  if (bundle.urdf().empty()) {
-    throw InputError("bundle.urdf is empty; send the URDF text of the model");
-  }
-  ValidateAssetNames(bundle);
-  std::set<std::string> assets;
-  for (const v1::Asset& asset : bundle.assets()) assets.insert(asset.name());
-  const std::string source =
-      bundle.urdf_file_name().empty() ? std::string("model.urdf") : bundle.urdf_file_name();
-  UrdfImport import = ImportUrdf(bundle.urdf(), source, assets);
-  const int links = static_cast<int>(import.model.frames.size());
-  if (links > limits_.max_links) {
+  if (total + bytes > limits_.max_total_model_bytes) {
     throw RequestError(RequestErrorKind::kResourceExhausted,
-                       source + ": the model has " + std::to_string(links) +
-                           " links and points, more than this server's limit of " +
-                           std::to_string(limits_.max_links) +
-                           "; ask the operator to raise --max-links");
+                       "storing this model (" + MiB(bytes) +
+                           ") would take the server's models to " + MiB(total + bytes) +
+                           ", more than its limit of " + MiB(limits_.max_total_model_bytes) +
+                           "; simplify the meshes or ask the operator to raise --max-models-mb");
   }
-  auto compiled = std::make_shared<CompiledModel>();
-  compiled->bundle = bundle;
-  compiled->model = std::move(import.model);
-  compiled->joint_names = JointNames(compiled->model);
-  v1::ModelInfo& info = compiled->info;
-  DescribeModel(compiled->model, import.warnings, &info);
-  info.set_id(id);
-  info.set_name(bundle.name().empty() ? compiled->model.name : bundle.name());
-  compiled->bundle.set_name(info.name());
-  info.set_has_scene(!bundle.scene_script().empty());
-  info.set_num_assets(bundle.assets_size());
-  int64_t asset_bytes = 0;
-  for (const v1::Asset& asset : bundle.assets()) asset_bytes += asset.data().size();
-  info.set_asset_bytes(asset_bytes);
-  info.set_builtin(builtin);
-  info.set_created_unix_ms(created_unix_ms);
-  return compiled;
 }
 
-std::shared_ptr<const CompiledModel> ModelRegistry::Submit(const v1::ModelBundle& bundle,
-                                                           bool builtin) {
-  const std::string id = ModelContentId(bundle);
+v1::ModelInfo ModelRegistry::Submit(const v1::ModelBundle& bundle, bool builtin) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    auto found = by_id_.find(id);
-    if (found != by_id_.end()) return found->second;
+    auto found = by_id_.find(ModelContentId(bundle));
+    if (found != by_id_.end()) return found->second.info;
   }
-  std::shared_ptr<const CompiledModel> compiled = Compile(bundle, builtin, id, NowUnixMs());
-  std::lock_guard<std::mutex> lock(mutex_);
-  auto [it, inserted] = by_id_.emplace(id, compiled);
-  if (!inserted) return it->second;  // submitted concurrently by another request
-  order_.push_back(id);
-  store_->PutModel(compiled->info, compiled->bundle);
-  spdlog::info("model {} '{}' registered: {} dofs, {} links{}, {} warnings", id,
-               compiled->info.name(), compiled->info.dofs(), compiled->info.links(),
-               builtin ? " (built-in)" : "", compiled->info.warnings_size());
-  return compiled;
+  Prepared prepared = Prepare(bundle, builtin, limits_);
+  v1::ModelInfo& info = prepared.compiled->info;
+  const std::string id = info.id();
+  const int64_t bytes = BundleBytes(prepared.bundle);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto found = by_id_.find(id);  // known without its spare assets, or submitted meanwhile
+    if (found != by_id_.end()) return found->second.info;
+    if (!builtin) CheckCapacityLocked(bytes);
+    info.set_created_unix_ms(NowUnixMs());
+    Entry& entry = by_id_[id];
+    entry.info = info;
+    entry.bytes = bytes;
+    order_.push_back(id);
+    CacheLocked(id, prepared.compiled);
+  }
+  try {
+    store_->PutModel(info, prepared.bundle);  // not under the lock
+  } catch (...) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    by_id_.erase(id);
+    order_.erase(std::remove(order_.begin(), order_.end(), id), order_.end());
+    throw;
+  }
+  spdlog::info("model {} '{}' registered: {} dofs, {} links{}, {} warnings", id, info.name(),
+               info.dofs(), info.links(), builtin ? " (built-in)" : "", info.warnings_size());
+  return info;
 }
 
 int ModelRegistry::LoadStored() {
+  const std::map<std::string, int64_t> sizes = store_->ModelBytes();
   int loaded = 0;
+  std::lock_guard<std::mutex> lock(mutex_);
   for (const v1::ModelInfo& stored : store_->ListModels()) {
-    std::optional<v1::ModelBundle> bundle = store_->GetModelBundle(stored.id());
-    if (!bundle) continue;
-    try {
-      std::shared_ptr<const CompiledModel> compiled =
-          Compile(*bundle, stored.builtin(), stored.id(), stored.created_unix_ms());
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (by_id_.emplace(stored.id(), compiled).second) order_.push_back(stored.id());
-      ++loaded;
-    } catch (const std::exception& error) {
-      spdlog::warn("stored model {} '{}' no longer compiles and is skipped: {}", stored.id(),
-                   stored.name(), error.what());
-    }
+    Entry& entry = by_id_[stored.id()];
+    if (!entry.info.id().empty()) continue;
+    entry.info = stored;
+    const auto size = sizes.find(stored.id());
+    entry.bytes = size == sizes.end() ? 0 : size->second;
+    order_.push_back(stored.id());
+    ++loaded;
   }
   return loaded;
 }
@@ -172,28 +250,103 @@ int ModelRegistry::LoadBuiltins(const std::string& directory) {
   return loaded;
 }
 
-std::shared_ptr<const CompiledModel> ModelRegistry::Find(const std::string& id_or_name) const {
-  std::lock_guard<std::mutex> lock(mutex_);
+const std::string& ModelRegistry::FindIdLocked(const std::string& id_or_name) const {
   auto found = by_id_.find(id_or_name);
-  if (found != by_id_.end()) return found->second;
+  if (found != by_id_.end()) return found->first;
   for (auto it = order_.rbegin(); it != order_.rend(); ++it) {
-    const auto& model = by_id_.at(*it);
-    if (model->info.name() == id_or_name) return model;
+    if (by_id_.at(*it).info.name() == id_or_name) return *it;
   }
   std::string known;
   for (const std::string& id : order_) {
-    known += (known.empty() ? "" : ", ") + by_id_.at(id)->info.name() + " (" + id + ")";
+    known += (known.empty() ? "" : ", ") + by_id_.at(id).info.name() + " (" + id + ")";
   }
   throw RequestError(RequestErrorKind::kNotFound,
                      "no model '" + id_or_name + "' on this server; known models: " +
                          (known.empty() ? "none" : known) + " (`mbstream models` lists them)");
 }
 
+std::shared_ptr<const CompiledModel> ModelRegistry::CacheLocked(
+    const std::string& id, std::shared_ptr<const CompiledModel> compiled) const {
+  Entry& entry = by_id_.at(id);
+  if (entry.compiled == nullptr) entry.compiled = std::move(compiled);
+  entry.last_use = ++use_clock_;
+  for (;;) {
+    int cached = 0;
+    Entry* oldest = nullptr;
+    for (auto& [other_id, other] : by_id_) {
+      if (other.compiled == nullptr) continue;
+      ++cached;
+      if (oldest == nullptr || other.last_use < oldest->last_use) oldest = &other;
+    }
+    if (cached <= std::max(1, limits_.compiled_models_cached)) break;
+    oldest->compiled.reset();  // runs using it keep their own reference
+  }
+  return entry.compiled;
+}
+
+std::shared_ptr<const CompiledModel> ModelRegistry::Find(const std::string& id_or_name) const {
+  v1::ModelInfo info;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    Entry& entry = by_id_.at(FindIdLocked(id_or_name));
+    if (entry.compiled != nullptr) {
+      entry.last_use = ++use_clock_;
+      return entry.compiled;
+    }
+    info = entry.info;
+  }
+  // Compile from the stored URDF, outside the lock (the assets' data is not read).
+  std::optional<v1::ModelBundle> bundle = store_->GetModelBundle(info.id(), false);
+  if (!bundle) {
+    throw RequestError(RequestErrorKind::kNotFound,
+                       "model " + info.id() +
+                           " is listed but its bundle is not in the store; "
+                           "submit the model again");
+  }
+  std::shared_ptr<CompiledModel> compiled;
+  try {
+    compiled = MakeCompiled(ImportBundle(*bundle, limits_));
+  } catch (const std::exception& error) {
+    spdlog::warn("stored model {} '{}' no longer compiles: {}", info.id(), info.name(),
+                 error.what());
+    throw RequestError(RequestErrorKind::kFailedPrecondition,
+                       "stored model " + info.id() + " '" + info.name() +
+                           "' no longer compiles with this server (" + error.what() +
+                           "); fix the model and submit it again");
+  }
+  compiled->info = info;
+  std::lock_guard<std::mutex> lock(mutex_);
+  return CacheLocked(info.id(), std::move(compiled));
+}
+
+v1::ModelInfo ModelRegistry::Info(const std::string& id_or_name) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return by_id_.at(FindIdLocked(id_or_name)).info;
+}
+
+v1::ModelBundle ModelRegistry::Bundle(const std::string& model_id) const {
+  std::optional<v1::ModelBundle> bundle = store_->GetModelBundle(model_id, true);
+  if (!bundle) {
+    throw RequestError(RequestErrorKind::kNotFound,
+                       "no model '" + model_id +
+                           "' in this server's store; `mbstream models` "
+                           "lists the models");
+  }
+  return *std::move(bundle);
+}
+
 std::vector<v1::ModelInfo> ModelRegistry::List() const {
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<v1::ModelInfo> list;
-  for (const std::string& id : order_) list.push_back(by_id_.at(id)->info);
+  for (const std::string& id : order_) list.push_back(by_id_.at(id).info);
   return list;
+}
+
+int ModelRegistry::compiled_count() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  int count = 0;
+  for (const auto& [id, entry] : by_id_) count += entry.compiled != nullptr ? 1 : 0;
+  return count;
 }
 
 }  // namespace mbstream

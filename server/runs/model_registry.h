@@ -1,6 +1,11 @@
-// The server's models: compiled once, shared read-only by every run that uses them.
+// The server's models: compiled on first use, shared read-only by every run that uses them.
+//
+// The registry keeps every model's ModelInfo; a model's bundle (URDF, scene, assets) stays in
+// the store. A model is compiled from its stored URDF when a run first needs it (not at
+// start), and a bounded number of compiled models is cached (runs keep theirs alive).
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -15,10 +20,10 @@ namespace mbstream {
 
 class Store;
 
-// A model ready to run: its constant physics Model, its description and its bundle.
+// A model ready to run: its constant physics Model and its description. Its bundle is in
+// the store (ModelRegistry::Bundle).
 struct CompiledModel {
   v1::ModelInfo info;
-  v1::ModelBundle bundle;
   Model model;
   std::vector<std::string> joint_names;  // the model's joint order
 };
@@ -28,36 +33,61 @@ class ModelRegistry {
   // `store` (not owned, must outlive the registry) persists submitted models.
   ModelRegistry(Store* store, const ServerLimits& limits);
 
-  // Compiles (URDF import and validation) and registers `bundle`; stores it unless it is
-  // already known. Returns the model (the existing one when the content id is known).
-  // Throws InputError with the importer's messages, RequestError(kResourceExhausted) when
-  // the bundle exceeds the size or link limits.
-  std::shared_ptr<const CompiledModel> Submit(const v1::ModelBundle& bundle, bool builtin);
+  // Compiles (URDF import and validation) and stores `bundle` unless it is already known;
+  // returns its info (the existing one when the content id is known). Assets that neither
+  // the URDF nor the scene script refers to are dropped with a warning in the info. Throws
+  // InputError with the importer's messages, RequestError(kResourceExhausted) when the
+  // bundle exceeds the size or link limits, or (not for built-in models) when storing it
+  // would exceed the server's model count or total size limits.
+  v1::ModelInfo Submit(const v1::ModelBundle& bundle, bool builtin);
 
-  // Re-compiles every model of the store (at start). A stored model that no longer compiles
-  // is skipped with a warning in the log; returns how many were loaded.
+  // Lists the models of the store (at start) without compiling them; returns how many.
   int LoadStored();
 
   // Submits every model directory below `directory` (a folder with one .urdf; see
   // ReadModelBundle) as built-in. Returns how many; logs and skips ones that fail.
   int LoadBuiltins(const std::string& directory);
 
-  // By id, or by name (the newest with that name). Throws RequestError(kNotFound) naming
-  // the known models.
+  // By id, or by name (the newest with that name), compiled (from the store on first use).
+  // Throws RequestError: kNotFound naming the known models, kFailedPrecondition when a
+  // stored model no longer compiles.
   std::shared_ptr<const CompiledModel> Find(const std::string& id_or_name) const;
+
+  // The info of a model by id or name, without compiling it. Throws as Find does.
+  v1::ModelInfo Info(const std::string& id_or_name) const;
+
+  // The whole bundle of model `model_id` (assets included), read from the store. Throws
+  // RequestError(kNotFound).
+  v1::ModelBundle Bundle(const std::string& model_id) const;
 
   std::vector<v1::ModelInfo> List() const;  // oldest first
 
+  // How many models are compiled and cached now (at most limits.compiled_models_cached).
+  int compiled_count() const;
+
  private:
-  std::shared_ptr<const CompiledModel> Compile(const v1::ModelBundle& bundle, bool builtin,
-                                               const std::string& id,
-                                               int64_t created_unix_ms) const;
+  struct Entry {
+    v1::ModelInfo info;
+    int64_t bytes = 0;                              // stored size (URDF, scene, assets)
+    std::shared_ptr<const CompiledModel> compiled;  // null until first use, or evicted
+    uint64_t last_use = 0;
+  };
+  // The entry for an id or a name (mutex_ held); throws RequestError(kNotFound).
+  const std::string& FindIdLocked(const std::string& id_or_name) const;
+  // Caches `compiled` for `id` and evicts the least recently used beyond the limit (mutex_
+  // held). Returns the cached model (an earlier one if another thread was first).
+  std::shared_ptr<const CompiledModel> CacheLocked(
+      const std::string& id, std::shared_ptr<const CompiledModel> compiled) const;
+  // Throws RequestError(kResourceExhausted) if one more user model of `bytes` would exceed
+  // the count or total size limits (mutex_ held).
+  void CheckCapacityLocked(int64_t bytes) const;
 
   Store* store_;
   ServerLimits limits_;
   mutable std::mutex mutex_;
-  std::map<std::string, std::shared_ptr<const CompiledModel>> by_id_;
+  mutable std::map<std::string, Entry> by_id_;
   std::vector<std::string> order_;  // ids, oldest first
+  mutable uint64_t use_clock_ = 0;
 };
 
 }  // namespace mbstream

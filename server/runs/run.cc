@@ -12,7 +12,8 @@ Run::Run(const v1::RunInfo& info, const RunConfig& config,
       model_(std::move(model)),
       config_(config),
       realtime_(info.spec().realtime()),
-      info_(info) {
+      info_(info),
+      spool_(info.id()) {
   MBSTREAM_CHECK(model_ != nullptr);
 }
 
@@ -37,14 +38,14 @@ void Run::Attach(const std::shared_ptr<Subscription>& subscriber, bool send_star
     subscriber->Push({StreamEvent::Kind::kRunEnded, id_, nullptr});
     return;
   }
-  if (!frames_.empty()) subscriber->Push({StreamEvent::Kind::kFrame, id_, frames_.back()});
+  if (latest_frame_) subscriber->Push({StreamEvent::Kind::kFrame, id_, latest_frame_});
   subscribers_.push_back(subscriber);
 }
 
 void Run::Publish(std::shared_ptr<const v1::Frame> frame) {
   std::lock_guard<std::mutex> lock(mutex_);
-  frames_.push_back(frame);
-  info_.set_frames(static_cast<int64_t>(frames_.size()));
+  latest_frame_ = frame;
+  info_.set_frames(++published_);
   info_.set_t_s(frame->t_s());
   // Detach subscribers whose streams have gone, then fan out.
   subscribers_.erase(std::remove_if(subscribers_.begin(), subscribers_.end(),
@@ -62,6 +63,11 @@ void Run::End() {
     subscriber->Push({StreamEvent::Kind::kRunEnded, id_, nullptr});
   }
   subscribers_.clear();
+}
+
+std::shared_ptr<const v1::Frame> Run::latest_frame() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return latest_frame_;
 }
 
 bool Run::ended() const {

@@ -11,6 +11,7 @@
 
 #include "mbstream/v1/frame.pb.h"
 #include "mbstream/v1/run.pb.h"
+#include "server/runs/frame_spool.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/subscription.h"
 #include "server/sim/run_config.h"
@@ -38,15 +39,19 @@ class Run {
 
   // Fan-out. Attach sends the run-started event (if asked), then the latest frame, then
   // every later frame; a subscriber attached after the run ended gets only the run-ended
-  // event. Attaching a subscriber that is attached already does nothing. Publish keeps the frame
-  // for the result and pushes it to every subscriber.
+  // event. Attaching a subscriber that is attached already does nothing. Publish keeps the
+  // frame as the latest (only that one: the result is in the store, see spool()) and pushes
+  // it to every subscriber.
   void Attach(const std::shared_ptr<Subscription>& subscriber, bool send_started);
   void Publish(std::shared_ptr<const v1::Frame> frame);
   // Marks the run ended: pushes the run-ended event and detaches every subscriber.
   void End();
   bool ended() const;
   int subscriber_count() const;
-  const std::vector<std::shared_ptr<const v1::Frame>>& frames() const { return frames_; }
+  std::shared_ptr<const v1::Frame> latest_frame() const;
+
+  // The frames on their way to the store; the run's worker thread only.
+  FrameSpool& spool() { return spool_; }
 
   // Probe reports of viewers, kept until the run is stored: false (none kept) once the run
   // has ended or when `max_reports` would be exceeded.
@@ -68,7 +73,9 @@ class Run {
   mutable std::mutex mutex_;
   std::condition_variable probes_arrived_;
   v1::RunInfo info_;
-  std::vector<std::shared_ptr<const v1::Frame>> frames_;  // written by the run's thread only
+  std::shared_ptr<const v1::Frame> latest_frame_;  // what a late subscriber gets first
+  int64_t published_ = 0;                          // frames published
+  FrameSpool spool_;                               // the run's thread only, no lock
   std::vector<std::shared_ptr<Subscription>> subscribers_;
   std::vector<v1::ProbeReport> probes_;
   int64_t probe_count_ = 0;

@@ -19,13 +19,16 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Converts each frame to its wire form, paces it (realtime factor) and publishes it.
+// Converts each frame to its wire form, paces it (realtime factor), publishes it and hands it
+// to the run's spool (which stores it with the next chunk). A store failure stops the run.
 class PublishingSink : public FrameSink {
  public:
-  explicit PublishingSink(Run* run) : run_(run), start_(Clock::now()) {}
+  PublishingSink(Run* run, Store* store) : run_(run), store_(store), start_(Clock::now()) {}
+
+  bool KeepsFrames() const override { return true; }  // the spool stores them
 
   void OnFrame(const RunResult& result, int frame) override {
-    if (frame == 0) {
+    if (result.first_seq + frame == 0) {
       run_->UpdateInfo([&](v1::RunInfo& info) {
         info.set_has_torques(result.has_torques);
         info.set_has_energy(result.has_energy);
@@ -34,7 +37,10 @@ class PublishingSink : public FrameSink {
     auto message = std::make_shared<v1::Frame>();
     FrameToProto(result, frame, message.get());
     Pace(result.t[frame]);
+    std::shared_ptr<const v1::Frame> published = message;
     run_->Publish(std::move(message));
+    run_->spool().Add(*published, *store_);
+    if (!run_->spool().error().empty()) run_->cancel = true;
   }
 
  private:
@@ -52,6 +58,7 @@ class PublishingSink : public FrameSink {
   }
 
   Run* run_;
+  Store* store_;
   Clock::time_point start_;
 };
 
@@ -80,7 +87,7 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
   store_->PutRun(run->Info());
   spdlog::info("run {} started", run->id());
 
-  PublishingSink sink(run.get());
+  PublishingSink sink(run.get(), store_);
   const RunResult result = Simulate(run->model().model, run->config(), &sink, &run->cancel);
   const RunStats& stats = result.stats;
   outcome.state = RunStateFromStatus(stats.status);
@@ -98,27 +105,35 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
 }
 
 void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome) {
-  const std::vector<std::shared_ptr<const v1::Frame>>& published = run->frames();
-  if (!published.empty() && !run->interrupted) {
-    run->WaitForProbes(published.back()->seq(),
-                       std::chrono::duration<double>(limits_.probe_grace_s));
+  if (const std::shared_ptr<const v1::Frame> last = run->latest_frame();
+      last != nullptr && !run->interrupted) {
+    run->WaitForProbes(last->seq(), std::chrono::duration<double>(limits_.probe_grace_s));
   }
   // Store first, then show the final state: whoever sees a run ended can fetch its result.
+  // The frames are in the store already but for the spool's last chunk, written together
+  // with the final info.
   v1::RunInfo info = run->Info();
   info.set_state(outcome.state);
   info.set_message(outcome.message);
   *info.mutable_stats() = outcome.stats;
   info.set_ended_unix_ms(NowUnixMs());
-  std::vector<v1::Frame> frames;
-  frames.reserve(published.size());
-  for (const auto& frame : published) frames.push_back(*frame);
+  if (const std::string& error = run->spool().error(); !error.empty()) {
+    info.set_state(v1::FAILED);
+    info.set_message("the frames could not be stored (" + error +
+                     "); the run was stopped, the frames stored before are kept");
+  }
   try {
     store_->AddProbes(run->TakeProbes());
-    store_->FinishRun(info, frames);
+    run->spool().Finish(info, *store_);
   } catch (const std::exception& error) {
     spdlog::error("run {}: storing the result failed: {}", run->id(), error.what());
     info.set_state(v1::FAILED);
     info.set_message(std::string("the result could not be stored: ") + error.what());
+    try {
+      store_->PutRun(info);  // at least the final state, if the store takes that
+    } catch (const std::exception& again) {
+      spdlog::error("run {}: storing its final state failed too: {}", run->id(), again.what());
+    }
   }
   run->UpdateInfo([&](v1::RunInfo& live) { live = info; });
   {
@@ -131,6 +146,7 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
                run->id(), v1::RunState_Name(info.state()), info.frames(),
                info.stats().t_reached_s(), info.stats().steps(), 1e3 * info.stats().cpu_s(),
                1e3 * info.stats().wall_s(), info.message().empty() ? "" : ": ", info.message());
+  ReleaseMemory();
 }
 
 }  // namespace mbstream

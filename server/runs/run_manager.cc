@@ -10,6 +10,7 @@
 #include <random>
 
 #include "server/common/check.h"
+#include "server/runs/release_memory.h"
 #include "server/runs/request_error.h"
 #include "server/runs/unix_time.h"
 #include "server/sim/drive_set.h"
@@ -198,7 +199,7 @@ RunManager::RunPage RunManager::List(const std::string& model, int limit, int pa
   const int64_t size = std::min<int64_t>(
       {page_size > 0 ? page_size : kDefaultPage, kMaxPage, left > 0 ? left : kMaxPage});
   std::string model_id;
-  if (!model.empty()) model_id = models_->Find(model)->info.id();
+  if (!model.empty()) model_id = models_->Info(model).id();
   const std::vector<v1::RunInfo> runs = store_->ListRuns();
   auto it = runs.rbegin();
   if (!after.empty()) {
@@ -235,20 +236,30 @@ RunManager::RunPage RunManager::List(const std::string& model, int limit, int pa
   return page;
 }
 
-RunManager::StoredResult RunManager::Result(const std::string& run_id) const {
+v1::RunInfo RunManager::ResultInfo(const std::string& run_id) const {
   std::shared_ptr<Run> run = FindActive(run_id);
   if (run && !IsFinalState(run->Info().state())) {
     throw RequestError(RequestErrorKind::kFailedPrecondition,
                        "run " + run_id + " is " + v1::RunState_Name(run->Info().state()) +
                            "; wait for it to end (`mbstream run --watch` or WatchRun)");
   }
-  StoredResult result;
   std::optional<v1::RunInfo> info = store_->GetRun(run_id);
   if (!info) throw NotFound(run_id);
-  result.info = *info;
-  result.frames = store_->GetFrames(run_id);
-  result.probes = store_->GetProbes(run_id);
-  return result;
+  return *info;
+}
+
+std::optional<int64_t> RunManager::ResultFrames(const std::string& run_id, int64_t index,
+                                                std::vector<v1::Frame>& frames) const {
+  return store_->GetFrameChunk(run_id, index, frames);
+}
+
+void RunManager::ReleaseMemory() const {
+  store_->ReleaseMemory();
+  ReleaseFreedMemory();
+}
+
+std::vector<v1::ProbeReport> RunManager::ResultProbes(const std::string& run_id) const {
+  return store_->GetProbes(run_id);
 }
 
 void RunManager::CheckAccepting() const {

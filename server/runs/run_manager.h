@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -51,14 +52,17 @@ class RunManager {
   RunPage List(const std::string& model, int limit, int page_size,
                const std::string& page_token) const;
 
-  // The stored frames and probe reports of an ended run. Throws RequestError: kNotFound,
-  // or kFailedPrecondition while the run is queued or running.
-  struct StoredResult {
-    v1::RunInfo info;
-    std::vector<v1::Frame> frames;
-    std::vector<v1::ProbeReport> probes;
-  };
-  StoredResult Result(const std::string& run_id) const;
+  // The stored result of an ended run, read piece by piece (a long run is never in memory
+  // at once). ResultInfo throws RequestError: kNotFound, or kFailedPrecondition while the
+  // run is queued or running. ResultFrames appends the frames of stored chunk `index` (or the
+  // next one) to `frames` and returns the index to ask for next, nullopt after the last.
+  v1::RunInfo ResultInfo(const std::string& run_id) const;
+  std::optional<int64_t> ResultFrames(const std::string& run_id, int64_t index,
+                                      std::vector<v1::Frame>& frames) const;
+  std::vector<v1::ProbeReport> ResultProbes(const std::string& run_id) const;
+  // Hands memory freed after a run or a result back to the system (SQLite's page cache,
+  // glibc's arenas: release_memory.h).
+  void ReleaseMemory() const;
 
   // Subscriptions. A subscription counts against limits.max_subscribers from NewSubscription
   // (RESOURCE_EXHAUSTED at the limit) until Unsubscribe, attached to something or not.

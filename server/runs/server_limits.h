@@ -18,6 +18,9 @@ struct ServerLimits {
   double probe_grace_s = 2.0;             // s a finished run waits for its viewers' last probes
   double subscribe_start_s = 10.0;        // s a Subscribe stream may take to send `start`
   int64_t max_probe_reports = 1'000'000;  // probe reports kept for one run
+  int max_models = 1000;                  // models submitted by users, stored (built-ins apart)
+  int64_t max_total_model_bytes = int64_t{4} << 30;  // their total stored size, bytes
+  int compiled_models_cached = 16;  // compiled models kept in memory (runs keep theirs)
 };
 
 }  // namespace mbstream

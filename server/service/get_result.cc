@@ -1,4 +1,5 @@
-// SimulationService::GetResult: a stored result in chunks under the message size limit.
+// SimulationService::GetResult: a stored result in chunks under the message size limit, read
+// from the store one frame chunk at a time (a long run is never in memory at once).
 #include "server/service/simulation_service.h"
 #include "server/service/status_from_exception.h"
 
@@ -11,11 +12,12 @@ constexpr size_t kChunkBytes = 1 << 20;  // about 1 MiB of frames or probes per 
 grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
                                           const v1::GetResultRequest* request,
                                           grpc::ServerWriter<v1::ResultChunk>* writer) {
-  return Admit(*context, "GetResult", [&]() -> grpc::Status {
-    RunManager::StoredResult result = runs_->Result(request->run_id());
+  const grpc::Status status = Admit(*context, "GetResult", [&]() -> grpc::Status {
+    const std::string& run_id = request->run_id();
     v1::ResultChunk chunk;
-    *chunk.mutable_info() = result.info;
-    if (!writer->Write(chunk)) return grpc::Status(grpc::StatusCode::CANCELLED, "client gone");
+    *chunk.mutable_info() = runs_->ResultInfo(run_id);
+    const grpc::Status gone(grpc::StatusCode::CANCELLED, "client gone");
+    if (!writer->Write(chunk)) return gone;
     chunk.Clear();
     size_t bytes = 0;
     auto flush = [&] {
@@ -25,23 +27,27 @@ grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
       bytes = 0;
       return ok;
     };
-    for (v1::Frame& frame : result.frames) {
-      bytes += frame.ByteSizeLong();
-      *chunk.add_frames() = std::move(frame);
-      if (bytes >= kChunkBytes && !flush()) {
-        return grpc::Status(grpc::StatusCode::CANCELLED, "client gone");
+    std::vector<v1::Frame> frames;  // one stored chunk at a time
+    for (std::optional<int64_t> next = 0; next;) {
+      frames.clear();
+      next = runs_->ResultFrames(run_id, *next, frames);
+      for (v1::Frame& frame : frames) {
+        bytes += frame.ByteSizeLong();
+        *chunk.add_frames() = std::move(frame);
+        if (bytes >= kChunkBytes && !flush()) return gone;
       }
     }
-    for (v1::ProbeReport& probe : result.probes) {
+    std::vector<v1::Frame>().swap(frames);
+    for (v1::ProbeReport& probe : runs_->ResultProbes(run_id)) {
       bytes += probe.ByteSizeLong();
       *chunk.add_probes() = std::move(probe);
-      if (bytes >= kChunkBytes && !flush()) {
-        return grpc::Status(grpc::StatusCode::CANCELLED, "client gone");
-      }
+      if (bytes >= kChunkBytes && !flush()) return gone;
     }
-    if (!flush()) return grpc::Status(grpc::StatusCode::CANCELLED, "client gone");
+    if (!flush()) return gone;
     return grpc::Status::OK;
   });
+  runs_->ReleaseMemory();  // after the handler's messages and frames are freed
+  return status;
 }
 
 }  // namespace mbstream

@@ -16,10 +16,12 @@ SimulationService::SimulationService(ModelRegistry* models, RunManager* runs,
 grpc::Status SimulationService::SubmitModel(grpc::ServerContext* context,
                                             const v1::SubmitModelRequest* request,
                                             v1::ModelInfo* response) {
-  return Admit(*context, "SubmitModel", [&]() -> grpc::Status {
-    *response = models_->Submit(request->bundle(), false)->info;
+  const grpc::Status status = Admit(*context, "SubmitModel", [&]() -> grpc::Status {
+    *response = models_->Submit(request->bundle(), false);
     return grpc::Status::OK;
   });
+  runs_->ReleaseMemory();  // a bundle of many MiB passed through (its received slices)
+  return status;
 }
 
 grpc::Status SimulationService::ListModels(grpc::ServerContext* context,
@@ -35,9 +37,10 @@ grpc::Status SimulationService::GetModel(grpc::ServerContext* context,
                                          const v1::GetModelRequest* request,
                                          v1::GetModelResponse* response) {
   return Admit(*context, "GetModel", [&]() -> grpc::Status {
-    std::shared_ptr<const CompiledModel> model = models_->Find(request->model());
-    *response->mutable_info() = model->info;
-    if (request->include_bundle()) *response->mutable_bundle() = model->bundle;
+    *response->mutable_info() = models_->Info(request->model());
+    if (request->include_bundle()) {
+      *response->mutable_bundle() = models_->Bundle(response->info().id());
+    }
     return grpc::Status::OK;
   });
 }

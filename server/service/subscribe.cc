@@ -135,9 +135,8 @@ struct SubscribeTarget {
   bool stopping() const { return *stopping_flag; }
   void FillRunStarted(const std::string& run_id, v1::SubscribeEvent::RunStarted* started) const {
     *started->mutable_run() = runs->Get(run_id);
-    std::shared_ptr<const CompiledModel> model = models->Find(started->run().model_id());
-    *started->mutable_model() = model->info;
-    *started->mutable_bundle() = model->bundle;
+    *started->mutable_model() = models->Info(started->run().model_id());
+    *started->mutable_bundle() = models->Bundle(started->model().id());
   }
 };
 

@@ -9,14 +9,16 @@
 namespace mbstream {
 
 FrameRecorder::FrameRecorder(const Model& model, const DriveSet& drives, RunResult& result,
-                             size_t frames, bool track_tcp_error)
+                             size_t frames, bool track_tcp_error, bool latest_only)
     : model_(model),
       drives_(drives),
       result_(result),
       data_(model),
       q_ref_(model.num_dofs()),
-      track_tcp_error_(track_tcp_error && drives.all_prescribed() && model.tcp_frame >= 0) {
+      track_tcp_error_(track_tcp_error && drives.all_prescribed() && model.tcp_frame >= 0),
+      latest_only_(latest_only) {
   const size_t n = static_cast<size_t>(model.num_dofs());
+  if (latest_only_) frames = 1;
   result_.t.reserve(frames);
   result_.q.reserve(frames * n);
   result_.qd.reserve(frames * n);
@@ -54,6 +56,16 @@ bool FrameRecorder::Record(double t, const Eigen::VectorXd& q, const Eigen::Vect
       if (!std::isfinite(kinetic) || !std::isfinite(potential)) return false;
     }
   }
+  if (latest_only_ && !result_.t.empty()) {  // drop the previous frame (capacity stays)
+    ++result_.first_seq;
+    result_.t.clear();
+    result_.q.clear();
+    result_.qd.clear();
+    result_.tcp.clear();
+    result_.tau.clear();
+    result_.kinetic.clear();
+    result_.potential.clear();
+  }
   result_.t.push_back(t);
   result_.q.insert(result_.q.end(), q.data(), q.data() + q.size());
   result_.qd.insert(result_.qd.end(), qd.data(), qd.data() + qd.size());
@@ -80,7 +92,7 @@ void FrameRecorder::TrackEnergy(double t, double energy, const Eigen::VectorXd& 
     const double drive = effort ? (*effort)(i) : 0.0;
     power += (drive - drives_.damping(i) * qd(i)) * qd(i);
   }
-  if (result_.t.size() == 1) {
+  if (result_.first_seq == 0 && result_.t.size() == 1) {
     energy0_ = energy;
   } else {
     work_ += 0.5 * (power + last_power_) * (t - last_t_);

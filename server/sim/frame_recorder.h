@@ -23,8 +23,9 @@ class FrameRecorder {
  public:
   // track_tcp_error: compare the TCP with direct kinematics of the prescribed motion (off
   // when the states are that motion, as in the kinematic formulation: the error is 0).
+  // latest_only: keep only the latest frame in `result` (see RunResult::first_seq).
   FrameRecorder(const Model& model, const DriveSet& drives, RunResult& result, size_t frames,
-                bool track_tcp_error);
+                bool track_tcp_error, bool latest_only = false);
 
   // Records a frame; `effort` (drive efforts) may be null when torques are not reported
   // and no work is tracked; `extras`, if given, replaces the TCP and energies that would be
@@ -43,6 +44,7 @@ class FrameRecorder {
   Data data_;
   Eigen::VectorXd q_ref_;
   const bool track_tcp_error_;
+  const bool latest_only_;
   double energy0_ = 0.0, work_ = 0.0, last_power_ = 0.0, last_t_ = 0.0, scale_ = 0.0;
 };
 

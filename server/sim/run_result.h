@@ -64,6 +64,9 @@ struct RunResult {
   std::vector<double> tcp;                 // m, world frame, 3 per frame
   std::vector<double> tau;                 // drive efforts, N*m or N (when has_torques)
   std::vector<double> kinetic, potential;  // J (when has_energy)
+  // Seq of frame 0: the frames dropped before it. Nonzero only when the FrameSink keeps the
+  // frames itself (FrameSink::KeepsFrames) and the arrays hold just the latest frame.
+  long first_seq = 0;
   RunStats stats;
 
   int num_frames() const { return static_cast<int>(t.size()); }
@@ -74,6 +77,10 @@ class FrameSink {
  public:
   virtual ~FrameSink() = default;
   virtual void OnFrame(const RunResult& result, int frame) = 0;
+  // True when the sink keeps every frame itself (the server stores them as they come): the
+  // RunResult then holds only the latest frame (index 0, seq first_seq), so a run's memory
+  // does not grow with its length.
+  virtual bool KeepsFrames() const { return false; }
 };
 
 }  // namespace mbstream

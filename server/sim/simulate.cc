@@ -132,7 +132,8 @@ RunResult Simulate(const Model& model_in, const RunConfig& config, FrameSink* si
   result.stats.integrator = kinematic ? "none (closed form)" : "";
 
   const std::vector<double> times = OutputTimes(config.duration, config.output_interval);
-  FrameRecorder recorder(model, drives, result, times.size(), /*track_tcp_error=*/!kinematic);
+  FrameRecorder recorder(model, drives, result, times.size(), /*track_tcp_error=*/!kinematic,
+                         /*latest_only=*/sink != nullptr && sink->KeepsFrames());
   if (kinematic) {
     RunKinematic(model, config, drives, times, recorder, result, sink, cancel);
   } else if (IsBodyFormulation(choice.formulation)) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <utility>
 
 #include <google/protobuf/io/coded_stream.h>
 #include <google/protobuf/io/zero_copy_stream_impl_lite.h>
@@ -27,6 +28,27 @@ std::vector<EncodedFrameChunk> EncodeFrameChunks(const std::vector<v1::Frame>& f
     }  // the coded stream trims the string to what was written when it goes out of scope
   }
   return chunks;
+}
+
+void FrameChunkBuilder::Add(const v1::Frame& frame) {
+  using google::protobuf::io::CodedOutputStream;
+  if (chunk_.frame_count == 0) chunk_.first_seq = frame.seq();
+  // The same bytes as SerializeDelimitedToCodedStream, appended in place (the string grows
+  // geometrically; a stream per frame would zero-fill its spare capacity every time).
+  const size_t size = frame.ByteSizeLong();
+  std::string& data = chunk_.data;
+  const size_t offset = data.size();
+  data.resize(offset + CodedOutputStream::VarintSize32(static_cast<uint32_t>(size)) + size);
+  uint8_t* target = reinterpret_cast<uint8_t*>(data.data() + offset);
+  target = CodedOutputStream::WriteVarint32ToArray(static_cast<uint32_t>(size), target);
+  frame.SerializeWithCachedSizesToArray(target);
+  ++chunk_.frame_count;
+}
+
+EncodedFrameChunk FrameChunkBuilder::Take() {
+  EncodedFrameChunk chunk = std::move(chunk_);
+  chunk_ = EncodedFrameChunk();
+  return chunk;
 }
 
 bool DecodeFrameChunk(std::string_view data, std::vector<v1::Frame>& out) {

@@ -23,6 +23,20 @@ struct EncodedFrameChunk {
   std::string data;         // length-delimited serialized v1::Frame, in order
 };
 
+// Builds one chunk frame by frame, serializing each frame as it is added (a run keeps only
+// these bytes, about a quarter of the frames' in-memory size, until the chunk is stored).
+class FrameChunkBuilder {
+ public:
+  void Add(const v1::Frame& frame);
+  int64_t frame_count() const { return chunk_.frame_count; }
+  bool empty() const { return chunk_.frame_count == 0; }
+  // The chunk built so far; the builder is empty afterwards.
+  EncodedFrameChunk Take();
+
+ private:
+  EncodedFrameChunk chunk_;
+};
+
 // Splits `frames` (in seq order) into chunks of at most `frames_per_chunk` and serializes each.
 std::vector<EncodedFrameChunk> EncodeFrameChunks(const std::vector<v1::Frame>& frames,
                                                  std::size_t frames_per_chunk = kFramesPerChunk);

@@ -20,8 +20,8 @@ namespace {
 // should use a data directory; this covers short-lived readers such as the sqlite3 shell.
 constexpr int kBusyTimeoutMs = 5000;
 
-// Largest WAL file kept after a checkpoint (bytes); a million-frame FinishRun grows the WAL
-// to the size of its frames, this truncates it back afterwards.
+// Largest WAL file kept after a checkpoint (bytes): a burst of frame chunks may grow the WAL,
+// this truncates it back afterwards.
 constexpr int64_t kJournalSizeLimitBytes = 64 << 20;
 
 void CreateDirectory(const std::string& directory) {
@@ -68,6 +68,14 @@ Store::Impl::Impl(SqliteConnection connection)
                           "SELECT name, data FROM model_assets WHERE model_id = ?1 "
                           "ORDER BY position",
                           "read model assets"),
+      select_model_asset_names(db,
+                               "SELECT name FROM model_assets WHERE model_id = ?1 "
+                               "ORDER BY position",
+                               "read model asset names"),
+      select_model_bytes(db,
+                         "SELECT m.id, length(m.bundle) + COALESCE((SELECT sum(length(a.data)) "
+                         "FROM model_assets a WHERE a.model_id = m.id), 0) FROM models m",
+                         "read model sizes"),
       upsert_run(db,
                  "INSERT INTO runs (id, model_id, state, created_unix_ms, info) "
                  "VALUES (?1, ?2, ?3, ?4, ?5) ON CONFLICT (id) DO UPDATE SET "
@@ -79,14 +87,17 @@ Store::Impl::Impl(SqliteConnection connection)
       select_unfinished_runs(db, "SELECT info FROM runs WHERE state IN (?1, ?2) ORDER BY ord",
                              "list unfinished runs"),
       delete_frame_chunks(db, "DELETE FROM frame_chunks WHERE run_id = ?1", "delete old frames"),
+      delete_frame_chunks_after(db, "DELETE FROM frame_chunks WHERE run_id = ?1 AND chunk > ?2",
+                                "delete stale frames"),
       insert_frame_chunk(db,
-                         "INSERT INTO frame_chunks (run_id, chunk, first_seq, frame_count, data) "
+                         "INSERT OR REPLACE INTO frame_chunks "
+                         "(run_id, chunk, first_seq, frame_count, data) "
                          "VALUES (?1, ?2, ?3, ?4, ?5)",
                          "insert frames"),
-      select_frame_chunks(db,
-                          "SELECT data, frame_count FROM frame_chunks WHERE run_id = ?1 "
-                          "ORDER BY chunk",
-                          "read frames"),
+      select_frame_chunk(db,
+                         "SELECT chunk, data FROM frame_chunks WHERE run_id = ?1 AND chunk >= ?2 "
+                         "ORDER BY chunk LIMIT 1",
+                         "read frames"),
       upsert_probe(db,
                    "INSERT OR REPLACE INTO probes (run_id, seq, probe, report) "
                    "VALUES (?1, ?2, ?3, ?4)",
@@ -125,6 +136,11 @@ Store::Store(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Store::~Store() = default;
 
 const std::string& Store::path() const { return impl_->db.path(); }
+
+void Store::ReleaseMemory() {
+  std::lock_guard lock(impl_->mutex);
+  sqlite3_db_release_memory(impl_->db.get());
+}
 
 int64_t UnixNowMs() {
   return std::chrono::duration_cast<std::chrono::milliseconds>(

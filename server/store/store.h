@@ -6,6 +6,7 @@
 // throw SqliteError (an InternalError) naming the operation and SQLite's message.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@
 #include "mbstream/v1/frame.pb.h"
 #include "mbstream/v1/model.pb.h"
 #include "mbstream/v1/run.pb.h"
+#include "server/store/frame_chunks.h"
 
 namespace mbstream {
 
@@ -34,11 +36,18 @@ class Store {
   // Full path of the database file.
   const std::string& path() const;
 
+  // Frees the memory of SQLite's page cache that is not in use (after a long run or result).
+  void ReleaseMemory();
+
   // Models. PutModel is idempotent by info.id (the first stored copy wins, returns false if it
   // existed). The bundle's assets are stored too. info.created_unix_ms == 0 is stored as now.
   bool PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle);
   std::vector<v1::ModelInfo> ListModels() const;  // oldest first
-  std::optional<v1::ModelBundle> GetModelBundle(const std::string& model_id) const;
+  // The bundle with its assets; without their data (names only) unless `asset_data`.
+  std::optional<v1::ModelBundle> GetModelBundle(const std::string& model_id,
+                                                bool asset_data = true) const;
+  // Each stored model's size in bytes (its bundle row and its assets' data), by id.
+  std::map<std::string, int64_t> ModelBytes() const;
 
   // Runs. PutRun inserts or replaces the run's row (its RunInfo, state, timestamps); the
   // run's frames and probes stay.
@@ -46,11 +55,27 @@ class Store {
   std::optional<v1::RunInfo> GetRun(const std::string& run_id) const;
   std::vector<v1::RunInfo> ListRuns() const;  // oldest first (created_unix_ms, then insertion)
 
-  // Stores the run's final info and all its frames (in seq order) in ONE transaction: after a
-  // crash either both are there or neither (the run then still shows its previous row).
-  // Frames stored earlier for the run are replaced.
+  // A run's frames are written while it runs, one chunk (frame_chunks.h) at a time, then
+  // the last chunk together with the final info. A crash mid-run leaves the chunks stored so
+  // far with the run's RUNNING row (INTERRUPTED at the next start).
+  //
+  // Stores chunk number `index` (0, 1, 2, ... in seq order) of a run whose row exists,
+  // replacing a chunk of that number. One transaction.
+  void PutFrameChunk(const std::string& run_id, int64_t index, const EncodedFrameChunk& chunk);
+  // Stores the run's final info and its last chunk (number `index`, skipped when it holds no
+  // frames) in ONE transaction, and removes any chunk numbered after it: after a crash either
+  // the final state and every frame are there, or the run still shows its previous row.
+  void FinishRun(const v1::RunInfo& info, int64_t index, const EncodedFrameChunk& last_chunk);
+  // The same for a run whose frames are all at hand (in seq order): they replace every frame
+  // stored earlier for the run.
   void FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& frames);
-  std::vector<v1::Frame> GetFrames(const std::string& run_id) const;  // in seq order
+
+  // Reads a run's frames one chunk at a time: the frames of the first stored chunk numbered
+  // `index` or later are appended to `frames`, and the number to ask for next is returned;
+  // nullopt when there is none. Each call holds the store's lock only to copy one chunk.
+  std::optional<int64_t> GetFrameChunk(const std::string& run_id, int64_t index,
+                                       std::vector<v1::Frame>& frames) const;
+  std::vector<v1::Frame> GetFrames(const std::string& run_id) const;  // all, in seq order
 
   // Probe reports (stored as they arrive, batched by the caller; one transaction per call);
   // duplicates of (run_id, seq, probe) replace the old row.

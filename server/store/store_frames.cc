@@ -1,4 +1,4 @@
-// Store: a run's frames, written once with its final info and read back in seq order.
+// Store: a run's frames, written chunk by chunk while it runs and read back chunk by chunk.
 #include "server/common/check.h"
 #include "server/store/frame_chunks.h"
 #include "server/store/sqlite_transaction.h"
@@ -6,6 +6,44 @@
 #include "server/store/store_impl.h"
 
 namespace mbstream {
+
+namespace {
+
+// Writes one chunk row (replacing one of the same number). The caller holds the mutex.
+void InsertChunkLocked(Store::Impl& impl, const std::string& run_id, int64_t index,
+                       const EncodedFrameChunk& chunk) {
+  SqliteStatement& insert = impl.insert_frame_chunk;
+  ResetOnExit reset(insert);
+  insert.BindText(1, run_id);
+  insert.BindInt64(2, index);
+  insert.BindInt64(3, chunk.first_seq);
+  insert.BindInt64(4, chunk.frame_count);
+  insert.BindBlob(5, chunk.data);
+  insert.Run();
+}
+
+}  // namespace
+
+void Store::PutFrameChunk(const std::string& run_id, int64_t index,
+                          const EncodedFrameChunk& chunk) {
+  std::lock_guard lock(impl_->mutex);
+  InsertChunkLocked(*impl_, run_id, index, chunk);  // one statement: its own transaction
+}
+
+void Store::FinishRun(const v1::RunInfo& info, int64_t index, const EncodedFrameChunk& last_chunk) {
+  std::lock_guard lock(impl_->mutex);
+  SqliteTransaction transaction(impl_->db, "finish run " + info.id());
+  UpsertRunLocked(*impl_, info);
+  if (last_chunk.frame_count > 0) InsertChunkLocked(*impl_, info.id(), index, last_chunk);
+  {
+    SqliteStatement& remove = impl_->delete_frame_chunks_after;
+    ResetOnExit reset(remove);
+    remove.BindText(1, info.id());
+    remove.BindInt64(2, last_chunk.frame_count > 0 ? index : index - 1);
+    remove.Run();
+  }
+  transaction.Commit();
+}
 
 void Store::FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& frames) {
   // Serialize outside the lock: other runs' store calls only wait for the SQLite writes.
@@ -21,43 +59,39 @@ void Store::FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& fra
     remove.Run();
   }
   for (std::size_t i = 0; i < chunks.size(); ++i) {
-    SqliteStatement& insert = impl_->insert_frame_chunk;
-    ResetOnExit reset(insert);
-    insert.BindText(1, info.id());
-    insert.BindInt64(2, static_cast<int64_t>(i));
-    insert.BindInt64(3, chunks[i].first_seq);
-    insert.BindInt64(4, chunks[i].frame_count);
-    insert.BindBlob(5, chunks[i].data);
-    insert.Run();
+    InsertChunkLocked(*impl_, info.id(), static_cast<int64_t>(i), chunks[i]);
   }
   transaction.Commit();
 }
 
-std::vector<v1::Frame> Store::GetFrames(const std::string& run_id) const {
-  // Copy the chunk blobs under the lock, parse them after releasing it: parsing a million
-  // frames takes far longer than copying their bytes.
-  std::vector<std::string> blobs;
-  std::size_t frame_count = 0;
+std::optional<int64_t> Store::GetFrameChunk(const std::string& run_id, int64_t index,
+                                            std::vector<v1::Frame>& frames) const {
+  // Copy the chunk's blob under the lock, parse it after releasing it.
+  std::string blob;
+  int64_t found = 0;
   {
     std::lock_guard lock(impl_->mutex);
-    SqliteStatement& select = impl_->select_frame_chunks;
+    SqliteStatement& select = impl_->select_frame_chunk;
     ResetOnExit reset(select);
     select.BindText(1, run_id);
-    while (select.Step()) {
-      blobs.emplace_back(select.ColumnBlob(0));
-      frame_count += static_cast<std::size_t>(select.ColumnInt64(1));
-    }
+    select.BindInt64(2, index);
+    if (!select.Step()) return std::nullopt;
+    found = select.ColumnInt64(0);
+    blob = std::string(select.ColumnBlob(1));
   }
+  const std::size_t before = frames.size();
+  if (!DecodeFrameChunk(blob, frames)) {
+    throw InternalError("store " + impl_->db.path() + ": the stored frames of run " + run_id +
+                        " are corrupt (chunk " + std::to_string(found) + " after its frame " +
+                        std::to_string(frames.size() - before) + " cannot be parsed)");
+  }
+  return found + 1;
+}
+
+std::vector<v1::Frame> Store::GetFrames(const std::string& run_id) const {
   std::vector<v1::Frame> frames;
-  frames.reserve(frame_count);
-  for (std::string& blob : blobs) {
-    if (!DecodeFrameChunk(blob, frames)) {
-      throw InternalError("store " + impl_->db.path() + ": the stored frames of run " + run_id +
-                          " are corrupt (a chunk after frame " + std::to_string(frames.size()) +
-                          " cannot be parsed)");
-    }
-    std::string().swap(blob);  // free each chunk's bytes as soon as it is parsed
-  }
+  std::optional<int64_t> next = 0;
+  while (next) next = GetFrameChunk(run_id, *next, frames);
   return frames;
 }
 

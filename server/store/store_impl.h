@@ -26,6 +26,8 @@ struct Store::Impl {
   SqliteStatement select_model_infos;
   SqliteStatement select_model_bundle;
   SqliteStatement select_model_assets;
+  SqliteStatement select_model_asset_names;
+  SqliteStatement select_model_bytes;
 
   SqliteStatement upsert_run;
   SqliteStatement select_run;
@@ -33,8 +35,9 @@ struct Store::Impl {
   SqliteStatement select_unfinished_runs;
 
   SqliteStatement delete_frame_chunks;
+  SqliteStatement delete_frame_chunks_after;
   SqliteStatement insert_frame_chunk;
-  SqliteStatement select_frame_chunks;
+  SqliteStatement select_frame_chunk;
 
   SqliteStatement upsert_probe;
   SqliteStatement select_probes;

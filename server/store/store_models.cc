@@ -53,7 +53,8 @@ std::vector<v1::ModelInfo> Store::ListModels() const {
   return models;
 }
 
-std::optional<v1::ModelBundle> Store::GetModelBundle(const std::string& model_id) const {
+std::optional<v1::ModelBundle> Store::GetModelBundle(const std::string& model_id,
+                                                     bool asset_data) const {
   v1::ModelBundle bundle;
   std::lock_guard lock(impl_->mutex);
   {
@@ -63,15 +64,25 @@ std::optional<v1::ModelBundle> Store::GetModelBundle(const std::string& model_id
     if (!select.Step()) return std::nullopt;
     ParseFromStore(select.ColumnBlob(0), bundle, "bundle of model " + model_id, impl_->db.path());
   }
-  SqliteStatement& select = impl_->select_model_assets;
+  SqliteStatement& select =
+      asset_data ? impl_->select_model_assets : impl_->select_model_asset_names;
   ResetOnExit reset(select);
   select.BindText(1, model_id);
   while (select.Step()) {
     v1::Asset* asset = bundle.add_assets();
     asset->set_name(std::string(select.ColumnText(0)));
-    asset->set_data(std::string(select.ColumnBlob(1)));
+    if (asset_data) asset->set_data(std::string(select.ColumnBlob(1)));
   }
   return bundle;
+}
+
+std::map<std::string, int64_t> Store::ModelBytes() const {
+  std::map<std::string, int64_t> sizes;
+  std::lock_guard lock(impl_->mutex);
+  SqliteStatement& select = impl_->select_model_bytes;
+  ResetOnExit reset(select);
+  while (select.Step()) sizes[std::string(select.ColumnText(0))] = select.ColumnInt64(1);
+  return sizes;
 }
 
 }  // namespace mbstream

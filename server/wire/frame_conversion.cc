@@ -23,7 +23,7 @@ void CopyFinite(const double* values, int count, google::protobuf::RepeatedField
 void FrameToProto(const RunResult& result, int k, v1::Frame* frame) {
   const int n = result.num_dofs;
   MBSTREAM_CHECK(k >= 0 && k < result.num_frames());
-  frame->set_seq(k);
+  frame->set_seq(result.first_seq + k);
   frame->set_t_s(result.t[k]);
   CopyFinite(&result.q[k * n], n, frame->mutable_q());
   CopyFinite(&result.qd[k * n], n, frame->mutable_qd());

@@ -75,6 +75,59 @@ TEST(StoreFramesTest, FinishRunAgainReplacesFrames) {
   ExpectSameFrames(store->GetFrames("r-1"), fewer);
 }
 
+// A running run's frames go in chunk by chunk; the last chunk comes with the final info.
+// Readers see the stored chunks of the running run, then every frame once it ended.
+TEST(StoreFramesTest, ChunksWrittenDuringTheRunThenFinished) {
+  TempDirectory temp;
+  auto store = Store::Open(temp.str());
+  store->PutRun(MakeRun("r-1", v1::RUNNING, 1000));
+  const std::vector<v1::Frame> frames = MakeFrames(2 * kFramesPerChunk + 5, 6);
+  FrameChunkBuilder builder;
+  int64_t index = 0;
+  for (const v1::Frame& frame : frames) {
+    builder.Add(frame);
+    if (builder.frame_count() == static_cast<int64_t>(kFramesPerChunk)) {
+      store->PutFrameChunk("r-1", index++, builder.Take());
+    }
+  }
+  EXPECT_EQ(store->GetRun("r-1")->state(), v1::RUNNING);
+  EXPECT_EQ(store->GetFrames("r-1").size(), 2 * kFramesPerChunk);  // visible while it runs
+
+  const v1::RunInfo finished = MakeRun("r-1", v1::FINISHED, 1000);
+  store->FinishRun(finished, index, builder.Take());
+  EXPECT_TRUE(builder.empty());
+  EXPECT_TRUE(Same(*store->GetRun("r-1"), finished));
+  ExpectSameFrames(store->GetFrames("r-1"), frames);
+
+  // Read back one chunk at a time.
+  std::vector<v1::Frame> read;
+  std::vector<std::size_t> sizes;
+  for (std::optional<int64_t> next = 0; next;) {
+    const std::size_t before = read.size();
+    next = store->GetFrameChunk("r-1", *next, read);
+    if (next) sizes.push_back(read.size() - before);
+  }
+  EXPECT_THAT(sizes, ::testing::ElementsAre(kFramesPerChunk, kFramesPerChunk, 5u));
+  ExpectSameFrames(read, frames);
+}
+
+TEST(StoreFramesTest, FinishRunWithAnEmptyLastChunkDropsStaleChunks) {
+  TempDirectory temp;
+  auto store = Store::Open(temp.str());
+  store->PutRun(MakeRun("r-1", v1::RUNNING, 1000));
+  const std::vector<EncodedFrameChunk> chunks = EncodeFrameChunks(MakeFrames(12, 2), 4);
+  for (int i = 0; i < 3; ++i) store->PutFrameChunk("r-1", i, chunks[i]);
+  // Finished after two chunks (e.g. a chunk 2 left by an earlier attempt): chunk 2 goes.
+  store->FinishRun(MakeRun("r-1", v1::CANCELLED, 1000), 2, EncodedFrameChunk());
+  EXPECT_EQ(store->GetRun("r-1")->state(), v1::CANCELLED);
+  const std::vector<v1::Frame> frames = store->GetFrames("r-1");
+  ASSERT_EQ(frames.size(), 8u);
+  EXPECT_EQ(frames.back().seq(), 7);
+  std::vector<v1::Frame> none;
+  EXPECT_FALSE(store->GetFrameChunk("r-missing", 0, none).has_value());
+  EXPECT_TRUE(none.empty());
+}
+
 // A trigger added through a second connection makes the second chunk's insert fail: the
 // transaction must roll back the run row and the first chunk, and the error must say what
 // failed and why.

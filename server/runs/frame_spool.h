@@ -1,0 +1,42 @@
+// A run's frames on their way to the store: the frames since the last stored chunk are kept
+// encoded (frame_chunks.h) and written as one chunk every `frames_per_chunk` frames, so a
+// run's memory is one chunk whatever its length. Finish writes the rest together with the
+// run's final info. Used by the run's worker thread only (not thread-safe).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "mbstream/v1/frame.pb.h"
+#include "mbstream/v1/run.pb.h"
+#include "server/store/frame_chunks.h"
+
+namespace mbstream {
+
+class Store;
+
+class FrameSpool {
+ public:
+  explicit FrameSpool(std::string run_id, std::size_t frames_per_chunk = kFramesPerChunk);
+
+  // Adds the next frame (in seq order); stores the chunk when it is full. A store failure
+  // does not throw: it is kept in error() and later frames are dropped (the run should stop).
+  void Add(const v1::Frame& frame, Store& store);
+  // Stores `info` and the frames not yet stored in one transaction (Store::FinishRun).
+  // Throws what the store throws.
+  void Finish(const v1::RunInfo& info, Store& store);
+
+  // Why a chunk could not be stored; empty while every chunk was.
+  const std::string& error() const { return error_; }
+  int64_t stored_chunks() const { return next_chunk_; }
+
+ private:
+  const std::string run_id_;
+  const std::size_t frames_per_chunk_;
+  FrameChunkBuilder pending_;
+  int64_t next_chunk_ = 0;
+  std::string error_;
+};
+
+}  // namespace mbstream
