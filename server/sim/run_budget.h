@@ -13,8 +13,8 @@
 namespace mbstream {
 
 // Default step budget: kStepBudgetFloor + kStepsPerSimulatedSecond * duration.
-inline constexpr long kStepBudgetFloor = 100'000;
-inline constexpr double kStepsPerSimulatedSecond = 200'000.0;
+inline constexpr long kStepBudgetFloor = 50'000;
+inline constexpr double kStepsPerSimulatedSecond = 100'000.0;
 // Default CPU budget: kCpuBudgetFloorS + kCpuPerSimulatedSecondS * duration * size, where
 // size = max(1, (num_dofs / 6)^2) (a 6-joint arm is 1).
 inline constexpr double kCpuBudgetFloorS = 60.0;
