@@ -107,6 +107,7 @@ void RunBody(const Model& model, const RunConfig& config, Formulation formulatio
     if (!AdvanceToFrame(*integrator, times, k, y.data(), cancel, &result.stats, Advice(formulation),
                         &budget->t_stop)) {
       if (result.stats.status == RunStatus::kTooMuchWork) {
+        budget->advice = Advice(formulation);
         // The failure path only (it allocates); the state y is the last good one.
         if (ode) budget->eigenvalue = LargestEigenvalueEstimate(*ode, budget->t_stop, y.data());
       }

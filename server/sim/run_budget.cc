@@ -55,6 +55,7 @@ std::string BudgetMessage(const RunConfig& config, const BudgetReport& r) {
     text += "; likely cause: " + r.causes.front();
     for (size_t i = 1; i < r.causes.size() && i < 3; ++i) text += "; also " + r.causes[i];
   }
+  text += r.advice;
   text += "; the frames up to the stop are kept";
   return text;
 }

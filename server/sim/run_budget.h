@@ -33,6 +33,7 @@ struct BudgetTracking {
   double cpu_deadline_s = std::numeric_limits<double>::infinity();  // ThreadCpuSeconds()
   double t_stop = 0.0;       // s, the integrator's last good time (kTooMuchWork)
   double eigenvalue = -1.0;  // 1/s, LargestEigenvalueEstimate there; < 0 = none
+  std::string advice;        // the formulation's own advice ("; ..."), appended to the message
 };
 
 // Why a run's budget ran out, as the last part of its message: what was exhausted, the rate
@@ -47,6 +48,7 @@ struct BudgetReport {
   // Likely causes, most likely first (from the input checks and the stiffness estimate);
   // empty = none found.
   std::vector<std::string> causes;
+  std::string advice;  // appended as is (BudgetTracking::advice)
 };
 
 // "budget exhausted: ..." for the run's message.

@@ -121,6 +121,7 @@ BudgetReport BudgetReportOf(const RunConfig& config, const RunStats& stats,
   report.t_reached = budget.t_stop;
   report.duration = config.duration;
   report.last_step = stats.solver.last_step;
+  report.advice = budget.advice;
   for (const InputWarning& warning : warnings) {
     if (warning.rate > 0.0) report.causes.push_back(warning.message);
   }
