@@ -6,13 +6,22 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <limits>
+#include <memory>
 #include <string>
+#include <vector>
 
+#include "server/integrate/integrator.h"
+#include "server/integrate/thread_cpu_clock.h"
 #include "server/runs/run_budget_caps.h"
+#include "server/sim/drive_set.h"
+#include "server/sim/initial_state.h"
 #include "server/sim/input_sanity.h"
+#include "server/sim/joint_space_ode.h"
 #include "server/sim/run_trust.h"
 #include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
+#include "tests/common/allocation_counter.h"
 #include "tests/server/sim/scene_fixture.h"
 
 namespace mbstream {
@@ -177,6 +186,42 @@ TEST(RunBudgetTest, CpuBudgetStopsEveryKindOfIntegrator) {
     EXPECT_THAT(s.message, HasSubstr("s of CPU (max_cpu_s = 0.001 s) used"));
     EXPECT_GE(result.num_frames(), 1) << MethodName(c.method);
     EXPECT_LT(s.t_reached, config.duration) << MethodName(c.method);
+  }
+}
+
+// With a CPU deadline the SUNDIALS solvers are called in chunks of kCpuCheckSteps steps and
+// the fixed-step loop reads the clock: the solution and the step count are the same bit for
+// bit as without, and advancing still allocates nothing.
+TEST(RunBudgetTest, CpuChecksLeaveTheSolutionBitForBitAndAllocateNothing) {
+  const Model& model = Irb1600();
+  const RunConfig scene = Scene("passive-swing");
+  const DriveSet drives(model, scene);
+  for (Method method : {Method::kBdf, Method::kErk, Method::kRk4}) {
+    RunConfig config = scene;
+    config.method = method;
+    config.rtol = 1e-10;
+    config.atol = 1e-12;
+    config.fixed_step = 1e-4;
+    std::vector<double> states[2];
+    long steps[2] = {0, 0};
+    for (int budgeted = 0; budgeted < 2; ++budgeted) {
+      JointSpaceOde ode(model, drives);
+      Eigen::VectorXd y = InitialJointState(config, drives, model.num_dofs());
+      const double deadline =
+          budgeted ? ThreadCpuSeconds() + 3600.0 : std::numeric_limits<double>::infinity();
+      std::unique_ptr<Integrator> integrator =
+          MakeIntegrator(ode, 0.0, y.data(), IntegratorOptionsFrom(config, 2.0, deadline));
+      ASSERT_EQ(integrator->AdvanceTo(0.5, y.data()).status, IntegratorStatus::kOk);
+      const long steps_before = integrator->stats().steps;
+      const long allocations = testing::AllocationCount();
+      ASSERT_EQ(integrator->AdvanceTo(2.0, y.data()).status, IntegratorStatus::kOk);
+      EXPECT_EQ(testing::AllocationCount() - allocations, 0) << MethodName(method);
+      steps[budgeted] = integrator->stats().steps;
+      EXPECT_GT(steps[budgeted] - steps_before, 2 * kCpuCheckSteps) << MethodName(method);
+      states[budgeted].assign(y.data(), y.data() + y.size());
+    }
+    EXPECT_EQ(steps[0], steps[1]) << MethodName(method);
+    EXPECT_EQ(states[0], states[1]) << MethodName(method);
   }
 }
 
