@@ -4,6 +4,7 @@
 #include <chrono>
 #include <iostream>
 
+#include "client/cli/exit_codes.h"
 #include "client/cli/progress_line.h"
 #include "client/cli/result_download.h"
 #include "client/cli/run_overrides.h"
@@ -20,6 +21,7 @@ struct RunOptions {
   RunOverrides overrides;
   std::optional<double> realtime;
   bool watch = false;
+  bool accept_untrusted = false;
 };
 
 // Follows the run to its end, showing progress on stderr; returns the final info.
@@ -68,6 +70,9 @@ int RunOnServer(const ClientOptions& client, const RunOptions& options) {
     if (!status.ok()) return ReportRpcError("run", client, status);
   }
   std::cout << info.id() << std::endl;
+  for (const std::string& warning : info.warnings()) {
+    std::cerr << "mbstream run: warning: " << warning << "\n";
+  }
   if (!options.watch && options.out_dir.empty()) return 0;
   const grpc::Status watched = Watch(*stub, info.id(), &info);
   if (!watched.ok()) return ReportRpcError("run", client, watched);
@@ -86,9 +91,11 @@ int RunOnServer(const ClientOptions& client, const RunOptions& options) {
   if (info.state() != v1::FINISHED) {
     std::cerr << "mbstream run: run " << v1::RunState_Name(info.state()) << ": " << info.message()
               << "\n";
-    return 1;
   }
-  return 0;
+  std::cerr << TrustLine(s.trust(), s.trust_reason()) << std::endl;
+  if (info.state() != v1::FINISHED) return kExitRunFailed;
+  if (s.trust() == "low" && !options.accept_untrusted) return kExitUntrusted;
+  return kExitOk;
 }
 
 }  // namespace
@@ -103,6 +110,9 @@ void AddRunCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client, i
   command->add_option("--realtime", options->realtime,
                       "pacing: simulated s per wall s (1 = real time, 0 = as fast as possible)");
   command->add_flag("--watch", options->watch, "show progress and wait for the end");
+  command->add_flag("--accept-untrusted", options->accept_untrusted,
+                    "with --watch/--out: exit 0 even when the finished run's trust is low "
+                    "(else exit 4)");
   command->add_option("--out", options->out_dir, "write the results files here (implies waiting)");
   command->callback([client, options, exit_code] {
     try {

@@ -6,10 +6,12 @@
 #include <memory>
 #include <string>
 
+#include "client/cli/exit_codes.h"
 #include "client/cli/run_overrides.h"
 #include "server/common/check.h"
 #include "server/parse/urdf_import.h"
 #include "server/results/results_files.h"
+#include "server/sim/input_sanity.h"
 #include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
 #include "server/wire/model_info.h"
@@ -23,6 +25,7 @@ struct SimulateOptions {
   std::string spec_path;
   std::string out_dir;
   RunOverrides overrides;
+  bool accept_untrusted = false;
 };
 
 int RunSimulate(const SimulateOptions& options) {
@@ -36,6 +39,10 @@ int RunSimulate(const SimulateOptions& options) {
   }
   options.overrides.ApplyTo(spec);
   const RunConfig config = ToRunConfig(spec, JointNames(import.model), source);
+  // Before any integration: legal but absurd inputs (Simulate finds them again for stats.json).
+  for (const InputWarning& warning : CheckInputSanity(import.model, config)) {
+    std::cerr << "mbstream simulate: warning: " << warning.message << "\n";
+  }
 
   const RunResult result = Simulate(import.model, config);
   const RunProvenance provenance{import.model.name, options.model_path,
@@ -52,9 +59,11 @@ int RunSimulate(const SimulateOptions& options) {
   std::cout << "\nresults in " << options.out_dir << "\n";
   if (s.status != RunStatus::kFinished) {
     std::cerr << "mbstream simulate: run " << RunStatusName(s.status) << ": " << s.message << "\n";
-    return 1;
   }
-  return 0;
+  std::cout << TrustLine(TrustName(s.trust), s.trust_reason) << std::endl;
+  if (s.status != RunStatus::kFinished) return kExitRunFailed;
+  if (s.trust == Trust::kLow && !options.accept_untrusted) return kExitUntrusted;
+  return kExitOk;
 }
 
 }  // namespace
@@ -70,6 +79,8 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::ExistingFile);
   command->add_option("--out", options->out_dir, "results directory")->required();
   options->overrides.AddTo(*command);
+  command->add_flag("--accept-untrusted", options->accept_untrusted,
+                    "exit 0 even when the finished run's trust is low (else exit 4)");
   command->callback([options, exit_code] {
     try {
       *exit_code = RunSimulate(*options);

@@ -76,6 +76,15 @@ int main(int argc, char** argv) {
   app.add_option("--max-output-frames", limits.max_output_frames, "most frames of a run")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--max-run-steps", limits.max_internal_steps,
+                 "most internal integrator steps of a run (caps the spec's max_internal_steps "
+                 "and the default budget)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--max-run-cpu-s", limits.max_run_cpu_s,
+                 "most CPU seconds of a run (caps the spec's max_cpu_s and the default budget)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_option("--max-message-mb", max_message_mb, "largest gRPC message, MiB")
       ->check(CLI::Range(1.0, 2047.0))
       ->capture_default_str();

@@ -54,6 +54,14 @@ std::string TooMuchWorkMessage(const char* solver, long max_steps, double t_reac
       solver, max_steps, t_out, t_reached, advice);
 }
 
+std::string CpuBudgetMessage(const char* solver, double t_reached, double t_out) {
+  return FormatString(
+      "%s: the run's CPU budget ran out before t = %.9g s (stopped at t = %.9g s); raise "
+      "max_cpu_s, or make the run cheaper (a looser rtol/atol, an implicit method for a stiff "
+      "scene)",
+      solver, t_out, t_reached);
+}
+
 AdvanceResult RhsEventResult(const char* solver, const RhsAdapter& rhs, double t_good,
                              MethodKind kind) {
   switch (rhs.event()) {

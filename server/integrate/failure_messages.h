@@ -22,6 +22,10 @@ std::string DivergedMessage(const char* solver, double t, double limit, MethodKi
 std::string TooMuchWorkMessage(const char* solver, long max_steps, double t_reached, double t_out,
                                bool implicit);
 
+// kTooMuchWork from the CPU budget: the thread's CPU clock passed the deadline at t_reached,
+// before t_out.
+std::string CpuBudgetMessage(const char* solver, double t_reached, double t_out);
+
 // The failure that the right-hand side adapter recorded (rhs.event() != kNone), as a
 // result at the last good time t_good: kDiverged or kRhsFailure.
 AdvanceResult RhsEventResult(const char* solver, const RhsAdapter& rhs, double t_good,

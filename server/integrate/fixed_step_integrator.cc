@@ -5,6 +5,7 @@
 
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/state_health.h"
+#include "server/integrate/thread_cpu_clock.h"
 
 namespace mbstream {
 
@@ -45,6 +46,10 @@ AdvanceResult FixedStepIntegrator::DoAdvance(double t_out, double* y) {
       std::copy(y_grid_.begin(), y_grid_.end(), y);
       return {IntegratorStatus::kTooMuchWork, t,
               TooMuchWorkMessage(name(), options().max_steps, t, t_out, false)};
+    }
+    if (steps_ % kCpuCheckSteps == 0 && ThreadCpuSeconds() >= options().cpu_deadline_s) {
+      std::copy(y_grid_.begin(), y_grid_.end(), y);
+      return {IntegratorStatus::kTooMuchWork, t, CpuBudgetMessage(name(), t, t_out)};
     }
     // The last grid point may lie a rounding error beyond t_final: never step past it.
     const double h = std::min(GridTime(k_ + 1), options().t_final) - t;

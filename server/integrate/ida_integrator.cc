@@ -17,6 +17,7 @@
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/ida_failure.h"
 #include "server/integrate/state_health.h"
+#include "server/integrate/thread_cpu_clock.h"
 
 namespace mbstream {
 
@@ -179,20 +180,39 @@ const double* IdaIntegrator::derivative() const { return N_VGetArrayPointer(yp_o
 AdvanceResult IdaIntegrator::DoAdvance(double t_out, double* y) {
   errors_.Clear();
   N_VSetArrayPointer(y, out_.get());
+  // The step budget is over the whole run; with a CPU budget IDA is called in chunks of
+  // kCpuCheckSteps steps and the thread's CPU clock is read between them.
   const long max_steps = options().max_steps;
-  long steps = 0;
-  IDAGetNumSteps(memory_, &steps);
-  const long remaining = max_steps - steps;
+  const double cpu_deadline = options().cpu_deadline_s;
+  const bool cpu_budget = std::isfinite(cpu_deadline);
   int flag = IDA_TOO_MUCH_WORK;
   double t_reached = last_time();
-  if (remaining <= 0) {
-    std::copy(last_state(), last_state() + state_size(), y);
-  } else {
-    CheckSetup(IDASetMaxNumSteps(memory_, remaining), "IDASetMaxNumSteps");
+  bool evolved = false;
+  bool cpu_spent = false;
+  for (;;) {
+    long steps = 0;
+    IDAGetNumSteps(memory_, &steps);
+    const long remaining = max_steps - steps;
+    double t_current = t_reached;
+    IDAGetCurrentTime(memory_, &t_current);
+    cpu_spent = cpu_budget && t_out > t_current && ThreadCpuSeconds() >= cpu_deadline;
+    if (remaining <= 0 || cpu_spent) {
+      flag = IDA_TOO_MUCH_WORK;
+      if (!evolved) {
+        t_reached = last_time();
+        std::copy(last_state(), last_state() + state_size(), y);
+      }
+      break;
+    }
+    const long chunk = cpu_budget ? std::min(remaining, kCpuCheckSteps) : remaining;
+    CheckSetup(IDASetMaxNumSteps(memory_, chunk), "IDASetMaxNumSteps");
     std::fill(y, y + state_size(), std::numeric_limits<double>::quiet_NaN());
     t_reached = std::numeric_limits<double>::quiet_NaN();
     flag = IDASolve(memory_, t_out, &t_reached, out_.get(), yp_out_.get(), IDA_NORMAL);
     if (flag >= 0) return {IntegratorStatus::kOk, t_out, {}};
+    evolved = true;
+    if (flag == IDA_TOO_MUCH_WORK && chunk < remaining) continue;  // only the chunk ran out
+    break;
   }
   const SolverStats s = stats();
   IdaFailureContext context{flag,
@@ -205,7 +225,9 @@ AdvanceResult IdaIntegrator::DoAdvance(double t_out, double* y) {
                             s.convergence_failures,
                             callbacks_.event(),
                             errors_.message()};
-  return IdaFailureResult(context);
+  AdvanceResult result = IdaFailureResult(context);
+  if (cpu_spent) result.message = CpuBudgetMessage("IDA", result.t, t_out);
+  return result;
 }
 
 SolverStats IdaIntegrator::stats() const {

@@ -93,7 +93,8 @@ const char* IntegratorStatusName(IntegratorStatus status) {
   return "unknown";
 }
 
-IntegratorOptions IntegratorOptionsFrom(const RunConfig& config, double t_final) {
+IntegratorOptions IntegratorOptionsFrom(const RunConfig& config, double t_final,
+                                        double cpu_deadline_s) {
   IntegratorOptions options;
   options.method = config.method;
   options.rtol = config.rtol;
@@ -101,8 +102,9 @@ IntegratorOptions IntegratorOptionsFrom(const RunConfig& config, double t_final)
   options.max_step = config.max_step;
   options.fixed_step = config.fixed_step;
   options.erk_table = config.erk_table;
-  options.max_steps = config.max_steps;
+  if (config.max_steps > 0) options.max_steps = config.max_steps;
   options.t_final = t_final;
+  options.cpu_deadline_s = cpu_deadline_s;
   return options;
 }
 

@@ -22,14 +22,24 @@ struct IntegratorOptions {
   // method's default). See ErkTableNames() / DirkTableNames() in butcher_tables.h.
   std::string erk_table;
   long max_steps = 10'000'000;  // internal steps in total, over all AdvanceTo calls
+  // s, the calling thread's CPU clock (ThreadCpuSeconds) at which the integration stops
+  // with kTooMuchWork: the run's CPU budget. Checked every kCpuCheckSteps internal steps.
+  // Infinity = no CPU budget.
+  double cpu_deadline_s = std::numeric_limits<double>::infinity();
   // s, the integrator never steps past it (CVodeSetStopTime etc.); AdvanceTo may not ask
   // for a later time. Infinity = no stop time.
   double t_final = std::numeric_limits<double>::infinity();
   double divergence_limit = 1e10;  // |y_i| beyond this (or non-finite) = diverged
 };
 
-// The options of a run: RunConfig's solver fields, with the given stop time.
-IntegratorOptions IntegratorOptionsFrom(const RunConfig& config, double t_final);
+// Internal steps between two checks of IntegratorOptions::cpu_deadline_s.
+constexpr long kCpuCheckSteps = 256;
+
+// The options of a run: RunConfig's solver fields, with the given stop time and CPU deadline
+// (RunConfig::max_steps 0 keeps IntegratorOptions' default step budget).
+IntegratorOptions IntegratorOptionsFrom(
+    const RunConfig& config, double t_final,
+    double cpu_deadline_s = std::numeric_limits<double>::infinity());
 
 // Cumulative solver statistics since creation.
 struct SolverStats {
@@ -46,7 +56,7 @@ struct SolverStats {
 enum class IntegratorStatus {
   kOk,
   kDiverged,             // the state became non-finite or exceeded the divergence limit
-  kTooMuchWork,          // the max_steps budget ran out
+  kTooMuchWork,          // the max_steps budget (or the cpu_deadline_s budget) ran out
   kErrorTestFailures,    // the local error test failed repeatedly / accuracy unreachable
   kConvergenceFailures,  // the nonlinear or linear solver failed repeatedly
   kRhsFailure,           // OdeSystem::Rhs failed (or returned non-finite derivatives)

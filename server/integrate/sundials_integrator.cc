@@ -1,6 +1,7 @@
 #include "server/integrate/sundials_integrator.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -11,6 +12,7 @@
 #include "server/common/check.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/fast_serial_ops.h"
+#include "server/integrate/thread_cpu_clock.h"
 
 namespace mbstream::sundials {
 
@@ -60,25 +62,41 @@ AdvanceResult SundialsIntegrator::DoAdvance(double t_out, double* y) {
   errors_.Clear();
   N_VSetArrayPointer(y, out_.get());
 
-  // max_steps is a budget over the whole run; the solvers count per call.
+  // max_steps is a budget over the whole run; the solvers count per call. With a CPU budget
+  // the solver is called in chunks of kCpuCheckSteps steps and the thread's CPU clock is
+  // read between them (a solver stopped by its per-call step limit resumes where it was).
   const long max_steps = options().max_steps;
-  const long remaining = max_steps - NumSteps();
+  const double cpu_deadline = options().cpu_deadline_s;
+  const bool cpu_budget = std::isfinite(cpu_deadline);
+  const int too_much_work = family_ == Family::kCvode ? CV_TOO_MUCH_WORK : ARK_TOO_MUCH_WORK;
   int flag = 0;
   double t_reached = CurrentTime();
-  if (remaining <= 0 && t_out > t_reached) {
-    // The budget is spent and t_out lies beyond the last internal step: stop at the last
-    // output.
-    flag = family_ == Family::kCvode ? CV_TOO_MUCH_WORK : ARK_TOO_MUCH_WORK;
-    t_reached = last_time();
-    std::copy(last_state(), last_state() + state_size(), y);
-  } else {
-    CheckSetup(SetMaxNumSteps(std::max(remaining, 1L)), "SetMaxNumSteps");
+  bool evolved = false;  // y and t_reached hold the solver's state after a chunk
+  bool cpu_spent = false;
+  for (;;) {
+    const long remaining = max_steps - NumSteps();
+    const bool beyond = t_out > CurrentTime();  // steps are needed to reach t_out
+    cpu_spent = cpu_budget && beyond && ThreadCpuSeconds() >= cpu_deadline;
+    if ((remaining <= 0 && beyond) || cpu_spent) {
+      // A budget is spent and t_out lies beyond the last internal step: stop at the last
+      // output (or where the last chunk stopped).
+      flag = too_much_work;
+      if (!evolved) {
+        t_reached = last_time();
+        std::copy(last_state(), last_state() + state_size(), y);
+      }
+      break;
+    }
+    const long chunk = cpu_budget ? std::min(remaining, kCpuCheckSteps) : remaining;
+    CheckSetup(SetMaxNumSteps(std::max(chunk, 1L)), "SetMaxNumSteps");
     // A failure before the first step leaves y and t_reached unwritten: poison them so the
     // base falls back to the last output.
     std::fill(y, y + state_size(), std::numeric_limits<double>::quiet_NaN());
     t_reached = std::numeric_limits<double>::quiet_NaN();
     flag = Evolve(t_out, out_.get(), &t_reached);
     if (flag >= 0) return {IntegratorStatus::kOk, t_out, {}};
+    evolved = true;
+    if (flag == too_much_work && chunk < remaining) continue;  // only the chunk ran out
     if (family_ == Family::kArkode && flag != ARK_TOO_MUCH_WORK) {
       // When a step fails ARKODE 6.4 returns the last step's state with the time of the
       // failed stage (tcur), not the step's: the pair is inconsistent. Use the last output.
@@ -86,11 +104,14 @@ AdvanceResult SundialsIntegrator::DoAdvance(double t_out, double* y) {
       t_reached = last_time();
       std::copy(last_state(), last_state() + state_size(), y);
     }
+    break;
   }
 
   FailureContext context{family_,   flag,  name(),    implicit_, fixed_point_,
                          t_reached, t_out, max_steps, &rhs_,     errors_.message()};
-  return FailureResult(context);
+  AdvanceResult result = FailureResult(context);
+  if (cpu_spent) result.message = CpuBudgetMessage(name(), result.t, t_out);
+  return result;
 }
 
 }  // namespace mbstream::sundials

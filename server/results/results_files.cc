@@ -111,6 +111,11 @@ std::string StatsJson(const RunResult& result, const RunProvenance& provenance) 
       {"drift_velocity_max", NumberOrNull(s.drift_velocity_max)},
       {"quaternion_norm_error_max", NumberOrNull(s.quaternion_norm_error_max)},
   };
+  j["trust"] = s.trust == Trust::kNotAssessed ? nlohmann::ordered_json(nullptr)
+                                              : nlohmann::ordered_json(TrustName(s.trust));
+  j["trust_reason"] = s.trust_reason;
+  j["warnings"] = s.warnings;
+  j["budget"] = {{"max_steps", s.max_steps}, {"max_cpu_s", s.max_cpu_s}};
   j["joints"] = result.joint_names;
   j["reproduce"] = {
       {"mbstream_version", MBSTREAM_VERSION},

@@ -12,6 +12,7 @@
 #include "server/common/check.h"
 #include "server/runs/release_memory.h"
 #include "server/runs/request_error.h"
+#include "server/runs/run_budget_caps.h"
 #include "server/runs/unix_time.h"
 #include "server/sim/drive_set.h"
 #include "server/sim/formulation_choice.h"
@@ -94,7 +95,7 @@ v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& s
                            std::to_string(limits_.max_output_frames) +
                            "; lengthen spec.output_interval_s or shorten spec.duration_s");
   }
-  config.max_steps = std::min(config.max_steps, limits_.max_internal_steps);
+  const std::vector<std::string> warnings = PrepareRunBudget(model->model, limits_, &config);
 
   v1::RunInfo info;
   info.set_model_id(model->info.id());
@@ -109,6 +110,7 @@ v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& s
   info.set_created_unix_ms(NowUnixMs());
   info.set_mbstream_version(MBSTREAM_VERSION);
   info.set_owner(owner);
+  for (const std::string& warning : warnings) info.add_warnings(warning);
 
   // No lock across the store's I/O: the id is checked free, then reserved in active_ under
   // the lock (a reserved run counts against the queue limit), stored, and only then queued.

@@ -14,6 +14,7 @@ struct ServerLimits {
   double max_duration_s = 24 * 3600.0;    // s, simulated time of one run
   int64_t max_output_frames = 2'000'000;  // frames of one run
   long max_internal_steps = 100'000'000;  // integrator steps of one run (budget cap)
+  double max_run_cpu_s = 3600.0;          // s of CPU of one run (budget cap)
   int subscriber_queue_frames = 4096;     // frames buffered per subscriber before dropping
   double probe_grace_s = 2.0;             // s a finished run waits for its viewers' last probes
   double subscribe_start_s = 10.0;        // s a Subscribe stream may take to send `start`

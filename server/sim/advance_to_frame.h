@@ -12,9 +12,10 @@ namespace mbstream {
 
 // Before output frame k: stops when `cancel` is set (kCancelled), then, for k > 0, advances
 // `integrator` to times[k]. Returns false, with the status and message (plus `advice`) in
-// `stats`, when the run must stop there.
+// `stats`, when the run must stop there; `t_stop`, if given, then receives the integrator's
+// last good time (y holds the state there).
 bool AdvanceToFrame(Integrator& integrator, const std::vector<double>& times, size_t k, double* y,
                     const std::atomic<bool>* cancel, RunStats* stats,
-                    const std::string& advice = "");
+                    const std::string& advice = "", double* t_stop = nullptr);
 
 }  // namespace mbstream

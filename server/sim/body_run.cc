@@ -12,6 +12,7 @@
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/ida_integrator.h"
 #include "server/integrate/integrator.h"
+#include "server/integrate/stiffness_estimate.h"
 #include "server/sim/advance_to_frame.h"
 #include "server/sim/initial_state.h"
 
@@ -45,7 +46,8 @@ bool IsBodyFormulation(Formulation formulation) {
 
 void RunBody(const Model& model, const RunConfig& config, Formulation formulation,
              const DriveSet& drives, const std::vector<double>& times, FrameRecorder& recorder,
-             RunResult& result, FrameSink* sink, const std::atomic<bool>* cancel) {
+             RunResult& result, FrameSink* sink, const std::atomic<bool>* cancel,
+             BudgetTracking* budget) {
   const int n = model.num_dofs();
   const Eigen::VectorXd joint_state = InitialJointState(config, drives, n);
   const Eigen::VectorXd q0 = joint_state.head(n), qd0 = joint_state.tail(n);
@@ -80,7 +82,8 @@ void RunBody(const Model& model, const RunConfig& config, Formulation formulatio
 
   Eigen::VectorXd y = baumgarte ? Eigen::VectorXd(init.y.head(bm.ode_size())) : init.y;
   std::unique_ptr<Integrator> integrator;
-  const IntegratorOptions options = IntegratorOptionsFrom(config, times.back());
+  const IntegratorOptions options =
+      IntegratorOptionsFrom(config, times.back(), budget->cpu_deadline_s);
   if (baumgarte) {
     integrator = MakeIntegrator(*ode, times.front(), y.data(), options);
   } else {
@@ -101,8 +104,13 @@ void RunBody(const Model& model, const RunConfig& config, Formulation formulatio
   const bool need_effort = result.has_torques || result.has_energy;
   FrameExtras extras;
   for (size_t k = 0; k < times.size(); ++k) {
-    if (!AdvanceToFrame(*integrator, times, k, y.data(), cancel, &result.stats,
-                        Advice(formulation))) {
+    if (!AdvanceToFrame(*integrator, times, k, y.data(), cancel, &result.stats, Advice(formulation),
+                        &budget->t_stop)) {
+      if (result.stats.status == RunStatus::kTooMuchWork) {
+        budget->advice = Advice(formulation);
+        // The failure path only (it allocates); the state y is the last good one.
+        if (ode) budget->eigenvalue = LargestEigenvalueEstimate(*ode, budget->t_stop, y.data());
+      }
       break;
     }
     const bool finite = readout.Read(times[k], y.data(), need_effort);

@@ -8,6 +8,7 @@
 #include "server/model/model.h"
 #include "server/sim/drive_set.h"
 #include "server/sim/frame_recorder.h"
+#include "server/sim/run_budget.h"
 #include "server/sim/run_config.h"
 #include "server/sim/run_result.h"
 
@@ -17,9 +18,11 @@ bool IsBodyFormulation(Formulation formulation);
 
 // Integrates `model` in body coordinates over `times` and records every good frame; sets
 // the result's equations, Jacobian non-zeros, solver statistics, status and constraint
-// drift. Throws InputError for a model the body formulations do not handle.
+// drift. Stops at budget->cpu_deadline_s and fills budget's stop fields when the budget
+// runs out. Throws InputError for a model the body formulations do not handle.
 void RunBody(const Model& model, const RunConfig& config, Formulation formulation,
              const DriveSet& drives, const std::vector<double>& times, FrameRecorder& recorder,
-             RunResult& result, FrameSink* sink, const std::atomic<bool>* cancel);
+             RunResult& result, FrameSink* sink, const std::atomic<bool>* cancel,
+             BudgetTracking* budget);
 
 }  // namespace mbstream

@@ -85,7 +85,11 @@ struct RunConfig {
   std::vector<DriveConfig> drives;  // one per joint, in the model's joint order
   bool want_torques = true;         // report drive efforts (needs dynamics)
   BaumgarteParameters baumgarte;
-  long max_steps = 10'000'000;  // internal steps before the run stops (TOO_MUCH_WORK)
+  // The run's cost budget (see run_budget.h); the run stops with TOO_MUCH_WORK when either
+  // runs out. 0 = the default for the run's duration and model (DefaultMaxSteps,
+  // DefaultMaxCpuSeconds).
+  long max_steps = 0;      // internal integrator steps
+  double max_cpu_s = 0.0;  // s of CPU time of the run's thread
 };
 
 const char* FormulationName(Formulation formulation);  // "auto", "kinematic", "joint", ...

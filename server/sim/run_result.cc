@@ -43,4 +43,16 @@ const char* RunStatusName(RunStatus status) {
   return "FAILED";
 }
 
+const char* TrustName(Trust trust) {
+  switch (trust) {
+    case Trust::kNotAssessed:
+      return "";
+    case Trust::kOk:
+      return "ok";
+    case Trust::kLow:
+      return "low";
+  }
+  return "";
+}
+
 }  // namespace mbstream

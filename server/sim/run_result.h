@@ -11,13 +11,24 @@ namespace mbstream {
 enum class RunStatus {
   kFinished,
   kDiverged,             // the state became non-finite or exploded; stopped at the last good time
-  kTooMuchWork,          // the step budget ran out
+  kTooMuchWork,          // the cost budget (internal steps or CPU seconds) ran out
   kErrorTestFailures,    // the integrator could not meet the tolerance
   kConvergenceFailures,  // the nonlinear/linear solver failed repeatedly
   kFailed,               // any other failure (see the message)
   kCancelled,
   kInterrupted,  // the server stopped during the run (never produced by Simulate itself)
 };
+
+// Whether a run's own error indicators say its result can be trusted (run_trust.h).
+enum class Trust {
+  kNotAssessed,  // the run did not finish: its status says what went wrong
+  kOk,
+  kLow,  // finished, but the energy balance, constraint drift or step statistics say the
+         // result cannot be trusted (RunStats::trust_reason says which and by how much)
+};
+
+// "", "ok", "low".
+const char* TrustName(Trust trust);
 
 // "FINISHED", "DIVERGED", "TOO_MUCH_WORK", ...
 const char* RunStatusName(RunStatus status);
@@ -51,6 +62,12 @@ struct RunStats {
   double drift_orientation_max = -1.0;      // rad (small angles), joint axes / drive angles
   double drift_velocity_max = -1.0;         // m/s or rad/s, velocity-level constraints
   double quaternion_norm_error_max = -1.0;  // max | |e| - 1 | of the orientation quaternions
+
+  Trust trust = Trust::kNotAssessed;
+  std::string trust_reason;           // kLow: which indicator, its value and its limit
+  std::vector<std::string> warnings;  // the inputs' sanity warnings (input_sanity.h)
+  double max_cpu_s = 0.0;             // s, the run's CPU budget (resolved)
+  long max_steps = 0;                 // the run's step budget (resolved)
 };
 
 // Frame-major arrays; frame k has time t[k], joints q[k*n .. k*n+n-1], and so on.

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <memory>
+#include <string>
 
 #include "server/common/check.h"
 #include "server/dynamics/rnea.h"
+#include "server/integrate/failure_messages.h"
+#include "server/integrate/stiffness_estimate.h"
+#include "server/integrate/thread_cpu_clock.h"
 #include "server/kinematics/forward_kinematics.h"
 #include "server/sim/advance_to_frame.h"
 #include "server/sim/body_run.h"
@@ -15,7 +18,10 @@
 #include "server/sim/formulation_choice.h"
 #include "server/sim/frame_recorder.h"
 #include "server/sim/initial_state.h"
+#include "server/sim/input_sanity.h"
 #include "server/sim/joint_space_ode.h"
+#include "server/sim/run_budget.h"
+#include "server/sim/run_trust.h"
 
 namespace mbstream {
 
@@ -24,12 +30,6 @@ namespace {
 // Frames at 0, interval, 2 interval, ... up to `duration`.
 long RegularFrameCount(double duration, double interval) {
   return static_cast<long>(std::floor(duration / interval * (1.0 + 1e-12))) + 1;
-}
-
-double ThreadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 // Output times k * interval up to the duration, the duration itself always last.
@@ -78,18 +78,25 @@ void RunKinematic(const Model& model, const RunConfig& config, const DriveSet& d
 
 void RunJointSpace(const Model& model, const RunConfig& config, const DriveSet& drives,
                    const std::vector<double>& times, FrameRecorder& recorder, RunResult& result,
-                   FrameSink* sink, const std::atomic<bool>* cancel) {
+                   FrameSink* sink, const std::atomic<bool>* cancel, BudgetTracking* budget) {
   const int n = model.num_dofs();
   JointSpaceOde ode(model, drives);
   result.stats.equations = ode.size();
   result.stats.jacobian_nnz = ode.JacobianNonZeros();
   Eigen::VectorXd y = InitialJointState(config, drives, n);
-  std::unique_ptr<Integrator> integrator =
-      MakeIntegrator(ode, 0.0, y.data(), IntegratorOptionsFrom(config, times.back()));
+  std::unique_ptr<Integrator> integrator = MakeIntegrator(
+      ode, 0.0, y.data(), IntegratorOptionsFrom(config, times.back(), budget->cpu_deadline_s));
   result.stats.integrator = integrator->name();
   const bool need_effort = result.has_torques || result.has_energy;
   for (size_t k = 0; k < times.size(); ++k) {
-    if (!AdvanceToFrame(*integrator, times, k, y.data(), cancel, &result.stats)) break;
+    if (!AdvanceToFrame(*integrator, times, k, y.data(), cancel, &result.stats, "",
+                        &budget->t_stop)) {
+      if (result.stats.status == RunStatus::kTooMuchWork) {
+        // The failure path only (it allocates); y is the last good state.
+        budget->eigenvalue = LargestEigenvalueEstimate(ode, budget->t_stop, y.data());
+      }
+      break;
+    }
     const bool finite = ode.EvaluateOutputs(times[k], y.data(), need_effort);
     if (!finite || !recorder.Record(times[k], ode.q(), ode.qd(),
                                     need_effort ? &ode.drive_effort() : nullptr)) {
@@ -103,6 +110,37 @@ void RunJointSpace(const Model& model, const RunConfig& config, const DriveSet& 
   result.stats.solver = integrator->stats();
 }
 
+// What ran out and why, for the message of a run whose budget did.
+BudgetReport BudgetReportOf(const RunConfig& config, const RunStats& stats,
+                            const BudgetTracking& budget,
+                            const std::vector<InputWarning>& warnings) {
+  BudgetReport report;
+  report.steps = stats.solver.steps;
+  report.cpu = stats.solver.steps < config.max_steps;
+  report.cpu_s = stats.cpu_s;
+  report.t_reached = budget.t_stop;
+  report.duration = config.duration;
+  report.last_step = stats.solver.last_step;
+  report.advice = budget.advice;
+  for (const InputWarning& warning : warnings) {
+    if (warning.rate > 0.0) report.causes.push_back(warning.message);
+  }
+  if (budget.eigenvalue > 0.0) {
+    std::string stiff = FormatString(
+        "the scene is stiff there: the largest eigenvalue of the ODE's Jacobian at t = %.6g s "
+        "is about %.3g 1/s",
+        budget.t_stop, budget.eigenvalue);
+    const bool explicit_method = config.method == Method::kAdams || config.method == Method::kErk ||
+                                 config.method == Method::kRk4 || config.method == Method::kEuler;
+    if (explicit_method) {
+      stiff += FormatString(", so method %s needs steps below about %.3g s: use method bdf or dirk",
+                            MethodName(config.method), 3.0 / budget.eigenvalue);
+    }
+    report.causes.push_back(stiff);
+  }
+  return report;
+}
+
 }  // namespace
 
 long OutputFrameCount(double duration, double interval) {
@@ -111,14 +149,17 @@ long OutputFrameCount(double duration, double interval) {
   return regular + (duration - last > 1e-12 * duration ? 1 : 0);
 }
 
-RunResult Simulate(const Model& model_in, const RunConfig& config, FrameSink* sink,
+RunResult Simulate(const Model& model_in, const RunConfig& config_in, FrameSink* sink,
                    const std::atomic<bool>* cancel) {
   const double cpu0 = ThreadCpuSeconds();
   const auto wall0 = std::chrono::steady_clock::now();
   Model model = model_in;  // the run's own copy, with the run's gravity
-  model.gravity = config.gravity;
+  model.gravity = config_in.gravity;
+  RunConfig config = config_in;
+  ResolveBudget(model.num_dofs(), &config);
   const DriveSet drives(model, config);
   const FormulationChoice choice = ChooseFormulation(config, drives);
+  const std::vector<InputWarning> warnings = CheckInputSanity(model, config);
 
   RunResult result;
   result.num_dofs = model.num_dofs();
@@ -130,20 +171,31 @@ RunResult Simulate(const Model& model_in, const RunConfig& config, FrameSink* si
   result.stats.formulation_reason = choice.reason;
   result.stats.method = kinematic ? "none" : MethodName(config.method);
   result.stats.integrator = kinematic ? "none (closed form)" : "";
+  result.stats.warnings = WarningMessages(warnings);
+  result.stats.max_steps = config.max_steps;
+  result.stats.max_cpu_s = config.max_cpu_s;
 
   const std::vector<double> times = OutputTimes(config.duration, config.output_interval);
   FrameRecorder recorder(model, drives, result, times.size(), /*track_tcp_error=*/!kinematic,
                          /*latest_only=*/sink != nullptr && sink->KeepsFrames());
+  BudgetTracking budget;
+  budget.cpu_deadline_s = cpu0 + config.max_cpu_s;
   if (kinematic) {
     RunKinematic(model, config, drives, times, recorder, result, sink, cancel);
   } else if (IsBodyFormulation(choice.formulation)) {
-    RunBody(model, config, choice.formulation, drives, times, recorder, result, sink, cancel);
+    RunBody(model, config, choice.formulation, drives, times, recorder, result, sink, cancel,
+            &budget);
   } else {
-    RunJointSpace(model, config, drives, times, recorder, result, sink, cancel);
+    RunJointSpace(model, config, drives, times, recorder, result, sink, cancel, &budget);
   }
   result.stats.cpu_s = ThreadCpuSeconds() - cpu0;
   result.stats.wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  if (result.stats.status == RunStatus::kTooMuchWork) {
+    result.stats.message =
+        BudgetMessage(config, BudgetReportOf(config, result.stats, budget, warnings));
+  }
+  AssessTrust(&result.stats);
   return result;
 }
 

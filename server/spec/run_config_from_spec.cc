@@ -350,9 +350,16 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& j
     if (spec.max_internal_steps() <= 0) {
       check.Fail("max_internal_steps", "must be > 0, got " +
                                            std::to_string(spec.max_internal_steps()) +
-                                           "; give the most internal steps, e.g. 10000000");
+                                           "; give the most internal steps, e.g. 10000000, "
+                                           "or leave it out for the default budget");
     }
     config.max_steps = spec.max_internal_steps();
+  }
+  if (spec.has_max_cpu_s()) {
+    config.max_cpu_s =
+        check.Positive(spec.max_cpu_s(), "max_cpu_s", "s of CPU",
+                       "give the most CPU seconds the run may use, e.g. 60, or leave it out "
+                       "for the default budget");
   }
   check.NonNegative(spec.realtime(), "realtime", "simulated s per wall-clock s",
                     "give 0 for as fast as possible or 1 for real time");

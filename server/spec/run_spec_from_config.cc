@@ -82,9 +82,11 @@ v1::RunSpec ToRunSpec(const RunConfig& config) {
   spec.set_want_torques(config.want_torques);
   spec.mutable_baumgarte()->set_alpha(config.baumgarte.alpha);
   spec.mutable_baumgarte()->set_beta(config.baumgarte.beta);
-  MBSTREAM_CHECK_MSG(config.max_steps > 0 && config.max_steps <= INT32_MAX,
+  // 0 = the default budget: the fields stay absent.
+  MBSTREAM_CHECK_MSG(config.max_steps >= 0 && config.max_steps <= INT32_MAX,
                      "RunConfig::max_steps must fit RunSpec.max_internal_steps (int32)");
-  spec.set_max_internal_steps(static_cast<int32_t>(config.max_steps));
+  if (config.max_steps > 0) spec.set_max_internal_steps(static_cast<int32_t>(config.max_steps));
+  if (config.max_cpu_s > 0.0) spec.set_max_cpu_s(config.max_cpu_s);
   return spec;
 }
 

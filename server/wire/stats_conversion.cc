@@ -62,6 +62,10 @@ v1::RunStats StatsToProto(const RunStats& s) {
   out.set_drift_orientation_max_rad(FiniteOr(s.drift_orientation_max, -1.0));
   out.set_drift_velocity_max(FiniteOr(s.drift_velocity_max, -1.0));
   out.set_quaternion_norm_error_max(FiniteOr(s.quaternion_norm_error_max, -1.0));
+  out.set_trust(TrustName(s.trust));
+  out.set_trust_reason(s.trust_reason);
+  out.set_max_steps(s.max_steps);
+  out.set_max_cpu_s(FiniteOr(s.max_cpu_s, 0.0));
   return out;
 }
 
@@ -119,6 +123,13 @@ RunStats StatsFromProto(const v1::RunInfo& info) {
   s.drift_orientation_max = in.drift_orientation_max_rad();
   s.drift_velocity_max = in.drift_velocity_max();
   s.quaternion_norm_error_max = in.quaternion_norm_error_max();
+  s.trust = in.trust() == "ok"    ? Trust::kOk
+            : in.trust() == "low" ? Trust::kLow
+                                  : Trust::kNotAssessed;
+  s.trust_reason = in.trust_reason();
+  s.max_steps = in.max_steps();
+  s.max_cpu_s = in.max_cpu_s();
+  s.warnings.assign(info.warnings().begin(), info.warnings().end());
   return s;
 }
 

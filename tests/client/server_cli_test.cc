@@ -135,6 +135,45 @@ TEST_F(ServerCliTest, KilledServerRestartsWithEveryModelAndRunAndTheInterruptedO
               HasSubstr("\"status\": \"INTERRUPTED\""));
 }
 
+std::string LastLine(const std::string& text) {
+  std::string last;
+  std::stringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty()) last = line;
+  }
+  return last;
+}
+
+// Budgets, warnings and trust through the server: the typo spec is warned about when the
+// run starts, stops at the server's step cap, and exits 1; a spec asking for more CPU than
+// the cap is told so; an untrusted finished run exits 4 unless --accept-untrusted.
+TEST_F(ServerCliTest, BudgetsWarningsAndTrustOnTheServer) {
+  StartServer({"--max-run-steps", "50000", "--max-run-cpu-s", "30"});
+  std::string spec = ReadFile("tests/data/typo-servo.json");
+  spec.insert(spec.find('{') + 1, "\n  \"max_cpu_s\": 1000,");
+  std::ofstream(dir_ / "typo.json") << spec;
+  const CommandOutcome typo = Cli("run irb1600 --spec " + Out("typo.json") + " --watch");
+  EXPECT_EQ(typo.exit_code, 1) << typo.output;
+  EXPECT_THAT(typo.output, HasSubstr("mbstream run: warning: pd_servo.kp = 1.23457e+29 on joint "
+                                     "3 'joint3'"));
+  EXPECT_THAT(typo.output, HasSubstr("mbstream run: warning: max_cpu_s = 1000 s exceeds this "
+                                     "server's cap of 30 s"));
+  EXPECT_THAT(typo.output, HasSubstr("run TOO_MUCH_WORK: budget exhausted: 50000 internal "
+                                     "steps (max_internal_steps = 50000)"));
+  EXPECT_THAT(typo.output, HasSubstr("likely cause: pd_servo.kp = 1.23457e+29"));
+  EXPECT_EQ(LastLine(typo.output), "trust: n/a");
+
+  const std::string coarse =
+      "run irb1600 --spec models/irb1600/passive-swing.json --method euler --step 0.01 --out ";
+  const CommandOutcome untrusted = Cli(coarse + Out("untrusted"));
+  EXPECT_EQ(untrusted.exit_code, 4) << untrusted.output;
+  EXPECT_THAT(untrusted.output, HasSubstr("FINISHED"));
+  EXPECT_EQ(LastLine(untrusted.output).rfind("trust: low (energy balance error ", 0), 0u)
+      << untrusted.output;
+  EXPECT_THAT(ReadFile(dir_ / "untrusted" / "stats.json"), HasSubstr("\"trust\": \"low\""));
+  EXPECT_EQ(Cli(coarse + Out("accepted") + " --accept-untrusted").exit_code, 0);
+}
+
 TEST_F(ServerCliTest, ErrorsAreNamedWithExitCodes) {
   StartServer();
   CommandOutcome outcome = Cli("run nosuch");

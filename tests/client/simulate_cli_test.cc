@@ -85,4 +85,71 @@ TEST(SimulateCliTest, BadSpecFieldIsNamed) {
   EXPECT_FALSE(fs::exists(out / "stats.json"));
 }
 
+std::string Log(const fs::path& out) {
+  std::ifstream log(out.string() + ".log");
+  std::stringstream text;
+  text << log.rdbuf();
+  return text.str();
+}
+
+std::string LastLine(const std::string& text) {
+  std::string last;
+  std::stringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty()) last = line;
+  }
+  return last;
+}
+
+TEST(SimulateCliTest, FinishedRunEndsWithTrustOk) {
+  const fs::path out = fs::temp_directory_path() / "mbstream_cli_trust_ok";
+  const Outcome outcome = Simulate(
+      "models/irb1600/irb1600.urdf --spec models/irb1600/seed-servo.json --duration 2", out);
+  EXPECT_EQ(outcome.exit_code, 0);
+  EXPECT_NE(outcome.stats.find(R"("trust": "ok")"), std::string::npos) << outcome.stats;
+  EXPECT_EQ(LastLine(Log(out)), "trust: ok");
+}
+
+// The issue's typo (tests/data/typo-servo.json): warned about before the run, which ends
+// within its budget, keeps its frames and exits 1.
+TEST(SimulateCliTest, TypoSpecIsWarnedAndEndsWithinItsBudget) {
+  const fs::path out = fs::temp_directory_path() / "mbstream_cli_typo";
+  const Outcome outcome =
+      Simulate("models/irb1600/irb1600.urdf --spec tests/data/typo-servo.json", out);
+  EXPECT_EQ(outcome.exit_code, 1);
+  EXPECT_NE(outcome.stats.find(R"("status": "TOO_MUCH_WORK")"), std::string::npos) << outcome.stats;
+  EXPECT_NE(outcome.stats.find(R"("trust": null)"), std::string::npos) << outcome.stats;
+  EXPECT_GE(Lines(out / "joints.csv"), 2);  // header + the frames before the stop
+  const std::string log = Log(out);
+  const size_t warning = log.find("mbstream simulate: warning: pd_servo.kp = 1.23457e+29");
+  const size_t omega =
+      log.find("mbstream simulate: warning: pd_servo.trajectory term 1 on joint 5");
+  const size_t stop = log.find("run TOO_MUCH_WORK: budget exhausted: ");
+  EXPECT_NE(warning, std::string::npos) << log;
+  EXPECT_NE(omega, std::string::npos) << log;
+  ASSERT_NE(stop, std::string::npos) << log;
+  EXPECT_LT(warning, stop) << log;
+  EXPECT_NE(log.find("likely cause: pd_servo.kp = 1.23457e+29 on joint 3", stop), std::string::npos)
+      << log;
+  EXPECT_EQ(LastLine(log), "trust: n/a");
+}
+
+// A scene built to fail the energy balance: passive-swing with a coarse Euler step. It
+// finishes, says so loudly and exits 4, or 0 with --accept-untrusted.
+TEST(SimulateCliTest, UntrustedRunExitsFourUnlessAccepted) {
+  const fs::path out = fs::temp_directory_path() / "mbstream_cli_untrusted";
+  const std::string args =
+      "models/irb1600/irb1600.urdf --spec models/irb1600/passive-swing.json --method euler "
+      "--step 0.01";
+  const Outcome outcome = Simulate(args, out);
+  EXPECT_EQ(outcome.exit_code, 4);
+  EXPECT_NE(outcome.stats.find(R"("status": "FINISHED")"), std::string::npos) << outcome.stats;
+  EXPECT_NE(outcome.stats.find(R"("trust": "low")"), std::string::npos) << outcome.stats;
+  EXPECT_EQ(LastLine(Log(out)).rfind("trust: low (energy balance error ", 0), 0u) << Log(out);
+
+  const Outcome accepted = Simulate(args + " --accept-untrusted", out);
+  EXPECT_EQ(accepted.exit_code, 0);
+  EXPECT_NE(accepted.stats.find(R"("trust": "low")"), std::string::npos) << accepted.stats;
+}
+
 }  // namespace

@@ -17,7 +17,7 @@ def stats_dict(info):
         stats = json_format.MessageToDict(info.stats, preserving_proto_field_name=True,
                                           always_print_fields_with_no_presence=True)
     for key in ("steps", "rhs_evals", "jac_evals", "nonlinear_iterations",
-                "error_test_failures", "convergence_failures"):
+                "error_test_failures", "convergence_failures", "max_steps"):
         stats[key] = int(stats.get(key, 0))  # the JSON mapping writes int64 as strings
     stats["state"] = run_pb2.RunState.Name(info.state)
     stats["message"] = info.message

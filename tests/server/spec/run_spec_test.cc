@@ -17,6 +17,7 @@ namespace mbstream {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 const std::vector<std::string> kJoints = {"joint1", "joint2", "joint3",
                                           "joint4", "joint5", "joint6"};
@@ -153,7 +154,8 @@ TEST(RunSpecDefaultsTest, EmptySpecGivesTheDocumentedDefaults) {
   EXPECT_TRUE(config.want_torques);
   EXPECT_EQ(config.baumgarte.alpha, 10.0);
   EXPECT_EQ(config.baumgarte.beta, 25.0);
-  EXPECT_EQ(config.max_steps, 10'000'000);
+  EXPECT_EQ(config.max_steps, 0);  // the default budget, resolved by the run (run_budget.h)
+  EXPECT_EQ(config.max_cpu_s, 0.0);
   ASSERT_EQ(config.drives.size(), 6u);
   for (const DriveConfig& drive : config.drives) {
     EXPECT_EQ(drive.kind, DriveConfig::Kind::kPassive);
@@ -245,7 +247,9 @@ TEST(RunSpecJsonTest, FileParseErrorsNameTheFile) {
 TEST(RunSpecJsonTest, PrintsProtoFieldNamesAndDefaults) {
   const std::string json = RunSpecToJson(ToRunSpec(RunConfig{}));
   EXPECT_THAT(json, HasSubstr(R"("duration_s": 20)"));
-  EXPECT_THAT(json, HasSubstr(R"("max_internal_steps": 10000000)"));
+  // The default budget (0) leaves the budget fields absent.
+  EXPECT_THAT(json, Not(HasSubstr("max_internal_steps")));
+  EXPECT_THAT(json, Not(HasSubstr("max_cpu_s")));
   EXPECT_THAT(json, HasSubstr(R"("want_torques": true)"));
   EXPECT_THAT(json, HasSubstr(R"("realtime": 0)"));
   EXPECT_THAT(json, HasSubstr(R"("formulation": "auto")"));
@@ -269,6 +273,7 @@ void ExpectSameConfig(const RunConfig& a, const RunConfig& b) {
   EXPECT_EQ(a.baumgarte.alpha, b.baumgarte.alpha);
   EXPECT_EQ(a.baumgarte.beta, b.baumgarte.beta);
   EXPECT_EQ(a.max_steps, b.max_steps);
+  EXPECT_EQ(a.max_cpu_s, b.max_cpu_s);
   ASSERT_EQ(a.drives.size(), b.drives.size());
   for (size_t i = 0; i < a.drives.size(); ++i) {
     SCOPED_TRACE("drive " + std::to_string(i));
@@ -310,6 +315,7 @@ RunConfig EveryFieldSet() {
   config.want_torques = false;
   config.baumgarte = {12.5 / 3.0, 33.0 / 7.0};
   config.max_steps = 123'457;
+  config.max_cpu_s = 12.5 / 3.0;
   config.drives.resize(6);
   DriveConfig& prescribed = config.drives[0];
   prescribed.kind = DriveConfig::Kind::kPrescribed;

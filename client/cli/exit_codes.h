@@ -1,0 +1,24 @@
+// The exit codes of `mbstream` (README.md, docs/budgets.md).
+#pragma once
+
+#include <string>
+
+namespace mbstream::cli {
+
+inline constexpr int kExitOk = 0;         // done; a run finished with trust ok
+inline constexpr int kExitRunFailed = 1;  // the run did not finish (its state says why)
+inline constexpr int kExitBadRequest = 2;
+inline constexpr int kExitUnreachable = 3;  // the server is unreachable (or internal error)
+// The run finished but its own error indicators say the result cannot be trusted
+// (trust: low); --accept-untrusted turns this into 0.
+inline constexpr int kExitUntrusted = 4;
+
+// The CLI's last line about a finished run: "trust: ok" or "trust: low (REASON)";
+// "trust: n/a" when the run did not finish.
+inline std::string TrustLine(const std::string& trust, const std::string& reason) {
+  if (trust.empty()) return "trust: n/a";
+  if (trust == "low") return "trust: low (" + reason + ")";
+  return "trust: " + trust;
+}
+
+}  // namespace mbstream::cli
