@@ -12,6 +12,8 @@ PACKAGES=(
   liburdfdom-dev libspdlog-dev libfmt-dev libcli11-dev libsqlite3-dev nlohmann-json3-dev
   # wire contract
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc libssl-dev openssl
+  # fuzzing (fuzz/): clang 14 and its libFuzzer + sanitizer runtimes
+  clang libclang-rt-14-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # viewer and headless rendering

@@ -1,20 +1,126 @@
 #!/usr/bin/env bash
 # Builds mbstream and runs every test: the one command for a fresh Debian machine.
-#   scripts/test.sh            install what is missing, configure, build, run ctest
-# Environment: BUILD_DIR (default build), JOBS (default 2), CTEST_ARGS (extra ctest flags).
+#   scripts/test.sh            install what is missing, configure, build, run ctest (Release)
+#   scripts/test.sh --ci       the same, then the sanitizer and fuzzing stages (CI runs this):
+#     --asan    AddressSanitizer + UndefinedBehaviorSanitizer build (build-asan), whole suite
+#     --tsan    ThreadSanitizer build (build-tsan) of the service, runs and viewer-link tests
+#     --fuzz    the libFuzzer targets (fuzz/run.sh, clang, build-fuzz), FUZZ_SECONDS each
+#   Each stage flag alone adds that stage; --no-release skips the Release stage.
+# Environment: BUILD_DIR (default build), JOBS (default 2), CTEST_ARGS (extra ctest flags),
+# FUZZ_SECONDS (default 60). Suppressions and sanitizer options: cmake/sanitizers/ (each
+# entry says why); docs/reliability.md describes the stages and their cost.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+RELEASE=1 ASAN=0 TSAN=0 FUZZ=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --ci) ASAN=1 TSAN=1 FUZZ=1 ;;
+    --asan) ASAN=1 ;;
+    --tsan) TSAN=1 ;;
+    --fuzz) FUZZ=1 ;;
+    --no-release) RELEASE=0 ;;
+    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+    *) echo "test.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
 
 bash scripts/setup.sh
 
 BUILD_DIR=${BUILD_DIR:-build}
 JOBS=${JOBS:-2}
 export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/ccache}
-export CCACHE_MAXSIZE=${CCACHE_MAXSIZE:-2G}
+export CCACHE_MAXSIZE=${CCACHE_MAXSIZE:-5G}
 # Paths under the checkout are hashed relative to it: a second checkout reuses the cache.
 export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}
+ROOT=$PWD
+SAN=$ROOT/cmake/sanitizers
 
-cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DMBSTREAM_WERROR=ON
-cmake --build "$BUILD_DIR" --parallel "$JOBS"
-cd "$BUILD_DIR"
-ctest --output-on-failure --parallel "$JOBS" ${CTEST_ARGS:-}
+TIMES=()
+stage() {  # stage NAME COMMAND...: runs the command, records its wall time
+  local name=$1 start=$SECONDS
+  shift
+  echo "==== test.sh: $name"
+  "$@"
+  TIMES+=("$(printf '%-28s %5d s' "$name" $((SECONDS - start)))")
+}
+report_times() {
+  echo "==== test.sh: stage times"
+  printf '  %s\n' "${TIMES[@]}"
+}
+trap report_times EXIT
+
+configure() {  # configure DIR extra-cmake-args...
+  local dir=$1
+  shift
+  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release -DMBSTREAM_WERROR=ON "$@"
+}
+build() {  # build DIR [targets...]
+  local dir=$1
+  shift
+  if [ $# -gt 0 ]; then
+    cmake --build "$dir" --parallel "$JOBS" --target "$@"
+  else
+    cmake --build "$dir" --parallel "$JOBS"
+  fi
+}
+run_ctest() {  # run_ctest DIR extra-ctest-args...
+  local dir=$1
+  shift
+  # shellcheck disable=SC2086  # CTEST_ARGS is a list of flags
+  (cd "$dir" && ctest --output-on-failure --parallel "$JOBS" "$@" ${CTEST_ARGS:-})
+}
+
+if [ "$RELEASE" = 1 ]; then
+  stage "release: configure+build" eval 'configure "$BUILD_DIR" && build "$BUILD_DIR"'
+  stage "release: ctest" run_ctest "$BUILD_DIR"
+fi
+
+# Sanitizer runtime options, inherited by every process a test starts (servers, viewers,
+# the CLI). abort_on_error/halt_on_error: a finding fails the test that caused it.
+export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1:detect_stack_use_after_return=1:strict_string_checks=1:check_initialization_order=1:detect_odr_violation=1"
+export LSAN_OPTIONS="suppressions=$SAN/lsan.supp:print_suppressions=0"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$SAN/ubsan.supp"
+export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$SAN/tsan.supp"
+
+if [ "$ASAN" = 1 ]; then
+  # No benchmarks: they are not tests, and they are a fifth of the build.
+  stage "asan+ubsan: configure+build" eval 'configure build-asan \
+    -DMBSTREAM_SANITIZE=address,undefined -DMBSTREAM_BUILD_BENCH=OFF && build build-asan'
+  stage "asan+ubsan: ctest" run_ctest build-asan
+fi
+
+# ThreadSanitizer: the tests whose code is threaded, the service (gRPC handlers, run
+# manager, fan-out) and the viewer link (server + viewer processes); a runs_test too when
+# there is one.
+TSAN_EXES=(service_test runs_test viewer_link_test)
+tsan_build() {
+  configure build-tsan -DMBSTREAM_SANITIZE=thread -DMBSTREAM_BUILD_BENCH=OFF
+  local available targets=()
+  available=$(cmake --build build-tsan --target help | sed -n 's/^\.\.\. \([^ ]*\).*/\1/p')
+  for t in "${TSAN_EXES[@]}"; do
+    if grep -qx "$t" <<<"$available"; then targets+=("$t"); fi
+  done
+  build build-tsan "${targets[@]}"
+}
+tsan_ctest() {
+  # Only the suites of the executables built (the others are listed as *_NOT_BUILT).
+  local suites=() exe name
+  for name in "${TSAN_EXES[@]}"; do
+    exe=$(find build-tsan/tests -type f -name "$name" -perm -u+x | head -1)
+    if [ -n "$exe" ]; then
+      mapfile -t -O "${#suites[@]}" suites < <("$exe" --gtest_list_tests |
+        sed -n 's/^\([A-Za-z0-9_/]*\)\.$/\1/p')
+    fi
+  done
+  run_ctest build-tsan -R "^($(IFS='|'; echo "${suites[*]}"))\\."
+}
+if [ "$TSAN" = 1 ]; then
+  stage "tsan: configure+build" tsan_build
+  stage "tsan: ctest" tsan_ctest
+fi
+
+if [ "$FUZZ" = 1 ]; then
+  stage "fuzz: build+run" bash fuzz/run.sh --seconds "${FUZZ_SECONDS:-60}"
+fi

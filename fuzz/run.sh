@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets with clang (ASan + UBSan) and runs each for a bounded time.
+#   fuzz/run.sh [--seconds N] [TARGET...]    default: 60 s each, every target
+# Environment: FUZZ_BUILD_DIR (default build-fuzz), JOBS (default 2). The corpus each
+# target grows is kept in $FUZZ_BUILD_DIR/fuzz/corpus/TARGET, so a later run goes on from
+# it; crashing inputs go to $FUZZ_BUILD_DIR/fuzz/artifacts/. Prints, per target, the time
+# run, the executions and executions per second; exits 1 if any target found a crash.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+SECONDS_PER_TARGET=60
+TARGETS=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --seconds) SECONDS_PER_TARGET=$2; shift 2 ;;
+    -h|--help) sed -n '2,8p' "$0"; exit 0 ;;
+    *) TARGETS+=("$1"); shift ;;
+  esac
+done
+if [ ${#TARGETS[@]} -eq 0 ]; then
+  TARGETS=(urdf_import_fuzzer scene_script_fuzzer run_spec_json_fuzzer start_run_fuzzer)
+fi
+
+BUILD=${FUZZ_BUILD_DIR:-build-fuzz}
+JOBS=${JOBS:-2}
+export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/ccache}
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}
+
+# Only the libraries the targets link are built; the viewer's VTK parts, tests and
+# benchmarks are configured but never compiled here.
+cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang \
+  -DCMAKE_CXX_COMPILER=clang++ -DMBSTREAM_BUILD_FUZZERS=ON -DMBSTREAM_BUILD_TESTS=OFF \
+  -DMBSTREAM_BUILD_BENCH=OFF >"$BUILD.configure.log" 2>&1 || { cat "$BUILD.configure.log"; exit 1; }
+cmake --build "$BUILD" --parallel "$JOBS" --target "${TARGETS[@]}"
+
+# Seed corpora: the shipped models and the tests' data, plus fuzz/seeds/ (small, checked in).
+OUT=$BUILD/fuzz
+SEEDS=$OUT/seeds
+rm -rf "$SEEDS"
+mkdir -p "$SEEDS"/{urdf_import_fuzzer,scene_script_fuzzer,run_spec_json_fuzzer,start_run_fuzzer} \
+  "$OUT/artifacts" "$OUT/logs"
+cp models/*/*.urdf fuzz/seeds/urdf/* "$SEEDS/urdf_import_fuzzer/"
+cp models/*/*.scene tests/viewer/data/*.txt fuzz/seeds/scene/* "$SEEDS/scene_script_fuzzer/"
+cp models/*/*.json fuzz/seeds/run_spec/* "$SEEDS/run_spec_json_fuzzer/"
+# Whole requests: each shipped model with each spec, shortened to fit the fuzzer's limits
+# (start_run_fuzzer.cc: 0.2 s, 200 frames), plus the checked-in ones.
+n=0
+for urdf in models/*/*.urdf; do
+  for spec in models/*/*.json fuzz/seeds/run_spec/*; do
+    n=$((n + 1))
+    { cat "$urdf"; printf '\n@@spec\n'
+      sed -E 's/"duration_s": *[0-9.eE+-]+/"duration_s": 0.1/' "$spec"; } \
+      >"$SEEDS/start_run_fuzzer/model-spec-$n"
+  done
+done
+cp fuzz/seeds/start_run/* "$SEEDS/start_run_fuzzer/"
+
+declare -A DICT=([urdf_import_fuzzer]=urdf [scene_script_fuzzer]=scene_script
+                 [run_spec_json_fuzzer]=run_spec [start_run_fuzzer]=start_run)
+failed=0
+printf '%-22s %8s %12s %10s %8s\n' target seconds executions exec/s corpus | tee "$OUT/summary.txt"
+for target in "${TARGETS[@]}"; do
+  corpus=$OUT/corpus/$target
+  mkdir -p "$corpus"
+  log=$OUT/logs/$target.log
+  status=0
+  # -timeout: an input taking 30 s is a finding (a hang); -rss_limit_mb: so is 2 GB of memory.
+  "$BUILD/fuzz/$target" "$corpus" "$SEEDS/$target" -max_total_time="$SECONDS_PER_TARGET" \
+    -dict="fuzz/dict/${DICT[$target]}.dict" -timeout=30 -rss_limit_mb=2048 \
+    -artifact_prefix="$OUT/artifacts/$target-" -print_final_stats=1 >"$log" 2>&1 || status=$?
+  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
+  files=$(find "$corpus" -type f | wc -l)
+  printf '%-22s %8s %12s %10s %8s\n' "$target" "$SECONDS_PER_TARGET" "${execs:-?}" "${rate:-?}" \
+    "$files" | tee -a "$OUT/summary.txt"
+  if [ "$status" -ne 0 ]; then
+    failed=1
+    echo "fuzz: $target FAILED (exit $status); the end of $log:"
+    tail -n 60 "$log"
+  fi
+done
+exit "$failed"
