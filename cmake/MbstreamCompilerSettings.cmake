@@ -34,31 +34,33 @@ endif()
 # Suppressions and runtime options: cmake/sanitizers/ (docs/reliability.md says why).
 set(MBSTREAM_SANITIZE "" CACHE STRING
     "Build with these sanitizers (-fsanitize= list, e.g. address,undefined or thread)")
-if(MBSTREAM_SANITIZE)
-  if(MBSTREAM_SANITIZE MATCHES "thread" AND MBSTREAM_SANITIZE MATCHES "address")
-    message(FATAL_ERROR "MBSTREAM_SANITIZE: thread and address cannot be combined")
-  endif()
-  # -g1: line tables for readable reports at little compile cost.
-  add_compile_options(-fsanitize=${MBSTREAM_SANITIZE} -fno-omit-frame-pointer -g1)
-  add_link_options(-fsanitize=${MBSTREAM_SANITIZE})
-  if(MBSTREAM_SANITIZE MATCHES "undefined")
-    add_compile_options(-fno-sanitize-recover=all)
-  endif()
-endif()
 
-# libFuzzer targets (fuzz/). Clang only. Every library is compiled with the fuzzer's
-# coverage instrumentation plus ASan and UBSan, so configure a separate build directory
-# and build only the fuzz targets there (fuzz/README.md).
+# libFuzzer targets (fuzz/). Clang only. Every library gets the fuzzer's coverage
+# instrumentation (-fsanitize=fuzzer-no-link) and the sanitizers of MBSTREAM_SANITIZE
+# (address,undefined when it is empty), so one build directory can also run the test
+# suite under ASan + UBSan (fuzz/README.md).
 option(MBSTREAM_BUILD_FUZZERS "Build the libFuzzer targets in fuzz/ (clang only)" OFF)
+set(mbstream_sanitize_compile "${MBSTREAM_SANITIZE}")
 if(MBSTREAM_BUILD_FUZZERS)
   if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
     message(FATAL_ERROR "MBSTREAM_BUILD_FUZZERS needs clang: configure with "
                         "-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++")
   endif()
-  if(MBSTREAM_SANITIZE)
-    message(FATAL_ERROR "MBSTREAM_BUILD_FUZZERS sets its own sanitizers; leave MBSTREAM_SANITIZE empty")
+  if(NOT MBSTREAM_SANITIZE)
+    set(MBSTREAM_SANITIZE address,undefined CACHE STRING "" FORCE)
   endif()
-  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all
+  set(mbstream_sanitize_compile "fuzzer-no-link,${MBSTREAM_SANITIZE}")
+endif()
+
+if(MBSTREAM_SANITIZE)
+  if(MBSTREAM_SANITIZE MATCHES "thread" AND MBSTREAM_SANITIZE MATCHES "address")
+    message(FATAL_ERROR "MBSTREAM_SANITIZE: thread and address cannot be combined")
+  endif()
+  if(MBSTREAM_SANITIZE MATCHES "undefined")
+    set(mbstream_sanitize_recover -fno-sanitize-recover=all)
+  endif()
+  # -g1: line tables for readable reports at little compile cost.
+  add_compile_options(-fsanitize=${mbstream_sanitize_compile} ${mbstream_sanitize_recover}
                       -fno-omit-frame-pointer -g1)
-  add_link_options(-fsanitize=address,undefined)
+  add_link_options(-fsanitize=${MBSTREAM_SANITIZE})
 endif()

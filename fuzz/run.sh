@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (ASan + UBSan) and runs each for a bounded time.
 #   fuzz/run.sh [--seconds N] [TARGET...]    default: 60 s each, every target
-# Environment: FUZZ_BUILD_DIR (default build-fuzz), JOBS (default 2). The corpus each
+# Environment: FUZZ_BUILD_DIR (default build-fuzz; CI: build-asan), JOBS (default 2). The corpus each
 # target grows is kept in $FUZZ_BUILD_DIR/fuzz/corpus/TARGET, so a later run goes on from
 # it; crashing inputs go to $FUZZ_BUILD_DIR/fuzz/artifacts/. Prints, per target, the time
 # run, the executions and executions per second; exits 1 if any target found a crash.
@@ -26,11 +26,15 @@ JOBS=${JOBS:-2}
 export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/ccache}
 export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}
 
-# Only the libraries the targets link are built; the viewer's VTK parts, tests and
-# benchmarks are configured but never compiled here.
-cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang \
-  -DCMAKE_CXX_COMPILER=clang++ -DMBSTREAM_BUILD_FUZZERS=ON -DMBSTREAM_BUILD_TESTS=OFF \
-  -DMBSTREAM_BUILD_BENCH=OFF >"$BUILD.configure.log" 2>&1 || { cat "$BUILD.configure.log"; exit 1; }
+# A build directory already configured with MBSTREAM_BUILD_FUZZERS=ON (scripts/test.sh
+# --asan configures build-asan so, tests included) is used as it is. Otherwise one is
+# configured with tests and benchmarks off, and only the libraries the targets link are
+# built: the viewer's VTK parts are configured but never compiled here.
+if ! grep -qs '^MBSTREAM_BUILD_FUZZERS:BOOL=ON' "$BUILD/CMakeCache.txt"; then
+  cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang \
+    -DCMAKE_CXX_COMPILER=clang++ -DMBSTREAM_BUILD_FUZZERS=ON -DMBSTREAM_BUILD_TESTS=OFF \
+    -DMBSTREAM_BUILD_BENCH=OFF
+fi
 cmake --build "$BUILD" --parallel "$JOBS" --target "${TARGETS[@]}"
 
 # Seed corpora: the shipped models and the tests' data, plus fuzz/seeds/ (small, checked in).
