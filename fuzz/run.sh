@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (ASan + UBSan) and runs each for a bounded time.
-#   fuzz/run.sh [--seconds N] [TARGET...]    default: 60 s each, every target
+#   fuzz/run.sh [--seconds N] [--no-build] [TARGET...]    default: 60 s each, every target
 # Environment: FUZZ_BUILD_DIR (default build-fuzz; CI: build-asan), JOBS (default 2). The corpus each
 # target grows is kept in $FUZZ_BUILD_DIR/fuzz/corpus/TARGET, so a later run goes on from
 # it; crashing inputs go to $FUZZ_BUILD_DIR/fuzz/artifacts/. Prints, per target, the time
@@ -10,9 +10,11 @@ cd "$(dirname "$0")/.."
 
 SECONDS_PER_TARGET=60
 TARGETS=()
+BUILD_STEP=1
 while [ $# -gt 0 ]; do
   case "$1" in
     --seconds) SECONDS_PER_TARGET=$2; shift 2 ;;
+    --no-build) BUILD_STEP=0; shift ;;
     -h|--help) sed -n '2,8p' "$0"; exit 0 ;;
     *) TARGETS+=("$1"); shift ;;
   esac
@@ -30,12 +32,16 @@ export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}
 # --asan configures build-asan so, tests included) is used as it is. Otherwise one is
 # configured with tests and benchmarks off, and only the libraries the targets link are
 # built: the viewer's VTK parts are configured but never compiled here.
-if ! grep -qs '^MBSTREAM_BUILD_FUZZERS:BOOL=ON' "$BUILD/CMakeCache.txt"; then
+if [ "$BUILD_STEP" = 0 ]; then
+  :
+elif ! grep -qs '^MBSTREAM_BUILD_FUZZERS:BOOL=ON' "$BUILD/CMakeCache.txt"; then
   cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang \
     -DCMAKE_CXX_COMPILER=clang++ -DMBSTREAM_BUILD_FUZZERS=ON -DMBSTREAM_BUILD_TESTS=OFF \
     -DMBSTREAM_BUILD_BENCH=OFF
 fi
-cmake --build "$BUILD" --parallel "$JOBS" --target "${TARGETS[@]}"
+if [ "$BUILD_STEP" = 1 ]; then
+  cmake --build "$BUILD" --parallel "$JOBS" --target "${TARGETS[@]}"
+fi
 
 # Seed corpora: the shipped models and the tests' data, plus fuzz/seeds/ (small, checked in).
 OUT=$BUILD/fuzz
@@ -59,6 +65,9 @@ for urdf in models/*/*.urdf; do
 done
 cp fuzz/seeds/start_run/* "$SEEDS/start_run_fuzzer/"
 
+# The fuzzer reports on its own output (scripts/test.sh's options send reports to files).
+export ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 declare -A DICT=([urdf_import_fuzzer]=urdf [scene_script_fuzzer]=scene_script
                  [run_spec_json_fuzzer]=run_spec [start_run_fuzzer]=start_run)
 failed=0

@@ -92,11 +92,30 @@ fi
 
 # Sanitizer runtime options, inherited by every process a test starts (servers, viewers,
 # the CLI). abort_on_error/halt_on_error: a finding fails the test that caused it.
-export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1:detect_stack_use_after_return=1:strict_string_checks=1:check_initialization_order=1:detect_odr_violation=1"
+# log_path: every report also goes to a file, because the tests do not look at the exit
+# status of the servers and viewers they stop; a stage fails when any report was written.
+SAN_LOGS=$ROOT/build-sanitizer-reports
+export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1:detect_stack_use_after_return=1:strict_string_checks=1:check_initialization_order=1:detect_odr_violation=1:log_path=$SAN_LOGS/asan"
 export LSAN_OPTIONS="suppressions=$SAN/lsan.supp:print_suppressions=0"
-export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$SAN/ubsan.supp"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$SAN/ubsan.supp:log_path=$SAN_LOGS/ubsan"
 # ignore_noninstrumented_modules: Debian's gRPC/abseil are not built with TSan (why: tsan.supp).
-export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:ignore_noninstrumented_modules=1:suppressions=$SAN/tsan.supp"
+export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:ignore_noninstrumented_modules=1:suppressions=$SAN/tsan.supp:log_path=$SAN_LOGS/tsan"
+
+sanitized_ctest() {  # sanitized_ctest DIR ctest-args...: ctest, then no report may exist
+  rm -rf "$SAN_LOGS"
+  mkdir -p "$SAN_LOGS"
+  local status=0
+  run_ctest "$@" || status=$?
+  if compgen -G "$SAN_LOGS/*" >/dev/null; then
+    echo "test.sh: sanitizer reports in $SAN_LOGS:"
+    for f in "$SAN_LOGS"/*; do
+      echo "---- $f"
+      head -n 80 "$f"
+    done
+    status=1
+  fi
+  return "$status"
+}
 
 # The sanitizer builds use clang: libFuzzer needs it, so one build directory serves both
 # the ASan + UBSan suite and the fuzz targets (compiled once), and a second compiler's
@@ -109,7 +128,7 @@ if [ "$ASAN" = 1 ]; then
   stage "asan+ubsan: configure+build" eval 'configure "$ASAN_DIR" "${CLANG[@]}" \
     -DMBSTREAM_SANITIZE=address,undefined -DMBSTREAM_BUILD_FUZZERS=ON \
     -DMBSTREAM_BUILD_BENCH=OFF && build "$ASAN_DIR"'
-  stage "asan+ubsan: ctest" run_ctest "$ASAN_DIR"
+  stage "asan+ubsan: ctest" sanitized_ctest "$ASAN_DIR"
 fi
 
 # ThreadSanitizer: the tests whose code is threaded, the service (gRPC handlers, run
@@ -135,7 +154,7 @@ tsan_ctest() {
         sed -n 's/^\([A-Za-z0-9_/]*\)\.$/\1/p')
     fi
   done
-  run_ctest build-tsan -R "^($(IFS='|'; echo "${suites[*]}"))\\."
+  sanitized_ctest build-tsan -R "^($(IFS='|'; echo "${suites[*]}"))\\."
 }
 if [ "$TSAN" = 1 ]; then
   stage "tsan: configure+build" tsan_build
