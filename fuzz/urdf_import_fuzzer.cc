@@ -1,5 +1,6 @@
-// Fuzzes the URDF import (server/parse): any text either imports or throws InputError with
-// a message; nothing else (a crash, a sanitizer report, another exception) is allowed.
+// Fuzzes the URDF import (server/parse), without and with repairs: any text either imports
+// or throws InputError with a message; nothing else (a crash, a sanitizer report, another
+// exception) is allowed.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -14,14 +15,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   // Two supplied meshes, so that mesh references can both resolve and fail.
   static const std::set<std::string> kAssets = {"base.stl", "meshes/link1.stl"};
-  try {
-    const mbstream::UrdfImport imported = mbstream::ImportUrdf(text, "fuzz.urdf", kAssets);
-    if (imported.model.num_dofs() < 0) std::abort();
-    for (const std::string& warning : imported.warnings) {
-      if (warning.empty()) std::abort();
+  // As submitted, and with the repairs a user can ask for (a different path for the same
+  // defects).
+  for (const bool repair : {false, true}) {
+    try {
+      const mbstream::UrdfImport imported =
+          mbstream::ImportUrdf(text, "fuzz.urdf", kAssets, {.repair = repair});
+      if (imported.model.num_dofs() < 0) std::abort();
+      for (const std::string& warning : imported.warnings) {
+        if (warning.empty()) std::abort();
+      }
+    } catch (const mbstream::InputError& error) {
+      if (std::string(error.what()).empty()) std::abort();
     }
-  } catch (const mbstream::InputError& error) {
-    if (std::string(error.what()).empty()) std::abort();
   }
   return 0;
 }
