@@ -10,7 +10,8 @@
 #               each
 #   Each stage flag alone adds that stage; --no-release skips the Release stage.
 # Environment: BUILD_DIR (default build), JOBS (default 2), CTEST_ARGS (extra ctest flags),
-# FUZZ_SECONDS (default 60). Suppressions and sanitizer options: cmake/sanitizers/ (each
+# FUZZ_SECONDS (default 60), CI_BUDGET_S (with --ci 2700: later stages are skipped, loudly,
+# once a run has taken that long). Suppressions and sanitizer options: cmake/sanitizers/ (each
 # entry says why); docs/reliability.md describes the stages and their cost.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,7 +19,7 @@ cd "$(dirname "$0")/.."
 RELEASE=1 ASAN=0 TSAN=0 FUZZ=0
 while [ $# -gt 0 ]; do
   case "$1" in
-    --ci) ASAN=1 TSAN=1 FUZZ=1 ;;
+    --ci) ASAN=1 TSAN=1 FUZZ=1 CI_BUDGET_S=${CI_BUDGET_S:-2700} ;;
     --asan) ASAN=1 ;;
     --tsan) TSAN=1 ;;
     --fuzz) FUZZ=1 ;;
@@ -44,6 +45,17 @@ ROOT=$PWD
 SAN=$ROOT/cmake/sanitizers
 
 TIMES=()
+# --ci: a stage that would start after CI_BUDGET_S seconds (default 2700 = 45 min) is
+# skipped with a message, so that a slow machine cannot push CI past its hard limit.
+BUDGET=${CI_BUDGET_S:-0}
+over_budget() {  # over_budget NAME: true (and says so) when NAME must be skipped
+  if [ "$BUDGET" -gt 0 ] && [ "$SECONDS" -ge "$BUDGET" ]; then
+    echo "==== test.sh: SKIPPED $1: $SECONDS s elapsed, over CI_BUDGET_S=$BUDGET"
+    TIMES+=("$(printf '%-28s SKIPPED (over budget)' "$1")")
+    return 0
+  fi
+  return 1
+}
 cpu_seconds() {  # user + system CPU seconds of this script's finished children so far
   local ticks
   ticks=$(getconf CLK_TCK)
@@ -122,14 +134,6 @@ sanitized_ctest() {  # sanitized_ctest DIR ctest-args...: ctest, then no report 
 # code generation is checked besides the Release build's GCC. Warnings are the Release
 # build's job (-Werror there), so a clang-only warning does not stop the sanitizer stages.
 CLANG=(-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DMBSTREAM_WERROR=OFF)
-ASAN_DIR=${ASAN_BUILD_DIR:-build-asan}
-if [ "$ASAN" = 1 ]; then
-  # No benchmarks: they are not tests, and they are a fifth of the build.
-  stage "asan+ubsan: configure+build" eval 'configure "$ASAN_DIR" "${CLANG[@]}" \
-    -DMBSTREAM_SANITIZE=address,undefined -DMBSTREAM_BUILD_FUZZERS=ON \
-    -DMBSTREAM_BUILD_BENCH=OFF && build "$ASAN_DIR"'
-  stage "asan+ubsan: ctest" sanitized_ctest "$ASAN_DIR"
-fi
 
 # ThreadSanitizer: the tests whose code is threaded, the service (gRPC handlers, run
 # manager, fan-out) and the viewer link (server + viewer processes); a runs_test too when
@@ -156,12 +160,21 @@ tsan_ctest() {
   done
   sanitized_ctest build-tsan -R "^($(IFS='|'; echo "${suites[*]}"))\\."
 }
-if [ "$TSAN" = 1 ]; then
+if [ "$TSAN" = 1 ] && ! over_budget tsan; then
   stage "tsan: configure+build" tsan_build
   stage "tsan: ctest" tsan_ctest
 fi
 
-if [ "$FUZZ" = 1 ]; then
-  if [ "$ASAN" = 1 ]; then export FUZZ_BUILD_DIR=$ASAN_DIR; fi
+ASAN_DIR=${ASAN_BUILD_DIR:-build-asan}
+if [ "$ASAN" = 1 ] && ! over_budget asan+ubsan; then
+  # No benchmarks: they are not tests, and they are a fifth of the build.
+  stage "asan+ubsan: configure+build" eval 'configure "$ASAN_DIR" "${CLANG[@]}" \
+    -DMBSTREAM_SANITIZE=address,undefined -DMBSTREAM_BUILD_FUZZERS=ON \
+    -DMBSTREAM_BUILD_BENCH=OFF && build "$ASAN_DIR"'
+  stage "asan+ubsan: ctest" sanitized_ctest "$ASAN_DIR"
+fi
+
+if [ "$FUZZ" = 1 ] && ! over_budget fuzz; then
+  if [ "$ASAN" = 1 ] && [ -f "$ASAN_DIR/CMakeCache.txt" ]; then export FUZZ_BUILD_DIR=$ASAN_DIR; fi
   stage "fuzz: build+run" bash fuzz/run.sh --seconds "${FUZZ_SECONDS:-60}"
 fi
