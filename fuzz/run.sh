@@ -68,6 +68,7 @@ cp fuzz/seeds/start_run/* "$SEEDS/start_run_fuzzer/"
 # The fuzzer reports on its own output (scripts/test.sh's options send reports to files).
 export ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export LSAN_OPTIONS=suppressions=$PWD/cmake/sanitizers/lsan.supp:print_suppressions=0
 declare -A DICT=([urdf_import_fuzzer]=urdf [scene_script_fuzzer]=scene_script
                  [run_spec_json_fuzzer]=run_spec [start_run_fuzzer]=start_run)
 failed=0
