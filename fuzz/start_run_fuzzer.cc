@@ -77,6 +77,7 @@ class Server {
     limits_.max_internal_steps = 20'000;
     limits_.max_model_bytes = 1 << 20;
     limits_.probe_grace_s = 0.0;
+    limits_.max_models = 1 << 20;  // the server is replaced before the store grows large
     store_ = Store::Open(dir_.string());
     models_ = std::make_unique<ModelRegistry>(store_.get(), limits_);
     runs_ = std::make_unique<RunManager>(models_.get(), store_.get(), limits_);
@@ -143,7 +144,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const Request request = Split(std::string(reinterpret_cast<const char*>(data), size));
   std::string model_id;
   try {
-    model_id = server->models().Submit(request.bundle, false)->info.id();
+    model_id = server->models().Submit(request.bundle, false).id();
   } catch (const InputError& error) {
     if (std::string(error.what()).empty()) Fail("empty InputError", "Submit");
     return 0;
