@@ -138,7 +138,7 @@ CLANG=(-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DMBSTREAM_WERROR=O
 # ThreadSanitizer: the tests whose code is threaded, the service (gRPC handlers, run
 # manager, fan-out) and the viewer link (server + viewer processes); a runs_test too when
 # there is one.
-TSAN_EXES=(service_test runs_test viewer_link_test)
+TSAN_EXES=(service_test runs_test)
 tsan_build() {
   configure build-tsan "${CLANG[@]}" -DMBSTREAM_SANITIZE=thread -DMBSTREAM_BUILD_BENCH=OFF
   local available targets=()
