@@ -1,5 +1,6 @@
 // `mbstream simulate` as a user runs it: a real process, real files, its exit code.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -35,7 +36,8 @@ int Lines(const fs::path& file) {
 }
 
 TEST(SimulateCliTest, SeedRunWritesTheResultsFiles) {
-  const fs::path out = fs::temp_directory_path() / "mbstream_cli_seed";
+  const fs::path out =
+      fs::temp_directory_path() / ("mbstream_cli_seed-" + std::to_string(getpid()));
   const Outcome outcome = Simulate(
       "models/irb1600/irb1600.urdf --spec models/irb1600/seed-run.json --formulation joint "
       "--rtol 1e-8 --atol 1e-10",
@@ -57,7 +59,8 @@ TEST(SimulateCliTest, SeedRunWritesTheResultsFiles) {
 }
 
 TEST(SimulateCliTest, DivergedRunExitsNonZeroAndKeepsGoodFrames) {
-  const fs::path out = fs::temp_directory_path() / "mbstream_cli_diverged";
+  const fs::path out =
+      fs::temp_directory_path() / ("mbstream_cli_diverged-" + std::to_string(getpid()));
   const Outcome outcome = Simulate(
       "models/irb1600/irb1600.urdf --spec models/irb1600/stiff-servo.json --method rk4 "
       "--step 1e-3",
@@ -74,7 +77,7 @@ TEST(SimulateCliTest, DivergedRunExitsNonZeroAndKeepsGoodFrames) {
 }
 
 TEST(SimulateCliTest, BadSpecFieldIsNamed) {
-  const fs::path out = fs::temp_directory_path() / "mbstream_cli_bad";
+  const fs::path out = fs::temp_directory_path() / ("mbstream_cli_bad-" + std::to_string(getpid()));
   const Outcome outcome =
       Simulate("models/irb1600/irb1600.urdf --spec models/irb1600/seed-run.json --rtol 2", out);
   EXPECT_EQ(outcome.exit_code, 2);
@@ -102,7 +105,8 @@ std::string LastLine(const std::string& text) {
 }
 
 TEST(SimulateCliTest, FinishedRunEndsWithTrustOk) {
-  const fs::path out = fs::temp_directory_path() / "mbstream_cli_trust_ok";
+  const fs::path out =
+      fs::temp_directory_path() / ("mbstream_cli_trust_ok-" + std::to_string(getpid()));
   const Outcome outcome = Simulate(
       "models/irb1600/irb1600.urdf --spec models/irb1600/seed-servo.json --duration 2", out);
   EXPECT_EQ(outcome.exit_code, 0);
@@ -113,7 +117,8 @@ TEST(SimulateCliTest, FinishedRunEndsWithTrustOk) {
 // The typo (tests/data/typo-servo.json): warned about before the run, which ends
 // within its budget, keeps its frames and exits 1.
 TEST(SimulateCliTest, TypoSpecIsWarnedAndEndsWithinItsBudget) {
-  const fs::path out = fs::temp_directory_path() / "mbstream_cli_typo";
+  const fs::path out =
+      fs::temp_directory_path() / ("mbstream_cli_typo-" + std::to_string(getpid()));
   const Outcome outcome =
       Simulate("models/irb1600/irb1600.urdf --spec tests/data/typo-servo.json", out);
   EXPECT_EQ(outcome.exit_code, 1);
@@ -137,7 +142,8 @@ TEST(SimulateCliTest, TypoSpecIsWarnedAndEndsWithinItsBudget) {
 // A scene built to fail the energy balance: passive-swing with a coarse Euler step. It
 // finishes, says so loudly and exits 4, or 0 with --accept-untrusted.
 TEST(SimulateCliTest, UntrustedRunExitsFourUnlessAccepted) {
-  const fs::path out = fs::temp_directory_path() / "mbstream_cli_untrusted";
+  const fs::path out =
+      fs::temp_directory_path() / ("mbstream_cli_untrusted-" + std::to_string(getpid()));
   const std::string args =
       "models/irb1600/irb1600.urdf --spec models/irb1600/passive-swing.json --method euler "
       "--step 0.01";

@@ -1,5 +1,6 @@
 // mbstream-viewer's command line: --check exit codes and output, --scene/--urdf snapshots.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <gmock/gmock.h>
 
@@ -72,7 +73,8 @@ TEST(ViewerCli, CheckOfTheSeedScriptPrintsEveryErrorAsFileLineColumn) {
 }
 
 TEST(ViewerCli, CheckWithAnAssetDirectoryFindsTheStlParts) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "mbstream_cli_stl";
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("mbstream_cli_stl-" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   for (const char* body :
        {"1_Body0", "7_Body1", "4_Body2", "5_Body3", "3_Body4", "2_Body5", "6_Body6"}) {
@@ -119,7 +121,8 @@ TEST(ViewerCli, WithoutADisplayItSaysHowToRunOffscreen) {
 
 TEST(ViewerCli, SnapshotsOfAScriptAndOfAUrdf) {
   ASSERT_TRUE(testing::EnsureDisplay());
-  const std::filesystem::path png = std::filesystem::temp_directory_path() / "mbstream_cli.png";
+  const std::filesystem::path png = std::filesystem::temp_directory_path() /
+                                    ("mbstream_cli-" + std::to_string(getpid()) + ".png");
   std::filesystem::remove(png);
   ProcessResult run = RunViewer(
       "--scene models/irb1600/irb1600.scene --pose 0,30,-20,0,45,0 --offscreen "
