@@ -1,5 +1,6 @@
 #include "viewer/scene/scene.h"
 
+#include <spdlog/spdlog.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
@@ -7,6 +8,7 @@
 #include <vtkProperty.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkSphereSource.h>
+#include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
 
 #include "viewer/scene/camera_rig.h"
@@ -65,11 +67,24 @@ Scene::Scene(SceneDescription description, SceneOptions options)
   for (int k = 0; k < solver_.chain().frame_count(); ++k) {
     frame_matrices_.push_back(vtkSmartPointer<vtkMatrix4x4>::New());
   }
+  MeshReadOptions read_options;
+  read_options.decimate_above_triangles = options.decimate_above_triangles;
+  bool textured = false;
   for (const VisualPart& part : description_.visuals) {
-    vtkSmartPointer<vtkActor> actor = MakeVisualActor(part);
-    if (part.frame != kWorldFrame) actor->SetUserMatrix(frame_matrices_.at(part.frame));
-    renderer_->AddActor(actor);
-    part_actors_.push_back(actor);
+    try {
+      AddPart(part, read_options, &textured);
+    } catch (const SceneError& e) {
+      if (!part.fallback) throw;
+      spdlog::warn("scene '{}': {}; drawing a placeholder for '{}'", description_.title, e.what(),
+                   part.name);
+      AddPart(*part.fallback, read_options, &textured);
+    }
+  }
+  if (textured) {
+    spdlog::info(
+        "scene '{}': its meshes have textures, which the viewer does not draw yet; "
+        "they are shown in their materials' colours",
+        description_.title);
   }
   const double marker = description_.scene_box_m ? 0.012 * *description_.scene_box_m : 0.015;
   for (size_t i = 0; i < description_.probes.size(); ++i) {
@@ -86,6 +101,38 @@ Scene::Scene(SceneDescription description, SceneOptions options)
 }
 
 Scene::~Scene() = default;
+
+void Scene::AddPart(const VisualPart& part, const MeshReadOptions& options, bool* textured) {
+  VisualActors made = MakeVisualActors(part, options);
+  for (const vtkSmartPointer<vtkActor>& actor : made.actors) {
+    if (part.frame != kWorldFrame) actor->SetUserMatrix(frame_matrices_.at(part.frame));
+    renderer_->AddActor(actor);
+    part_actors_.push_back(actor);
+  }
+  triangle_count_ += made.triangles;
+  *textured = *textured || made.textured;
+  if (!part.label.empty() && !made.actors.empty()) {
+    double bounds[6];
+    made.actors.front()->GetMapper()->GetBounds(bounds);
+    Label label;
+    label.actor = vtkSmartPointer<vtkBillboardTextActor3D>::New();
+    label.actor->SetInput(part.label.c_str());
+    label.actor->GetTextProperty()->SetFontSize(14);
+    label.actor->GetTextProperty()->SetColor(1.0, 0.9, 0.6);
+    label.actor->GetTextProperty()->SetJustificationToCentered();
+    label.frame = part.frame;
+    label.point = Eigen::Vector3d((bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
+                                  bounds[5]);  // above the part's middle
+    renderer_->AddActor(label.actor);
+    labels_.push_back(std::move(label));
+  }
+}
+
+std::vector<std::string> Scene::labels() const {
+  std::vector<std::string> texts;
+  for (const Label& label : labels_) texts.emplace_back(label.actor->GetInput());
+  return texts;
+}
 
 void Scene::SetJointValues(std::span<const double> q_si) {
   const std::lock_guard<std::mutex> lock(mutex_);
@@ -129,6 +176,13 @@ void Scene::SyncActors() {
   }
   for (size_t i = 0; i < probe_actors_.size(); ++i) {
     probe_actors_[i]->SetPosition(render_pose_.probes_world[i].data());
+  }
+  for (const Label& label : labels_) {
+    const Eigen::Vector3d at =
+        label.frame == kWorldFrame
+            ? label.point
+            : Eigen::Vector3d(render_pose_.frames[label.frame] * label.point);
+    label.actor->SetPosition(at.x(), at.y(), at.z());
   }
 }
 

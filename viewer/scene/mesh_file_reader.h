@@ -1,0 +1,42 @@
+// Reads a mesh file with Assimp (Collada, Wavefront OBJ with its .mtl, STL binary and ASCII,
+// glTF/GLB, PLY and Assimp's other formats) into VTK surfaces, one per material.
+//
+// Coordinates are the file's, in metres: a Collada <unit meter="..."> is applied; its
+// <up_axis> is not (the mesh stays in the URDF link's axes, as rviz draws it: published
+// robot descriptions are authored and checked there, and some mark Y_UP meshes that rviz
+// draws unrotated). Other formats carry no unit and are taken as metres.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <Eigen/Core>
+
+namespace mbstream::viewer {
+
+struct MeshSurface {
+  vtkSmartPointer<vtkPolyData> triangles;  // points and triangles only (no normals)
+  std::optional<Eigen::Vector3d> colour;   // the material's diffuse colour, if it has one
+};
+
+struct MeshFileContents {
+  std::vector<MeshSurface> surfaces;  // one per material that has triangles
+  long long triangle_count = 0;       // after decimation
+  long long file_triangle_count = 0;  // as read
+  bool textured = false;              // a material has a texture (not drawn)
+};
+
+struct MeshReadOptions {
+  // A file with more triangles is decimated (quadric decimation, boundaries kept) to about
+  // this many on load; 0 = never.
+  long long decimate_above_triangles = 0;
+};
+
+// Throws SceneError naming the file and Assimp's message when it cannot be read or holds
+// no triangles.
+MeshFileContents ReadMeshFile(const std::filesystem::path& path, const MeshReadOptions& options);
+
+}  // namespace mbstream::viewer
