@@ -11,6 +11,7 @@
 #include <vtkQuadricDecimation.h>
 #include <assimp/Importer.hpp>
 
+#include <cctype>
 #include <map>
 #include <string>
 
@@ -20,8 +21,16 @@ namespace mbstream::viewer {
 
 namespace {
 
-// The diffuse colour of `material`, unless it is Assimp's default material (a format
-// without materials, such as STL).
+// STL and PLY carry no materials (Assimp gives them a default one); their colour
+// extensions (per-vertex or per-facet colours) are not drawn.
+bool HasMaterials(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension != ".stl" && extension != ".ply";
+}
+
+// The diffuse colour of `material`, unless it is Assimp's default material (a file without
+// materials, such as an OBJ without .mtl).
 std::optional<Eigen::Vector3d> DiffuseOf(const aiMaterial& material) {
   aiString name;
   if (material.Get(AI_MATKEY_NAME, name) == AI_SUCCESS &&
@@ -111,7 +120,7 @@ MeshFileContents ReadMeshFile(const std::filesystem::path& path, const MeshReadO
     MeshSurface surface;
     surface.triangles = polydata;
     if (material < scene->mNumMaterials) {
-      surface.colour = DiffuseOf(*scene->mMaterials[material]);
+      if (HasMaterials(path)) surface.colour = DiffuseOf(*scene->mMaterials[material]);
       contents.textured = contents.textured || Textured(*scene->mMaterials[material]);
     }
     contents.triangle_count += polydata->GetNumberOfCells();
