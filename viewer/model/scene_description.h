@@ -35,7 +35,8 @@ struct VisualPart {
   Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();
   int frame = kWorldFrame;  // frame number, or kWorldFrame for a static part
   Eigen::Vector3d color = Eigen::Vector3d::Constant(0.7);
-  std::string label;  // text drawn at the part (a placeholder says what it stands for)
+  std::string mesh_filename;  // a URDF mesh's filename as written (also for its placeholder)
+  std::string label;          // text drawn at the part (a placeholder says what it stands for)
   // Drawn instead when the mesh file cannot be read (a URDF link's placeholder box).
   std::shared_ptr<const VisualPart> fallback;
 };

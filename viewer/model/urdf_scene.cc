@@ -189,9 +189,11 @@ class UrdfSceneBuilder {
                                     "' is not in the model's files; drawn as a box of the "
                                     "link's inertia (submit the model with its meshes)");
           scene->visuals.push_back(Placeholder(link, frame, "mesh missing"));
+          scene->visuals.back().mesh_filename = mesh.filename;
           return;
         }
         part.geometry = MeshFile{path, !urdf_colour};
+        part.mesh_filename = mesh.filename;
         part.scale = Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z);
         part.fallback =
             std::make_shared<const VisualPart>(Placeholder(link, frame, "mesh unreadable"));
