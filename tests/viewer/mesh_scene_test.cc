@@ -15,6 +15,7 @@
 #include <fstream>
 #include <set>
 
+#include "bench/viewer/large_model.h"
 #include "tests/viewer/test_meshes.h"
 #include "tests/viewer/xvfb_display.h"
 #include "viewer/model/urdf_scene.h"
@@ -283,6 +284,65 @@ TEST_F(MeshSceneTest, SnapshotShowsTheWholeRobotFramed) {
   EXPECT_GT(min_y, 0);
   EXPECT_LT(max_y, 479);
   EXPECT_TRUE(blue) << "the base's Collada colour is not in the picture";
+}
+
+}  // namespace
+}  // namespace mbstream::viewer
+
+namespace mbstream::viewer {
+namespace {
+
+// Pixels that differ from the background.
+std::vector<bool> Mask(Scene& scene) {
+  std::vector<vtkActor*> actors;
+  vtkActorCollection* collection = scene.renderer()->GetActors();
+  collection->InitTraversal();
+  while (vtkActor* actor = collection->GetNextActor()) actors.push_back(actor);
+  for (vtkActor* actor : actors) actor->VisibilityOff();
+  const RgbImage background = scene.Capture();
+  for (vtkActor* actor : actors) actor->VisibilityOn();
+  const RgbImage image = scene.Capture();
+  std::vector<bool> mask(size_t(image.width) * image.height);
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      int d = 0;
+      for (int c = 0; c < 3; ++c) {
+        d = std::max(d, std::abs(int(image.At(x, y)[c]) - int(background.At(x, y)[c])));
+      }
+      mask[size_t(y) * image.width + x] = d > 12;
+    }
+  }
+  return mask;
+}
+
+TEST(MeshDecimation, ATriangleBudgetKeepsTheSilhouette) {
+  ASSERT_TRUE(testing::EnsureDisplay()) << "no X display and Xvfb could not be started";
+  const fs::path dir =
+      fs::temp_directory_path() / ("mbstream_decimation_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const bench::LargeModel model = bench::WriteLargeModel(dir, 2, 3, 140'000);
+  const SceneDescription description = SceneFromUrdfFile(model.urdf);
+  SceneOptions options;
+  options.width = 480;
+  options.height = 360;
+  options.offscreen = true;
+  options.triangle_budget = 0;
+  Scene full(description, options);
+  options.triangle_budget = 14'000;
+  Scene decimated(description, options);
+  EXPECT_GT(full.triangle_count(), 130'000);
+  EXPECT_LT(decimated.triangle_count(), 14'000 * 1.3);
+  EXPECT_GT(decimated.triangle_count(), 14'000 * 0.5);
+  const std::vector<bool> a = Mask(full), b = Mask(decimated);
+  long long both = 0, either = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    both += a[i] && b[i];
+    either += a[i] || b[i];
+  }
+  ASSERT_GT(either, 480 * 360 / 50);
+  EXPECT_GT(double(both) / double(either), 0.97)
+      << "silhouettes overlap " << both << " / " << either;
+  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -63,26 +63,43 @@ void DropIdleEntries(Cache& cache) {
 }  // namespace
 
 std::shared_ptr<const MeshFileContents> CachedMeshFile(const std::filesystem::path& path,
-                                                       const MeshReadOptions& options) {
+                                                       long long max_triangles) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path.string() + ": cannot open the mesh file; check the path");
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string extension = LowerExtension(path);
   const bool side_files = extension == ".obj" || extension == ".gltf";
   const Key key{Hash(bytes), bytes.size(), extension,
-                side_files ? path.parent_path().lexically_normal().string() : std::string(),
-                options.decimate_above_triangles};
+                side_files ? path.parent_path().lexically_normal().string() : std::string(), 0};
   Cache& cache = TheCache();
+  std::shared_ptr<const MeshFileContents> raw;
+  Key decimated_key = key;
+  std::get<4>(decimated_key) = max_triangles;
   {
     const std::lock_guard<std::mutex> lock(cache.mutex);
-    if (const auto it = cache.entries.find(key); it != cache.entries.end()) return it->second;
+    if (const auto it = cache.entries.find(decimated_key); it != cache.entries.end()) {
+      return it->second;
+    }
+    if (const auto it = cache.entries.find(key); it != cache.entries.end()) raw = it->second;
   }
-  auto contents = std::make_shared<const MeshFileContents>(ReadMeshFile(path, options));
+  if (!raw) {
+    raw = std::make_shared<const MeshFileContents>(ReadMeshFile(path));
+    const std::lock_guard<std::mutex> lock(cache.mutex);
+    ++cache.reads;
+    raw = cache.entries.emplace(key, raw).first->second;
+  }
+  if (max_triangles <= 0 || raw->triangle_count <= max_triangles) return raw;
+  auto decimated = std::make_shared<const MeshFileContents>(Decimate(*raw, max_triangles));
   const std::lock_guard<std::mutex> lock(cache.mutex);
-  ++cache.reads;
-  const auto [it, inserted] = cache.entries.emplace(key, contents);
+  const auto [it, inserted] = cache.entries.emplace(decimated_key, decimated);
   DropIdleEntries(cache);
   return it->second;
+}
+
+void ClearMeshCache() {
+  Cache& cache = TheCache();
+  const std::lock_guard<std::mutex> lock(cache.mutex);
+  cache.entries.clear();
 }
 
 MeshCacheStats MeshCacheStatistics() {

@@ -9,11 +9,12 @@
 
 namespace mbstream::viewer {
 
-// The contents of `path`, read with `options` unless a file with the same bytes (and, for
-// formats that read side files such as OBJ's .mtl or glTF's .bin, in the same folder) was
-// read with the same options before. Throws SceneError as ReadMeshFile.
+// The contents of `path`, decimated to at most about `max_triangles` (0 = as read), unless
+// a file with the same bytes (and, for formats that read side files such as OBJ's .mtl or
+// glTF's .bin, in the same folder) was read (and decimated to the same size) before.
+// Throws SceneError as ReadMeshFile.
 std::shared_ptr<const MeshFileContents> CachedMeshFile(const std::filesystem::path& path,
-                                                       const MeshReadOptions& options);
+                                                       long long max_triangles = 0);
 
 // Entries in the cache and files actually read since the start: for tests and logs.
 struct MeshCacheStats {
@@ -21,5 +22,8 @@ struct MeshCacheStats {
   long long reads = 0;
 };
 MeshCacheStats MeshCacheStatistics();
+
+// Forgets every entry (parts that hold one keep it): for benchmarks that time reading.
+void ClearMeshCache();
 
 }  // namespace mbstream::viewer

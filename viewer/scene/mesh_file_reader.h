@@ -29,14 +29,13 @@ struct MeshFileContents {
   bool textured = false;              // a material has a texture (not drawn)
 };
 
-struct MeshReadOptions {
-  // A file with more triangles is decimated (quadric decimation, boundaries kept) to about
-  // this many on load; 0 = never.
-  long long decimate_above_triangles = 0;
-};
-
 // Throws SceneError naming the file and Assimp's message when it cannot be read or holds
 // no triangles.
-MeshFileContents ReadMeshFile(const std::filesystem::path& path, const MeshReadOptions& options);
+MeshFileContents ReadMeshFile(const std::filesystem::path& path);
+
+// `contents` with its surfaces decimated to about `max_triangles` in all (quadric
+// clustering: the outline stays within a grid cell of about extent / sqrt(triangles));
+// unchanged when it has no more.
+MeshFileContents Decimate(const MeshFileContents& contents, long long max_triangles);
 
 }  // namespace mbstream::viewer

@@ -13,6 +13,7 @@
 
 #include "viewer/scene/camera_rig.h"
 #include "viewer/scene/image_capture.h"
+#include "viewer/scene/mesh_cache.h"
 #include "viewer/scene/scene_error.h"
 #include "viewer/scene/visual_pipeline.h"
 
@@ -67,17 +68,17 @@ Scene::Scene(SceneDescription description, SceneOptions options)
   for (int k = 0; k < solver_.chain().frame_count(); ++k) {
     frame_matrices_.push_back(vtkSmartPointer<vtkMatrix4x4>::New());
   }
-  MeshReadOptions read_options;
-  read_options.decimate_above_triangles = options.decimate_above_triangles;
+  const std::vector<long long> shares = TriangleShares(options.triangle_budget);
   bool textured = false;
-  for (const VisualPart& part : description_.visuals) {
+  for (size_t i = 0; i < description_.visuals.size(); ++i) {
+    const VisualPart& part = description_.visuals[i];
     try {
-      AddPart(part, read_options, &textured);
+      AddPart(part, shares[i], &textured);
     } catch (const SceneError& e) {
       if (!part.fallback) throw;
       spdlog::warn("scene '{}': {}; drawing a placeholder for '{}'", description_.title, e.what(),
                    part.name);
-      AddPart(*part.fallback, read_options, &textured);
+      AddPart(*part.fallback, 0, &textured);
     }
   }
   if (textured) {
@@ -102,8 +103,33 @@ Scene::Scene(SceneDescription description, SceneOptions options)
 
 Scene::~Scene() = default;
 
-void Scene::AddPart(const VisualPart& part, const MeshReadOptions& options, bool* textured) {
-  VisualActors made = MakeVisualActors(part, options);
+std::vector<long long> Scene::TriangleShares(long long budget) const {
+  std::vector<long long> counts(description_.visuals.size(), 0);
+  long long total = 0;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    const auto* file = std::get_if<MeshFile>(&description_.visuals[i].geometry);
+    if (!file) continue;
+    try {
+      counts[i] = CachedMeshFile(file->path)->triangle_count;
+    } catch (const SceneError&) {
+      // drawn by its fallback, or reported when its actors are made
+    }
+    total += counts[i];
+  }
+  std::vector<long long> shares(counts.size(), 0);
+  if (budget <= 0 || total <= budget) return shares;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    shares[i] = std::max<long long>(
+        1, static_cast<long long>(static_cast<double>(counts[i]) * static_cast<double>(budget) /
+                                  static_cast<double>(total)));
+  }
+  spdlog::info("scene '{}': {} triangles in its meshes, decimated to about {} on load",
+               description_.title, total, budget);
+  return shares;
+}
+
+void Scene::AddPart(const VisualPart& part, long long max_triangles, bool* textured) {
+  VisualActors made = MakeVisualActors(part, max_triangles);
   for (const vtkSmartPointer<vtkActor>& actor : made.actors) {
     if (part.frame != kWorldFrame) actor->SetUserMatrix(frame_matrices_.at(part.frame));
     renderer_->AddActor(actor);

@@ -36,8 +36,11 @@ struct SceneOptions {
   int height = 720;
   bool offscreen = false;  // needs an X display all the same (Xvfb: xvfb-run -a)
   std::string window_title = "mbstream viewer";
-  // Mesh files with more triangles are decimated on load (MeshReadOptions); 0 = never.
-  long long decimate_above_triangles = 0;
+  // When the model's mesh files hold more triangles than this, each is decimated on load
+  // in proportion (quadric clustering, which keeps the silhouette within a grid cell) so
+  // that the model draws about this many; 0 = never decimate. See docs/performance.md.
+  long long triangle_budget = kDefaultTriangleBudget;
+  static constexpr long long kDefaultTriangleBudget = 100'000;
 };
 
 class Scene {
@@ -110,7 +113,9 @@ class Scene {
   std::vector<Label> labels_;
   long long triangle_count_ = 0;
 
-  void AddPart(const VisualPart& part, const MeshReadOptions& options, bool* textured);
+  void AddPart(const VisualPart& part, long long max_triangles, bool* textured);
+  // Per visual: the triangles its mesh file may keep (0 = all), from the budget.
+  std::vector<long long> TriangleShares(long long budget) const;
 };
 
 }  // namespace mbstream::viewer

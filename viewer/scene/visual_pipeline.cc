@@ -56,11 +56,12 @@ vtkSmartPointer<vtkPolyDataNormals> Place(const VisualPart& part, vtkPolyData* i
   return normals;
 }
 
-std::vector<Surface> Surfaces(const VisualPart& part, const MeshReadOptions& options,
+std::vector<Surface> Surfaces(const VisualPart& part, long long max_triangles,
                               VisualActors* stats) {
   std::vector<Surface> surfaces;
   if (const auto* file = std::get_if<MeshFile>(&part.geometry)) {
-    const std::shared_ptr<const MeshFileContents> contents = CachedMeshFile(file->path, options);
+    const std::shared_ptr<const MeshFileContents> contents =
+        CachedMeshFile(file->path, max_triangles);
     for (const MeshSurface& surface : contents->surfaces) {
       const bool own = file->file_colours && surface.colour.has_value();
       surfaces.push_back(
@@ -95,9 +96,9 @@ vtkSmartPointer<vtkPolyData> PolyDataFromMesh(const Mesh& mesh) {
   return polydata;
 }
 
-vtkSmartPointer<vtkPolyData> VisualSurface(const VisualPart& part, const MeshReadOptions& options) {
+vtkSmartPointer<vtkPolyData> VisualSurface(const VisualPart& part, long long max_triangles) {
   vtkNew<vtkAppendPolyData> append;
-  for (const Surface& surface : Surfaces(part, options, nullptr)) {
+  for (const Surface& surface : Surfaces(part, max_triangles, nullptr)) {
     append->AddInputData(surface.output->GetOutput());
   }
   append->Update();
@@ -105,9 +106,9 @@ vtkSmartPointer<vtkPolyData> VisualSurface(const VisualPart& part, const MeshRea
   return output;
 }
 
-VisualActors MakeVisualActors(const VisualPart& part, const MeshReadOptions& options) {
+VisualActors MakeVisualActors(const VisualPart& part, long long max_triangles) {
   VisualActors result;
-  for (const Surface& surface : Surfaces(part, options, &result)) {
+  for (const Surface& surface : Surfaces(part, max_triangles, &result)) {
     auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
     mapper->SetInputConnection(surface.output->GetOutputPort());
     mapper->ScalarVisibilityOff();

@@ -27,11 +27,11 @@ struct VisualActors {
 // Throws SceneError naming the file when a mesh file cannot be read or gives no triangles.
 // Colours: a mesh file's own material colour per surface when part.file_colours and the
 // material has one, else part.color.
-VisualActors MakeVisualActors(const VisualPart& part, const MeshReadOptions& options = {});
+// A mesh file is decimated to about `max_triangles` (0 = as read).
+VisualActors MakeVisualActors(const VisualPart& part, long long max_triangles = 0);
 
 // The surface of `part` as its actors show it in its frame (metres), all surfaces in one:
 // for tests and bounds.
-vtkSmartPointer<vtkPolyData> VisualSurface(const VisualPart& part,
-                                           const MeshReadOptions& options = {});
+vtkSmartPointer<vtkPolyData> VisualSurface(const VisualPart& part, long long max_triangles = 0);
 
 }  // namespace mbstream::viewer
