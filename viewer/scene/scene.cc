@@ -97,7 +97,11 @@ Scene::Scene(SceneDescription description, SceneOptions options)
   double bounds[6];
   renderer_->ComputeVisiblePropBounds(bounds);
   const Eigen::Isometry3d& base = render_pose_.frames[0];
-  PlaceCamera(renderer_, CameraSphereOf(description_, base, bounds), base);
+  if (description_.scene_box_m) {
+    PlaceCamera(renderer_, CameraSphereOf(description_, base, bounds), base);
+  } else {
+    FrameBox(renderer_, bounds, base, static_cast<double>(options.width) / options.height);
+  }
   AddLights(renderer_);
 }
 
