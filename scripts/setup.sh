@@ -18,6 +18,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # viewer and headless rendering
   libvtk9-dev xvfb xauth
+  libassimp-dev  # viewer meshes: Collada, OBJ, STL, glTF, PLY
   # python client and charts (Debian's, for /usr/bin/python3)
   python3 python3-grpcio python3-protobuf python3-numpy python3-matplotlib
   # deploy/: validates the docker-compose demo (docker-compose config; no engine needed)

@@ -2,16 +2,11 @@
 
 #include <cctype>
 
+#include "urdf_reading/mesh_lookup.h"
+
 namespace mbstream {
 
 namespace {
-
-constexpr std::string_view kPackage = "package://";
-constexpr std::string_view kFile = "file://";
-
-bool StartsWith(const std::string& s, std::string_view prefix) {
-  return s.compare(0, prefix.size(), prefix) == 0;
-}
 
 bool EqualsIgnoreCase(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
@@ -62,12 +57,7 @@ bool IsWord(std::string_view token) {
 }  // namespace
 
 std::vector<std::string> UrdfMeshAssetNames(const std::string& filename) {
-  std::string without_scheme = filename;
-  if (StartsWith(filename, kPackage)) without_scheme = filename.substr(kPackage.size());
-  if (StartsWith(filename, kFile)) without_scheme = filename.substr(kFile.size());
-  const size_t slash = filename.find_last_of('/');
-  return {filename, without_scheme,
-          slash == std::string::npos ? filename : filename.substr(slash + 1)};
+  return urdf_reading::MeshAssetKeys(filename);
 }
 
 std::vector<std::string> ScenePartAssetNames(const std::string& name) {

@@ -1,12 +1,9 @@
 #include "server/parse/urdf_import.h"
 
-#include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -19,6 +16,8 @@
 #include "server/parse/urdf_meshes.h"
 #include "server/parse/urdf_xml_scan.h"
 #include "server/parse/urdfdom_parse.h"
+#include "urdf_reading/joint_order.h"
+#include "urdf_reading/tcp_choice.h"
 
 namespace mbstream {
 
@@ -26,69 +25,34 @@ namespace {
 
 using JointList = std::vector<urdf::JointConstSharedPtr>;
 
-// The joints parents first: in document order, except that a joint waits until its parent
-// link is placed. This keeps the URDF's joint order (the model's degree-of-freedom order)
-// whenever the file lists parents first, as most do.
+// The joints in the shared reading's order (urdf_reading/joint_order.h); joints that
+// cannot be placed close a loop.
 JointList JointsParentFirst(const urdf::ModelInterface& urdf, const UrdfXmlFacts& facts,
                             const UrdfDiagnostics& diagnostics) {
-  const std::string& root = urdf.getRoot()->name;
-  std::set<std::string> placed = {root};
-  JointList pending;
-  for (const std::string& name : facts.joint_order) {
-    pending.push_back(urdf.getJoint(name));
-    MBSTREAM_CHECK_MSG(pending.back() != nullptr, "urdfdom lost joint '" + name + "'");
+  MBSTREAM_CHECK(facts.joint_order.size() == urdf.joints_.size());
+  urdf_reading::JointOrder order = urdf_reading::OrderJoints(urdf, facts.joint_order);
+  MBSTREAM_CHECK_MSG(order.ordered.size() + order.unplaced.size() == urdf.joints_.size(),
+                     "urdfdom lost a joint");
+  if (!order.unplaced.empty()) {
+    const auto& pending = order.unplaced;
+    std::string names;
+    for (const auto& joint : pending) names += (names.empty() ? "'" : ", '") + joint->name + "'";
+    throw InputError(diagnostics.Joint(pending.front()->name) + ": its parent link '" +
+                     pending.front()->parent_link_name + "' is not connected to the root " +
+                     "link '" + urdf.getRoot()->name + "': joints " + names + " form a closed " +
+                     "loop, and mbstream simulates trees only; remove a joint to open the loop");
   }
-  MBSTREAM_CHECK(pending.size() == urdf.joints_.size());
-  JointList ordered;
-  while (!pending.empty()) {
-    const auto ready = std::find_if(pending.begin(), pending.end(), [&](const auto& joint) {
-      return placed.count(joint->parent_link_name) != 0;
-    });
-    if (ready == pending.end()) {
-      std::string names;
-      for (const auto& joint : pending) names += (names.empty() ? "'" : ", '") + joint->name + "'";
-      throw InputError(diagnostics.Joint(pending.front()->name) + ": its parent link '" +
-                       pending.front()->parent_link_name + "' is not connected to the root " +
-                       "link '" + root + "': joints " + names + " form a closed loop, and " +
-                       "mbstream simulates trees only; remove a joint to open the loop");
-    }
-    placed.insert((*ready)->child_link_name);
-    ordered.push_back(*ready);
-    pending.erase(ready);
-  }
-  return ordered;
+  return std::move(order.ordered);
 }
 
-std::string Lowercase(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
-// The TCP link: "tcp" (any case), else "tool0", else the first leaf link on a fixed joint
-// of the last moving body; "" (with a warning) when there is none.
+// The TCP link (urdf_reading/tcp_choice.h); "" with a warning when there is none.
 std::string ChooseTcp(const urdf::ModelInterface& urdf, const JointList& joints,
                       const UrdfXmlFacts& facts, const UrdfDiagnostics& diagnostics) {
-  for (const std::string& name : facts.link_order) {
-    if (Lowercase(name) == "tcp") return name;
-  }
-  if (facts.link_lines.count("tool0") != 0) return "tool0";
-
-  std::map<std::string, std::string> body_of = {{urdf.getRoot()->name, ""}};  // link -> body
-  std::string last_body;
-  for (const auto& joint : joints) {
-    const bool fixed = joint->type == urdf::Joint::FIXED;
-    body_of[joint->child_link_name] =
-        fixed ? body_of[joint->parent_link_name] : joint->child_link_name;
-    if (!fixed) last_body = joint->child_link_name;
-  }
-  for (const auto& joint : joints) {
-    const std::string& link = joint->child_link_name;
-    if (!last_body.empty() && joint->type == urdf::Joint::FIXED && body_of[link] == last_body &&
-        urdf.getLink(link)->child_joints.empty()) {
-      return link;
-    }
-  }
+  urdf_reading::JointOrder order;
+  order.ordered = joints;
+  const std::string tcp = urdf_reading::ChooseTcpLink(urdf, order, facts.link_order);
+  if (!tcp.empty()) return tcp;
+  const std::string last_body = urdf_reading::LastMovingLink(order);
   diagnostics.Warn(diagnostics.source() + ": the model has no TCP: no link is named 'tcp' or " +
                    "'tool0', and no leaf link hangs on a fixed joint from the last moving " +
                    "link" + (last_body.empty() ? "" : " '" + last_body + "'") +

@@ -1,37 +1,19 @@
 #include "server/parse/urdf_meshes.h"
 
 #include <memory>
-#include <string_view>
 #include <system_error>
 
 #include "server/common/check.h"
 #include "server/parse/asset_references.h"
+#include "urdf_reading/mesh_lookup.h"
 
 namespace mbstream {
 
 namespace {
 
-constexpr std::string_view kPackage = "package://";
-constexpr std::string_view kFile = "file://";
-
-bool StartsWith(const std::string& s, std::string_view prefix) {
-  return s.compare(0, prefix.size(), prefix) == 0;
-}
-
-std::string WithoutScheme(const std::string& filename) {
-  if (StartsWith(filename, kPackage)) return filename.substr(kPackage.size());
-  if (StartsWith(filename, kFile)) return filename.substr(kFile.size());
-  return filename;
-}
-
 std::string BaseName(const std::string& filename) {
   const size_t slash = filename.find_last_of('/');
   return slash == std::string::npos ? filename : filename.substr(slash + 1);
-}
-
-bool IsFile(const std::filesystem::path& path) {
-  std::error_code error;
-  return std::filesystem::is_regular_file(path, error);
 }
 
 }  // namespace
@@ -69,21 +51,7 @@ std::set<std::string> ExistingMeshFiles(const std::vector<std::string>& mesh_fil
                                         const std::filesystem::path& directory) {
   std::set<std::string> found;
   for (const std::string& filename : mesh_files) {
-    const std::string path = WithoutScheme(filename);
-    std::vector<std::filesystem::path> candidates = {directory / path,
-                                                     directory / BaseName(filename)};
-    const size_t slash = path.find('/');
-    if (StartsWith(filename, kPackage) && slash != std::string::npos) {
-      const std::string rest = path.substr(slash + 1);  // without the package name
-      candidates.push_back(directory / rest);
-      candidates.push_back(directory.parent_path() / rest);
-    }
-    for (const std::filesystem::path& candidate : candidates) {
-      if (IsFile(candidate)) {
-        found.insert(filename);
-        break;
-      }
-    }
+    if (!urdf_reading::FindMeshFile(filename, directory).empty()) found.insert(filename);
   }
   return found;
 }

@@ -13,7 +13,8 @@
 namespace mbstream {
 
 // True if `filename` (a URDF <mesh filename>) is in `assets` under one of the names
-// UrdfMeshAssetNames gives (asset_references.h).
+// UrdfMeshAssetNames gives (asset_references.h: urdf_reading::MeshAssetKeys, the names the
+// viewer looks the mesh up by too).
 bool MeshSupplied(const std::string& filename, const std::set<std::string>& assets);
 
 // Throws InputError naming the link and the file for a visual or collision mesh of `link`
@@ -22,8 +23,7 @@ void CheckMeshes(const urdf::Link& link, const std::set<std::string>& assets,
                  const UrdfDiagnostics& diagnostics);
 
 // The files among `mesh_files` (as written in the URDF) that exist relative to
-// `directory`: the path without its package:// or file:// prefix; for package://PKG/REST
-// also REST in `directory` and in its parent; the base name in `directory`.
+// `directory`, looked up as urdf_reading::FindMeshFile does (the viewer's lookup too).
 std::set<std::string> ExistingMeshFiles(const std::vector<std::string>& mesh_files,
                                         const std::filesystem::path& directory);
 

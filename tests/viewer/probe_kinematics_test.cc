@@ -186,26 +186,28 @@ TEST(UrdfScene, VisualsFramesAndErrors) {
   EXPECT_EQ(urdf.visuals.size(), 7u);  // base box, 6 link shapes
   EXPECT_EQ(urdf.chain.frame_count(), 8);
   EXPECT_THROW(SceneFromUrdfFile("/nonexistent.urdf"), std::runtime_error);
-  try {
-    SceneFromUrdf(R"(<robot name="r"><link name="a"><visual><geometry>
-      <mesh filename="package://r/meshes/a.dae"/></geometry></visual></link></robot>)",
-                  "r.urdf", "/tmp");
-    FAIL() << "no exception";
-  } catch (const std::runtime_error& e) {
-    EXPECT_STREQ(e.what(),
-                 "r.urdf: link 'a': mesh 'package://r/meshes/a.dae' is not STL; "
-                 "convert it to STL (the viewer reads STL meshes only)");
+  // A mesh that is not there: a labelled placeholder box of the link's inertia, and a
+  // warning (the server accepts such a model; the physics needs no mesh).
+  const SceneDescription missing = SceneFromUrdf(R"(<robot name="r"><link name="a">
+      <inertial><origin xyz="0 0 0.5"/><mass value="12"/>
+        <inertia ixx="0.5" iyy="0.26" izz="0.26" ixy="0" ixz="0" iyz="0"/></inertial>
+      <visual><geometry><mesh filename="package://r/meshes/a.dae"/></geometry></visual>
+      </link></robot>)",
+                                                 "r.urdf", "/nonexistent");
+  ASSERT_EQ(missing.visuals.size(), 1u);
+  EXPECT_EQ(missing.visuals[0].label, "a: mesh missing");
+  ASSERT_EQ(missing.warnings.size(), 1u);
+  EXPECT_EQ(missing.warnings[0],
+            "r.urdf: link 'a': mesh 'package://r/meshes/a.dae' is not in the model's files; "
+            "drawn as a box of the link's inertia (submit the model with its meshes)");
+  ASSERT_TRUE(std::holds_alternative<Mesh>(missing.visuals[0].geometry));
+  Eigen::AlignedBox3d box;
+  for (const Vector3d& p : std::get<Mesh>(missing.visuals[0].geometry).points) {
+    box.extend(missing.visuals[0].placement * p);
   }
-  try {
-    SceneFromUrdf(R"(<robot name="r"><link name="a"><visual><geometry>
-      <mesh filename="package://r/meshes/a.stl"/></geometry></visual></link></robot>)",
-                  "r.urdf", "/nonexistent");
-    FAIL() << "no exception";
-  } catch (const std::runtime_error& e) {
-    EXPECT_STREQ(e.what(),
-                 "r.urdf: link 'a': mesh 'package://r/meshes/a.stl' not found "
-                 "(looked in /nonexistent); put the file beside the URDF");
-  }
+  // 12 kg with moments 0.5, 0.26, 0.26: a box 0.1 x 0.5 x 0.5 m about (0, 0, 0.5).
+  EXPECT_TRUE(box.sizes().isApprox(Vector3d(0.1, 0.5, 0.5), 1e-9)) << box.sizes().transpose();
+  EXPECT_TRUE(box.center().isApprox(Vector3d(0, 0, 0.5), 1e-9)) << box.center().transpose();
   EXPECT_THROW(SceneFromUrdf("<robot", "bad.urdf", "/tmp"), std::runtime_error);
 }
 

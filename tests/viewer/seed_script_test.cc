@@ -60,7 +60,7 @@ TEST(SeedScript, WithItsStlFilesGivesOnlyTheUndefinedRenderTarget) {
   EXPECT_EQ(scene.probes[0].frame, 6);
   EXPECT_DOUBLE_EQ(*scene.scene_box_m, 1.2);
   for (const viewer::VisualPart& visual : scene.visuals) {
-    EXPECT_TRUE(std::holds_alternative<viewer::StlGeometry>(visual.geometry));
+    EXPECT_TRUE(std::holds_alternative<viewer::MeshFile>(visual.geometry));
     EXPECT_EQ(visual.color, Eigen::Vector3d::Constant(0.5));
   }
   // Body2's component shift (x-150 z -486.5) is glued and kept, in metres.

@@ -231,8 +231,8 @@ TEST(VtkScene, AnUnreadableStlFileIsASceneError) {
   VisualPart part;
   const std::filesystem::path path = std::filesystem::temp_directory_path() / "mbstream_empty.stl";
   { std::ofstream(path) << "solid nothing\nendsolid nothing\n"; }
-  part.geometry = StlGeometry{path};
-  EXPECT_THROW(MakeVisualActor(part), SceneError);
+  part.geometry = MeshFile{path};
+  EXPECT_THROW(MakeVisualActors(part), SceneError);
   std::filesystem::remove(path);
 }
 

@@ -24,6 +24,7 @@ struct PoseOptions {
   std::optional<std::string> snapshot;  // PNG path
   int width = 960;
   int height = 720;
+  long long triangle_budget = SceneOptions::kDefaultTriangleBudget;  // --triangle-budget
 };
 
 // --scene FILE | --urdf FILE [--pose ...] [--offscreen] [--snapshot OUT.png]: poses the
@@ -41,6 +42,7 @@ struct LinkCommandOptions {
   bool offscreen = false;
   int width = 960;
   int height = 720;
+  long long triangle_budget = SceneOptions::kDefaultTriangleBudget;  // --triangle-budget
 };
 
 // --server ADDR (--run ID | --follow) ...: shows runs live and answers their probes.

@@ -50,6 +50,7 @@ int RunLink(const LinkCommandOptions& options) {
   scene_options.width = options.width;
   scene_options.height = options.height;
   scene_options.offscreen = options.offscreen;
+  scene_options.triangle_budget = options.triangle_budget;
   scene_options.window_title = "mbstream viewer: " + options.link.server;
   SceneSlot slot(scene_options);
   LinkStatus status;

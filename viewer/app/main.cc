@@ -36,7 +36,8 @@ int main(int argc, char** argv) {
   auto* scene =
       app.add_option("--scene", pose.scene_file, "Scene script to show")->check(CLI::ExistingFile);
   auto* urdf = app.add_option("--urdf", pose.urdf_file,
-                              "URDF whose visuals (box, cylinder, sphere, STL) make the scene")
+                              "URDF whose visuals (box, cylinder, sphere, mesh files: Collada, "
+                              "OBJ, STL, glTF/GLB, PLY) make the scene")
                    ->check(CLI::ExistingFile);
   auto* pose_option = app.add_option("--pose", pose.pose,
                                      "Joint values Q1,Q2,... in degrees (revolute) or mm "
@@ -44,6 +45,11 @@ int main(int argc, char** argv) {
   app.add_flag("--offscreen", pose.offscreen, "Render without a window (needs Xvfb: xvfb-run -a)");
   auto* snapshot = app.add_option("--snapshot", pose.snapshot, "Write the pose as a PNG and exit");
   app.add_option("--size", size, "Image size WIDTHxHEIGHT")->default_val("960x720");
+  app.add_option("--triangle-budget", pose.triangle_budget,
+                 "Decimate a model whose meshes hold more triangles to about this many on "
+                 "load, keeping the silhouette (0 = never)")
+      ->default_val(mbstream::viewer::SceneOptions::kDefaultTriangleBudget)
+      ->check(CLI::NonNegativeNumber);
 
   // ---- The simulation-server link.
   mbstream::viewer::LinkCommandOptions link;
@@ -115,6 +121,7 @@ int main(int argc, char** argv) {
     link.offscreen = pose.offscreen;
     link.width = pose.width;
     link.height = pose.height;
+    link.triangle_budget = pose.triangle_budget;
     return mbstream::viewer::RunLink(link);
   }
   if (!pose.scene_file.empty() || !pose.urdf_file.empty()) {

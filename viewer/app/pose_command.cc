@@ -45,6 +45,7 @@ int RunPose(const PoseOptions& options) {
     scene_options.width = options.width;
     scene_options.height = options.height;
     scene_options.offscreen = options.offscreen;
+    scene_options.triangle_budget = options.triangle_budget;
     scene_options.window_title = "mbstream viewer: " + description->title;
     Scene scene(std::move(*description), scene_options);
     scene.SetJointValues(q_si);

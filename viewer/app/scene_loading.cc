@@ -43,7 +43,9 @@ std::optional<SceneDescription> LoadScene(const std::string& scene_file,
     return SceneFromScript(translation.script);
   }
   try {
-    return SceneFromUrdfFile(urdf_file);
+    SceneDescription scene = SceneFromUrdfFile(urdf_file);
+    for (const std::string& warning : scene.warnings) spdlog::warn("{}", warning);
+    return scene;
   } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";
     return std::nullopt;

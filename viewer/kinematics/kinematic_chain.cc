@@ -1,6 +1,8 @@
 #include "viewer/kinematics/kinematic_chain.h"
 
 #include <cassert>
+#include <map>
+#include <set>
 #include <stdexcept>
 
 namespace mbstream::viewer {
@@ -19,8 +21,41 @@ KinematicChain::KinematicChain(Eigen::Isometry3d base_in_world, std::vector<Chai
         throw std::invalid_argument("joint '" + joint.name + "' has a zero axis");
       }
       joint.axis /= norm;
+      value_of_joint_.push_back(static_cast<int>(dof_joints_.size()));
       dof_joints_.push_back(static_cast<int>(i));
+    } else {
+      value_of_joint_.push_back(-1);
     }
+  }
+}
+
+void KinematicChain::OrderJointValuesBy(const std::vector<std::string>& names) {
+  std::map<std::string, int> joint_of_name;
+  for (int index : dof_joints_) joint_of_name[joints_[index].name] = index;
+  std::string missing, extra;
+  std::vector<int> order;
+  std::set<std::string> seen;
+  for (const std::string& name : names) {
+    const auto it = joint_of_name.find(name);
+    if (it == joint_of_name.end() || !seen.insert(name).second) {
+      extra += (extra.empty() ? "'" : ", '") + name + "'";
+    } else {
+      order.push_back(it->second);
+    }
+  }
+  for (const auto& [name, index] : joint_of_name) {
+    if (seen.count(name) == 0) missing += (missing.empty() ? "'" : ", '") + name + "'";
+  }
+  if (!missing.empty() || !extra.empty()) {
+    std::string message = "the joint names differ:";
+    if (!extra.empty()) message += " the model's " + extra + " not in the scene;";
+    if (!missing.empty()) message += " the scene's " + missing + " not in the model;";
+    message.pop_back();
+    throw std::invalid_argument(message);
+  }
+  dof_joints_ = std::move(order);
+  for (size_t value = 0; value < dof_joints_.size(); ++value) {
+    value_of_joint_[dof_joints_[value]] = static_cast<int>(value);
   }
 }
 
@@ -28,14 +63,13 @@ void KinematicChain::Compute(std::span<const double> q, std::span<Eigen::Isometr
   assert(static_cast<int>(q.size()) == dof());
   assert(static_cast<int>(frames.size()) == frame_count());
   frames[0] = base_in_world_;
-  size_t value = 0;
   for (size_t i = 0; i < joints_.size(); ++i) {
     const ChainJoint& joint = joints_[i];
     Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
     if (joint.kind == ChainJointKind::kRevolute) {
-      motion.linear() = Eigen::AngleAxisd(q[value++], joint.axis).toRotationMatrix();
+      motion.linear() = Eigen::AngleAxisd(q[value_of_joint_[i]], joint.axis).toRotationMatrix();
     } else if (joint.kind == ChainJointKind::kPrismatic) {
-      motion.translation() = joint.axis * q[value++];
+      motion.translation() = joint.axis * q[value_of_joint_[i]];
     }
     frames[i + 1] = frames[joint.parent] * joint.pre * motion * joint.post;
   }

@@ -39,6 +39,11 @@ class KinematicChain {
   const ChainJoint& dof_joint(int i) const { return joints_[dof_joints_[i]]; }
   const Eigen::Isometry3d& base_in_world() const { return base_in_world_; }
 
+  // Reorders the joint values to follow `names` (the server's joint order). Throws
+  // std::invalid_argument naming the joints that differ when `names` are not exactly the
+  // moving joints' names.
+  void OrderJointValuesBy(const std::vector<std::string>& names);
+
   // Every frame in World for joint values `q` (size dof(), SI). `frames` has frame_count()
   // entries. Allocates nothing.
   void Compute(std::span<const double> q, std::span<Eigen::Isometry3d> frames) const;
@@ -46,7 +51,8 @@ class KinematicChain {
  private:
   Eigen::Isometry3d base_in_world_ = Eigen::Isometry3d::Identity();
   std::vector<ChainJoint> joints_;
-  std::vector<int> dof_joints_;  // joint index of each joint value
+  std::vector<int> dof_joints_;      // joint index of each joint value
+  std::vector<int> value_of_joint_;  // joint value of each joint, -1 for a fixed joint
 };
 
 }  // namespace mbstream::viewer

@@ -77,10 +77,24 @@ void CheckJointCount(const SceneDescription& scene, const v1::ModelInfo& model) 
   }
 }
 
+void OrderJointsAsModel(SceneDescription* scene, const v1::ModelInfo& model) {
+  CheckJointCount(*scene, model);
+  if (!scene->joints_named_as_model || model.joints_size() == 0) return;
+  std::vector<std::string> names;
+  for (const v1::JointInfo& joint : model.joints()) names.push_back(joint.name());
+  try {
+    scene->chain.OrderJointValuesBy(names);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error("scene '" + scene->title + "' does not fit model '" + model.name() +
+                             "' (" + model.id() + "): " + e.what() +
+                             "; use the model's own URDF or a scene with its joints");
+  }
+}
+
 SceneDescription SceneForModel(const v1::ModelInfo& model, const v1::ModelBundle& bundle,
                                const RunSceneSource& source) {
   SceneDescription scene = SceneFromBundle(model, bundle, source);
-  CheckJointCount(scene, model);
+  OrderJointsAsModel(&scene, model);
   return scene;
 }
 

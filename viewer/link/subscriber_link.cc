@@ -99,6 +99,7 @@ SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
       run_id = started.run().id();
       try {
         SceneDescription scene = SceneForModel(started.model(), started.bundle(), scenes_);
+        for (const std::string& warning : scene.warnings) spdlog::warn("{}", warning);
         const std::string title = scene.title;
         const std::string error = slot_->Replace(std::move(scene));
         if (!error.empty()) throw std::runtime_error(error);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -18,18 +19,26 @@
 
 namespace mbstream::viewer {
 
-struct StlGeometry {
+// A mesh file (STL, Collada, OBJ, glTF/GLB, PLY, ...), read by the VTK scene with Assimp.
+struct MeshFile {
   std::filesystem::path path;
+  // The file's own material colours (per sub-mesh) win over VisualPart::color, which then
+  // colours only sub-meshes without one.
+  bool file_colours = false;
 };
 
 struct VisualPart {
   std::string name;
-  std::variant<Mesh, StlGeometry> geometry;
+  std::variant<Mesh, MeshFile> geometry;
   // geometry coordinates * scale, then placed by `placement` in `frame` (metres).
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();
   Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();
   int frame = kWorldFrame;  // frame number, or kWorldFrame for a static part
   Eigen::Vector3d color = Eigen::Vector3d::Constant(0.7);
+  std::string mesh_filename;  // a URDF mesh's filename as written (also for its placeholder)
+  std::string label;          // text drawn at the part (a placeholder says what it stands for)
+  // Drawn instead when the mesh file cannot be read (a URDF link's placeholder box).
+  std::shared_ptr<const VisualPart> fallback;
 };
 
 struct SceneDescription {
@@ -42,6 +51,10 @@ struct SceneDescription {
   std::optional<double> scene_box_m;     // the script's LBox: fixes the camera
   std::optional<Eigen::Isometry3d> tcp;  // in frame tcp_frame
   int tcp_frame = 0;
+  // True when the chain's joint names are the model's (a URDF scene): the joint values
+  // are then ordered by the names the server sends (KinematicChain::OrderJointValuesBy).
+  bool joints_named_as_model = false;
+  std::vector<std::string> warnings;  // what the scene draws differently from the model
 };
 
 // Joint values in script units (degrees for revolute, mm for prismatic joints) to SI.

@@ -40,7 +40,7 @@ class VisualCollector {
       VisualPart visual;
       visual.name = name;
       if (const auto* stl = std::get_if<ss::StlShape>(&part->shape)) {
-        visual.geometry = StlGeometry{stl->resolved_path};
+        visual.geometry = MeshFile{stl->resolved_path};
       } else {
         visual.geometry = MeshOf(part->shape);
       }

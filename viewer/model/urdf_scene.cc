@@ -4,10 +4,14 @@
 
 #include <fstream>
 #include <map>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 
+#include "urdf_reading/joint_order.h"
+#include "urdf_reading/mesh_lookup.h"
+#include "urdf_reading/tcp_choice.h"
+#include "urdf_reading/urdf_outline.h"
+#include "viewer/model/inertia_box.h"
 #include "viewer/model/shape_mesh.h"
 
 namespace mbstream::viewer {
@@ -15,6 +19,7 @@ namespace mbstream::viewer {
 namespace {
 
 constexpr int kResolution = 32;
+const Eigen::Vector3d kPlaceholderColour(0.95, 0.55, 0.15);
 
 Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
@@ -26,34 +31,15 @@ Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
   return t;
 }
 
-// Joint names in document order.
-std::vector<std::string> JointsInDocumentOrder(const std::string& text) {
-  static const std::regex kJoint(R"(<joint\s[^>]*?name\s*=\s*["']([^"']+)["'])");
-  std::vector<std::string> names;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), kJoint);
-       it != std::sregex_iterator(); ++it) {
-    names.push_back((*it)[1].str());
-  }
-  return names;
-}
-
-std::filesystem::path FindMesh(const std::string& filename, const std::filesystem::path& dir) {
-  std::string rest = filename;
-  std::vector<std::filesystem::path> candidates;
-  for (const std::string prefix : {"file://", "package://"}) {
-    if (rest.rfind(prefix, 0) == 0) rest = rest.substr(prefix.size());
-  }
-  const std::filesystem::path as_written(rest);
-  candidates.push_back(as_written.is_absolute() ? as_written : dir / as_written);
-  if (filename.rfind("package://", 0) == 0 && rest.find('/') != std::string::npos) {
-    candidates.push_back(dir / rest.substr(rest.find('/') + 1));
-  }
-  candidates.push_back(dir / std::filesystem::path(rest).filename());
-  for (const auto& candidate : candidates) {
-    std::error_code error;
-    if (std::filesystem::is_regular_file(candidate, error)) return candidate;
-  }
-  return {};
+// A box of `size` (m) centred at `centre` in `frame`.
+VisualPart BoxPart(const std::string& name, int frame, const Eigen::Vector3d& size,
+                   const Eigen::Isometry3d& centre) {
+  VisualPart part;
+  part.name = name;
+  part.frame = frame;
+  part.geometry = CubeMesh({size});
+  part.placement = centre * Eigen::Translation3d(-size / 2);
+  return part;
 }
 
 class UrdfSceneBuilder {
@@ -62,7 +48,12 @@ class UrdfSceneBuilder {
       : source_(source), dir_(std::move(dir)) {}
 
   SceneDescription Build(const std::string& text) {
-    const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(text);
+    std::string error;
+    const std::optional<urdf_reading::UrdfOutline> outline =
+        urdf_reading::ReadUrdfOutline(text, &error);
+    if (!outline) Fail(error + "; fix the XML");
+    outline_ = &*outline;
+    const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(outline->urdfdom_text);
     if (!model || !model->getRoot()) {
       Fail(
           "urdfdom could not read the robot description (its messages are printed above); "
@@ -70,52 +61,41 @@ class UrdfSceneBuilder {
     }
     SceneDescription scene;
     scene.title = model->getName();
+    scene.joints_named_as_model = true;
     const std::string root = model->getRoot()->name;
     frame_of_link_[root] = 0;
     scene.frame_names.push_back(root);
 
+    const urdf_reading::JointOrder order = urdf_reading::OrderJoints(*model, outline->joint_order);
+    if (!order.unplaced.empty()) {
+      Fail("joint '" + order.unplaced.front()->name + "': its parent link '" +
+           order.unplaced.front()->parent_link_name + "' is not connected to the root link '" +
+           root + "'; the joints form a loop: remove a joint to open it");
+    }
     std::vector<ChainJoint> joints;
-    std::vector<std::string> pending = JointsInDocumentOrder(text);
-    bool progress = true;
-    while (!pending.empty() && progress) {
-      progress = false;
-      for (auto it = pending.begin(); it != pending.end();) {
-        const urdf::JointConstSharedPtr joint = model->getJoint(*it);
-        if (!joint) {
-          it = pending.erase(it);
-          continue;
-        }
-        const auto parent = frame_of_link_.find(joint->parent_link_name);
-        if (parent == frame_of_link_.end()) {
-          ++it;
-          continue;
-        }
-        joints.push_back(ChainJointOf(*joint, parent->second));
-        frame_of_link_[joint->child_link_name] = static_cast<int>(joints.size());
-        scene.frame_names.push_back(joint->child_link_name);
-        it = pending.erase(it);
-        progress = true;
-      }
+    for (const urdf::JointConstSharedPtr& joint : order.ordered) {
+      joints.push_back(ChainJointOf(*joint, frame_of_link_.at(joint->parent_link_name)));
+      frame_of_link_[joint->child_link_name] = static_cast<int>(joints.size());
+      scene.frame_names.push_back(joint->child_link_name);
     }
     scene.chain = KinematicChain(Eigen::Isometry3d::Identity(), std::move(joints));
     scene.initial_q.assign(scene.chain.dof(), 0.0);
 
-    for (const auto& [name, frame] : frame_of_link_) {
+    for (const std::string& name : scene.frame_names) {
       const urdf::LinkConstSharedPtr link = model->getLink(name);
       if (!link) continue;
       for (const urdf::VisualSharedPtr& visual : link->visual_array) {
-        if (visual && visual->geometry) AddVisual(name, frame, *visual, &scene.visuals);
+        if (visual && visual->geometry) AddVisual(*link, *visual, &scene);
       }
-      std::string lower = name;
-      for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      if ((lower == "tcp" || lower == "tool0") && scene.probes.empty()) {
-        ProbePoint probe;
-        probe.name = "tcp";
-        probe.frame = frame;
-        probe.refer = 0;
-        probe.refer_name = root;
-        scene.probes.push_back(probe);
-      }
+    }
+    const std::string tcp = urdf_reading::ChooseTcpLink(*model, order, outline->link_order);
+    if (!tcp.empty()) {
+      ProbePoint probe;
+      probe.name = "tcp";
+      probe.frame = frame_of_link_.at(tcp);
+      probe.refer = 0;
+      probe.refer_name = root;
+      scene.probes.push_back(probe);
     }
     return scene;
   }
@@ -153,16 +133,33 @@ class UrdfSceneBuilder {
     return chain_joint;
   }
 
-  void AddVisual(const std::string& link, int frame, const urdf::Visual& visual,
-                 std::vector<VisualPart>* out) const {
+  // The labelled box that stands for a link's missing mesh: the box of its inertia.
+  VisualPart Placeholder(const urdf::Link& link, int frame, const std::string& why) const {
+    InertiaBox box;
+    if (link.inertial) {
+      const urdf::Inertial& i = *link.inertial;
+      Eigen::Matrix3d inertia;
+      inertia << i.ixx, i.ixy, i.ixz, i.ixy, i.iyy, i.iyz, i.ixz, i.iyz, i.izz;
+      box = BoxOfInertia(i.mass, inertia, ToIsometry(i.origin));
+    }
+    VisualPart part = BoxPart(link.name, frame, box.size, box.pose);
+    part.color = kPlaceholderColour;
+    part.label = link.name + ": " + why;
+    return part;
+  }
+
+  void AddVisual(const urdf::Link& link, const urdf::Visual& visual, SceneDescription* scene) {
+    const int frame = frame_of_link_.at(link.name);
     VisualPart part;
-    part.name = link;
+    part.name = link.name;
     part.frame = frame;
     part.placement = ToIsometry(visual.origin);
-    // urdfdom leaves a material without <color> black: keep the default grey then.
-    if (visual.material) {
+    // urdfdom leaves a material without <color> black: that is no colour of the author's.
+    const bool urdf_colour =
+        visual.material && outline_->coloured_materials.count(visual.material_name) != 0;
+    if (urdf_colour) {
       const urdf::Color& c = visual.material->color;
-      if (c.r > 0 || c.g > 0 || c.b > 0) part.color = Eigen::Vector3d(c.r, c.g, c.b);
+      part.color = Eigen::Vector3d(c.r, c.g, c.b);
     }
     const urdf::Geometry& geometry = *visual.geometry;
     switch (geometry.type) {
@@ -186,30 +183,31 @@ class UrdfSceneBuilder {
       }
       case urdf::Geometry::MESH: {
         const auto& mesh = static_cast<const urdf::Mesh&>(geometry);
-        std::string extension = std::filesystem::path(mesh.filename).extension().string();
-        for (char& c : extension)
-          c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        if (extension != ".stl") {
-          Fail("link '" + link + "': mesh '" + mesh.filename +
-               "' is not STL; convert it to STL (the viewer reads STL meshes only)");
-        }
-        const std::filesystem::path path = FindMesh(mesh.filename, dir_);
+        const std::filesystem::path path = urdf_reading::FindMeshFile(mesh.filename, dir_);
         if (path.empty()) {
-          Fail("link '" + link + "': mesh '" + mesh.filename + "' not found (looked in " +
-               dir_.string() + "); put the file beside the URDF");
+          scene->warnings.push_back(source_ + ": link '" + link.name + "': mesh '" + mesh.filename +
+                                    "' is not in the model's files; drawn as a box of the "
+                                    "link's inertia (submit the model with its meshes)");
+          scene->visuals.push_back(Placeholder(link, frame, "mesh missing"));
+          scene->visuals.back().mesh_filename = mesh.filename;
+          return;
         }
-        part.geometry = StlGeometry{path};
+        part.geometry = MeshFile{path, !urdf_colour};
+        part.mesh_filename = mesh.filename;
         part.scale = Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z);
+        part.fallback =
+            std::make_shared<const VisualPart>(Placeholder(link, frame, "mesh unreadable"));
         break;
       }
       default:
         return;
     }
-    out->push_back(std::move(part));
+    scene->visuals.push_back(std::move(part));
   }
 
   std::string source_;
   std::filesystem::path dir_;
+  const urdf_reading::UrdfOutline* outline_ = nullptr;
   std::map<std::string, int> frame_of_link_;
 };
 

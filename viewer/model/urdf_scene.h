@@ -1,7 +1,7 @@
-// A scene from a URDF's visual elements (box, cylinder, sphere, STL mesh), for robots that
-// come without a scene script. Parsed with urdfdom directly (the viewer links no server
-// code). Joint values follow the URDF's joint order (document order, a joint after the
-// joint that places its parent link), the server's degree-of-freedom order.
+// A scene from a URDF's visual elements (box, cylinder, sphere, mesh files), for robots that
+// come without a scene script. Parsed with urdfdom through urdf_reading, the reading the
+// server's importer shares: the same joint order (the degree-of-freedom order), the same TCP
+// link and the same mesh lookup. The viewer links no server code.
 #pragma once
 
 #include <filesystem>
@@ -12,9 +12,13 @@
 namespace mbstream::viewer {
 
 // Throws std::runtime_error "FILE: what is wrong; what to do" on bad input: unreadable
-// file, XML/URDF urdfdom rejects, floating/planar joints, a mesh that is not STL or is not
-// found (looked up relative to the URDF's directory, package:// and file:// stripped).
-// A link named "tcp" or "tool0" gets a probe "tcp" reported in the base link's frame.
+// file, XML/URDF urdfdom rejects, floating/planar joints, a zero axis, joints that form a
+// loop. A mesh is looked up as urdf_reading::FindMeshFile does, relative to
+// `asset_directory`; a mesh that is not found becomes a labelled placeholder box of the
+// link's inertia size (with a warning in SceneDescription::warnings).
+// Colours: a URDF <material> colour (inline or by name) wins; else the mesh file's own
+// material colours; else grey. The TCP link (urdf_reading::ChooseTcpLink) gets a probe
+// "tcp" reported in the base link's frame.
 SceneDescription SceneFromUrdfFile(const std::filesystem::path& path);
 SceneDescription SceneFromUrdf(const std::string& text, const std::string& source,
                                const std::filesystem::path& asset_directory);

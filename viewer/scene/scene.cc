@@ -1,5 +1,6 @@
 #include "viewer/scene/scene.h"
 
+#include <spdlog/spdlog.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
@@ -7,10 +8,12 @@
 #include <vtkProperty.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkSphereSource.h>
+#include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
 
 #include "viewer/scene/camera_rig.h"
 #include "viewer/scene/image_capture.h"
+#include "viewer/scene/mesh_cache.h"
 #include "viewer/scene/scene_error.h"
 #include "viewer/scene/visual_pipeline.h"
 
@@ -65,11 +68,24 @@ Scene::Scene(SceneDescription description, SceneOptions options)
   for (int k = 0; k < solver_.chain().frame_count(); ++k) {
     frame_matrices_.push_back(vtkSmartPointer<vtkMatrix4x4>::New());
   }
-  for (const VisualPart& part : description_.visuals) {
-    vtkSmartPointer<vtkActor> actor = MakeVisualActor(part);
-    if (part.frame != kWorldFrame) actor->SetUserMatrix(frame_matrices_.at(part.frame));
-    renderer_->AddActor(actor);
-    part_actors_.push_back(actor);
+  const std::vector<long long> shares = TriangleShares(options.triangle_budget);
+  bool textured = false;
+  for (size_t i = 0; i < description_.visuals.size(); ++i) {
+    const VisualPart& part = description_.visuals[i];
+    try {
+      AddPart(part, shares[i], &textured);
+    } catch (const SceneError& e) {
+      if (!part.fallback) throw;
+      spdlog::warn("scene '{}': {}; drawing a placeholder for '{}'", description_.title, e.what(),
+                   part.name);
+      AddPart(*part.fallback, 0, &textured);
+    }
+  }
+  if (textured) {
+    spdlog::info(
+        "scene '{}': its meshes have textures, which the viewer does not draw yet; "
+        "they are shown in their materials' colours",
+        description_.title);
   }
   const double marker = description_.scene_box_m ? 0.012 * *description_.scene_box_m : 0.015;
   for (size_t i = 0; i < description_.probes.size(); ++i) {
@@ -81,11 +97,72 @@ Scene::Scene(SceneDescription description, SceneOptions options)
   double bounds[6];
   renderer_->ComputeVisiblePropBounds(bounds);
   const Eigen::Isometry3d& base = render_pose_.frames[0];
-  PlaceCamera(renderer_, CameraSphereOf(description_, base, bounds), base);
+  if (description_.scene_box_m) {
+    PlaceCamera(renderer_, CameraSphereOf(description_, base, bounds), base);
+  } else {
+    FrameBox(renderer_, bounds, base, static_cast<double>(options.width) / options.height);
+  }
   AddLights(renderer_);
 }
 
 Scene::~Scene() = default;
+
+std::vector<long long> Scene::TriangleShares(long long budget) const {
+  std::vector<long long> counts(description_.visuals.size(), 0);
+  long long total = 0;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    const auto* file = std::get_if<MeshFile>(&description_.visuals[i].geometry);
+    if (!file) continue;
+    try {
+      counts[i] = CachedMeshFile(file->path)->triangle_count;
+    } catch (const SceneError&) {
+      // drawn by its fallback, or reported when its actors are made
+    }
+    total += counts[i];
+  }
+  std::vector<long long> shares(counts.size(), 0);
+  if (budget <= 0 || total <= budget) return shares;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    shares[i] = std::max<long long>(
+        1, static_cast<long long>(static_cast<double>(counts[i]) * static_cast<double>(budget) /
+                                  static_cast<double>(total)));
+  }
+  spdlog::info("scene '{}': {} triangles in its meshes, decimated to about {} on load",
+               description_.title, total, budget);
+  return shares;
+}
+
+void Scene::AddPart(const VisualPart& part, long long max_triangles, bool* textured) {
+  VisualActors made = MakeVisualActors(part, max_triangles);
+  for (const vtkSmartPointer<vtkActor>& actor : made.actors) {
+    if (part.frame != kWorldFrame) actor->SetUserMatrix(frame_matrices_.at(part.frame));
+    renderer_->AddActor(actor);
+    part_actors_.push_back(actor);
+  }
+  triangle_count_ += made.triangles;
+  *textured = *textured || made.textured;
+  if (!part.label.empty() && !made.actors.empty()) {
+    double bounds[6];
+    made.actors.front()->GetMapper()->GetBounds(bounds);
+    Label label;
+    label.actor = vtkSmartPointer<vtkBillboardTextActor3D>::New();
+    label.actor->SetInput(part.label.c_str());
+    label.actor->GetTextProperty()->SetFontSize(14);
+    label.actor->GetTextProperty()->SetColor(1.0, 0.9, 0.6);
+    label.actor->GetTextProperty()->SetJustificationToCentered();
+    label.frame = part.frame;
+    label.point = Eigen::Vector3d((bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
+                                  bounds[5]);  // above the part's middle
+    renderer_->AddActor(label.actor);
+    labels_.push_back(std::move(label));
+  }
+}
+
+std::vector<std::string> Scene::labels() const {
+  std::vector<std::string> texts;
+  for (const Label& label : labels_) texts.emplace_back(label.actor->GetInput());
+  return texts;
+}
 
 void Scene::SetJointValues(std::span<const double> q_si) {
   const std::lock_guard<std::mutex> lock(mutex_);
@@ -129,6 +206,13 @@ void Scene::SyncActors() {
   }
   for (size_t i = 0; i < probe_actors_.size(); ++i) {
     probe_actors_[i]->SetPosition(render_pose_.probes_world[i].data());
+  }
+  for (const Label& label : labels_) {
+    const Eigen::Vector3d at =
+        label.frame == kWorldFrame
+            ? label.point
+            : Eigen::Vector3d(render_pose_.frames[label.frame] * label.point);
+    label.actor->SetPosition(at.x(), at.y(), at.z());
   }
 }
 

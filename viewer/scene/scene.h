@@ -17,6 +17,7 @@
 #include <vector>
 
 #include <vtkActor.h>
+#include <vtkBillboardTextActor3D.h>
 #include <vtkMatrix4x4.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -24,6 +25,7 @@
 
 #include "viewer/kinematics/pose_solver.h"
 #include "viewer/model/scene_description.h"
+#include "viewer/scene/mesh_file_reader.h"
 #include "viewer/scene/probe_report.h"
 #include "viewer/scene/rgb_image.h"
 
@@ -34,12 +36,19 @@ struct SceneOptions {
   int height = 720;
   bool offscreen = false;  // needs an X display all the same (Xvfb: xvfb-run -a)
   std::string window_title = "mbstream viewer";
+  // When the model's mesh files hold more triangles than this, each is decimated on load
+  // in proportion (quadric clustering, which keeps the silhouette within a grid cell) so
+  // that the model draws about this many; 0 = never decimate. See docs/performance.md.
+  long long triangle_budget = kDefaultTriangleBudget;
+  static constexpr long long kDefaultTriangleBudget = 100'000;
 };
 
 class Scene {
  public:
   // Builds every pipeline, the camera and the lights; poses the initial joint values.
-  // Throws SceneError (unreadable STL) or std::invalid_argument (bad description).
+  // A mesh file that cannot be read is drawn as the part's fallback (a URDF link's
+  // placeholder box) with a logged warning; without one, throws SceneError. Textures are not
+  // drawn (logged once per scene). Throws std::invalid_argument on a bad description.
   Scene(SceneDescription description, SceneOptions options);
   ~Scene();
   Scene(const Scene&) = delete;
@@ -75,6 +84,10 @@ class Scene {
   vtkRenderer* renderer() { return renderer_; }
   // Number of actors that show parts (probe markers excluded).
   int part_actor_count() const { return static_cast<int>(part_actors_.size()); }
+  // Triangles drawn by the part actors.
+  long long triangle_count() const { return triangle_count_; }
+  // Texts drawn at parts (placeholders' labels), in the order of the visuals.
+  std::vector<std::string> labels() const;
 
  private:
   SceneDescription description_;
@@ -92,6 +105,17 @@ class Scene {
   std::vector<vtkSmartPointer<vtkMatrix4x4>> frame_matrices_;  // one per frame
   std::vector<vtkSmartPointer<vtkActor>> part_actors_;
   std::vector<vtkSmartPointer<vtkActor>> probe_actors_;
+  struct Label {
+    vtkSmartPointer<vtkBillboardTextActor3D> actor;
+    int frame;
+    Eigen::Vector3d point;  // in the frame
+  };
+  std::vector<Label> labels_;
+  long long triangle_count_ = 0;
+
+  void AddPart(const VisualPart& part, long long max_triangles, bool* textured);
+  // Per visual: the triangles its mesh file may keep (0 = all), from the budget.
+  std::vector<long long> TriangleShares(long long budget) const;
 };
 
 }  // namespace mbstream::viewer

@@ -1,20 +1,26 @@
 #include "viewer/scene/visual_pipeline.h"
 
+#include <vtkAppendPolyData.h>
 #include <vtkCellArray.h>
 #include <vtkPoints.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkPolyDataNormals.h>
 #include <vtkProperty.h>
-#include <vtkSTLReader.h>
 #include <vtkTransform.h>
 #include <vtkTransformPolyDataFilter.h>
 #include <vtkTriangleFilter.h>
 
+#include "viewer/scene/mesh_cache.h"
 #include "viewer/scene/scene_error.h"
 
 namespace mbstream::viewer {
 
 namespace {
+
+struct Surface {
+  vtkSmartPointer<vtkPolyDataNormals> output;
+  Eigen::Vector3d colour;
+};
 
 vtkSmartPointer<vtkTransform> PlacementTransform(const VisualPart& part) {
   auto transform = vtkSmartPointer<vtkTransform>::New();
@@ -27,31 +33,50 @@ vtkSmartPointer<vtkTransform> PlacementTransform(const VisualPart& part) {
   return transform;
 }
 
-vtkSmartPointer<vtkPolyDataNormals> SurfacePipeline(const VisualPart& part) {
+// `input` placed, triangulated, with normals. Primitive and script meshes are closed solids
+// whose faces may be written in either order: their normals are oriented outwards. A mesh
+// file's triangles are taken as they are (large; lighting is two-sided).
+vtkSmartPointer<vtkPolyDataNormals> Place(const VisualPart& part, vtkPolyData* input, bool orient) {
   auto place = vtkSmartPointer<vtkTransformPolyDataFilter>::New();
   place->SetTransform(PlacementTransform(part));
-  if (const auto* stl = std::get_if<StlGeometry>(&part.geometry)) {
-    auto reader = vtkSmartPointer<vtkSTLReader>::New();
-    reader->SetFileName(stl->path.string().c_str());
-    reader->Update();
-    if (reader->GetOutput()->GetNumberOfCells() == 0) {
-      throw SceneError(stl->path.string() + ": the STL file gives no triangles; replace it " +
-                       "with a valid STL file");
-    }
-    place->SetInputConnection(reader->GetOutputPort());
-  } else {
-    place->SetInputData(PolyDataFromMesh(std::get<Mesh>(part.geometry)));
-  }
-  auto triangles = vtkSmartPointer<vtkTriangleFilter>::New();
-  triangles->SetInputConnection(place->GetOutputPort());
+  place->SetInputData(input);
   auto normals = vtkSmartPointer<vtkPolyDataNormals>::New();
-  normals->SetInputConnection(triangles->GetOutputPort());
+  if (orient) {
+    auto triangles = vtkSmartPointer<vtkTriangleFilter>::New();
+    triangles->SetInputConnection(place->GetOutputPort());
+    normals->SetInputConnection(triangles->GetOutputPort());
+  } else {
+    normals->SetInputConnection(place->GetOutputPort());
+  }
   normals->SetFeatureAngle(40);
   normals->SplittingOn();
-  normals->ConsistencyOn();
-  normals->AutoOrientNormalsOn();  // closed solids: outward, whatever the faces' order
+  normals->SetConsistency(orient);
+  normals->SetAutoOrientNormals(orient);
   normals->Update();
   return normals;
+}
+
+std::vector<Surface> Surfaces(const VisualPart& part, long long max_triangles,
+                              VisualActors* stats) {
+  std::vector<Surface> surfaces;
+  if (const auto* file = std::get_if<MeshFile>(&part.geometry)) {
+    const std::shared_ptr<const MeshFileContents> contents =
+        CachedMeshFile(file->path, max_triangles);
+    for (const MeshSurface& surface : contents->surfaces) {
+      const bool own = file->file_colours && surface.colour.has_value();
+      surfaces.push_back(
+          {Place(part, surface.triangles, false), own ? *surface.colour : part.color});
+    }
+    if (stats) {
+      stats->triangles += contents->triangle_count;
+      stats->textured = stats->textured || contents->textured;
+    }
+  } else {
+    vtkSmartPointer<vtkPolyData> mesh = PolyDataFromMesh(std::get<Mesh>(part.geometry));
+    surfaces.push_back({Place(part, mesh, true), part.color});
+    if (stats) stats->triangles += surfaces.back().output->GetOutput()->GetNumberOfPolys();
+  }
+  return surfaces;
 }
 
 }  // namespace
@@ -71,24 +96,34 @@ vtkSmartPointer<vtkPolyData> PolyDataFromMesh(const Mesh& mesh) {
   return polydata;
 }
 
-vtkSmartPointer<vtkPolyData> VisualSurface(const VisualPart& part) {
-  return SurfacePipeline(part)->GetOutput();
+vtkSmartPointer<vtkPolyData> VisualSurface(const VisualPart& part, long long max_triangles) {
+  vtkNew<vtkAppendPolyData> append;
+  for (const Surface& surface : Surfaces(part, max_triangles, nullptr)) {
+    append->AddInputData(surface.output->GetOutput());
+  }
+  append->Update();
+  vtkSmartPointer<vtkPolyData> output = append->GetOutput();
+  return output;
 }
 
-vtkSmartPointer<vtkActor> MakeVisualActor(const VisualPart& part) {
-  auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
-  mapper->SetInputConnection(SurfacePipeline(part)->GetOutputPort());
-  mapper->ScalarVisibilityOff();
-  mapper->StaticOn();  // the geometry never changes: skip pipeline checks every frame
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  vtkProperty* property = actor->GetProperty();
-  property->SetColor(part.color.x(), part.color.y(), part.color.z());
-  property->SetAmbient(0.15);
-  property->SetDiffuse(0.8);
-  property->SetSpecular(0.25);
-  property->SetSpecularPower(30);
-  return actor;
+VisualActors MakeVisualActors(const VisualPart& part, long long max_triangles) {
+  VisualActors result;
+  for (const Surface& surface : Surfaces(part, max_triangles, &result)) {
+    auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+    mapper->SetInputConnection(surface.output->GetOutputPort());
+    mapper->ScalarVisibilityOff();
+    mapper->StaticOn();  // the geometry never changes: skip pipeline checks every frame
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(mapper);
+    vtkProperty* property = actor->GetProperty();
+    property->SetColor(surface.colour.x(), surface.colour.y(), surface.colour.z());
+    property->SetAmbient(0.15);
+    property->SetDiffuse(0.8);
+    property->SetSpecular(0.25);
+    property->SetSpecularPower(30);
+    result.actors.push_back(actor);
+  }
+  return result;
 }
 
 }  // namespace mbstream::viewer

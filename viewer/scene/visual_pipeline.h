@@ -1,7 +1,10 @@
-// One visual part as a VTK pipeline: source (mesh polydata or STL reader) -> transform
-// filter (scale and placement in its frame) -> triangles -> normals -> mapper -> actor.
-// Built and updated once; afterwards only the actor's user matrix changes.
+// One visual part as VTK pipelines: source (mesh polydata, or the surfaces of a mesh file,
+// one per material) -> transform filter (scale and placement in its frame) -> triangles ->
+// normals -> mapper -> actor. Built and updated once; afterwards only the actors' user
+// matrices change.
 #pragma once
+
+#include <vector>
 
 #include <vtkActor.h>
 #include <vtkPolyData.h>
@@ -9,15 +12,26 @@
 
 #include "viewer/model/mesh.h"
 #include "viewer/model/scene_description.h"
+#include "viewer/scene/mesh_file_reader.h"
 
 namespace mbstream::viewer {
 
 vtkSmartPointer<vtkPolyData> PolyDataFromMesh(const Mesh& mesh);
 
-// Throws SceneError naming the file when an STL file gives no triangles.
-vtkSmartPointer<vtkActor> MakeVisualActor(const VisualPart& part);
+struct VisualActors {
+  std::vector<vtkSmartPointer<vtkActor>> actors;  // one per surface
+  long long triangles = 0;
+  bool textured = false;  // the mesh file has textures, which are not drawn
+};
 
-// The surface of `part` as the actor shows it in its frame (metres): for tests and bounds.
-vtkSmartPointer<vtkPolyData> VisualSurface(const VisualPart& part);
+// Throws SceneError naming the file when a mesh file cannot be read or gives no triangles.
+// Colours: a mesh file's own material colour per surface when part.file_colours and the
+// material has one, else part.color.
+// A mesh file is decimated to about `max_triangles` (0 = as read).
+VisualActors MakeVisualActors(const VisualPart& part, long long max_triangles = 0);
+
+// The surface of `part` as its actors show it in its frame (metres), all surfaces in one:
+// for tests and bounds.
+vtkSmartPointer<vtkPolyData> VisualSurface(const VisualPart& part, long long max_triangles = 0);
 
 }  // namespace mbstream::viewer

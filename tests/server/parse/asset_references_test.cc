@@ -12,7 +12,8 @@ using ::testing::ElementsAre;
 
 TEST(AssetReferencesTest, UrdfMeshNames) {
   EXPECT_THAT(UrdfMeshAssetNames("package://robot/meshes/base.stl"),
-              ElementsAre("package://robot/meshes/base.stl", "robot/meshes/base.stl", "base.stl"));
+              ElementsAre("package://robot/meshes/base.stl", "robot/meshes/base.stl",
+                          "meshes/base.stl", "base.stl"));
   EXPECT_TRUE(MeshSupplied("file://meshes/a.stl", {"meshes/a.stl"}));
   EXPECT_TRUE(MeshSupplied("package://r/meshes/a.stl", {"a.stl"}));
   EXPECT_FALSE(MeshSupplied("package://r/meshes/a.stl", {"b.stl"}));

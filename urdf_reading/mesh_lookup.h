@@ -1,0 +1,29 @@
+// Where a URDF <mesh filename="..."> is looked for, the same way by the server (is the
+// mesh among a bundle's assets, does it exist beside the URDF) and by the viewer (which
+// file of the bundle it draws).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace mbstream::urdf_reading {
+
+// `filename` without its package:// or file:// prefix.
+std::string WithoutScheme(const std::string& filename);
+
+// The asset names that supply `filename`, best first, without repeats: as written; without
+// its scheme; for package://PKG/REST also REST; the base name.
+std::vector<std::string> MeshAssetKeys(const std::string& filename);
+
+// The files that may hold `filename` for a URDF in `directory`, best first: an absolute
+// path as written (file:///abs); each relative key of MeshAssetKeys in `directory`; for
+// package://PKG/REST also REST in `directory`'s parent (a URDF in PKG/urdf/).
+std::vector<std::filesystem::path> MeshFileCandidates(const std::string& filename,
+                                                      const std::filesystem::path& directory);
+
+// The first candidate that is a regular file, or an empty path.
+std::filesystem::path FindMeshFile(const std::string& filename,
+                                   const std::filesystem::path& directory);
+
+}  // namespace mbstream::urdf_reading

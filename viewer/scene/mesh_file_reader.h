@@ -1,0 +1,41 @@
+// Reads a mesh file with Assimp (Collada, Wavefront OBJ with its .mtl, STL binary and ASCII,
+// glTF/GLB, PLY and Assimp's other formats) into VTK surfaces, one per material.
+//
+// Coordinates are the file's, in metres: a Collada <unit meter="..."> is applied; its
+// <up_axis> is not (the mesh stays in the URDF link's axes, as rviz draws it: published
+// robot descriptions are authored and checked there, and some mark Y_UP meshes that rviz
+// draws unrotated). Other formats carry no unit and are taken as metres.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <Eigen/Core>
+
+namespace mbstream::viewer {
+
+struct MeshSurface {
+  vtkSmartPointer<vtkPolyData> triangles;  // points and triangles only (no normals)
+  std::optional<Eigen::Vector3d> colour;   // the material's diffuse colour, if it has one
+};
+
+struct MeshFileContents {
+  std::vector<MeshSurface> surfaces;  // one per material that has triangles
+  long long triangle_count = 0;       // after decimation
+  long long file_triangle_count = 0;  // as read
+  bool textured = false;              // a material has a texture (not drawn)
+};
+
+// Throws SceneError naming the file and Assimp's message when it cannot be read or holds
+// no triangles.
+MeshFileContents ReadMeshFile(const std::filesystem::path& path);
+
+// `contents` with its surfaces decimated to about `max_triangles` in all (quadric
+// clustering: the outline stays within a grid cell of about extent / sqrt(triangles));
+// unchanged when it has no more.
+MeshFileContents Decimate(const MeshFileContents& contents, long long max_triangles);
+
+}  // namespace mbstream::viewer
