@@ -12,12 +12,14 @@ namespace {
 struct SubmitOptions {
   std::string model_path, scene_path, name;
   std::vector<std::string> assets;
+  bool repair = false;
 };
 
 int Submit(const ClientOptions& client, const SubmitOptions& options) {
   v1::SubmitModelRequest request;
   *request.mutable_bundle() =
       ReadModelBundle(options.model_path, options.scene_path, options.assets, options.name);
+  request.mutable_bundle()->set_repair(options.repair);
   grpc::ClientContext context;
   v1::ModelInfo info;
   const grpc::Status status = ConnectSimulation(client)->SubmitModel(&context, request, &info);
@@ -47,6 +49,8 @@ void AddSubmitCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client
   command->add_option("--asset", options->assets, "a mesh file the URDF or scene uses")
       ->check(CLI::ExistingFile);
   command->add_option("--name", options->name, "display name (default: the URDF's robot name)");
+  command->add_flag("--repair", options->repair,
+                    "repair the defects published URDFs commonly carry (each one a warning)");
   command->callback([client, options, exit_code] {
     try {
       *exit_code = Submit(*client, *options);

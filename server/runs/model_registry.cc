@@ -52,7 +52,8 @@ UrdfImport ImportBundle(const v1::ModelBundle& bundle, const ServerLimits& limit
   std::set<std::string> assets;
   for (const v1::Asset& asset : bundle.assets()) assets.insert(asset.name());
   const std::string source = SourceName(bundle);
-  UrdfImport import = ImportUrdf(bundle.urdf(), source, assets);
+  UrdfImport import =
+      ImportUrdf(bundle.urdf(), source, assets, UrdfImportOptions{.repair = bundle.repair()});
   const int links = static_cast<int>(import.model.frames.size());
   if (links > limits.max_links) {
     throw RequestError(RequestErrorKind::kResourceExhausted,
