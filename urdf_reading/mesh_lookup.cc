@@ -42,10 +42,24 @@ std::string WithoutScheme(const std::string& filename) {
   return filename;
 }
 
+std::string BundleAssetName(const std::string& filename) {
+  const std::filesystem::path normal =
+      std::filesystem::path(WithoutScheme(filename)).lexically_normal();
+  std::filesystem::path relative;
+  bool leading = true;
+  for (const std::filesystem::path& step : normal.relative_path()) {
+    if (leading && (step == ".." || step == ".")) continue;
+    leading = false;
+    relative /= step;
+  }
+  return relative.generic_string();
+}
+
 std::vector<std::string> MeshAssetKeys(const std::string& filename) {
   std::vector<std::string> keys;
   AddOnce(&keys, filename);
   AddOnce(&keys, WithoutScheme(filename));
+  AddOnce(&keys, BundleAssetName(filename));
   AddOnce(&keys, PackageRest(filename));
   AddOnce(&keys, BaseName(filename));
   return keys;

@@ -12,8 +12,15 @@ namespace mbstream::urdf_reading {
 // `filename` without its package:// or file:// prefix.
 std::string WithoutScheme(const std::string& filename);
 
+// The name under which `mbstream submit` stores the file of `filename`: the path the URDF
+// writes, without its scheme, lexically normalised, as a relative path inside the bundle
+// (a leading '/' and leading '..' steps dropped): "package://demo/meshes/a.stl" ->
+// "demo/meshes/a.stl", "../meshes/visual/a.stl" -> "meshes/visual/a.stl". Empty for an
+// empty filename.
+std::string BundleAssetName(const std::string& filename);
+
 // The asset names that supply `filename`, best first, without repeats: as written; without
-// its scheme; for package://PKG/REST also REST; the base name.
+// its scheme; BundleAssetName; for package://PKG/REST also REST; the base name.
 std::vector<std::string> MeshAssetKeys(const std::string& filename);
 
 // The files that may hold `filename` for a URDF in `directory`, best first: an absolute

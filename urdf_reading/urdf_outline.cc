@@ -13,6 +13,18 @@ std::string AttributeOf(const TiXmlElement& element, const char* name) {
   return value == nullptr ? std::string() : std::string(value);
 }
 
+// The <geometry><mesh filename> of every `part` element (visual or collision) of `link`.
+void NoteMeshes(const TiXmlElement& link, const char* part, std::vector<std::string>* meshes) {
+  for (const TiXmlElement* e = link.FirstChildElement(part); e != nullptr;
+       e = e->NextSiblingElement(part)) {
+    const TiXmlElement* geometry = e->FirstChildElement("geometry");
+    const TiXmlElement* mesh = geometry == nullptr ? nullptr : geometry->FirstChildElement("mesh");
+    if (mesh != nullptr && mesh->Attribute("filename") != nullptr) {
+      meshes->push_back(AttributeOf(*mesh, "filename"));
+    }
+  }
+}
+
 void NoteMaterial(const TiXmlElement& material, UrdfOutline* outline) {
   const std::string name = AttributeOf(material, "name");
   if (!name.empty() && material.FirstChildElement("color") != nullptr) {
@@ -41,6 +53,8 @@ std::optional<UrdfOutline> ReadUrdfOutline(const std::string& text, std::string*
     if (tag == "material") NoteMaterial(*e, &outline);
     if (tag == "link") {
       outline.link_order.push_back(AttributeOf(*e, "name"));
+      NoteMeshes(*e, "visual", &outline.visual_meshes);
+      NoteMeshes(*e, "collision", &outline.collision_meshes);
       for (const TiXmlElement* visual = e->FirstChildElement("visual"); visual != nullptr;
            visual = visual->NextSiblingElement("visual")) {
         if (const TiXmlElement* material = visual->FirstChildElement("material")) {

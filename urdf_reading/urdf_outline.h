@@ -12,6 +12,9 @@ namespace mbstream::urdf_reading {
 struct UrdfOutline {
   std::vector<std::string> link_order;   // <link> names in document order
   std::vector<std::string> joint_order;  // <joint> names in document order
+  // The <mesh filename> of every visual and of every collision, as written, document order.
+  std::vector<std::string> visual_meshes;
+  std::vector<std::string> collision_meshes;
   // Names of the materials that have a <color> (top level or inline in a <visual>):
   // urdfdom leaves a material without one black, which is not the author's colour.
   std::set<std::string> coloured_materials;

@@ -26,10 +26,12 @@ struct SimulateOptions {
   std::string out_dir;
   RunOverrides overrides;
   bool accept_untrusted = false;
+  bool repair = false;
 };
 
 int RunSimulate(const SimulateOptions& options) {
-  UrdfImport import = ImportUrdfFile(options.model_path);
+  UrdfImport import =
+      ImportUrdfFile(options.model_path, UrdfImportOptions{.repair = options.repair});
   for (const std::string& warning : import.warnings) spdlog::warn("{}", warning);
   v1::RunSpec spec;
   std::string source = "(command line)";
@@ -81,6 +83,8 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   options->overrides.AddTo(*command);
   command->add_flag("--accept-untrusted", options->accept_untrusted,
                     "exit 0 even when the finished run's trust is low (else exit 4)");
+  command->add_flag("--repair", options->repair,
+                    "repair the defects published URDFs commonly carry (each one a warning)");
   command->callback([options, exit_code] {
     try {
       *exit_code = RunSimulate(*options);

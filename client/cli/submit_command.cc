@@ -1,4 +1,5 @@
-// `mbstream submit MODEL.urdf|DIR [--scene FILE] [--asset FILE]... [--name NAME]`
+// `mbstream submit MODEL.urdf|DIR [--scene FILE] [--asset FILE]... [--package-path DIR]...
+//  [--with-collision] [--name NAME] [--repair]`
 #include <iostream>
 
 #include "client/cli/server_commands.h"
@@ -10,14 +11,16 @@ namespace mbstream::cli {
 namespace {
 
 struct SubmitOptions {
-  std::string model_path, scene_path, name;
-  std::vector<std::string> assets;
+  BundleFiles files;
+  bool repair = false;
 };
 
 int Submit(const ClientOptions& client, const SubmitOptions& options) {
   v1::SubmitModelRequest request;
-  *request.mutable_bundle() =
-      ReadModelBundle(options.model_path, options.scene_path, options.assets, options.name);
+  BundleRead read = ReadModelBundle(options.files);
+  for (const std::string& warning : read.warnings) std::cerr << "warning: " << warning << "\n";
+  *request.mutable_bundle() = std::move(read.bundle);
+  request.mutable_bundle()->set_repair(options.repair);
   grpc::ClientContext context;
   v1::ModelInfo info;
   const grpc::Status status = ConnectSimulation(client)->SubmitModel(&context, request, &info);
@@ -38,15 +41,26 @@ void AddSubmitCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client
   CLI::App* command =
       app.add_subcommand("submit", "compile and store a model on the server; prints its id");
   command
-      ->add_option("model", options->model_path,
-                   "URDF file, or a model directory (one .urdf, its .scene and STL files)")
+      ->add_option("model", options->files.model_path,
+                   "URDF file, or a model directory (one .urdf, its .scene); the meshes they "
+                   "refer to are found and attached")
       ->required()
       ->check(CLI::ExistingPath);
-  command->add_option("--scene", options->scene_path, "scene script for viewers")
+  command->add_option("--scene", options->files.scene_path, "scene script for viewers")
       ->check(CLI::ExistingFile);
-  command->add_option("--asset", options->assets, "a mesh file the URDF or scene uses")
+  command->add_option("--asset", options->files.asset_paths, "a mesh file the URDF or scene uses")
       ->check(CLI::ExistingFile);
-  command->add_option("--name", options->name, "display name (default: the URDF's robot name)");
+  command
+      ->add_option("--package-path", options->files.package_paths,
+                   "a folder searched for the ROS packages of package:// meshes (before "
+                   "$MBSTREAM_PACKAGE_PATH, colon separated)")
+      ->check(CLI::ExistingDirectory);
+  command->add_flag("--with-collision", options->files.with_collision,
+                    "attach the collision meshes too (the engine does not need them)");
+  command->add_option("--name", options->files.name,
+                      "display name (default: the URDF's robot name)");
+  command->add_flag("--repair", options->repair,
+                    "repair the defects published URDFs commonly carry (each one a warning)");
   command->callback([client, options, exit_code] {
     try {
       *exit_code = Submit(*client, *options);

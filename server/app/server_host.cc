@@ -8,7 +8,9 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <chrono>
+#include <limits>
 
 #include "net/tls_files.h"
 #include "server/common/check.h"
@@ -92,8 +94,13 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   grpc::ResourceQuota quota("mbstream-server");
   quota.SetMaxThreads(config.limits.max_subscribers + kUnaryThreads);
   builder.SetResourceQuota(quota);
-  builder.SetMaxReceiveMessageSize(config.max_message_bytes);
-  builder.SetMaxSendMessageSize(config.max_message_bytes);
+  // A bundle travels in one SubmitModel message (and one GetModel reply): the message limit
+  // holds the largest bundle allowed, plus 1 MiB for the other fields and framing.
+  const int message_bytes = static_cast<int>(std::min<int64_t>(
+      std::numeric_limits<int>::max(),
+      std::max<int64_t>(config.max_message_bytes, config.limits.max_model_bytes + (1 << 20))));
+  builder.SetMaxReceiveMessageSize(message_bytes);
+  builder.SetMaxSendMessageSize(message_bytes);
   // A unix socket is created owner-only (the umask applies while gRPC binds it).
   const bool unix_socket = config.listen.rfind("unix:", 0) == 0;
   const mode_t previous_mask = unix_socket ? umask(0077) : 0;

@@ -24,7 +24,8 @@ struct ServerConfig {
   std::string data_dir = "mbstream-data";  // SQLite database and nothing else
   std::string models_dir;                  // built-in models (one folder each); empty = none
   ServerLimits limits;
-  int max_message_bytes = 64 << 20;  // largest gRPC message either way
+  int max_message_bytes = 64 << 20;  // largest gRPC message either way (raised to hold
+                                     // limits.max_model_bytes)
   net::ServerTls tls;                // certificate and key files; empty = insecure
   std::string token_file;            // tokens and roles (see authorizer.h); empty = none
 };

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
       std::filesystem::exists(MBSTREAM_DEFAULT_MODELS_DIR) ? MBSTREAM_DEFAULT_MODELS_DIR : "";
   mbstream::ServerLimits& limits = config.limits;
   double max_model_mb = static_cast<double>(limits.max_model_bytes) / (1 << 20);
+  double max_asset_mb = static_cast<double>(limits.max_asset_bytes) / (1 << 20);
   double max_models_mb = static_cast<double>(limits.max_total_model_bytes) / (1 << 20);
   double max_message_mb = static_cast<double>(config.max_message_bytes) / (1 << 20);
   std::string log_level = "info";
@@ -54,8 +55,16 @@ int main(int argc, char** argv) {
                  "most probe reports kept for one run")
       ->check(CLI::Range(int64_t{1}, int64_t{1} << 40))
       ->capture_default_str();
-  app.add_option("--max-model-mb", max_model_mb, "largest model bundle, MiB")
-      ->check(CLI::PositiveNumber)
+  app.add_option("--max-model-mb", max_model_mb,
+                 "largest model bundle (URDF, scene and assets), MiB; the gRPC message limit "
+                 "is raised to hold it")
+      ->check(CLI::Range(1e-3, 2000.0))
+      ->capture_default_str();
+  app.add_option("--max-asset-mb", max_asset_mb, "largest asset (mesh file) of a model, MiB")
+      ->check(CLI::Range(1e-3, 2000.0))
+      ->capture_default_str();
+  app.add_option("--max-assets", limits.max_assets, "most assets (mesh files) of a model")
+      ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   app.add_option("--max-models", limits.max_models, "most models users may store (built-ins apart)")
       ->check(CLI::Range(1, 1000000))
@@ -103,7 +112,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   limits.max_model_bytes = static_cast<int64_t>(max_model_mb * (1 << 20));
-  config.max_message_bytes = static_cast<int>(max_message_mb * (1 << 20));
+  limits.max_asset_bytes = static_cast<int64_t>(max_asset_mb * (1 << 20));
+  // A bundle travels in one SubmitModel message: the message limit holds the largest one
+  // (plus 1 MiB for the request's other fields and framing).
+  config.max_message_bytes =
+      static_cast<int>(std::min(2047.0, std::max(max_message_mb, max_model_mb + 1.0)) * (1 << 20));
   limits.max_total_model_bytes = static_cast<int64_t>(std::min(max_models_mb, 1e12) * (1 << 20));
   spdlog::set_level(spdlog::level::from_str(log_level));
 

@@ -84,11 +84,12 @@ UrdfImport ImportUrdf(const std::string& text, const std::string& source,
       ParseWithUrdfdom(facts.urdfdom_text, diagnostics);
   const JointList joints = JointsParentFirst(*urdf, facts, diagnostics);
 
-  CheckMeshes(*urdf->getRoot(), assets, diagnostics);
+  int missing_collision = 0;
+  CheckMeshes(*urdf->getRoot(), assets, diagnostics, &missing_collision);
   ModelBuilder builder(urdf->getName(), urdf->getRoot()->name);
   for (const auto& joint : joints) {
     const urdf::Link& child = *urdf->getLink(joint->child_link_name);
-    CheckMeshes(child, assets, diagnostics);
+    CheckMeshes(child, assets, diagnostics, &missing_collision);
     if (joint->type == urdf::Joint::FIXED) {
       const Pose X_PL = ToPose(joint->parent_to_joint_origin_transform);
       const RigidInertia inertia = ConvertInertia(child, "", diagnostics);
@@ -103,6 +104,11 @@ UrdfImport ImportUrdf(const std::string& text, const std::string& source,
         builder.AddMovingLink(child.name, joint->parent_link_name, converted, inertia);
       });
     }
+  }
+  if (missing_collision > 0) {
+    diagnostics.Warn(source + ": " + std::to_string(missing_collision) +
+                     " collision mesh(es) not supplied; the engine does not need them "
+                     "(mbstream submit --with-collision attaches them)");
   }
   const std::string tcp = ChooseTcp(*urdf, joints, facts, diagnostics);
   if (!tcp.empty()) Guarded(source, [&] { builder.SetTcp(tcp); });

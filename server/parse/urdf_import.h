@@ -16,10 +16,11 @@
 // cannot parse (urdfdom's own words quoted), a duplicate link or joint name, a link with
 // two parents or a closed loop, a floating or planar joint, a moving link without positive
 // mass, an unphysical inertia, a zero axis, lower limit > upper, negative limits or
-// damping, a referenced mesh that is not supplied. Input that is merely odd imports with
+// damping. Input that is merely odd imports with
 // a warning in the same form: a non-unit axis (normalised), a revolute joint without
 // <limit> (unlimited), zero effort or velocity limits (read as none), an empty position
-// range, a mass below 1e-6 kg, a scaled mesh, ignored features (friction, <mimic>, limits
+// range, a mass below 1e-6 kg, a scaled mesh, a visual mesh that is not supplied (collision
+// meshes not supplied: one warning), ignored features (friction, <mimic>, limits
 // of a continuous joint), no TCP, no moving joint.
 #pragma once
 
@@ -45,8 +46,9 @@ struct UrdfImportOptions {
 };
 
 // Imports URDF XML `text`. `source` names the file in messages. `assets` are the mesh
-// files the user supplied, each as written in the URDF's filename attribute or as its
-// base name; a mesh referenced by a visual or collision and not among them is an error.
+// files the user supplied, each under one of the names UrdfMeshAssetNames gives; a mesh
+// referenced by a visual or collision and not among them is a warning (the physics never
+// reads a mesh).
 UrdfImport ImportUrdf(const std::string& text, const std::string& source,
                       const std::set<std::string>& assets, const UrdfImportOptions& options = {});
 

@@ -23,13 +23,20 @@ bool MeshSupplied(const std::string& filename, const std::set<std::string>& asse
 }
 
 void CheckMeshes(const urdf::Link& link, const std::set<std::string>& assets,
-                 const UrdfDiagnostics& diagnostics) {
+                 const UrdfDiagnostics& diagnostics, int* missing_collision) {
   const auto check = [&](const urdf::GeometrySharedPtr& geometry, const char* part) {
     const auto mesh = std::dynamic_pointer_cast<const urdf::Mesh>(geometry);
     if (mesh == nullptr) return;
     if (!MeshSupplied(mesh->filename, assets)) {
-      throw InputError(diagnostics.Link(link.name) + ": " + part + " mesh '" + mesh->filename +
-                       "' is not supplied; pass it with --asset " + BaseName(mesh->filename));
+      if (std::string(part) == "collision") {
+        ++*missing_collision;
+        return;
+      }
+      diagnostics.Warn(diagnostics.Link(link.name) + ": " + part + " mesh '" + mesh->filename +
+                       "' is not supplied; the physics does not need it and viewers draw a " +
+                       "placeholder box (mbstream submit attaches the meshes it finds; pass " +
+                       "--package-path DIR or --asset " + BaseName(mesh->filename) + ")");
+      return;
     }
     const urdf::Vector3& s = mesh->scale;
     if (s.x != 1.0 || s.y != 1.0 || s.z != 1.0) {

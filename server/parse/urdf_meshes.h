@@ -17,10 +17,12 @@ namespace mbstream {
 // viewer looks the mesh up by too).
 bool MeshSupplied(const std::string& filename, const std::set<std::string>& assets);
 
-// Throws InputError naming the link and the file for a visual or collision mesh of `link`
-// that is not supplied; warns about scaled meshes.
+// Warns, naming the link and the file, about a visual mesh of `link` that is not supplied
+// (the physics never reads a mesh; viewers draw a placeholder) and about scaled meshes;
+// counts the collision meshes that are not supplied in `*missing_collision` (the caller
+// warns once: they are only attached on request).
 void CheckMeshes(const urdf::Link& link, const std::set<std::string>& assets,
-                 const UrdfDiagnostics& diagnostics);
+                 const UrdfDiagnostics& diagnostics, int* missing_collision);
 
 // The files among `mesh_files` (as written in the URDF) that exist relative to
 // `directory`, looked up as urdf_reading::FindMeshFile does (the viewer's lookup too).

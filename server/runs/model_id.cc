@@ -59,6 +59,8 @@ std::string ModelContentId(const v1::ModelBundle& bundle) {
     hash.AddField(asset->name());
     hash.AddField(asset->data());
   }
+  // Appended only when set, so that the ids of bundles without repairs stay as they were.
+  if (bundle.repair()) hash.AddField("repair");
   return "m-" + hash.HexDigest().substr(0, 24);
 }
 

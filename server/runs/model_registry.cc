@@ -27,7 +27,16 @@ int64_t BundleBytes(const v1::ModelBundle& bundle) {
   return bytes;
 }
 
-void ValidateAssetNames(const v1::ModelBundle& bundle) {
+// Names (present, unique) and the per-asset limits, before anything is parsed.
+void ValidateAssets(const v1::ModelBundle& bundle, const ServerLimits& limits) {
+  if (bundle.assets_size() > limits.max_assets) {
+    throw RequestError(RequestErrorKind::kResourceExhausted,
+                       "the model bundle has " + std::to_string(bundle.assets_size()) +
+                           " assets, more than this server's limit of " +
+                           std::to_string(limits.max_assets) +
+                           "; leave out meshes nothing draws or ask the operator to raise "
+                           "--max-assets");
+  }
   std::set<std::string> names;
   for (int i = 0; i < bundle.assets_size(); ++i) {
     const std::string& name = bundle.assets(i).name();
@@ -38,6 +47,15 @@ void ValidateAssetNames(const v1::ModelBundle& bundle) {
     if (!names.insert(name).second) {
       throw InputError("bundle.assets[" + std::to_string(i) + "]: asset '" + name +
                        "' is given twice; send each file once");
+    }
+    const int64_t bytes = static_cast<int64_t>(bundle.assets(i).data().size());
+    if (bytes > limits.max_asset_bytes) {
+      throw RequestError(RequestErrorKind::kResourceExhausted,
+                         "asset '" + name + "' has " + std::to_string(bytes) +
+                             " bytes, more than this server's limit of " +
+                             std::to_string(limits.max_asset_bytes) +
+                             " per asset; simplify the mesh or ask the operator to raise "
+                             "--max-asset-mb");
     }
   }
 }
@@ -52,7 +70,8 @@ UrdfImport ImportBundle(const v1::ModelBundle& bundle, const ServerLimits& limit
   std::set<std::string> assets;
   for (const v1::Asset& asset : bundle.assets()) assets.insert(asset.name());
   const std::string source = SourceName(bundle);
-  UrdfImport import = ImportUrdf(bundle.urdf(), source, assets);
+  UrdfImport import =
+      ImportUrdf(bundle.urdf(), source, assets, UrdfImportOptions{.repair = bundle.repair()});
   const int links = static_cast<int>(import.model.frames.size());
   if (links > limits.max_links) {
     throw RequestError(RequestErrorKind::kResourceExhausted,
@@ -89,7 +108,7 @@ Prepared Prepare(const v1::ModelBundle& submitted, bool builtin, const ServerLim
   if (submitted.urdf().empty()) {
     throw InputError("bundle.urdf is empty; send the URDF text of the model");
   }
-  ValidateAssetNames(submitted);
+  ValidateAssets(submitted, limits);
   UrdfImport import = ImportBundle(submitted, limits);
 
   // Assets nothing refers to are dropped (not stored, not sent to viewers), with a warning:

@@ -6,16 +6,20 @@
 namespace mbstream {
 
 struct ServerLimits {
-  int64_t max_model_bytes = 64 << 20;     // URDF + scene + assets of one model, bytes
-  int max_links = 256;                    // frames (links and named points) of one model
-  int workers = 2;                        // runs integrating at the same time
-  int max_queued_runs = 64;               // runs waiting for a worker
-  int max_subscribers = 64;               // Subscribe + WatchRun streams at the same time
-  double max_duration_s = 24 * 3600.0;    // s, simulated time of one run
-  int64_t max_output_frames = 2'000'000;  // frames of one run
-  long max_internal_steps = 100'000'000;  // integrator steps of one run (budget cap)
-  double max_run_cpu_s = 3600.0;          // s of CPU of one run (budget cap)
-  int subscriber_queue_frames = 4096;     // frames buffered per subscriber before dropping
+  // A model bundle: the defaults hold a PR2 (46 MB of visual meshes, about twice that with
+  // its collision meshes).
+  int64_t max_model_bytes = int64_t{128} << 20;  // URDF + scene + assets of one model, bytes
+  int64_t max_asset_bytes = int64_t{64} << 20;   // one asset (mesh file), bytes
+  int max_assets = 1000;                         // assets of one model
+  int max_links = 256;                           // frames (links and named points) of one model
+  int workers = 2;                               // runs integrating at the same time
+  int max_queued_runs = 64;                      // runs waiting for a worker
+  int max_subscribers = 64;                      // Subscribe + WatchRun streams at the same time
+  double max_duration_s = 24 * 3600.0;           // s, simulated time of one run
+  int64_t max_output_frames = 2'000'000;         // frames of one run
+  long max_internal_steps = 100'000'000;         // integrator steps of one run (budget cap)
+  double max_run_cpu_s = 3600.0;                 // s of CPU of one run (budget cap)
+  int subscriber_queue_frames = 4096;            // frames buffered per subscriber before dropping
   double probe_grace_s = 2.0;             // s a finished run waits for its viewers' last probes
   double subscribe_start_s = 10.0;        // s a Subscribe stream may take to send `start`
   int64_t max_probe_reports = 1'000'000;  // probe reports kept for one run

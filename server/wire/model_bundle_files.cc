@@ -3,15 +3,23 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 
 #include "server/common/check.h"
+#include "server/parse/asset_references.h"
+#include "server/wire/mesh_file_search.h"
+#include "urdf_reading/mesh_lookup.h"
+#include "urdf_reading/urdf_outline.h"
 
 namespace mbstream {
 
 namespace {
 
 namespace fs = std::filesystem;
+
+constexpr int kMaxUrdfDepth = 4;  // folder levels searched below a model folder for a .urdf
 
 std::string ReadFile(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -26,11 +34,28 @@ std::string Lower(std::string s) {
   return s;
 }
 
+bool EndsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+bool IsXacro(const fs::path& path) { return EndsWith(Lower(path.filename().string()), ".xacro"); }
+
+[[noreturn]] void RefuseXacro(const fs::path& xacro) {
+  std::string urdf = xacro.filename().string();
+  urdf = urdf.substr(0, urdf.size() - 6);  // without .xacro
+  if (!EndsWith(Lower(urdf), ".urdf")) urdf += ".urdf";
+  throw InputError(xacro.string() +
+                   ": is a xacro macro file, not a URDF; expand it first with ROS's xacro "
+                   "(`xacro " +
+                   xacro.string() + " > " + urdf + "`) and submit " + urdf);
+}
+
 // Files directly in `dir` with extension `ext` (lower case, with the dot), sorted.
 std::vector<fs::path> FilesWithExtension(const fs::path& dir, const std::string& ext) {
   std::vector<fs::path> files;
   for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
-    if (entry.is_regular_file() && Lower(entry.path().extension().string()) == ext) {
+    if (entry.is_regular_file() && EndsWith(Lower(entry.path().filename().string()), ext)) {
       files.push_back(entry.path());
     }
   }
@@ -38,50 +63,152 @@ std::vector<fs::path> FilesWithExtension(const fs::path& dir, const std::string&
   return files;
 }
 
-void AddAsset(const std::string& name, const fs::path& path, v1::ModelBundle* bundle) {
-  for (const v1::Asset& asset : bundle->assets()) {
-    if (asset.name() == name) {
-      throw InputError("asset '" + name + "' (" + path.string() +
-                       ") is given twice; rename one of the files");
+// Files below `dir` (at most kMaxUrdfDepth levels, hidden folders skipped) ending in `ext`.
+std::vector<fs::path> FilesBelow(const fs::path& dir, const std::string& ext) {
+  std::vector<fs::path> files;
+  std::error_code error;
+  for (auto it = fs::recursive_directory_iterator(dir, error);
+       !error && it != fs::recursive_directory_iterator(); it.increment(error)) {
+    const std::string name = it->path().filename().string();
+    if (it->is_directory(error) && (name.starts_with(".") || it.depth() >= kMaxUrdfDepth)) {
+      it.disable_recursion_pending();
+    } else if (it->is_regular_file(error) && EndsWith(Lower(name), ext)) {
+      files.push_back(it->path());
     }
   }
-  v1::Asset* asset = bundle->add_assets();
-  asset->set_name(name);
-  asset->set_data(ReadFile(path));
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+std::string Joined(const std::vector<fs::path>& paths) {
+  std::string text;
+  for (const fs::path& path : paths) text += (text.empty() ? "" : ", ") + path.string();
+  return text;
+}
+
+// The URDF of a model folder.
+fs::path UrdfOfFolder(const fs::path& dir) {
+  std::vector<fs::path> urdfs = FilesWithExtension(dir, ".urdf");
+  if (urdfs.empty()) urdfs = FilesBelow(dir, ".urdf");
+  if (urdfs.size() == 1) return urdfs[0];
+  if (urdfs.empty()) {
+    const std::vector<fs::path> xacros = FilesBelow(dir, ".xacro");
+    for (const fs::path& xacro : xacros) {
+      if (EndsWith(Lower(xacro.filename().string()), ".urdf.xacro")) RefuseXacro(xacro);
+    }
+    if (!xacros.empty()) RefuseXacro(xacros[0]);
+  }
+  throw InputError(dir.string() + ": a model directory needs exactly one .urdf file, found " +
+                   std::to_string(urdfs.size()) +
+                   (urdfs.empty() ? std::string() : " (" + Joined(urdfs) + ")") +
+                   "; name the URDF file instead");
+}
+
+// The assets of a bundle being read: one per name, each from one file.
+class AssetSet {
+ public:
+  explicit AssetSet(v1::ModelBundle* bundle) : bundle_(bundle) {}
+
+  void Add(const std::string& name, const fs::path& path, const std::string& reference) {
+    const fs::path file = fs::weakly_canonical(path);
+    const auto [it, inserted] = files_.emplace(name, std::make_pair(file, reference));
+    if (!inserted) {
+      if (it->second.first == file) return;  // the same file referenced again: stored once
+      throw InputError("asset '" + name + "' would hold two files: " + it->second.first.string() +
+                       " (for '" + it->second.second + "') and " + file.string() + " (for '" +
+                       reference + "'); rename one of the files");
+    }
+    v1::Asset* asset = bundle_->add_assets();
+    asset->set_name(name);
+    asset->set_data(ReadFile(path));
+  }
+
+ private:
+  v1::ModelBundle* bundle_;
+  std::map<std::string, std::pair<fs::path, std::string>> files_;
+};
+
+std::string NotFound(const std::string& what, const std::string& filename,
+                     const std::vector<fs::path>& tried, const std::string& note) {
+  std::string message = what + " '" + filename + "' was not found; tried " + Joined(tried);
+  if (!note.empty()) message += "; " + note;
+  if (filename.starts_with("package://")) {
+    message +=
+        "; add --package-path DIR (a folder holding the package) or set "
+        "MBSTREAM_PACKAGE_PATH";
+  }
+  return message + " (the model is sent without it)";
 }
 
 }  // namespace
 
-v1::ModelBundle ReadModelBundle(const std::string& model_path, const std::string& scene_path,
-                                const std::vector<std::string>& asset_paths,
-                                const std::string& name) {
-  v1::ModelBundle bundle;
-  bundle.set_name(name);
-  fs::path urdf_path = model_path;
+BundleRead ReadModelBundle(const BundleFiles& files) {
+  BundleRead read;
+  v1::ModelBundle& bundle = read.bundle;
+  bundle.set_name(files.name);
+  fs::path urdf_path = files.model_path;
+  fs::path scene_path = files.scene_path;
   std::error_code error;
-  if (fs::is_directory(model_path, error)) {
-    const fs::path dir = model_path;
-    const std::vector<fs::path> urdfs = FilesWithExtension(dir, ".urdf");
-    if (urdfs.size() != 1) {
-      throw InputError(model_path + ": a model directory needs exactly one .urdf file, found " +
-                       std::to_string(urdfs.size()) + "; name the URDF file instead");
-    }
-    urdf_path = urdfs[0];
+  if (fs::is_directory(urdf_path, error)) {
+    const fs::path dir = urdf_path;
+    urdf_path = UrdfOfFolder(dir);
     const std::vector<fs::path> scenes = FilesWithExtension(dir, ".scene");
-    if (scenes.size() == 1 && scene_path.empty()) bundle.set_scene_script(ReadFile(scenes[0]));
-    for (const fs::directory_entry& entry : fs::recursive_directory_iterator(dir)) {
-      if (entry.is_regular_file() && Lower(entry.path().extension().string()) == ".stl") {
-        AddAsset(fs::relative(entry.path(), dir).generic_string(), entry.path(), &bundle);
-      }
-    }
+    if (scenes.size() == 1 && scene_path.empty()) scene_path = scenes[0];
   }
+  if (IsXacro(urdf_path)) RefuseXacro(urdf_path);
   bundle.set_urdf(ReadFile(urdf_path));
   bundle.set_urdf_file_name(urdf_path.string());
   if (!scene_path.empty()) bundle.set_scene_script(ReadFile(scene_path));
-  for (const std::string& path : asset_paths) {
-    AddAsset(fs::path(path).filename().string(), path, &bundle);
+
+  AssetSet assets(&bundle);
+  std::string outline_error;
+  const std::optional<urdf_reading::UrdfOutline> outline =
+      urdf_reading::ReadUrdfOutline(bundle.urdf(), &outline_error);
+  if (outline) {  // else the server names the XML error
+    const MeshFileSearch search(urdf_path.parent_path(), PackagePath(files.package_paths));
+    std::set<std::string> seen;  // each reference looked up once
+    const auto attach = [&](const std::vector<std::string>& meshes, const std::string& what) {
+      for (const std::string& filename : meshes) {
+        const std::string name = urdf_reading::BundleAssetName(filename);
+        if (name.empty() || !seen.insert(filename).second) continue;
+        const MeshSearch found = search.Find(filename);
+        if (found.found.empty()) {
+          read.warnings.push_back(urdf_path.string() + ": " +
+                                  NotFound(what, filename, found.tried, found.note));
+        } else {
+          assets.Add(name, found.found, filename);
+        }
+      }
+    };
+    attach(outline->visual_meshes, "visual mesh");
+    if (files.with_collision) attach(outline->collision_meshes, "collision mesh");
   }
-  return bundle;
+  if (!bundle.scene_script().empty()) {
+    const fs::path scene_dir = scene_path.parent_path();
+    for (const std::string& part : ScenePartNames(bundle.scene_script())) {
+      for (const std::string& name : ScenePartAssetNames(part)) {
+        if (fs::is_regular_file(scene_dir / name, error)) {
+          assets.Add(name, scene_dir / name, "Part " + part);
+          break;
+        }
+      }
+    }
+  }
+  for (const std::string& path : files.asset_paths) {
+    assets.Add(fs::path(path).filename().string(), path, path);
+  }
+  return read;
+}
+
+v1::ModelBundle ReadModelBundle(const std::string& model_path, const std::string& scene_path,
+                                const std::vector<std::string>& asset_paths,
+                                const std::string& name) {
+  BundleFiles files;
+  files.model_path = model_path;
+  files.scene_path = scene_path;
+  files.asset_paths = asset_paths;
+  files.name = name;
+  return ReadModelBundle(files).bundle;
 }
 
 }  // namespace mbstream

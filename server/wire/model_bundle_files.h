@@ -9,11 +9,33 @@
 
 namespace mbstream {
 
-// Reads a bundle. `model_path` is a URDF file, or a directory holding exactly one *.urdf
-// (then its *.scene file, if exactly one, is the scene script, and every *.stl below it is
-// an asset named by its path relative to the directory). `scene_path` (may be empty)
-// overrides the scene; each of `asset_paths` is added under its file name. Throws InputError
-// naming the path when a file cannot be read or a directory is ambiguous.
+struct BundleFiles {
+  // A URDF file, or a folder: its one *.urdf (directly in it, else the one found below it)
+  // and its one *.scene (directly in it), unless `scene_path` is given.
+  std::string model_path;
+  std::string scene_path;                // scene script (may be empty)
+  std::vector<std::string> asset_paths;  // more files, each added under its file name
+  std::string name;                      // display name (may be empty)
+  // Folders searched for package://PKG/... (before $MBSTREAM_PACKAGE_PATH).
+  std::vector<std::string> package_paths;
+  bool with_collision = false;  // attach collision meshes too
+};
+
+struct BundleRead {
+  v1::ModelBundle bundle;
+  // Meshes that were not found, each with every place tried (the server accepts a model
+  // without its meshes; viewers draw placeholders).
+  std::vector<std::string> warnings;
+};
+
+// Reads a bundle: the URDF, the scene, and every mesh the URDF's visuals (and collisions,
+// when asked) and the scene's Part commands refer to, found as MeshFileSearch does, each
+// stored once under urdf_reading::BundleAssetName of its reference (the path the URDF
+// writes, so visual/a.stl and collision/a.stl do not collide). Throws InputError naming
+// the path when a file cannot be read, a folder is ambiguous, or the model is a .xacro.
+BundleRead ReadModelBundle(const BundleFiles& files);
+
+// The same with no package path, visuals only, warnings dropped.
 v1::ModelBundle ReadModelBundle(const std::string& model_path, const std::string& scene_path,
                                 const std::vector<std::string>& asset_paths,
                                 const std::string& name);

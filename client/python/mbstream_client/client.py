@@ -28,12 +28,14 @@ class Client:
     def close(self):
         self.channel.close()
 
-    def submit(self, urdf_path_or_dir, scene=None, assets=(), name=None):
+    def submit(self, urdf_path_or_dir, scene=None, assets=(), name=None, repair=False):
         """Submits a model: a URDF file, or a directory with one .urdf (and its .scene and
         STL files; see read_model_bundle). Returns the server's ModelInfo (id "m-...": the
         same bundle gives the same id). A bad model raises MbstreamError INVALID_ARGUMENT
-        with the importer's messages."""
+        with the importer's messages. With repair=True the server repairs the defects
+        published URDFs commonly carry, each listed in the ModelInfo's warnings."""
         bundle = read_model_bundle(urdf_path_or_dir, scene, assets, name)
+        bundle.repair = repair
         return self.submit_bundle(bundle)
 
     def submit_bundle(self, bundle):

@@ -141,6 +141,24 @@ class ClientTest(unittest.TestCase):
         self.assertEqual(caught.exception.code, "INVALID_ARGUMENT")
         self.assertIn("exactly one .urdf", caught.exception.message)
 
+    def test_repair_true_fixes_a_defect_that_is_an_error_without_it(self):
+        # 0.1 + 0.1 < 0.2001: breaks the triangle inequality by 1e-4, as CAD exports do.
+        odd = self.write("odd.urdf", """<robot name="odd">
+  <link name="base"/>
+  <link name="arm"><inertial><mass value="2"/>
+    <inertia ixx="0.1" iyy="0.1" izz="0.2001" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="arm"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+</robot>
+""")
+        with self.assertRaises(mb.MbstreamError) as caught:
+            self.client.submit(odd)
+        self.assertEqual(caught.exception.code, "INVALID_ARGUMENT")
+        self.assertIn("--repair", caught.exception.message)
+        info = self.client.submit(odd, repair=True)
+        self.assertEqual(info.dofs, 1)
+        self.assertTrue(any("repaired:" in w for w in info.warnings), info.warnings)
+
     def test_errors_carry_the_status_name_and_the_servers_message(self):
         with self.assertRaises(mb.MbstreamError) as caught:
             self.client.run("nosuch")

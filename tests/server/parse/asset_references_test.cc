@@ -4,6 +4,7 @@
 
 #include "server/parse/asset_references.h"
 #include "server/parse/urdf_meshes.h"
+#include "urdf_reading/mesh_lookup.h"
 
 namespace mbstream {
 namespace {
@@ -14,6 +15,15 @@ TEST(AssetReferencesTest, UrdfMeshNames) {
   EXPECT_THAT(UrdfMeshAssetNames("package://robot/meshes/base.stl"),
               ElementsAre("package://robot/meshes/base.stl", "robot/meshes/base.stl",
                           "meshes/base.stl", "base.stl"));
+  // The name mbstream submit stores a mesh under: the path written, as a relative path.
+  EXPECT_EQ(urdf_reading::BundleAssetName("package://robot/meshes/base.stl"),
+            "robot/meshes/base.stl");
+  EXPECT_EQ(urdf_reading::BundleAssetName("../meshes/visual/./link0.stl"),
+            "meshes/visual/link0.stl");
+  EXPECT_EQ(urdf_reading::BundleAssetName("file:///opt/robot/meshes/a.dae"),
+            "opt/robot/meshes/a.dae");
+  EXPECT_THAT(UrdfMeshAssetNames("../meshes/visual/link0.stl"),
+              ElementsAre("../meshes/visual/link0.stl", "meshes/visual/link0.stl", "link0.stl"));
   EXPECT_TRUE(MeshSupplied("file://meshes/a.stl", {"meshes/a.stl"}));
   EXPECT_TRUE(MeshSupplied("package://r/meshes/a.stl", {"a.stl"}));
   EXPECT_FALSE(MeshSupplied("package://r/meshes/a.stl", {"b.stl"}));

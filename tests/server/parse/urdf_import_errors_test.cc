@@ -168,23 +168,6 @@ TEST(UrdfImportErrorsTest, BadRotorInertia) {
               AllOf(HasSubstr("bad.urdf:4: joint 'j1'"), HasSubstr("numeric value attribute")));
 }
 
-TEST(UrdfImportErrorsTest, MissingMesh) {
-  const std::string visual =
-      R"(<visual><geometry><mesh filename="package://irb/meshes/link1.stl"/></geometry></visual>)";
-  EXPECT_THAT(ImportError(OneJoint(kAxisAndLimits, kInertial + visual)),
-              AllOf(HasSubstr("bad.urdf:3: link 'link1'"),
-                    HasSubstr("visual mesh 'package://irb/meshes/link1.stl' is not supplied"),
-                    HasSubstr("--asset link1.stl")));
-  const std::string collision =
-      R"(<collision><geometry><mesh filename="base.dae"/></geometry></collision>)";
-  const std::string base_mesh =
-      "<robot name=\"r\">\n<link name=\"base\">" + collision + "</link>\n</robot>\n";
-  EXPECT_THAT(
-      ImportError(base_mesh, {"other.stl"}),
-      AllOf(HasSubstr("bad.urdf:2: link 'base'"),
-            HasSubstr("collision mesh 'base.dae' is not supplied"), HasSubstr("--asset base.dae")));
-}
-
 TEST(UrdfImportErrorsTest, FileThatCannotBeRead) {
   try {
     ImportUrdfFile("/nonexistent/robot.urdf");

@@ -250,6 +250,33 @@ TEST(UrdfImportTest, MeshesMatchByFileNameOrBaseName) {
   EXPECT_NO_THROW(ImportUrdf(text, "m.urdf", {"package://irb/meshes/link1.stl", "link1_c.stl"}));
 }
 
+TEST(UrdfImportTest, MissingMeshesAreWarningsCollisionOnesCountedOnce) {
+  const std::string visual =
+      R"(<visual><geometry><mesh filename="package://irb/meshes/link1.stl"/></geometry></visual>)";
+  const std::string collision =
+      R"(<collision><geometry><mesh filename="c/link1.dae"/></geometry></collision>)" +
+      std::string(R"(<collision><geometry><mesh filename="c/link2.dae"/></geometry></collision>)");
+  const UrdfImport import = ImportUrdf(
+      OneJoint(testing::kAxisAndLimits, testing::kInertial + visual + collision), "m.urdf", {});
+  EXPECT_EQ(import.model.num_dofs(), 1);
+  EXPECT_THAT(import.warnings,
+              ::testing::Contains(::testing::AllOf(
+                  ::testing::HasSubstr("m.urdf:3: link 'link1'"),
+                  ::testing::HasSubstr("visual mesh 'package://irb/meshes/link1.stl' is not "
+                                       "supplied"),
+                  ::testing::HasSubstr("placeholder"))));
+  EXPECT_THAT(import.warnings, ::testing::Contains(::testing::AllOf(
+                                   ::testing::HasSubstr("m.urdf: 2 collision mesh(es) not "
+                                                        "supplied"),
+                                   ::testing::HasSubstr("--with-collision"))));
+  // Supplied under the name mbstream submit stores it (the path the URDF writes).
+  const UrdfImport supplied =
+      ImportUrdf(OneJoint(testing::kAxisAndLimits, testing::kInertial + visual), "m.urdf",
+                 {"irb/meshes/link1.stl"});
+  EXPECT_THAT(supplied.warnings,
+              ::testing::Not(::testing::Contains(::testing::HasSubstr("not supplied"))));
+}
+
 TEST(UrdfImportTest, FileImportFindsMeshesBesideTheUrdf) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() /
@@ -261,15 +288,17 @@ TEST(UrdfImportTest, FileImportFindsMeshesBesideTheUrdf) {
           R"(<visual><geometry><mesh filename="package://irb/meshes/link1.stl"/></geometry></visual>)");
   std::ofstream(dir / "robot.urdf") << text;
   const std::string path = (dir / "robot.urdf").string();
-  try {
-    ImportUrdfFile(path);
-    ADD_FAILURE() << "the missing mesh was not reported";
-  } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), ::testing::AllOf(::testing::HasSubstr(path + ":3: link 'link1'"),
-                                           ::testing::HasSubstr("--asset link1.stl")));
-  }
+  // Missing: the model imports (simulate never needs meshes), with a warning naming it.
+  EXPECT_THAT(ImportUrdfFile(path).warnings,
+              ::testing::Contains(::testing::AllOf(
+                  ::testing::HasSubstr(path + ":3: link 'link1'"),
+                  ::testing::HasSubstr("visual mesh 'package://irb/meshes/link1.stl' is not "
+                                       "supplied"),
+                  ::testing::HasSubstr("--asset link1.stl"))));
   std::ofstream(dir / "meshes" / "link1.stl") << "solid empty\nendsolid empty\n";
   EXPECT_EQ(ImportUrdfFile(path).model.num_dofs(), 1);
+  EXPECT_THAT(ImportUrdfFile(path).warnings,
+              ::testing::Not(::testing::Contains(::testing::HasSubstr("not supplied"))));
   std::filesystem::remove_all(dir);
 }
 

@@ -9,6 +9,7 @@
 namespace mbstream::testing {
 namespace {
 
+using ::testing::AllOf;
 using ::testing::HasSubstr;
 
 // Calls grpc.health.v1.Health/Check for the whole server (empty request) with the generic
@@ -126,6 +127,51 @@ TEST_F(ModelsServiceTest, OversizedModelIsResourceExhaustedAndTheServerStaysHeal
   grpc::ClientContext list_context;
   v1::ListModelsResponse list;
   EXPECT_TRUE(stub().ListModels(&list_context, v1::ListModelsRequest(), &list).ok());
+}
+
+TEST_F(ModelsServiceTest, BundleLimitsPerAssetAndAssetCountAreResourceExhausted) {
+  ServerLimits limits;
+  limits.max_asset_bytes = 100;
+  limits.max_assets = 2;
+  StartServer(limits);
+  v1::ModelBundle big = IrbBundle();
+  v1::Asset* asset = big.add_assets();
+  asset->set_name("meshes/base.stl");
+  asset->set_data(std::string(101, 'x'));
+  v1::ModelInfo info;
+  grpc::Status status = Submit(big, &info);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_THAT(status.error_message(), AllOf(HasSubstr("asset 'meshes/base.stl' has 101 bytes"),
+                                            HasSubstr("--max-asset-mb")));
+
+  v1::ModelBundle many = IrbBundle();
+  for (const char* name : {"a.stl", "b.stl", "c.stl"}) {
+    v1::Asset* small = many.add_assets();
+    small->set_name(name);
+    small->set_data("solid\nendsolid\n");
+  }
+  status = Submit(many, &info);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_THAT(status.error_message(), AllOf(HasSubstr("3 assets"), HasSubstr("--max-assets")));
+  many.mutable_assets()->RemoveLast();  // two: within the limits (unreferenced, dropped)
+  EXPECT_TRUE(Submit(many, &info).ok());
+}
+
+TEST_F(ModelsServiceTest, DefaultLimitsHoldAPr2SizedBundleWithItsCollisionMeshes) {
+  // A PR2: about 46 MB of visual meshes in ~50 files, as much again for collisions.
+  const ServerLimits defaults;
+  EXPECT_GE(defaults.max_model_bytes, int64_t{2 * 46'000'000});
+  EXPECT_GE(defaults.max_assets, 200);
+  v1::ModelBundle pr2_sized = IrbBundle();
+  for (int i = 0; i < 100; ++i) {
+    v1::Asset* mesh = pr2_sized.add_assets();
+    mesh->set_name("meshes/part" + std::to_string(i) + ".stl");
+    mesh->set_data(std::string(920'000, 'x'));  // 92 MB in all
+  }
+  pr2_sized.mutable_assets(0)->set_data(std::string(8'000'000, 'x'));  // one large mesh
+  v1::ModelInfo info;
+  const grpc::Status status = Submit(pr2_sized, &info);
+  EXPECT_TRUE(status.ok()) << status.error_message();
 }
 
 TEST_F(ModelsServiceTest, HealthServiceSaysServing) {
