@@ -58,8 +58,8 @@ def _compiler_command(proto_root, out):
     protoc = os.environ.get("PROTOC") or shutil.which("protoc")
     plugin = os.environ.get("GRPC_PYTHON_PLUGIN") or shutil.which("grpc_python_plugin")
     if protoc and plugin:
-        return [protoc, "-I", proto_root, "--python_out=" + out, "--grpc_out=" + out,
-                "--plugin=protoc-gen-grpc=" + plugin]
+        return [protoc, "-I", proto_root, "--python_out=" + out, "--pyi_out=" + out,
+                "--grpc_out=" + out, "--plugin=protoc-gen-grpc=" + plugin]
     try:
         import grpc_tools  # noqa: F401  (grpcio-tools)
     except ImportError:
@@ -71,6 +71,8 @@ def _compiler_command(proto_root, out):
 
 
 _IMPORT = re.compile(r"^from mbstream\.v1 import (\w+_pb2)", re.MULTILINE)
+# The .pyi files (messages' type stubs, protoc --pyi_out) name the other modules' classes
+# through `_run_spec_pb2.RunSpec`, imported as above.
 _MODULE_NAME = re.compile(r"'mbstream\.v1\.(\w+_pb2)'")
 
 
@@ -89,7 +91,7 @@ def generate_stubs(root, package_dir):
         generated = os.path.join(out, "mbstream", "v1")
         written = []
         for name in sorted(os.listdir(generated)):
-            if not name.endswith(".py"):
+            if not name.endswith((".py", ".pyi")):
                 continue
             with open(os.path.join(generated, name), encoding="utf-8") as f:
                 text = f.read()
@@ -98,7 +100,7 @@ def generate_stubs(root, package_dir):
             target = os.path.join(package_dir, name)
             with open(target, "w", encoding="utf-8") as f:
                 f.write("# Generated from proto/mbstream/v1 by setup.py at build time; "
-                        "do not edit.\n" + text)
+                        "do not edit.\n# mypy: ignore-errors\n" + text)
             written.append(target)
     if not any(n.endswith("simulation_service_pb2_grpc.py") for n in written):
         sys.exit("mbstream_client: the compiler wrote no simulation_service_pb2_grpc.py")

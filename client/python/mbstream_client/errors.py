@@ -7,7 +7,7 @@ all subclasses of MbstreamError, each with the gRPC code name and the server's m
         print(error.code, error.message)      # NOT_FOUND no model 'nosuch' ...
 """
 from types import TracebackType
-from typing import Dict, Optional, Type
+from typing import Dict, Literal, Optional, Type
 
 import grpc
 
@@ -141,7 +141,7 @@ class rpc_errors:
         return self
 
     def __exit__(self, kind: Optional[Type[BaseException]], value: Optional[BaseException],
-                 traceback: Optional[TracebackType]) -> bool:
+                 traceback: Optional[TracebackType]) -> Literal[False]:
         if isinstance(value, grpc.RpcError):
             raise from_rpc_error(value) from None
         return False

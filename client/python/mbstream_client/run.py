@@ -152,7 +152,7 @@ class Run:
                 bar.close()
 
     def __iter__(self) -> Iterator["frame_pb2.Frame"]:
-        return self.watch()  # type: ignore[return-value]
+        return self.watch()
 
     def progress(self, progress_interval_s: float = 0.2) -> Iterator["run_pb2.RunInfo"]:
         """Yields RunInfo progress events (every progress_interval_s s of wall time) until the

@@ -14,7 +14,7 @@ generated reflection stubs (Debian ships no grpcio-reflection).
 """
 import re
 from dataclasses import dataclass
-from typing import Iterator, List, Optional, Tuple
+from typing import Any, Iterator, List, Optional, Tuple
 
 import grpc
 
@@ -48,7 +48,7 @@ def _varint(data: bytes, at: int) -> Tuple[int, int]:
         shift += 7
 
 
-def _fields(data: bytes) -> Iterator[Tuple[int, object]]:
+def _fields(data: bytes) -> Iterator[Tuple[int, Any]]:
     """(field number, value) of a protobuf message: int for varints, bytes otherwise."""
     at = 0
     while at < len(data):
@@ -77,13 +77,13 @@ def parse_list_services(response: bytes) -> List[str]:
     names = []
     for number, value in _fields(response):
         if number == 6:
-            for inner_number, service in _fields(value):  # type: ignore[arg-type]
+            for inner_number, service in _fields(value):
                 if inner_number == 1:
-                    for name_number, name in _fields(service):  # type: ignore[arg-type]
+                    for name_number, name in _fields(service):
                         if name_number == 1:
-                            names.append(name.decode("utf-8"))  # type: ignore[union-attr]
+                            names.append(name.decode("utf-8"))
         elif number == 7:
-            message = dict(_fields(value)).get(2, b"")  # type: ignore[arg-type]
+            message = dict(_fields(value)).get(2, b"")
             raise ValueError("reflection error: %s" % message.decode("utf-8", "replace"))
     return names
 
