@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """A sweep of servo gains, notebook style (client/python/README.md shows it cell by cell):
 the IRB 1600 servo scene (models/irb1600/seed-servo.json) with every joint's PD gains scaled,
 kd kept at critical damping of a unit inertia (kd = 2 sqrt(kp)), all runs at once; then the
