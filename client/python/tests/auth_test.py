@@ -40,7 +40,7 @@ class AuthTest(unittest.TestCase):
             with self.assertRaises(mb.PermissionDenied) as caught:
                 client.run("irb1600", duration=0.1)
         self.assertEqual(caught.exception.code, "PERMISSION_DENIED")
-        self.assertIn("run", caught.exception.message)
+        self.assertIn("lacks the role 'run'", caught.exception.message)
 
     def test_a_run_token_runs(self):
         with mb.connect(self.address, token=RUN) as client:

@@ -282,7 +282,7 @@ class ClientTest(unittest.TestCase):
         self.assertTrue(frames)
         self.assertTrue(infos)
         self.assertEqual(mb.run_pb2.RunState.Name(infos[-1].state), "FINISHED")
-        self.assertEqual(infos[-1].t_s, 2.0)
+        self.assertAlmostEqual(infos[-1].t_s, 2.0, delta=1e-9)
         self.assertEqual(frames[-1].seq, 40)
         lines = out.getvalue().splitlines()
         self.assertTrue(lines[-1].endswith("2.00/2.00 s simulated, 41 frames, FINISHED"), lines)
