@@ -5,7 +5,7 @@ kd kept at critical damping of a unit inertia (kd = 2 sqrt(kp)), all runs at onc
 tracking error of one joint (q - q_ref, rad) against time for each gain, and the largest
 error per gain in a table. Saves the figure as a PNG.
 
-    gain_sweep.py --server ADDR [--kp 25,100,400,1600] [--joint NAME] [--duration S]
+    gain_sweep.py --server ADDR [--kp 100,400,1600,6400] [--joint NAME] [--duration S]
                   [--out gain_sweep.png]
 """
 import argparse
@@ -40,7 +40,7 @@ def reference(drive, t):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     _common.add_server_argument(parser)
-    parser.add_argument("--kp", default="25,100,400,1600", help="N*m/rad, comma-separated")
+    parser.add_argument("--kp", default="100,400,1600,6400", help="N*m/rad, comma-separated")
     parser.add_argument("--joint", help="the joint to plot (default: the model's second)")
     parser.add_argument("--duration", type=float, default=5.0, help="s, simulated per run")
     parser.add_argument("--out", default="gain_sweep.png", help="PNG file to write")
