@@ -10,6 +10,7 @@ import concurrent.futures
 import io
 import os
 import re
+import socket
 import sys
 import tempfile
 import unittest
@@ -137,11 +138,14 @@ class ErrorTest(unittest.TestCase):
 
 class ConnectTest(unittest.TestCase):
     def test_nothing_listening_raises_unavailable_at_connect(self):
-        with StandIn() as server:
-            address = server.address
-        with self.assertRaises(mb.Unavailable) as caught:
-            mb.connect(address, timeout_s=5)
+        # A bound socket that does not listen: connecting is refused, and the port stays ours.
+        with socket.socket() as bound:
+            bound.bind(("127.0.0.1", 0))
+            address = "127.0.0.1:%d" % bound.getsockname()[1]
+            with self.assertRaises(mb.Unavailable) as caught:
+                mb.connect(address, timeout_s=5)
         self.assertIn("no mbstream server answers at %s" % address, caught.exception.message)
+        self.assertIn("start one (mbstream-server --listen", caught.exception.message)
 
     def test_a_server_of_another_wire_major_version_is_refused_with_a_clear_message(self):
         with StandIn(services=["mbstream.v2.Simulation", "grpc.health.v1.Health"]) as server:
