@@ -14,4 +14,5 @@ except ImportError:
 config = os.path.join(os.path.dirname(os.path.abspath(__file__)), "mypy.ini")
 # From another folder, so that mypy finds the installed package, not the source tree.
 sys.exit(subprocess.call([sys.executable, "-m", "mypy", "--config-file", config,
+                          "--cache-dir", os.devnull,  # no .mypy_cache left behind
                           "-p", "mbstream_client"], cwd="/"))
