@@ -78,6 +78,12 @@ class Result:
         return self.state == "FINISHED"
 
     @property
+    def server_version(self) -> str:
+        """The mbstream version of the server that computed the run (RunInfo.mbstream_version;
+        compare with mbstream_client.__version__ for reproducibility)."""
+        return self.info.mbstream_version
+
+    @property
     def probe_names(self) -> List[str]:
         """The names of the probes that reported, sorted."""
         return sorted(set(self.probes["name"].tolist()))

@@ -293,6 +293,7 @@ class ClientTest(unittest.TestCase):
         model = self.client.model("irb1600")
         self.assertEqual(result.joint_names, [j.name for j in model.joints])
         self.assertEqual(len(result.joint_names), 6)
+        self.assertEqual(result.server_version, mb.__version__)  # the same checkout
         first = result.joint_names[0]
         np.testing.assert_array_equal(result.q[:, result.joint(first)], result.q[:, 0])
         try:
