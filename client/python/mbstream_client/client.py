@@ -3,11 +3,10 @@ from types import TracebackType
 from typing import Any, Iterable, List, Optional, Type, Union
 
 from ._stubs import model_pb2, run_pb2
-from ._version import __version__
 from ._stubs import simulation_service_pb2 as service_pb2
 from ._stubs import simulation_service_pb2_grpc as service_grpc
-from .bundle import read_model_bundle
-from .bundle import PathLike
+from ._version import __version__
+from .bundle import PathLike, read_model_bundle
 from .channel import make_channel
 from .errors import rpc_errors
 from .result import Result
@@ -55,7 +54,7 @@ class Client:
                repair: bool = False) -> model_pb2.ModelInfo:
         """Submits a model: a URDF file, or a directory with one .urdf (and its .scene and
         STL files; see read_model_bundle). Returns the server's ModelInfo (id "m-...": the
-        same bundle gives the same id). A bad model raises MbstreamError INVALID_ARGUMENT
+        same bundle gives the same id). A bad model raises BadRequest (INVALID_ARGUMENT)
         with the importer's messages. With repair=True the server repairs the defects
         published URDFs commonly carry, each listed in the ModelInfo's warnings."""
         bundle = read_model_bundle(urdf_path_or_dir, scene, assets, name)
