@@ -288,6 +288,16 @@ class ClientTest(unittest.TestCase):
         self.assertTrue(lines[-1].endswith("2.00/2.00 s simulated, 41 frames, FINISHED"), lines)
         self.assertTrue(bar.closed)
 
+    def test_wait_with_a_progress_bar(self):
+        run = self.client.run("irb1600", SEED_RUN, duration=1, realtime=8)
+        out = io.StringIO()
+        with mock.patch.dict(sys.modules, {"tqdm": None}), mock.patch("sys.stderr", out):
+            info = run.wait(progress=True)
+        self.assertEqual(mb.run_pb2.RunState.Name(info.state), "FINISHED")
+        lines = out.getvalue().splitlines()
+        self.assertTrue(lines, "no progress lines")
+        self.assertTrue(lines[-1].startswith(run.id + ": 100.0% 1.00/1.00 s simulated"), lines)
+
     def test_result_carries_the_models_joint_names(self):
         result = self.client.run("irb1600", SEED_SERVO, duration=1).result(check=True)
         model = self.client.model("irb1600")
