@@ -134,4 +134,5 @@ class BuildPyWithStubs(build_py):
         return super().get_outputs(include_bytecode) + list(getattr(self, "_generated", []))
 
 
-setup(version=project_version(source_root()), cmdclass={"build_py": BuildPyWithStubs})
+setup(version=project_version(source_root()), packages=[PACKAGE],
+      package_data={PACKAGE: ["py.typed", "*.pyi"]}, cmdclass={"build_py": BuildPyWithStubs})
