@@ -54,14 +54,17 @@ def seed_tcp(q):
     return position
 
 
-def answer_probes(client, run_id, probe="tcp"):
-    """A stand-in for a viewer: subscribes to the run and answers every frame with a probe
-    at the frame's TCP. Returns the number of reports sent."""
+def answer_probes(client, start_run, probe="tcp"):
+    """A stand-in for a viewer: follows the server's runs, calls start_run() once the
+    subscription is registered (so that it sees that run from its first frame: no race with
+    the run's start), answers each of the run's frames with a probe at the frame's TCP, and
+    half-closes after the run ended (the server then has every report). Returns (the run,
+    the reports sent, the frames the server dropped for this subscriber)."""
     replies = queue.Queue()
 
     def requests():
         start = service_pb2.SubscribeRequest()
-        start.start.run_id = run_id
+        start.start.follow = True
         yield start
         while True:
             reply = replies.get()
@@ -69,13 +72,16 @@ def answer_probes(client, run_id, probe="tcp"):
                 return
             yield reply
 
-    answered = 0
+    run, answered, missed = None, 0, 0
     for event in client.stub.Subscribe(requests()):
         kind = event.WhichOneof("event")
-        if kind == "frames":
+        if kind == "subscribed":
+            run = start_run()
+        elif kind == "frames" and run is not None and event.frames.run_id == run.id:
+            missed += event.frames.missed
             for frame in event.frames.frames:
                 reply = service_pb2.SubscribeRequest()
-                reply.probe.run_id = run_id
+                reply.probe.run_id = run.id
                 reply.probe.seq = frame.seq
                 reply.probe.t_s = frame.t_s
                 reply.probe.probe = probe
@@ -83,9 +89,9 @@ def answer_probes(client, run_id, probe="tcp"):
                 reply.probe.frame = "World"
                 replies.put(reply)
                 answered += 1
-        elif kind == "run_ended":
-            replies.put(None)
-    return answered
+        elif kind == "run_ended" and run is not None and event.run_ended.id == run.id:
+            replies.put(None)  # goodbye: the server ends the stream once it has read it
+    return run, answered, missed
 
 
 class ClientTest(unittest.TestCase):
@@ -250,10 +256,11 @@ class ClientTest(unittest.TestCase):
         self.assertEqual([r.info.spec.rtol for r in results], [1e-4, 1e-6, 1e-8])
 
     def test_probe_reports_come_back_in_the_result_and_tcp_vs_probe_plots_them(self):
-        run = self.client.run("irb1600", SEED_RUN, duration=2, realtime=8)
-        answered = answer_probes(self.client, run.id)
+        run, answered, missed = answer_probes(
+            self.client, lambda: self.client.run("irb1600", SEED_RUN, duration=2, realtime=8))
         result = run.result(check=True)
-        self.assertGreaterEqual(answered, 40)  # the frame before joining may be missed
+        self.assertEqual(answered + missed, 41)  # subscribed before the run started
+        self.assertGreater(answered, 0)
         self.assertEqual(len(result.probes), answered)
         tcp = result.probe("tcp")
         np.testing.assert_array_equal(tcp["x"], result.tcp[tcp["seq"], 0])
