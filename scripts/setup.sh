@@ -19,8 +19,12 @@ PACKAGES=(
   # viewer and headless rendering
   libvtk9-dev xvfb xauth
   libassimp-dev  # viewer meshes: Collada, OBJ, STL, glTF, PLY
-  # python client and charts (Debian's, for /usr/bin/python3)
+  # python client and charts (Debian's, for /usr/bin/python3); installing the package
+  # (client/python: pip install --no-build-isolation --no-deps) needs setuptools, pip, venv;
+  # tqdm (progress bars) and pandas (Result.to_pandas) are optional, here so tests cover them;
+  # mypy checks the package's type hints
   python3 python3-grpcio python3-protobuf python3-numpy python3-matplotlib
+  python3-setuptools python3-pip python3-venv python3-tqdm python3-pandas python3-mypy
   # deploy/: validates the docker-compose demo (docker-compose config; no engine needed)
   docker-compose
   # deploy/multihost: network namespaces

@@ -1,10 +1,9 @@
-"""Shared bits of the examples: make `import mbstream_client` work from a checkout."""
+"""Shared bits of the examples. They import the installed package (pip install
+./client/python, see ../README.md), never this source folder."""
 import os
-import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.normpath(os.path.join(HERE, "..", "..", ".."))
-sys.path.insert(0, os.path.dirname(HERE))  # client/python: the mbstream_client package
 
 
 def model_file(*parts):

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """A parameter sweep run concurrently on a live server: the IRB 1600 seed experiment
 (models/irb1600/seed-run.json, integrated in joint space so that tolerances matter) over
 several relative tolerances, or over scaled drive amplitudes, all runs in flight at once;

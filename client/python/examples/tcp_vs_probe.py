@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """The seed's figure from a live run: the TCP the server computed and the probe a viewer
 computed, x/y/z against time, with the median probe round-trip latency.
 

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """The speed-accuracy (work-precision) chart from runs on a live server: the IRB 1600 servo
 scene (models/irb1600/seed-servo.json) with several integration methods x tolerances, all
 runs in flight at once; the error of each is its largest TCP distance from a reference run

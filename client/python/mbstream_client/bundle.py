@@ -1,33 +1,38 @@
 """Model bundles from files, like the C++ CLI's ReadModelBundle
 (server/wire/model_bundle_files.cc)."""
 import os
+from typing import Iterable, Optional, Union
 
 from ._stubs import model_pb2
-from .errors import MbstreamError
+from .errors import bad_request
 
 
-def _read(path):
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+def _read(path: str) -> bytes:
     try:
         with open(path, "rb") as f:
             return f.read()
     except OSError:
-        raise MbstreamError("INVALID_ARGUMENT",
-                            "cannot read %s: check the path and permissions" % path) from None
+        raise bad_request("cannot read %s: check the path and permissions" % path) from None
 
 
-def _files_with_extension(directory, ext):
+def _files_with_extension(directory: str, ext: str) -> list:
     return sorted(os.path.join(directory, n) for n in os.listdir(directory)
                   if n.lower().endswith(ext) and os.path.isfile(os.path.join(directory, n)))
 
 
-def _add_asset(bundle, name, path):
+def _add_asset(bundle: "model_pb2.ModelBundle", name: str, path: str) -> None:
     if any(a.name == name for a in bundle.assets):
-        raise MbstreamError("INVALID_ARGUMENT", "asset '%s' (%s) is given twice; rename one of "
+        raise bad_request("asset '%s' (%s) is given twice; rename one of "
                             "the files" % (name, path))
     bundle.assets.add(name=name, data=_read(path))
 
 
-def read_model_bundle(urdf_path_or_dir, scene=None, assets=(), name=None):
+def read_model_bundle(urdf_path_or_dir: PathLike, scene: Optional[PathLike] = None,
+                      assets: Iterable[PathLike] = (),
+                      name: Optional[str] = None) -> "model_pb2.ModelBundle":
     """A ModelBundle from a URDF file, or from a directory holding exactly one .urdf (then its
     one .scene, unless `scene` is given, and every .stl below it, named by their path
     relative to the directory). `assets` are more files, named by their file name."""
@@ -37,8 +42,8 @@ def read_model_bundle(urdf_path_or_dir, scene=None, assets=(), name=None):
     if os.path.isdir(path):
         urdfs = _files_with_extension(path, ".urdf")
         if len(urdfs) != 1:
-            raise MbstreamError(
-                "INVALID_ARGUMENT", "%s: a model directory needs exactly one .urdf file, found "
+            raise bad_request(
+                "%s: a model directory needs exactly one .urdf file, found "
                 "%d; name the URDF file instead" % (path, len(urdfs)))
         urdf_path = urdfs[0]
         scenes = _files_with_extension(path, ".scene")

@@ -2,35 +2,36 @@
 file, and a bearer token sent as `authorization: Bearer <token>` on every call."""
 import collections
 import os
+from typing import Optional, Tuple
 
 import grpc
 
-from .errors import MbstreamError
+from .errors import bad_request
 
 DEFAULT_ADDRESS = "127.0.0.1:50051"
 MAX_MESSAGE_BYTES = 256 << 20  # like the C++ clients
 
 
-def is_local_address(address):
+def is_local_address(address: str) -> bool:
     """True for addresses that never leave this machine (unix sockets, loopback)."""
     return address.startswith(("unix:", "127.", "localhost:", "[::1]", "ipv4:127."))
 
 
-def _read(path, what):
+def _read(path: str, what: str) -> bytes:
     try:
         with open(path, "rb") as f:
             return f.read()
     except OSError as error:
-        raise MbstreamError("INVALID_ARGUMENT", "cannot read %s %s: %s" % (what, path,
+        raise bad_request("cannot read %s %s: %s" % (what, path,
                                                                           error.strerror))
 
 
-def read_token_file(path):
+def read_token_file(path: str) -> str:
     """The first word of the file's first line (a server token file's line is `TOKEN ROLES`)."""
     text = _read(path, "token file").decode("utf-8").splitlines()
     words = text[0].split() if text else []
     if not words:
-        raise MbstreamError("INVALID_ARGUMENT", "token file %s is empty" % path)
+        raise bad_request("token file %s is empty" % path)
     return words[0]
 
 
@@ -69,8 +70,10 @@ class BearerTokenInterceptor(grpc.UnaryUnaryClientInterceptor, grpc.UnaryStreamC
         return continuation(self._details(details), requests)
 
 
-def make_channel(address=None, ca_file=None, token=None, token_file=None, cert_file=None,
-                 key_file=None):
+def make_channel(address: Optional[str] = None, ca_file: Optional[str] = None,
+                 token: Optional[str] = None, token_file: Optional[str] = None,
+                 cert_file: Optional[str] = None,
+                 key_file: Optional[str] = None) -> Tuple[str, grpc.Channel]:
     """A channel to `address` (host:port or unix:/path; default $MBSTREAM_SERVER or
     127.0.0.1:50051). With `ca_file`: TLS trusting that CA (PEM), optionally with a client
     certificate (`cert_file`, `key_file`). Without it: plaintext, and a token is then refused
@@ -88,8 +91,8 @@ def make_channel(address=None, ca_file=None, token=None, token_file=None, cert_f
         channel = grpc.secure_channel(address, credentials, options=options)
     else:
         if token and not is_local_address(address):
-            raise MbstreamError(
-                "INVALID_ARGUMENT", "refusing to send a token in the clear to %s; give the "
+            raise bad_request(
+                "refusing to send a token in the clear to %s; give the "
                 "server's CA with ca_file (TLS)" % address)
         channel = grpc.insecure_channel(address, options=options)
     if token:

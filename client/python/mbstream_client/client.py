@@ -1,11 +1,18 @@
 """The client: one channel to a server and the calls of service mbstream.v1.Simulation."""
+from types import TracebackType
+from typing import Any, Iterable, List, Optional, Type, Union
+
+from ._stubs import model_pb2, run_pb2
 from ._stubs import simulation_service_pb2 as service_pb2
 from ._stubs import simulation_service_pb2_grpc as service_grpc
-from .bundle import read_model_bundle
+from ._version import __version__
+from .bundle import PathLike, read_model_bundle
 from .channel import make_channel
 from .errors import rpc_errors
+from .result import Result
 from .run import Run
-from .spec import load_spec
+from .server_check import ServerCheck, check_server
+from .spec import SpecLike, load_spec
 
 
 class Client:
@@ -13,42 +20,59 @@ class Client:
     SimulationStub for calls the client does not wrap. Use as a context manager or call
     close()."""
 
-    def __init__(self, address=None, ca_file=None, token=None, token_file=None, cert_file=None,
-                 key_file=None):
+    server: Optional[ServerCheck]
+
+    def __init__(self, address: Optional[str] = None, ca_file: Optional[str] = None,
+                 token: Optional[str] = None, token_file: Optional[str] = None,
+                 cert_file: Optional[str] = None, key_file: Optional[str] = None):
         self.address, self.channel = make_channel(address, ca_file, token, token_file, cert_file,
                                                   key_file)
         self.stub = service_grpc.SimulationStub(self.channel)
+        self.server = None  # set by check_server() (connect() calls it)
 
-    def __enter__(self):
+    def __enter__(self) -> "Client":
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, kind: Optional[Type[BaseException]], value: Optional[BaseException],
+                 traceback: Optional[TracebackType]) -> None:
         self.close()
 
-    def close(self):
+    def close(self) -> None:
+        """Closes the channel (streams still open are cancelled)."""
         self.channel.close()
 
-    def submit(self, urdf_path_or_dir, scene=None, assets=(), name=None, repair=False):
+    def check_server(self, timeout_s: float = 10.0) -> ServerCheck:
+        """Asks the server which services it serves (gRPC reflection) and checks that it speaks
+        this client's wire major version (mbstream.v1). Raises Unavailable when nothing
+        answers within timeout_s (s), IncompatibleServer on another major version or a
+        server that is not mbstream. connect() calls it."""
+        self.server = check_server(self.channel, self.address, timeout_s, __version__)
+        return self.server
+
+    def submit(self, urdf_path_or_dir: PathLike, scene: Optional[PathLike] = None,
+               assets: Iterable[PathLike] = (), name: Optional[str] = None,
+               repair: bool = False) -> model_pb2.ModelInfo:
         """Submits a model: a URDF file, or a directory with one .urdf (and its .scene and
         STL files; see read_model_bundle). Returns the server's ModelInfo (id "m-...": the
-        same bundle gives the same id). A bad model raises MbstreamError INVALID_ARGUMENT
+        same bundle gives the same id). A bad model raises BadRequest (INVALID_ARGUMENT)
         with the importer's messages. With repair=True the server repairs the defects
         published URDFs commonly carry, each listed in the ModelInfo's warnings."""
         bundle = read_model_bundle(urdf_path_or_dir, scene, assets, name)
         bundle.repair = repair
         return self.submit_bundle(bundle)
 
-    def submit_bundle(self, bundle):
+    def submit_bundle(self, bundle: model_pb2.ModelBundle) -> model_pb2.ModelInfo:
         """Submits a ModelBundle message; returns its ModelInfo."""
         with rpc_errors():
             return self.stub.SubmitModel(service_pb2.SubmitModelRequest(bundle=bundle))
 
-    def models(self):
+    def models(self) -> List[model_pb2.ModelInfo]:
         """Every model of the server (ModelInfo messages)."""
         with rpc_errors():
             return list(self.stub.ListModels(service_pb2.ListModelsRequest()).models)
 
-    def model(self, model, include_bundle=False):
+    def model(self, model: str, include_bundle: bool = False
+              ) -> Union[model_pb2.ModelInfo, "service_pb2.GetModelResponse"]:
         """One model's ModelInfo by id or name (with include_bundle: the GetModelResponse,
         info and bundle)."""
         with rpc_errors():
@@ -56,7 +80,7 @@ class Client:
                 service_pb2.GetModelRequest(model=model, include_bundle=include_bundle))
         return response if include_bundle else response.info
 
-    def runs(self, model="", limit=0):
+    def runs(self, model: str = "", limit: int = 0) -> List[run_pb2.RunInfo]:
         """Runs of the server, newest first (RunInfo messages); only `model`'s when given,
         at most `limit` when > 0."""
         runs = []
@@ -69,7 +93,8 @@ class Client:
                     return runs
                 request.page_token = response.next_page_token
 
-    def run(self, model, spec=None, watch=False, **overrides):
+    def run(self, model: str, spec: SpecLike = None, watch: bool = False,
+            **overrides: Any) -> Run:
         """Starts a run of `model` (id or name) and returns its Run handle.
 
         spec: None (the server's defaults), a dict, a JSON file path or a RunSpec; overrides:
@@ -86,23 +111,35 @@ class Client:
                                                                       frames=True))
         return Run(self, info, call)
 
-    def get_run(self, run_id):
+    def get_run(self, run_id: str) -> Run:
         """A Run handle on an existing run."""
         with rpc_errors():
             return Run(self, self.stub.GetRun(service_pb2.GetRunRequest(run_id=run_id)))
 
-    def result(self, run_id, wait=True, check=False):
+    def result(self, run_id: str, wait: bool = True, check: bool = False) -> "Result":
         """The result of run `run_id` (see Run.result)."""
         return self.get_run(run_id).result(wait=wait, check=check)
 
 
-def connect(address=None, ca_file=None, token=None, **options):
+def connect(address: Optional[str] = None, ca_file: Optional[str] = None,
+            token: Optional[str] = None, *, check: bool = True, timeout_s: float = 10.0,
+            **options: Any) -> Client:
     """A Client for the server at `address` (host:port or unix:/path; default
-    $MBSTREAM_SERVER, else 127.0.0.1:50051).
+    $MBSTREAM_SERVER, else 127.0.0.1:50051), checked at once (check=True): a server must
+    answer within timeout_s (s), else Unavailable, and speak this client's wire major version
+    (mbstream.v1), else IncompatibleServer saying which version it speaks.
 
     ca_file: PEM CA of the server's certificate: TLS (grpc.ssl_channel_credentials);
     without it the channel is plaintext, meant for loopback and unix sockets.
     token: sent as `authorization: Bearer <token>` metadata on every call (refused in
     plaintext to a non-local address). More options: token_file (its first word is the
-    token), cert_file and key_file (a client certificate for TLS)."""
-    return Client(address, ca_file, token, **options)
+    token), cert_file and key_file (a client certificate for TLS). check=False connects
+    lazily, as a plain gRPC channel does (the first call then fails if no server answers)."""
+    client = Client(address, ca_file, token, **options)
+    if check:
+        try:
+            client.check_server(timeout_s)
+        except BaseException:
+            client.close()
+            raise
+    return client

@@ -1,5 +1,6 @@
-"""A run's stored result as NumPy arrays."""
+"""A run's stored result as NumPy arrays, with joint names, a pandas view and plots."""
 from dataclasses import dataclass, field
+from typing import Any, Dict, Iterable, List, Optional
 
 import numpy as np
 from google.protobuf import json_format
@@ -7,7 +8,7 @@ from google.protobuf import json_format
 from ._stubs import run_pb2
 
 
-def stats_dict(info):
+def stats_dict(info: "run_pb2.RunInfo") -> Dict[str, Any]:
     """RunStats of a RunInfo as a dict (every field, defaults included) plus the run's
     `state` and `message`, like the results directory's stats.json."""
     try:
@@ -27,22 +28,38 @@ def stats_dict(info):
 PROBE_FIELDS = ("seq", "t", "name", "x", "y", "z", "frame", "latency_us")
 
 
+QUANTITIES = {  # name: (attribute, unit, what)
+    "q": ("q", "rad | m", "joint positions"),
+    "qd": ("qd", "rad/s | m/s", "joint velocities"),
+    "tau": ("tau", "N*m | N", "drive efforts"),
+}
+
+
 @dataclass
 class Result:
-    """The result of one run. Arrays have one row per output frame (N frames, n joints in
-    the model's joint order, SI units: s, rad or m, rad/s or m/s, m, N*m or N, J).
+    """The result of one run. Arrays have one row per output frame: N frames, n joints in the
+    model's joint order (`joint_names[j]` names column j), SI units.
 
-    t (N,), q (N, n), qd (N, n), tcp (N, 3), tau (N, n) — (N, 0) when the run computed no
-    torques —, kinetic and potential (N,) (zeros unless info.has_energy), seq (N,) the frames'
-    sequence numbers; probes: a structured array with one row per probe report, fields seq,
-    t, name, x, y, z, frame, latency_us (empty when no viewer answered); stats: a dict of
-    the run's statistics plus its state and message; info: the RunInfo message."""
+    t (N,):           s, simulated time of each frame
+    q (N, n):         rad (revolute) or m (prismatic), joint positions
+    qd (N, n):        rad/s or m/s, joint velocities
+    tau (N, n):       N*m or N, drive efforts; (N, 0) when the run computed no torques
+    tcp (N, 3):       m, x y z of the TCP in the model's base (world) frame
+    kinetic, potential (N,): J (zeros unless info.has_energy)
+    seq (N,):         the frames' sequence numbers (frame k is at k * output interval)
+    probes:           a structured array, one row per probe report a viewer sent: seq, t (s),
+                      name, x y z (m, in `frame`), frame, latency_us (empty without a viewer)
+    stats:            the run's statistics (like stats.json) plus its state and message
+    info:             the RunInfo message
+
+    to_pandas() gives the same as DataFrames indexed by t (pandas, optional); plot_tcp() and
+    plot_joints() draw them with matplotlib (for a notebook)."""
     run_id: str
     model_id: str
     model_name: str
     state: str
     message: str
-    joint_names: list
+    joint_names: List[str]
     t: np.ndarray
     q: np.ndarray
     qd: np.ndarray
@@ -52,19 +69,102 @@ class Result:
     potential: np.ndarray
     seq: np.ndarray
     probes: np.ndarray
-    stats: dict
-    info: object = field(repr=False)
+    stats: Dict[str, Any]
+    info: "run_pb2.RunInfo" = field(repr=False)
 
     @property
-    def finished(self):
+    def finished(self) -> bool:
         """The run reached its end time."""
         return self.state == "FINISHED"
 
     @property
-    def probe_names(self):
+    def server_version(self) -> str:
+        """The mbstream version of the server that computed the run (RunInfo.mbstream_version;
+        compare with mbstream_client.__version__ for reproducibility)."""
+        return self.info.mbstream_version
+
+    @property
+    def probe_names(self) -> List[str]:
+        """The names of the probes that reported, sorted."""
         return sorted(set(self.probes["name"].tolist()))
 
-    def probe(self, name=None):
+    def joint(self, name: str) -> int:
+        """The column of joint `name` in q, qd and tau."""
+        try:
+            return self.joint_names.index(name)
+        except ValueError:
+            raise KeyError("run %s has no joint '%s'; its joints: %s"
+                           % (self.run_id, name, ", ".join(self.joint_names))) from None
+
+    def to_pandas(self, quantity: Optional[str] = None) -> Any:
+        """The result as a pandas DataFrame indexed by t (s). quantity "q", "qd" or "tau":
+        one column per joint, named by the joint (like joints.csv); "tcp": columns x y z (m,
+        base frame); "energy": kinetic, potential (J); None: all of them side by side, with
+        two-level columns (quantity, name), e.g. df["q"]["joint_1"]. Needs pandas (an
+        optional dependency: apt-get install python3-pandas)."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("Result.to_pandas needs pandas (Debian: apt-get install "
+                              "python3-pandas)") from None
+        index = pd.Index(self.t, name="t")
+        tables = {
+            "q": (self.q, self.joint_names),
+            "qd": (self.qd, self.joint_names),
+            "tau": (self.tau, self.joint_names if self.tau.shape[1] else []),
+            "tcp": (self.tcp, ["x", "y", "z"]),
+            "energy": (np.column_stack([self.kinetic, self.potential]),
+                       ["kinetic", "potential"]),
+        }
+        if quantity is not None:
+            if quantity not in tables:
+                raise ValueError("quantity must be one of %s, not %r"
+                                 % (", ".join(tables), quantity))
+            values, columns = tables[quantity]
+            return pd.DataFrame(values, index=index, columns=list(columns))
+        frames = {name: pd.DataFrame(values, index=index, columns=list(columns))
+                  for name, (values, columns) in tables.items() if len(columns)}
+        return pd.concat(frames, axis=1)
+
+    def plot_tcp(self, ax: Any = None, label: Optional[str] = None) -> Any:
+        """Plots the TCP's x, y, z (m, base frame) against t (s) with matplotlib, on `ax`
+        (a new figure's axes when None); returns the axes."""
+        plt = _pyplot()
+        if ax is None:
+            _, ax = plt.subplots(figsize=(7, 4))
+        for k, axis in enumerate("xyz"):
+            ax.plot(self.t, self.tcp[:, k], label="%s%s" % (label + " " if label else "", axis))
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel("TCP position (m, base frame)")
+        ax.set_title("run %s (%s): TCP" % (self.run_id, self.model_name), fontsize=10)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+        return ax
+
+    def plot_joints(self, quantity: str = "q", joints: Optional[Iterable[str]] = None,
+                    ax: Any = None) -> Any:
+        """Plots one quantity ("q", "qd" or "tau") of the joints named in `joints` (all when
+        None) against t (s), one line per joint labelled by its name; returns the axes."""
+        if quantity not in QUANTITIES:
+            raise ValueError("quantity must be one of %s, not %r"
+                             % (", ".join(QUANTITIES), quantity))
+        attribute, unit, what = QUANTITIES[quantity]
+        values = getattr(self, attribute)
+        if values.shape[1] == 0:
+            raise ValueError("run %s has no %s (the run computed none)" % (self.run_id, what))
+        plt = _pyplot()
+        if ax is None:
+            _, ax = plt.subplots(figsize=(7, 4))
+        for name in (self.joint_names if joints is None else list(joints)):
+            ax.plot(self.t, values[:, self.joint(name)], label=name)
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel("%s (%s)" % (quantity, unit))
+        ax.set_title("run %s (%s): %s" % (self.run_id, self.model_name, what), fontsize=10)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+        return ax
+
+    def probe(self, name: Optional[str] = None) -> np.ndarray:
         """The reports of one probe (the only one when `name` is None), in frame order."""
         if name is None:
             names = self.probe_names
@@ -75,14 +175,23 @@ class Result:
         return rows[np.argsort(rows["seq"], kind="stable")]
 
 
-def _matrix(frames, attribute, width):
+def _pyplot() -> Any:
+    try:
+        import matplotlib.pyplot as plt
+    except ImportError:
+        raise ImportError("plotting needs matplotlib (Debian: apt-get install "
+                          "python3-matplotlib)") from None
+    return plt
+
+
+def _matrix(frames: List[Any], attribute: str, width: int) -> np.ndarray:
     if not frames or width == 0:
         return np.zeros((len(frames), width))
     return np.array([list(getattr(f, attribute)) for f in frames], dtype=float).reshape(
         len(frames), width)
 
 
-def result_from_chunks(chunks):
+def result_from_chunks(chunks: Iterable["run_pb2.ResultChunk"]) -> Result:
     """A Result from GetResult's stream of ResultChunk messages."""
     info = None
     frames, probes = [], []

@@ -1,11 +1,12 @@
 """Run specs: the RunSpec message from a dict, a JSON file or JSON text, plus overrides."""
 import json
 import os
+from typing import Any, Dict, Union
 
 from google.protobuf import json_format
 
 from ._stubs import run_spec_pb2
-from .errors import MbstreamError
+from .errors import bad_request
 
 # The C++ CLI's override flags (`mbstream run --duration ...`) and the RunSpec fields they set.
 OVERRIDE_ALIASES = {
@@ -16,14 +17,17 @@ OVERRIDE_ALIASES = {
 }
 
 
-def _parse(value, where):
+SpecLike = Union[None, "run_spec_pb2.RunSpec", Dict[str, Any], str, "os.PathLike[str]"]
+
+
+def _parse(value: Any, where: str) -> "run_spec_pb2.RunSpec":
     try:
         return json_format.ParseDict(value, run_spec_pb2.RunSpec())
     except json_format.ParseError as error:
-        raise MbstreamError("INVALID_ARGUMENT", "%s: %s" % (where, error)) from None
+        raise bad_request("%s: %s" % (where, error)) from None
 
 
-def load_spec(spec=None, **overrides):
+def load_spec(spec: SpecLike = None, **overrides: Any) -> "run_spec_pb2.RunSpec":
     """A RunSpec from `spec` — None (every field absent: the server's defaults), a RunSpec,
     a dict in protobuf's JSON mapping (field names like "duration_s" or "durationS"), a path
     to a JSON file (e.g. models/irb1600/seed-run.json) or JSON text — with `overrides` applied:
@@ -47,12 +51,11 @@ def load_spec(spec=None, **overrides):
                 with open(text, encoding="utf-8") as f:
                     source = f.read()
             except OSError:
-                raise MbstreamError("INVALID_ARGUMENT",
-                                    "cannot read run spec %s: check the path" % text) from None
+                raise bad_request("cannot read run spec %s: check the path" % text) from None
         try:
             value = json.loads(source)
         except ValueError as error:
-            raise MbstreamError("INVALID_ARGUMENT", "%s: not JSON: %s" % (where, error)) from None
+            raise bad_request("%s: not JSON: %s" % (where, error)) from None
         result = _parse(value, where)
     else:
         raise TypeError("spec must be None, a RunSpec, a dict or a JSON path, not %s"
@@ -76,6 +79,6 @@ def load_spec(spec=None, **overrides):
     return result
 
 
-def spec_to_dict(spec):
+def spec_to_dict(spec: "run_spec_pb2.RunSpec") -> Dict[str, Any]:
     """A RunSpec as a dict of its present fields (protobuf's JSON mapping, proto names)."""
     return json_format.MessageToDict(spec, preserving_proto_field_name=True)

@@ -2,11 +2,13 @@
 """Tests of mbstream_client against a live mbstream-server ($MBSTREAM_SERVER).
 
 ctest runs them through run_with_server.py, which starts a fresh server on port 0 with a
-temporary data folder. Run by hand from the repository root:
-    PYTHONPATH=client/python:build/client/python/gen MBSTREAM_SERVER=127.0.0.1:PORT \
-        /usr/bin/python3 client/python/tests/client_test.py -v
+temporary data folder, with the python of the venv tests/make_venv.py made (the installed
+package, not this source tree). Run by hand from the repository root, with the package
+installed (client/python/README.md):
+    MBSTREAM_SERVER=127.0.0.1:PORT venv/bin/python client/python/tests/client_test.py -v
 """
 import concurrent.futures
+import io
 import math
 import os
 import queue
@@ -14,15 +16,14 @@ import shutil
 import subprocess
 import sys
 import tempfile
-import threading
 import unittest
+from unittest import mock
 
 import grpc
 import numpy as np
 
 import mbstream_client as mb
 from mbstream_client import simulation_service_pb2 as service_pb2
-from mbstream.v1 import simulation_service_pb2_grpc as service_grpc
 
 SEED_RUN = "models/irb1600/seed-run.json"
 SEED_SERVO = "models/irb1600/seed-servo.json"
@@ -53,14 +54,17 @@ def seed_tcp(q):
     return position
 
 
-def answer_probes(client, run_id, probe="tcp"):
-    """A stand-in for a viewer: subscribes to the run and answers every frame with a probe
-    at the frame's TCP. Returns the number of reports sent."""
+def answer_probes(client, start_run, probe="tcp"):
+    """A stand-in for a viewer: follows the server's runs, calls start_run() once the
+    subscription is registered (so that it sees that run from its first frame: no race with
+    the run's start), answers each of the run's frames with a probe at the frame's TCP, and
+    half-closes after the run ended (the server then has every report). Returns (the run,
+    the reports sent, the frames the server dropped for this subscriber)."""
     replies = queue.Queue()
 
     def requests():
         start = service_pb2.SubscribeRequest()
-        start.start.run_id = run_id
+        start.start.follow = True
         yield start
         while True:
             reply = replies.get()
@@ -68,13 +72,16 @@ def answer_probes(client, run_id, probe="tcp"):
                 return
             yield reply
 
-    answered = 0
+    run, answered, missed = None, 0, 0
     for event in client.stub.Subscribe(requests()):
         kind = event.WhichOneof("event")
-        if kind == "frames":
+        if kind == "subscribed":
+            run = start_run()
+        elif kind == "frames" and run is not None and event.frames.run_id == run.id:
+            missed += event.frames.missed
             for frame in event.frames.frames:
                 reply = service_pb2.SubscribeRequest()
-                reply.probe.run_id = run_id
+                reply.probe.run_id = run.id
                 reply.probe.seq = frame.seq
                 reply.probe.t_s = frame.t_s
                 reply.probe.probe = probe
@@ -82,9 +89,9 @@ def answer_probes(client, run_id, probe="tcp"):
                 reply.probe.frame = "World"
                 replies.put(reply)
                 answered += 1
-        elif kind == "run_ended":
-            replies.put(None)
-    return answered
+        elif kind == "run_ended" and run is not None and event.run_ended.id == run.id:
+            replies.put(None)  # goodbye: the server ends the stream once it has read it
+    return run, answered, missed
 
 
 class ClientTest(unittest.TestCase):
@@ -127,7 +134,7 @@ class ClientTest(unittest.TestCase):
         bad = self.write("bad.urdf", "<robot name='bad'><link name='a'/>"
                          "<joint name='j' type='revolute'><parent link='a'/>"
                          "<child link='nosuch'/></joint></robot>")
-        with self.assertRaises(mb.MbstreamError) as caught:
+        with self.assertRaises(mb.BadRequest) as caught:
             self.client.submit(bad)
         self.assertEqual(caught.exception.code, "INVALID_ARGUMENT")
         self.assertEqual(caught.exception.status, grpc.StatusCode.INVALID_ARGUMENT)
@@ -160,11 +167,14 @@ class ClientTest(unittest.TestCase):
         self.assertTrue(any("repaired:" in w for w in info.warnings), info.warnings)
 
     def test_errors_carry_the_status_name_and_the_servers_message(self):
-        with self.assertRaises(mb.MbstreamError) as caught:
+        with self.assertRaises(mb.NotFound) as caught:
             self.client.run("nosuch")
         self.assertEqual(caught.exception.code, "NOT_FOUND")
         self.assertIn("no model 'nosuch'", caught.exception.message)
-        with self.assertRaises(mb.MbstreamError) as caught:
+        with self.assertRaises(mb.NotFound) as caught:
+            self.client.get_run("r-nosuch")
+        self.assertEqual(caught.exception.code, "NOT_FOUND")
+        with self.assertRaises(mb.BadRequest) as caught:
             self.client.run("irb1600", SEED_RUN, duration=-1)
         self.assertEqual(caught.exception.code, "INVALID_ARGUMENT")
         self.assertIn("duration_s", caught.exception.message)
@@ -200,7 +210,7 @@ class ClientTest(unittest.TestCase):
 
     def test_cancel_stops_a_run_and_keeps_its_partial_result(self):
         run = self.client.run("irb1600", SEED_RUN, realtime=1)  # 20 s of wall time
-        with self.assertRaises(mb.MbstreamError) as caught:
+        with self.assertRaises(mb.FailedPrecondition) as caught:
             run.result(wait=False)  # still running
         self.assertEqual(caught.exception.code, "FAILED_PRECONDITION")
         run.cancel()
@@ -209,7 +219,7 @@ class ClientTest(unittest.TestCase):
         result = run.result()
         self.assertEqual(result.state, "CANCELLED")
         self.assertLess(len(result.t), 401)
-        with self.assertRaises(mb.MbstreamError) as caught:
+        with self.assertRaises(mb.RunFailed) as caught:
             run.result(check=True)
         self.assertEqual(caught.exception.code, "CANCELLED")
         self.assertEqual(self.client.get_run(run.id).state, "CANCELLED")
@@ -246,10 +256,11 @@ class ClientTest(unittest.TestCase):
         self.assertEqual([r.info.spec.rtol for r in results], [1e-4, 1e-6, 1e-8])
 
     def test_probe_reports_come_back_in_the_result_and_tcp_vs_probe_plots_them(self):
-        run = self.client.run("irb1600", SEED_RUN, duration=2, realtime=8)
-        answered = answer_probes(self.client, run.id)
+        run, answered, missed = answer_probes(
+            self.client, lambda: self.client.run("irb1600", SEED_RUN, duration=2, realtime=8))
         result = run.result(check=True)
-        self.assertGreaterEqual(answered, 40)  # the frame before joining may be missed
+        self.assertEqual(answered + missed, 41)  # subscribed before the run started
+        self.assertGreater(answered, 0)
         self.assertEqual(len(result.probes), answered)
         tcp = result.probe("tcp")
         np.testing.assert_array_equal(tcp["x"], result.tcp[tcp["seq"], 0])
@@ -262,6 +273,53 @@ class ClientTest(unittest.TestCase):
         self.assertIn("median probe latency", done.stdout)
         self.assertIn("max |probe - TCP| 0", done.stdout)
         self.assertGreater(os.path.getsize(out), 1000)
+
+    def test_connect_checks_the_servers_wire_version(self):
+        self.assertIn("mbstream.v1.Simulation", self.client.server.services)
+        self.assertEqual(self.client.server.wire_major, mb.WIRE_MAJOR)
+
+    def test_watch_with_events_and_a_progress_bar(self):
+        run = self.client.run("irb1600", SEED_RUN, duration=2, realtime=8)
+        out = io.StringIO()
+        with mock.patch.dict(sys.modules, {"tqdm": None}):  # the plain-text bar
+            bar = mb.ProgressBar(run.id, stream=out)
+        items = list(run.watch(progress=bar, events=True, progress_interval_s=0.05))
+        infos = [i for i in items if isinstance(i, mb.RunInfo)]
+        frames = [i for i in items if isinstance(i, mb.Frame)]
+        self.assertTrue(frames)
+        self.assertTrue(infos)
+        self.assertEqual(mb.run_pb2.RunState.Name(infos[-1].state), "FINISHED")
+        self.assertAlmostEqual(infos[-1].t_s, 2.0, delta=1e-9)
+        self.assertEqual(frames[-1].seq, 40)
+        lines = out.getvalue().splitlines()
+        self.assertTrue(lines[-1].endswith("2.00/2.00 s simulated, 41 frames, FINISHED"), lines)
+        self.assertTrue(bar.closed)
+
+    def test_wait_with_a_progress_bar(self):
+        run = self.client.run("irb1600", SEED_RUN, duration=1, realtime=8)
+        out = io.StringIO()
+        with mock.patch.dict(sys.modules, {"tqdm": None}), mock.patch("sys.stderr", out):
+            info = run.wait(progress=True)
+        self.assertEqual(mb.run_pb2.RunState.Name(info.state), "FINISHED")
+        lines = out.getvalue().splitlines()
+        self.assertTrue(lines, "no progress lines")
+        self.assertTrue(lines[-1].startswith(run.id + ": 100.0% 1.00/1.00 s simulated"), lines)
+
+    def test_result_carries_the_models_joint_names(self):
+        result = self.client.run("irb1600", SEED_SERVO, duration=1).result(check=True)
+        model = self.client.model("irb1600")
+        self.assertEqual(result.joint_names, [j.name for j in model.joints])
+        self.assertEqual(len(result.joint_names), 6)
+        self.assertEqual(result.server_version, mb.__version__)  # the same checkout
+        first = result.joint_names[0]
+        np.testing.assert_array_equal(result.q[:, result.joint(first)], result.q[:, 0])
+        try:
+            import pandas  # noqa: F401
+        except ImportError:
+            return
+        table = result.to_pandas("tau")
+        self.assertEqual(list(table.columns), result.joint_names)
+        np.testing.assert_array_equal(table.values, result.tau)
 
 
 class SpecTest(unittest.TestCase):
@@ -281,49 +339,9 @@ class SpecTest(unittest.TestCase):
         self.assertFalse(mb.load_spec().HasField("duration_s"))  # absent: server defaults
         with self.assertRaises(TypeError):
             mb.load_spec(None, nosuch=1)
-        with self.assertRaises(mb.MbstreamError) as caught:
+        with self.assertRaises(mb.BadRequest) as caught:
             mb.load_spec({"duration_s": "soon"})
         self.assertEqual(caught.exception.code, "INVALID_ARGUMENT")
-
-
-class _RecordingSimulation(service_grpc.SimulationServicer):
-    def __init__(self):
-        self.metadata = []
-
-    def ListModels(self, request, context):
-        self.metadata.append(dict(context.invocation_metadata()))
-        return service_pb2.ListModelsResponse()
-
-    def WatchRun(self, request, context):
-        self.metadata.append(dict(context.invocation_metadata()))
-        return iter(())
-
-
-class TokenTest(unittest.TestCase):
-    """The bearer token is sent on every call (a recording in-process gRPC server)."""
-
-    def test_token_is_sent_as_bearer_metadata_on_unary_and_streaming_calls(self):
-        servicer = _RecordingSimulation()
-        server = grpc.server(concurrent.futures.ThreadPoolExecutor(2))
-        service_grpc.add_SimulationServicer_to_server(servicer, server)
-        port = server.add_insecure_port("127.0.0.1:0")
-        server.start()
-        try:
-            with mb.connect("127.0.0.1:%d" % port, token="s3cret") as client:
-                self.assertEqual(client.models(), [])
-                self.assertEqual(list(client.stub.WatchRun(
-                    service_pb2.WatchRunRequest(run_id="r-x"))), [])
-            with mb.connect("127.0.0.1:%d" % port) as client:
-                client.models()
-        finally:
-            server.stop(None)
-        self.assertEqual([m.get("authorization") for m in servicer.metadata],
-                         ["Bearer s3cret", "Bearer s3cret", None])
-
-    def test_token_in_the_clear_to_a_remote_address_is_refused(self):
-        with self.assertRaises(mb.MbstreamError) as caught:
-            mb.connect("192.0.2.1:50051", token="s3cret")
-        self.assertIn("refusing to send a token in the clear", caught.exception.message)
 
 
 if __name__ == "__main__":
