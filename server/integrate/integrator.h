@@ -32,6 +32,12 @@ struct IntegratorOptions {
   double divergence_limit = 1e10;  // |y_i| beyond this (or non-finite) = diverged
 };
 
+// Checks the options alone, before any system exists: tolerances, steps and the step budget
+// for the method, and the Butcher table (known for erk and dirk, absent for the others).
+// Throws InputError saying what is wrong and what to give instead. MakeIntegrator and
+// MakeIdaIntegrator call it; a run's validation calls it before the run is queued.
+void CheckIntegratorOptions(const IntegratorOptions& options);
+
 // Internal steps between two checks of IntegratorOptions::cpu_deadline_s.
 constexpr long kCpuCheckSteps = 256;
 

@@ -15,13 +15,13 @@
 #include "server/sim/advance_to_frame.h"
 #include "server/sim/body_run.h"
 #include "server/sim/drive_set.h"
-#include "server/sim/formulation_choice.h"
 #include "server/sim/frame_recorder.h"
 #include "server/sim/initial_state.h"
 #include "server/sim/input_sanity.h"
 #include "server/sim/joint_space_ode.h"
 #include "server/sim/run_budget.h"
 #include "server/sim/run_trust.h"
+#include "server/sim/run_validation.h"
 
 namespace mbstream {
 
@@ -158,7 +158,7 @@ RunResult Simulate(const Model& model_in, const RunConfig& config_in, FrameSink*
   RunConfig config = config_in;
   ResolveBudget(model.num_dofs(), &config);
   const DriveSet drives(model, config);
-  const FormulationChoice choice = ChooseFormulation(config, drives);
+  const FormulationChoice choice = ValidateRun(model, config, drives);
   const std::vector<InputWarning> warnings = CheckInputSanity(model, config);
 
   RunResult result;
