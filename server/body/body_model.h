@@ -18,9 +18,9 @@
 
 #include <Eigen/Core>
 
+#include "server/drives/drive_set.h"
 #include "server/math/spatial.h"
 #include "server/model/model.h"
-#include "server/sim/drive_set.h"
 
 namespace mbstream {
 

@@ -100,21 +100,6 @@ void CheckIntegratorOptions(const IntegratorOptions& options) {
   }
 }
 
-IntegratorOptions IntegratorOptionsFrom(const RunConfig& config, double t_final,
-                                        double cpu_deadline_s) {
-  IntegratorOptions options;
-  options.method = config.method;
-  options.rtol = config.rtol;
-  options.atol = config.atol;
-  options.max_step = config.max_step;
-  options.fixed_step = config.fixed_step;
-  options.erk_table = config.erk_table;
-  if (config.max_steps > 0) options.max_steps = config.max_steps;
-  options.t_final = t_final;
-  options.cpu_deadline_s = cpu_deadline_s;
-  return options;
-}
-
 std::unique_ptr<Integrator> MakeIntegrator(OdeSystem& system, double t0, const double* y0,
                                            const IntegratorOptions& options) {
   CheckIntegratorOptions(options);
@@ -149,11 +134,9 @@ std::unique_ptr<Integrator> MakeIntegrator(OdeSystem& system, double t0, const d
       return std::make_unique<SemiImplicitEulerIntegrator>(system, t0, y0, options);
     }
     case Method::kIda:
-      throw InputError(std::string("method ida solves differential-algebraic equations and this "
-                                   "system is an ODE: use a body-index DAE formulation (") +
-                       FormulationName(Formulation::kBodyIndex3) + " or " +
-                       FormulationName(Formulation::kBodyIndex2) +
-                       ") for ida, or an ODE method (bdf, adams, erk, dirk, rk4, euler)");
+      throw InputError(
+          "method ida solves differential-algebraic equations and this system is an ODE: "
+          "use a DAE formulation for ida, or an ODE method (bdf, adams, erk, dirk, rk4, euler)");
   }
   throw InputError("unknown integration method");
 }

@@ -15,6 +15,7 @@
 #include "server/integrate/stiffness_estimate.h"
 #include "server/sim/advance_to_frame.h"
 #include "server/sim/initial_state.h"
+#include "server/sim/integrator_options_from.h"
 
 namespace mbstream {
 

@@ -8,6 +8,7 @@
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/integrator.h"
 #include "server/sim/body_run.h"
+#include "server/sim/integrator_options_from.h"
 
 namespace mbstream {
 
@@ -56,7 +57,7 @@ void CheckMethodFor(const RunConfig& config, const FormulationChoice& choice) {
 
 FormulationChoice ValidateRun(const Model& model, const RunConfig& config) {
   CheckShape(model, config);
-  return ValidateRun(model, config, DriveSet(model, config));
+  return ValidateRun(model, config, DriveSet(model, config.drives));
 }
 
 FormulationChoice ValidateRun(const Model& model, const RunConfig& config, const DriveSet& drives) {

@@ -5,8 +5,8 @@
 // with an InputError inside a worker.
 #pragma once
 
+#include "server/drives/drive_set.h"
 #include "server/model/model.h"
-#include "server/sim/drive_set.h"
 #include "server/sim/formulation_choice.h"
 #include "server/sim/run_config.h"
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "server/common/check.h"
+#include "server/drives/drive_set.h"
 #include "server/dynamics/rnea.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/stiffness_estimate.h"
@@ -14,10 +15,10 @@
 #include "server/kinematics/forward_kinematics.h"
 #include "server/sim/advance_to_frame.h"
 #include "server/sim/body_run.h"
-#include "server/sim/drive_set.h"
 #include "server/sim/frame_recorder.h"
 #include "server/sim/initial_state.h"
 #include "server/sim/input_sanity.h"
+#include "server/sim/integrator_options_from.h"
 #include "server/sim/joint_space_ode.h"
 #include "server/sim/run_budget.h"
 #include "server/sim/run_trust.h"
@@ -157,7 +158,7 @@ RunResult Simulate(const Model& model_in, const RunConfig& config_in, FrameSink*
   model.gravity = config_in.gravity;
   RunConfig config = config_in;
   ResolveBudget(model.num_dofs(), &config);
-  const DriveSet drives(model, config);
+  const DriveSet drives(model, config.drives);
   const FormulationChoice choice = ValidateRun(model, config, drives);
   const std::vector<InputWarning> warnings = CheckInputSanity(model, config);
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "server/common/check.h"
+#include "server/sim/integrator_options_from.h"
 #include "server/sim/run_validation.h"
 #include "server/sim/simulate.h"
 #include "tests/server/sim/scene_fixture.h"
@@ -78,7 +79,7 @@ TEST(RunValidationTest, RefusesWhatOnlyTheWorkerUsedToFind) {
     const char* says;
   };
   const Case cases[] = {
-      {Formulation::kJoint, Method::kIda, "", "method ida"},
+      {Formulation::kJoint, Method::kIda, "", "body-index3 or body-index2"},
       {Formulation::kAuto, Method::kIda, "", "chosen by auto"},
       {Formulation::kJoint, Method::kErk, "nosuch", "nosuch"},
       {Formulation::kJoint, Method::kDirk, "heun-euler", "heun-euler"},
@@ -110,6 +111,22 @@ TEST(RunValidationTest, RefusesADriveCountThatIsNotTheModels) {
   RunConfig config = ShortSwing(Formulation::kJoint, Method::kBdf, "");
   config.drives.pop_back();
   EXPECT_THROW(ValidateRun(Irb1600(), config), InputError);
+}
+
+TEST(RunValidationTest, IntegratorOptionsFromRunConfig) {
+  RunConfig config;
+  config.method = Method::kErk;
+  config.erk_table = "verner";
+  config.rtol = 1e-7;
+  config.max_steps = 42;
+  const IntegratorOptions options = IntegratorOptionsFrom(config, 3.0);
+  EXPECT_EQ(options.method, Method::kErk);
+  EXPECT_EQ(options.erk_table, "verner");
+  EXPECT_EQ(options.rtol, 1e-7);
+  EXPECT_EQ(options.atol, config.atol);
+  EXPECT_EQ(options.max_steps, 42);
+  EXPECT_EQ(options.t_final, 3.0);
+  EXPECT_STREQ(IntegratorStatusName(IntegratorStatus::kTooMuchWork), "too_much_work");
 }
 
 }  // namespace
