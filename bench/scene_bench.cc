@@ -17,8 +17,8 @@
 #include "server/body/body_baumgarte_ode.h"
 #include "server/body/body_dae.h"
 #include "server/body/consistent_init.h"
+#include "server/drives/drive_set.h"
 #include "server/parse/urdf_import.h"
-#include "server/sim/drive_set.h"
 #include "server/sim/joint_space_ode.h"
 #include "server/sim/run_config.h"
 #include "server/sim/simulate.h"
@@ -59,7 +59,7 @@ void BM_Scene(benchmark::State& state, const RunConfig& config) {
 void BM_RhsEval(benchmark::State& state, const RunConfig& config) {
   Model model = Irb1600();
   model.gravity = config.gravity;
-  const DriveSet drives(model, config);
+  const DriveSet drives(model, config.drives);
   JointSpaceOde ode(model, drives);
   const int size = ode.size();
   std::vector<double> y(size, 0.0), ydot(size, 0.0);
@@ -100,7 +100,7 @@ constexpr SceneCase kCases[] = {
 void BM_BodyEval(benchmark::State& state, const RunConfig& config, bool dae) {
   Model model = Irb1600();
   model.gravity = config.gravity;
-  const DriveSet drives(model, config);
+  const DriveSet drives(model, config.drives);
   Eigen::VectorXd q0(6), qd0(6);
   for (int i = 0; i < 6; ++i) {
     q0(i) = drives.prescribed(i) ? drives.Reference(i, 0.0).q : 0.1 * (i + 1);

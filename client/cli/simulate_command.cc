@@ -12,6 +12,7 @@
 #include "server/parse/urdf_import.h"
 #include "server/results/results_files.h"
 #include "server/sim/input_sanity.h"
+#include "server/sim/run_validation.h"
 #include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
 #include "server/wire/model_info.h"
@@ -41,6 +42,7 @@ int RunSimulate(const SimulateOptions& options) {
   }
   options.overrides.ApplyTo(spec);
   const RunConfig config = ToRunConfig(spec, JointNames(import.model), source);
+  ValidateRun(import.model, config);  // the server's validation, before anything runs
   // Before any integration: legal but absurd inputs (Simulate finds them again for stats.json).
   for (const InputWarning& warning : CheckInputSanity(import.model, config)) {
     std::cerr << "mbstream simulate: warning: " << warning.message << "\n";

@@ -4,10 +4,10 @@
 // at every evaluation (a dense Schur complement of the constraint rows); they are not states.
 #pragma once
 
+#include "server/body/baumgarte_parameters.h"
 #include "server/body/body_mechanics.h"
 #include "server/body/body_model.h"
 #include "server/integrate/ode_system.h"
-#include "server/sim/run_config.h"
 
 namespace mbstream {
 

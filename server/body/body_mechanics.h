@@ -18,7 +18,7 @@
 
 #include "server/body/body_model.h"
 #include "server/body/quaternion.h"
-#include "server/sim/drive_set.h"
+#include "server/drives/drive_set.h"
 
 namespace mbstream {
 

@@ -16,18 +16,24 @@ Vector3d Perpendicular(const Vector3d& a) {
 
 }  // namespace
 
+void CheckBodyFormulationHandles(const Model& model) {
+  for (const Body& body : model.bodies) {
+    if (!(body.inertia.mass > 0.0)) {
+      throw InputError("link '" + body.name +
+                       "' has no mass: a free body needs mass and inertia in the body-coordinate "
+                       "formulations; use formulation joint (or auto)");
+    }
+  }
+}
+
 BodyModel MakeBodyModel(const Model& model, const DriveSet& drives, const Eigen::VectorXd& q0) {
+  CheckBodyFormulationHandles(model);
   BodyModel bm;
   bm.n = model.num_dofs();
   bm.gravity = model.gravity;
   bm.children.resize(bm.n);
   for (int i = 0; i < bm.n; ++i) {
     const Body& body = model.bodies[i];
-    if (!(body.inertia.mass > 0.0)) {
-      throw InputError("link '" + body.name +
-                       "' has no mass: a free body needs mass and inertia in the body-coordinate "
-                       "formulations; use formulation joint (or auto)");
-    }
     bm.mass.push_back(body.inertia.mass);
     bm.inertia.push_back(body.inertia.inertia_com);
     bm.com.push_back(body.inertia.com);

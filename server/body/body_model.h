@@ -18,9 +18,9 @@
 
 #include <Eigen/Core>
 
+#include "server/drives/drive_set.h"
 #include "server/math/spatial.h"
 #include "server/model/model.h"
-#include "server/sim/drive_set.h"
 
 namespace mbstream {
 
@@ -65,9 +65,13 @@ struct BodyModel {
   int multiplier(int row) const { return 13 * n + row; }
 };
 
+// Throws InputError for what the body formulations do not model (a massless link), saying
+// what to use instead. MakeBodyModel calls it; a run's validation calls it up front.
+void CheckBodyFormulationHandles(const Model& model);
+
 // Builds the body description of `model` with these drives. q0: the run's initial joint
-// positions (for velocity sources that start off their reference). Throws InputError for
-// what the body formulations do not model (massless links), saying what to use instead.
+// positions (for velocity sources that start off their reference). Throws InputError as
+// CheckBodyFormulationHandles.
 BodyModel MakeBodyModel(const Model& model, const DriveSet& drives, const Eigen::VectorXd& q0);
 
 }  // namespace mbstream

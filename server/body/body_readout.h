@@ -8,7 +8,7 @@
 
 #include "server/body/body_mechanics.h"
 #include "server/body/body_model.h"
-#include "server/sim/drive_set.h"
+#include "server/drives/drive_set.h"
 
 namespace mbstream {
 

@@ -79,6 +79,10 @@ AdvanceResult RhsEventResult(const char* solver, const RhsAdapter& rhs, double t
               FormatString("%s: the model's right-hand side failed unrecoverably (code %d) at "
                            "t = %.9g s; check the model and its inputs at that time",
                            solver, rhs.event_code(), rhs.event_time())};
+    case RhsAdapter::Event::kThrew:
+      return {IntegratorStatus::kRhsFailure, t_good,
+              FormatString("%s: the model's right-hand side failed at t = %.9g s: %s", solver,
+                           rhs.event_time(), rhs.event_what())};
     case RhsAdapter::Event::kNone:
       break;
   }

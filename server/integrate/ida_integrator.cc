@@ -14,6 +14,7 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "server/common/check.h"
+#include "server/integrate/c_boundary.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/ida_failure.h"
 #include "server/integrate/state_health.h"
@@ -25,16 +26,15 @@ namespace sundials {
 
 namespace {
 
-int ResidualCallback(sunrealtype t, N_Vector y, N_Vector yp, N_Vector r, void* user_data) {
+int ResidualCallback(sunrealtype t, N_Vector y, N_Vector yp, N_Vector r, void* user_data) noexcept {
   auto* callbacks = static_cast<IdaCallbacks*>(user_data);
   return callbacks->Residual(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp),
                              N_VGetArrayPointer(r));
 }
 
-int JacobianCallback(sunrealtype t, sunrealtype cj, N_Vector y, N_Vector yp, N_Vector r,
-                     SUNMatrix jac, void* user_data, N_Vector tmp1, N_Vector /*tmp2*/,
-                     N_Vector /*tmp3*/) {
-  auto* callbacks = static_cast<IdaCallbacks*>(user_data);
+// The iteration matrix by coloured finite differences (residual calls that may throw).
+int FillJacobian(IdaCallbacks* callbacks, sunrealtype t, sunrealtype cj, N_Vector y, N_Vector yp,
+                 N_Vector r, SUNMatrix jac, N_Vector tmp1) {
   double h = 0.0;
   if (IDAGetCurrentStep(callbacks->solver, &h) != IDA_SUCCESS) return -1;
   if (IDAGetErrWeights(callbacks->solver, tmp1) != IDA_SUCCESS) return -1;
@@ -66,6 +66,14 @@ int JacobianCallback(sunrealtype t, sunrealtype cj, N_Vector y, N_Vector yp, N_V
   return 0;
 }
 
+int JacobianCallback(sunrealtype t, sunrealtype cj, N_Vector y, N_Vector yp, N_Vector r,
+                     SUNMatrix jac, void* user_data, N_Vector tmp1, N_Vector /*tmp2*/,
+                     N_Vector /*tmp3*/) noexcept {
+  auto* callbacks = static_cast<IdaCallbacks*>(user_data);
+  return AtCBoundary([&] { return FillJacobian(callbacks, t, cj, y, yp, r, jac, tmp1); },
+                     [&](const char* what) { return callbacks->RecordException(t, what); });
+}
+
 Context CreateContext() {
   SUNContext context = nullptr;
   MBSTREAM_CHECK_MSG(SUNContext_Create(nullptr, &context) == 0 && context != nullptr,
@@ -78,7 +86,14 @@ Context CreateContext() {
 IdaCallbacks::IdaCallbacks(DaeSystem& system, double divergence_limit)
     : system_(system), divergence_limit_(divergence_limit), jacobian_(system) {}
 
-int IdaCallbacks::Residual(double t, const double* y, const double* yp, double* r) {
+int IdaCallbacks::RecordException(double t, const char* what) noexcept {
+  if (event_[0] == '\0') {
+    std::snprintf(event_, sizeof(event_), "the residual failed at t = %.6g s: %s", t, what);
+  }
+  return -1;
+}
+
+int IdaCallbacks::Residual(double t, const double* y, const double* yp, double* r) noexcept {
   ++num_evals_;
   const int n = system_.size();
   if (!IsHealthyState(y, n, divergence_limit_)) {
@@ -89,7 +104,8 @@ int IdaCallbacks::Residual(double t, const double* y, const double* yp, double* 
     }
     return 1;
   }
-  const int code = system_.Residual(t, y, yp, r);
+  const int code = AtCBoundary([&] { return system_.Residual(t, y, yp, r); },
+                               [&](const char* what) { return RecordException(t, what); });
   if (code != 0) return code;
   if (!IsFiniteState(r, n)) {
     if (event_[0] == '\0') {
@@ -262,27 +278,9 @@ std::unique_ptr<sundials::IdaIntegrator> MakeIdaIntegrator(DaeSystem& system, do
         "integrator: the initial state is not finite; check the initial positions and "
         "velocities");
   }
-  if (!(o.rtol > 0.0 && o.rtol < 1.0)) {
-    throw InputError(FormatString(
-        "rtol = %g: the relative tolerance of method ida must be in (0, 1), e.g. 1e-6", o.rtol));
-  }
-  if (!(o.atol >= 0.0 && std::isfinite(o.atol))) {
-    throw InputError(FormatString(
-        "atol = %g: the absolute tolerance of method ida must be finite and >= 0, e.g. 1e-8",
-        o.atol));
-  }
-  if (!(o.max_step >= 0.0 && std::isfinite(o.max_step))) {
-    throw InputError(
-        FormatString("max_step = %g s: must be finite and >= 0 (0 = no limit)", o.max_step));
-  }
-  if (o.max_steps <= 0) {
-    throw InputError(FormatString("max_steps = %ld: must be > 0, e.g. 10000000", o.max_steps));
-  }
-  if (!o.erk_table.empty()) {
-    throw InputError("erk_table '" + o.erk_table +
-                     "': a Butcher table applies only to methods erk and dirk, not to ida; "
-                     "leave it empty");
-  }
+  IntegratorOptions checked = o;
+  checked.method = Method::kIda;  // the tolerances, step budget and table checks of ida
+  CheckIntegratorOptions(checked);
   return std::make_unique<sundials::IdaIntegrator>(system, t0, y0, yp0, options);
 }
 

@@ -42,8 +42,13 @@ class IdaCallbacks {
 
   // F(t, y, yp) with the checks: a diverged y is an unrecoverable failure, a non-finite
   // residual a recoverable one (the Newton iterate was wild; IDA retries with a smaller
-  // step). Allocates nothing.
-  int Residual(double t, const double* y, const double* yp, double* r);
+  // step). An exception from the system is an unrecoverable failure whose message is kept
+  // (none crosses IDA's C frames). Allocates nothing.
+  int Residual(double t, const double* y, const double* yp, double* r) noexcept;
+
+  // Records an exception `what` at time t as the event (the first is kept) and returns the
+  // unrecoverable code for IDA. For the C callbacks' boundary.
+  int RecordException(double t, const char* what) noexcept;
 
   DaeSystem& system() { return system_; }
   ColoredJacobian& jacobian() { return jacobian_; }
@@ -58,7 +63,7 @@ class IdaCallbacks {
   double divergence_limit_;
   ColoredJacobian jacobian_;
   long num_evals_ = 0;
-  char event_[200] = {};
+  char event_[320] = {};
 };
 
 class IdaIntegrator final : public IntegratorBase {

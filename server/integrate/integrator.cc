@@ -17,12 +17,12 @@ namespace {
 
 bool IsAdaptive(Method method) {
   return method == Method::kBdf || method == Method::kAdams || method == Method::kErk ||
-         method == Method::kDirk;
+         method == Method::kDirk || method == Method::kIda;
 }
 
-void ValidateOptions(const OdeSystem& system, double t0, const double* y0,
-                     const IntegratorOptions& options) {
-  const char* method = MethodName(options.method);
+// What CheckIntegratorOptions cannot know: the system, the start time and state.
+void CheckStart(const OdeSystem& system, double t0, const double* y0,
+                const IntegratorOptions& options) {
   MBSTREAM_CHECK_MSG(system.size() > 0 && y0 != nullptr, "an ODE system needs states");
   if (!std::isfinite(t0) || std::isnan(options.t_final) || !(options.t_final > t0)) {
     throw InputError(FormatString(
@@ -37,37 +37,6 @@ void ValidateOptions(const OdeSystem& system, double t0, const double* y0,
           "initial positions and velocities",
           i, y0[i]));
     }
-  }
-  if (IsAdaptive(options.method)) {
-    if (!(options.rtol > 0.0 && options.rtol < 1.0)) {
-      throw InputError(FormatString(
-          "rtol = %g: the relative tolerance of method %s must be in (0, 1), e.g. 1e-6",
-          options.rtol, method));
-    }
-    if (!(options.atol >= 0.0 && std::isfinite(options.atol))) {
-      throw InputError(FormatString(
-          "atol = %g: the absolute tolerance of method %s must be finite and >= 0, e.g. 1e-8",
-          options.atol, method));
-    }
-    if (!(options.max_step >= 0.0 && std::isfinite(options.max_step))) {
-      throw InputError(FormatString("max_step = %g s: must be finite and >= 0 (0 = no limit)",
-                                    options.max_step));
-    }
-  } else if (!(options.fixed_step > 0.0 && std::isfinite(options.fixed_step))) {
-    throw InputError(
-        FormatString("fixed_step = %g s: the step of method %s must be finite and > 0, e.g. 1e-3",
-                     options.fixed_step, method));
-  }
-  if (options.max_steps <= 0) {
-    throw InputError(
-        FormatString("max_steps = %ld: must be > 0, e.g. 10000000", options.max_steps));
-  }
-  MBSTREAM_CHECK_MSG(options.divergence_limit > 0.0, "divergence_limit must be > 0");
-  if (!options.erk_table.empty() && options.method != Method::kErk &&
-      options.method != Method::kDirk) {
-    throw InputError("erk_table '" + options.erk_table +
-                     "': a Butcher table applies only to methods erk and dirk, not to " + method +
-                     "; leave it empty or choose method erk or dirk");
   }
 }
 
@@ -93,24 +62,48 @@ const char* IntegratorStatusName(IntegratorStatus status) {
   return "unknown";
 }
 
-IntegratorOptions IntegratorOptionsFrom(const RunConfig& config, double t_final,
-                                        double cpu_deadline_s) {
-  IntegratorOptions options;
-  options.method = config.method;
-  options.rtol = config.rtol;
-  options.atol = config.atol;
-  options.max_step = config.max_step;
-  options.fixed_step = config.fixed_step;
-  options.erk_table = config.erk_table;
-  if (config.max_steps > 0) options.max_steps = config.max_steps;
-  options.t_final = t_final;
-  options.cpu_deadline_s = cpu_deadline_s;
-  return options;
+void CheckIntegratorOptions(const IntegratorOptions& options) {
+  const char* method = MethodName(options.method);
+  if (IsAdaptive(options.method)) {
+    if (!(options.rtol > 0.0 && options.rtol < 1.0)) {
+      throw InputError(FormatString(
+          "rtol = %g: the relative tolerance of method %s must be in (0, 1), e.g. 1e-6",
+          options.rtol, method));
+    }
+    if (!(options.atol >= 0.0 && std::isfinite(options.atol))) {
+      throw InputError(FormatString(
+          "atol = %g: the absolute tolerance of method %s must be finite and >= 0, e.g. 1e-8",
+          options.atol, method));
+    }
+    if (!(options.max_step >= 0.0 && std::isfinite(options.max_step))) {
+      throw InputError(FormatString("max_step = %g s: must be finite and >= 0 (0 = no limit)",
+                                    options.max_step));
+    }
+  } else if (!(options.fixed_step > 0.0 && std::isfinite(options.fixed_step))) {
+    throw InputError(
+        FormatString("fixed_step = %g s: the step of method %s must be finite and > 0, e.g. 1e-3",
+                     options.fixed_step, method));
+  }
+  if (options.max_steps <= 0) {
+    throw InputError(
+        FormatString("max_steps = %ld: must be > 0, e.g. 10000000", options.max_steps));
+  }
+  MBSTREAM_CHECK_MSG(options.divergence_limit > 0.0, "divergence_limit must be > 0");
+  if (options.method == Method::kErk) {
+    FindErkTable(options.erk_table);  // throws InputError for an unknown name
+  } else if (options.method == Method::kDirk) {
+    FindDirkTable(options.erk_table);  // throws InputError for an unknown name
+  } else if (!options.erk_table.empty()) {
+    throw InputError("erk_table '" + options.erk_table +
+                     "': a Butcher table applies only to methods erk and dirk, not to " + method +
+                     "; leave it empty or choose method erk or dirk");
+  }
 }
 
 std::unique_ptr<Integrator> MakeIntegrator(OdeSystem& system, double t0, const double* y0,
                                            const IntegratorOptions& options) {
-  ValidateOptions(system, t0, y0, options);
+  CheckIntegratorOptions(options);
+  CheckStart(system, t0, y0, options);
   using sundials::ArkStepIntegrator;
   using sundials::CvodeIntegrator;
   switch (options.method) {
@@ -121,11 +114,9 @@ std::unique_ptr<Integrator> MakeIntegrator(OdeSystem& system, double t0, const d
       return std::make_unique<CvodeIntegrator>(CvodeIntegrator::Variant::kAdams, system, t0, y0,
                                                options);
     case Method::kErk:
-      FindErkTable(options.erk_table);  // throws InputError for an unknown name
       return std::make_unique<ArkStepIntegrator>(ArkStepIntegrator::Variant::kErk, system, t0, y0,
                                                  options);
     case Method::kDirk:
-      FindDirkTable(options.erk_table);  // throws InputError for an unknown name
       return std::make_unique<ArkStepIntegrator>(ArkStepIntegrator::Variant::kDirk, system, t0, y0,
                                                  options);
     case Method::kRk4:
@@ -143,11 +134,9 @@ std::unique_ptr<Integrator> MakeIntegrator(OdeSystem& system, double t0, const d
       return std::make_unique<SemiImplicitEulerIntegrator>(system, t0, y0, options);
     }
     case Method::kIda:
-      throw InputError(std::string("method ida solves differential-algebraic equations and this "
-                                   "system is an ODE: use a body-index DAE formulation (") +
-                       FormulationName(Formulation::kBodyIndex3) + " or " +
-                       FormulationName(Formulation::kBodyIndex2) +
-                       ") for ida, or an ODE method (bdf, adams, erk, dirk, rk4, euler)");
+      throw InputError(
+          "method ida solves differential-algebraic equations and this system is an ODE: "
+          "use a DAE formulation for ida, or an ODE method (bdf, adams, erk, dirk, rk4, euler)");
   }
   throw InputError("unknown integration method");
 }

@@ -7,8 +7,8 @@
 #include <memory>
 #include <string>
 
+#include "server/integrate/method.h"
 #include "server/integrate/ode_system.h"
-#include "server/sim/run_config.h"
 
 namespace mbstream {
 
@@ -32,14 +32,14 @@ struct IntegratorOptions {
   double divergence_limit = 1e10;  // |y_i| beyond this (or non-finite) = diverged
 };
 
+// Checks the options alone, before any system exists: tolerances, steps and the step budget
+// for the method, and the Butcher table (known for erk and dirk, absent for the others).
+// Throws InputError saying what is wrong and what to give instead. MakeIntegrator and
+// MakeIdaIntegrator call it; a run's validation calls it before the run is queued.
+void CheckIntegratorOptions(const IntegratorOptions& options);
+
 // Internal steps between two checks of IntegratorOptions::cpu_deadline_s.
 constexpr long kCpuCheckSteps = 256;
-
-// The options of a run: RunConfig's solver fields, with the given stop time and CPU deadline
-// (RunConfig::max_steps 0 keeps IntegratorOptions' default step budget).
-IntegratorOptions IntegratorOptionsFrom(
-    const RunConfig& config, double t_final,
-    double cpu_deadline_s = std::numeric_limits<double>::infinity());
 
 // Cumulative solver statistics since creation.
 struct SolverStats {

@@ -1,5 +1,8 @@
 #include "server/integrate/rhs_adapter.h"
 
+#include <cstdio>
+
+#include "server/integrate/c_boundary.h"
 #include "server/integrate/state_health.h"
 
 namespace mbstream {
@@ -7,7 +10,7 @@ namespace mbstream {
 RhsAdapter::RhsAdapter(OdeSystem& system, double divergence_limit)
     : system_(system), size_(system.size()), divergence_limit_(divergence_limit) {}
 
-int RhsAdapter::Fail(Event event, double t, int code) {
+int RhsAdapter::Fail(Event event, double t, int code) noexcept {
   if (event_ == Event::kNone) {
     event_ = event;
     event_time_ = t;
@@ -16,14 +19,22 @@ int RhsAdapter::Fail(Event event, double t, int code) {
   return code < 0 ? code : -1;
 }
 
-int RhsAdapter::Evaluate(double t, const double* y, double* ydot) {
+int RhsAdapter::RecordException(double t, const char* what) noexcept {
+  if (event_ == Event::kNone) std::snprintf(event_what_, sizeof(event_what_), "%s", what);
+  return Fail(Event::kThrew, t, -1);
+}
+
+int RhsAdapter::Evaluate(double t, const double* y, double* ydot) noexcept {
   ++num_evals_;
   // The run is over after an unrecoverable failure. Keep failing, so that a solver that
   // retries anyway (CVODE's fixed-point iteration treats every failure as recoverable)
   // stops at once instead of creeping towards the failure time with ever smaller steps.
   if (event_ != Event::kNone) return -1;
   if (!IsHealthyState(y, size_, divergence_limit_)) return Fail(Event::kDiverged, t, -1);
-  const int code = system_.Rhs(t, y, ydot);
+  const int code =
+      sundials::AtCBoundary([&] { return system_.Rhs(t, y, ydot); },
+                            [&](const char* what) { return RecordException(t, what); });
+  if (event_ == Event::kThrew) return code;
   if (code < 0) return Fail(Event::kFailed, t, code);
   if (code > 0) {
     last_recoverable_code_ = code;
@@ -35,8 +46,9 @@ int RhsAdapter::Evaluate(double t, const double* y, double* ydot) {
 }
 
 int RhsAdapter::EvaluateJacobian(double t, const double* y, const double* fy,
-                                 double* jac_col_major) {
-  return system_.Jacobian(t, y, fy, jac_col_major);
+                                 double* jac_col_major) noexcept {
+  return sundials::AtCBoundary([&] { return system_.Jacobian(t, y, fy, jac_col_major); },
+                               [&](const char* what) { return RecordException(t, what); });
 }
 
 }  // namespace mbstream

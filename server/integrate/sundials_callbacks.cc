@@ -19,7 +19,7 @@ namespace {
 //   min_inc = 1000 |h| uround n ||fy||_wrms (or 1 when fy = 0).
 int FiniteDifferenceJacobian(const CallbackData& data, double t, N_Vector y, N_Vector fy,
                              SUNMatrix jac, N_Vector y_shifted, N_Vector f_shifted,
-                             N_Vector weights) {
+                             N_Vector weights) noexcept {
   double h = 0.0;
   int flag = data.family == Family::kCvode ? CVodeGetCurrentStep(data.solver, &h)
                                            : ARKStepGetCurrentStep(data.solver, &h);
@@ -52,13 +52,13 @@ int FiniteDifferenceJacobian(const CallbackData& data, double t, N_Vector y, N_V
 
 }  // namespace
 
-int RhsCallback(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
+int RhsCallback(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) noexcept {
   const auto* data = static_cast<const CallbackData*>(user_data);
   return data->rhs->Evaluate(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
 }
 
 int DenseJacobianCallback(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix jac, void* user_data,
-                          N_Vector tmp1, N_Vector tmp2, N_Vector tmp3) {
+                          N_Vector tmp1, N_Vector tmp2, N_Vector tmp3) noexcept {
   const auto* data = static_cast<const CallbackData*>(user_data);
   if (!data->own_jacobian) {
     return FiniteDifferenceJacobian(*data, t, y, fy, jac, tmp1, tmp2, tmp3);
@@ -69,7 +69,7 @@ int DenseJacobianCallback(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix jac,
 }
 
 void ErrorSink::Handle(int error_code, const char* module, const char* function, char* message,
-                       void* sink) {
+                       void* sink) noexcept {
   if (error_code >= 0) return;  // a warning (CV_WARNING, ARK_WARNING): not kept
   auto* self = static_cast<ErrorSink*>(sink);
   std::snprintf(self->message_, sizeof(self->message_), "%s (%s): %s",

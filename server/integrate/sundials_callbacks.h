@@ -18,22 +18,23 @@ struct CallbackData {
   bool own_jacobian = false;  // the system's Jacobian, not finite differences
 };
 
-// CVRhsFn / ARKRhsFn.
-int RhsCallback(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data);
+// CVRhsFn / ARKRhsFn. Like every callback handed to SUNDIALS it lets no exception out: the
+// RhsAdapter turns one into an unrecoverable failure that keeps its message.
+int RhsCallback(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) noexcept;
 
 // CVLsJacFn / ARKLsJacFn for a SUNDenseMatrix: the system's own Jacobian, or else forward
 // differences computed as SUNDIALS' internal ones (cvLsDenseDQJac / arkLsDenseDQJac: the
 // same increments, n evaluations of f) but without their allocation of a vector per call,
 // so that a step allocates nothing.
 int DenseJacobianCallback(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix jac, void* user_data,
-                          N_Vector tmp1, N_Vector tmp2, N_Vector tmp3);
+                          N_Vector tmp1, N_Vector tmp2, N_Vector tmp3) noexcept;
 
 // Receives SUNDIALS' error messages instead of stderr (CVErrHandlerFn / ARKErrHandlerFn,
 // eh_data = this). Keeps the last error (warnings are dropped). Allocates nothing.
 class ErrorSink {
  public:
   static void Handle(int error_code, const char* module, const char* function, char* message,
-                     void* sink);
+                     void* sink) noexcept;
 
   void Clear() { message_[0] = '\0'; }
   const char* message() const { return message_; }  // "" when there was none

@@ -97,8 +97,6 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
     outcome.message = stop_reason_ +
                       " during this run; the frames up to t = " + std::to_string(stats.t_reached) +
                       " s are kept";
-  } else if (outcome.state == v1::CANCELLED) {
-    outcome.message = "cancelled at t = " + std::to_string(stats.t_reached) + " s";
   }
   outcome.stats = StatsToProto(stats);
   return outcome;

@@ -14,8 +14,7 @@
 #include "server/runs/request_error.h"
 #include "server/runs/run_budget_caps.h"
 #include "server/runs/unix_time.h"
-#include "server/sim/drive_set.h"
-#include "server/sim/formulation_choice.h"
+#include "server/sim/run_validation.h"
 #include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
 #include "server/store/store.h"
@@ -66,7 +65,7 @@ v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& s
                               const std::string& owner) {
   std::shared_ptr<const CompiledModel> model = models_->Find(model_ref);
   RunConfig config = ToRunConfig(spec, model->joint_names, "spec");
-  ChooseFormulation(config, DriveSet(model->model, config));  // throws if unavailable
+  ValidateRun(model->model, config);  // the one validation; throws InputError
   if (config.duration > limits_.max_duration_s) {
     throw RequestError(RequestErrorKind::kResourceExhausted,
                        "spec.duration_s " + std::to_string(config.duration) +
@@ -381,6 +380,10 @@ void RunManager::WorkerLoop() {
     Outcome outcome;
     try {
       outcome = Execute(run);
+    } catch (const InputError& error) {  // ValidateRun should have refused it: keep the reason
+      spdlog::error("run {}: invalid input found only by the worker: {}", run->id(), error.what());
+      outcome.state = v1::FAILED;
+      outcome.message = error.what();
     } catch (const std::exception& error) {
       spdlog::error("run {}: {}", run->id(), error.what());
       outcome.state = v1::FAILED;

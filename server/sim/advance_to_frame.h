@@ -1,7 +1,6 @@
-// The step between output frames, shared by the integrating formulations' run loops.
+// The step between output frames, shared by the integrating formulations' frame sources.
 #pragma once
 
-#include <atomic>
 #include <string>
 #include <vector>
 
@@ -10,12 +9,11 @@
 
 namespace mbstream {
 
-// Before output frame k: stops when `cancel` is set (kCancelled), then, for k > 0, advances
-// `integrator` to times[k]. Returns false, with the status and message (plus `advice`) in
-// `stats`, when the run must stop there; `t_stop`, if given, then receives the integrator's
-// last good time (y holds the state there).
+// For k > 0, advances `integrator` to times[k] (k = 0 is the start: nothing to do). Returns
+// false, with the status and message (plus `advice`) in `stats`, when the run must stop
+// there; `t_stop`, if given, then receives the integrator's last good time (y holds the
+// state there).
 bool AdvanceToFrame(Integrator& integrator, const std::vector<double>& times, size_t k, double* y,
-                    const std::atomic<bool>* cancel, RunStats* stats,
-                    const std::string& advice = "", double* t_stop = nullptr);
+                    RunStats* stats, const std::string& advice = "", double* t_stop = nullptr);
 
 }  // namespace mbstream

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "server/body/body_baumgarte_ode.h"
 #include "server/body/body_dae.h"
@@ -14,7 +15,10 @@
 #include "server/integrate/integrator.h"
 #include "server/integrate/stiffness_estimate.h"
 #include "server/sim/advance_to_frame.h"
+#include "server/sim/frame_loop.h"
 #include "server/sim/initial_state.h"
+#include "server/sim/integrator_options_from.h"
+#include "server/sim/run_stop.h"
 
 namespace mbstream {
 
@@ -36,6 +40,55 @@ std::string Advice(Formulation formulation) {
              "motion's bandwidth) or the joint formulation";
   }
 }
+
+// The body coordinates' state, read out in joint terms at each frame.
+class BodySource : public FrameSource {
+ public:
+  BodySource(BodyReadout& readout, Integrator& integrator, Eigen::VectorXd& y,
+             BodyBaumgarteOde* ode, std::string advice, bool need_effort, BudgetTracking* budget)
+      : readout_(readout),
+        integrator_(integrator),
+        y_(y),
+        ode_(ode),
+        advice_(std::move(advice)),
+        need_effort_(need_effort),
+        budget_(budget) {}
+
+  bool Advance(const std::vector<double>& times, size_t k, RunStats* stats) override {
+    if (AdvanceToFrame(integrator_, times, k, y_.data(), stats, advice_, &budget_->t_stop)) {
+      return true;
+    }
+    if (stats->status == RunStatus::kTooMuchWork) {
+      budget_->advice = advice_;
+      // The failure path only (it allocates); the state y is the last good one.
+      if (ode_) budget_->eigenvalue = LargestEigenvalueEstimate(*ode_, budget_->t_stop, y_.data());
+    }
+    return false;
+  }
+
+  bool Record(double t, FrameRecorder& recorder) override {
+    const bool finite = readout_.Read(t, y_.data(), need_effort_);
+    extras_.tcp = readout_.tcp();
+    extras_.kinetic = readout_.kinetic();
+    extras_.potential = readout_.potential();
+    return finite && recorder.Record(t, readout_.q(), readout_.qd(),
+                                     need_effort_ ? &readout_.effort() : nullptr, &extras_);
+  }
+
+  std::string NonFiniteMessage(double t) const override {
+    return FormatString("the state became non-finite at t = %g s", t) + advice_;
+  }
+
+ private:
+  BodyReadout& readout_;
+  Integrator& integrator_;
+  Eigen::VectorXd& y_;
+  BodyBaumgarteOde* ode_;  // null for the DAE formulations
+  const std::string advice_;
+  const bool need_effort_;
+  BudgetTracking* budget_;
+  FrameExtras extras_;
+};
 
 }  // namespace
 
@@ -73,10 +126,9 @@ void RunBody(const Model& model, const RunConfig& config, Formulation formulatio
     result.stats.jacobian_nnz = dae->JacobianNonZeros();
   }
   if (!consistent) {
-    result.stats.status = RunStatus::kFailed;
-    result.stats.message =
-        "the body formulation's constraints are singular at the initial pose (redundant or "
-        "degenerate joints): no consistent initial accelerations; use the joint formulation";
+    StopRun(&result.stats, RunStatus::kFailed,
+            "the body formulation's constraints are singular at the initial pose (redundant or "
+            "degenerate joints): no consistent initial accelerations; use the joint formulation");
     return;
   }
 
@@ -101,31 +153,9 @@ void RunBody(const Model& model, const RunConfig& config, Formulation formulatio
 
   BodyReadout readout(bm, drives);
   readout.SetStart(q0);
-  const bool need_effort = result.has_torques || result.has_energy;
-  FrameExtras extras;
-  for (size_t k = 0; k < times.size(); ++k) {
-    if (!AdvanceToFrame(*integrator, times, k, y.data(), cancel, &result.stats, Advice(formulation),
-                        &budget->t_stop)) {
-      if (result.stats.status == RunStatus::kTooMuchWork) {
-        budget->advice = Advice(formulation);
-        // The failure path only (it allocates); the state y is the last good one.
-        if (ode) budget->eigenvalue = LargestEigenvalueEstimate(*ode, budget->t_stop, y.data());
-      }
-      break;
-    }
-    const bool finite = readout.Read(times[k], y.data(), need_effort);
-    extras.tcp = readout.tcp();
-    extras.kinetic = readout.kinetic();
-    extras.potential = readout.potential();
-    if (!finite || !recorder.Record(times[k], readout.q(), readout.qd(),
-                                    need_effort ? &readout.effort() : nullptr, &extras)) {
-      result.stats.status = RunStatus::kDiverged;
-      result.stats.message =
-          FormatString("the state became non-finite at t = %g s", times[k]) + Advice(formulation);
-      break;
-    }
-    if (sink) sink->OnFrame(result, result.num_frames() - 1);
-  }
+  BodySource source(readout, *integrator, y, ode.get(), Advice(formulation),
+                    result.has_torques || result.has_energy, budget);
+  RunFrames(times, source, recorder, result, sink, cancel);
   result.stats.solver = integrator->stats();
   const ConstraintDrift& drift = readout.drift();
   result.stats.drift_position_max = drift.position;

@@ -5,8 +5,8 @@
 #include <atomic>
 #include <vector>
 
+#include "server/drives/drive_set.h"
 #include "server/model/model.h"
-#include "server/sim/drive_set.h"
 #include "server/sim/frame_recorder.h"
 #include "server/sim/run_budget.h"
 #include "server/sim/run_config.h"

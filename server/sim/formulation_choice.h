@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "server/sim/drive_set.h"
+#include "server/drives/drive_set.h"
 #include "server/sim/run_config.h"
 
 namespace mbstream {

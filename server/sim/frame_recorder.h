@@ -4,9 +4,9 @@
 
 #include <Eigen/Core>
 
+#include "server/drives/drive_set.h"
 #include "server/model/data.h"
 #include "server/model/model.h"
-#include "server/sim/drive_set.h"
 #include "server/sim/run_result.h"
 
 namespace mbstream {

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "server/drives/drive_set.h"
 #include "server/dynamics/crba.h"
 #include "server/integrate/failure_messages.h"
 #include "server/model/data.h"
-#include "server/sim/drive_set.h"
 #include "server/sim/initial_state.h"
 
 namespace mbstream {
@@ -85,7 +85,7 @@ void CheckDrives(const Model& model, const RunConfig& config, std::vector<InputW
   }
   Eigen::VectorXd inertia = Eigen::VectorXd::Zero(n);
   if (any_servo) {
-    const DriveSet drives(model, config);
+    const DriveSet drives(model, config.drives);
     const Eigen::VectorXd y0 = InitialJointState(config, drives, n);
     Data data(model);
     const Eigen::VectorXd q0 = y0.head(n);

@@ -12,10 +12,10 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
+#include "server/drives/drive_set.h"
 #include "server/integrate/ode_system.h"
 #include "server/model/data.h"
 #include "server/model/model.h"
-#include "server/sim/drive_set.h"
 
 namespace mbstream {
 

@@ -8,6 +8,10 @@
 
 #include <Eigen/Core>
 
+#include "server/body/baumgarte_parameters.h"
+#include "server/drives/drive_config.h"
+#include "server/integrate/method.h"
+
 namespace mbstream {
 
 // How the mechanism is modelled ("model no more than a scene needs").
@@ -18,55 +22,6 @@ enum class Formulation {
   kBodyIndex3,     // body coordinates, position-level constraints (DAE, IDA)
   kBodyIndex2,     // body coordinates, velocity-level constraints (DAE, IDA)
   kBodyBaumgarte,  // body coordinates, stabilised acceleration-level constraints (ODE)
-};
-
-// The time integrator.
-enum class Method {
-  kBdf,    // CVODE BDF (variable order 1-5), Newton with dense Jacobian
-  kAdams,  // CVODE Adams-Moulton (orders 1-12), functional iteration
-  kErk,    // ARKODE explicit Runge-Kutta (table in RunConfig::erk_table)
-  kDirk,   // ARKODE diagonally implicit Runge-Kutta
-  kIda,    // IDA (DAE formulations)
-  kRk4,    // fixed-step classical Runge-Kutta 4
-  kEuler,  // fixed-step semi-implicit (symplectic) Euler, the game-engine baseline
-};
-
-// q(t) for one joint (rad or m; t in s).
-struct Trajectory {
-  enum class Kind {
-    kSine,    // q = offset + sum_k amplitude[k] * sin(omega[k] * t + phase[k])
-    kSpline,  // natural cubic spline through (times[k], values[k]), held constant outside
-  };
-  Kind kind = Kind::kSine;
-  double offset = 0.0;
-  std::vector<double> amplitude, omega, phase;  // rad or m, rad/s, rad
-  std::vector<double> times, values;            // s, rad or m (strictly increasing times)
-};
-
-// What drives one joint.
-struct DriveConfig {
-  enum class Kind {
-    kPassive,     // no actuator: only the joint's damping acts
-    kPrescribed,  // motion imposed by `trajectory`; dynamics then yields the drive effort
-    kTorque,      // applied effort: constant + amplitude * sin(omega * t + phase) (N*m or N)
-    kPdServo,     // effort = kp (q_ref - q) + kd (qd_ref - qd), q_ref from `trajectory`
-  };
-  Kind kind = Kind::kPassive;
-  Trajectory trajectory;  // kPrescribed and kPdServo
-  // kPrescribed only: the seed's velocity-source drive. The drive imposes qd(t) and the
-  // formulation integrates q from it (instead of imposing q(t) in closed form).
-  bool velocity_source = false;
-  double kp = 0.0;         // N*m/rad or N/m
-  double kd = 0.0;         // N*m*s/rad or N*s/m
-  double constant = 0.0;   // kTorque
-  double amplitude = 0.0;  // kTorque
-  double omega = 0.0;      // kTorque, rad/s
-  double phase = 0.0;      // kTorque, rad
-};
-
-struct BaumgarteParameters {
-  double alpha = 10.0;  // 1/s, velocity-error feedback
-  double beta = 25.0;   // 1/s^2, position-error feedback
 };
 
 struct RunConfig {
@@ -93,9 +48,7 @@ struct RunConfig {
 };
 
 const char* FormulationName(Formulation formulation);  // "auto", "kinematic", "joint", ...
-const char* MethodName(Method method);                 // "bdf", "adams", ...
-// Parse the names of the contract; return false for an unknown name.
+// Parses the name of the contract; returns false for an unknown name.
 bool ParseFormulation(const std::string& name, Formulation* formulation);
-bool ParseMethod(const std::string& name, Method* method);
 
 }  // namespace mbstream

@@ -7,21 +7,17 @@
 #include <string>
 
 #include "server/common/check.h"
-#include "server/dynamics/rnea.h"
+#include "server/drives/drive_set.h"
 #include "server/integrate/failure_messages.h"
-#include "server/integrate/stiffness_estimate.h"
 #include "server/integrate/thread_cpu_clock.h"
-#include "server/kinematics/forward_kinematics.h"
-#include "server/sim/advance_to_frame.h"
 #include "server/sim/body_run.h"
-#include "server/sim/drive_set.h"
-#include "server/sim/formulation_choice.h"
 #include "server/sim/frame_recorder.h"
-#include "server/sim/initial_state.h"
 #include "server/sim/input_sanity.h"
-#include "server/sim/joint_space_ode.h"
+#include "server/sim/joint_run.h"
+#include "server/sim/kinematic_run.h"
 #include "server/sim/run_budget.h"
 #include "server/sim/run_trust.h"
+#include "server/sim/run_validation.h"
 
 namespace mbstream {
 
@@ -41,73 +37,6 @@ std::vector<double> OutputTimes(double duration, double interval) {
   for (long k = 0; k < regular; ++k) times.push_back(std::min(duration, k * interval));
   if (duration - times.back() > 1e-12 * duration) times.push_back(duration);
   return times;
-}
-
-void RunKinematic(const Model& model, const RunConfig& config, const DriveSet& drives,
-                  const std::vector<double>& times, FrameRecorder& recorder, RunResult& result,
-                  FrameSink* sink, const std::atomic<bool>* cancel) {
-  const int n = model.num_dofs();
-  Data data(model);
-  Eigen::VectorXd q(n), qd(n), qdd(n), effort(n);
-  for (double t : times) {
-    if (cancel && cancel->load(std::memory_order_relaxed)) {
-      result.stats.status = RunStatus::kCancelled;
-      result.stats.message = "cancelled at t = " + std::to_string(result.stats.t_reached) + " s";
-      return;
-    }
-    for (int i = 0; i < n; ++i) {
-      const TrajectoryPoint ref = drives.Reference(i, t);
-      q(i) = ref.q;
-      qd(i) = ref.qd;
-      qdd(i) = ref.qdd;
-    }
-    if (config.want_torques) {
-      effort = Rnea(model, data, q, qd, qdd);
-      for (int i = 0; i < n; ++i) effort(i) += drives.damping(i) * qd(i);
-    }
-    if (!recorder.Record(t, q, qd, config.want_torques ? &effort : nullptr)) {
-      result.stats.status = RunStatus::kDiverged;
-      result.stats.message =
-          "a prescribed trajectory gave a non-finite value at t = " + std::to_string(t) +
-          " s; check the drives' parameters";
-      return;
-    }
-    if (sink) sink->OnFrame(result, result.num_frames() - 1);
-  }
-}
-
-void RunJointSpace(const Model& model, const RunConfig& config, const DriveSet& drives,
-                   const std::vector<double>& times, FrameRecorder& recorder, RunResult& result,
-                   FrameSink* sink, const std::atomic<bool>* cancel, BudgetTracking* budget) {
-  const int n = model.num_dofs();
-  JointSpaceOde ode(model, drives);
-  result.stats.equations = ode.size();
-  result.stats.jacobian_nnz = ode.JacobianNonZeros();
-  Eigen::VectorXd y = InitialJointState(config, drives, n);
-  std::unique_ptr<Integrator> integrator = MakeIntegrator(
-      ode, 0.0, y.data(), IntegratorOptionsFrom(config, times.back(), budget->cpu_deadline_s));
-  result.stats.integrator = integrator->name();
-  const bool need_effort = result.has_torques || result.has_energy;
-  for (size_t k = 0; k < times.size(); ++k) {
-    if (!AdvanceToFrame(*integrator, times, k, y.data(), cancel, &result.stats, "",
-                        &budget->t_stop)) {
-      if (result.stats.status == RunStatus::kTooMuchWork) {
-        // The failure path only (it allocates); y is the last good state.
-        budget->eigenvalue = LargestEigenvalueEstimate(ode, budget->t_stop, y.data());
-      }
-      break;
-    }
-    const bool finite = ode.EvaluateOutputs(times[k], y.data(), need_effort);
-    if (!finite || !recorder.Record(times[k], ode.q(), ode.qd(),
-                                    need_effort ? &ode.drive_effort() : nullptr)) {
-      result.stats.status = RunStatus::kDiverged;
-      result.stats.message = "the state became non-finite at t = " + std::to_string(times[k]) +
-                             " s; use a smaller step or an implicit method (bdf, dirk)";
-      break;
-    }
-    if (sink) sink->OnFrame(result, result.num_frames() - 1);
-  }
-  result.stats.solver = integrator->stats();
 }
 
 // What ran out and why, for the message of a run whose budget did.
@@ -157,8 +86,8 @@ RunResult Simulate(const Model& model_in, const RunConfig& config_in, FrameSink*
   model.gravity = config_in.gravity;
   RunConfig config = config_in;
   ResolveBudget(model.num_dofs(), &config);
-  const DriveSet drives(model, config);
-  const FormulationChoice choice = ChooseFormulation(config, drives);
+  const DriveSet drives(model, config.drives);
+  const FormulationChoice choice = ValidateRun(model, config, drives);
   const std::vector<InputWarning> warnings = CheckInputSanity(model, config);
 
   RunResult result;

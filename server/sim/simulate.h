@@ -12,8 +12,8 @@ namespace mbstream {
 // Simulates `model` under `config` (validated by server/spec) and returns every good frame
 // with statistics. Numerical failure is a status, not an exception: the result then holds
 // every frame up to the last good time. Throws InputError only for a request that cannot
-// start (an unavailable formulation or method for this run). `sink`, if given, sees each
-// frame as it is produced; `cancel`, if given and set, stops the run (status kCancelled).
+// start, which ValidateRun (run_validation.h) refuses before any integration. `sink`, if given,
+// sees each frame as it is produced; `cancel`, if given and set, stops the run (status kCancelled).
 RunResult Simulate(const Model& model, const RunConfig& config, FrameSink* sink = nullptr,
                    const std::atomic<bool>* cancel = nullptr);
 

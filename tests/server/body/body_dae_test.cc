@@ -76,7 +76,7 @@ int ExpectPatternHolds(BodyDae& dae, const BodyModel& bm, const char* label) {
 TEST_P(BodyDaeTest, PatternHoldsEveryNonZero) {
   const Model& model = testing::Irb1600();
   RunConfig config = testing::Scene(GetParam().scene);
-  const DriveSet drives(model, config);
+  const DriveSet drives(model, config.drives);
   const BodyModel bm = MakeBodyModel(model, drives, Eigen::VectorXd());
   BodyDae dae(bm, drives, GetParam().level);
   const std::string label =
@@ -89,7 +89,7 @@ TEST_P(BodyDaeTest, PatternHoldsEveryNonZero) {
 TEST_P(BodyDaeTest, ConsistentInitialStateZeroesTheResidual) {
   const Model& model = testing::Irb1600();
   const RunConfig config = testing::Scene(GetParam().scene);
-  const DriveSet drives(model, config);
+  const DriveSet drives(model, config.drives);
   Eigen::VectorXd q0(6), qd0(6);
   for (int i = 0; i < 6; ++i) {
     q0(i) = drives.prescribed(i) ? drives.Reference(i, 0.0).q : 0.1 * i;
@@ -108,7 +108,7 @@ TEST(BodyDaeBranchingTest, PatternHoldsEveryNonZeroWithPrismaticJoints) {
   const Model model = testing::BranchingModel();
   for (bool prescribed : {true, false}) {
     const RunConfig config = testing::BranchingDrives(model, prescribed);
-    const DriveSet drives(model, config);
+    const DriveSet drives(model, config.drives);
     const BodyModel bm = MakeBodyModel(model, drives, Eigen::VectorXd());
     for (ConstraintLevel level : {ConstraintLevel::kPosition, ConstraintLevel::kVelocity}) {
       BodyDae dae(bm, drives, level);

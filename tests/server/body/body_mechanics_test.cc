@@ -51,7 +51,7 @@ Evaluated Evaluate(BodyMechanics& mech, double t, const Eigen::VectorXd& y) {
 // G nu + g_t against central differences of g along the motion, gamma against those of
 // G nu + g_t, at random states of `model` under `config`.
 void ExpectConstraintDerivatives(const Model& model, const RunConfig& config) {
-  const DriveSet drives(model, config);
+  const DriveSet drives(model, config.drives);
   const BodyModel bm = MakeBodyModel(model, drives, Eigen::VectorXd());
   BodyMechanics mech(bm, drives);
   std::mt19937 rng(7);
@@ -89,7 +89,7 @@ TEST(BodyMechanicsTest, ConstraintDerivativesOfPrismaticAndBranchingJoints) {
 TEST(BodyMechanicsTest, ConsistentInitialStateSatisfiesTheConstraints) {
   const Model& model = testing::Irb1600();
   const RunConfig config = testing::Scene("seed-servo");
-  const DriveSet drives(model, config);
+  const DriveSet drives(model, config.drives);
   Eigen::VectorXd q0(6), qd0(6);
   q0 << 0.3, -0.4, 0.5, 1.0, -0.7, 2.0;
   qd0 << 0.5, -0.2, 0.3, 1.0, 0.4, -0.9;

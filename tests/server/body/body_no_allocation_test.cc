@@ -9,6 +9,7 @@
 #include "server/integrate/ida_colored_jacobian.h"
 #include "server/integrate/ida_integrator.h"
 #include "server/integrate/integrator.h"
+#include "server/sim/integrator_options_from.h"
 #include "tests/common/allocation_counter.h"
 #include "tests/server/body/body_test_util.h"
 
@@ -23,7 +24,7 @@ struct SceneSetup {
   BodyModel bm;
 
   explicit SceneSetup(const char* scene)
-      : config(testing::Scene(scene)), drives(model, config), q0(6), qd0(6) {
+      : config(testing::Scene(scene)), drives(model, config.drives), q0(6), qd0(6) {
     for (int i = 0; i < 6; ++i) {
       q0(i) = drives.prescribed(i) ? drives.Reference(i, 0.0).q : 0.1 * i;
       qd0(i) = drives.prescribed(i) ? drives.Reference(i, 0.0).qd : 0.3;

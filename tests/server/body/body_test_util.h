@@ -7,8 +7,8 @@
 
 #include "server/body/body_model.h"
 #include "server/body/quaternion.h"
+#include "server/drives/drive_set.h"
 #include "server/model/model.h"
-#include "server/sim/drive_set.h"
 #include "tests/server/sim/scene_fixture.h"
 
 namespace mbstream::testing {

@@ -1,7 +1,7 @@
 // DriveSet::ActuatorEfforts (one sincos per distinct sine argument, shared by the joints)
 // against the per-joint ActuatorEffort, bit for bit, and the joint-space ODE that uses it
 // against the per-joint path.
-#include "server/sim/drive_set.h"
+#include "server/drives/drive_set.h"
 
 #include <gtest/gtest.h>
 
@@ -95,7 +95,7 @@ double LawFromConfig(const DriveSet& drives, const DriveConfig& drive, int joint
 // (t, q, qd), bit for bit, without allocating; each time twice (the workspace reused, as by
 // Newton iterations).
 void ExpectEffortsMatchPerJointLaws(const Model& model, const RunConfig& config) {
-  const DriveSet drives(model, config);
+  const DriveSet drives(model, config.drives);
   DriveSet::Workspace workspace = drives.MakeWorkspace();
   const int n = drives.size();
   Eigen::VectorXd q(n), qd(n), effort(n);
@@ -123,26 +123,26 @@ void ExpectEffortsMatchPerJointLaws(const Model& model, const RunConfig& config)
 TEST(DriveSetTest, SharedSineEffortsMatchThePerJointLaws) {
   const Model& model = testing::Irb1600();
   const RunConfig mixed = MixedDrives();
-  EXPECT_EQ(DriveSet(model, mixed).num_sine_arguments(), 4);
+  EXPECT_EQ(DriveSet(model, mixed.drives).num_sine_arguments(), 4);
   ExpectEffortsMatchPerJointLaws(model, mixed);
 
   // A prescribed and a passive joint: effort 0, and their references take no sincos.
   RunConfig with_prescribed = mixed;
   with_prescribed.drives[1].kind = DriveConfig::Kind::kPrescribed;
   with_prescribed.drives[3] = DriveConfig{};
-  EXPECT_EQ(DriveSet(model, with_prescribed).num_sine_arguments(), 4);
+  EXPECT_EQ(DriveSet(model, with_prescribed.drives).num_sine_arguments(), 4);
   ExpectEffortsMatchPerJointLaws(model, with_prescribed);
 
   // The seed-servo scene: six servos on one argument (omega = pi/10, phase 0).
   const RunConfig servo = testing::Scene("seed-servo");
-  EXPECT_EQ(DriveSet(model, servo).num_sine_arguments(), 1);
+  EXPECT_EQ(DriveSet(model, servo.drives).num_sine_arguments(), 1);
   ExpectEffortsMatchPerJointLaws(model, servo);
 
   // A workspace serves only the DriveSet that made it.
-  const DriveSet other(model, servo);
+  const DriveSet other(model, servo.drives);
   DriveSet::Workspace workspace = other.MakeWorkspace();
   std::vector<double> zeros(6, 0.0), effort(6);
-  EXPECT_THROW(DriveSet(model, servo)
+  EXPECT_THROW(DriveSet(model, servo.drives)
                    .ActuatorEfforts(0.5, zeros.data(), zeros.data(), workspace, effort.data()),
                InternalError);
 }
@@ -152,7 +152,7 @@ TEST(DriveSetTest, SharedSineEffortsMatchThePerJointLaws) {
 TEST(DriveSetTest, JointSpaceOdeRhsMatchesThePerJointEfforts) {
   const Model& model = testing::Irb1600();
   for (const RunConfig& config : {MixedDrives(), testing::Scene("seed-servo")}) {
-    const DriveSet drives(model, config);
+    const DriveSet drives(model, config.drives);
     JointSpaceOde ode(model, drives);
     const int n = model.num_dofs();
     Data data(model);

@@ -11,6 +11,7 @@
 
 #include "server/dynamics/energy.h"
 #include "server/kinematics/forward_kinematics.h"
+#include "server/sim/run_config.h"
 #include "tests/common/allocation_counter.h"
 #include "tests/common/test_models.h"
 
@@ -57,7 +58,7 @@ TEST(FrameRecorderTest, RecordsTheSeparateCallsTcpAndEnergiesWithoutAllocating) 
   const int n = model.num_dofs();
   RunConfig config;
   config.drives.resize(n);
-  const DriveSet drives(model, config);
+  const DriveSet drives(model, config.drives);
   RunResult result;
   result.num_dofs = n;
   result.has_torques = true;

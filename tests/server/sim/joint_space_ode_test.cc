@@ -8,11 +8,12 @@
 #include <cmath>
 #include <vector>
 
+#include "server/drives/trajectory.h"
 #include "server/dynamics/rnea.h"
 #include "server/integrate/integrator.h"
 #include "server/kinematics/joint_transform.h"
 #include "server/parse/urdf_import.h"
-#include "server/sim/trajectory.h"
+#include "server/sim/integrator_options_from.h"
 #include "tests/common/allocation_counter.h"
 #include "tests/server/sim/scene_fixture.h"
 
@@ -33,7 +34,7 @@ TEST(JointSpaceOdeTest, MixedPrescribedAndFreeJointsSatisfyTheEquationsOfMotion)
   ASSERT_EQ(model.num_dofs(), 2);
   RunConfig config;
   config.drives = {SineDrive(0.8, 2.0), DriveConfig{}};  // joint 1 prescribed, joint 2 free
-  const DriveSet drives(model, config);
+  const DriveSet drives(model, config.drives);
   JointSpaceOde ode(model, drives);
   const double y[4] = {0.1, -0.4, 0.2, 1.5};
   const double t = 0.7;
@@ -79,7 +80,7 @@ TEST(JointSpaceOdeTest, SplineTrajectoryInterpolatesItsKnots) {
 TEST(JointSpaceOdeTest, JacobianMatchesDifferencesOfTheRightHandSide) {
   const Model& model = testing::Irb1600();
   const RunConfig config = testing::Scene("seed-servo");
-  const DriveSet drives(model, config);
+  const DriveSet drives(model, config.drives);
   JointSpaceOde ode(model, drives);
   ASSERT_TRUE(ode.HasJacobian());
   const int size = ode.size();
@@ -115,14 +116,14 @@ TEST(JointSpaceOdeTest, JacobianMatchesDifferencesOfTheRightHandSide) {
   // A prescribed joint: the ODE leaves the Jacobian to the integrator.
   RunConfig mixed = config;
   mixed.drives[0].kind = DriveConfig::Kind::kPrescribed;
-  const DriveSet mixed_drives(model, mixed);
+  const DriveSet mixed_drives(model, mixed.drives);
   EXPECT_FALSE(JointSpaceOde(model, mixed_drives).HasJacobian());
 }
 
 TEST(JointSpaceOdeTest, TimeStepsDoNotAllocate) {
   const Model& model = testing::Irb1600();
   const RunConfig config = testing::Scene("seed-servo");
-  const DriveSet drives(model, config);
+  const DriveSet drives(model, config.drives);
   JointSpaceOde ode(model, drives);
   std::vector<double> y(12, 0.1), ydot(12, 0.0);
   const long before = testing::AllocationCount();

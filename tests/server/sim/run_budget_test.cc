@@ -11,12 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "server/drives/drive_set.h"
 #include "server/integrate/integrator.h"
 #include "server/integrate/thread_cpu_clock.h"
 #include "server/runs/run_budget_caps.h"
-#include "server/sim/drive_set.h"
 #include "server/sim/initial_state.h"
 #include "server/sim/input_sanity.h"
+#include "server/sim/integrator_options_from.h"
 #include "server/sim/joint_space_ode.h"
 #include "server/sim/run_trust.h"
 #include "server/sim/simulate.h"
@@ -195,7 +196,7 @@ TEST(RunBudgetTest, CpuBudgetStopsEveryKindOfIntegrator) {
 TEST(RunBudgetTest, CpuChecksLeaveTheSolutionBitForBitAndAllocateNothing) {
   const Model& model = Irb1600();
   const RunConfig scene = Scene("passive-swing");
-  const DriveSet drives(model, scene);
+  const DriveSet drives(model, scene.drives);
   for (Method method : {Method::kBdf, Method::kErk, Method::kRk4}) {
     RunConfig config = scene;
     config.method = method;

@@ -1,4 +1,4 @@
-#include "server/sim/trajectory.h"
+#include "server/drives/trajectory.h"
 
 #include <algorithm>
 #include <cmath>

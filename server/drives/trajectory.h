@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "server/sim/run_config.h"
+#include "server/drives/drive_config.h"
 
 namespace mbstream {
 

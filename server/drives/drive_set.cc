@@ -1,4 +1,4 @@
-#include "server/sim/drive_set.h"
+#include "server/drives/drive_set.h"
 
 #include <bit>
 #include <cmath>
@@ -8,9 +8,9 @@
 
 namespace mbstream {
 
-DriveSet::DriveSet(const Model& model, const RunConfig& config) : drives_(config.drives) {
+DriveSet::DriveSet(const Model& model, const std::vector<DriveConfig>& drives) : drives_(drives) {
   MBSTREAM_CHECK_MSG(static_cast<int>(drives_.size()) == model.num_dofs(),
-                     "RunConfig must have one drive per joint");
+                     "a run must have one drive per joint");
   references_.resize(drives_.size());
   for (size_t i = 0; i < drives_.size(); ++i) {
     const DriveConfig& drive = drives_[i];

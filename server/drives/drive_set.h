@@ -3,16 +3,16 @@
 
 #include <vector>
 
+#include "server/drives/drive_config.h"
+#include "server/drives/trajectory.h"
 #include "server/model/model.h"
-#include "server/sim/run_config.h"
-#include "server/sim/trajectory.h"
 
 namespace mbstream {
 
 class DriveSet {
  public:
-  // config.drives has one entry per joint (server/spec guarantees it; checked).
-  DriveSet(const Model& model, const RunConfig& config);
+  // `drives` has one entry per joint (server/spec guarantees it; checked).
+  DriveSet(const Model& model, const std::vector<DriveConfig>& drives);
 
   int size() const { return static_cast<int>(drives_.size()); }
   DriveConfig::Kind kind(int joint) const { return drives_[joint].kind; }
