@@ -76,7 +76,9 @@ int RunOnServer(const ClientOptions& client, const RunOptions& options) {
   if (!options.watch && options.out_dir.empty()) return 0;
   const grpc::Status watched = Watch(*stub, info.id(), &info);
   if (!watched.ok()) return ReportRpcError("run", client, watched);
-  const v1::RunStats& s = info.stats();
+  // A copy: DownloadResult below assigns a new RunInfo to `info`, which deletes the stats
+  // message a reference would point at (found by UBSan's vptr check under --asan).
+  const v1::RunStats s = info.stats();
   std::cerr << v1::RunState_Name(info.state()) << ": " << info.frames()
             << " frames to t = " << s.t_reached_s() << " s, formulation " << s.formulation() << " ("
             << s.equations() << " equations), method " << s.method() << ", " << s.steps()
@@ -92,9 +94,10 @@ int RunOnServer(const ClientOptions& client, const RunOptions& options) {
     std::cerr << "mbstream run: run " << v1::RunState_Name(info.state()) << ": " << info.message()
               << "\n";
   }
-  std::cerr << TrustLine(s.trust(), s.trust_reason()) << std::endl;
+  const v1::RunStats& final_stats = info.stats();  // the stored result's, when downloaded
+  std::cerr << TrustLine(final_stats.trust(), final_stats.trust_reason()) << std::endl;
   if (info.state() != v1::FINISHED) return kExitRunFailed;
-  if (s.trust() == "low" && !options.accept_untrusted) return kExitUntrusted;
+  if (final_stats.trust() == "low" && !options.accept_untrusted) return kExitUntrusted;
   return kExitOk;
 }
 

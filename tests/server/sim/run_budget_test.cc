@@ -23,6 +23,7 @@
 #include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
 #include "tests/common/allocation_counter.h"
+#include "tests/common/sanitized_build.h"
 #include "tests/server/sim/scene_fixture.h"
 
 namespace mbstream {
@@ -63,14 +64,20 @@ TEST(RunBudgetTest, DefaultsScaleWithDurationAndModelSize) {
 // The typo: kp = 123456789012345678901234567890 on joint3 and omega 0 on joint5 of
 // seed-servo, 0.5 s. It used to take 4.8 million steps and 73 s of CPU and end FINISHED.
 TEST(RunBudgetTest, TypoSpecEndsWithinItsBudgetNamingTheGain) {
-  const RunConfig config = TypoSpec();
+  RunConfig config = TypoSpec();
   ASSERT_EQ(config.max_steps, 0);  // the spec asks for the default budget
+  // Under a sanitizer a step of this stiff run costs about 2.5 ms of CPU, not 27 us: the
+  // default CPU budget (70 s) would run out before the default 100,000 steps. There the test
+  // asks for 5,000 steps, so that the step budget is still the one that runs out.
+  const int steps = testing::kSanitizedBuild ? 5'000 : DefaultMaxSteps(0.5);
+  if (testing::kSanitizedBuild) config.max_steps = steps;
   const RunResult result = Simulate(Irb1600(), config);
   const RunStats& s = result.stats;
   EXPECT_EQ(s.status, RunStatus::kTooMuchWork);
-  EXPECT_EQ(s.max_steps, DefaultMaxSteps(0.5));
-  EXPECT_EQ(s.solver.steps, DefaultMaxSteps(0.5));  // the step budget ran out, not the CPU
-  EXPECT_THAT(s.message, HasSubstr("budget exhausted: 100000 internal steps"));
+  EXPECT_EQ(s.max_steps, steps);
+  EXPECT_EQ(s.solver.steps, steps);  // the step budget ran out, not the CPU
+  EXPECT_THAT(s.message,
+              HasSubstr("budget exhausted: " + std::to_string(steps) + " internal steps"));
   EXPECT_THAT(s.message, HasSubstr("steps per simulated second"));
   EXPECT_THAT(s.message, HasSubstr("likely cause: pd_servo.kp = 1.23457e+29 on joint 3 'joint3'"));
   EXPECT_THAT(s.message, HasSubstr("looks like a typo"));
