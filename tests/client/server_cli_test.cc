@@ -6,8 +6,8 @@
 #include <fstream>
 #include <random>
 #include <sstream>
-#include <thread>
 
+#include "tests/common/sanitized_build.h"
 #include "tests/common/server_process.h"
 
 namespace mbstream::testing {
@@ -116,7 +116,7 @@ TEST_F(ServerCliTest, KilledServerRestartsWithEveryModelAndRunAndTheInterruptedO
   const CommandOutcome slow = Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 1");
   ASSERT_EQ(slow.exit_code, 0) << slow.output;
   const std::string slow_id = FirstLine(slow.output);
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ASSERT_TRUE(WaitForLineIn(server_->log_path(), "run " + slow_id + " started"));
   server_->Kill();  // a crash mid-run
 
   StartServer();
@@ -148,7 +148,10 @@ std::string LastLine(const std::string& text) {
 // run starts, stops at the server's step cap, and exits 1; a spec asking for more CPU than
 // the cap is told so; an untrusted finished run exits 4 unless --accept-untrusted.
 TEST_F(ServerCliTest, BudgetsWarningsAndTrustOnTheServer) {
-  StartServer({"--max-run-steps", "50000", "--max-run-cpu-s", "30"});
+  // In a sanitizer build a step of the typo run costs about 2.5 ms of CPU: 50,000 steps would
+  // outlast the 30 s CPU cap, so the step cap there is 5,000 (still the one that runs out).
+  const std::string steps = testing::kSanitizedBuild ? "5000" : "50000";
+  StartServer({"--max-run-steps", steps, "--max-run-cpu-s", "30"});
   std::string spec = ReadFile("tests/data/typo-servo.json");
   spec.insert(spec.find('{') + 1, "\n  \"max_cpu_s\": 1000,");
   std::ofstream(dir_ / "typo.json") << spec;
@@ -158,8 +161,8 @@ TEST_F(ServerCliTest, BudgetsWarningsAndTrustOnTheServer) {
                                      "3 'joint3'"));
   EXPECT_THAT(typo.output, HasSubstr("mbstream run: warning: max_cpu_s = 1000 s exceeds this "
                                      "server's cap of 30 s"));
-  EXPECT_THAT(typo.output, HasSubstr("run TOO_MUCH_WORK: budget exhausted: 50000 internal "
-                                     "steps (max_internal_steps = 50000)"));
+  EXPECT_THAT(typo.output, HasSubstr("run TOO_MUCH_WORK: budget exhausted: " + steps +
+                                     " internal steps (max_internal_steps = " + steps + ")"));
   EXPECT_THAT(typo.output, HasSubstr("likely cause: pd_servo.kp = 1.23457e+29"));
   EXPECT_EQ(LastLine(typo.output), "trust: n/a");
 
