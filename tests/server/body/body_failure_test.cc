@@ -41,7 +41,9 @@ TEST_P(BodyIndex3TightTest, FailsFastWithAdviceAndFiniteFrames) {
   EXPECT_LT(s.t_reached, config.duration);
   EXPECT_NE(s.message.find("body-index2"), std::string::npos) << s.message;
   EXPECT_NE(s.message.find("body-baumgarte"), std::string::npos) << s.message;
-  EXPECT_LT(wall, 10.0);
+  // Fast in work, not wall time (machine-dependent; timing belongs in bench/): it fails
+  // within a few dozen steps (24 at rtol 1e-6), not at the end of a step budget.
+  EXPECT_LT(s.solver.steps, 1000);
   EXPECT_GE(result.num_frames(), 1);
   EXPECT_TRUE(AllFinite(result.q) && AllFinite(result.qd) && AllFinite(result.tcp) &&
               AllFinite(result.tau));
