@@ -8,6 +8,7 @@
 #include <set>
 
 #include "server/common/check.h"
+#include "server/common/utf8.h"
 #include "server/parse/asset_references.h"
 #include "server/parse/urdf_import.h"
 #include "server/runs/model_id.h"
@@ -25,6 +26,27 @@ int64_t BundleBytes(const v1::ModelBundle& bundle) {
   int64_t bytes = static_cast<int64_t>(bundle.urdf().size() + bundle.scene_script().size());
   for (const v1::Asset& asset : bundle.assets()) bytes += asset.data().size() + asset.name().size();
   return bytes;
+}
+
+// The text fields are UTF-8 (a protobuf `string` holding anything else is stored but cannot
+// be read back: found by start_run_fuzzer). Names the field, the line and the byte.
+void ValidateText(const v1::ModelBundle& bundle) {
+  const auto check = [](const std::string& field, const std::string& text) {
+    const std::optional<std::size_t> bad = FirstInvalidUtf8(text);
+    if (!bad) return;
+    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(*bad), '\n');
+    throw InputError(field + " is not UTF-8 text: line " + std::to_string(line) + ", byte " +
+                     std::to_string(*bad) +
+                     " starts no UTF-8 character; save the file as UTF-8 (e.g. iconv -f latin1 "
+                     "-t utf-8)");
+  };
+  check("bundle.name", bundle.name());
+  check("bundle.urdf", bundle.urdf());
+  check("bundle.scene_script", bundle.scene_script());
+  check("bundle.urdf_file_name", bundle.urdf_file_name());
+  for (int i = 0; i < bundle.assets_size(); ++i) {
+    check("bundle.assets[" + std::to_string(i) + "].name", bundle.assets(i).name());
+  }
 }
 
 // Names (present, unique) and the per-asset limits, before anything is parsed.
@@ -108,6 +130,7 @@ Prepared Prepare(const v1::ModelBundle& submitted, bool builtin, const ServerLim
   if (submitted.urdf().empty()) {
     throw InputError("bundle.urdf is empty; send the URDF text of the model");
   }
+  ValidateText(submitted);
   ValidateAssets(submitted, limits);
   UrdfImport import = ImportBundle(submitted, limits);
 
