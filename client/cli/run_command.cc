@@ -94,10 +94,9 @@ int RunOnServer(const ClientOptions& client, const RunOptions& options) {
     std::cerr << "mbstream run: run " << v1::RunState_Name(info.state()) << ": " << info.message()
               << "\n";
   }
-  const v1::RunStats& final_stats = info.stats();  // the stored result's, when downloaded
-  std::cerr << TrustLine(final_stats.trust(), final_stats.trust_reason()) << std::endl;
+  std::cerr << TrustLine(s.trust(), s.trust_reason()) << std::endl;
   if (info.state() != v1::FINISHED) return kExitRunFailed;
-  if (final_stats.trust() == "low" && !options.accept_untrusted) return kExitUntrusted;
+  if (s.trust() == "low" && !options.accept_untrusted) return kExitUntrusted;
   return kExitOk;
 }
 

@@ -37,8 +37,8 @@ void ValidateText(const v1::ModelBundle& bundle) {
     const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(*bad), '\n');
     throw InputError(field + " is not UTF-8 text: line " + std::to_string(line) + ", byte " +
                      std::to_string(*bad) +
-                     " starts no UTF-8 character; save the file as UTF-8 (e.g. iconv -f latin1 "
-                     "-t utf-8)");
+                     " starts no UTF-8 character; send UTF-8 text (a file in another "
+                     "encoding: convert it, e.g. iconv -f latin1 -t utf-8)");
   };
   check("bundle.name", bundle.name());
   check("bundle.urdf", bundle.urdf());

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "server/integrate/integrator.h"
+#include "tests/common/sanitized_build.h"
 #include "tests/server/integrate/test_systems.h"
 
 namespace {
@@ -20,16 +21,9 @@ void Count() {
 }
 }  // namespace
 
-// Under a sanitizer, malloc is the sanitizer's: replacing it would mix two allocators (ASan
-// aborts at start-up), so this test program then counts nothing and its tests are skipped.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define MBSTREAM_SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || \
-    __has_feature(memory_sanitizer)
-#define MBSTREAM_SANITIZED 1
-#endif
-#endif
+// Under a sanitizer (MBSTREAM_SANITIZED, tests/common/sanitized_build.h) malloc is the
+// sanitizer's: replacing it would mix two allocators (ASan aborts at start-up), so this test
+// program then counts nothing and its tests are skipped.
 
 #ifndef MBSTREAM_SANITIZED
 // glibc's own allocator entry points, which the replacements forward to.

@@ -51,7 +51,7 @@ TEST(ModelTextTest, ABundleThatIsNotUtf8IsRefusedNamingFieldAndLine) {
       ADD_FAILURE() << "a Latin-1 URDF was accepted";
     } catch (const InputError& error) {
       EXPECT_THAT(error.what(), HasSubstr("bundle.urdf is not UTF-8 text: line 2"));
-      EXPECT_THAT(error.what(), HasSubstr("save the file as UTF-8"));
+      EXPECT_THAT(error.what(), HasSubstr("send UTF-8 text"));
     }
     bundle.set_urdf("<robot name=\"r\">\n<link name=\"base\"/>\n</robot>\n");
     bundle.set_name("r\xFF");
