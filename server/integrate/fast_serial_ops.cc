@@ -188,7 +188,21 @@ int LinearCombination(int nvec, double* c, N_Vector* X, N_Vector z) {
   const sunindextype n = Length(z);
   double* zd = Data(z);
   if (n != 12) {
-    for (sunindextype i = 0; i < n; ++i) {
+    // Two elements at a time, every term summed in a register pair before the store (z may
+    // be any X[k]); the vectors' data pointers read once.
+    constexpr int kMaxTerms = 16;  // CVODE passes at most q_max + 1 = 6 (BDF), ARKODE 8
+    const double* x[kMaxTerms];
+    const int terms = std::min(nvec, kMaxTerms);
+    for (int k = 0; k < terms; ++k) x[k] = Data(X[k]);
+    sunindextype i = 0;
+    if (nvec <= kMaxTerms) {
+      for (; i + 2 <= n; i += 2) {
+        Pair sum = c[0] * Load(x[0] + i);
+        for (int k = 1; k < nvec; ++k) sum += c[k] * Load(x[k] + i);
+        Store(zd + i, sum);
+      }
+    }
+    for (; i < n; ++i) {
       double sum = c[0] * Data(X[0])[i];
       for (int k = 1; k < nvec; ++k) sum += c[k] * Data(X[k])[i];
       zd[i] = sum;
