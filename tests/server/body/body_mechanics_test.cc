@@ -107,5 +107,38 @@ TEST(BodyMechanicsTest, ConsistentInitialStateSatisfiesTheConstraints) {
   }
 }
 
+// EvaluateConstraints and EvaluateForces write only the entries of G and M that can be
+// non-zero (they no longer clear the matrices): evaluated at one state after another, they
+// must give exactly what a fresh BodyMechanics gives at the last state, armature included.
+void ExpectReuseEqualsFresh(const Model& model, const RunConfig& config) {
+  const DriveSet drives(model, config.drives);
+  const BodyModel bm = MakeBodyModel(model, drives, Eigen::VectorXd());
+  BodyMechanics reused(bm, drives);
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 4; ++trial) {
+    const Eigen::VectorXd y = testing::RandomBodyState(bm, rng);
+    const double t = 0.7 * trial;
+    BodyMechanics fresh(bm, drives);
+    for (BodyMechanics* mech : {&reused, &fresh}) {
+      mech->Load(t, y.data());
+      mech->EvaluateConstraints(true);
+      mech->EvaluateForces();
+    }
+    // Bit for bit (operator== on the coefficients), not within a tolerance.
+    EXPECT_TRUE((reused.G().array() == fresh.G().array()).all()) << "trial " << trial;
+    EXPECT_TRUE((reused.M().array() == fresh.M().array()).all()) << "trial " << trial;
+    EXPECT_TRUE((reused.f().array() == fresh.f().array()).all()) << "trial " << trial;
+    EXPECT_TRUE((reused.g().array() == fresh.g().array()).all()) << "trial " << trial;
+    EXPECT_TRUE((reused.gamma().array() == fresh.gamma().array()).all()) << "trial " << trial;
+  }
+}
+
+TEST(BodyMechanicsTest, ReusedStorageEvaluatesAsFreshStorage) {
+  ExpectReuseEqualsFresh(testing::Irb1600(), testing::Scene("seed-servo"));
+  const Model model = testing::BranchingModel();  // prismatic joints, armature, branches
+  ExpectReuseEqualsFresh(model, testing::BranchingDrives(model, /*all_prescribed=*/true));
+  ExpectReuseEqualsFresh(model, testing::BranchingDrives(model, /*all_prescribed=*/false));
+}
+
 }  // namespace
 }  // namespace mbstream
