@@ -18,7 +18,6 @@
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/ida_failure.h"
 #include "server/integrate/state_health.h"
-#include "server/integrate/thread_cpu_clock.h"
 
 namespace mbstream {
 
@@ -211,7 +210,7 @@ AdvanceResult IdaIntegrator::DoAdvance(double t_out, double* y) {
     const long remaining = max_steps - steps;
     double t_current = t_reached;
     IDAGetCurrentTime(memory_, &t_current);
-    cpu_spent = cpu_budget && t_out > t_current && ThreadCpuSeconds() >= cpu_deadline;
+    cpu_spent = cpu_budget && t_out > t_current && CpuDeadlinePassed();
     if (remaining <= 0 || cpu_spent) {
       flag = IDA_TOO_MUCH_WORK;
       if (!evolved) {

@@ -9,6 +9,7 @@
 #include "server/runs/run_manager.h"
 #include "server/runs/unix_time.h"
 #include "server/sim/simulate.h"
+#include "server/store/frame_chunks.h"
 #include "server/store/store.h"
 #include "server/wire/frame_conversion.h"
 #include "server/wire/stats_conversion.h"
@@ -144,7 +145,11 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
                run->id(), v1::RunState_Name(info.state()), info.frames(),
                info.stats().t_reached_s(), info.stats().steps(), 1e3 * info.stats().cpu_s(),
                1e3 * info.stats().wall_s(), info.message().empty() ? "" : ": ", info.message());
-  ReleaseMemory();
+  // After a burst only (a run of at least one stored chunk, about 1 MB of frames): trimming
+  // the heap and SQLite's page cache after every short run cost more than the run itself
+  // (madvise, page faults refilling the pages, the cache read back from disk;
+  // docs/performance.md, "Many runs at once").
+  if (info.frames() >= static_cast<int64_t>(kFramesPerChunk)) ReleaseMemory();
 }
 
 }  // namespace mbstream
