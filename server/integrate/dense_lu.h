@@ -9,11 +9,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <type_traits>
 #include <utility>
 
 #include <sundials/sundials_types.h>
+
+#include "server/integrate/double_pair.h"
 
 namespace mbstream::sundials {
 
@@ -59,14 +60,6 @@ inline constexpr int kLuPanel = 8;
 
 namespace internal {
 
-using LuPair = double __attribute__((vector_size(16)));
-inline LuPair LoadPair(const double* p) {
-  LuPair v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-inline void StorePair(double* p, LuPair v) { std::memcpy(p, &v, sizeof v); }
-
 // The panel's rows (k0, k_end) of column col_j (U's entries), step by step as LuStep would.
 inline void UpdatePanelRows(sunindextype ld, const double* a, sunindextype k0, sunindextype k_end,
                             double* col_j) {
@@ -99,9 +92,9 @@ inline void UpdateBelowPanel(sunindextype n, sunindextype ld, const double* a, s
   if (terms == 0) return;
   sunindextype i = k_end;
   for (; i + 2 <= n; i += 2) {
-    LuPair t = LoadPair(col_j + i);
-    for (int s = 0; s < terms; ++s) t -= u[s] * LoadPair(cols[s] + i);
-    StorePair(col_j + i, t);
+    Pair t = Load(col_j + i);
+    for (int s = 0; s < terms; ++s) t -= u[s] * Load(cols[s] + i);
+    Store(col_j + i, t);
   }
   for (; i < n; ++i) {
     double t = col_j[i];
@@ -122,14 +115,14 @@ inline void UpdateBelowPanelTwoColumns(sunindextype n, sunindextype ld, const do
   }
   sunindextype i = k_end;
   for (; i + 2 <= n; i += 2) {
-    LuPair t = LoadPair(col_j + i), w = LoadPair(col_j1 + i);
+    Pair t = Load(col_j + i), w = Load(col_j1 + i);
     for (int s = 0; s < kLuPanel; ++s) {
-      const LuPair l_s = LoadPair(l + s * ld + i);
+      const Pair l_s = Load(l + s * ld + i);
       t -= u[s] * l_s;
       w -= v[s] * l_s;
     }
-    StorePair(col_j + i, t);
-    StorePair(col_j1 + i, w);
+    Store(col_j + i, t);
+    Store(col_j1 + i, w);
   }
   for (; i < n; ++i) {
     double t = col_j[i], w = col_j1[i];
@@ -185,25 +178,7 @@ sunindextype LuFactor(Size n, Stride ld, double* a, sunindextype* pivots) {
     if (n >= kLuBlockMin) return LuFactorBlocked(n, ld, a, pivots);
   }
   for (sunindextype k = 0; k < n; ++k) {
-    double* col_k = a + k * ld;
-    sunindextype l = k;
-    for (sunindextype i = k + 1; i < n; ++i) {
-      if (std::abs(col_k[i]) > std::abs(col_k[l])) l = i;
-    }
-    pivots[k] = l;
-    if (col_k[l] == 0.0) return k + 1;
-    if (l != k) {
-      for (sunindextype j = 0; j < n; ++j) std::swap(a[j * ld + l], a[j * ld + k]);
-    }
-    const double mult = 1.0 / col_k[k];
-    for (sunindextype i = k + 1; i < n; ++i) col_k[i] *= mult;
-    for (sunindextype j = k + 1; j < n; ++j) {
-      double* col_j = a + j * ld;
-      const double a_kj = col_j[k];
-      if (a_kj != 0.0) {
-        for (sunindextype i = k + 1; i < n; ++i) col_j[i] -= a_kj * col_k[i];
-      }
-    }
+    if (const sunindextype zero = LuStep(n, ld, a, pivots, k, n)) return zero;
   }
   return 0;
 }

@@ -9,6 +9,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "server/integrate/dense_lu.h"
+#include "server/integrate/double_pair.h"
 #include "server/integrate/structured_dense_solver.h"
 
 namespace mbstream::sundials {
@@ -31,16 +32,7 @@ inline void WithLength(sunindextype n, Body body) {
   }
 }
 
-// Two doubles in one SSE2 register (a GCC and Clang vector extension; arithmetic is lane by
-// lane, with a scalar operand broadcast). The 12-element kernels run on six pairs: GCC
-// vectorises the plain loops only behind run-time overlap checks, when at all.
-using Pair = double __attribute__((vector_size(16)));
-inline Pair Load(const double* p) {
-  Pair v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-inline void Store(double* p, Pair v) { std::memcpy(p, &v, sizeof v); }
+// The 12-element kernels run on six Pairs (double_pair.h).
 
 // z = op(x, y) element by element (op takes doubles or Pairs); z may be x or y.
 template <typename Op>

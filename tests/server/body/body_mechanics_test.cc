@@ -38,6 +38,15 @@ Eigen::VectorXd Move(const BodyModel& bm, const Eigen::VectorXd& y, double dt) {
   return moved;
 }
 
+// The drives and body model of `model` under `config`, which a BodyMechanics refers to.
+struct MechanicsOf {
+  MechanicsOf(const Model& model, const RunConfig& config)
+      : drives(model, config.drives), bm(MakeBodyModel(model, drives, Eigen::VectorXd())) {}
+  BodyMechanics Make() const { return BodyMechanics(bm, drives); }
+  DriveSet drives;
+  BodyModel bm;
+};
+
 struct Evaluated {
   Eigen::VectorXd g, gdot, nu;
 };
@@ -51,9 +60,9 @@ Evaluated Evaluate(BodyMechanics& mech, double t, const Eigen::VectorXd& y) {
 // G nu + g_t against central differences of g along the motion, gamma against those of
 // G nu + g_t, at random states of `model` under `config`.
 void ExpectConstraintDerivatives(const Model& model, const RunConfig& config) {
-  const DriveSet drives(model, config.drives);
-  const BodyModel bm = MakeBodyModel(model, drives, Eigen::VectorXd());
-  BodyMechanics mech(bm, drives);
+  const MechanicsOf of(model, config);
+  const BodyModel& bm = of.bm;
+  BodyMechanics mech = of.Make();
   std::mt19937 rng(7);
   for (int trial = 0; trial < 3; ++trial) {
     const Eigen::VectorXd y = testing::RandomBodyState(bm, rng);
@@ -111,14 +120,13 @@ TEST(BodyMechanicsTest, ConsistentInitialStateSatisfiesTheConstraints) {
 // non-zero (they no longer clear the matrices): evaluated at one state after another, they
 // must give exactly what a fresh BodyMechanics gives at the last state, armature included.
 void ExpectReuseEqualsFresh(const Model& model, const RunConfig& config) {
-  const DriveSet drives(model, config.drives);
-  const BodyModel bm = MakeBodyModel(model, drives, Eigen::VectorXd());
-  BodyMechanics reused(bm, drives);
+  const MechanicsOf of(model, config);
+  BodyMechanics reused = of.Make();
   std::mt19937 rng(11);
   for (int trial = 0; trial < 4; ++trial) {
-    const Eigen::VectorXd y = testing::RandomBodyState(bm, rng);
+    const Eigen::VectorXd y = testing::RandomBodyState(of.bm, rng);
     const double t = 0.7 * trial;
-    BodyMechanics fresh(bm, drives);
+    BodyMechanics fresh = of.Make();
     for (BodyMechanics* mech : {&reused, &fresh}) {
       mech->Load(t, y.data());
       mech->EvaluateConstraints(true);
