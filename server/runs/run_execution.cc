@@ -145,11 +145,13 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
                run->id(), v1::RunState_Name(info.state()), info.frames(),
                info.stats().t_reached_s(), info.stats().steps(), 1e3 * info.stats().cpu_s(),
                1e3 * info.stats().wall_s(), info.message().empty() ? "" : ": ", info.message());
-  // After a burst only (a run of at least one stored chunk, about 1 MB of frames): trimming
-  // the heap and SQLite's page cache after every short run cost more than the run itself
-  // (madvise, page faults refilling the pages, the cache read back from disk;
-  // docs/performance.md, "Many runs at once").
-  if (info.frames() >= static_cast<int64_t>(kFramesPerChunk)) ReleaseMemory();
+  // After a burst only: at least a stored chunk's worth of joint values (4,096 frames of a
+  // 6-joint arm, about 1 MB; fewer frames of a bigger model). Trimming the heap and SQLite's
+  // page cache after every short run cost more than the run itself (madvise, page faults
+  // refilling the pages, the cache read back from disk; docs/performance.md, "Many runs at
+  // once").
+  const int64_t joint_values = info.frames() * std::max(1, run->model().model.num_dofs());
+  if (joint_values >= static_cast<int64_t>(kFramesPerChunk) * 6) ReleaseMemory();
 }
 
 }  // namespace mbstream
