@@ -3,7 +3,7 @@
 
 #include <chrono>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/runs/run_manager.h"
 #include "server/runs/unix_time.h"
 #include "server/sim/simulate.h"

@@ -9,7 +9,7 @@
 #include <ctime>
 #include <random>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/runs/release_memory.h"
 #include "server/runs/request_error.h"
 #include "server/runs/run_budget_caps.h"
