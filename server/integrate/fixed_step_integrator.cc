@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "common/format.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/state_health.h"
 

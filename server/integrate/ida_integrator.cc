@@ -13,7 +13,8 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
-#include "server/common/check.h"
+#include "common/check.h"
+#include "common/format.h"
 #include "server/integrate/c_boundary.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/ida_failure.h"

@@ -9,7 +9,8 @@
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 
-#include "server/common/check.h"
+#include "common/check.h"
+#include "common/format.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/fast_serial_ops.h"
 

@@ -1,11 +1,9 @@
 // RunManager's worker side: executing one run and storing it.
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
 #include <chrono>
-#include <thread>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/runs/run_manager.h"
 #include "server/runs/unix_time.h"
 #include "server/sim/simulate.h"
@@ -18,13 +16,12 @@ namespace mbstream {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 // Converts each frame to its wire form, paces it (realtime factor), publishes it and hands it
 // to the run's spool (which stores it with the next chunk). A store failure stops the run.
 class PublishingSink : public FrameSink {
  public:
-  PublishingSink(Run* run, Store* store) : run_(run), store_(store), start_(Clock::now()) {}
+  PublishingSink(Run* run, Store* store, RunClock* clock)
+      : run_(run), store_(store), clock_(clock), start_(clock->Now()) {}
 
   bool KeepsFrames() const override { return true; }  // the spool stores them
 
@@ -46,21 +43,18 @@ class PublishingSink : public FrameSink {
 
  private:
   // Realtime factor r > 0: frame at simulated time t goes out at wall time start + t / r.
-  // Sleeps in short slices so that a cancel is seen at once.
   void Pace(double t) {
     const double realtime = run_->realtime();
     if (realtime <= 0.0) return;
-    const Clock::time_point due = start_ + std::chrono::duration_cast<Clock::duration>(
-                                               std::chrono::duration<double>(t / realtime));
-    for (Clock::time_point now = Clock::now(); now < due && !run_->cancel; now = Clock::now()) {
-      std::this_thread::sleep_for(
-          std::min<Clock::duration>(due - now, std::chrono::milliseconds(20)));
-    }
+    clock_->WaitUntil(start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                   std::chrono::duration<double>(t / realtime)),
+                      run_->cancel);
   }
 
   Run* run_;
   Store* store_;
-  Clock::time_point start_;
+  RunClock* clock_;
+  RunClock::TimePoint start_;
 };
 
 }  // namespace
@@ -88,7 +82,7 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
   store_->PutRun(run->Info());
   spdlog::info("run {} started", run->id());
 
-  PublishingSink sink(run.get(), store_);
+  PublishingSink sink(run.get(), store_, clock_);
   const RunResult result = Simulate(run->model().model, run->config(), &sink, &run->cancel);
   const RunStats& stats = result.stats;
   outcome.state = RunStateFromStatus(stats.status);
