@@ -128,13 +128,13 @@ class Client:
         result(run_id, probe_set=...)), viewer, scene and report count."""
         with rpc_errors():
             return list(self.stub.ListProbeSets(
-                service_pb2.ListProbeSetsRequest(run_id=run_id)).sets)
+                replay_pb2.ListProbeSetsRequest(run_id=run_id)).sets)
 
     def replay(self, run_id: str, speed: float = 1.0) -> run_pb2.RunInfo:
         """Makes the server stream the stored run `run_id` to its --follow viewers as if it
         were running now, at `speed` (simulated s per wall s); returns at once."""
         with rpc_errors():
-            return self.stub.ReplayRun(service_pb2.ReplayRunRequest(run_id=run_id, speed=speed))
+            return self.stub.ReplayRun(replay_pb2.ReplayRunRequest(run_id=run_id, speed=speed))
 
     def compare(self, run_id: str, ghost_run_id: str) -> Comparison:
         """Runs `run_id` and `ghost_run_id` side by side on their common time grid, as
