@@ -75,6 +75,11 @@ class RunManager {
   std::vector<v1::ProbeSet> ListProbeSets(const std::string& run_id) const;
   std::vector<v1::ProbeReport> ResultProbeSet(const std::string& run_id,
                                               const std::string& set_id) const;
+  // Streams the ended run `run_id` to the followers attached now (started, its frames paced
+  // at `speed_x` simulated s per wall s, ended), as if it were running, on a thread of its
+  // own; returns its info at once. Throws ResultInfo's errors, kFailedPrecondition for a run
+  // with no frames. Probe reports of a replayed run are refused (it is stored already).
+  v1::RunInfo ReplayToFollowers(const std::string& run_id, double speed_x);
   // Hands memory freed after a run or a result back to the system (SQLite's page cache,
   // glibc's arenas: release_memory.h).
   void ReleaseMemory() const;
@@ -138,6 +143,12 @@ class RunManager {
   std::string stop_reason_;
   int run_counter_ = 0;
   std::vector<std::thread> workers_;
+  static constexpr int kMaxBroadcasts = 4;  // ReplayToFollowers at the same time
+  std::vector<std::thread> broadcasts_;     // ReplayToFollowers, joined by Shutdown
+  int broadcasting_ = 0;                    // of them still streaming
+  std::condition_variable broadcast_wake_;  // Shutdown wakes pacing broadcasts
+  void Broadcast(const v1::RunInfo& info, double speed_x,
+                 std::vector<std::shared_ptr<Subscription>> followers);
 };
 
 }  // namespace mbstream

@@ -324,6 +324,56 @@ TEST_F(ReplayServiceTest, ComparisonSendsTheGhostsFramesOnTheCommonGrid) {
   EXPECT_THAT(status.error_message(), HasSubstr("joints differ"));
 }
 
+TEST_F(ReplayServiceTest, ReplayRunStreamsAStoredRunToTheFollowersAsIfLive) {
+  const v1::RunInfo run = EndedRun("single_pendulum", v1::RunSpec());
+  grpc::ClientContext context;
+  std::unique_ptr<Stream> stream = stub().Subscribe(&context);
+  v1::SubscribeRequest start;
+  start.mutable_start()->set_follow(true);
+  ASSERT_TRUE(stream->Write(start));
+  v1::SubscribeEvent event;
+  ASSERT_TRUE(stream->Read(&event));
+  ASSERT_EQ(event.subscribed(), "follow");
+
+  grpc::ClientContext replay_context;
+  v1::ReplayRunRequest request;
+  request.set_run_id(run.id());
+  request.set_speed(1000.0);  // 20 s in 20 ms
+  v1::RunInfo info;
+  ASSERT_TRUE(stub().ReplayRun(&replay_context, request, &info).ok());
+  EXPECT_EQ(info.frames(), 401);
+  ASSERT_TRUE(stream->Read(&event));
+  ASSERT_TRUE(event.has_run_started());
+  EXPECT_EQ(event.run_started().run().id(), run.id());
+  const std::vector<v1::Frame> stored = Frames(run.id());
+  int64_t frames = 0, missed = 0;
+  while (stream->Read(&event) && !event.has_run_ended()) {
+    missed += event.frames().missed();
+    for (const v1::Frame& frame : event.frames().frames()) {
+      EXPECT_TRUE(MessageDifferencer::Equals(frame, stored.at(frame.seq())));
+      ++frames;
+    }
+  }
+  EXPECT_EQ(event.run_ended().id(), run.id());
+  EXPECT_EQ(frames + missed, 401);
+  context.TryCancel();
+  stream->Finish();
+
+  auto refused = [&](const std::string& run_id, double speed) {
+    grpc::ClientContext refused_context;
+    v1::ReplayRunRequest bad;
+    bad.set_run_id(run_id);
+    bad.set_speed(speed);
+    return stub().ReplayRun(&refused_context, bad, &info).error_code();
+  };
+  EXPECT_EQ(refused("r-nosuch", 1.0), grpc::StatusCode::NOT_FOUND);
+  EXPECT_EQ(refused(run.id(), -2.0), grpc::StatusCode::INVALID_ARGUMENT);
+  v1::RunSpec slow = SceneSpec("seed-run.json");
+  slow.set_realtime(0.5);
+  const v1::RunInfo running = StartRunOk("irb1600", slow);
+  EXPECT_EQ(refused(running.id(), 1.0), grpc::StatusCode::FAILED_PRECONDITION);
+}
+
 // A 1,000,001-frame run: the replay starts at once from any frame, and the server holds at
 // most one stored chunk of frames for it at any time (the bound, not wall time, is tested;
 // bench/replay_bench.cc times it).
