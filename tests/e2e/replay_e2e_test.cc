@@ -182,13 +182,34 @@ TEST_F(ReplayE2eTest, ComparisonHudDistanceIsTheDistanceBetweenTheTcpFiles) {
   }
   double hud_max = 0.0, hud_t = 0.0;
   line >> hud_max >> word >> word >> word >> word >> hud_t;  // "X m at t = T"
-  EXPECT_EQ(hud_max, max_distance);                  // bit for bit
+  EXPECT_EQ(hud_max, max_distance);                          // bit for bit
   EXPECT_EQ(hud_t, max_t);
 
   const CommandOutcome other = Cli("run single_pendulum --realtime 0 --watch");
   const CommandOutcome refused = Viewer("--run " + a + " --compare " + RunId(other));
   EXPECT_EQ(refused.exit_code, 1);
   EXPECT_THAT(refused.output, HasSubstr("their models' joints differ"));
+}
+
+TEST_F(ReplayE2eTest, ReplayCommandStreamsAStoredRunToTheFollowingViewers) {
+  const CommandOutcome run =
+      Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 0 "
+          "--watch");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const fs::path log = dir_ / "follower.log";
+  ASSERT_EQ(RunCommand("xvfb-run -a " + std::string(MBSTREAM_VIEWER) + " --server " +
+                       server_->address() + " --offscreen --size 320x240 --follow " +
+                       "--exit-after-runs 1 > " + log.string() + " 2>&1 &")
+                .exit_code,
+            0);
+  ASSERT_TRUE(WaitForLineIn(log.string(), "subscribed to")) << ReadTextFile(log.string());
+  const CommandOutcome replay = Cli("replay " + RunId(run) + " --speed 20");
+  ASSERT_EQ(replay.exit_code, 0) << replay.output;
+  EXPECT_THAT(replay.output, HasSubstr("replaying 401 frames"));
+  ASSERT_TRUE(WaitForLineIn(log.string(), "viewer done")) << ReadTextFile(log.string());
+  EXPECT_THAT(ReadTextFile(log.string()),
+              HasSubstr("last run " + RunId(run) + ": 401 frames, 401 probe reports"));
+  EXPECT_EQ(Cli("replay r-nosuch").exit_code, 2);
 }
 
 }  // namespace
