@@ -294,13 +294,14 @@ std::string StoredRun(int64_t frames) {
 }
 
 std::unique_ptr<Stream> Replay(grpc::ClientContext* context, const std::string& run_id,
-                               int64_t from_seq) {
+                               int64_t from_seq, bool wait_for_probes = false) {
   std::unique_ptr<Stream> stream = Server().stub->Subscribe(context);
   v1::SubscribeRequest start;
   start.mutable_start()->set_run_id(run_id);
   start.mutable_start()->set_max_batch(256);
   start.mutable_start()->mutable_replay()->set_speed(0.0);
   start.mutable_start()->mutable_replay()->set_from_seq(from_seq);
+  start.mutable_start()->mutable_replay()->set_wait_for_probes(wait_for_probes);
   stream->Write(start);
   return stream;
 }
@@ -346,7 +347,7 @@ void BM_ReplayFrames(benchmark::State& state) {
     for (int v = 0; v < viewers; ++v) {
       threads.emplace_back([&, v] {
         grpc::ClientContext context;
-        std::unique_ptr<Stream> stream = Replay(&context, run, 0);
+        std::unique_ptr<Stream> stream = Replay(&context, run, 0, probes > 0);
         counts[v] = ReadReplay(*stream, probes);
       });
     }

@@ -46,6 +46,7 @@ bool ReplayInbox::AddProbe(const v1::ProbeReport& report) {
   if (reports_ >= max_reports_) return false;
   ++reports_;
   buffered_.push_back(report);
+  if (answered_seq_.exchange(report.seq()) != report.seq()) arrived_.notify_all();
   if (buffered_.size() >= kFlushReports) Flush();
   return true;
 }

@@ -3,6 +3,7 @@
 // in batches, the set created with its first batch). Thread-safe.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -37,8 +38,11 @@ class ReplayInbox {
   // The reader has stopped: wakes the writer.
   void Wake();
 
-  // Writer thread: the next control, waiting until `deadline` for one; false when none came.
+  // Writer thread: the next control, waiting until `deadline` for one (or a probe report);
+  // false when none came.
   bool NextControl(Clock::time_point deadline, v1::ReplayControl* control);
+  // The frame of the newest probe report accepted (-1 = none yet): how far the viewer got.
+  int64_t answered_seq() const { return answered_seq_; }
 
  private:
   void Flush();  // reader thread or destructor
@@ -50,6 +54,7 @@ class ReplayInbox {
   std::condition_variable arrived_;
   std::deque<v1::ReplayControl> controls_;
   bool woken_ = false;
+  std::atomic<int64_t> answered_seq_{-1};
   // Reader side only.
   std::vector<v1::ProbeReport> buffered_;
   int64_t reports_ = 0;

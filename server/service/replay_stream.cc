@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 
 #include "server/common/check.h"
 #include "server/runs/request_error.h"
@@ -15,6 +16,15 @@ using Clock = std::chrono::steady_clock;
 constexpr double kMaxSpeed = 1000.0;
 constexpr size_t kMaxTagBytes = 128;
 constexpr auto kPoll = std::chrono::milliseconds(100);  // checks for cancellation and stop
+// With Replay.wait_for_probes, a viewer is sent at most this many frames ahead of its newest
+// probe answer (well inside
+// SentFrames' memory, so that no answer is refused as too old): an unpaced replay goes as
+// fast as the viewer takes frames. A viewer that does not answer within kFirstAnswer of
+// the start (a scene without probes; the scene is built meanwhile), or stops answering for
+// kStall, is not waited for again.
+constexpr size_t kMaxAhead = 1024;
+constexpr auto kFirstAnswer = std::chrono::seconds(10);
+constexpr auto kStall = std::chrono::seconds(2);
 
 ReplayGridRun GridRun(const v1::RunInfo& info, ReplayCursor& frames) {
   ReplayGridRun run;
@@ -206,7 +216,43 @@ grpc::Status SendReplay(const ReplayStreamContext& io, ReplayPlan& plan) {
   };
   if (!send_state("")) return gone;
 
+  // The frames sent and not yet answered, oldest first, while the viewer answers probes.
+  std::deque<int64_t> ahead;
+  Clock::time_point last_answer = Clock::now();
+  int64_t last_answered = -1;  // the answer `ahead` was last trimmed to
+  // False without wait_for_probes, or once the viewer was not waited for: flow control alone.
+  bool gate = plan.options.wait_for_probes();
+  auto window_full = [&] {
+    if (!gate) return false;
+    const int64_t answered = io.inbox->answered_seq();
+    while (answered != last_answered && !ahead.empty()) {
+      const int64_t seq = ahead.front();
+      ahead.pop_front();
+      if (seq == answered) {
+        last_answer = Clock::now();
+        last_answered = answered;
+        break;
+      }
+    }
+    if (ahead.size() < kMaxAhead) return false;
+    if (Clock::now() - last_answer > (answered < 0 ? kFirstAnswer : kStall)) {
+      gate = false;
+      ahead.clear();
+      return false;
+    }
+    return true;
+  };
+  // Applies the next control that comes until `deadline`, if one does (*applied says
+  // whether); false when the viewer went away.
   v1::ReplayControl control;
+  auto apply_next = [&](Clock::time_point deadline, bool* applied = nullptr) {
+    const bool got = io.inbox->NextControl(deadline, &control);
+    if (applied) *applied = got;
+    if (!got) return true;
+    bool state_now = true;
+    const std::string error = player.Apply(control, &state_now);
+    return !state_now || send_state(error);
+  };
   for (;;) {
     if (io.context->IsCancelled()) return gone;
     if (*io.stopping) {
@@ -216,17 +262,12 @@ grpc::Status SendReplay(const ReplayStreamContext& io, ReplayPlan& plan) {
       return grpc::Status(grpc::StatusCode::UNAVAILABLE, reason);
     }
     if (io.reader_done()) return grpc::Status::OK;  // the viewer said goodbye
-    while (io.inbox->NextControl(Clock::now(), &control)) {
-      bool state_now = true;
-      const std::string error = player.Apply(control, &state_now);
-      if (state_now && !send_state(error)) return gone;
+    bool applied = true;
+    while (applied) {
+      if (!apply_next(Clock::now(), &applied)) return gone;
     }
     if (player.paused && !player.send_one) {
-      if (io.inbox->NextControl(Clock::now() + kPoll, &control)) {
-        bool state_now = true;
-        const std::string error = player.Apply(control, &state_now);
-        if (state_now && !send_state(error)) return gone;
-      }
+      if (!apply_next(Clock::now() + kPoll)) return gone;
       continue;
     }
     if (player.step >= plan.grid.frames) {
@@ -240,12 +281,12 @@ grpc::Status SendReplay(const ReplayStreamContext& io, ReplayPlan& plan) {
       return grpc::Status::OK;
     }
     const Clock::time_point due = player.Due(player.step);
+    if (!player.send_one && window_full()) {
+      if (!apply_next(Clock::now() + std::chrono::milliseconds(10))) return gone;
+      continue;
+    }
     if (!player.send_one && Clock::now() < due) {
-      if (io.inbox->NextControl(std::min(due, Clock::now() + kPoll), &control)) {
-        bool state_now = true;
-        const std::string error = player.Apply(control, &state_now);
-        if (state_now && !send_state(error)) return gone;
-      }
+      if (!apply_next(std::min(due, Clock::now() + kPoll))) return gone;
       continue;
     }
     v1::FrameBatch* batch = event.mutable_frames();
@@ -257,9 +298,11 @@ grpc::Status SendReplay(const ReplayStreamContext& io, ReplayPlan& plan) {
       *batch->add_frames() = frame;
       io.sent->Record(plan.run.id(), frame.seq(), frame.t_s(), now);
       if (plan.ghost) *batch->add_ghost_frames() = player.Ghost(player.step);
+      if (gate) ahead.push_back(frame.seq());
       player.last_sent = player.step++;
     } while (!player.send_one && batch->frames_size() < io.max_batch &&
-             player.step < plan.grid.frames && player.Due(player.step) <= Clock::now());
+             player.step < plan.grid.frames && player.Due(player.step) <= Clock::now() &&
+             ahead.size() < kMaxAhead);
     player.send_one = false;
     if (!write()) return gone;
     if (player.state_after_send) {

@@ -34,6 +34,7 @@ void SetReplay(const ReplayOptions& options, v1::Replay* replay) {
   replay->set_compare_run_id(options.compare_run_id);
   replay->set_viewer(ViewerTag());
   replay->set_scene(options.scene_tag.substr(0, 128));
+  replay->set_wait_for_probes(true);  // every frame is answered (a scene has its probes)
 }
 
 double Distance(const v1::Vector3& a, const v1::Vector3& b) {

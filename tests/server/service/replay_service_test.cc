@@ -163,6 +163,42 @@ TEST_F(ReplayServiceTest, ReplayGivesTheStoredFramesBitForBitAndStoresItsProbeSe
   EXPECT_TRUE(live.empty());
 }
 
+// Unpaced, the server runs ahead of a viewer only as far as its probe answers allow, so
+// that every answer is accepted however slow the viewer is (20,001 frames, a slow reader).
+TEST_F(ReplayServiceTest, UnpacedReplayKeepsPaceWithAViewerThatAnswersProbes) {
+  v1::RunSpec spec = SceneSpec("seed-run.json");
+  spec.set_output_interval_s(1e-3);
+  const v1::RunInfo run = EndedRun("irb1600", spec);
+  ASSERT_EQ(run.frames(), 20'001);
+  grpc::ClientContext context;
+  v1::Replay replay;
+  replay.set_speed(0.0);
+  replay.set_wait_for_probes(true);
+  v1::ReplayState state;
+  std::unique_ptr<Stream> stream = Replay(&context, run.id(), replay, &state, 64);
+  v1::SubscribeEvent event;
+  int64_t answered = 0;
+  while (stream->Read(&event) && !event.has_run_ended()) {
+    for (const v1::Frame& frame : event.frames().frames()) {
+      v1::SubscribeRequest reply;
+      reply.mutable_probe()->set_seq(frame.seq());
+      reply.mutable_probe()->set_probe("tcp");
+      *reply.mutable_probe()->mutable_position_m() = frame.tcp_m();
+      ASSERT_TRUE(stream->Write(reply));
+      ++answered;
+    }
+  }
+  Finish(*stream);
+  EXPECT_EQ(answered, 20'001);
+  grpc::ClientContext list_context;
+  v1::ListProbeSetsRequest list;
+  list.set_run_id(run.id());
+  v1::ListProbeSetsResponse sets;
+  ASSERT_TRUE(stub().ListProbeSets(&list_context, list, &sets).ok());
+  ASSERT_EQ(sets.sets_size(), 1);
+  EXPECT_EQ(sets.sets(0).reports(), 20'001);  // none refused as too old
+}
+
 TEST_F(ReplayServiceTest, SeekPauseAndStepLandOnTheRequestedFrames) {
   const v1::RunInfo run = EndedRun("irb1600", SceneSpec("seed-run.json"));
   grpc::ClientContext context;
