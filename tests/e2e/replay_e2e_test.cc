@@ -9,6 +9,7 @@
 #include <random>
 #include <sstream>
 
+#include "tests/common/csv_rows.h"
 #include "tests/common/server_process.h"
 
 namespace mbstream::testing {
@@ -18,20 +19,6 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
 using Rows = std::vector<std::vector<std::string>>;
-
-Rows ReadCsv(const fs::path& path) {
-  std::ifstream in(path);
-  Rows rows;
-  std::string line;
-  std::getline(in, line);  // header
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::stringstream cellstream(line);
-    for (std::string cell; std::getline(cellstream, cell, ',');) cells.push_back(cell);
-    rows.push_back(cells);
-  }
-  return rows;
-}
 
 class ReplayE2eTest : public ::testing::Test {
  protected:
@@ -47,6 +34,16 @@ class ReplayE2eTest : public ::testing::Test {
   }
   CommandOutcome Cli(const std::string& args) {
     return RunCommand(std::string(MBSTREAM_CLI) + " --server " + server_->address() + " " + args);
+  }
+  // Starts a --follow viewer in the background that exits after one run; waits until it
+  // is subscribed.
+  void StartFollower(const fs::path& log) {
+    ASSERT_EQ(RunCommand("xvfb-run -a " + std::string(MBSTREAM_VIEWER) + " --server " +
+                         server_->address() + " --offscreen --size 320x240 --follow " +
+                         "--exit-after-runs 1 > " + log.string() + " 2>&1 &")
+                  .exit_code,
+              0);
+    ASSERT_TRUE(WaitForLineIn(log.string(), "subscribed to")) << ReadTextFile(log.string());
   }
   // Runs a viewer to its end; returns its output.
   CommandOutcome Viewer(const std::string& args) {
@@ -86,12 +83,7 @@ class ReplayE2eTest : public ::testing::Test {
 
 TEST_F(ReplayE2eTest, ReplayAnswersWithTheLiveRunsProbesBitForBit) {
   const fs::path log = dir_ / "live.log";
-  ASSERT_EQ(RunCommand("xvfb-run -a " + std::string(MBSTREAM_VIEWER) + " --server " +
-                       server_->address() + " --offscreen --size 320x240 --follow " +
-                       "--exit-after-runs 1 > " + log.string() + " 2>&1 &")
-                .exit_code,
-            0);
-  ASSERT_TRUE(WaitForLineIn(log.string(), "subscribed to")) << ReadTextFile(log.string());
+  ASSERT_NO_FATAL_FAILURE(StartFollower(log));
   const CommandOutcome run =
       Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 10 --watch");
   ASSERT_EQ(run.exit_code, 0) << run.output;
@@ -197,12 +189,7 @@ TEST_F(ReplayE2eTest, ReplayCommandStreamsAStoredRunToTheFollowingViewers) {
           "--watch");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const fs::path log = dir_ / "follower.log";
-  ASSERT_EQ(RunCommand("xvfb-run -a " + std::string(MBSTREAM_VIEWER) + " --server " +
-                       server_->address() + " --offscreen --size 320x240 --follow " +
-                       "--exit-after-runs 1 > " + log.string() + " 2>&1 &")
-                .exit_code,
-            0);
-  ASSERT_TRUE(WaitForLineIn(log.string(), "subscribed to")) << ReadTextFile(log.string());
+  ASSERT_NO_FATAL_FAILURE(StartFollower(log));
   const CommandOutcome replay = Cli("replay " + RunId(run) + " --speed 20");
   ASSERT_EQ(replay.exit_code, 0) << replay.output;
   EXPECT_THAT(replay.output, HasSubstr("replaying 401 frames"));
