@@ -356,7 +356,7 @@ void RunManager::Shutdown(const std::string& reason) {
   std::vector<std::shared_ptr<Subscription>> followers;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (stopping_ && workers_.empty()) return;
+    if (stopping_ && workers_.empty() && broadcasts_.empty()) return;
     stopping_ = true;
     stop_reason_ = reason;
     for (auto& [id, run] : active_) {
@@ -366,8 +366,15 @@ void RunManager::Shutdown(const std::string& reason) {
     followers = followers_;
   }
   work_.notify_all();
+  broadcast_wake_.notify_all();
   for (std::thread& worker : workers_) worker.join();
   workers_.clear();
+  std::vector<std::thread> broadcasts;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    broadcasts.swap(broadcasts_);
+  }
+  for (std::thread& broadcast : broadcasts) broadcast.join();
   for (const auto& follower : followers) follower->Close();
 }
 

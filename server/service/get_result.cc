@@ -17,6 +17,9 @@ grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
     const std::string& run_id = request->run_id();
     v1::ResultChunk chunk;
     *chunk.mutable_info() = runs_->ResultInfo(run_id);
+    // A replay's probe set is checked (NOT_FOUND) before anything is sent.
+    std::vector<v1::ProbeReport> probes;
+    if (!request->probe_set().empty()) probes = runs_->ResultProbeSet(run_id, request->probe_set());
     const grpc::Status gone(grpc::StatusCode::CANCELLED, "client gone");
     if (!writer->Write(chunk)) return gone;
     chunk.Clear();
@@ -40,7 +43,8 @@ grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
       }
     }
     std::vector<v1::Frame>().swap(frames);
-    for (v1::ProbeReport& probe : runs_->ResultProbes(run_id)) {
+    if (request->probe_set().empty()) probes = runs_->ResultProbes(run_id);
+    for (v1::ProbeReport& probe : probes) {
       bytes += probe.ByteSizeLong();
       *chunk.add_probes() = std::move(probe);
       if (bytes >= kChunkBytes && !flush()) return gone;
