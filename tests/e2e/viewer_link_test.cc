@@ -6,7 +6,6 @@
 #include <fstream>
 #include <random>
 #include <sstream>
-#include <thread>
 
 #include "tests/common/csv_rows.h"
 #include "tests/common/server_process.h"
@@ -81,7 +80,9 @@ TEST_F(ViewerLinkTest, RunModeJoinsARunningRunAndAnswersFromThenOn) {
   const fs::path log = dir_ / "viewer.log";
   ASSERT_EQ(RunCommand(Viewer("--run " + run + " > " + log.string() + " 2>&1 &")).exit_code, 0);
   ASSERT_TRUE(WaitForLineIn(log.string(), "showing scene 'IRB1600'")) << ReadTextFile(log.string());
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  // Cancel once the viewer has answered a frame of the run it joined.
+  ASSERT_TRUE(WaitForLineIn(log.string(), "answering with probe reports from frame"))
+      << ReadTextFile(log.string());
   ASSERT_EQ(Cli("cancel " + run).exit_code, 0);  // the viewer sees the end and exits
   ASSERT_TRUE(WaitForLineIn(log.string(), "viewer done")) << ReadTextFile(log.string());
   const CommandOutcome result = Cli("result " + run + " --out " + (dir_ / "out").string());

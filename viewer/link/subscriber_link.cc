@@ -9,6 +9,7 @@
 #include <cmath>
 #include <thread>
 
+#include "common/check.h"
 #include "mbstream/v1/simulation_service.grpc.pb.h"
 #include "net/tls_files.h"
 
@@ -61,8 +62,7 @@ void SubscriberLink::Stop() {
 bool SubscriberLink::SendControl(const v1::ReplayControl& control) {
   v1::SubscribeRequest request;
   *request.mutable_control() = control;
-  std::lock_guard<std::mutex> lock(write_mutex_);
-  return writer_ && static_cast<SubscribeStream*>(writer_)->Write(request);
+  return Write(request);
 }
 
 int SubscriberLink::Run() {
@@ -94,6 +94,23 @@ int SubscriberLink::Run() {
   return 0;
 }
 
+struct SubscriberLink::StreamState {
+  std::string run_id;
+  bool showing = false;        // the current run has a scene
+  bool done = false;           // stop reading: the run (or the last run asked for) ended
+  bool fatal = false;          // ... and exit with an error
+  bool broken = false;         // a write failed: the stream is gone
+  v1::SubscribeRequest reply;  // reused for every probe report
+  std::vector<ProbeReport> probes;
+  std::vector<double> q, ghost_q;
+  bool probes_logged = false;  // "first probe reports" said for this run
+};
+
+bool SubscriberLink::Write(const v1::SubscribeRequest& request) {
+  std::lock_guard<std::mutex> lock(write_mutex_);
+  return writer_ != nullptr && static_cast<SubscribeStream*>(writer_)->Write(request);
+}
+
 SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
   auto stub = v1::Simulation::NewStub(net::MakeChannel(options_.server, options_.security));
   grpc::ClientContext context;
@@ -117,117 +134,35 @@ SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
     std::lock_guard<std::mutex> lock(write_mutex_);
     writer_ = stream.get();
   }
-  auto write = [&](const v1::SubscribeRequest& request) {
-    std::lock_guard<std::mutex> lock(write_mutex_);
-    return stream->Write(request);
-  };
   status_->SetState("waiting");
 
   v1::SubscribeEvent event;
-  v1::SubscribeRequest reply;
-  std::vector<ProbeReport> probes;
-  std::vector<double> q, ghost_q;
-  std::string run_id;
-  bool showing = false;  // the current run has a scene
-  bool done = false;
-  bool fatal = false;
-  while (!done && stream->Read(&event)) {
-    if (event.event_case() == v1::SubscribeEvent::kSubscribed) {
-      spdlog::info("subscribed to {}: {}", options_.server, event.subscribed());
-    } else if (event.event_case() == v1::SubscribeEvent::kClosing) {
-      spdlog::warn("{}: {}", options_.server, event.closing());
-      break;  // half-close below; the stream ends UNAVAILABLE and the link reconnects
-    } else if (event.has_run_started()) {
-      const auto& started = event.run_started();
-      run_id = started.run().id();
-      try {
-        SceneDescription scene = SceneForModel(started.model(), started.bundle(), scenes_);
-        for (const std::string& warning : scene.warnings) spdlog::warn("{}", warning);
-        const std::string title = scene.title;
-        const std::string error = slot_->Replace(std::move(scene));
-        if (!error.empty()) throw std::runtime_error(error);
-        status_->StartRun(run_id, started.model().id(), title, started.model().dofs());
-        const v1::RunInfo& run = started.run();
-        status_->SetMethod(
-            run.stats().formulation().empty() ? run.spec().formulation()
-                                              : run.stats().formulation(),
-            run.stats().method().empty() ? run.spec().method() : run.stats().method());
-        showing = true;
-        spdlog::info("run {} of model '{}' ({}): showing scene '{}'", run_id,
-                     started.model().name(), started.model().id(), title);
-      } catch (const std::exception& e) {
-        showing = false;
-        spdlog::error("run {}: {}", run_id, e.what());
-        if (!options_.follow) {
-          fatal = true;
-          done = true;
-        }
-      }
-    } else if (event.has_replay_state()) {
-      const v1::ReplayState& state = event.replay_state();
-      status_->SetReplay(state.paused(), state.speed(), state.frames(), state.compare_run_id(),
-                         state.probe_set());
-      if (!state.error().empty()) spdlog::warn("replay of run {}: {}", run_id, state.error());
-    } else if (event.has_frames()) {
-      if (!showing) continue;
-      const auto& batch = event.frames();
-      const bool ghosts = batch.ghost_frames_size() == batch.frames_size();
-      int sent = 0;
-      const Clock::time_point begin = Clock::now();
-      for (int i = 0; i < batch.frames_size(); ++i) {
-        const v1::Frame& frame = batch.frames(i);
-        q.assign(frame.q().begin(), frame.q().end());
-        bool posed = false;
-        try {
-          posed = slot_->WithScene([&](Scene& scene) {
-            scene.SetJointValues(q);
-            scene.ProbeReports(&probes);
-            if (ghosts && scene.ghost()) {
-              const v1::Frame& ghost = batch.ghost_frames(i);
-              ghost_q.assign(ghost.q().begin(), ghost.q().end());
-              scene.ghost()->SetJointValues(ghost_q);
-              status_->AddGhost(frame.t_s(), Distance(frame.tcp_m(), ghost.tcp_m()));
-            }
-          });
-        } catch (const std::exception& e) {
-          spdlog::error("run {} frame {}: {}", run_id, frame.seq(), e.what());
-          showing = false;
-          break;
-        }
-        if (!posed) continue;
-        for (const ProbeReport& probe : probes) {
-          v1::ProbeReport* report = reply.mutable_probe();
-          report->set_run_id(run_id);
-          report->set_seq(frame.seq());
-          report->set_t_s(frame.t_s());
-          report->set_probe(probe.name);
-          report->mutable_position_m()->set_x(probe.position_m.x());
-          report->mutable_position_m()->set_y(probe.position_m.y());
-          report->mutable_position_m()->set_z(probe.position_m.z());
-          report->set_frame(probe.frame);
-          if (!write(reply)) break;
-          ++sent;
-        }
-      }
-      const int64_t compute_ns =
-          std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - begin).count();
-      if (batch.frames_size() > 0) {
-        status_->SetSeq(batch.frames(batch.frames_size() - 1).seq());
-        status_->AddFrames(batch.frames(batch.frames_size() - 1).t_s(), batch.frames_size(),
-                           batch.missed(), sent, compute_ns);
-      } else if (batch.missed() > 0) {  // frames dropped just before the run's end
-        status_->AddMissed(batch.missed());
-      }
-    } else if (event.has_run_ended()) {
-      const v1::RunInfo& ended = event.run_ended();
-      ++*runs_ended;
-      status_->SetState("ended");
-      spdlog::info("run {} ended: {} ({} frames)", ended.id(), v1::RunState_Name(ended.state()),
-                   ended.frames());
-      if (!options_.follow ||
-          (options_.exit_after_runs > 0 && *runs_ended >= options_.exit_after_runs)) {
-        done = true;
-      }
+  StreamState state;
+  bool closing = false;
+  while (!state.done && !state.broken && !closing && stream->Read(&event)) {
+    switch (event.event_case()) {
+      case v1::SubscribeEvent::kSubscribed:
+        spdlog::info("subscribed to {}: {}", options_.server, event.subscribed());
+        break;
+      case v1::SubscribeEvent::kClosing:
+        // Half-close below; the stream ends UNAVAILABLE and the link reconnects.
+        spdlog::warn("{}: {}", options_.server, event.closing());
+        closing = true;
+        break;
+      case v1::SubscribeEvent::kRunStarted:
+        OnRunStarted(event.run_started(), &state);
+        break;
+      case v1::SubscribeEvent::kReplayState:
+        OnReplayState(event.replay_state(), state);
+        break;
+      case v1::SubscribeEvent::kFrames:
+        OnFrames(event.frames(), &state);
+        break;
+      case v1::SubscribeEvent::kRunEnded:
+        OnRunEnded(event.run_ended(), runs_ended, &state);
+        break;
+      case v1::SubscribeEvent::EVENT_NOT_SET:
+        break;
     }
   }
   // Half-close: the server ends the stream (also a follow stream) once it has read our last
@@ -237,11 +172,11 @@ SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
     writer_ = nullptr;
     stream->WritesDone();
   }
-  if (done) {
+  if (state.done) {
     while (stream->Read(&event)) {
     }
     stream->Finish();
-    return fatal ? StreamEnd::kFatal : StreamEnd::kDone;
+    return state.fatal ? StreamEnd::kFatal : StreamEnd::kDone;
   }
   const grpc::Status status = stream->Finish();
   if (stop_) return StreamEnd::kDone;
@@ -252,6 +187,116 @@ SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
   spdlog::warn("the stream ended: {} ({})", status.error_message(),
                static_cast<int>(status.error_code()));
   return StreamEnd::kRetry;
+}
+
+std::string SubscriberLink::ShowRun(const v1::SubscribeEvent::RunStarted& started) {
+  SceneDescription scene;
+  try {
+    scene = SceneForModel(started.model(), started.bundle(), scenes_);
+  } catch (const std::exception& e) {  // InputError, or a mesh file that cannot be read
+    return e.what();
+  }
+  for (const std::string& warning : scene.warnings) spdlog::warn("{}", warning);
+  const std::string title = scene.title;
+  if (std::string error = slot_->Replace(std::move(scene)); !error.empty()) return error;
+  const v1::RunInfo& run = started.run();
+  status_->StartRun(run.id(), started.model().id(), title, started.model().dofs());
+  status_->SetMethod(
+      run.stats().formulation().empty() ? run.spec().formulation() : run.stats().formulation(),
+      run.stats().method().empty() ? run.spec().method() : run.stats().method());
+  spdlog::info("run {} of model '{}' ({}): showing scene '{}'", run.id(), started.model().name(),
+               started.model().id(), title);
+  return "";
+}
+
+void SubscriberLink::OnRunStarted(const v1::SubscribeEvent::RunStarted& started,
+                                  StreamState* state) {
+  state->run_id = started.run().id();
+  state->probes_logged = false;
+  const std::string error = ShowRun(started);
+  state->showing = error.empty();
+  if (state->showing) return;
+  spdlog::error("run {}: {}", state->run_id, error);
+  if (!options_.follow) {  // --run: the one run cannot be shown
+    state->fatal = true;
+    state->done = true;
+  }
+}
+
+void SubscriberLink::OnReplayState(const v1::ReplayState& replay, const StreamState& state) {
+  status_->SetReplay(replay.paused(), replay.speed(), replay.frames(), replay.compare_run_id(),
+                     replay.probe_set());
+  if (!replay.error().empty()) spdlog::warn("replay of run {}: {}", state.run_id, replay.error());
+}
+
+void SubscriberLink::OnFrames(const v1::FrameBatch& batch, StreamState* state) {
+  if (!state->showing) return;
+  const bool ghosts = batch.ghost_frames_size() == batch.frames_size();
+  int sent = 0;
+  const Clock::time_point begin = Clock::now();
+  for (int i = 0; i < batch.frames_size() && !state->broken; ++i) {
+    const v1::Frame& frame = batch.frames(i);
+    state->q.assign(frame.q().begin(), frame.q().end());
+    bool posed = false;
+    try {
+      posed = slot_->WithScene([&](Scene& scene) {
+        scene.SetJointValues(state->q);
+        scene.ProbeReports(&state->probes);
+        if (ghosts && scene.ghost()) {
+          const v1::Frame& ghost = batch.ghost_frames(i);
+          state->ghost_q.assign(ghost.q().begin(), ghost.q().end());
+          scene.ghost()->SetJointValues(state->ghost_q);
+          status_->AddGhost(frame.t_s(), Distance(frame.tcp_m(), ghost.tcp_m()));
+        }
+      });
+    } catch (const std::exception& e) {  // InputError: the frame does not fit the scene
+      spdlog::error("run {} frame {}: {}", state->run_id, frame.seq(), e.what());
+      state->showing = false;
+      break;
+    }
+    if (!posed) continue;
+    for (const ProbeReport& probe : state->probes) {
+      v1::ProbeReport* report = state->reply.mutable_probe();
+      report->set_run_id(state->run_id);
+      report->set_seq(frame.seq());
+      report->set_t_s(frame.t_s());
+      report->set_probe(probe.name);
+      report->mutable_position_m()->set_x(probe.position_m.x());
+      report->mutable_position_m()->set_y(probe.position_m.y());
+      report->mutable_position_m()->set_z(probe.position_m.z());
+      report->set_frame(probe.frame);
+      if (!Write(state->reply)) {  // the stream is gone: Finish says why
+        state->broken = true;
+        break;
+      }
+      ++sent;
+    }
+    if (sent > 0 && !state->probes_logged) {
+      spdlog::info("run {}: answering with probe reports from frame {}", state->run_id,
+                   frame.seq());
+      state->probes_logged = true;
+    }
+  }
+  const int64_t compute_ns =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - begin).count();
+  if (batch.frames_size() > 0) {
+    status_->SetSeq(batch.frames(batch.frames_size() - 1).seq());
+    status_->AddFrames(batch.frames(batch.frames_size() - 1).t_s(), batch.frames_size(),
+                       batch.missed(), sent, compute_ns);
+  } else if (batch.missed() > 0) {  // frames dropped just before the run's end
+    status_->AddMissed(batch.missed());
+  }
+}
+
+void SubscriberLink::OnRunEnded(const v1::RunInfo& ended, int* runs_ended, StreamState* state) {
+  ++*runs_ended;
+  status_->SetState("ended");
+  spdlog::info("run {} ended: {} ({} frames)", ended.id(), v1::RunState_Name(ended.state()),
+               ended.frames());
+  if (!options_.follow ||
+      (options_.exit_after_runs > 0 && *runs_ended >= options_.exit_after_runs)) {
+    state->done = true;
+  }
 }
 
 }  // namespace mbstream::viewer

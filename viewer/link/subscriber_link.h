@@ -53,7 +53,20 @@ class SubscriberLink {
 
  private:
   enum class StreamEnd { kDone, kRetry, kFatal };
+  // The current run of one open stream and its reusable buffers (subscriber_link.cc).
+  struct StreamState;
+
+  // One connection: subscribes, handles events until the end, returns how it ended.
   StreamEnd Stream(int* runs_ended);
+  // One handler per event kind; each updates `state` (the run shown, whether to stop).
+  void OnRunStarted(const v1::SubscribeEvent::RunStarted& started, StreamState* state);
+  void OnReplayState(const v1::ReplayState& replay, const StreamState& state);
+  void OnFrames(const v1::FrameBatch& batch, StreamState* state);
+  void OnRunEnded(const v1::RunInfo& ended, int* runs_ended, StreamState* state);
+  // Shows the run's scene; returns what is wrong (empty when the scene is shown).
+  std::string ShowRun(const v1::SubscribeEvent::RunStarted& started);
+  // Writes one message on the open stream; false when the stream is broken.
+  bool Write(const v1::SubscribeRequest& request);
 
   LinkOptions options_;
   RunSceneSource scenes_;
