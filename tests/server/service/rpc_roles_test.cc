@@ -114,6 +114,20 @@ class RpcGateTest : public ServerTest {
            stream->WritesDone();
            return finish(std::move(stream), v1::SubscribeEvent());
          }},
+        {"ListProbeSets",
+         [&] {
+           v1::ListProbeSetsRequest request;
+           request.set_run_id("r-nosuch");
+           v1::ListProbeSetsResponse response;
+           return stub().ListProbeSets(&context, request, &response);
+         }},
+        {"ReplayRun",
+         [&] {
+           v1::ReplayRunRequest request;
+           request.set_run_id("r-nosuch");
+           v1::RunInfo info;
+           return stub().ReplayRun(&context, request, &info);
+         }},
     };
     return calls.at(method)();
   }
