@@ -8,7 +8,7 @@
 
 #include "client/cli/server_commands.h"
 #include "client/cli/simulate_command.h"
-#include "server/common/check.h"
+#include "common/check.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"mbstream: simulate articulated mechanisms and watch them move", "mbstream"};

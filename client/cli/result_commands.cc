@@ -3,7 +3,7 @@
 
 #include "client/cli/result_download.h"
 #include "client/cli/server_commands.h"
-#include "server/common/check.h"
+#include "common/check.h"
 
 namespace mbstream::cli {
 

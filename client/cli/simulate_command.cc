@@ -8,7 +8,7 @@
 
 #include "client/cli/exit_codes.h"
 #include "client/cli/run_overrides.h"
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/parse/urdf_import.h"
 #include "server/results/results_files.h"
 #include "server/sim/input_sanity.h"

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <atomic>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/store/store.h"
 
 namespace mbstream {

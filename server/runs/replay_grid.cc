@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "server/common/check.h"
+#include "common/check.h"
 
 namespace mbstream {
 

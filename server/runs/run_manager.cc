@@ -9,7 +9,7 @@
 #include <ctime>
 #include <random>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/runs/release_memory.h"
 #include "server/runs/request_error.h"
 #include "server/runs/run_budget_caps.h"
@@ -35,8 +35,12 @@ RequestError NotFound(const std::string& run_id) {
 
 }  // namespace
 
-RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& limits)
-    : models_(models), store_(store), limits_(limits) {
+RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& limits,
+                       RunClock* clock)
+    : models_(models),
+      store_(store),
+      limits_(limits),
+      clock_(clock != nullptr ? clock : &SteadyRunClock()) {
   MBSTREAM_CHECK(models_ != nullptr && store_ != nullptr && limits_.workers > 0);
   const int interrupted = store_->MarkUnfinishedRunsInterrupted(
       "the server stopped while this run was queued or running; start it again");

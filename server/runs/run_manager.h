@@ -18,6 +18,7 @@
 #include "server/runs/model_registry.h"
 #include "server/runs/replay_cursor.h"
 #include "server/runs/run.h"
+#include "server/runs/run_clock.h"
 #include "server/runs/server_limits.h"
 #include "server/runs/subscription.h"
 
@@ -27,10 +28,11 @@ class Store;
 
 class RunManager {
  public:
-  // `models` and `store` are not owned and must outlive the manager. Marks runs the store
-  // still lists as queued or running (a previous server died) INTERRUPTED, then starts
-  // `limits.workers` threads.
-  RunManager(ModelRegistry* models, Store* store, const ServerLimits& limits);
+  // `models`, `store` and `clock` are not owned and must outlive the manager (`clock` paces
+  // realtime runs; the steady clock when null). Marks runs the store still lists as queued
+  // or running (a previous server died) INTERRUPTED, then starts `limits.workers` threads.
+  RunManager(ModelRegistry* models, Store* store, const ServerLimits& limits,
+             RunClock* clock = nullptr);
   ~RunManager();  // Shutdown("the server stopped")
 
   // Validates the spec against the model and the limits, queues the run and returns its
@@ -131,6 +133,7 @@ class RunManager {
   ModelRegistry* models_;
   Store* store_;
   const ServerLimits limits_;
+  RunClock* clock_;
 
   mutable std::mutex mutex_;
   std::condition_variable work_;

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <random>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/runs/request_error.h"
 #include "server/runs/run_manager.h"
 #include "server/store/store.h"

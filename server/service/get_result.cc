@@ -12,6 +12,7 @@ constexpr size_t kChunkBytes = 1 << 20;  // about 1 MiB of frames or probes per 
 grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
                                           const v1::GetResultRequest* request,
                                           grpc::ServerWriter<v1::ResultChunk>* writer) {
+  size_t sent_bytes = 0;  // frames and probes, all messages
   const grpc::Status status = Admit(*context, "GetResult", [&]() -> grpc::Status {
     const std::string& run_id = request->run_id();
     v1::ResultChunk chunk;
@@ -27,6 +28,7 @@ grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
       if (chunk.frames_size() == 0 && chunk.probes_size() == 0) return true;
       const bool ok = !context->IsCancelled() && writer->Write(chunk);
       chunk.Clear();
+      sent_bytes += bytes;
       bytes = 0;
       return ok;
     };
@@ -50,7 +52,9 @@ grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
     if (!flush()) return gone;
     return grpc::Status::OK;
   });
-  runs_->ReleaseMemory();  // after the handler's messages and frames are freed
+  // After the handler's messages and frames are freed, when they were a burst (a message
+  // of 1 MiB or more; after every small result it cost more than the result).
+  if (sent_bytes >= kChunkBytes) runs_->ReleaseMemory();
   return status;
 }
 

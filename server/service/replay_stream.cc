@@ -5,7 +5,7 @@
 #include <cmath>
 #include <deque>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/runs/request_error.h"
 
 namespace mbstream {

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/store/sqlite_connection.h"
 #include "server/store/sqlite_statement.h"
 #include "server/store/sqlite_transaction.h"

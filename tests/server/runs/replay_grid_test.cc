@@ -1,7 +1,7 @@
 // The common time grid of a replay and its ghost, and the refusals that name what to do.
 #include <gmock/gmock.h>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/runs/replay_grid.h"
 
 namespace mbstream {
