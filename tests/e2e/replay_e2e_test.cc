@@ -2,13 +2,16 @@
 // run gave, bit for bit; a replay from a frame answers from that frame on; a comparison's
 // HUD distance is the distance between the two runs' tcp.csv.
 #include <gmock/gmock.h>
+#include <grpcpp/grpcpp.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <thread>
 
+#include "mbstream/v1/viewer_service.grpc.pb.h"
 #include "tests/common/csv_rows.h"
 #include "tests/common/server_process.h"
 
@@ -197,6 +200,64 @@ TEST_F(ReplayE2eTest, ReplayCommandStreamsAStoredRunToTheFollowingViewers) {
   EXPECT_THAT(ReadTextFile(log.string()),
               HasSubstr("last run " + RunId(run) + ": 401 frames, 401 probe reports"));
   EXPECT_EQ(Cli("replay r-nosuch").exit_code, 2);
+}
+
+// The viewer's control service drives a paused replay as its keys would: the pause holds
+// (the probe set has the held frame and the stepped one, nothing between), a seek lands on
+// its frame, and resume plays the rest.
+TEST_F(ReplayE2eTest, ControlServiceStepsAndSeeksAPausedReplay) {
+  const CommandOutcome run =
+      Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 0 "
+          "--watch");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string run_id = RunId(run);
+  const fs::path log = dir_ / "paused.log";
+  ASSERT_EQ(RunCommand("xvfb-run -a " + std::string(MBSTREAM_VIEWER) + " --server " +
+                       server_->address() + " --offscreen --size 320x240 --run " + run_id +
+                       " --paused --from-frame 100 --speed 0 --listen 127.0.0.1:0 > " +
+                       log.string() + " 2>&1 &")
+                .exit_code,
+            0);
+  const std::optional<std::string> address =
+      WaitForLineIn(log.string(), "control service listening on ");
+  ASSERT_TRUE(address) << ReadTextFile(log.string());
+  auto viewer =
+      v1::Viewer::NewStub(grpc::CreateChannel(*address, grpc::InsecureChannelCredentials()));
+  // Waits (30 s at most) until the viewer shows frame `seq` of the replay.
+  auto shows = [&](int64_t seq) {
+    v1::ViewerStatus status;
+    for (int i = 0; i < 3000; ++i) {
+      grpc::ClientContext context;
+      if (viewer->GetStatus(&context, v1::ViewerStatusRequest(), &status).ok() &&
+          status.mode() == "replay" && status.seq() == seq) {
+        return status;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ADD_FAILURE() << "the viewer never showed frame " << seq << "; it shows " << status.seq();
+    return status;
+  };
+  auto control = [&](const std::function<void(v1::ReplayControl&)>& set) {
+    grpc::ClientContext context;
+    v1::ReplayControl request;
+    set(request);
+    v1::ViewerStatus status;
+    const grpc::Status sent = viewer->Control(&context, request, &status);
+    EXPECT_TRUE(sent.ok()) << sent.error_message();
+  };
+  EXPECT_TRUE(shows(100).paused());
+  control([](v1::ReplayControl& c) { c.set_step(5); });
+  EXPECT_TRUE(shows(105).paused());
+  control([](v1::ReplayControl& c) { c.set_seek_seq(390); });
+  EXPECT_TRUE(shows(390).paused());
+  control([](v1::ReplayControl& c) { c.set_resume(true); });
+  ASSERT_TRUE(WaitForLineIn(log.string(), "viewer done")) << ReadTextFile(log.string());
+
+  const Rows probes = ReadCsv(Result(run_id, "controlled", OnlyProbeSet(run_id)) / "probes.csv");
+  std::vector<std::string> seqs;
+  for (const auto& row : probes) seqs.push_back(row[0]);
+  EXPECT_EQ(seqs, (std::vector<std::string>{"100", "105", "390", "391", "392", "393", "394", "395",
+                                            "396", "397", "398", "399", "400"}));
 }
 
 }  // namespace

@@ -61,10 +61,13 @@ int RunLink(const LinkCommandOptions& options) {
   SceneSlot slot(scene_options);
   LinkStatus status;
 
+  // Built first (it starts streaming in Run()): the control service sends through it.
+  SubscriberLink link(link_options, std::move(scenes), &slot, &status);
   std::unique_ptr<ViewerControlService> control;
   std::unique_ptr<grpc::Server> control_server;
   if (!options.listen.empty()) {
-    control = std::make_unique<ViewerControlService>(&slot, &status);
+    control = std::make_unique<ViewerControlService>(
+        &slot, &status, [&link](const v1::ReplayControl& c) { return link.SendControl(c); });
     grpc::ServerBuilder builder;
     int port = 0;
     try {
@@ -87,7 +90,6 @@ int RunLink(const LinkCommandOptions& options) {
     std::cout << "control service listening on " << address << std::endl;
   }
 
-  SubscriberLink link(link_options, std::move(scenes), &slot, &status);
   g_link = &link;
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);

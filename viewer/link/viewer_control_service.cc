@@ -72,4 +72,19 @@ grpc::Status ViewerControlService::LoadScene(grpc::ServerContext*,
   return grpc::Status::OK;
 }
 
+grpc::Status ViewerControlService::Control(grpc::ServerContext*, const v1::ReplayControl* request,
+                                           v1::ViewerStatus* response) {
+  if (!send_control_ || status_->Get().mode() != "replay") {
+    return grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
+                        "this viewer shows no replay: start it with --run of an ended run");
+  }
+  if (!send_control_(*request)) {
+    return grpc::Status(grpc::StatusCode::UNAVAILABLE,
+                        "the viewer's stream to the server is closed; try again when it shows "
+                        "the replay");
+  }
+  *response = status_->Get();
+  return grpc::Status::OK;
+}
+
 }  // namespace mbstream::viewer
