@@ -106,6 +106,8 @@ std::string StatsJson(const RunResult& result, const RunProvenance& provenance) 
       {"tcp_error_max_m", NumberOrNull(s.tcp_error_max)},
       {"energy_error_max_rel", NumberOrNull(s.energy_error_max)},
       {"energy_work_approximate", s.energy_work_approximate},
+      {"energy_work",
+       s.energy_work.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.energy_work)},
       {"drift_position_max_m", NumberOrNull(s.drift_position_max)},
       {"drift_orientation_max_rad", NumberOrNull(s.drift_orientation_max)},
       {"drift_velocity_max", NumberOrNull(s.drift_velocity_max)},

@@ -8,6 +8,14 @@
 
 namespace mbstream {
 
+// RunStats::energy_work.
+inline constexpr char kEnergyWorkNone[] = "none: no drive or damping does work";
+inline constexpr char kEnergyWorkIntegrated[] =
+    "integrated: a quadrature of the ODE, advanced with its states by the run's method "
+    "outside the error control";
+inline constexpr char kEnergyWorkTrapezoid[] =
+    "trapezoid: the trapezoid rule over the output frames (an approximation of its own)";
+
 enum class RunStatus {
   kFinished,
   kDiverged,             // the state became non-finite or exploded; stopped at the last good time
@@ -55,6 +63,9 @@ struct RunStats {
   double tcp_error_max = -1.0;     // m, TCP against direct kinematics of the prescribed motion
   double energy_error_max = -1.0;  // relative energy-balance error over the run
   bool energy_work_approximate = false;  // work of drives/damping integrated from outputs
+  // How the work W of drives and damping in the energy balance E(t) - E(0) - W(t) was
+  // computed: kEnergyWork* below ("" when there is no energy balance).
+  std::string energy_work;
 
   // Constraint drift of the body formulations: the largest violation over the output frames
   // (negative = not applicable: the formulation has no constraints).
