@@ -116,6 +116,10 @@ std::string StatsJson(const RunResult& result, const RunProvenance& provenance) 
   j["trust"] = s.trust == Trust::kNotAssessed ? nlohmann::ordered_json(nullptr)
                                               : nlohmann::ordered_json(TrustName(s.trust));
   j["trust_reason"] = s.trust_reason;
+  j["target_met"] =
+      s.target_met ? nlohmann::ordered_json(*s.target_met) : nlohmann::ordered_json(nullptr);
+  j["choice"] = s.choice_json.empty() ? nlohmann::ordered_json(nullptr)
+                                      : nlohmann::ordered_json::parse(s.choice_json);
   j["warnings"] = s.warnings;
   j["budget"] = {{"max_steps", s.max_steps}, {"max_cpu_s", s.max_cpu_s}};
   j["joints"] = result.joint_names;

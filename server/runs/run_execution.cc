@@ -5,10 +5,10 @@
 #include <chrono>
 #include <thread>
 
+#include "server/choose/target_run.h"
 #include "server/common/check.h"
 #include "server/runs/run_manager.h"
 #include "server/runs/unix_time.h"
-#include "server/sim/simulate.h"
 #include "server/store/store.h"
 #include "server/wire/frame_conversion.h"
 #include "server/wire/stats_conversion.h"
@@ -88,7 +88,8 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
   spdlog::info("run {} started", run->id());
 
   PublishingSink sink(run.get(), store_);
-  const RunResult result = Simulate(run->model().model, run->config(), &sink, &run->cancel);
+  const RunResult result =
+      SimulateWithTarget(run->model().model, run->config(), &sink, &run->cancel);
   const RunStats& stats = result.stats;
   outcome.state = RunStateFromStatus(stats.status);
   outcome.message = stats.message;

@@ -1,6 +1,7 @@
 // What a run produces: output frames, statistics, accuracy figures and its status.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,12 @@ struct RunStats {
   std::vector<std::string> warnings;  // the inputs' sanity warnings (input_sanity.h)
   double max_cpu_s = 0.0;             // s, the run's CPU budget (resolved)
   long max_steps = 0;                 // the run's step budget (resolved)
+
+  // A run with an accuracy target (RunConfig::target): whether the verification found it met
+  // (empty: not verified), and the choice with its reasoning and the check, as a JSON object
+  // (server/choose/choice_json.h; "" when the run had no target).
+  std::optional<bool> target_met;
+  std::string choice_json;
 };
 
 // Frame-major arrays; frame k has time t[k], joints q[k*n .. k*n+n-1], and so on.
