@@ -46,7 +46,7 @@ std::vector<Candidate> CandidatesFor(const RunConfig& config) {
 
 bool IsExplicit(const Candidate& c) { return c.stability_reach > 0.0; }
 
-constexpr double kSeparationShare = 0.5;
+constexpr double kSeparationShare = 0.75;
 
 std::string Pretty(double value) { return FormatString("%.3g", value); }
 
