@@ -1,12 +1,20 @@
-// Timings of the physics core on the IRB 1600 (models/irb1600/irb1600.urdf).
+// Timings of the physics core on the IRB 1600 (models/irb1600/irb1600.urdf) and on the big
+// models (models/big/: a 38-joint branching tree and a 100-link chain), or on URDF files
+// given on the command line instead:
 //
 //   build/bench/dynamics_bench --benchmark_repetitions=10 --benchmark_report_aggregates_only
+//   build/bench/dynamics_bench --urdf=FILE [--urdf=FILE ...]   # BM_*/<robot> for each
 //
 // One fixture: the model is imported once; every iteration runs the algorithm at a new
 // random state from a pre-generated pool, so branch prediction sees realistic inputs.
 #include <benchmark/benchmark.h>
 
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "server/dynamics/aba.h"
@@ -33,15 +41,8 @@ struct States {
   std::vector<Eigen::VectorXd> q, qd, x;  // x: a torque or an acceleration
 };
 
-const Model& Irb1600() {
-  static const Model model =
-      ImportUrdfFile(MBSTREAM_SOURCE_DIR "/models/irb1600/irb1600.urdf").model;
-  return model;
-}
-
 template <typename Algorithm>
-void Run(benchmark::State& state, Algorithm algorithm) {
-  const Model& model = Irb1600();
+void Run(benchmark::State& state, const Model& model, Algorithm algorithm) {
   Data data(model);
   const States states(model.num_dofs());
   int k = 0;
@@ -52,34 +53,71 @@ void Run(benchmark::State& state, Algorithm algorithm) {
   }
 }
 
-void BM_ForwardKinematics(benchmark::State& state) {
-  Run(state, [](const Model& m, Data& d, const auto& q, const auto&, const auto&) {
+void BM_ForwardKinematics(benchmark::State& state, const Model* model) {
+  Run(state, *model, [](const Model& m, Data& d, const auto& q, const auto&, const auto&) {
     ForwardKinematics(m, d, q);
     benchmark::DoNotOptimize(d.frame_world[m.tcp_frame].p.data());
   });
 }
-void BM_InverseDynamics(benchmark::State& state) {
-  Run(state, [](const Model& m, Data& d, const auto& q, const auto& qd, const auto& qdd) {
+void BM_InverseDynamics(benchmark::State& state, const Model* model) {
+  Run(state, *model, [](const Model& m, Data& d, const auto& q, const auto& qd, const auto& qdd) {
     benchmark::DoNotOptimize(Rnea(m, d, q, qd, qdd).data());
   });
 }
-void BM_MassMatrix(benchmark::State& state) {
-  Run(state, [](const Model& m, Data& d, const auto& q, const auto&, const auto&) {
+void BM_MassMatrix(benchmark::State& state, const Model* model) {
+  Run(state, *model, [](const Model& m, Data& d, const auto& q, const auto&, const auto&) {
     benchmark::DoNotOptimize(Crba(m, d, q).data());
   });
 }
-void BM_ForwardDynamics(benchmark::State& state) {
-  Run(state, [](const Model& m, Data& d, const auto& q, const auto& qd, const auto& tau) {
+void BM_ForwardDynamics(benchmark::State& state, const Model* model) {
+  Run(state, *model, [](const Model& m, Data& d, const auto& q, const auto& qd, const auto& tau) {
     benchmark::DoNotOptimize(Aba(m, d, q, qd, tau).data());
   });
 }
 
-BENCHMARK(BM_ForwardKinematics)->Name("BM_ForwardKinematics/irb1600");
-BENCHMARK(BM_InverseDynamics)->Name("BM_InverseDynamics/irb1600");
-BENCHMARK(BM_MassMatrix)->Name("BM_MassMatrix/irb1600");
-BENCHMARK(BM_ForwardDynamics)->Name("BM_ForwardDynamics/irb1600");
+// Registers every benchmark for the model of one URDF file, named after its robot.
+void RegisterModel(const std::string& path) {
+  static std::vector<std::unique_ptr<Model>> models;  // alive until the benchmarks ran
+  models.push_back(std::make_unique<Model>(ImportUrdfFile(path).model));
+  const Model* model = models.back().get();
+  const std::string robot = "/" + model->name;
+  benchmark::RegisterBenchmark(("BM_ForwardKinematics" + robot).c_str(), BM_ForwardKinematics,
+                               model);
+  benchmark::RegisterBenchmark(("BM_InverseDynamics" + robot).c_str(), BM_InverseDynamics, model);
+  benchmark::RegisterBenchmark(("BM_MassMatrix" + robot).c_str(), BM_MassMatrix, model);
+  benchmark::RegisterBenchmark(("BM_ForwardDynamics" + robot).c_str(), BM_ForwardDynamics, model);
+}
 
 }  // namespace
 }  // namespace mbstream
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  // --urdf=FILE (repeatable) is ours; everything else goes to Google Benchmark.
+  std::vector<std::string> urdfs;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strncmp(argv[i], "--urdf=", 7) == 0) {
+      urdfs.emplace_back(argv[i] + 7);
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
+  if (urdfs.empty()) {
+    for (const char* file :
+         {"/models/irb1600/irb1600.urdf", "/models/big/tree38.urdf", "/models/big/chain100.urdf"}) {
+      urdfs.push_back(std::string(MBSTREAM_SOURCE_DIR) + file);
+    }
+  }
+  try {
+    for (const std::string& path : urdfs) mbstream::RegisterModel(path);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dynamics_bench: %s\n", e.what());
+    return 2;
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -4,16 +4,22 @@
 //   BM_BareStreamFrames      frames/s of a bare server stream of the same Frame messages
 //   BM_ProbeRoundTrip        frame out of the server -> probe back (p50_us, p99_us)
 //   BM_BarePingPong/0, /10   a bare bidi echo of one Frame, hot or paced every 10 ms
+//   BM_ReplayFrames/V/P      frames/s of an unpaced replay of a stored run to V viewers at
+//                            once, each answering every frame with P probes (issue 17)
+//   BM_ReplayFirstFrame/S    a 1,000,001-frame stored run: Subscribe -> first replayed frame,
+//                            from frame S
 #include <benchmark/benchmark.h>
 #include <grpcpp/grpcpp.h>
 
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <thread>
 
 #include "mbstream/v1/simulation_service.grpc.pb.h"
 #include "server/app/server_host.h"
+#include "server/runs/replay_cursor.h"
 #include "server/runs/run_manager.h"
 #include "server/spec/run_spec_json.h"
 #include "stream_baseline.grpc.pb.h"
@@ -266,6 +272,127 @@ void BM_BarePingPong(benchmark::State& state) {
 }
 BENCHMARK(BM_BarePingPong)->Arg(0)->Iterations(2000)->Unit(benchmark::kMicrosecond)->UseRealTime();
 BENCHMARK(BM_BarePingPong)->Arg(10)->Iterations(400)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+// An ended run of the seed kinematics with `frames` frames (stored once per length).
+std::string StoredRun(int64_t frames) {
+  static std::map<int64_t, std::string> runs;
+  if (auto found = runs.find(frames); found != runs.end()) return found->second;
+  v1::RunSpec spec = SeedSpec();
+  spec.set_output_interval_s(20.0 / static_cast<double>(frames - 1));
+  spec.set_realtime(0.0);
+  const std::string id = StartRun(spec);
+  for (;;) {
+    grpc::ClientContext context;
+    v1::GetRunRequest request;
+    request.set_run_id(id);
+    v1::RunInfo info;
+    Server().stub->GetRun(&context, request, &info);
+    if (info.state() == v1::FINISHED) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return runs[frames] = id;
+}
+
+std::unique_ptr<Stream> Replay(grpc::ClientContext* context, const std::string& run_id,
+                               int64_t from_seq, bool wait_for_probes = false) {
+  std::unique_ptr<Stream> stream = Server().stub->Subscribe(context);
+  v1::SubscribeRequest start;
+  start.mutable_start()->set_run_id(run_id);
+  start.mutable_start()->set_max_batch(256);
+  start.mutable_start()->mutable_replay()->set_speed(0.0);
+  start.mutable_start()->mutable_replay()->set_from_seq(from_seq);
+  start.mutable_start()->mutable_replay()->set_wait_for_probes(wait_for_probes);
+  stream->Write(start);
+  return stream;
+}
+
+// Reads a replay to its end, answering each frame with `probes` probe reports; returns the
+// frames read.
+int64_t ReadReplay(Stream& stream, int probes) {
+  v1::SubscribeEvent event;
+  v1::SubscribeRequest reply;
+  int64_t frames = 0;
+  while (stream.Read(&event) && !event.has_run_ended()) {
+    for (const v1::Frame& frame : event.frames().frames()) {
+      ++frames;
+      for (int p = 0; p < probes; ++p) {
+        v1::ProbeReport* report = reply.mutable_probe();
+        report->set_seq(frame.seq());
+        report->set_probe(p == 0 ? "tcp" : "probe" + std::to_string(p));
+        *report->mutable_position_m() = frame.tcp_m();
+        stream.Write(reply);
+      }
+    }
+  }
+  stream.WritesDone();
+  while (stream.Read(&event)) {
+  }
+  stream.Finish();
+  return frames;
+}
+
+// 100,001 stored frames replayed unpaced to range(0) viewers at once (each its own stream and
+// thread), each answering every frame with range(1) probes. Items = frames delivered, all
+// viewers together; frames_per_s_per_viewer is each viewer's rate.
+void BM_ReplayFrames(benchmark::State& state) {
+  const int viewers = static_cast<int>(state.range(0));
+  const int probes = static_cast<int>(state.range(1));
+  const std::string run = StoredRun(100'001);
+  int64_t delivered = 0;
+  ResetReplayFramesPeak();
+  for (auto _ : state) {
+    const Clock::time_point begin = Clock::now();
+    std::vector<std::thread> threads;
+    std::vector<int64_t> counts(viewers, 0);
+    for (int v = 0; v < viewers; ++v) {
+      threads.emplace_back([&, v] {
+        grpc::ClientContext context;
+        std::unique_ptr<Stream> stream = Replay(&context, run, 0, probes > 0);
+        counts[v] = ReadReplay(*stream, probes);
+      });
+    }
+    for (std::thread& thread : threads) thread.join();
+    const double seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+    state.SetIterationTime(seconds);
+    for (int64_t count : counts) delivered += count;
+    state.counters["frames_per_s_per_viewer"] = static_cast<double>(counts[0]) / seconds;
+  }
+  state.SetItemsProcessed(delivered);
+  state.counters["peak_frames_held"] = static_cast<double>(replay_frames_peak());
+}
+BENCHMARK(BM_ReplayFrames)
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Args({10, 0})
+    ->Args({10, 1})
+    ->Iterations(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime();
+
+// A 1,000,001-frame stored run: from the Subscribe call to the first replayed frame, starting
+// at frame range(0); the server holds one stored chunk (4,096 frames) for it.
+void BM_ReplayFirstFrame(benchmark::State& state) {
+  const std::string run = StoredRun(1'000'001);
+  ResetReplayFramesPeak();
+  for (auto _ : state) {
+    const Clock::time_point begin = Clock::now();
+    grpc::ClientContext context;
+    std::unique_ptr<Stream> stream = Replay(&context, run, state.range(0));
+    v1::SubscribeEvent event;
+    while (stream->Read(&event) && !event.has_frames()) {
+    }
+    state.SetIterationTime(std::chrono::duration<double>(Clock::now() - begin).count());
+    context.TryCancel();
+    stream->Finish();
+  }
+  state.counters["peak_frames_held"] = static_cast<double>(replay_frames_peak());
+}
+BENCHMARK(BM_ReplayFirstFrame)
+    ->Arg(0)
+    ->Arg(999'000)
+    ->Iterations(20)
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime();
 
 }  // namespace
 }  // namespace mbstream

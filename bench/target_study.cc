@@ -24,9 +24,9 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "common/check.h"
 #include "server/choose/frame_track.h"
 #include "server/choose/target_run.h"
-#include "server/common/check.h"
 #include "server/parse/urdf_import.h"
 #include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"

@@ -41,7 +41,7 @@
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/parse/urdf_import.h"
 #include "server/sim/run_config.h"
 #include "server/sim/run_result.h"

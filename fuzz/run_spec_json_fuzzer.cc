@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/spec/run_spec_json.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

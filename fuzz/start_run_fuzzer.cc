@@ -19,7 +19,7 @@
 #include <memory>
 #include <string>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/request_error.h"
 #include "server/runs/run_manager.h"

@@ -8,7 +8,7 @@
 #include <set>
 #include <string>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/parse/urdf_import.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -6,8 +6,11 @@
 #
 # Installs what is missing, builds, starts everything, and leaves in out/demo/: robot.ogv,
 # snapshots/*.png, results/ (joints.csv, tcp.csv, probes.csv, stats.json ...),
-# tcp_vs_probe.png and the three logs. --quick runs the experiment at 10x real time
-# (2 s) instead of real time; --no-build uses the binaries already in build/.
+# tcp_vs_probe.png and the logs. Second act: seed-servo with BDF and with fixed-step
+# semi-implicit Euler (h = 1e-4 s, its largest stable step: docs/accuracy.md), replayed side
+# by side with Euler as the ghost: compare_bdf_euler.ogv, compare_bdf_euler.png (the TCP
+# distance against time), compare/ (both results). --quick runs both acts at 10x real time
+# instead of real time; --no-build uses the binaries already in build/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -79,8 +82,24 @@ wait "$viewer_pid"  # it exits after the run ended and its last probes went out
 "$cli" --server "$address" result "$run" --out "$out/results"
 /usr/bin/python3 scripts/plot_tcp_vs_probe.py --results "$out/results" --out "$out/tcp_vs_probe.png"
 
+echo "demo: second act: seed-servo with BDF and with semi-implicit Euler (h = 1e-4 s), compared"
+bdf=$("$cli" --server "$address" run irb1600 --spec models/irb1600/seed-servo.json \
+  --realtime 0 --watch --out "$out/compare/bdf")
+# Euler's own error indicators may call its result untrusted (exit 4): that is the point.
+euler=$("$cli" --server "$address" run irb1600 --spec models/irb1600/seed-servo.json \
+  --method euler --step 1e-4 --realtime 0 --watch --accept-untrusted --out "$out/compare/euler")
+xvfb-run -a -s "-screen 0 1024x768x24" "$viewer" --server "$address" --run "$bdf" \
+  --compare "$euler" --speed "$realtime" --offscreen --size 640x480 \
+  --record "$out/compare_bdf_euler.ogv" >"$out/compare_viewer.log" 2>&1
+grep "compare $bdf with ghost" "$out/compare_viewer.log"
+/usr/bin/python3 scripts/plot_compare.py --run "$out/compare/bdf" --ghost "$out/compare/euler" \
+  --label-run "BDF (rtol 1e-6)" --label-ghost "semi-implicit Euler, h = 1e-4 s" \
+  --out "$out/compare_bdf_euler.png"
+
 echo "demo: done. In $out/:"
 echo "  robot.ogv            the viewer's recording"
 echo "  snapshots/           PNG snapshots"
 echo "  results/             joints.csv velocities.csv tcp.csv probes.csv stats.json"
 echo "  tcp_vs_probe.png     simulated TCP and the viewer's probe against time"
+echo "  compare_bdf_euler.ogv  BDF with semi-implicit Euler as its ghost (second act)"
+echo "  compare_bdf_euler.png  their TCP distance against time"

@@ -8,7 +8,7 @@
 
 #include "client/cli/server_commands.h"
 #include "client/cli/simulate_command.h"
-#include "server/common/check.h"
+#include "common/check.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"mbstream: simulate articulated mechanisms and watch them move", "mbstream"};
@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   mbstream::cli::AddListCommands(app, client, &exit_code);
   mbstream::cli::AddRunCommand(app, client, &exit_code);
   mbstream::cli::AddResultCommands(app, client, &exit_code);
+  mbstream::cli::AddReplayCommands(app, client, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -3,15 +3,17 @@
 
 #include "client/cli/result_download.h"
 #include "client/cli/server_commands.h"
-#include "server/common/check.h"
+#include "common/check.h"
 
 namespace mbstream::cli {
 
 namespace {
 
-int Result(const ClientOptions& client, const std::string& run_id, const std::string& out_dir) {
+int Result(const ClientOptions& client, const std::string& run_id, const std::string& out_dir,
+           const std::string& probe_set) {
   v1::RunInfo info;
-  const grpc::Status status = DownloadResult(*ConnectSimulation(client), run_id, out_dir, &info);
+  const grpc::Status status =
+      DownloadResult(*ConnectSimulation(client), run_id, out_dir, &info, probe_set);
   if (!status.ok()) return ReportRpcError("result", client, status);
   std::cerr << run_id << " " << v1::RunState_Name(info.state()) << ": " << info.frames()
             << " frames, " << info.probe_reports() << " probe reports; results in " << out_dir
@@ -38,9 +40,13 @@ void AddResultCommands(CLI::App& app, std::shared_ptr<const ClientOptions> clien
   CLI::App* result = app.add_subcommand("result", "fetch an ended run's results files");
   result->add_option("run", *run_id, "run id")->required();
   result->add_option("--out", *out_dir, "results directory")->required();
-  result->callback([client, run_id, out_dir, exit_code] {
+  auto probe_set = std::make_shared<std::string>();
+  result->add_option("--probe-set", *probe_set,
+                     "probes.csv from this replay's probe set (`mbstream probe-sets RUN`) "
+                     "instead of the live run's");
+  result->callback([client, run_id, out_dir, probe_set, exit_code] {
     try {
-      *exit_code = Result(*client, *run_id, *out_dir);
+      *exit_code = Result(*client, *run_id, *out_dir, *probe_set);
     } catch (const InputError& error) {
       std::cerr << "mbstream result: " << error.what() << "\n";
       *exit_code = 2;

@@ -11,8 +11,10 @@ namespace mbstream::cli {
 // Streams GetResult for `run_id` and writes joints.csv, velocities.csv, tcp.csv,
 // torques.csv, probes.csv and stats.json into `directory` (the same files, bit for bit, as
 // `mbstream simulate` writes for the same model and spec). Fills *info. Returns the RPC's
-// status; throws InputError when the directory cannot be written.
+// status; throws InputError when the directory cannot be written. probes.csv holds the live
+// run's probe reports, or those of the replay probe set `probe_set` when one is given.
 grpc::Status DownloadResult(v1::Simulation::Stub& stub, const std::string& run_id,
-                            const std::string& directory, v1::RunInfo* info);
+                            const std::string& directory, v1::RunInfo* info,
+                            const std::string& probe_set = "");
 
 }  // namespace mbstream::cli

@@ -9,7 +9,7 @@
 #include "client/cli/result_download.h"
 #include "client/cli/run_overrides.h"
 #include "client/cli/server_commands.h"
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/spec/run_spec_json.h"
 
 namespace mbstream::cli {

@@ -16,5 +16,7 @@ void AddListCommands(CLI::App& app, std::shared_ptr<const ClientOptions> options
 void AddRunCommand(CLI::App& app, std::shared_ptr<const ClientOptions> options, int* exit_code);
 void AddResultCommands(CLI::App& app, std::shared_ptr<const ClientOptions> options,
                        int* exit_code);  // result, cancel
+void AddReplayCommands(CLI::App& app, std::shared_ptr<const ClientOptions> options,
+                       int* exit_code);  // probe-sets, replay
 
 }  // namespace mbstream::cli

@@ -2,8 +2,8 @@
 
 #include <iostream>
 
+#include "common/check.h"
 #include "net/tls_files.h"
-#include "server/common/check.h"
 
 namespace mbstream::cli {
 

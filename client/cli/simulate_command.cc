@@ -8,8 +8,8 @@
 
 #include "client/cli/exit_codes.h"
 #include "client/cli/run_overrides.h"
+#include "common/check.h"
 #include "server/choose/target_run.h"
-#include "server/common/check.h"
 #include "server/parse/urdf_import.h"
 #include "server/results/results_files.h"
 #include "server/sim/input_sanity.h"

@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "client/cli/server_commands.h"
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/wire/model_bundle_files.h"
 
 namespace mbstream::cli {

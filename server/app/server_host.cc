@@ -12,8 +12,8 @@
 #include <chrono>
 #include <limits>
 
+#include "common/check.h"
 #include "net/tls_files.h"
-#include "server/common/check.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/run_manager.h"
 #include "server/service/authorizer.h"

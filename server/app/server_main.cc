@@ -8,9 +8,9 @@
 #include <iostream>
 #include <thread>
 
+#include "common/check.h"
 #include "net/tls_files.h"
 #include "server/app/server_host.h"
-#include "server/common/check.h"
 #include "server/runs/release_memory.h"
 
 #ifndef MBSTREAM_DEFAULT_MODELS_DIR

@@ -9,9 +9,11 @@ namespace mbstream {
 
 void BodyMechanics::EvaluateForces() {
   const int n = bm_.n;
-  M_.setZero();
+  // M is block diagonal but for the armature terms: only the blocks written below are
+  // cleared (the rest was zeroed once by the constructor and is never written).
   for (int i = 0; i < n; ++i) {
     const int c = 6 * i;
+    M_.block<6, 6>(c, c).setZero();
     M_.block<3, 3>(c, c).diagonal().setConstant(bm_.mass[i]);
     M_.block<3, 3>(c + 3, c + 3) = bm_.inertia[i];
     f_.segment<3>(c) = bm_.mass[i] * bm_.gravity;
@@ -39,6 +41,10 @@ void BodyMechanics::EvaluateForces() {
       Eigen::Matrix<double, 12, 1> hh;
       hh << h.v_child, h.w_child, h.v_parent, h.w_parent;
       const int blocks[2] = {6 * joint.child, joint.parent == kBase ? -1 : 6 * joint.parent};
+      if (blocks[1] >= 0) {  // the child-parent blocks: this joint's alone (one per child)
+        M_.block<6, 6>(blocks[0], blocks[1]).setZero();
+        M_.block<6, 6>(blocks[1], blocks[0]).setZero();
+      }
       for (int a = 0; a < 2; ++a) {
         for (int b = 0; b < 2; ++b) {
           if (blocks[a] < 0 || blocks[b] < 0) continue;

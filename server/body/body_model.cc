@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "server/common/check.h"
+#include "common/check.h"
 
 namespace mbstream {
 

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#include "server/common/check.h"
+#include "common/check.h"
+#include "common/format.h"
 #include "server/drives/drive_set.h"
-#include "server/integrate/failure_messages.h"
 #include "server/integrate/thread_cpu_clock.h"
 #include "server/sim/initial_state.h"
 #include "server/sim/run_validation.h"

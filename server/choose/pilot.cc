@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/format.h"
 #include "server/choose/frame_track.h"
-#include "server/integrate/failure_messages.h"
 #include "server/sim/simulate.h"
 
 namespace mbstream {

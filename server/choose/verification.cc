@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
+#include "common/format.h"
 #include "server/choose/pilot.h"
-#include "server/integrate/failure_messages.h"
 #include "server/sim/simulate.h"
 
 namespace mbstream {

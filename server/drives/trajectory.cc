@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "server/common/check.h"
+#include "common/check.h"
 
 namespace mbstream {
 

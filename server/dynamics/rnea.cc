@@ -1,6 +1,6 @@
 #include "server/dynamics/rnea.h"
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/kinematics/joint_spatial_transform.h"
 #include "server/kinematics/joint_transform.h"
 

@@ -4,13 +4,11 @@
 
 #include <string>
 
+#include "common/format.h"
 #include "server/integrate/integrator.h"
 #include "server/integrate/rhs_adapter.h"
 
 namespace mbstream {
-
-// printf-style formatting into a std::string.
-std::string FormatString(const char* format, ...) __attribute__((format(printf, 1, 2)));
 
 // What kind of method failed: the advice differs.
 enum class MethodKind { kFixedStep, kExplicit, kImplicit };

@@ -9,6 +9,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "server/integrate/dense_lu.h"
+#include "server/integrate/double_pair.h"
 #include "server/integrate/structured_dense_solver.h"
 
 namespace mbstream::sundials {
@@ -31,16 +32,7 @@ inline void WithLength(sunindextype n, Body body) {
   }
 }
 
-// Two doubles in one SSE2 register (a GCC and Clang vector extension; arithmetic is lane by
-// lane, with a scalar operand broadcast). The 12-element kernels run on six pairs: GCC
-// vectorises the plain loops only behind run-time overlap checks, when at all.
-using Pair = double __attribute__((vector_size(16)));
-inline Pair Load(const double* p) {
-  Pair v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-inline void Store(double* p, Pair v) { std::memcpy(p, &v, sizeof v); }
+// The 12-element kernels run on six Pairs (double_pair.h).
 
 // z = op(x, y) element by element (op takes doubles or Pairs); z may be x or y.
 template <typename Op>
@@ -188,7 +180,21 @@ int LinearCombination(int nvec, double* c, N_Vector* X, N_Vector z) {
   const sunindextype n = Length(z);
   double* zd = Data(z);
   if (n != 12) {
-    for (sunindextype i = 0; i < n; ++i) {
+    // Two elements at a time, every term summed in a register pair before the store (z may
+    // be any X[k]); the vectors' data pointers read once.
+    constexpr int kMaxTerms = 16;  // CVODE passes at most q_max + 1 = 6 (BDF), ARKODE 8
+    const double* x[kMaxTerms];
+    const int terms = std::min(nvec, kMaxTerms);
+    for (int k = 0; k < terms; ++k) x[k] = Data(X[k]);
+    sunindextype i = 0;
+    if (nvec <= kMaxTerms) {
+      for (; i + 2 <= n; i += 2) {
+        Pair sum = c[0] * Load(x[0] + i);
+        for (int k = 1; k < nvec; ++k) sum += c[k] * Load(x[k] + i);
+        Store(zd + i, sum);
+      }
+    }
+    for (; i < n; ++i) {
       double sum = c[0] * Data(X[0])[i];
       for (int k = 1; k < nvec; ++k) sum += c[k] * Data(X[k])[i];
       zd[i] = sum;

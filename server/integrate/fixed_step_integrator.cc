@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <utility>
 
+#include "common/format.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/state_health.h"
-#include "server/integrate/thread_cpu_clock.h"
 
 namespace mbstream {
 
@@ -47,7 +47,7 @@ AdvanceResult FixedStepIntegrator::DoAdvance(double t_out, double* y) {
       return {IntegratorStatus::kTooMuchWork, t,
               TooMuchWorkMessage(name(), options().max_steps, t, t_out, false)};
     }
-    if (steps_ % kCpuCheckSteps == 0 && ThreadCpuSeconds() >= options().cpu_deadline_s) {
+    if (steps_ % kCpuCheckSteps == 0 && CpuDeadlinePassed()) {
       std::copy(y_grid_.begin(), y_grid_.end(), y);
       return {IntegratorStatus::kTooMuchWork, t, CpuBudgetMessage(name(), t, t_out)};
     }

@@ -4,7 +4,7 @@
 #include <cfloat>
 #include <cmath>
 
-#include "server/common/check.h"
+#include "common/check.h"
 
 namespace mbstream {
 

@@ -2,6 +2,7 @@
 
 #include <ida/ida.h>
 
+#include "common/format.h"
 #include "server/integrate/failure_messages.h"
 
 namespace mbstream::sundials {

@@ -13,12 +13,12 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
-#include "server/common/check.h"
+#include "common/check.h"
+#include "common/format.h"
 #include "server/integrate/c_boundary.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/ida_failure.h"
 #include "server/integrate/state_health.h"
-#include "server/integrate/thread_cpu_clock.h"
 
 namespace mbstream {
 
@@ -211,7 +211,7 @@ AdvanceResult IdaIntegrator::DoAdvance(double t_out, double* y) {
     const long remaining = max_steps - steps;
     double t_current = t_reached;
     IDAGetCurrentTime(memory_, &t_current);
-    cpu_spent = cpu_budget && t_out > t_current && ThreadCpuSeconds() >= cpu_deadline;
+    cpu_spent = cpu_budget && t_out > t_current && CpuDeadlinePassed();
     if (remaining <= 0 || cpu_spent) {
       flag = IDA_TOO_MUCH_WORK;
       if (!evolved) {

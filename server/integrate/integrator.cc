@@ -3,7 +3,8 @@
 #include <cmath>
 #include <string>
 
-#include "server/common/check.h"
+#include "common/check.h"
+#include "common/format.h"
 #include "server/integrate/appended_quadratures.h"
 #include "server/integrate/arkstep_integrator.h"
 #include "server/integrate/butcher_tables.h"

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/state_health.h"
 
@@ -11,7 +11,11 @@ namespace mbstream {
 
 IntegratorBase::IntegratorBase(int size, double t0, const double* y0,
                                const IntegratorOptions& options)
-    : size_(size), options_(options), last_t_(t0), last_y_(y0, y0 + size) {}
+    : size_(size),
+      options_(options),
+      cpu_deadline_(options.cpu_deadline_s),
+      last_t_(t0),
+      last_y_(y0, y0 + size) {}
 
 AdvanceResult IntegratorBase::AdvanceTo(double t_out, double* y) {
   MBSTREAM_CHECK_MSG(std::isfinite(t_out) && t_out >= last_t_,

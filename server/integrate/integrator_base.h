@@ -6,6 +6,7 @@
 
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/integrator.h"
+#include "server/integrate/thread_cpu_clock.h"
 
 namespace mbstream {
 
@@ -31,10 +32,13 @@ class IntegratorBase : public Integrator {
   double last_time() const { return last_t_; }
   const double* last_state() const { return last_y_.data(); }  // the last output, at last_time()
   const IntegratorOptions& options() const { return options_; }
+  // Whether the thread's CPU clock has passed options().cpu_deadline_s (cheap: CpuDeadline).
+  bool CpuDeadlinePassed() { return cpu_deadline_.Passed(); }
 
  private:
   int size_;
   IntegratorOptions options_;
+  CpuDeadline cpu_deadline_;
   double last_t_;
   std::vector<double> last_y_;  // the last good output, at last_t_
   bool failed_ = false;

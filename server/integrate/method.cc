@@ -1,6 +1,6 @@
 #include "server/integrate/method.h"
 
-#include "server/common/name_table.h"
+#include "common/name_table.h"
 
 namespace mbstream {
 

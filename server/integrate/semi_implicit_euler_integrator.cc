@@ -1,6 +1,6 @@
 #include "server/integrate/semi_implicit_euler_integrator.h"
 
-#include "server/common/check.h"
+#include "common/check.h"
 
 namespace mbstream {
 

@@ -3,6 +3,7 @@
 #include <arkode/arkode.h>
 #include <cvode/cvode.h>
 
+#include "common/format.h"
 #include "server/integrate/failure_messages.h"
 
 namespace mbstream::sundials {

@@ -9,10 +9,10 @@
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 
-#include "server/common/check.h"
+#include "common/check.h"
+#include "common/format.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/fast_serial_ops.h"
-#include "server/integrate/thread_cpu_clock.h"
 
 namespace mbstream::sundials {
 
@@ -82,7 +82,7 @@ AdvanceResult SundialsIntegrator::DoAdvance(double t_out, double* y) {
   for (;;) {
     const long remaining = max_steps - NumSteps();
     const bool beyond = t_out > CurrentTime();  // steps are needed to reach t_out
-    cpu_spent = cpu_budget && beyond && ThreadCpuSeconds() >= cpu_deadline;
+    cpu_spent = cpu_budget && beyond && CpuDeadlinePassed();
     if ((remaining <= 0 && beyond) || cpu_spent) {
       // A budget is spent and t_out lies beyond the last internal step: stop at the last
       // output (or where the last chunk stopped).

@@ -1,6 +1,6 @@
 #include "server/kinematics/forward_kinematics.h"
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/kinematics/joint_transform.h"
 
 namespace mbstream {

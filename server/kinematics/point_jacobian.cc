@@ -1,6 +1,6 @@
 #include "server/kinematics/point_jacobian.h"
 
-#include "server/common/check.h"
+#include "common/check.h"
 
 namespace mbstream {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <utility>
 
-#include "server/common/check.h"
+#include "common/check.h"
 
 namespace mbstream {
 

@@ -5,7 +5,7 @@
 #include <limits>
 #include <optional>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/model/model_builder.h"
 #include "server/parse/urdf_repairs.h"
 

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <vector>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/model/model_builder.h"
 #include "server/parse/urdf_convert.h"
 #include "server/parse/urdf_diagnostics.h"

@@ -3,7 +3,7 @@
 #include <memory>
 #include <system_error>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/parse/asset_references.h"
 #include "urdf_reading/mesh_lookup.h"
 

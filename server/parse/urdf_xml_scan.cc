@@ -6,7 +6,7 @@
 #include <string_view>
 #include <utility>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/parse/urdf_diagnostics.h"
 
 namespace mbstream {

@@ -8,7 +8,7 @@
 #include <regex>
 #include <vector>
 
-#include "server/common/check.h"
+#include "common/check.h"
 
 namespace mbstream {
 

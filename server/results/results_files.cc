@@ -7,7 +7,7 @@
 #include <fstream>
 #include <functional>
 
-#include "server/common/check.h"
+#include "common/check.h"
 
 #ifndef MBSTREAM_VERSION
 #define MBSTREAM_VERSION "unknown"

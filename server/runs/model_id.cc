@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "server/common/check.h"
+#include "common/check.h"
 
 namespace mbstream {
 

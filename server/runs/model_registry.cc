@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <set>
 
-#include "server/common/check.h"
-#include "server/common/utf8.h"
+#include "common/check.h"
+#include "common/utf8.h"
 #include "server/parse/asset_references.h"
 #include "server/parse/urdf_import.h"
 #include "server/runs/model_id.h"

@@ -1,14 +1,13 @@
 // RunManager's worker side: executing one run and storing it.
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
 #include <chrono>
-#include <thread>
 
+#include "common/check.h"
 #include "server/choose/target_run.h"
-#include "server/common/check.h"
 #include "server/runs/run_manager.h"
 #include "server/runs/unix_time.h"
+#include "server/store/frame_chunks.h"
 #include "server/store/store.h"
 #include "server/wire/frame_conversion.h"
 #include "server/wire/stats_conversion.h"
@@ -17,13 +16,12 @@ namespace mbstream {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 // Converts each frame to its wire form, paces it (realtime factor), publishes it and hands it
 // to the run's spool (which stores it with the next chunk). A store failure stops the run.
 class PublishingSink : public FrameSink {
  public:
-  PublishingSink(Run* run, Store* store) : run_(run), store_(store), start_(Clock::now()) {}
+  PublishingSink(Run* run, Store* store, RunClock* clock)
+      : run_(run), store_(store), clock_(clock), start_(clock->Now()) {}
 
   bool KeepsFrames() const override { return true; }  // the spool stores them
 
@@ -45,21 +43,18 @@ class PublishingSink : public FrameSink {
 
  private:
   // Realtime factor r > 0: frame at simulated time t goes out at wall time start + t / r.
-  // Sleeps in short slices so that a cancel is seen at once.
   void Pace(double t) {
     const double realtime = run_->realtime();
     if (realtime <= 0.0) return;
-    const Clock::time_point due = start_ + std::chrono::duration_cast<Clock::duration>(
-                                               std::chrono::duration<double>(t / realtime));
-    for (Clock::time_point now = Clock::now(); now < due && !run_->cancel; now = Clock::now()) {
-      std::this_thread::sleep_for(
-          std::min<Clock::duration>(due - now, std::chrono::milliseconds(20)));
-    }
+    clock_->WaitUntil(start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                   std::chrono::duration<double>(t / realtime)),
+                      run_->cancel);
   }
 
   Run* run_;
   Store* store_;
-  Clock::time_point start_;
+  RunClock* clock_;
+  RunClock::TimePoint start_;
 };
 
 }  // namespace
@@ -87,7 +82,7 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
   store_->PutRun(run->Info());
   spdlog::info("run {} started", run->id());
 
-  PublishingSink sink(run.get(), store_);
+  PublishingSink sink(run.get(), store_, clock_);
   const RunResult result =
       SimulateWithTarget(run->model().model, run->config(), &sink, &run->cancel);
   const RunStats& stats = result.stats;
@@ -145,7 +140,13 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
                run->id(), v1::RunState_Name(info.state()), info.frames(),
                info.stats().t_reached_s(), info.stats().steps(), 1e3 * info.stats().cpu_s(),
                1e3 * info.stats().wall_s(), info.message().empty() ? "" : ": ", info.message());
-  ReleaseMemory();
+  // After a burst only: at least a stored chunk's worth of joint values (4,096 frames of a
+  // 6-joint arm, about 1 MB; fewer frames of a bigger model). Trimming the heap and SQLite's
+  // page cache after every short run cost more than the run itself (madvise, page faults
+  // refilling the pages, the cache read back from disk; docs/performance.md, "Many runs at
+  // once").
+  const int64_t joint_values = info.frames() * std::max(1, run->model().model.num_dofs());
+  if (joint_values >= static_cast<int64_t>(kFramesPerChunk) * 6) ReleaseMemory();
 }
 
 }  // namespace mbstream

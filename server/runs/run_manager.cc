@@ -9,7 +9,7 @@
 #include <ctime>
 #include <random>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/runs/release_memory.h"
 #include "server/runs/request_error.h"
 #include "server/runs/run_budget_caps.h"
@@ -35,8 +35,12 @@ RequestError NotFound(const std::string& run_id) {
 
 }  // namespace
 
-RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& limits)
-    : models_(models), store_(store), limits_(limits) {
+RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& limits,
+                       RunClock* clock)
+    : models_(models),
+      store_(store),
+      limits_(limits),
+      clock_(clock != nullptr ? clock : &SteadyRunClock()) {
   MBSTREAM_CHECK(models_ != nullptr && store_ != nullptr && limits_.workers > 0);
   const int interrupted = store_->MarkUnfinishedRunsInterrupted(
       "the server stopped while this run was queued or running; start it again");
@@ -352,7 +356,7 @@ void RunManager::Shutdown(const std::string& reason) {
   std::vector<std::shared_ptr<Subscription>> followers;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (stopping_ && workers_.empty()) return;
+    if (stopping_ && workers_.empty() && broadcasts_.empty()) return;
     stopping_ = true;
     stop_reason_ = reason;
     for (auto& [id, run] : active_) {
@@ -362,8 +366,15 @@ void RunManager::Shutdown(const std::string& reason) {
     followers = followers_;
   }
   work_.notify_all();
+  broadcast_wake_.notify_all();
   for (std::thread& worker : workers_) worker.join();
   workers_.clear();
+  std::vector<std::thread> broadcasts;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    broadcasts.swap(broadcasts_);
+  }
+  for (std::thread& broadcast : broadcasts) broadcast.join();
   for (const auto& follower : followers) follower->Close();
 }
 

@@ -12,10 +12,13 @@
 #include <thread>
 #include <vector>
 
+#include "mbstream/v1/replay.pb.h"
 #include "mbstream/v1/run.pb.h"
 #include "mbstream/v1/run_spec.pb.h"
 #include "server/runs/model_registry.h"
+#include "server/runs/replay_cursor.h"
 #include "server/runs/run.h"
+#include "server/runs/run_clock.h"
 #include "server/runs/server_limits.h"
 #include "server/runs/subscription.h"
 
@@ -25,10 +28,11 @@ class Store;
 
 class RunManager {
  public:
-  // `models` and `store` are not owned and must outlive the manager. Marks runs the store
-  // still lists as queued or running (a previous server died) INTERRUPTED, then starts
-  // `limits.workers` threads.
-  RunManager(ModelRegistry* models, Store* store, const ServerLimits& limits);
+  // `models`, `store` and `clock` are not owned and must outlive the manager (`clock` paces
+  // realtime runs; the steady clock when null). Marks runs the store still lists as queued
+  // or running (a previous server died) INTERRUPTED, then starts `limits.workers` threads.
+  RunManager(ModelRegistry* models, Store* store, const ServerLimits& limits,
+             RunClock* clock = nullptr);
   ~RunManager();  // Shutdown("the server stopped")
 
   // Validates the spec against the model and the limits, queues the run and returns its
@@ -60,6 +64,24 @@ class RunManager {
   std::optional<int64_t> ResultFrames(const std::string& run_id, int64_t index,
                                       std::vector<v1::Frame>& frames) const;
   std::vector<v1::ProbeReport> ResultProbes(const std::string& run_id) const;
+  // Replays (run_manager_replay.cc). Whether the run is queued or running now; a cursor over
+  // an ended run's stored frames (`info` from ResultInfo); the replays' probe sets: a new
+  // unique set id, creating a set and adding its reports (each call one transaction), the
+  // sets of a run (kNotFound for an unknown run) and one set's reports (kNotFound when the
+  // set is not one of the run's).
+  bool IsActive(const std::string& run_id) const;
+  std::unique_ptr<ReplayCursor> OpenReplay(const v1::RunInfo& info) const;
+  std::string NewProbeSetId() const;
+  void CreateProbeSet(const v1::ProbeSet& set);
+  void AddProbeSetReports(const std::string& set_id, const std::vector<v1::ProbeReport>& reports);
+  std::vector<v1::ProbeSet> ListProbeSets(const std::string& run_id) const;
+  std::vector<v1::ProbeReport> ResultProbeSet(const std::string& run_id,
+                                              const std::string& set_id) const;
+  // Streams the ended run `run_id` to the followers attached now (started, its frames paced
+  // at `speed_x` simulated s per wall s, ended), as if it were running, on a thread of its
+  // own; returns its info at once. Throws ResultInfo's errors, kFailedPrecondition for a run
+  // with no frames. Probe reports of a replayed run are refused (it is stored already).
+  v1::RunInfo ReplayToFollowers(const std::string& run_id, double speed_x);
   // Hands memory freed after a run or a result back to the system (SQLite's page cache,
   // glibc's arenas: release_memory.h).
   void ReleaseMemory() const;
@@ -111,6 +133,7 @@ class RunManager {
   ModelRegistry* models_;
   Store* store_;
   const ServerLimits limits_;
+  RunClock* clock_;
 
   mutable std::mutex mutex_;
   std::condition_variable work_;
@@ -123,6 +146,12 @@ class RunManager {
   std::string stop_reason_;
   int run_counter_ = 0;
   std::vector<std::thread> workers_;
+  static constexpr int kMaxBroadcasts = 4;  // ReplayToFollowers at the same time
+  std::vector<std::thread> broadcasts_;     // ReplayToFollowers, joined by Shutdown
+  int broadcasting_ = 0;                    // of them still streaming
+  std::condition_variable broadcast_wake_;  // Shutdown wakes pacing broadcasts
+  void Broadcast(const v1::RunInfo& info, double speed_x,
+                 std::vector<std::shared_ptr<Subscription>> followers);
 };
 
 }  // namespace mbstream

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "server/common/check.h"
+#include "common/check.h"
 
 namespace mbstream {
 

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string_view>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/service/rpc_roles.h"
 
 namespace mbstream {

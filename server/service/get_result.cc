@@ -12,10 +12,14 @@ constexpr size_t kChunkBytes = 1 << 20;  // about 1 MiB of frames or probes per 
 grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
                                           const v1::GetResultRequest* request,
                                           grpc::ServerWriter<v1::ResultChunk>* writer) {
+  size_t sent_bytes = 0;  // frames and probes, all messages
   const grpc::Status status = Admit(*context, "GetResult", [&]() -> grpc::Status {
     const std::string& run_id = request->run_id();
     v1::ResultChunk chunk;
     *chunk.mutable_info() = runs_->ResultInfo(run_id);
+    // A replay's probe set is checked (NOT_FOUND) before anything is sent.
+    std::vector<v1::ProbeReport> probes;
+    if (!request->probe_set().empty()) probes = runs_->ResultProbeSet(run_id, request->probe_set());
     const grpc::Status gone(grpc::StatusCode::CANCELLED, "client gone");
     if (!writer->Write(chunk)) return gone;
     chunk.Clear();
@@ -24,6 +28,7 @@ grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
       if (chunk.frames_size() == 0 && chunk.probes_size() == 0) return true;
       const bool ok = !context->IsCancelled() && writer->Write(chunk);
       chunk.Clear();
+      sent_bytes += bytes;
       bytes = 0;
       return ok;
     };
@@ -38,7 +43,8 @@ grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
       }
     }
     std::vector<v1::Frame>().swap(frames);
-    for (v1::ProbeReport& probe : runs_->ResultProbes(run_id)) {
+    if (request->probe_set().empty()) probes = runs_->ResultProbes(run_id);
+    for (v1::ProbeReport& probe : probes) {
       bytes += probe.ByteSizeLong();
       *chunk.add_probes() = std::move(probe);
       if (bytes >= kChunkBytes && !flush()) return gone;
@@ -46,7 +52,9 @@ grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
     if (!flush()) return gone;
     return grpc::Status::OK;
   });
-  runs_->ReleaseMemory();  // after the handler's messages and frames are freed
+  // After the handler's messages and frames are freed, when they were a burst (a message
+  // of 1 MiB or more; after every small result it cost more than the result).
+  if (sent_bytes >= kChunkBytes) runs_->ReleaseMemory();
   return status;
 }
 

@@ -24,6 +24,8 @@ inline constexpr RpcRole kRpcRoles[] = {
     {"GetResult", Role::kView},      //
     {"WatchRun", Role::kView},       //
     {"Subscribe", Role::kView},      // viewers; their probe reports are checked per stream
+    {"ListProbeSets", Role::kView},  //
+    {"ReplayRun", Role::kRun},       // streams a stored run to every follower
 };
 
 // The role of `method`; a method missing from kRpcRoles is a bug (InternalError).

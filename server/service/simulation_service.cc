@@ -2,7 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/service/status_from_exception.h"
 
 namespace mbstream {

@@ -34,6 +34,10 @@ class SimulationService final : public v1::Simulation::Service {
                         v1::ListRunsResponse* response) override;
   grpc::Status GetResult(grpc::ServerContext* context, const v1::GetResultRequest* request,
                          grpc::ServerWriter<v1::ResultChunk>* writer) override;  // get_result.cc
+  grpc::Status ListProbeSets(grpc::ServerContext* context, const v1::ListProbeSetsRequest* request,
+                             v1::ListProbeSetsResponse* response) override;  // replay_rpcs.cc
+  grpc::Status ReplayRun(grpc::ServerContext* context, const v1::ReplayRunRequest* request,
+                         v1::RunInfo* response) override;  // replay_rpcs.cc
   grpc::Status WatchRun(grpc::ServerContext* context, const v1::WatchRunRequest* request,
                         grpc::ServerWriter<v1::WatchEvent>* writer) override;  // watch_run.cc
   grpc::Status Subscribe(grpc::ServerContext* context,

@@ -2,7 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/runs/request_error.h"
 
 namespace mbstream {

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "server/service/frame_batch.h"
+#include "server/service/replay_stream.h"
 #include "server/service/simulation_service.h"
 #include "server/service/status_from_exception.h"
 
@@ -53,11 +54,13 @@ class SubscribeReader {
     changed_.wait_for(lock, timeout, [&] { return first_read_; });
     return first_;
   }
-  // The start was accepted: read probe reports from now on.
-  void Go() {
+  // The start was accepted: read probe reports from now on (and, for a replay, its time
+  // controls; its probe reports then go to `inbox`, which must outlive the reader).
+  void Go(ReplayInbox* inbox = nullptr) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       go_ = true;
+      inbox_ = inbox;
     }
     changed_.notify_all();
   }
@@ -95,17 +98,20 @@ class SubscribeReader {
     }
     std::vector<v1::ProbeReport> one(1);
     while (stream->Read(&request)) {
+      if (inbox_ && request.has_control()) inbox_->PushControl(request.control());
       if (!request.has_probe()) continue;
       v1::ProbeReport& report = one[0];
       report = std::move(*request.mutable_probe());
       const std::string refusal = sent->Accept(report, SentFrames::Clock::now());
-      if (refusal.empty() && runs->AddProbes(report.run_id(), one)) {
+      if (refusal.empty() &&
+          (inbox_ ? inbox_->AddProbe(report) : runs->AddProbes(report.run_id(), one))) {
         ++accepted_;
       } else if (refused_++ == 0) {
         spdlog::warn("probe report for frame {} refused: {}", report.seq(),
                      refusal.empty() ? "its run has ended and been stored" : refusal);
       }
     }
+    if (inbox_) inbox_->Wake();
     std::lock_guard<std::mutex> lock(mutex_);
     done_ = true;
     changed_.notify_all();
@@ -119,6 +125,7 @@ class SubscribeReader {
   bool go_ = false;
   bool stop_ = false;
   bool done_ = false;
+  ReplayInbox* inbox_ = nullptr;  // set by Go, before the reader reads past the start
   std::atomic<int64_t> accepted_{0};
   std::atomic<int64_t> refused_{0};
   std::thread thread_;
@@ -190,6 +197,7 @@ grpc::Status SimulationService::Subscribe(grpc::ServerContext* context, Stream* 
     } unsubscribe{runs_, subscription};
 
     SentFrames sent;
+    std::optional<ReplayInbox> inbox;  // a replay's; outlives the reader, which feeds it
     SubscribeReader reader(context, stream, runs_, &sent);
     const grpc::Status status = Serve([&]() -> grpc::Status {
       const std::optional<v1::SubscribeRequest> first =
@@ -214,6 +222,29 @@ grpc::Status SimulationService::Subscribe(grpc::ServerContext* context, Stream* 
                                 std::to_string(kMaxBatch));
       }
       target.max_batch = start.max_batch() > 0 ? start.max_batch() : kDefaultBatch;
+      if (start.has_replay() && target.follow) {
+        return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                            "Subscribe: start.replay needs a run_id, not follow");
+      }
+      if (std::optional<ReplayPlan> plan =
+              start.has_replay() ? PlanReplay(*runs_, start) : std::nullopt) {
+        v1::ProbeSet set;
+        set.set_id(runs_->NewProbeSetId());
+        set.set_run_id(plan->run.id());
+        set.set_viewer(start.replay().viewer());
+        set.set_scene(start.replay().scene());
+        inbox.emplace(runs_, set, runs_->limits().max_probe_reports);
+        reader.Go(&*inbox);
+        v1::SubscribeEvent event;
+        event.set_subscribed("replay " + plan->run.id());
+        if (!stream->Write(event)) {
+          return grpc::Status(grpc::StatusCode::CANCELLED, "the subscriber went away");
+        }
+        const ReplayStreamContext io{context,         stream,  runs_, models_,
+                                     &stopping_,      &*inbox, &sent, [&] { return reader.done(); },
+                                     target.max_batch};
+        return SendReplay(io, *plan);
+      }
       if (target.follow) {
         runs_->AttachFollow(subscription);
       } else {

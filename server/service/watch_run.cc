@@ -7,7 +7,7 @@
 #include <cmath>
 #include <thread>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/service/frame_batch.h"
 #include "server/service/simulation_service.h"
 #include "server/service/status_from_exception.h"

@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "common/format.h"
 #include "server/body/body_baumgarte_ode.h"
 #include "server/body/body_dae.h"
 #include "server/body/body_model.h"

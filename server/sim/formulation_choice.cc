@@ -1,6 +1,7 @@
 #include "server/sim/formulation_choice.h"
 
-#include "server/common/check.h"
+#include "common/check.h"
+#include "common/format.h"
 #include "server/integrate/failure_messages.h"
 
 namespace mbstream {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/format.h"
 #include "server/drives/drive_set.h"
 #include "server/dynamics/crba.h"
 #include "server/integrate/failure_messages.h"

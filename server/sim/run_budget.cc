@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/format.h"
 #include "server/integrate/failure_messages.h"
 
 namespace mbstream {

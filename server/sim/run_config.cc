@@ -1,6 +1,6 @@
 #include "server/sim/run_config.h"
 
-#include "server/common/name_table.h"
+#include "common/name_table.h"
 
 namespace mbstream {
 

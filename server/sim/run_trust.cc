@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "common/format.h"
 #include "server/integrate/failure_messages.h"
 
 namespace mbstream {

@@ -3,8 +3,9 @@
 #include <cmath>
 #include <string>
 
+#include "common/check.h"
+#include "common/format.h"
 #include "server/body/body_model.h"
-#include "server/common/check.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/integrator.h"
 #include "server/sim/body_run.h"

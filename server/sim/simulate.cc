@@ -6,7 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "server/common/check.h"
+#include "common/check.h"
+#include "common/format.h"
 #include "server/drives/drive_set.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/thread_cpu_clock.h"

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <optional>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/spec/run_spec_json.h"
 
 namespace mbstream {

@@ -1,7 +1,7 @@
 // RunConfig -> RunSpec, for recording the spec a run used (every field set explicitly).
 #include <cstdint>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/spec/run_spec_json.h"
 
 namespace mbstream {

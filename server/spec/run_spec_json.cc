@@ -7,7 +7,7 @@
 
 #include <google/protobuf/util/json_util.h>
 
-#include "server/common/check.h"
+#include "common/check.h"
 
 namespace mbstream {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "server/common/check.h"
+#include "common/check.h"
 
 struct sqlite3;
 

@@ -8,7 +8,7 @@
 
 #include <sqlite3.h>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/store/sqlite_error.h"
 #include "server/store/store_impl.h"
 #include "server/store/store_schema.h"

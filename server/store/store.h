@@ -14,6 +14,7 @@
 
 #include "mbstream/v1/frame.pb.h"
 #include "mbstream/v1/model.pb.h"
+#include "mbstream/v1/replay.pb.h"
 #include "mbstream/v1/run.pb.h"
 #include "server/store/frame_chunks.h"
 
@@ -81,6 +82,18 @@ class Store {
   // duplicates of (run_id, seq, probe) replace the old row.
   void AddProbes(const std::vector<v1::ProbeReport>& reports);
   std::vector<v1::ProbeReport> GetProbes(const std::string& run_id) const;  // by seq, probe
+
+  // Replays (store_replay.cc). The number of the stored chunk that holds frame `seq` of the
+  // run (for a seek), nullopt when no chunk does.
+  std::optional<int64_t> FrameChunkHolding(const std::string& run_id, int64_t seq) const;
+  // A replay's probe set: created once (its id unique), its reports added in batches
+  // (duplicates of (set, seq, probe) replace the old row), listed per run oldest first with
+  // their report counts, read back by seq and probe.
+  void CreateProbeSet(const v1::ProbeSet& set);
+  void AddProbeSetReports(const std::string& set_id, const std::vector<v1::ProbeReport>& reports);
+  std::vector<v1::ProbeSet> ListProbeSets(const std::string& run_id) const;
+  std::optional<v1::ProbeSet> GetProbeSet(const std::string& set_id) const;
+  std::vector<v1::ProbeReport> GetProbeSetReports(const std::string& set_id) const;
 
   // At server start: every run still QUEUED or RUNNING becomes INTERRUPTED with `message`
   // and ended_unix_ms = now; returns how many.

@@ -1,5 +1,5 @@
 // Store: a run's frames, written chunk by chunk while it runs and read back chunk by chunk.
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/store/frame_chunks.h"
 #include "server/store/sqlite_transaction.h"
 #include "server/store/store.h"

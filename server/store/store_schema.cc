@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/store/sqlite_connection.h"
 #include "server/store/sqlite_statement.h"
 #include "server/store/sqlite_transaction.h"
@@ -62,6 +62,31 @@ CREATE TABLE probes (
 ) WITHOUT ROWID;
 )sql";
 
+// Version 2: the probe reports of replays, one set per replay stream (replay.proto). No
+// foreign key to runs, as for probes.
+constexpr const char* kSchemaV2 = R"sql(
+CREATE TABLE probe_sets (
+  ord INTEGER PRIMARY KEY,
+  id TEXT NOT NULL UNIQUE,
+  run_id TEXT NOT NULL,
+  info BLOB NOT NULL      -- v1.ProbeSet (its `reports` count is computed when read)
+);
+CREATE INDEX probe_sets_by_run ON probe_sets (run_id, ord);
+CREATE TABLE probe_set_reports (
+  set_id TEXT NOT NULL,
+  seq INTEGER NOT NULL,
+  probe TEXT NOT NULL,
+  report BLOB NOT NULL,   -- v1.ProbeReport
+  PRIMARY KEY (set_id, seq, probe)
+) WITHOUT ROWID;
+)sql";
+
+void WriteVersion(SqliteConnection& connection) {
+  connection.Exec("PRAGMA application_id = " + std::to_string(kStoreApplicationId) +
+                      "; PRAGMA user_version = " + std::to_string(kStoreSchemaVersion),
+                  "write schema version");
+}
+
 int64_t QueryInt(SqliteConnection& connection, const std::string& sql) {
   SqliteStatement statement(connection, sql, sql);
   ResetOnExit reset(statement);
@@ -79,9 +104,8 @@ void EnsureStoreSchema(SqliteConnection& connection) {
 
   if (application_id == 0 && version == 0 && tables == 0) {  // a new, empty database
     connection.Exec(kSchemaV1, "create schema");
-    connection.Exec("PRAGMA application_id = " + std::to_string(kStoreApplicationId) +
-                        "; PRAGMA user_version = " + std::to_string(kStoreSchemaVersion),
-                    "write schema version");
+    connection.Exec(kSchemaV2, "create schema version 2");
+    WriteVersion(connection);
     transaction.Commit();
     return;
   }
@@ -100,7 +124,10 @@ void EnsureStoreSchema(SqliteConnection& connection) {
     throw InputError(path + " is an mbstream database with unknown schema version " +
                      std::to_string(version) + "; move it away or use another --data directory");
   }
-  // Version 1 is the only version so far: nothing to migrate.
+  if (version < 2) {  // a version-1 store: add the probe sets
+    connection.Exec(kSchemaV2, "migrate schema to version 2");
+    WriteVersion(connection);
+  }
   transaction.Commit();
 }
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/wire/stats_conversion.h"
 
 namespace mbstream {

@@ -7,7 +7,7 @@
 #include <set>
 #include <sstream>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/parse/asset_references.h"
 #include "server/wire/mesh_file_search.h"
 #include "urdf_reading/mesh_lookup.h"

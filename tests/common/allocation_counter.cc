@@ -1,15 +1,65 @@
 #include "tests/common/allocation_counter.h"
 
 #include <atomic>
+#include <cerrno>
 #include <cstddef>
 #include <cstdlib>
 #include <new>
 
+#include "tests/common/sanitized_build.h"
+
 namespace {
 std::atomic<long> g_allocations{0};
 
+void Count() { g_allocations.fetch_add(1, std::memory_order_relaxed); }
+}  // namespace
+
+#ifndef MBSTREAM_SANITIZED
+// glibc's own allocator entry points, which the replacements forward to (free stays glibc's:
+// the memory comes from the same allocator).
+extern "C" void* __libc_malloc(size_t size);
+extern "C" void* __libc_calloc(size_t count, size_t size);
+extern "C" void* __libc_realloc(void* pointer, size_t size);
+extern "C" void* __libc_memalign(size_t alignment, size_t size);
+
+extern "C" void* malloc(size_t size) noexcept {
+  Count();
+  return __libc_malloc(size);
+}
+extern "C" void* calloc(size_t count, size_t size) noexcept {
+  Count();
+  return __libc_calloc(count, size);
+}
+extern "C" void* realloc(void* pointer, size_t size) noexcept {
+  Count();
+  return __libc_realloc(pointer, size);
+}
+extern "C" void* memalign(size_t alignment, size_t size) noexcept {
+  Count();
+  return __libc_memalign(alignment, size);
+}
+extern "C" void* aligned_alloc(size_t alignment, size_t size) noexcept {
+  Count();
+  return __libc_memalign(alignment, size);
+}
+extern "C" int posix_memalign(void** out, size_t alignment, size_t size) noexcept {
+  if (alignment % sizeof(void*) != 0 || (alignment & (alignment - 1)) != 0) return EINVAL;
+  Count();
+  void* p = __libc_memalign(alignment, size);
+  if (p == nullptr) return ENOMEM;
+  *out = p;
+  return 0;
+}
+
+namespace mbstream::testing {
+bool CountsCAllocations() { return true; }
+}  // namespace mbstream::testing
+
+#else  // MBSTREAM_SANITIZED: count C++ allocations through a replaced operator new.
+
+namespace {
 void* CountedAllocate(std::size_t size, std::size_t alignment) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  Count();
   if (size == 0) size = 1;
   void* p = alignment > alignof(std::max_align_t)
                 ? std::aligned_alloc(alignment, (size + alignment - 1) / alignment * alignment)
@@ -62,6 +112,12 @@ void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+
+namespace mbstream::testing {
+bool CountsCAllocations() { return false; }
+}  // namespace mbstream::testing
+
+#endif  // MBSTREAM_SANITIZED
 
 namespace mbstream::testing {
 long AllocationCount() { return g_allocations.load(std::memory_order_relaxed); }

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <thread>
 
+#include "tests/common/csv_rows.h"
 #include "tests/common/server_process.h"
 
 namespace mbstream::testing {
@@ -15,20 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
-
-std::vector<std::vector<std::string>> ReadCsv(const fs::path& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  std::getline(in, line);  // header
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::stringstream cellstream(line);
-    for (std::string cell; std::getline(cellstream, cell, ',');) cells.push_back(cell);
-    rows.push_back(cells);
-  }
-  return rows;
-}
 
 class ViewerLinkTest : public ::testing::Test {
  protected:

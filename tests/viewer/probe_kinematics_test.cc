@@ -4,6 +4,7 @@
 #include <numbers>
 #include <random>
 
+#include "common/check.h"
 #include "tests/viewer/script_test_util.h"
 #include "viewer/kinematics/pose_solver.h"
 #include "viewer/model/script_scene.h"
@@ -162,7 +163,7 @@ TEST(ProbeKinematics, JointCountMismatchNamesBothCounts) {
   try {
     solver.Solve(q, &pose);
     FAIL() << "no exception";
-  } catch (const std::invalid_argument& e) {
+  } catch (const InputError& e) {
     EXPECT_STREQ(e.what(), "the scene has 6 joints but 7 joint values were given");
   }
 }
@@ -175,7 +176,7 @@ TEST(ProbeKinematics, ScriptUnitsToSi) {
   EXPECT_DOUBLE_EQ(si[1], 1.5);
   EXPECT_DOUBLE_EQ(scene.initial_q[0], kPi / 2);
   EXPECT_DOUBLE_EQ(scene.initial_q[1], 0.25);
-  EXPECT_THROW(ScriptUnitsToSi(scene.chain, std::vector<double>{1}), std::invalid_argument);
+  EXPECT_THROW(ScriptUnitsToSi(scene.chain, std::vector<double>{1}), InputError);
 }
 
 TEST(UrdfScene, VisualsFramesAndErrors) {
@@ -185,7 +186,7 @@ TEST(UrdfScene, VisualsFramesAndErrors) {
   EXPECT_EQ(urdf.frame_names.back(), "tcp");
   EXPECT_EQ(urdf.visuals.size(), 7u);  // base box, 6 link shapes
   EXPECT_EQ(urdf.chain.frame_count(), 8);
-  EXPECT_THROW(SceneFromUrdfFile("/nonexistent.urdf"), std::runtime_error);
+  EXPECT_THROW(SceneFromUrdfFile("/nonexistent.urdf"), InputError);
   // A mesh that is not there: a labelled placeholder box of the link's inertia, and a
   // warning (the server accepts such a model; the physics needs no mesh).
   const SceneDescription missing = SceneFromUrdf(R"(<robot name="r"><link name="a">
@@ -208,7 +209,7 @@ TEST(UrdfScene, VisualsFramesAndErrors) {
   // 12 kg with moments 0.5, 0.26, 0.26: a box 0.1 x 0.5 x 0.5 m about (0, 0, 0.5).
   EXPECT_TRUE(box.sizes().isApprox(Vector3d(0.1, 0.5, 0.5), 1e-9)) << box.sizes().transpose();
   EXPECT_TRUE(box.center().isApprox(Vector3d(0, 0, 0.5), 1e-9)) << box.center().transpose();
-  EXPECT_THROW(SceneFromUrdf("<robot", "bad.urdf", "/tmp"), std::runtime_error);
+  EXPECT_THROW(SceneFromUrdf("<robot", "bad.urdf", "/tmp"), InputError);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/check.h"
 #include "tests/viewer/script_test_util.h"
 #include "viewer/link/run_scene.h"
 #include "viewer/model/urdf_scene.h"
@@ -68,14 +69,14 @@ TEST(RunScene, AUrdfSceneWhoseJointNamesDifferIsRefused) {
   try {
     SceneForModel(ModelWithJoints({"ja", "jc", "jb", "j4"}), bundle, source);
     FAIL() << "no exception";
-  } catch (const std::runtime_error& e) {
+  } catch (const InputError& e) {
     EXPECT_STREQ(e.what(),
                  "scene 'tree' does not fit model 'tree' (m-test): the joint names differ: the "
                  "model's 'j4' not in the scene; the scene's 'jd' not in the model; use the "
                  "model's own URDF or a scene with its joints");
   }
   EXPECT_THROW(SceneForModel(ModelWithJoints({"ja", "jc", "jb"}), bundle, source),
-               std::runtime_error);  // the count differs
+               InputError);  // the count differs
 }
 
 }  // namespace

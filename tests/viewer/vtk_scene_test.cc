@@ -13,6 +13,7 @@
 #include <numbers>
 #include <thread>
 
+#include "common/check.h"
 #include "tests/viewer/script_test_util.h"
 #include "tests/viewer/xvfb_display.h"
 #include "viewer/model/script_scene.h"
@@ -183,7 +184,7 @@ TEST(VtkScene, ProbesFromAnotherThreadWhileRendering) {
   EXPECT_EQ(bad, 0);
   EXPECT_GT(frames, 0);
   EXPECT_EQ(scene->pose_version(), 20001u);
-  EXPECT_THROW(scene->SetJointValues(std::vector<double>(5, 0.0)), std::invalid_argument);
+  EXPECT_THROW(scene->SetJointValues(std::vector<double>(5, 0.0)), InputError);
 }
 
 TEST(VtkScene, SnapshotsArePngFilesAndBytes) {

@@ -21,6 +21,7 @@ namespace mbstream::viewer {
 namespace {
 
 std::atomic<SubscriberLink*> g_link{nullptr};
+constexpr double kGhostOpacity = 0.35;  // --compare: the ghost's opacity
 
 void OnSignal(int) {
   if (SubscriberLink* link = g_link.load()) link->Stop();
@@ -52,6 +53,11 @@ int RunLink(const LinkCommandOptions& options) {
   scene_options.offscreen = options.offscreen;
   scene_options.triangle_budget = options.triangle_budget;
   scene_options.window_title = "mbstream viewer: " + options.link.server;
+  if (!options.link.replay.compare_run_id.empty()) scene_options.ghost_opacity = kGhostOpacity;
+  LinkOptions link_options = options.link;
+  if (!options.scene_file.empty()) {
+    link_options.replay.scene_tag = std::filesystem::path(options.scene_file).filename().string();
+  }
   SceneSlot slot(scene_options);
   LinkStatus status;
 
@@ -81,7 +87,7 @@ int RunLink(const LinkCommandOptions& options) {
     std::cout << "control service listening on " << address << std::endl;
   }
 
-  SubscriberLink link(options.link, std::move(scenes), &slot, &status);
+  SubscriberLink link(link_options, std::move(scenes), &slot, &status);
   g_link = &link;
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
@@ -93,6 +99,9 @@ int RunLink(const LinkCommandOptions& options) {
   });
   RenderOptions render = options.render;
   render.interactive = !options.offscreen;
+  if (!options.link.follow) {
+    render.send_control = [&link](const v1::ReplayControl& c) { return link.SendControl(c); };
+  }
   RunRenderLoop(&slot, &status, render, stop);
   network.join();
   g_link = nullptr;
@@ -104,6 +113,16 @@ int RunLink(const LinkCommandOptions& options) {
   const v1::ViewerStatus final = status.Get();
   spdlog::info("viewer done: {} runs, last run {}: {} frames, {} probe reports", final.runs_seen(),
                final.run_id(), final.frames(), final.probe_reports());
+  if (final.mode() == "replay") {
+    spdlog::info("replay of run {}: probe set {}", final.run_id(), final.probe_set());
+  }
+  if (!final.compare_run_id().empty()) {
+    spdlog::info(
+        "compare {} with ghost {}: {} ghost frames, max |TCP - ghost TCP| {:.17g} m at "
+        "t = {:.17g} s",
+        final.run_id(), final.compare_run_id(), final.ghost_frames(), final.tcp_distance_max_m(),
+        final.tcp_distance_max_t_s());
+  }
   return exit_code;
 }
 

@@ -2,6 +2,7 @@
 //
 // With a simulation server:
 //   mbstream-viewer --server ADDR (--run ID | --follow) [--scene FILE] [--offscreen]
+//                   [--speed X] [--loop] [--from-frame N] [--paused] [--compare RUN]
 //                   [--record FILE.ogv] [--snapshots DIR] [--listen ADDR] [--ca F]
 //                   [--token-file F] [--exit-after-runs N]
 // Without a server:
@@ -57,6 +58,20 @@ int main(int argc, char** argv) {
                                 "Simulation server to subscribe to: host:port or unix:/path");
   auto* run = app.add_option("--run", link.link.run_id, "Show this run (then exit)");
   auto* follow = app.add_flag("--follow", link.link.follow, "Show every run as it starts");
+  auto* speed = app.add_option("--speed", link.link.replay.speed,
+                               "Replay of an ended --run: simulated s per wall s (1 = real "
+                               "time, 0 = as fast as the viewer takes frames)")
+                    ->check(CLI::Range(0.0, 1000.0));
+  auto* loop = app.add_flag("--loop", link.link.replay.loop,
+                            "Replay: start again at the first frame after the last");
+  auto* from_seq =
+      app.add_option("--from-frame", link.link.replay.from_seq, "Replay: start at this frame (seq)")
+          ->check(CLI::NonNegativeNumber);
+  auto* paused = app.add_flag("--paused", link.link.replay.paused,
+                              "Replay: start paused (space resumes, Left/Right step)");
+  auto* compare = app.add_option("--compare", link.link.replay.compare_run_id,
+                                 "Replay: show this ended run of the same model as a "
+                                 "translucent ghost, with the distance between the TCPs");
   app.add_option("--exit-after-runs", link.link.exit_after_runs,
                  "With --follow: exit after this many runs ended (0 = never)")
       ->check(CLI::NonNegativeNumber);
@@ -84,6 +99,9 @@ int main(int argc, char** argv) {
   app.add_option("--listen-tls-key", link.listen_tls.key_file, "TLS key of --listen")
       ->check(CLI::ExistingFile);
   run->needs(server)->excludes(follow);
+  for (CLI::Option* replay_option : {speed, loop, from_seq, paused, compare}) {
+    replay_option->needs(run);
+  }
   follow->needs(server);
 
   check->excludes(scene)->excludes(urdf)->excludes(pose_option)->excludes(snapshot);

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "common/check.h"
 #include "viewer/app/commands.h"
 #include "viewer/app/scene_loading.h"
 #include "viewer/scene/scene.h"
@@ -30,7 +31,7 @@ int RunPose(const PoseOptions& options) {
     if (!values) return 1;
     try {
       q_si = ScriptUnitsToSi(description->chain, *values);
-    } catch (const std::invalid_argument& e) {
+    } catch (const InputError& e) {
       std::cerr << "--pose: " << e.what() << "; give one value per joint (degrees or mm)\n";
       return 1;
     }

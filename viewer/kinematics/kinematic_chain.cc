@@ -5,6 +5,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "common/check.h"
+
 namespace mbstream::viewer {
 
 KinematicChain::KinematicChain(Eigen::Isometry3d base_in_world, std::vector<ChainJoint> joints)
@@ -12,13 +14,13 @@ KinematicChain::KinematicChain(Eigen::Isometry3d base_in_world, std::vector<Chai
   for (size_t i = 0; i < joints_.size(); ++i) {
     ChainJoint& joint = joints_[i];
     if (joint.parent < 0 || joint.parent > static_cast<int>(i)) {
-      throw std::invalid_argument("joint '" + joint.name + "' hangs from frame " +
-                                  std::to_string(joint.parent) + ", which is not an earlier frame");
+      throw InputError("joint '" + joint.name + "' hangs from frame " +
+                       std::to_string(joint.parent) + ", which is not an earlier frame");
     }
     if (joint.kind != ChainJointKind::kFixed) {
       const double norm = joint.axis.norm();
       if (!(norm > 1e-12)) {
-        throw std::invalid_argument("joint '" + joint.name + "' has a zero axis");
+        throw InputError("joint '" + joint.name + "' has a zero axis");
       }
       joint.axis /= norm;
       value_of_joint_.push_back(static_cast<int>(dof_joints_.size()));
@@ -51,7 +53,7 @@ void KinematicChain::OrderJointValuesBy(const std::vector<std::string>& names) {
     if (!extra.empty()) message += " the model's " + extra + " not in the scene;";
     if (!missing.empty()) message += " the scene's " + missing + " not in the model;";
     message.pop_back();
-    throw std::invalid_argument(message);
+    throw InputError(message);
   }
   dof_joints_ = std::move(order);
   for (size_t value = 0; value < dof_joints_.size(); ++value) {

@@ -28,7 +28,7 @@ struct ChainJoint {
 class KinematicChain {
  public:
   KinematicChain() = default;
-  // Throws std::invalid_argument when a parent is not an earlier frame or an axis is zero.
+  // Throws InputError when a parent is not an earlier frame or an axis is zero.
   KinematicChain(Eigen::Isometry3d base_in_world, std::vector<ChainJoint> joints);
 
   int frame_count() const { return static_cast<int>(joints_.size()) + 1; }
@@ -40,7 +40,7 @@ class KinematicChain {
   const Eigen::Isometry3d& base_in_world() const { return base_in_world_; }
 
   // Reorders the joint values to follow `names` (the server's joint order). Throws
-  // std::invalid_argument naming the joints that differ when `names` are not exactly the
+  // InputError naming the joints that differ when `names` are not exactly the
   // moving joints' names.
   void OrderJointValuesBy(const std::vector<std::string>& names);
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "common/check.h"
+
 namespace mbstream::viewer {
 
 PoseSolver::PoseSolver(KinematicChain chain, std::vector<ProbePoint> probes)
@@ -10,8 +12,8 @@ PoseSolver::PoseSolver(KinematicChain chain, std::vector<ProbePoint> probes)
   for (const ProbePoint& probe : probes_) {
     for (int frame : {probe.frame, probe.refer}) {
       if (frame < kWorldFrame || frame >= chain_.frame_count()) {
-        throw std::invalid_argument("probe '" + probe.name + "' uses frame " +
-                                    std::to_string(frame) + ", which the chain does not have");
+        throw InputError("probe '" + probe.name + "' uses frame " + std::to_string(frame) +
+                         ", which the chain does not have");
       }
     }
   }
@@ -29,8 +31,8 @@ Pose PoseSolver::MakePose() const {
 
 void PoseSolver::Solve(std::span<const double> q, Pose* pose) const {
   if (static_cast<int>(q.size()) != chain_.dof()) {
-    throw std::invalid_argument("the scene has " + std::to_string(chain_.dof()) + " joints but " +
-                                std::to_string(q.size()) + " joint values were given");
+    throw InputError("the scene has " + std::to_string(chain_.dof()) + " joints but " +
+                     std::to_string(q.size()) + " joint values were given");
   }
   if (pose->q.size() != q.size() || pose->frames.size() != size_t(chain_.frame_count()) ||
       pose->probes.size() != probes_.size() || pose->probes_world.size() != probes_.size()) {

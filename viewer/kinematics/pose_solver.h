@@ -29,7 +29,7 @@ class PoseSolver {
   // A Pose with its storage sized for this chain (all frames at q = 0).
   Pose MakePose() const;
   // Fills `pose` for `q` (size dof()); allocates nothing when `pose` came from MakePose.
-  // Throws std::invalid_argument naming both counts when q has the wrong size.
+  // Throws InputError naming both counts when q has the wrong size.
   void Solve(std::span<const double> q, Pose* pose) const;
 
  private:

@@ -32,7 +32,47 @@ class LinkStatus {
       s.set_missed_frames(0);
       s.set_probe_reports(0);
       s.set_runs_seen(s.runs_seen() + 1);
+      s.set_mode("live");
+      s.set_paused(false);
+      s.set_seq(-1);
+      s.set_ghost_frames(0);
+      s.set_tcp_distance_m(0);
+      s.set_tcp_distance_max_m(0);
+      s.set_tcp_distance_max_t_s(0);
       compute_ns_total_ = 0;
+    });
+  }
+  // The run's formulation and method (its stats once it ended, else its spec).
+  void SetMethod(const std::string& formulation, const std::string& method) {
+    Set([&](v1::ViewerStatus& s) {
+      s.set_formulation(formulation);
+      s.set_method(method);
+    });
+  }
+  // A replay's state (the server's ReplayState).
+  void SetReplay(bool paused, double speed, int64_t run_frames, const std::string& compare_run_id,
+                 const std::string& probe_set) {
+    Set([&](v1::ViewerStatus& s) {
+      s.set_mode("replay");
+      s.set_paused(paused);
+      s.set_speed(speed);
+      s.set_run_frames(run_frames);
+      s.set_compare_run_id(compare_run_id);
+      s.set_probe_set(probe_set);
+    });
+  }
+  void SetSeq(int64_t seq) {
+    Set([&](v1::ViewerStatus& s) { s.set_seq(seq); });
+  }
+  // A ghost frame shown at simulated time t_s, its TCP `distance_m` from the run's.
+  void AddGhost(double t_s, double distance_m) {
+    Set([&](v1::ViewerStatus& s) {
+      s.set_ghost_frames(s.ghost_frames() + 1);
+      s.set_tcp_distance_m(distance_m);
+      if (distance_m > s.tcp_distance_max_m() || s.ghost_frames() == 1) {
+        s.set_tcp_distance_max_m(distance_m);
+        s.set_tcp_distance_max_t_s(t_s);
+      }
     });
   }
   void AddFrames(double t_s, int frames, int64_t missed, int probes, int64_t compute_ns) {

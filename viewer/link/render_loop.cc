@@ -14,6 +14,7 @@
 #include <memory>
 #include <thread>
 
+#include "viewer/link/replay_keys.h"
 #include "viewer/link/video_recorder.h"
 
 namespace mbstream::viewer {
@@ -30,7 +31,23 @@ std::string HudText(const v1::ViewerStatus& s) {
                 s.run_id().empty() ? "-" : s.run_id().c_str(), s.state().c_str(), s.t_s(),
                 static_cast<long long>(s.frames()), static_cast<long long>(s.missed_frames()),
                 s.render_fps(), s.probe_compute_us());
-  return text;
+  std::string hud = text;
+  if (!s.formulation().empty() || !s.method().empty()) {
+    hud += "\n" + s.formulation() + " / " + s.method();
+  }
+  if (s.mode() == "replay") {
+    std::snprintf(text, sizeof(text), "\nreplay  %s  x%g  frame %lld of %lld",
+                  s.paused() ? "paused" : "playing", s.speed(), static_cast<long long>(s.seq()),
+                  static_cast<long long>(s.run_frames()));
+    hud += text;
+  }
+  if (!s.compare_run_id().empty()) {
+    std::snprintf(text, sizeof(text), "\nghost %s  |TCP - ghost| %.3g mm  max %.3g mm (t = %.2f s)",
+                  s.compare_run_id().c_str(), 1e3 * s.tcp_distance_m(),
+                  1e3 * s.tcp_distance_max_m(), s.tcp_distance_max_t_s());
+    hud += text;
+  }
+  return hud;
 }
 
 }  // namespace
@@ -55,6 +72,7 @@ void RunRenderLoop(SceneSlot* slot, LinkStatus* status, const RenderOptions& opt
   // (ProcessEvents), so the user can turn the camera while frames keep coming.
   vtkSmartPointer<vtkRenderWindowInteractor> interactor;
   vtkNew<vtkInteractorStyleTrackballCamera> style;
+  std::unique_ptr<ReplayKeys> keys;
   int draws = 0, window_draws = 0, snapshots = 0;
   while (!stop) {
     bool changed = false;
@@ -65,7 +83,12 @@ void RunRenderLoop(SceneSlot* slot, LinkStatus* status, const RenderOptions& opt
       interactor->SetInteractorStyle(style);
       interactor->SetRenderWindow(scene->render_window());
       interactor->Initialize();
+      if (options.send_control) {
+        keys = std::make_unique<ReplayKeys>(options.send_control, status);
+        keys->Install(interactor);
+      }
     }
+    if (keys) keys->Update();
     if (interactor) interactor->ProcessEvents();
     if (scene) {
       if (options.hud) hud->SetInput(HudText(status->Get()).c_str());
@@ -95,6 +118,7 @@ void RunRenderLoop(SceneSlot* slot, LinkStatus* status, const RenderOptions& opt
   }
   slot->Shutdown();
   if (recorder) recorder->End();
+  keys.reset();
   interactor = nullptr;
   slot->DestroyScene();
 }

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <string>
 
+#include "mbstream/v1/replay.pb.h"
 #include "viewer/link/link_status.h"
 #include "viewer/link/scene_slot.h"
 
@@ -18,6 +20,8 @@ struct RenderOptions {
   int snapshot_every = 20;
   bool hud = true;
   bool interactive = false;  // window mode: mouse interaction (trackball camera)
+  // Window mode of a replay: its time controls (replay_keys.h) send through this.
+  std::function<bool(const v1::ReplayControl&)> send_control;
 };
 
 // Runs until `stop` is set; returns after finishing the video. The scene is destroyed here.

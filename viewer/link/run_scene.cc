@@ -3,6 +3,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "common/check.h"
 #include "viewer/model/script_scene.h"
 #include "viewer/model/urdf_scene.h"
 #include "viewer/script/asset_locator.h"
@@ -22,8 +23,8 @@ std::vector<fs::path> WriteAssets(const v1::ModelBundle& bundle, const fs::path&
   for (const v1::Asset& asset : bundle.assets()) {
     const fs::path name = fs::path(asset.name()).lexically_normal();
     if (name.empty() || name.is_absolute() || *name.begin() == "..") {
-      throw std::runtime_error("model asset '" + asset.name() +
-                               "' is not a relative path inside the bundle; rename it");
+      throw InputError("model asset '" + asset.name() +
+                       "' is not a relative path inside the bundle; rename it");
     }
     const fs::path path = dir / name;
     fs::create_directories(path.parent_path());
@@ -58,7 +59,7 @@ SceneDescription SceneFromBundle(const v1::ModelInfo& model, const v1::ModelBund
         for (const scene_script::Diagnostic& error : translation.errors) {
           message += "\n  " + scene_script::FormatDiagnostic(model.name() + ".scene", error);
         }
-        throw std::runtime_error(message);
+        throw InputError(message);
       }
       scene = SceneFromScript(translation.script);
     } else {
@@ -70,10 +71,10 @@ SceneDescription SceneFromBundle(const v1::ModelInfo& model, const v1::ModelBund
 
 void CheckJointCount(const SceneDescription& scene, const v1::ModelInfo& model) {
   if (scene.chain.dof() != model.dofs()) {
-    throw std::runtime_error(
-        "scene '" + scene.title + "' has " + std::to_string(scene.chain.dof()) +
-        " joints but model '" + model.name() + "' (" + model.id() + ") has " +
-        std::to_string(model.dofs()) + "; use a scene whose Device matches the model's joints");
+    throw InputError("scene '" + scene.title + "' has " + std::to_string(scene.chain.dof()) +
+                     " joints but model '" + model.name() + "' (" + model.id() + ") has " +
+                     std::to_string(model.dofs()) +
+                     "; use a scene whose Device matches the model's joints");
   }
 }
 
@@ -84,10 +85,10 @@ void OrderJointsAsModel(SceneDescription* scene, const v1::ModelInfo& model) {
   for (const v1::JointInfo& joint : model.joints()) names.push_back(joint.name());
   try {
     scene->chain.OrderJointValuesBy(names);
-  } catch (const std::invalid_argument& e) {
-    throw std::runtime_error("scene '" + scene->title + "' does not fit model '" + model.name() +
-                             "' (" + model.id() + "): " + e.what() +
-                             "; use the model's own URDF or a scene with its joints");
+  } catch (const InputError& e) {
+    throw InputError("scene '" + scene->title + "' does not fit model '" + model.name() + "' (" +
+                     model.id() + "): " + e.what() +
+                     "; use the model's own URDF or a scene with its joints");
   }
 }
 

@@ -18,7 +18,7 @@ struct RunSceneSource {
 
 // The scene for a model: the override, else the bundle's scene script (translated; every
 // error as "model NAME scene LINE:COL: message"), else its URDF's visuals; its joints
-// ordered as the model's (OrderJointsAsModel). Throws std::runtime_error with the message.
+// ordered as the model's (OrderJointsAsModel). Throws InputError with the message.
 SceneDescription SceneForModel(const v1::ModelInfo& model, const v1::ModelBundle& bundle,
                                const RunSceneSource& source);
 
@@ -26,12 +26,12 @@ SceneDescription SceneForModel(const v1::ModelInfo& model, const v1::ModelBundle
 SceneDescription SceneFromBundle(const v1::ModelInfo& model, const v1::ModelBundle& bundle,
                                  const RunSceneSource& source);
 
-// Throws std::runtime_error naming both counts when the scene does not fit the model.
+// Throws InputError naming both counts when the scene does not fit the model.
 void CheckJointCount(const SceneDescription& scene, const v1::ModelInfo& model);
 
 // CheckJointCount; then, for a scene whose joints carry the model's names (a URDF scene),
 // orders its joint values by the names the server sends (ModelInfo.joints, the order of q
-// on the wire). Throws std::runtime_error naming the joints that differ when the names do
+// on the wire). Throws InputError naming the joints that differ when the names do
 // not match. A scene script's Device names its own joints: only the count is checked.
 void OrderJointsAsModel(SceneDescription* scene, const v1::ModelInfo& model);
 

@@ -3,7 +3,10 @@
 #include <grpcpp/grpcpp.h>
 #include <spdlog/spdlog.h>
 
+#include <unistd.h>
+
 #include <chrono>
+#include <cmath>
 #include <thread>
 
 #include "mbstream/v1/simulation_service.grpc.pb.h"
@@ -14,6 +17,30 @@ namespace mbstream::viewer {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using SubscribeStream = grpc::ClientReaderWriter<v1::SubscribeRequest, v1::SubscribeEvent>;
+
+// Who answers a replay's probes, for its probe set: "host:pid".
+std::string ViewerTag() {
+  char host[256] = {};
+  if (gethostname(host, sizeof(host) - 1) != 0) host[0] = '\0';
+  return std::string(host) + ":" + std::to_string(getpid());
+}
+
+void SetReplay(const ReplayOptions& options, v1::Replay* replay) {
+  replay->set_speed(options.speed);
+  replay->set_loop(options.loop);
+  replay->set_from_seq(options.from_seq);
+  replay->set_paused(options.paused);
+  replay->set_compare_run_id(options.compare_run_id);
+  replay->set_viewer(ViewerTag());
+  replay->set_scene(options.scene_tag.substr(0, 128));
+  replay->set_wait_for_probes(true);  // every frame is answered (a scene has its probes)
+}
+
+double Distance(const v1::Vector3& a, const v1::Vector3& b) {
+  const double dx = a.x() - b.x(), dy = a.y() - b.y(), dz = a.z() - b.z();
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
 
 bool IsFatal(grpc::StatusCode code) {
   return code == grpc::StatusCode::NOT_FOUND || code == grpc::StatusCode::INVALID_ARGUMENT ||
@@ -29,6 +56,13 @@ SubscriberLink::SubscriberLink(LinkOptions options, RunSceneSource scenes, Scene
 void SubscriberLink::Stop() {
   stop_ = true;
   if (auto* context = static_cast<grpc::ClientContext*>(context_.load())) context->TryCancel();
+}
+
+bool SubscriberLink::SendControl(const v1::ReplayControl& control) {
+  v1::SubscribeRequest request;
+  *request.mutable_control() = control;
+  std::lock_guard<std::mutex> lock(write_mutex_);
+  return writer_ && static_cast<SubscribeStream*>(writer_)->Write(request);
 }
 
 int SubscriberLink::Run() {
@@ -75,15 +109,24 @@ SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
     start.mutable_start()->set_follow(true);
   } else {
     start.mutable_start()->set_run_id(options_.run_id);
+    SetReplay(options_.replay, start.mutable_start()->mutable_replay());
   }
   start.mutable_start()->set_max_batch(options_.max_batch);
   stream->Write(start);
+  {
+    std::lock_guard<std::mutex> lock(write_mutex_);
+    writer_ = stream.get();
+  }
+  auto write = [&](const v1::SubscribeRequest& request) {
+    std::lock_guard<std::mutex> lock(write_mutex_);
+    return stream->Write(request);
+  };
   status_->SetState("waiting");
 
   v1::SubscribeEvent event;
   v1::SubscribeRequest reply;
   std::vector<ProbeReport> probes;
-  std::vector<double> q;
+  std::vector<double> q, ghost_q;
   std::string run_id;
   bool showing = false;  // the current run has a scene
   bool done = false;
@@ -104,6 +147,11 @@ SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
         const std::string error = slot_->Replace(std::move(scene));
         if (!error.empty()) throw std::runtime_error(error);
         status_->StartRun(run_id, started.model().id(), title, started.model().dofs());
+        const v1::RunInfo& run = started.run();
+        status_->SetMethod(
+            run.stats().formulation().empty() ? run.spec().formulation()
+                                              : run.stats().formulation(),
+            run.stats().method().empty() ? run.spec().method() : run.stats().method());
         showing = true;
         spdlog::info("run {} of model '{}' ({}): showing scene '{}'", run_id,
                      started.model().name(), started.model().id(), title);
@@ -115,18 +163,31 @@ SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
           done = true;
         }
       }
+    } else if (event.has_replay_state()) {
+      const v1::ReplayState& state = event.replay_state();
+      status_->SetReplay(state.paused(), state.speed(), state.frames(), state.compare_run_id(),
+                         state.probe_set());
+      if (!state.error().empty()) spdlog::warn("replay of run {}: {}", run_id, state.error());
     } else if (event.has_frames()) {
       if (!showing) continue;
       const auto& batch = event.frames();
+      const bool ghosts = batch.ghost_frames_size() == batch.frames_size();
       int sent = 0;
       const Clock::time_point begin = Clock::now();
-      for (const v1::Frame& frame : batch.frames()) {
+      for (int i = 0; i < batch.frames_size(); ++i) {
+        const v1::Frame& frame = batch.frames(i);
         q.assign(frame.q().begin(), frame.q().end());
         bool posed = false;
         try {
           posed = slot_->WithScene([&](Scene& scene) {
             scene.SetJointValues(q);
             scene.ProbeReports(&probes);
+            if (ghosts && scene.ghost()) {
+              const v1::Frame& ghost = batch.ghost_frames(i);
+              ghost_q.assign(ghost.q().begin(), ghost.q().end());
+              scene.ghost()->SetJointValues(ghost_q);
+              status_->AddGhost(frame.t_s(), Distance(frame.tcp_m(), ghost.tcp_m()));
+            }
           });
         } catch (const std::exception& e) {
           spdlog::error("run {} frame {}: {}", run_id, frame.seq(), e.what());
@@ -144,13 +205,14 @@ SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
           report->mutable_position_m()->set_y(probe.position_m.y());
           report->mutable_position_m()->set_z(probe.position_m.z());
           report->set_frame(probe.frame);
-          if (!stream->Write(reply)) break;
+          if (!write(reply)) break;
           ++sent;
         }
       }
       const int64_t compute_ns =
           std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - begin).count();
       if (batch.frames_size() > 0) {
+        status_->SetSeq(batch.frames(batch.frames_size() - 1).seq());
         status_->AddFrames(batch.frames(batch.frames_size() - 1).t_s(), batch.frames_size(),
                            batch.missed(), sent, compute_ns);
       } else if (batch.missed() > 0) {  // frames dropped just before the run's end
@@ -170,7 +232,11 @@ SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
   }
   // Half-close: the server ends the stream (also a follow stream) once it has read our last
   // probe reports; drain what it still sends.
-  stream->WritesDone();
+  {
+    std::lock_guard<std::mutex> lock(write_mutex_);
+    writer_ = nullptr;
+    stream->WritesDone();
+  }
   if (done) {
     while (stream->Read(&event)) {
     }

@@ -4,7 +4,11 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
+#include <mutex>
 #include <string>
+
+#include "mbstream/v1/simulation_service.pb.h"
 
 #include "net/client_channel.h"
 #include "viewer/link/link_status.h"
@@ -13,6 +17,16 @@
 
 namespace mbstream::viewer {
 
+// --run of an ended run: how to replay it (replay.proto). A run still running is shown live.
+struct ReplayOptions {
+  double speed = 1.0;  // simulated s per wall s; 0 = as fast as the viewer takes frames
+  bool loop = false;
+  int64_t from_seq = 0;
+  bool paused = false;
+  std::string compare_run_id;  // --compare: this run as a translucent ghost
+  std::string scene_tag;       // the probe set's scene tag (the --scene file, or the model's)
+};
+
 struct LinkOptions {
   std::string server;            // host:port or unix:/path
   net::ClientSecurity security;  // --ca, --tls-cert/--tls-key, --token-file
@@ -20,6 +34,7 @@ struct LinkOptions {
   bool follow = false;           // every new run
   int exit_after_runs = 0;       // follow: stop after this many runs ended; 0 = never
   int max_batch = 64;            // frames per message asked of the server
+  ReplayOptions replay;          // with run_id
 };
 
 class SubscriberLink {
@@ -32,6 +47,9 @@ class SubscriberLink {
   int Run();
   // From another thread (a signal): ends Run() soon.
   void Stop();
+  // From another thread (the window's keys): sends a replay's time control on the open
+  // stream; false when no stream is open.
+  bool SendControl(const v1::ReplayControl& control);
 
  private:
   enum class StreamEnd { kDone, kRetry, kFatal };
@@ -43,6 +61,9 @@ class SubscriberLink {
   LinkStatus* status_;
   std::atomic<bool> stop_{false};
   std::atomic<void*> context_{nullptr};  // grpc::ClientContext of the open stream
+  std::mutex write_mutex_;               // one writer at a time on the open stream
+  // grpc::ClientReaderWriter of the open stream, guarded by write_mutex_; null when none.
+  void* writer_ = nullptr;
 };
 
 }  // namespace mbstream::viewer

@@ -3,12 +3,14 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "common/check.h"
+
 namespace mbstream::viewer {
 
 std::vector<double> ScriptUnitsToSi(const KinematicChain& chain, std::span<const double> values) {
   if (static_cast<int>(values.size()) != chain.dof()) {
-    throw std::invalid_argument("the scene has " + std::to_string(chain.dof()) + " joints but " +
-                                std::to_string(values.size()) + " joint values were given");
+    throw InputError("the scene has " + std::to_string(chain.dof()) + " joints but " +
+                     std::to_string(values.size()) + " joint values were given");
   }
   std::vector<double> si(values.begin(), values.end());
   for (int i = 0; i < chain.dof(); ++i) {

@@ -58,7 +58,7 @@ struct SceneDescription {
 };
 
 // Joint values in script units (degrees for revolute, mm for prismatic joints) to SI.
-// Throws std::invalid_argument when the count differs from chain.dof().
+// Throws InputError when the count differs from chain.dof().
 std::vector<double> ScriptUnitsToSi(const KinematicChain& chain, std::span<const double> values);
 
 }  // namespace mbstream::viewer

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/check.h"
 #include "urdf_reading/joint_order.h"
 #include "urdf_reading/mesh_lookup.h"
 #include "urdf_reading/tcp_choice.h"
@@ -102,7 +103,7 @@ class UrdfSceneBuilder {
 
  private:
   [[noreturn]] void Fail(const std::string& message) const {
-    throw std::runtime_error(source_ + ": " + message);
+    throw InputError(source_ + ": " + message);
   }
 
   ChainJoint ChainJointOf(const urdf::Joint& joint, int parent) const {
@@ -222,7 +223,7 @@ SceneDescription SceneFromUrdfFile(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::error_code error;
   if (!in || !std::filesystem::is_regular_file(path, error)) {
-    throw std::runtime_error(path.string() + ": cannot read the URDF file; check the path");
+    throw InputError(path.string() + ": cannot read the URDF file; check the path");
   }
   std::ostringstream text;
   text << in.rdbuf();

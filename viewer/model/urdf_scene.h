@@ -11,7 +11,7 @@
 
 namespace mbstream::viewer {
 
-// Throws std::runtime_error "FILE: what is wrong; what to do" on bad input: unreadable
+// Throws InputError "FILE: what is wrong; what to do" on bad input: unreadable
 // file, XML/URDF urdfdom rejects, floating/planar joints, a zero axis, joints that form a
 // loop. A mesh is looked up as urdf_reading::FindMeshFile does, relative to
 // `asset_directory`; a mesh that is not found becomes a labelled placeholder box of the

@@ -21,13 +21,6 @@ namespace mbstream::viewer {
 
 namespace {
 
-void CopyToVtk(const Eigen::Isometry3d& t, vtkMatrix4x4* m) {
-  double elements[16];
-  Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>> view(elements);
-  view = t.matrix();
-  m->DeepCopy(elements);  // marks the matrix modified: the actor re-reads it
-}
-
 vtkSmartPointer<vtkActor> MakeProbeActor(double radius) {
   vtkNew<vtkSphereSource> sphere;
   sphere->SetRadius(radius);
@@ -91,6 +84,9 @@ Scene::Scene(SceneDescription description, SceneOptions options)
   for (size_t i = 0; i < description_.probes.size(); ++i) {
     probe_actors_.push_back(MakeProbeActor(marker));
     renderer_->AddActor(probe_actors_.back());
+  }
+  if (options.ghost_opacity > 0.0) {
+    ghost_ = std::make_unique<GhostLayer>(description_, renderer_, options.ghost_opacity);
   }
   SyncActors();
 
@@ -194,6 +190,7 @@ std::uint64_t Scene::pose_version() const {
 }
 
 void Scene::SyncActors() {
+  if (ghost_) ghost_->SyncActors();
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     if (version_ == applied_version_) return;

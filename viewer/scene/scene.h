@@ -25,6 +25,7 @@
 
 #include "viewer/kinematics/pose_solver.h"
 #include "viewer/model/scene_description.h"
+#include "viewer/scene/ghost_layer.h"
 #include "viewer/scene/mesh_file_reader.h"
 #include "viewer/scene/probe_report.h"
 #include "viewer/scene/rgb_image.h"
@@ -41,6 +42,9 @@ struct SceneOptions {
   // that the model draws about this many; 0 = never decimate. See docs/performance.md.
   long long triangle_budget = kDefaultTriangleBudget;
   static constexpr long long kDefaultTriangleBudget = 100'000;
+  // > 0: the scene also draws a ghost (a second, translucent copy of the mechanism posed on
+  // its own, ghost_layer.h) with this opacity.
+  double ghost_opacity = 0.0;
 };
 
 class Scene {
@@ -88,6 +92,8 @@ class Scene {
   long long triangle_count() const { return triangle_count_; }
   // Texts drawn at parts (placeholders' labels), in the order of the visuals.
   std::vector<std::string> labels() const;
+  // The ghost (SceneOptions::ghost_opacity > 0), or nullptr. Its pose side is thread-safe.
+  GhostLayer* ghost() { return ghost_.get(); }
 
  private:
   SceneDescription description_;
@@ -112,6 +118,7 @@ class Scene {
   };
   std::vector<Label> labels_;
   long long triangle_count_ = 0;
+  std::unique_ptr<GhostLayer> ghost_;
 
   void AddPart(const VisualPart& part, long long max_triangles, bool* textured);
   // Per visual: the triangles its mesh file may keep (0 = all), from the budget.

@@ -15,6 +15,13 @@
 
 namespace mbstream::viewer {
 
+void CopyToVtk(const Eigen::Isometry3d& t, vtkMatrix4x4* m) {
+  double elements[16];
+  Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>> view(elements);
+  view = t.matrix();
+  m->DeepCopy(elements);  // marks the matrix modified: the actor re-reads it
+}
+
 namespace {
 
 struct Surface {

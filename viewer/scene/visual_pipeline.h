@@ -7,8 +7,10 @@
 #include <vector>
 
 #include <vtkActor.h>
+#include <vtkMatrix4x4.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <Eigen/Geometry>
 
 #include "viewer/model/mesh.h"
 #include "viewer/model/scene_description.h"
@@ -17,6 +19,9 @@
 namespace mbstream::viewer {
 
 vtkSmartPointer<vtkPolyData> PolyDataFromMesh(const Mesh& mesh);
+
+// Writes a frame's pose into an actor's user matrix (marked modified: the actor re-reads it).
+void CopyToVtk(const Eigen::Isometry3d& t, vtkMatrix4x4* m);
 
 struct VisualActors {
   std::vector<vtkSmartPointer<vtkActor>> actors;  // one per surface

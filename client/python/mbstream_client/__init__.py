@@ -11,16 +11,17 @@
 
 Units are SI everywhere (s, m, rad, N*m, J); positions are in the model's base (world) frame.
 The stubs generated from proto/mbstream/v1 are modules of this package (frame_pb2, run_pb2,
-run_spec_pb2, model_pb2, simulation_service_pb2 and their _grpc twins), written at build time
+run_spec_pb2, model_pb2, replay_pb2, simulation_service_pb2 and their _grpc twins), written at build time
 by setup.py. Errors are MbstreamError subclasses named after the gRPC code (BadRequest,
 NotFound, Unavailable, ...), each with `.code` (the code's name) and `.message` (the
 server's).
 """
-from ._stubs import (WIRE_MAJOR, frame_pb2, model_pb2, run_pb2, run_spec_pb2,
+from ._stubs import (WIRE_MAJOR, frame_pb2, model_pb2, replay_pb2, run_pb2, run_spec_pb2,
                      simulation_service_pb2, simulation_service_pb2_grpc)
 from ._version import __version__
 from .bundle import read_model_bundle
 from .client import Client, connect
+from .compare import Comparison, compare_results
 from .errors import (AlreadyExists, BadRequest, Cancelled, DeadlineExceeded, FailedPrecondition,
                      IncompatibleServer, MbstreamError, NotFound, OutOfRange, PermissionDenied,
                      ResourceExhausted, RunFailed, ServerError, Unauthenticated, Unavailable,
@@ -33,13 +34,13 @@ from .spec import load_spec, spec_to_dict
 __all__ = [
     "__version__", "WIRE_MAJOR", "connect", "Client", "Run", "Result", "RunInfo", "Frame",
     "ProgressBar", "ServerCheck", "load_spec", "spec_to_dict", "read_model_bundle",
-    "FINAL_STATES",
+    "FINAL_STATES", "Comparison", "compare_results",
     # errors
     "MbstreamError", "BadRequest", "NotFound", "AlreadyExists", "FailedPrecondition",
     "OutOfRange", "Unauthenticated", "PermissionDenied", "ResourceExhausted", "Unavailable",
     "DeadlineExceeded", "Cancelled", "Unimplemented", "ServerError", "IncompatibleServer",
     "RunFailed",
     # generated messages and stubs
-    "frame_pb2", "model_pb2", "run_pb2", "run_spec_pb2", "simulation_service_pb2",
+    "frame_pb2", "model_pb2", "replay_pb2", "run_pb2", "run_spec_pb2", "simulation_service_pb2",
     "simulation_service_pb2_grpc",
 ]

@@ -2,11 +2,12 @@
 from types import TracebackType
 from typing import Any, Iterable, List, Optional, Type, Union
 
-from ._stubs import model_pb2, run_pb2
+from ._stubs import model_pb2, replay_pb2, run_pb2
 from ._stubs import simulation_service_pb2 as service_pb2
 from ._stubs import simulation_service_pb2_grpc as service_grpc
 from ._version import __version__
 from .bundle import PathLike, read_model_bundle
+from .compare import Comparison, compare_results
 from .channel import make_channel
 from .errors import rpc_errors
 from .result import Result
@@ -116,9 +117,31 @@ class Client:
         with rpc_errors():
             return Run(self, self.stub.GetRun(service_pb2.GetRunRequest(run_id=run_id)))
 
-    def result(self, run_id: str, wait: bool = True, check: bool = False) -> "Result":
-        """The result of run `run_id` (see Run.result)."""
-        return self.get_run(run_id).result(wait=wait, check=check)
+    def result(self, run_id: str, wait: bool = True, check: bool = False,
+               probe_set: str = "") -> "Result":
+        """The result of run `run_id` (see Run.result); with `probe_set`, the probes of that
+        replay of it (probe_sets())."""
+        return self.get_run(run_id).result(wait=wait, check=check, probe_set=probe_set)
+
+    def probe_sets(self, run_id: str) -> List[replay_pb2.ProbeSet]:
+        """The probe sets of the replays of run `run_id`, oldest first: each one's id (for
+        result(run_id, probe_set=...)), viewer, scene and report count."""
+        with rpc_errors():
+            return list(self.stub.ListProbeSets(
+                replay_pb2.ListProbeSetsRequest(run_id=run_id)).sets)
+
+    def replay(self, run_id: str, speed: float = 1.0) -> run_pb2.RunInfo:
+        """Makes the server stream the stored run `run_id` to its --follow viewers as if it
+        were running now, at `speed` (simulated s per wall s); returns at once."""
+        with rpc_errors():
+            return self.stub.ReplayRun(replay_pb2.ReplayRunRequest(run_id=run_id, speed=speed))
+
+    def compare(self, run_id: str, ghost_run_id: str) -> Comparison:
+        """Runs `run_id` and `ghost_run_id` side by side on their common time grid, as
+        `mbstream-viewer --run A --compare B` shows them: the TCP distance at each common
+        time and its maximum (see compare_results; BadRequest-like ValueError when their
+        joints differ or their grids cannot be aligned)."""
+        return compare_results(self.result(run_id), self.result(ghost_run_id))
 
 
 def connect(address: Optional[str] = None, ca_file: Optional[str] = None,

@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include "common/check.h"
 #include "server/body/consistent_init.h"
 #include "server/body/quaternion.h"
-#include "server/common/check.h"
 #include "tests/common/test_models.h"
 #include "tests/server/body/body_test_util.h"
 
@@ -38,6 +38,15 @@ Eigen::VectorXd Move(const BodyModel& bm, const Eigen::VectorXd& y, double dt) {
   return moved;
 }
 
+// The drives and body model of `model` under `config`, which a BodyMechanics refers to.
+struct MechanicsOf {
+  MechanicsOf(const Model& model, const RunConfig& config)
+      : drives(model, config.drives), bm(MakeBodyModel(model, drives, Eigen::VectorXd())) {}
+  BodyMechanics Make() const { return BodyMechanics(bm, drives); }
+  DriveSet drives;
+  BodyModel bm;
+};
+
 struct Evaluated {
   Eigen::VectorXd g, gdot, nu;
 };
@@ -51,9 +60,9 @@ Evaluated Evaluate(BodyMechanics& mech, double t, const Eigen::VectorXd& y) {
 // G nu + g_t against central differences of g along the motion, gamma against those of
 // G nu + g_t, at random states of `model` under `config`.
 void ExpectConstraintDerivatives(const Model& model, const RunConfig& config) {
-  const DriveSet drives(model, config.drives);
-  const BodyModel bm = MakeBodyModel(model, drives, Eigen::VectorXd());
-  BodyMechanics mech(bm, drives);
+  const MechanicsOf of(model, config);
+  const BodyModel& bm = of.bm;
+  BodyMechanics mech = of.Make();
   std::mt19937 rng(7);
   for (int trial = 0; trial < 3; ++trial) {
     const Eigen::VectorXd y = testing::RandomBodyState(bm, rng);
@@ -105,6 +114,38 @@ TEST(BodyMechanicsTest, ConsistentInitialStateSatisfiesTheConstraints) {
     EXPECT_NEAR(mech.q()(j), q0(j), 1e-12);
     EXPECT_NEAR(mech.qd()(j), qd0(j), 1e-12);
   }
+}
+
+// EvaluateConstraints and EvaluateForces write only the entries of G and M that can be
+// non-zero (they no longer clear the matrices): evaluated at one state after another, they
+// must give exactly what a fresh BodyMechanics gives at the last state, armature included.
+void ExpectReuseEqualsFresh(const Model& model, const RunConfig& config) {
+  const MechanicsOf of(model, config);
+  BodyMechanics reused = of.Make();
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 4; ++trial) {
+    const Eigen::VectorXd y = testing::RandomBodyState(of.bm, rng);
+    const double t = 0.7 * trial;
+    BodyMechanics fresh = of.Make();
+    for (BodyMechanics* mech : {&reused, &fresh}) {
+      mech->Load(t, y.data());
+      mech->EvaluateConstraints(true);
+      mech->EvaluateForces();
+    }
+    // Bit for bit (operator== on the coefficients), not within a tolerance.
+    EXPECT_TRUE((reused.G().array() == fresh.G().array()).all()) << "trial " << trial;
+    EXPECT_TRUE((reused.M().array() == fresh.M().array()).all()) << "trial " << trial;
+    EXPECT_TRUE((reused.f().array() == fresh.f().array()).all()) << "trial " << trial;
+    EXPECT_TRUE((reused.g().array() == fresh.g().array()).all()) << "trial " << trial;
+    EXPECT_TRUE((reused.gamma().array() == fresh.gamma().array()).all()) << "trial " << trial;
+  }
+}
+
+TEST(BodyMechanicsTest, ReusedStorageEvaluatesAsFreshStorage) {
+  ExpectReuseEqualsFresh(testing::Irb1600(), testing::Scene("seed-servo"));
+  const Model model = testing::BranchingModel();  // prismatic joints, armature, branches
+  ExpectReuseEqualsFresh(model, testing::BranchingDrives(model, /*all_prescribed=*/true));
+  ExpectReuseEqualsFresh(model, testing::BranchingDrives(model, /*all_prescribed=*/false));
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
 #include "tests/server/body/body_test_util.h"

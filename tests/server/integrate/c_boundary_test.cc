@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/integrate/ida_integrator.h"
 #include "server/integrate/integrator.h"
 #include "tests/server/integrate/test_systems.h"

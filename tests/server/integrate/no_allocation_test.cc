@@ -1,49 +1,11 @@
 // After the first call, a successful AdvanceTo allocates nothing on the heap: not in
-// mbstream and not inside SUNDIALS (C code, which operator new would not see). malloc,
-// calloc and realloc are interposed for this test executable and count while armed.
-#include <atomic>
-#include <cstddef>
-
+// mbstream and not inside SUNDIALS (C code: tests/common/allocation_counter.h counts its
+// malloc calls too, except in sanitizer builds, where these tests skip themselves).
 #include <gtest/gtest.h>
 
 #include "server/integrate/integrator.h"
-#include "tests/common/sanitized_build.h"
+#include "tests/common/allocation_counter.h"
 #include "tests/server/integrate/test_systems.h"
-
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_allocations{0};
-
-void Count() {
-  if (g_counting.load(std::memory_order_relaxed)) {
-    g_allocations.fetch_add(1, std::memory_order_relaxed);
-  }
-}
-}  // namespace
-
-// Under a sanitizer (MBSTREAM_SANITIZED, tests/common/sanitized_build.h) malloc is the
-// sanitizer's: replacing it would mix two allocators (ASan aborts at start-up), so this test
-// program then counts nothing and its tests are skipped.
-
-#ifndef MBSTREAM_SANITIZED
-// glibc's own allocator entry points, which the replacements forward to.
-extern "C" void* __libc_malloc(size_t size);
-extern "C" void* __libc_calloc(size_t count, size_t size);
-extern "C" void* __libc_realloc(void* pointer, size_t size);
-
-extern "C" void* malloc(size_t size) noexcept {
-  Count();
-  return __libc_malloc(size);
-}
-extern "C" void* calloc(size_t count, size_t size) noexcept {
-  Count();
-  return __libc_calloc(count, size);
-}
-extern "C" void* realloc(void* pointer, size_t size) noexcept {
-  Count();
-  return __libc_realloc(pointer, size);
-}
-#endif
 
 namespace mbstream {
 namespace {
@@ -57,38 +19,24 @@ long AllocationsAfterFirstCall(OdeSystem& system, const IntegratorOptions& optio
                                const double* y0, double* y, int outputs, double interval) {
   auto integrator = MakeIntegrator(system, 0.0, y0, options);
   EXPECT_EQ(integrator->AdvanceTo(interval, y).status, IntegratorStatus::kOk);
-  g_allocations = 0;
-  g_counting = true;
+  const long before = testing::AllocationCount();
   bool ok = true;
   for (int k = 2; k <= outputs; ++k) {
     ok = ok && integrator->AdvanceTo(k * interval, y).status == IntegratorStatus::kOk;
   }
-  g_counting = false;
+  const long allocations = testing::AllocationCount() - before;
   EXPECT_TRUE(ok) << integrator->name();
-  return g_allocations.load();
+  return allocations;
 }
 
-// Skips the calling test in a sanitizer build (see MBSTREAM_SANITIZED).
-#ifdef MBSTREAM_SANITIZED
-#define SKIP_IF_SANITIZED() GTEST_SKIP() << "malloc is the sanitizer's: allocations not counted"
-#else
-#define SKIP_IF_SANITIZED() (void)0
-#endif
-
-TEST(NoAllocationTest, CountingWorks) {
-  SKIP_IF_SANITIZED();
-  g_allocations = 0;
-  g_counting = true;
-  void* p = malloc(64);
-  int* q = new int(3);
-  g_counting = false;
-  free(p);
-  delete q;
-  EXPECT_EQ(g_allocations.load(), 2);
-}
+// SUNDIALS allocates with C's malloc: skips the calling test where that is not counted.
+#define SKIP_UNLESS_C_COUNTED()                                             \
+  if (!testing::CountsCAllocations()) {                                     \
+    GTEST_SKIP() << "malloc is the sanitizer's: C allocations not counted"; \
+  }
 
 TEST(NoAllocationTest, AdvanceToDoesNotAllocateAfterTheFirstCall) {
-  SKIP_IF_SANITIZED();
+  SKIP_UNLESS_C_COUNTED();
   for (Method method :
        {Method::kBdf, Method::kAdams, Method::kErk, Method::kDirk, Method::kRk4, Method::kEuler}) {
     for (bool jacobian : {false, true}) {
@@ -112,7 +60,7 @@ TEST(NoAllocationTest, AdvanceToDoesNotAllocateAfterTheFirstCall) {
 }
 
 TEST(NoAllocationTest, StiffImplicitRunsDoNotAllocate) {
-  SKIP_IF_SANITIZED();
+  SKIP_UNLESS_C_COUNTED();
   for (Method method : {Method::kBdf, Method::kDirk}) {
     StiffRelaxation system(1000.0);
     const double y0[1] = {1.0};

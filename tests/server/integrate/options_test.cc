@@ -6,7 +6,7 @@
 #include <arkode/arkode_butcher_erk.h>
 #include <gtest/gtest.h>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/integrate/butcher_tables.h"
 #include "server/integrate/integrator.h"
 #include "tests/server/integrate/test_systems.h"

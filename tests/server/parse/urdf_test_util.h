@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/parse/urdf_import.h"
 
 namespace mbstream::testing {

@@ -10,8 +10,8 @@
 
 #include <unistd.h>
 
-#include "server/common/check.h"
-#include "server/common/utf8.h"
+#include "common/check.h"
+#include "common/utf8.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/server_limits.h"
 #include "server/store/store.h"

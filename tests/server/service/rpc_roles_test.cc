@@ -10,7 +10,7 @@
 #include <map>
 #include <set>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "tests/server/service/server_fixture.h"
 
 namespace mbstream::testing {

@@ -12,7 +12,7 @@
 #include <random>
 #include <vector>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/dynamics/aba.h"
 #include "server/sim/joint_space_ode.h"
 #include "tests/common/allocation_counter.h"

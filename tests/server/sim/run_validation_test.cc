@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/sim/integrator_options_from.h"
 #include "server/sim/run_validation.h"
 #include "server/sim/simulate.h"

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/dynamics/rnea.h"
 #include "tests/common/seed_kinematics.h"
 #include "tests/server/sim/scene_fixture.h"

@@ -11,7 +11,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "server/common/check.h"
+#include "common/check.h"
 
 namespace mbstream {
 namespace {

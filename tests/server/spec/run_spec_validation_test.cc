@@ -6,7 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/spec/run_spec_json.h"
 
 namespace mbstream {

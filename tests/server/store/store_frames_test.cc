@@ -6,7 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/store/frame_chunks.h"
 #include "server/store/sqlite_connection.h"
 #include "server/store/sqlite_statement.h"

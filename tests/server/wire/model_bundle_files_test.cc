@@ -9,7 +9,7 @@
 #include <fstream>
 #include <map>
 
-#include "server/common/check.h"
+#include "common/check.h"
 #include "server/wire/model_bundle_files.h"
 
 namespace mbstream {

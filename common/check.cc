@@ -1,4 +1,4 @@
-#include "server/common/check.h"
+#include "common/check.h"
 
 #include <sstream>
 

@@ -1,0 +1,230 @@
+// Many runs at once: a sweep through a real mbstream-server process against the same runs
+// in-process (docs/performance.md, "Many runs at once").
+//
+//   sweep_bench --server build/server/app/mbstream-server [--runs 1000] [--scene seed-servo]
+//               [--duration 0] [--window 32]
+//
+// In-process: `--runs` Simulate calls of the scene (what `mbstream simulate` runs) on 2
+// threads, the model imported once. Server: a fresh mbstream-server (2 workers, a fresh data
+// directory) and one client that keeps up to `--window` runs submitted (StartRun), waits for
+// the oldest to end (WatchRun) and fetches its result (GetResult, every frame), then submits
+// the next. Prints wall time, runs per second and CPU time per run of each side (the server
+// process's from /proc, the client's and the in-process threads' from getrusage), and the
+// server's overhead. `--duration D` (s) shortens the scene: the 10,000 short kinematic runs
+// are `--runs 10000 --scene seed-run --duration 1`.
+#include <grpcpp/grpcpp.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "mbstream/v1/simulation_service.grpc.pb.h"
+#include "server/parse/urdf_import.h"
+#include "server/sim/simulate.h"
+#include "server/spec/run_spec_json.h"
+#include "tests/common/server_process.h"
+
+namespace mbstream {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point from) {
+  return std::chrono::duration<double>(Clock::now() - from).count();
+}
+
+// CPU time (user + system, s) of this process's threads so far.
+double OwnCpuSeconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+// CPU time (user + system, s) of process `pid`, from /proc/PID/stat.
+double ProcessCpuSeconds(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::istringstream fields(text.substr(text.rfind(')') + 2));
+  std::string field;
+  long ticks = 0;
+  for (int i = 3; i <= 15; ++i) {  // fields 14 (utime) and 15 (stime), 1-based
+    fields >> field;
+    if (i >= 14) ticks += std::stol(field);
+  }
+  return static_cast<double>(ticks) / static_cast<double>(sysconf(_SC_CLK_TCK));
+}
+
+struct Measured {
+  double wall_s = 0.0;
+  double cpu_s = 0.0;         // in-process threads, or the server process
+  double client_cpu_s = 0.0;  // the client (server case)
+  long frames = 0;
+};
+
+Measured InProcess(const Model& model, const RunConfig& config, int runs) {
+  Measured m;
+  std::atomic<int> next{0};
+  std::atomic<long> frames{0};
+  const double cpu0 = OwnCpuSeconds();
+  const Clock::time_point start = Clock::now();
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 2; ++t) {
+    threads.emplace_back([&] {
+      while (next.fetch_add(1) < runs) {
+        const RunResult result = Simulate(model, config);
+        if (result.stats.status != RunStatus::kFinished) throw std::runtime_error("run failed");
+        frames += static_cast<long>(result.t.size());
+      }
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  m.wall_s = Seconds(start);
+  m.cpu_s = OwnCpuSeconds() - cpu0;
+  m.frames = frames;
+  return m;
+}
+
+void Check(const grpc::Status& status, const char* what) {
+  if (!status.ok()) throw std::runtime_error(std::string(what) + ": " + status.error_message());
+}
+
+Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec, int runs,
+                       int window) {
+  const fs::path data = fs::temp_directory_path() / ("mbstream-sweep-" + std::to_string(getpid()));
+  fs::remove_all(data);
+  testing::ServerProcess server(
+      server_binary, data.string(),
+      {"--models", MBSTREAM_SOURCE_DIR "/models", "--workers", "2", "--log-level", "warn"});
+  grpc::ChannelArguments arguments;
+  arguments.SetMaxReceiveMessageSize(256 << 20);
+  auto stub = v1::Simulation::NewStub(
+      grpc::CreateCustomChannel(server.address(), grpc::InsecureChannelCredentials(), arguments));
+  auto start_run = [&] {
+    grpc::ClientContext context;
+    v1::StartRunRequest request;
+    request.set_model("irb1600");
+    *request.mutable_spec() = spec;
+    v1::RunInfo info;
+    Check(stub->StartRun(&context, request, &info), "StartRun");
+    return info.id();
+  };
+  Measured m;
+  const double server_cpu0 = ProcessCpuSeconds(server.pid());
+  const double client_cpu0 = OwnCpuSeconds();
+  const Clock::time_point start = Clock::now();
+  std::deque<std::string> in_flight;
+  int submitted = 0;
+  while (submitted < runs || !in_flight.empty()) {
+    while (submitted < runs && static_cast<int>(in_flight.size()) < window) {
+      in_flight.push_back(start_run());
+      ++submitted;
+    }
+    const std::string id = in_flight.front();
+    in_flight.pop_front();
+    {  // wait for its end
+      grpc::ClientContext context;
+      v1::WatchRunRequest request;
+      request.set_run_id(id);
+      request.set_progress_interval_s(10.0);
+      auto reader = stub->WatchRun(&context, request);
+      v1::WatchEvent event;
+      v1::RunState state = v1::RUN_STATE_UNSPECIFIED;
+      while (reader->Read(&event)) {
+        if (event.has_progress()) state = event.progress().state();
+      }
+      Check(reader->Finish(), "WatchRun");
+      if (state != v1::FINISHED) throw std::runtime_error("run " + id + " did not finish");
+    }
+    {  // fetch every frame
+      grpc::ClientContext context;
+      v1::GetResultRequest request;
+      request.set_run_id(id);
+      auto reader = stub->GetResult(&context, request);
+      v1::ResultChunk chunk;
+      while (reader->Read(&chunk)) m.frames += chunk.frames_size();
+      Check(reader->Finish(), "GetResult");
+    }
+  }
+  m.wall_s = Seconds(start);
+  m.cpu_s = ProcessCpuSeconds(server.pid()) - server_cpu0;
+  m.client_cpu_s = OwnCpuSeconds() - client_cpu0;
+  server.Stop();
+  fs::remove_all(data);
+  return m;
+}
+
+void Print(const char* what, const Measured& m, int runs) {
+  std::printf("%-10s %8.3f s wall  %8.1f runs/s  CPU per run %8.1f us", what, m.wall_s,
+              runs / m.wall_s, 1e6 * m.cpu_s / runs);
+  if (m.client_cpu_s > 0) std::printf(" + client %6.1f us", 1e6 * m.client_cpu_s / runs);
+  std::printf("  frames %ld\n", m.frames);
+}
+
+}  // namespace
+}  // namespace mbstream
+
+int main(int argc, char** argv) {
+  using namespace mbstream;
+  CLI::App app{"A sweep through a real mbstream-server against the same runs in-process"};
+  std::string server_binary, scene = "seed-servo";
+  int runs = 1000, window = 32;
+  double duration = 0.0;
+  bool server_only = false;
+  app.add_option("--server", server_binary, "the mbstream-server binary")->required();
+  app.add_option("--runs", runs, "runs on each side");
+  app.add_option("--scene", scene, "models/irb1600/SCENE.json");
+  app.add_option("--duration", duration, "s; 0 = the scene's");
+  app.add_option("--window", window, "runs submitted and not yet fetched (at most 64 queue)");
+  app.add_flag("--server-only", server_only, "skip the in-process side (for profiling)");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    const std::string path = MBSTREAM_SOURCE_DIR "/models/irb1600/" + scene + ".json";
+    v1::RunSpec spec = LoadRunSpecFile(path);
+    if (duration > 0) spec.set_duration_s(duration);
+    const Model model = ImportUrdfFile(MBSTREAM_SOURCE_DIR "/models/irb1600/irb1600.urdf").model;
+    std::vector<std::string> joints;
+    for (const Body& body : model.bodies) joints.push_back(body.joint.name);
+    const RunConfig config = ToRunConfig(spec, joints, path);
+    std::printf("%d runs of %s (%.3g s simulated), 2 threads / 2 workers, load %s\n", runs,
+                scene.c_str(), spec.duration_s(), [] {
+                  static char text[64] = "?";
+                  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
+                    if (std::fgets(text, sizeof text, f) == nullptr) text[0] = 0;
+                    std::fclose(f);
+                  }
+                  return text;
+                }());
+    Measured local;
+    if (!server_only) {
+      local = InProcess(model, config, runs);
+      Print("in-process", local, runs);
+    }
+    const Measured served = ThroughServer(server_binary, spec, runs, window);
+    Print("server", served, runs);
+    if (!server_only) {
+      std::printf(
+          "server overhead: %+.1f %% wall time; %+.1f us CPU per run (server + client - "
+          "in-process)\n",
+          100.0 * (served.wall_s / local.wall_s - 1.0),
+          1e6 * (served.cpu_s + served.client_cpu_s - local.cpu_s) / runs);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "sweep_bench: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,112 @@
+// RunManager: what replays of stored runs need (replay.proto): cursors and probe sets.
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "common/check.h"
+#include "server/runs/request_error.h"
+#include "server/runs/run_manager.h"
+#include "server/store/store.h"
+
+namespace mbstream {
+
+bool RunManager::IsActive(const std::string& run_id) const { return FindActive(run_id) != nullptr; }
+
+std::unique_ptr<ReplayCursor> RunManager::OpenReplay(const v1::RunInfo& info) const {
+  return std::make_unique<ReplayCursor>(store_, info.id(), info.frames());
+}
+
+std::string RunManager::NewProbeSetId() const {
+  static thread_local std::mt19937_64 random(std::random_device{}());
+  for (;;) {
+    char id[32];
+    std::snprintf(id, sizeof(id), "ps-%016llx", static_cast<unsigned long long>(random()));
+    if (!store_->GetProbeSet(id)) return id;
+  }
+}
+
+void RunManager::CreateProbeSet(const v1::ProbeSet& set) { store_->CreateProbeSet(set); }
+
+void RunManager::AddProbeSetReports(const std::string& set_id,
+                                    const std::vector<v1::ProbeReport>& reports) {
+  store_->AddProbeSetReports(set_id, reports);
+}
+
+std::vector<v1::ProbeSet> RunManager::ListProbeSets(const std::string& run_id) const {
+  (void)Get(run_id);  // kNotFound for an unknown run
+  return store_->ListProbeSets(run_id);
+}
+
+std::vector<v1::ProbeReport> RunManager::ResultProbeSet(const std::string& run_id,
+                                                        const std::string& set_id) const {
+  const std::optional<v1::ProbeSet> set = store_->GetProbeSet(set_id);
+  if (!set || set->run_id() != run_id) {
+    throw RequestError(RequestErrorKind::kNotFound,
+                       "run " + run_id + " has no probe set '" + set_id.substr(0, 64) +
+                           "'; `mbstream probe-sets " + run_id + "` lists its sets");
+  }
+  return store_->GetProbeSetReports(set_id);
+}
+
+v1::RunInfo RunManager::ReplayToFollowers(const std::string& run_id, double speed_x) {
+  if (!std::isfinite(speed_x) || speed_x <= 0.0 || speed_x > 1000.0) {
+    throw InputError("ReplayRun: speed " + std::to_string(speed_x) +
+                     " is out of range; give a speed above 0 up to 1000 (1 = real time)");
+  }
+  v1::RunInfo info = ResultInfo(run_id);
+  if (info.frames() < 1) {
+    throw RequestError(RequestErrorKind::kFailedPrecondition,
+                       "run " + run_id + " has no stored frames: there is nothing to replay");
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (stopping_) {
+    throw RequestError(RequestErrorKind::kUnavailable, "the server is shutting down");
+  }
+  if (broadcasting_ >= kMaxBroadcasts) {
+    throw RequestError(RequestErrorKind::kResourceExhausted,
+                       "this server already replays " + std::to_string(broadcasting_) +
+                           " runs to its followers, its limit; wait for one to end");
+  }
+  ++broadcasting_;
+  broadcasts_.emplace_back([this, info, speed_x, followers = followers_] {
+    try {
+      Broadcast(info, speed_x, followers);
+    } catch (const std::exception& e) {
+      spdlog::error("replay of run {} to the followers: {}", info.id(), e.what());
+    }
+    std::lock_guard<std::mutex> done(mutex_);
+    --broadcasting_;
+  });
+  spdlog::info("run {} replayed to {} followers at {}x", run_id, followers_.size(), speed_x);
+  return info;
+}
+
+void RunManager::Broadcast(const v1::RunInfo& info, double speed_x,
+                           std::vector<std::shared_ptr<Subscription>> followers) {
+  using Clock = std::chrono::steady_clock;
+  auto push = [&](StreamEvent event) {
+    for (const auto& follower : followers) {
+      if (!follower->cancelled()) follower->Push(event);
+    }
+  };
+  push({StreamEvent::Kind::kRunStarted, info.id(), nullptr});
+  ReplayCursor frames(store_, info.id(), info.frames());
+  const Clock::time_point start = Clock::now();
+  const double t0 = frames.At(0).t_s();
+  for (int64_t seq = 0; seq < info.frames(); ++seq) {
+    auto frame = std::make_shared<const v1::Frame>(frames.At(seq));
+    const auto due = start + std::chrono::duration_cast<Clock::duration>(
+                                 std::chrono::duration<double>((frame->t_s() - t0) / speed_x));
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (broadcast_wake_.wait_until(lock, due, [&] { return stopping_; })) return;
+    }
+    push({StreamEvent::Kind::kFrame, info.id(), std::move(frame)});
+  }
+  push({StreamEvent::Kind::kRunEnded, info.id(), nullptr});
+}
+
+}  // namespace mbstream

@@ -1,0 +1,315 @@
+// SendReplay and PlanReplay: a stored run streamed to one viewer at its original pace.
+#include "server/service/replay_stream.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+#include "common/check.h"
+#include "server/runs/request_error.h"
+
+namespace mbstream {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kMaxSpeed = 1000.0;
+constexpr size_t kMaxTagBytes = 128;
+constexpr auto kPoll = std::chrono::milliseconds(100);  // checks for cancellation and stop
+// With Replay.wait_for_probes, a viewer is sent at most this many frames ahead of its newest
+// probe answer (well inside
+// SentFrames' memory, so that no answer is refused as too old): an unpaced replay goes as
+// fast as the viewer takes frames. A viewer that does not answer within kFirstAnswer of
+// the start (a scene without probes; the scene is built meanwhile), or stops answering for
+// kStall, is not waited for again.
+constexpr size_t kMaxAhead = 1024;
+constexpr auto kFirstAnswer = std::chrono::seconds(10);
+constexpr auto kStall = std::chrono::seconds(2);
+
+ReplayGridRun GridRun(const v1::RunInfo& info, ReplayCursor& frames) {
+  ReplayGridRun run;
+  run.id = info.id();
+  run.frames = info.frames();
+  run.joint_names.assign(info.joint_names().begin(), info.joint_names().end());
+  if (run.frames > 1) run.interval_s = frames.At(1).t_s() - frames.At(0).t_s();
+  return run;
+}
+
+// The ended run `run_id` (ResultInfo's errors), with at least one stored frame.
+v1::RunInfo EndedRun(RunManager& runs, const std::string& run_id, const char* what) {
+  if (runs.IsActive(run_id)) {
+    throw RequestError(RequestErrorKind::kFailedPrecondition,
+                       std::string(what) + " run " + run_id +
+                           " has not ended: only a stored run can be replayed from another "
+                           "frame, paused or compared; watch it live (no replay options) or "
+                           "wait for it to end");
+  }
+  v1::RunInfo info = runs.ResultInfo(run_id);
+  if (info.frames() < 1) {
+    throw RequestError(RequestErrorKind::kFailedPrecondition,
+                       std::string(what) + " run " + run_id + " ended " +
+                           v1::RunState_Name(info.state()) +
+                           " before its first frame: there is nothing to replay");
+  }
+  return info;
+}
+
+}  // namespace
+
+std::string CheckReplaySpeed(double speed) {
+  if (std::isfinite(speed) && speed >= 0.0 && speed <= kMaxSpeed) return "";
+  return "speed " + std::to_string(speed) + " is out of range; give 0 (unpaced) or a speed up to " +
+         std::to_string(static_cast<int>(kMaxSpeed)) + " (1 = real time)";
+}
+
+std::optional<ReplayPlan> PlanReplay(RunManager& runs, const v1::SubscribeRequest::Start& start) {
+  const v1::Replay& options = start.replay();
+  if (const std::string bad = CheckReplaySpeed(options.speed()); !bad.empty()) {
+    throw InputError("Subscribe: start.replay." + bad);
+  }
+  if (options.from_seq() < 0) {
+    throw InputError("Subscribe: start.replay.from_seq is " + std::to_string(options.from_seq()) +
+                     "; give a frame number from 0");
+  }
+  if (options.viewer().size() > kMaxTagBytes || options.scene().size() > kMaxTagBytes) {
+    throw InputError("Subscribe: start.replay.viewer and .scene take at most " +
+                     std::to_string(kMaxTagBytes) + " bytes each");
+  }
+  const bool live_compatible =
+      options.from_seq() == 0 && options.compare_run_id().empty() && !options.paused();
+  if (live_compatible && runs.IsActive(start.run_id())) return std::nullopt;
+
+  ReplayPlan plan;
+  plan.options = options;
+  plan.run = EndedRun(runs, start.run_id(), "the");
+  plan.run_frames = runs.OpenReplay(plan.run);
+  if (options.from_seq() >= plan.run.frames()) {
+    throw InputError("Subscribe: start.replay.from_seq is " + std::to_string(options.from_seq()) +
+                     " but run " + plan.run.id() + " has " + std::to_string(plan.run.frames()) +
+                     " frames; give 0 to " + std::to_string(plan.run.frames() - 1));
+  }
+  const ReplayGridRun run = GridRun(plan.run, *plan.run_frames);
+  if (options.compare_run_id().empty()) {
+    plan.grid = SingleRunGrid(run);
+  } else {
+    plan.ghost = EndedRun(runs, options.compare_run_id(), "the compared");
+    plan.ghost_frames = runs.OpenReplay(*plan.ghost);
+    plan.grid = AlignReplayGrids(run, GridRun(*plan.ghost, *plan.ghost_frames));
+    // A run whose duration is no whole number of intervals ends with an extra frame at its
+    // end time, off the grid: leave it out.
+    const int64_t last = plan.grid.frames - 1;
+    const double t_run = plan.run_frames->At(last * plan.grid.stride).t_s();
+    const double t_ghost = plan.ghost_frames->At(last * plan.grid.ghost_stride).t_s();
+    if (last > 0 && std::abs(t_run - t_ghost) > 1e-9 * std::max(1.0, std::abs(t_run))) {
+      plan.grid.frames = last;
+    }
+  }
+  plan.start_step = std::min(options.from_seq() / plan.grid.stride, plan.grid.frames - 1);
+  return plan;
+}
+
+namespace {
+
+// The replay's position and pace.
+struct Player {
+  ReplayPlan* plan = nullptr;
+  int64_t step = 0;        // the grid step sent next
+  int64_t last_sent = -1;  // the grid step sent last
+  bool paused = false;
+  bool send_one = false;  // send `step` even though paused (a seek or step)
+  bool state_after_send = false;
+  double speed = 1.0;
+  Clock::time_point anchor_wall;
+  double anchor_t = 0.0;  // s, simulated time shown at anchor_wall
+
+  const v1::Frame& Frame(int64_t k) { return plan->run_frames->At(k * plan->grid.stride); }
+  const v1::Frame& Ghost(int64_t k) { return plan->ghost_frames->At(k * plan->grid.ghost_stride); }
+  void Anchor() {
+    anchor_wall = Clock::now();
+    anchor_t = step < plan->grid.frames ? Frame(step).t_s() : 0.0;
+  }
+  Clock::time_point Due(int64_t k) {
+    if (speed <= 0.0) return anchor_wall;
+    return anchor_wall + std::chrono::duration_cast<Clock::duration>(
+                             std::chrono::duration<double>((Frame(k).t_s() - anchor_t) / speed));
+  }
+  void FillState(v1::ReplayState* state, const std::string& set_id) const {
+    state->Clear();
+    state->set_run_id(plan->run.id());
+    state->set_paused(paused);
+    state->set_seq(last_sent < 0 ? -1 : last_sent * plan->grid.stride);
+    state->set_frames(plan->run.frames());
+    state->set_stride(plan->grid.stride);
+    state->set_speed(speed);
+    if (plan->ghost) state->set_compare_run_id(plan->ghost->id());
+    state->set_ghost_stride(plan->grid.ghost_stride);
+    state->set_grid_frames(plan->grid.frames);
+    state->set_probe_set(set_id);
+  }
+  // Applies `control`; returns "" or why it could not be applied. Whether a state must be
+  // sent now (else after the next frame) goes to `state_now`.
+  std::string Apply(const v1::ReplayControl& control, bool* state_now) {
+    *state_now = true;
+    switch (control.action_case()) {
+      case v1::ReplayControl::kPause:
+        paused = true;
+        return "";
+      case v1::ReplayControl::kResume:
+        paused = false;
+        if (step >= plan->grid.frames) step = 0;
+        Anchor();
+        return "";
+      case v1::ReplayControl::kSpeed:
+        if (std::string bad = CheckReplaySpeed(control.speed()); !bad.empty()) return bad;
+        speed = control.speed();
+        Anchor();
+        return "";
+      case v1::ReplayControl::kSeekSeq: {
+        const int64_t seq = control.seek_seq();
+        if (seq < 0 || seq >= plan->run.frames()) {
+          return "seek_seq " + std::to_string(seq) + " is out of range; give 0 to " +
+                 std::to_string(plan->run.frames() - 1);
+        }
+        step = std::min(seq / plan->grid.stride, plan->grid.frames - 1);
+        break;
+      }
+      case v1::ReplayControl::kStep:
+        paused = true;
+        step = std::clamp<int64_t>((last_sent >= 0 ? last_sent : step) + control.step(), 0,
+                                   plan->grid.frames - 1);
+        break;
+      default:
+        return "an empty control; set one of pause, resume, seek_seq, step, speed";
+    }
+    send_one = true;
+    state_after_send = true;
+    *state_now = false;
+    Anchor();
+    return "";
+  }
+};
+
+}  // namespace
+
+grpc::Status SendReplay(const ReplayStreamContext& io, ReplayPlan& plan) {
+  const grpc::Status gone(grpc::StatusCode::CANCELLED, "the subscriber went away");
+  v1::SubscribeEvent event;
+  auto write = [&] { return io.stream->Write(event); };
+  {
+    auto* started = event.mutable_run_started();
+    *started->mutable_run() = plan.run;
+    *started->mutable_model() = io.models->Info(plan.run.model_id());
+    *started->mutable_bundle() = io.models->Bundle(started->model().id());
+    if (!write()) return gone;
+  }
+  Player player;
+  player.plan = &plan;
+  player.step = plan.start_step;
+  player.paused = plan.options.paused();
+  player.send_one = player.paused;
+  player.speed = plan.options.speed();
+  player.Anchor();
+  auto send_state = [&](const std::string& error) {
+    player.FillState(event.mutable_replay_state(), io.inbox->set().id());
+    event.mutable_replay_state()->set_error(error);
+    return write();
+  };
+  if (!send_state("")) return gone;
+
+  // The frames sent and not yet answered, oldest first, while the viewer answers probes.
+  std::deque<int64_t> ahead;
+  Clock::time_point last_answer = Clock::now();
+  int64_t last_answered = -1;  // the answer `ahead` was last trimmed to
+  // False without wait_for_probes, or once the viewer was not waited for: flow control alone.
+  bool gate = plan.options.wait_for_probes();
+  auto window_full = [&] {
+    if (!gate) return false;
+    const int64_t answered = io.inbox->answered_seq();
+    while (answered != last_answered && !ahead.empty()) {
+      const int64_t seq = ahead.front();
+      ahead.pop_front();
+      if (seq == answered) {
+        last_answer = Clock::now();
+        last_answered = answered;
+        break;
+      }
+    }
+    if (ahead.size() < kMaxAhead) return false;
+    if (Clock::now() - last_answer > (answered < 0 ? kFirstAnswer : kStall)) {
+      gate = false;
+      ahead.clear();
+      return false;
+    }
+    return true;
+  };
+  // Applies the next control that comes until `deadline`, if one does (*applied says
+  // whether); false when the viewer went away.
+  v1::ReplayControl control;
+  auto apply_next = [&](Clock::time_point deadline, bool* applied = nullptr) {
+    const bool got = io.inbox->NextControl(deadline, &control);
+    if (applied) *applied = got;
+    if (!got) return true;
+    bool state_now = true;
+    const std::string error = player.Apply(control, &state_now);
+    return !state_now || send_state(error);
+  };
+  for (;;) {
+    if (io.context->IsCancelled()) return gone;
+    if (*io.stopping) {
+      const std::string reason = "the server is shutting down; reconnect later";
+      event.set_closing(reason);
+      (void)write();
+      return grpc::Status(grpc::StatusCode::UNAVAILABLE, reason);
+    }
+    if (io.reader_done()) return grpc::Status::OK;  // the viewer said goodbye
+    bool applied = true;
+    while (applied) {
+      if (!apply_next(Clock::now(), &applied)) return gone;
+    }
+    if (player.paused && !player.send_one) {
+      if (!apply_next(Clock::now() + kPoll)) return gone;
+      continue;
+    }
+    if (player.step >= plan.grid.frames) {
+      if (plan.options.loop()) {
+        player.step = 0;
+        player.Anchor();
+        continue;
+      }
+      *event.mutable_run_ended() = plan.run;
+      if (!write()) return gone;
+      return grpc::Status::OK;
+    }
+    const Clock::time_point due = player.Due(player.step);
+    if (!player.send_one && window_full()) {
+      if (!apply_next(Clock::now() + std::chrono::milliseconds(10))) return gone;
+      continue;
+    }
+    if (!player.send_one && Clock::now() < due) {
+      if (!apply_next(std::min(due, Clock::now() + kPoll))) return gone;
+      continue;
+    }
+    v1::FrameBatch* batch = event.mutable_frames();
+    batch->Clear();
+    batch->set_run_id(plan.run.id());
+    const SentFrames::Clock::time_point now = SentFrames::Clock::now();
+    do {
+      const v1::Frame& frame = player.Frame(player.step);
+      *batch->add_frames() = frame;
+      io.sent->Record(plan.run.id(), frame.seq(), frame.t_s(), now);
+      if (plan.ghost) *batch->add_ghost_frames() = player.Ghost(player.step);
+      if (gate) ahead.push_back(frame.seq());
+      player.last_sent = player.step++;
+    } while (!player.send_one && batch->frames_size() < io.max_batch &&
+             player.step < plan.grid.frames && player.Due(player.step) <= Clock::now() &&
+             ahead.size() < kMaxAhead);
+    player.send_one = false;
+    if (!write()) return gone;
+    if (player.state_after_send) {
+      player.state_after_send = false;
+      if (!send_state("")) return gone;
+    }
+  }
+}
+
+}  // namespace mbstream

@@ -1,0 +1,124 @@
+// RunManager without gRPC, paced by a manual clock: a realtime run sends each frame when its
+// wall time comes, not before; cancel and shutdown end a waiting run at once.
+#include "server/runs/run_manager.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <unistd.h>
+
+#include "server/store/store.h"
+#include "tests/server/runs/manual_run_clock.h"
+
+namespace mbstream {
+namespace {
+
+namespace fs = std::filesystem;
+using std::chrono::milliseconds;
+using std::chrono::nanoseconds;
+
+class RunManagerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("mbstream-run-manager-" + std::to_string(getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    store_ = Store::Open(dir_.string());
+    models_ = std::make_unique<ModelRegistry>(store_.get(), limits_);
+    ASSERT_GT(models_->LoadBuiltins(std::string(MBSTREAM_SOURCE_DIR) + "/models"), 0);
+    runs_ = std::make_unique<RunManager>(models_.get(), store_.get(), limits_, &clock_);
+  }
+  void TearDown() override {
+    runs_.reset();
+    models_.reset();
+    store_.reset();
+    fs::remove_all(dir_);
+  }
+
+  // The single pendulum swinging freely for `duration_s`, a frame every 0.1 s.
+  static v1::RunSpec Swing(double duration_s, double realtime) {
+    v1::RunSpec spec;
+    spec.set_duration_s(duration_s);
+    spec.set_output_interval_s(0.1);
+    spec.set_realtime(realtime);
+    return spec;
+  }
+
+  // Waits for the run's end event and returns its stored info.
+  v1::RunInfo WaitForEnd(const std::shared_ptr<Subscription>& subscription,
+                         const std::string& run_id) {
+    std::deque<StreamEvent> events;
+    for (;;) {
+      events.clear();
+      int64_t missed = 0;
+      if (!subscription->Pop(std::chrono::seconds(30), 1024, &events, &missed)) break;
+      for (const StreamEvent& event : events) {
+        if (event.kind == StreamEvent::Kind::kRunEnded) return runs_->Get(run_id);
+      }
+      if (events.empty()) break;  // 30 s without an event: fail below
+    }
+    ADD_FAILURE() << "run " << run_id << " did not end";
+    return runs_->Get(run_id);
+  }
+
+  ServerLimits limits_;
+  testing::ManualRunClock clock_;
+  fs::path dir_;
+  std::unique_ptr<Store> store_;
+  std::unique_ptr<ModelRegistry> models_;
+  std::unique_ptr<RunManager> runs_;
+};
+
+TEST_F(RunManagerTest, RealtimeRunSendsEachFrameWhenItsWallTimeComes) {
+  const double realtime = 2.0;  // a frame every 0.1 s of simulated time = every 50 ms of wall
+  const v1::RunInfo started = runs_->Start("single_pendulum", Swing(0.5, realtime));
+  const auto subscription = runs_->SubscribeRun(started.id(), false);
+  const RunClock::TimePoint start = clock_.Now();
+  for (int k = 1; k <= 5; ++k) {
+    const std::optional<RunClock::TimePoint> due = clock_.WaitForWaiter();
+    ASSERT_TRUE(due.has_value()) << "frame " << k;
+    // Frame k (t = 0.1 k s) waits for start + 0.1 k / realtime s; frames 0..k-1 are out.
+    EXPECT_NEAR(std::chrono::duration<double>(*due - start).count(), 0.1 * k / realtime, 1e-9);
+    EXPECT_EQ(runs_->Get(started.id()).frames(), k);
+    EXPECT_EQ(runs_->Get(started.id()).state(), v1::RUNNING);
+    clock_.Advance(milliseconds(50));
+  }
+  const v1::RunInfo ended = WaitForEnd(subscription, started.id());
+  EXPECT_EQ(ended.state(), v1::FINISHED) << ended.message();
+  EXPECT_EQ(ended.frames(), 6);
+  runs_->Unsubscribe(subscription);
+}
+
+TEST_F(RunManagerTest, CancelEndsARunWaitingForItsNextFrameAtOnce) {
+  const v1::RunInfo started = runs_->Start("single_pendulum", Swing(20.0, 1.0));
+  const auto subscription = runs_->SubscribeRun(started.id(), false);
+  ASSERT_TRUE(clock_.WaitForWaiter().has_value());
+  clock_.Advance(milliseconds(100));  // frame 1 goes out
+  ASSERT_TRUE(clock_.WaitForWaiter().has_value());
+  runs_->Cancel(started.id());  // the clock never reaches the next frame's time
+  const v1::RunInfo ended = WaitForEnd(subscription, started.id());
+  EXPECT_EQ(ended.state(), v1::CANCELLED);
+  // Frames 0 and 1 went out on time; frame 2, computed and waiting, is kept as well.
+  EXPECT_EQ(ended.frames(), 3);
+  EXPECT_NE(ended.message().find("cancelled at t = 0.2"), std::string::npos) << ended.message();
+  runs_->Unsubscribe(subscription);
+}
+
+TEST_F(RunManagerTest, ShutdownInterruptsAWaitingRunAndKeepsItsFrames) {
+  const v1::RunInfo started = runs_->Start("single_pendulum", Swing(20.0, 1.0));
+  ASSERT_TRUE(clock_.WaitForWaiter().has_value());
+  runs_->Shutdown("the test stopped the server");
+  const std::optional<v1::RunInfo> stored = store_->GetRun(started.id());
+  ASSERT_TRUE(stored.has_value());
+  EXPECT_EQ(stored->state(), v1::INTERRUPTED);
+  EXPECT_EQ(stored->frames(), 2);  // frame 0, and frame 1 that was waiting for its time
+  EXPECT_NE(stored->message().find("the test stopped the server"), std::string::npos)
+      << stored->message();
+}
+
+}  // namespace
+}  // namespace mbstream
