@@ -13,6 +13,15 @@ void RunOverrides::AddTo(CLI::App& command) {
   command.add_option("--rtol", rtol, "relative tolerance");
   command.add_option("--atol", atol, "absolute tolerance");
   command.add_option("--step", step, "fixed step of rk4 and euler (s)");
+  command.add_option("--target-tcp", target_tcp,
+                     "accuracy target: largest TCP error (m); the method and tolerances are "
+                     "chosen for it (method auto) unless --method is given");
+  command.add_option("--target-joint", target_joint,
+                     "accuracy target: largest joint error (rad), like --target-tcp");
+  command.add_option("--target-energy", target_energy,
+                     "accuracy target: largest relative energy-balance error, like --target-tcp");
+  command.add_option("--verify", verify,
+                     "check the achieved error after a target run (true, the default, or false)");
 }
 
 void RunOverrides::ApplyTo(v1::RunSpec& spec) const {
@@ -25,6 +34,11 @@ void RunOverrides::ApplyTo(v1::RunSpec& spec) const {
   if (rtol) spec.set_rtol(*rtol);
   if (atol) spec.set_atol(*atol);
   if (step) spec.set_fixed_step_s(*step);
+  if (target_tcp) spec.mutable_target()->set_tcp_error_m(*target_tcp);
+  if (target_joint) spec.mutable_target()->set_joint_error_rad(*target_joint);
+  if (target_energy) spec.mutable_target()->set_energy_error_rel(*target_energy);
+  if ((target_tcp || target_joint || target_energy) && !method) spec.set_method("auto");
+  if (verify) spec.set_verify(*verify);
 }
 
 }  // namespace mbstream::cli

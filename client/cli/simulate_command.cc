@@ -9,6 +9,7 @@
 #include "client/cli/exit_codes.h"
 #include "client/cli/run_overrides.h"
 #include "common/check.h"
+#include "server/choose/target_run.h"
 #include "server/parse/urdf_import.h"
 #include "server/results/results_files.h"
 #include "server/sim/input_sanity.h"
@@ -48,7 +49,7 @@ int RunSimulate(const SimulateOptions& options) {
     std::cerr << "mbstream simulate: warning: " << warning.message << "\n";
   }
 
-  const RunResult result = Simulate(import.model, config);
+  const RunResult result = SimulateWithTarget(import.model, config);
   const RunProvenance provenance{import.model.name, options.model_path,
                                  RunSpecToJson(ToRunSpec(config)), "", ""};
   WriteResultsDirectory(result, provenance, options.out_dir);

@@ -47,7 +47,11 @@ ArkStepIntegrator::ArkStepIntegrator(Variant variant, OdeSystem& system, double 
     CheckSetup(ARKStepSetTableNum(ark, ARKODE_DIRK_NONE, static_cast<ARKODE_ERKTableID>(table_.id)),
                "ARKStepSetTableNum");
   }
-  CheckSetup(ARKStepSStolerances(ark, options.rtol, options.atol), "ARKStepSStolerances");
+  if (options.error_states > 0 && options.error_states < system.size()) {
+    CheckSetup(ARKStepWFtolerances(ark, ErrorWeightCallback), "ARKStepWFtolerances");
+  } else {
+    CheckSetup(ARKStepSStolerances(ark, options.rtol, options.atol), "ARKStepSStolerances");
+  }
   if (options.max_step > 0.0) {
     CheckSetup(ARKStepSetMaxStep(ark, options.max_step), "ARKStepSetMaxStep");
   }

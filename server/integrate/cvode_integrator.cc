@@ -24,7 +24,11 @@ CvodeIntegrator::CvodeIntegrator(Variant variant, OdeSystem& system, double t0, 
   CheckSetup(CVodeInit(cvode, RhsCallback, t0, initial_state()), "CVodeInit");
   callback_data().solver = cvode;
   CheckSetup(CVodeSetUserData(cvode, &callback_data()), "CVodeSetUserData");
-  CheckSetup(CVodeSStolerances(cvode, options.rtol, options.atol), "CVodeSStolerances");
+  if (options.error_states > 0 && options.error_states < system.size()) {
+    CheckSetup(CVodeWFtolerances(cvode, ErrorWeightCallback), "CVodeWFtolerances");
+  } else {
+    CheckSetup(CVodeSStolerances(cvode, options.rtol, options.atol), "CVodeSStolerances");
+  }
   if (options.max_step > 0.0) {
     CheckSetup(CVodeSetMaxStep(cvode, options.max_step), "CVodeSetMaxStep");
   }

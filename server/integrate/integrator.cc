@@ -5,6 +5,7 @@
 
 #include "common/check.h"
 #include "common/format.h"
+#include "server/integrate/appended_quadratures.h"
 #include "server/integrate/arkstep_integrator.h"
 #include "server/integrate/butcher_tables.h"
 #include "server/integrate/cvode_integrator.h"
@@ -105,6 +106,9 @@ std::unique_ptr<Integrator> MakeIntegrator(OdeSystem& system, double t0, const d
                                            const IntegratorOptions& options) {
   CheckIntegratorOptions(options);
   CheckStart(system, t0, y0, options);
+  if (system.num_quadratures() > 0) {
+    return MakeAppendedQuadratureIntegrator(system, t0, y0, options);
+  }
   using sundials::ArkStepIntegrator;
   using sundials::CvodeIntegrator;
   switch (options.method) {

@@ -30,6 +30,9 @@ struct IntegratorOptions {
   // for a later time. Infinity = no stop time.
   double t_final = std::numeric_limits<double>::infinity();
   double divergence_limit = 1e10;  // |y_i| beyond this (or non-finite) = diverged
+  // States under error control: the first `error_states` of y (0 = all). The rest get a
+  // zero error weight (the appended quadrature states; see OdeSystem::num_quadratures).
+  int error_states = 0;
 };
 
 // Checks the options alone, before any system exists: tolerances, steps and the step budget
@@ -84,6 +87,11 @@ class Integrator {
   virtual AdvanceResult AdvanceTo(double t_out, double* y) = 0;
 
   virtual SolverStats stats() const = 0;
+
+  // The system's quadratures (OdeSystem::num_quadratures) at the last time AdvanceTo
+  // reached, from their initial values 0, into q. Returns false, writing nothing, when the
+  // system has none.
+  virtual bool Quadratures(double* /*q*/) { return false; }
 
   // e.g. "CVODE BDF", "ARKODE ERK (Dormand-Prince 7-4-5)", "fixed-step RK4".
   virtual const char* name() const = 0;

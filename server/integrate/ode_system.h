@@ -29,6 +29,14 @@ class OdeSystem {
   // derivative is the following block of "velocity" states (y = [x; v; rest], x' = v).
   // 0 = not second order (the method is then refused with a clear error).
   virtual int num_positions() const { return 0; }
+
+  // Optional quadratures: integrals Q(t) = int g(s, y(s)) ds from t0 (Q(t0) = 0) whose
+  // integrand g does not feed back into f (the work of drives and damping, say). The
+  // integrators append them to the state with a zero error weight, so they never shorten a
+  // step (appended_quadratures.h). Quadrature writes g(t, y) into qdot (num_quadratures()
+  // doubles); codes as Rhs. Must not allocate.
+  virtual int num_quadratures() const { return 0; }
+  virtual int Quadrature(double /*t*/, const double* /*y*/, double* /*qdot*/) { return -1; }
 };
 
 }  // namespace mbstream

@@ -12,4 +12,14 @@ namespace mbstream {
 // non-finite right-hand side, a system too large to decompose densely).
 double LargestEigenvalueEstimate(OdeSystem& system, double t, const double* y);
 
+// Both ends of df/dy's spectrum at (t, y): the largest eigenvalue magnitude (stiffness) and the
+// largest real part (> 0: nearby solutions separate at that local rate, 1/s). Both -1 / 0
+// when it cannot be estimated (`ok` false).
+struct JacobianSpectrum {
+  bool ok = false;
+  double largest_magnitude = -1.0;  // 1/s
+  double largest_real = 0.0;        // 1/s
+};
+JacobianSpectrum EstimateJacobianSpectrum(OdeSystem& system, double t, const double* y);
+
 }  // namespace mbstream

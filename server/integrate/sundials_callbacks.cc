@@ -38,13 +38,17 @@ int FiniteDifferenceJacobian(const CallbackData& data, double t, N_Vector y, N_V
   double* f1 = N_VGetArrayPointer(f_shifted);
   N_VScale(1.0, y, y_shifted);
   for (int j = 0; j < n; ++j) {
+    double* column = SUNDenseMatrix_Column(jac, j);
+    if (ewt[j] == 0.0) {  // a state outside the error control: an appended quadrature,
+      std::fill(column, column + n, 0.0);  // which feeds nothing back
+      continue;
+    }
     const double yj = shifted[j];
     shifted[j] = yj + std::max(std::sqrt(uround) * std::abs(yj), min_inc / ewt[j]);
     const double inc = shifted[j] - yj;  // the increment actually represented
     const int code = data.rhs->Evaluate(t, shifted, f1);
     shifted[j] = yj;
     if (code != 0) return code;
-    double* column = SUNDenseMatrix_Column(jac, j);
     for (int i = 0; i < n; ++i) column[i] = (f1[i] - f0[i]) / inc;
   }
   return 0;
@@ -55,6 +59,24 @@ int FiniteDifferenceJacobian(const CallbackData& data, double t, N_Vector y, N_V
 int RhsCallback(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) noexcept {
   const auto* data = static_cast<const CallbackData*>(user_data);
   return data->rhs->Evaluate(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+}
+
+int ErrorWeightCallback(N_Vector y, N_Vector ewt, void* user_data) noexcept {
+  const auto* data = static_cast<const CallbackData*>(user_data);
+  const double* values = N_VGetArrayPointer(y);
+  double* weights = N_VGetArrayPointer(ewt);
+  const int n = static_cast<int>(N_VGetLength(y));
+  for (int i = 0; i < n; ++i) {
+    const double scale = data->rtol * std::abs(values[i]) + data->atol;
+    if (i >= data->error_states) {
+      weights[i] = 0.0;
+    } else if (!(scale > 0.0)) {
+      return -1;
+    } else {
+      weights[i] = 1.0 / scale;
+    }
+  }
+  return 0;
 }
 
 int DenseJacobianCallback(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix jac, void* user_data,

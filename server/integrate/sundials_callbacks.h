@@ -16,11 +16,18 @@ struct CallbackData {
   void* solver = nullptr;  // the CVODE or ARKStep memory (for the finite differences)
   Family family = Family::kCvode;
   bool own_jacobian = false;  // the system's Jacobian, not finite differences
+  // For ErrorWeightCallback: the tolerances and how many leading states they apply to.
+  double rtol = 0.0, atol = 0.0;
+  int error_states = 0;
 };
 
 // CVRhsFn / ARKRhsFn. Like every callback handed to SUNDIALS it lets no exception out: the
 // RhsAdapter turns one into an unrecoverable failure that keeps its message.
 int RhsCallback(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) noexcept;
+
+// CVEwtFn / ARKEwtFn: SUNDIALS' scalar-tolerance weights 1 / (rtol |y_i| + atol) for the first
+// error_states states, 0 for the rest (they take no part in the error control).
+int ErrorWeightCallback(N_Vector y, N_Vector ewt, void* user_data) noexcept;
 
 // CVLsJacFn / ARKLsJacFn for a SUNDenseMatrix: the system's own Jacobian, or else forward
 // differences computed as SUNDIALS' internal ones (cvLsDenseDQJac / arkLsDenseDQJac: the

@@ -106,6 +106,8 @@ std::string StatsJson(const RunResult& result, const RunProvenance& provenance) 
       {"tcp_error_max_m", NumberOrNull(s.tcp_error_max)},
       {"energy_error_max_rel", NumberOrNull(s.energy_error_max)},
       {"energy_work_approximate", s.energy_work_approximate},
+      {"energy_work",
+       s.energy_work.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.energy_work)},
       {"drift_position_max_m", NumberOrNull(s.drift_position_max)},
       {"drift_orientation_max_rad", NumberOrNull(s.drift_orientation_max)},
       {"drift_velocity_max", NumberOrNull(s.drift_velocity_max)},
@@ -114,6 +116,10 @@ std::string StatsJson(const RunResult& result, const RunProvenance& provenance) 
   j["trust"] = s.trust == Trust::kNotAssessed ? nlohmann::ordered_json(nullptr)
                                               : nlohmann::ordered_json(TrustName(s.trust));
   j["trust_reason"] = s.trust_reason;
+  j["target_met"] =
+      s.target_met ? nlohmann::ordered_json(*s.target_met) : nlohmann::ordered_json(nullptr);
+  j["choice"] = s.choice_json.empty() ? nlohmann::ordered_json(nullptr)
+                                      : nlohmann::ordered_json::parse(s.choice_json);
   j["warnings"] = s.warnings;
   j["budget"] = {{"max_steps", s.max_steps}, {"max_cpu_s", s.max_cpu_s}};
   j["joints"] = result.joint_names;

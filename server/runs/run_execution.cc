@@ -4,9 +4,9 @@
 #include <chrono>
 
 #include "common/check.h"
+#include "server/choose/target_run.h"
 #include "server/runs/run_manager.h"
 #include "server/runs/unix_time.h"
-#include "server/sim/simulate.h"
 #include "server/store/frame_chunks.h"
 #include "server/store/store.h"
 #include "server/wire/frame_conversion.h"
@@ -83,7 +83,8 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
   spdlog::info("run {} started", run->id());
 
   PublishingSink sink(run.get(), store_, clock_);
-  const RunResult result = Simulate(run->model().model, run->config(), &sink, &run->cancel);
+  const RunResult result =
+      SimulateWithTarget(run->model().model, run->config(), &sink, &run->cancel);
   const RunStats& stats = result.stats;
   outcome.state = RunStateFromStatus(stats.status);
   outcome.message = stats.message;

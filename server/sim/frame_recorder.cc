@@ -32,7 +32,14 @@ FrameRecorder::FrameRecorder(const Model& model, const DriveSet& drives, RunResu
   if (result_.has_energy) {
     result_.stats.energy_error_max = 0.0;
     result_.stats.energy_work_approximate = drives_.any_work();
+    result_.stats.energy_work = drives_.any_work() ? kEnergyWorkTrapezoid : kEnergyWorkNone;
   }
+}
+
+void FrameRecorder::UseIntegratedWork() {
+  integrated_work_ = true;
+  result_.stats.energy_work_approximate = false;
+  result_.stats.energy_work = kEnergyWorkIntegrated;
 }
 
 bool FrameRecorder::Record(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
@@ -84,7 +91,7 @@ bool FrameRecorder::Record(double t, const Eigen::VectorXd& q, const Eigen::Vect
 }
 
 // |E(t) - E(0) - W(t)| relative to the energy scale, W = work of drives and damping
-// (trapezoid rule over the output samples).
+// (integrated with the ODE, or the trapezoid rule over the output samples).
 void FrameRecorder::TrackEnergy(double t, double energy, const Eigen::VectorXd& qd,
                                 const Eigen::VectorXd* effort) {
   double power = 0.0;
@@ -94,7 +101,8 @@ void FrameRecorder::TrackEnergy(double t, double energy, const Eigen::VectorXd& 
   }
   if (result_.first_seq == 0 && result_.t.size() == 1) {
     energy0_ = energy;
-  } else {
+    if (integrated_work_) work_ = 0.0;
+  } else if (!integrated_work_) {
     work_ += 0.5 * (power + last_power_) * (t - last_t_);
   }
   last_power_ = power;

@@ -33,6 +33,12 @@ class FrameRecorder {
   bool Record(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
               const Eigen::VectorXd* effort, const FrameExtras* extras = nullptr);
 
+  // The formulation integrates the work of drives and damping itself (a quadrature of its
+  // ODE): the energy balance then uses the value given by SetWork before each Record
+  // instead of the trapezoid rule over the output frames. Call before the first frame.
+  void UseIntegratedWork();
+  void SetWork(double work) { work_ = work; }
+
  private:
   void TrackEnergy(double t, double energy, const Eigen::VectorXd& qd,
                    const Eigen::VectorXd* effort);
@@ -45,6 +51,7 @@ class FrameRecorder {
   Eigen::VectorXd q_ref_;
   const bool track_tcp_error_;
   const bool latest_only_;
+  bool integrated_work_ = false;
   double energy0_ = 0.0, work_ = 0.0, last_power_ = 0.0, last_t_ = 0.0, scale_ = 0.0;
 };
 

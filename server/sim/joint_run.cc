@@ -30,6 +30,7 @@ class JointSpaceSource : public FrameSource {
   }
 
   bool Record(double t, FrameRecorder& recorder) override {
+    if (ode_.num_quadratures() > 0 && integrator_.Quadratures(&work_)) recorder.SetWork(work_);
     const bool finite = ode_.EvaluateOutputs(t, y_.data(), need_effort_);
     return finite &&
            recorder.Record(t, ode_.q(), ode_.qd(), need_effort_ ? &ode_.drive_effort() : nullptr);
@@ -46,6 +47,7 @@ class JointSpaceSource : public FrameSource {
   Eigen::VectorXd& y_;
   const bool need_effort_;
   BudgetTracking* budget_;
+  double work_ = 0.0;  // J, the integrated work of drives and damping (when tracked)
 };
 
 }  // namespace
@@ -54,7 +56,15 @@ void RunJointSpace(const Model& model, const RunConfig& config, const DriveSet& 
                    const std::vector<double>& times, FrameRecorder& recorder, RunResult& result,
                    FrameSink* sink, const std::atomic<bool>* cancel, BudgetTracking* budget) {
   const int n = model.num_dofs();
-  JointSpaceOde ode(model, drives);
+  // The work as a state of the ODE where the scene dissipates: with damping the trapezoid
+  // rule over the frames would be most of the "energy error". Without damping the drives'
+  // work keeps the trapezoid (RunStats::energy_work says which), so that those runs take
+  // exactly the steps they always took (an appended state changes the error norm's length).
+  bool damped = false;
+  for (int i = 0; i < drives.size(); ++i) damped = damped || drives.damping(i) > 0.0;
+  const bool track_work = result.has_energy && damped;
+  JointSpaceOde ode(model, drives, track_work);
+  if (track_work) recorder.UseIntegratedWork();
   result.stats.equations = ode.size();
   result.stats.jacobian_nnz = ode.JacobianNonZeros();
   Eigen::VectorXd y = InitialJointState(config, drives, n);

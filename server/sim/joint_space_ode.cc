@@ -10,10 +10,11 @@
 
 namespace mbstream {
 
-JointSpaceOde::JointSpaceOde(const Model& model, const DriveSet& drives)
+JointSpaceOde::JointSpaceOde(const Model& model, const DriveSet& drives, bool track_work)
     : model_(model),
       drives_(drives),
       n_(model.num_dofs()),
+      track_work_(track_work),
       data_(model),
       q_(Eigen::VectorXd::Zero(n_)),
       qd_(Eigen::VectorXd::Zero(n_)),
@@ -113,6 +114,20 @@ int JointSpaceOde::Rhs(double t, const double* y, double* ydot) {
     ydot[i] = qd_(i);
     ydot[n_ + i] = qdd_(i);
   }
+  return 0;
+}
+
+int JointSpaceOde::Quadrature(double t, const double* y, double* qdot) {
+  if (!track_work_) return -1;
+  if (drives_.num_prescribed() > 0) {  // their efforts need the dynamics
+    if (!Evaluate(t, y)) return 1;
+    ComputePrescribedEfforts();
+  } else {
+    EvaluateState(t, y);
+  }
+  double power = 0.0;
+  for (int i = 0; i < n_; ++i) power += (effort_(i) - drives_.damping(i) * qd_(i)) * qd_(i);
+  qdot[0] = power;
   return 0;
 }
 

@@ -21,8 +21,9 @@ namespace mbstream {
 
 class JointSpaceOde : public OdeSystem {
  public:
-  // Keeps references to model and drives, which must outlive it.
-  JointSpaceOde(const Model& model, const DriveSet& drives);
+  // Keeps references to model and drives, which must outlive it. `track_work`: one
+  // quadrature, the work W(t) of the drives and the joint damping (see Quadrature).
+  JointSpaceOde(const Model& model, const DriveSet& drives, bool track_work = false);
 
   int size() const override { return 2 * n_; }
   int Rhs(double t, const double* y, double* ydot) override;
@@ -36,6 +37,13 @@ class JointSpaceOde : public OdeSystem {
   // evaluations of differencing f. Allocates nothing.
   bool HasJacobian() const override { return free_.size() == static_cast<size_t>(n_); }
   int Jacobian(double t, const double* y, const double* fy, double* jac_col_major) override;
+
+  // W' = sum_i (effort_i - damping_i qd_i) qd_i, J/s: the power of the drives (the
+  // prescribed joints' by inverse dynamics) less the joint damping's. Integrated with the
+  // ODE, W makes the energy balance E(t) - E(0) - W(t) a measure of the integrator's error,
+  // not of a quadrature over the output frames. Allocates nothing.
+  int num_quadratures() const override { return track_work_ ? 1 : 0; }
+  int Quadrature(double t, const double* y, double* qdot) override;
 
   // Structural non-zeros of df/dy: the identity of q' = qd, and full rows of the free
   // joints' accelerations.
@@ -65,6 +73,7 @@ class JointSpaceOde : public OdeSystem {
   const Model& model_;
   const DriveSet& drives_;
   const int n_;
+  const bool track_work_;
   Data data_;
   Eigen::VectorXd q_, qd_, qdd_, effort_, tau_;
   std::vector<int> free_;                // indices of non-prescribed joints

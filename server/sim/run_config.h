@@ -24,6 +24,16 @@ enum class Formulation {
   kBodyBaumgarte,  // body coordinates, stabilised acceleration-level constraints (ODE)
 };
 
+// An accuracy the run must reach, instead of (or besides) a method and tolerances: the
+// server chooses them (server/choose/). 0 = not asked.
+struct AccuracyTarget {
+  double tcp_error_m = 0.0;       // m, largest TCP error over the output frames
+  double joint_error_rad = 0.0;   // rad (m for prismatic joints), largest joint error
+  double energy_error_rel = 0.0;  // relative energy-balance error (RunStats::energy_error_max)
+
+  bool any() const { return tcp_error_m > 0.0 || joint_error_rad > 0.0 || energy_error_rel > 0.0; }
+};
+
 struct RunConfig {
   double duration = 20.0;         // s
   double output_interval = 0.05;  // s between output frames (first frame at t = 0)
@@ -45,6 +55,11 @@ struct RunConfig {
   // DefaultMaxCpuSeconds).
   long max_steps = 0;      // internal integrator steps
   double max_cpu_s = 0.0;  // s of CPU time of the run's thread
+  // The accuracy target (none by default). With method_auto the server chooses the method
+  // and tolerances for it; with a method given, only the tolerances.
+  AccuracyTarget target;
+  bool method_auto = false;  // method "auto": chosen for the target (needs one)
+  bool verify = true;        // check the achieved error after a target run
 };
 
 const char* FormulationName(Formulation formulation);  // "auto", "kinematic", "joint", ...

@@ -1,12 +1,21 @@
 // What a run produces: output frames, statistics, accuracy figures and its status.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "server/integrate/integrator.h"
 
 namespace mbstream {
+
+// RunStats::energy_work.
+inline constexpr char kEnergyWorkNone[] = "none: no drive or damping does work";
+inline constexpr char kEnergyWorkIntegrated[] =
+    "integrated: a quadrature of the ODE, advanced with its states by the run's method "
+    "outside the error control";
+inline constexpr char kEnergyWorkTrapezoid[] =
+    "trapezoid: the trapezoid rule over the output frames (an approximation of its own)";
 
 enum class RunStatus {
   kFinished,
@@ -55,6 +64,9 @@ struct RunStats {
   double tcp_error_max = -1.0;     // m, TCP against direct kinematics of the prescribed motion
   double energy_error_max = -1.0;  // relative energy-balance error over the run
   bool energy_work_approximate = false;  // work of drives/damping integrated from outputs
+  // How the work W of drives and damping in the energy balance E(t) - E(0) - W(t) was
+  // computed: kEnergyWork* below ("" when there is no energy balance).
+  std::string energy_work;
 
   // Constraint drift of the body formulations: the largest violation over the output frames
   // (negative = not applicable: the formulation has no constraints).
@@ -68,6 +80,12 @@ struct RunStats {
   std::vector<std::string> warnings;  // the inputs' sanity warnings (input_sanity.h)
   double max_cpu_s = 0.0;             // s, the run's CPU budget (resolved)
   long max_steps = 0;                 // the run's step budget (resolved)
+
+  // A run with an accuracy target (RunConfig::target): whether the verification found it met
+  // (empty: not verified), and the choice with its reasoning and the check, as a JSON object
+  // (server/choose/choice_json.h; "" when the run had no target).
+  std::optional<bool> target_met;
+  std::string choice_json;
 };
 
 // Frame-major arrays; frame k has time t[k], joints q[k*n .. k*n+n-1], and so on.

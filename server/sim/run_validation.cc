@@ -64,6 +64,19 @@ FormulationChoice ValidateRun(const Model& model, const RunConfig& config) {
 FormulationChoice ValidateRun(const Model& model, const RunConfig& config, const DriveSet& drives) {
   CheckShape(model, config);
   const FormulationChoice choice = ChooseFormulation(config, drives);
+  if (config.target.any() && IsBodyFormulation(choice.formulation)) {
+    throw InputError(std::string("an accuracy target is met with formulation auto, kinematic or "
+                                 "joint, not ") +
+                     FormulationName(choice.formulation) +
+                     ": leave formulation out (auto), or drop the target and give method and "
+                     "tolerances");
+  }
+  if (config.target.any() && (config.method == Method::kRk4 || config.method == Method::kEuler) &&
+      !config.method_auto) {
+    throw InputError(std::string("an accuracy target chooses tolerances, and method ") +
+                     MethodName(config.method) +
+                     " has none (a fixed step): use method auto (or bdf, adams, erk, dirk)");
+  }
   if (choice.formulation == Formulation::kKinematic) return choice;  // nothing integrated
   CheckMethodFor(config, choice);
   if (IsBodyFormulation(choice.formulation)) CheckBodyFormulationHandles(model);

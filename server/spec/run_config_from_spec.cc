@@ -307,8 +307,11 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& j
     check.Fail("formulation",
                "unknown name " + Quote(spec.formulation()) + "; give one of " + FormulationNames());
   }
-  if (!spec.method().empty() && !ParseMethod(spec.method(), &config.method)) {
-    check.Fail("method", "unknown name " + Quote(spec.method()) + "; give one of " + MethodNames());
+  if (spec.method() == "auto") {
+    config.method_auto = true;
+  } else if (!spec.method().empty() && !ParseMethod(spec.method(), &config.method)) {
+    check.Fail("method", "unknown name " + Quote(spec.method()) + "; give one of " + MethodNames() +
+                             ", or auto with a target");
   }
   config.erk_table = check.Name(spec.erk_table(), "erk_table");
   if (spec.has_rtol()) {
@@ -361,6 +364,34 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& j
                        "give the most CPU seconds the run may use, e.g. 60, or leave it out "
                        "for the default budget");
   }
+  if (spec.has_target()) {
+    const v1::Target& target = spec.target();
+    const std::string advice =
+        "give the largest error the run may have, e.g. 1e-5, or leave it out";
+    if (target.has_tcp_error_m()) {
+      config.target.tcp_error_m =
+          check.Positive(target.tcp_error_m(), "target.tcp_error_m", "m", advice);
+    }
+    if (target.has_joint_error_rad()) {
+      config.target.joint_error_rad =
+          check.Positive(target.joint_error_rad(), "target.joint_error_rad", "rad", advice);
+    }
+    if (target.has_energy_error_rel()) {
+      config.target.energy_error_rel =
+          check.Positive(target.energy_error_rel(), "target.energy_error_rel", "relative", advice);
+    }
+    if (!config.target.any()) {
+      check.Fail("target", "is empty; give tcp_error_m, joint_error_rad or energy_error_rel");
+    }
+    if (spec.method().empty()) config.method_auto = true;
+  }
+  if (config.method_auto && !config.target.any()) {
+    check.Fail("method",
+               "auto chooses the method for an accuracy target, and the spec has none; "
+               "give target.tcp_error_m (or joint_error_rad, energy_error_rel), or a "
+               "method");
+  }
+  config.verify = spec.has_verify() ? spec.verify() : true;
   check.NonNegative(spec.realtime(), "realtime", "simulated s per wall-clock s",
                     "give 0 for as fast as possible or 1 for real time");
   if (spec.realtime() != 0.0 &&

@@ -68,7 +68,18 @@ v1::RunSpec ToRunSpec(const RunConfig& config) {
   spec.set_output_interval_s(config.output_interval);
   spec.set_max_step_s(config.max_step);
   spec.set_formulation(FormulationName(config.formulation));
-  spec.set_method(MethodName(config.method));
+  spec.set_method(config.method_auto ? "auto" : MethodName(config.method));
+  if (config.target.any()) {
+    v1::Target* target = spec.mutable_target();
+    if (config.target.tcp_error_m > 0.0) target->set_tcp_error_m(config.target.tcp_error_m);
+    if (config.target.joint_error_rad > 0.0) {
+      target->set_joint_error_rad(config.target.joint_error_rad);
+    }
+    if (config.target.energy_error_rel > 0.0) {
+      target->set_energy_error_rel(config.target.energy_error_rel);
+    }
+  }
+  spec.set_verify(config.verify);
   spec.set_erk_table(config.erk_table);
   spec.set_rtol(config.rtol);
   spec.set_atol(config.atol);

@@ -58,6 +58,9 @@ v1::RunStats StatsToProto(const RunStats& s) {
   out.set_tcp_error_max_m(FiniteOr(s.tcp_error_max, -1.0));
   out.set_energy_error_max(FiniteOr(s.energy_error_max, -1.0));
   out.set_energy_work_approximate(s.energy_work_approximate);
+  out.set_energy_work(s.energy_work);
+  if (s.target_met) out.set_target_met(*s.target_met);
+  out.set_choice_json(s.choice_json);
   out.set_drift_position_max_m(FiniteOr(s.drift_position_max, -1.0));
   out.set_drift_orientation_max_rad(FiniteOr(s.drift_orientation_max, -1.0));
   out.set_drift_velocity_max(FiniteOr(s.drift_velocity_max, -1.0));
@@ -119,6 +122,9 @@ RunStats StatsFromProto(const v1::RunInfo& info) {
   s.tcp_error_max = in.tcp_error_max_m();
   s.energy_error_max = in.energy_error_max();
   s.energy_work_approximate = in.energy_work_approximate();
+  s.energy_work = in.energy_work();
+  if (in.has_target_met()) s.target_met = in.target_met();
+  s.choice_json = in.choice_json();
   s.drift_position_max = in.drift_position_max_m();
   s.drift_orientation_max = in.drift_orientation_max_rad();
   s.drift_velocity_max = in.drift_velocity_max();

@@ -1,6 +1,8 @@
 #include "tests/common/test_models.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "server/model/model_builder.h"
 
@@ -26,6 +28,27 @@ RigidInertia Box(double m, const Vector3d& com, const Vector3d& size) {
 }
 
 }  // namespace
+
+Model SevenJointArm() {
+  ModelBuilder b("seven", "base");
+  const Vector3d X = Vector3d::UnitX(), Y = Vector3d::UnitY(), Z = Vector3d::UnitZ();
+  const Vector3d axes[7] = {Z, Y, Z, Y, Z, Y, X};
+  const double masses[7] = {12, 9, 7, 5, 3, 1.5, 0.4};
+  const double lengths[7] = {0.3, 0.45, 0.1, 0.4, 0.1, 0.2, 0.05};
+  std::string parent = "base";
+  for (int i = 0; i < 7; ++i) {
+    const std::string link = "l" + std::to_string(i + 1);
+    const std::string joint = "j" + std::to_string(i + 1);
+    const double along = i == 0 ? 0.0 : lengths[i - 1];
+    b.AddMovingLink(
+        link, parent, MakeJoint(joint.c_str(), JointType::kRevolute, {0, 0, along}, axes[i]),
+        Box(masses[i], {0.01 * i, 0, 0.5 * lengths[i]}, {0.08, 0.08, std::max(0.05, lengths[i])}));
+    parent = link;
+  }
+  b.AddPoint("tcp", parent, {0.1, 0, 0});
+  b.SetTcp("tcp");
+  return b.Build();
+}
 
 Model Irb1600Model() {
   ModelBuilder b("irb1600", "base_link");

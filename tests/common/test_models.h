@@ -13,6 +13,11 @@ namespace mbstream::testing {
 // named point "tcp" at (0.065, 0, 0) in link6; armature and damping zero.
 Model Irb1600Model();
 
+// A 7-joint arm (revolute z, y, z, y, z, y, x) of other proportions and masses than the
+// IRB 1600 (12, 9, 7, 5, 3, 1.5, 0.4 kg), with a named point "tcp" 0.1 m beyond the last
+// joint: a model the accuracy-target choice was not developed on.
+Model SevenJointArm();
+
 // A branching tree with revolute and prismatic joints about skew axes, fixed links and
 // armature: exercises everything the algorithms support.
 Model BranchingModel();

@@ -7,9 +7,17 @@ server measured. Prints the table and saves the chart as a PNG (matplotlib, Agg 
 
     work_precision.py --server ADDR [--methods bdf,adams,erk,dirk] [--rtols 1e-3,...]
                       [--duration S] [--out work_precision.png]
+
+With --target M it asks instead for an accuracy: each of the four reference scenes
+(seed-run, seed-servo, passive-swing, stiff-servo) runs with "target": {"tcp_error_m": M} and
+method "auto", and the server's choice (method, tolerance, why, the CPU time of choice + run +
+check) and its verification (the achieved error, target met or not) are printed:
+
+    work_precision.py --server ADDR --target 1e-5 [--duration S]
 """
 import argparse
 import concurrent.futures
+import json
 import sys
 
 import numpy as np
@@ -18,6 +26,45 @@ import _common
 import mbstream_client as mb
 
 REFERENCE = {"method": "bdf", "rtol": 1e-12, "atol": 1e-14}
+SCENES = ("seed-run", "seed-servo", "passive-swing", "stiff-servo")
+
+
+def run_targets(args):
+    """--target: each scene with an accuracy target; print the choice and its verification."""
+    with mb.connect(args.server, ca_file=args.ca, token=args.token) as server:
+        runs = {}
+        for scene in SCENES:
+            overrides = {"duration": args.duration} if args.duration_given else {}
+            spec = mb.load_spec(_common.model_file("irb1600", scene + ".json"),
+                                target={"tcp_error_m": args.target}, method="auto",
+                                **overrides)
+            runs[scene] = server.run("irb1600", spec)
+        results = {scene: run.result() for scene, run in runs.items()}
+    print("TCP target %g m" % args.target)
+    print("%-14s %-9s %-24s %10s %-10s %10s" % ("scene", "state", "choice", "achieved_m",
+                                                 "target_met", "cpu_ms"))
+    for scene, result in results.items():
+        stats = result.stats
+        choice = json.loads(stats["choice_json"]) if stats.get("choice_json") else {}
+        pick = choice.get("pick", {})
+        if pick.get("method", "none") == "none":
+            what = "closed form"
+        else:
+            what = "%s%s rtol %.1e" % (pick["method"],
+                                       "-" + pick["erk_table"] if pick.get("erk_table") else "",
+                                       pick["rtol"])
+        check = choice.get("verification", {})
+        achieved = (check.get("achieved") or {}).get("tcp_m")
+        met = stats.get("target_met")
+        print("%-14s %-9s %-24s %10s %-10s %10.2f" % (
+            scene, result.state, what, "%.2e" % achieved if achieved is not None else "-",
+            "not verified" if met is None else str(met).lower(),
+            1e3 * choice.get("cpu_s", {}).get("total", 0.0)))
+        print("    why: %s" % choice.get("reason", ""))
+        print("    check: %s" % check.get("how", ""))
+        if stats.get("message"):
+            print("    message: %s" % stats["message"])
+    return 0 if all(r.finished for r in results.values()) else 1
 
 
 def main():
@@ -29,7 +76,13 @@ def main():
                         help="relative tolerances (atol = rtol / 100)")
     parser.add_argument("--duration", type=float, default=5.0, help="s, simulated per run")
     parser.add_argument("--out", default="work_precision.png", help="PNG file to write")
+    parser.add_argument("--target", type=float,
+                        help="m: instead of the chart, run each reference scene with this TCP "
+                             "accuracy target and print the choice and its verification")
     args = parser.parse_args()
+    args.duration_given = "--duration" in sys.argv
+    if args.target is not None:
+        return run_targets(args)
     methods = args.methods.split(",")
     rtols = [float(r) for r in args.rtols.split(",")]
     spec = mb.load_spec(_common.model_file("irb1600", "seed-servo.json"), duration=args.duration)

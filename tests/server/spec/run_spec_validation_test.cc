@@ -294,5 +294,38 @@ TEST(RunSpecValidationEdgeTest, MessagesNameTheSource) {
   }
 }
 
+INSTANTIATE_TEST_SUITE_P(
+    Target, RunSpecValidationTest,
+    ::testing::Values(
+        InvalidSpec{"NegativeTcpTarget", R"({"target": {"tcp_error_m": -1e-5}})",
+                    "test.json: target.tcp_error_m: must be > 0 (m), got -1e-05",
+                    "give the largest error the run may have"},
+        InvalidSpec{"ZeroJointTarget", R"({"target": {"joint_error_rad": 0}})",
+                    "test.json: target.joint_error_rad: must be > 0 (rad), got 0",
+                    "give the largest error the run may have"},
+        InvalidSpec{"InfiniteEnergyTarget", R"({"target": {"energy_error_rel": "Infinity"}})",
+                    "test.json: target.energy_error_rel: is inf, not a finite number",
+                    "give a finite value"},
+        InvalidSpec{"EmptyTarget", R"({"target": {}})", "test.json: target: is empty",
+                    "give tcp_error_m, joint_error_rad or energy_error_rel"},
+        InvalidSpec{"AutoWithoutTarget", R"({"method": "auto"})",
+                    "test.json: method: auto chooses the method for an accuracy target",
+                    "give target.tcp_error_m"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST(RunSpecTargetTest, TargetWithoutMethodIsAuto) {
+  const RunConfig config = ToRunConfig(
+      ParseRunSpecJson(R"({"target": {"tcp_error_m": 1e-5}, "verify": false})", "t.json"), kJoints,
+      "t.json");
+  EXPECT_TRUE(config.method_auto);
+  EXPECT_DOUBLE_EQ(config.target.tcp_error_m, 1e-5);
+  EXPECT_FALSE(config.verify);
+  // And back: the recorded spec keeps the target and "auto".
+  const v1::RunSpec spec = ToRunSpec(config);
+  EXPECT_EQ(spec.method(), "auto");
+  EXPECT_DOUBLE_EQ(spec.target().tcp_error_m(), 1e-5);
+  EXPECT_FALSE(spec.target().has_joint_error_rad());
+}
+
 }  // namespace
 }  // namespace mbstream

@@ -1,0 +1,230 @@
+// The accuracy-target study (issue 18): for the four reference scenes and TCP targets 1e-3,
+// 1e-5, 1e-7, 1e-9 m, runs SimulateWithTarget (choice + run + verification) and reports
+//   - the choice (method, rtol) and whether its own check found the target met;
+//   - the achieved TCP error against the work-precision study's reference solution (not only
+//     the choice's own check): ERK Fehlberg 13-7-8 at rtol 1e-14 (stiff-servo: CVODE BDF at
+//     rtol 1e-12), seed-run against its closed form;
+//   - the CPU time of choice + run + verification (median of 3);
+//   - the cheapest run in docs/work_precision.csv whose error meets the target, and its CPU
+//     time re-measured now on this build (median of 3), and the ratio of the two.
+// passive-swing is chaotic: the study trusts its reference only over [0, 4.6] s, so its runs
+// here last 4.6 s (the CSV's cheapest configuration is re-run for 4.6 s too).
+//
+//   build/bench/target_study --csv docs/work_precision.csv > table.md
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "common/check.h"
+#include "server/choose/frame_track.h"
+#include "server/choose/target_run.h"
+#include "server/parse/urdf_import.h"
+#include "server/sim/simulate.h"
+#include "server/spec/run_spec_json.h"
+
+namespace mbstream {
+namespace {
+
+constexpr double kPassiveSwingWindow = 4.6;  // s, docs/accuracy.md
+
+struct CsvRow {
+  std::string scene, formulation, method;
+  double rtol = 0.0, atol = 0.0, step = 0.0, error = 0.0, cpu_s = 0.0;
+  std::string status;
+};
+
+std::vector<std::string> SplitCsv(const std::string& line) {
+  std::vector<std::string> fields;
+  std::stringstream stream(line);
+  std::string field;
+  while (std::getline(stream, field, ',')) fields.push_back(field);
+  if (!line.empty() && line.back() == ',') fields.emplace_back();
+  return fields;
+}
+
+double Number(const std::string& text) { return text.empty() ? 0.0 : std::stod(text); }
+
+std::vector<CsvRow> ReadCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot read " + path);
+  std::string line;
+  std::getline(in, line);  // header
+  std::vector<CsvRow> rows;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> f = SplitCsv(line);
+    if (f.size() < 11) continue;
+    CsvRow row{f[0],         f[1],         f[2],         Number(f[3]), Number(f[10]),
+               Number(f[4]), Number(f[5]), Number(f[6]), f[9]};
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// The cheapest FINISHED joint/kinematic-formulation row of `scene` whose error meets `target`.
+const CsvRow* CheapestMeeting(const std::vector<CsvRow>& rows, const std::string& scene,
+                              double target) {
+  const CsvRow* best = nullptr;
+  for (const CsvRow& row : rows) {
+    if (row.scene != scene || row.status != "FINISHED" || row.error > target) continue;
+    if (row.formulation != "joint" && row.formulation != "kinematic") continue;
+    if (best == nullptr || row.cpu_s < best->cpu_s) best = &row;
+  }
+  return best;
+}
+
+RunConfig ConfigOf(RunConfig config, const CsvRow& row) {
+  ParseFormulation(row.formulation, &config.formulation);
+  std::string method = row.method;
+  config.erk_table = "";
+  if (method == "erk-verner") {
+    method = "erk";
+    config.erk_table = "verner";
+  }
+  if (method != "none") ParseMethod(method, &config.method);
+  if (row.rtol > 0.0) {
+    config.rtol = row.rtol;
+    config.atol = row.atol > 0.0 ? row.atol : row.rtol / 100;
+  }
+  if (row.step > 0.0) config.fixed_step = row.step;
+  config.max_steps = 2'000'000;
+  return config;
+}
+
+double Median3(std::array<double, 3> values) {
+  std::sort(values.begin(), values.end());
+  return values[1];
+}
+
+std::string Describe(const CsvRow& row) {
+  std::string text = row.formulation == "kinematic" ? "kinematic" : row.method;
+  char buffer[64];
+  if (row.rtol > 0.0) {
+    std::snprintf(buffer, sizeof(buffer), " rtol %.0e", row.rtol);
+    text += buffer;
+  } else if (row.step > 0.0) {
+    std::snprintf(buffer, sizeof(buffer), " h %.0e s", row.step);
+    text += buffer;
+  }
+  return text;
+}
+
+int Main(int argc, char** argv) {
+  CLI::App app{"accuracy-target study: the choice against the work-precision study"};
+  std::string csv = std::string(MBSTREAM_SOURCE_DIR) + "/docs/work_precision.csv";
+  std::vector<std::string> scenes{"seed-run", "seed-servo", "stiff-servo", "passive-swing"};
+  std::vector<double> targets{1e-3, 1e-5, 1e-7, 1e-9};
+  app.add_option("--csv", csv, "the work-precision study's CSV");
+  app.add_option("--scenes", scenes, "scenes")->delimiter(',');
+  app.add_option("--targets", targets, "TCP targets (m)")->delimiter(',');
+  CLI11_PARSE(app, argc, argv);
+  const std::string dir = std::string(MBSTREAM_SOURCE_DIR) + "/models/irb1600/";
+  const Model model = ImportUrdfFile(dir + "irb1600.urdf").model;
+  std::vector<std::string> joints;
+  for (const Body& body : model.bodies) joints.push_back(body.joint.name);
+  const std::vector<CsvRow> rows = ReadCsv(csv);
+
+  std::printf(
+      "| scene | target (m) | choice | achieved vs reference (m) | met | own check | cost "
+      "(ms): choice + run + check | cheapest in CSV | its cost now (ms) | ratio |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n");
+  int met_count = 0, cases = 0, within = 0, known = 0;
+  for (const std::string& scene : scenes) {
+    RunConfig base = ToRunConfig(LoadRunSpecFile(dir + scene + ".json"), joints, scene);
+    if (scene == "passive-swing") base.duration = kPassiveSwingWindow;
+    RunResult reference;
+    const bool closed_form = scene == "seed-run";
+    if (!closed_form) {
+      RunConfig ref = base;
+      ref.formulation = Formulation::kJoint;
+      const bool stiff = scene == "stiff-servo";
+      ref.method = stiff ? Method::kBdf : Method::kErk;
+      ref.erk_table = stiff ? "" : "fehlberg";
+      ref.rtol = stiff ? 1e-12 : 1e-14;
+      ref.atol = stiff ? 1e-14 : 1e-16;
+      ref.max_steps = 20'000'000;
+      reference = Simulate(model, ref);
+    }
+    for (double target : targets) {
+      RunConfig asked = base;
+      asked.target.tcp_error_m = target;
+      asked.method_auto = true;
+      std::array<double, 3> totals{};
+      RunResult result;
+      for (double& total : totals) {
+        result = SimulateWithTarget(model, asked);
+        total = nlohmann::json::parse(result.stats.choice_json)["cpu_s"]["total"].get<double>();
+      }
+      const nlohmann::json choice = nlohmann::json::parse(result.stats.choice_json);
+      const double achieved = closed_form
+                                  ? result.stats.tcp_error_max
+                                  : CompareTracks(TrackOf(result), TrackOf(reference)).tcp_m;
+      const bool met = result.stats.status == RunStatus::kFinished && achieved <= target;
+      const double cost = Median3(totals);
+      const CsvRow* cheapest = CheapestMeeting(rows, scene, target);
+      double cheapest_now = -1.0;
+      if (cheapest != nullptr) {
+        const RunConfig config = ConfigOf(base, *cheapest);
+        std::array<double, 3> cpu{};
+        for (double& c : cpu) c = Simulate(model, config).stats.cpu_s;
+        cheapest_now = Median3(cpu);
+      }
+      char pick[96];
+      const nlohmann::json& p = choice["pick"];
+      if (p["method"] == "none") {
+        std::snprintf(pick, sizeof(pick), "kinematic (closed form)");
+      } else {
+        const std::string table = p["erk_table"].get<std::string>();
+        std::snprintf(pick, sizeof(pick), "%s%s rtol %.1e", p["method"].get<std::string>().c_str(),
+                      table.empty() ? "" : ("-" + table).c_str(), p["rtol"].get<double>());
+      }
+      const std::string own = !result.stats.target_met   ? "not verified"
+                              : *result.stats.target_met ? "met"
+                                                         : "missed";
+      const nlohmann::json& c = choice["cpu_s"];
+      char cheap[160] = "none meets it";
+      char ratio[32] = "-";
+      if (cheapest != nullptr) {
+        std::snprintf(cheap, sizeof(cheap), "%s (%.3g ms%s)", Describe(*cheapest).c_str(),
+                      1e3 * cheapest->cpu_s, scene == "passive-swing" ? " for 20 s" : "");
+        std::snprintf(ratio, sizeof(ratio), "%.2f", cost / cheapest_now);
+        ++known;
+        if (cost <= 3.0 * cheapest_now) ++within;
+      }
+      std::printf(
+          "| %s | %.0e | %s | %.2e | %s | %s | %.3g = %.2g + %.2g + %.2g | %s | %s | %s |\n",
+          scene.c_str(), target, pick, achieved, met ? "yes" : "**no**", own.c_str(), 1e3 * cost,
+          1e3 * c["choice"].get<double>(), 1e3 * c["run"].get<double>(),
+          1e3 * c["verification"].get<double>(), cheap,
+          cheapest_now > 0 ? std::to_string(1e3 * cheapest_now).substr(0, 6).c_str() : "-", ratio);
+      std::fflush(stdout);
+      ++cases;
+      if (met) ++met_count;
+    }
+  }
+  std::printf(
+      "\n%d of %d cases meet the target against the reference; %d of the %d cases with a "
+      "known run meeting it cost at most 3 x that run\n",
+      met_count, cases, within, known);
+  return 0;
+}
+
+}  // namespace
+}  // namespace mbstream
+
+int main(int argc, char** argv) {
+  try {
+    return mbstream::Main(argc, argv);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "target_study: %s\n", error.what());
+    return 1;
+  }
+}

@@ -1,0 +1,52 @@
+// One integrator the method choice considers, what its pilot runs measured, and the fitted
+// relations that predict its error and cost at any tolerance over the whole run.
+#pragma once
+
+#include <string>
+
+#include "server/integrate/method.h"
+#include "server/sim/run_config.h"
+
+namespace mbstream {
+
+// Errors by criterion of the accuracy target; < 0 = not measured.
+struct ErrorFigures {
+  double tcp_m = -1.0;
+  double joint_rad = -1.0;
+  double energy_rel = -1.0;
+};
+
+struct Candidate {
+  std::string name;  // "bdf", "adams", "erk", "erk-verner", "dirk"
+  Method method = Method::kBdf;
+  std::string table;             // ARKODE table name for erk ("" = default)
+  double stability_reach = 0.0;  // explicit methods: stable for h |lambda| below this
+  double rhs_per_step = 1.0;     // explicit methods: right-hand sides per step
+
+  bool piloted = false;
+  bool usable = false;  // piloted, both pilots finished, the fit is defined
+  std::string verdict;  // why it was excluded or not piloted ("" when usable)
+
+  // The pilot: two runs over [0, pilot span] at rtol[0] and rtol[1] = rtol[0] / 100.
+  double rtol[2] = {0.0, 0.0};
+  long steps[2] = {0, 0};
+  double cpu_s[2] = {0.0, 0.0};
+  ErrorFigures error;           // at rtol[0] over the pilot span (tcp, joint: against rtol[1])
+  ErrorFigures growth;          // factor from the pilot span to the whole run, per criterion
+  double steps_exponent = 0.0;  // steps ~ rtol^-steps_exponent
+  double cpu_per_step_s = 0.0;
+
+  // Predictions for the run (rtol_for) and its check (check_rtol), at their tolerances.
+  double explicit_cpu_floor_s = -1.0;  // explicit: the CPU stability alone needs
+  double run_rtol = 0.0, run_cpu_s = -1.0;
+  double check_rtol = 0.0, check_cpu_s = -1.0;
+  bool resolvable = true;  // the target is reachable above the smallest tolerance
+};
+
+// erk with its default table is "erk"; with table "verner" "erk-verner".
+Candidate MakeCandidate(Method method, const std::string& table = "");
+
+// The run's configuration with this candidate's method and tolerance (atol = rtol / 100).
+RunConfig WithCandidate(RunConfig config, const Candidate& candidate, double rtol);
+
+}  // namespace mbstream

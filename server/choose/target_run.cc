@@ -1,0 +1,32 @@
+#include "server/choose/target_run.h"
+
+#include "server/choose/choice_json.h"
+#include "server/choose/frame_track.h"
+#include "server/choose/method_choice.h"
+#include "server/choose/verification.h"
+#include "server/sim/simulate.h"
+
+namespace mbstream {
+
+RunResult SimulateWithTarget(const Model& model, const RunConfig& config, FrameSink* sink,
+                             const std::atomic<bool>* cancel) {
+  if (!config.target.any()) return Simulate(model, config, sink, cancel);
+  const MethodChoice choice = ChooseMethod(model, config, cancel);
+  TrackingSink tracking(sink);
+  RunResult result = Simulate(model, choice.run, &tracking, cancel);
+  const Verification verification =
+      VerifyTarget(model, config, choice, result, tracking.track(), cancel);
+  RunStats& stats = result.stats;
+  stats.target_met = verification.met;
+  stats.choice_json = ChoiceJson(config, choice, verification, stats.cpu_s);
+  if (stats.status == RunStatus::kFinished && !verification.message.empty()) {
+    stats.message = verification.message;
+  }
+  if (stats.status == RunStatus::kFinished && !choice.resolvable && verification.met != true) {
+    stats.message = "the target is not resolvable: " + choice.reason +
+                    (stats.message.empty() ? "" : "; " + stats.message);
+  }
+  return result;
+}
+
+}  // namespace mbstream

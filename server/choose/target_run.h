@@ -1,0 +1,19 @@
+// A run with an accuracy target, end to end: the choice (method_choice.h), the run itself
+// (frames streamed to the sink as usual), and its verification (verification.h). The
+// reasoning and the check go into RunStats::choice_json and RunStats::target_met; a missed
+// target leaves the run FINISHED with target_met false and a message naming what to change.
+#pragma once
+
+#include <atomic>
+
+#include "server/model/model.h"
+#include "server/sim/run_config.h"
+#include "server/sim/run_result.h"
+
+namespace mbstream {
+
+// Simulate (simulate.h) when config.target is empty; otherwise choose, run and verify.
+RunResult SimulateWithTarget(const Model& model, const RunConfig& config, FrameSink* sink = nullptr,
+                             const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace mbstream
