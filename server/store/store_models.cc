@@ -1,13 +1,13 @@
 // Store: models and their bundles (assets in their own rows).
 #include <utility>
 
+#include "server/store/sqlite_store.h"
 #include "server/store/sqlite_transaction.h"
-#include "server/store/store.h"
 #include "server/store/store_impl.h"
 
 namespace mbstream {
 
-bool Store::PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle) {
+bool SqliteStore::PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle) {
   v1::ModelInfo stored_info = info;
   if (stored_info.created_unix_ms() == 0) stored_info.set_created_unix_ms(UnixNowMs());
   // The bundle row holds everything but the assets, which may be large meshes.
@@ -42,7 +42,7 @@ bool Store::PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle) {
   return true;
 }
 
-std::vector<v1::ModelInfo> Store::ListModels() const {
+std::vector<v1::ModelInfo> SqliteStore::ListModels() const {
   std::vector<v1::ModelInfo> models;
   std::lock_guard lock(impl_->mutex);
   SqliteStatement& select = impl_->select_model_infos;
@@ -53,8 +53,8 @@ std::vector<v1::ModelInfo> Store::ListModels() const {
   return models;
 }
 
-std::optional<v1::ModelBundle> Store::GetModelBundle(const std::string& model_id,
-                                                     bool asset_data) const {
+std::optional<v1::ModelBundle> SqliteStore::GetModelBundle(const std::string& model_id,
+                                                           bool asset_data) const {
   v1::ModelBundle bundle;
   std::lock_guard lock(impl_->mutex);
   {
@@ -76,7 +76,7 @@ std::optional<v1::ModelBundle> Store::GetModelBundle(const std::string& model_id
   return bundle;
 }
 
-std::map<std::string, int64_t> Store::ModelBytes() const {
+std::map<std::string, int64_t> SqliteStore::ModelBytes() const {
   std::map<std::string, int64_t> sizes;
   std::lock_guard lock(impl_->mutex);
   SqliteStatement& select = impl_->select_model_bytes;
