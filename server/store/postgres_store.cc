@@ -110,17 +110,11 @@ const std::string& PostgresStore::path() const { return impl_->location; }
 void PostgresStore::ReleaseMemory() {}  // the database server manages its own cache
 
 bool PostgresStore::PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle) {
-  v1::ModelInfo stored_info = info;
-  if (stored_info.created_unix_ms() == 0) stored_info.set_created_unix_ms(UnixNowMs());
-  v1::ModelBundle bundle_without_assets = bundle;
-  bundle_without_assets.clear_assets();
+  const EncodedModel model = EncodeModelForStore(info, bundle);
   const std::string what = "model " + info.id();
-  const std::string info_bytes = SerializeForStore(stored_info, what);
-  const std::string bundle_bytes = SerializeForStore(bundle_without_assets, what + " bundle");
   return impl_->Transact("store " + what, [&](pqxx::work& tx) {
-    const pqxx::result inserted =
-        tx.exec_prepared("insert_model", info.id(), stored_info.created_unix_ms(),
-                         BlobParam(info_bytes), BlobParam(bundle_bytes));
+    const pqxx::result inserted = tx.exec_prepared("insert_model", info.id(), model.created_unix_ms,
+                                                   BlobParam(model.info), BlobParam(model.bundle));
     if (inserted.affected_rows() == 0) return false;  // the first stored copy wins
     for (int i = 0; i < bundle.assets_size(); ++i) {
       tx.exec_prepared("insert_asset", info.id(), i, bundle.assets(i).name(),
@@ -213,10 +207,7 @@ int PostgresStore::MarkUnfinishedRunsInterrupted(const std::string& message) {
       ParseFromStore(BlobOf(row[0], blob), unfinished.emplace_back(), "run info", impl_->location);
     }
     for (v1::RunInfo& info : unfinished) {
-      info.set_state(v1::INTERRUPTED);
-      info.set_message(message);
-      info.set_ended_unix_ms(now_ms);
-      info.set_subscribers(0);
+      MarkInterrupted(info, message, now_ms);
       UpsertRun(tx, info);
     }
     return static_cast<int>(unfinished.size());

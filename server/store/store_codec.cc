@@ -30,4 +30,21 @@ void ParseFromStore(std::string_view bytes, google::protobuf::MessageLite& messa
   }
 }
 
+EncodedModel EncodeModelForStore(const v1::ModelInfo& info, const v1::ModelBundle& bundle) {
+  v1::ModelInfo stored_info = info;
+  if (stored_info.created_unix_ms() == 0) stored_info.set_created_unix_ms(UnixNowMs());
+  v1::ModelBundle bundle_without_assets = bundle;
+  bundle_without_assets.clear_assets();
+  const std::string what = "model " + info.id();
+  return {stored_info.created_unix_ms(), SerializeForStore(stored_info, what),
+          SerializeForStore(bundle_without_assets, what + " bundle")};
+}
+
+void MarkInterrupted(v1::RunInfo& info, const std::string& message, int64_t now_ms) {
+  info.set_state(v1::INTERRUPTED);
+  info.set_message(message);
+  info.set_ended_unix_ms(now_ms);
+  info.set_subscribers(0);
+}
+
 }  // namespace mbstream

@@ -8,6 +8,9 @@
 
 #include <google/protobuf/message_lite.h>
 
+#include "mbstream/v1/model.pb.h"
+#include "mbstream/v1/run.pb.h"
+
 namespace mbstream {
 
 // Milliseconds since the Unix epoch, from the system clock.
@@ -21,5 +24,17 @@ std::string SerializeForStore(const google::protobuf::MessageLite& message, std:
 // and the database when the stored bytes are corrupt.
 void ParseFromStore(std::string_view bytes, google::protobuf::MessageLite& message,
                     std::string_view what, const std::string& path);
+
+// A model's rows as both stores write them: the info (created_unix_ms == 0 replaced by now)
+// and the bundle without its assets (they have rows of their own: they may be large meshes).
+struct EncodedModel {
+  int64_t created_unix_ms = 0;
+  std::string info;
+  std::string bundle;
+};
+EncodedModel EncodeModelForStore(const v1::ModelInfo& info, const v1::ModelBundle& bundle);
+
+// What MarkUnfinishedRunsInterrupted does to each unfinished run before writing it back.
+void MarkInterrupted(v1::RunInfo& info, const std::string& message, int64_t now_ms);
 
 }  // namespace mbstream

@@ -8,14 +8,8 @@
 namespace mbstream {
 
 bool SqliteStore::PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle) {
-  v1::ModelInfo stored_info = info;
-  if (stored_info.created_unix_ms() == 0) stored_info.set_created_unix_ms(UnixNowMs());
-  // The bundle row holds everything but the assets, which may be large meshes.
-  v1::ModelBundle bundle_without_assets = bundle;
-  bundle_without_assets.clear_assets();
+  const EncodedModel model = EncodeModelForStore(info, bundle);
   const std::string what = "model " + info.id();
-  const std::string info_bytes = SerializeForStore(stored_info, what);
-  const std::string bundle_bytes = SerializeForStore(bundle_without_assets, what + " bundle");
 
   std::lock_guard lock(impl_->mutex);
   SqliteTransaction transaction(impl_->db, "store " + what);
@@ -23,9 +17,9 @@ bool SqliteStore::PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bun
     SqliteStatement& insert = impl_->insert_model;
     ResetOnExit reset(insert);
     insert.BindText(1, info.id());
-    insert.BindInt64(2, stored_info.created_unix_ms());
-    insert.BindBlob(3, info_bytes);
-    insert.BindBlob(4, bundle_bytes);
+    insert.BindInt64(2, model.created_unix_ms);
+    insert.BindBlob(3, model.info);
+    insert.BindBlob(4, model.bundle);
     insert.Run();
   }
   if (impl_->db.Changes() == 0) return false;  // the first stored copy wins; rolls back

@@ -59,10 +59,7 @@ int SqliteStore::MarkUnfinishedRunsInterrupted(const std::string& message) {
     }
   }
   for (v1::RunInfo& info : unfinished) {
-    info.set_state(v1::INTERRUPTED);
-    info.set_message(message);
-    info.set_ended_unix_ms(now_ms);
-    info.set_subscribers(0);
+    MarkInterrupted(info, message, now_ms);
     UpsertRunLocked(*impl_, info);
   }
   transaction.Commit();
