@@ -11,6 +11,8 @@ PACKAGES=(
   libeigen3-dev libsundials-dev libsuitesparse-dev
   # model import, logging, command line, persistence
   liburdfdom-dev libspdlog-dev libfmt-dev libcli11-dev libsqlite3-dev nlohmann-json3-dev
+  # the shared store for several servers (--store postgresql://...); the tests start their own
+  libpqxx-dev postgresql
   # wire contract
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc libssl-dev openssl
   # fuzzing (fuzz/): clang 14 and its libFuzzer + sanitizer runtimes

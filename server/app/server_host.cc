@@ -19,6 +19,7 @@
 #include "server/service/authorizer.h"
 #include "server/service/simulation_service.h"
 #include "server/store/store.h"
+#include "server/store/store_location.h"
 
 namespace mbstream {
 
@@ -60,6 +61,29 @@ std::vector<std::string> ExposureWarnings(const ServerConfig& config) {
   return warnings;
 }
 
+namespace {
+
+// Where --store (or --data) puts the store, with its password file read.
+StoreLocation StoreLocationOf(const ServerConfig& config) {
+  StoreLocation location;
+  if (config.store.empty()) {
+    location.target = config.data_dir;
+  } else {
+    location = ParseStoreLocation(config.store);
+  }
+  if (!config.store_password_file.empty()) {
+    if (location.kind != StoreLocation::Kind::kPostgresql) {
+      throw InputError(
+          "--store-password-file is for a PostgreSQL --store; the SQLite store "
+          "has no password");
+    }
+    location.password = ReadStorePasswordFile(config.store_password_file);
+  }
+  return location;
+}
+
+}  // namespace
+
 std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   std::unique_ptr<ServerHost> host(new ServerHost());
   std::shared_ptr<grpc::ServerCredentials> credentials;
@@ -71,7 +95,7 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   host->authorizer_ = std::make_unique<Authorizer>(
       config.token_file.empty() ? Authorizer::AllowAll()
                                 : Authorizer::FromTokenFile(config.token_file));
-  host->store_ = Store::Open(config.data_dir);
+  host->store_ = OpenStore(StoreLocationOf(config));
   host->models_ = std::make_unique<ModelRegistry>(host->store_.get(), config.limits);
   const int stored = host->models_->LoadStored();
   const int builtin =

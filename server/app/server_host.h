@@ -22,7 +22,11 @@ class Authorizer;
 struct ServerConfig {
   std::string listen = "127.0.0.1:50051";  // host:port (port 0 = any free) or unix:/path
   std::string data_dir = "mbstream-data";  // SQLite database and nothing else
-  std::string models_dir;                  // built-in models (one folder each); empty = none
+  // --store: sqlite:DIRECTORY or postgresql://user@host:port/database (store_location.h);
+  // empty = the SQLite store in data_dir.
+  std::string store;
+  std::string store_password_file;  // PostgreSQL's password; empty = PGPASSFILE, ~/.pgpass
+  std::string models_dir;           // built-in models (one folder each); empty = none
   ServerLimits limits;
   int max_message_bytes = 64 << 20;  // largest gRPC message either way (raised to hold
                                      // limits.max_model_bytes)
@@ -39,7 +43,7 @@ class ServerHost {
  public:
   // Opens the store, loads stored and built-in models, marks interrupted runs, starts the
   // workers and listens (a unix socket is made accessible to its owner only). Throws
-  // InputError naming what failed (data directory, address, TLS or token files).
+  // InputError naming what failed (store, address, TLS or token files).
   static std::unique_ptr<ServerHost> Start(const ServerConfig& config);
   ~ServerHost();  // Shutdown()
 

@@ -34,7 +34,16 @@ int main(int argc, char** argv) {
   app.add_option("--listen", config.listen,
                  "host:port (port 0 = any free port, printed) or unix:/path")
       ->capture_default_str();
-  app.add_option("--data", config.data_dir, "directory of the SQLite store")->capture_default_str();
+  CLI::Option* data = app.add_option("--data", config.data_dir,
+                                     "directory of the SQLite store (as --store sqlite:DIR)")
+                          ->capture_default_str();
+  app.add_option("--store", config.store,
+                 "sqlite:DIRECTORY, or postgresql://user@host:port/database for several "
+                 "servers on one database")
+      ->excludes(data);
+  app.add_option("--store-password-file", config.store_password_file,
+                 "file holding the PostgreSQL password (default: PGPASSFILE, ~/.pgpass)")
+      ->check(CLI::ExistingFile);
   app.add_option("--models", config.models_dir,
                  "directory of built-in models (one folder per model); \"\" = none")
       ->capture_default_str();
@@ -135,7 +144,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::cout << "listening on " << host->address() << std::endl;
-  spdlog::info("listening on {} (data in {})", host->address(), config.data_dir);
+  spdlog::info("listening on {} (data in {})", host->address(),
+               config.store.empty() ? config.data_dir : config.store);
   for (const std::string& warning : mbstream::ExposureWarnings(config)) spdlog::warn("{}", warning);
   std::thread signal_waiter([&] {
     int signal = 0;

@@ -1,9 +1,12 @@
-// The server's persistence: models, runs, their frames and probe reports in one SQLite file,
-// <data directory>/mbstream.sqlite3. A server killed mid-run and restarted finds every model
-// and finished run again; runs it left unfinished are marked INTERRUPTED at start.
+// The server's persistence: models, runs, their frames and probe reports. One interface, two
+// implementations with one behaviour: SQLite in a data directory (sqlite_store.h, the
+// embedded default) and PostgreSQL (postgres_store.h, for several servers on one database);
+// open either from a --store location with OpenStore (store_open.h). A server killed mid-run
+// and restarted finds every model and finished run again; runs it left unfinished are marked
+// INTERRUPTED at start.
 //
-// Every method is thread-safe (one mutex around one connection). Runtime SQLite failures
-// throw SqliteError (an InternalError) naming the operation and SQLite's message.
+// Every method is thread-safe. Runtime database failures throw an InternalError (SqliteError,
+// PostgresError) naming the operation and the database's message.
 #pragma once
 
 #include <map>
@@ -22,39 +25,40 @@ namespace mbstream {
 
 class Store {
  public:
-  // File name of the database inside the data directory.
+  // File name of the SQLite database inside the data directory.
   static constexpr const char* kFileName = "mbstream.sqlite3";
 
-  // Opens or creates <directory>/mbstream.sqlite3 (creating the directory). WAL journal,
-  // foreign keys on, busy timeout. Throws InputError naming the path and what to do when the
-  // directory cannot be created or the file is not an mbstream database (or has a newer
-  // schema version, PRAGMA user_version).
+  // The SQLite store in `directory` (as --data; see SqliteStore::Open).
   static std::unique_ptr<Store> Open(const std::string& directory);
-  ~Store();
+
+  Store() = default;
+  virtual ~Store() = default;
   Store(const Store&) = delete;
   Store& operator=(const Store&) = delete;
 
-  // Full path of the database file.
-  const std::string& path() const;
+  // Where the data is, for messages: the SQLite file's path, or the PostgreSQL URI (never
+  // with a password).
+  virtual const std::string& path() const = 0;
 
-  // Frees the memory of SQLite's page cache that is not in use (after a long run or result).
-  void ReleaseMemory();
+  // Frees the memory of the database's cache that is not in use (after a long run or result).
+  virtual void ReleaseMemory() = 0;
 
   // Models. PutModel is idempotent by info.id (the first stored copy wins, returns false if it
   // existed). The bundle's assets are stored too. info.created_unix_ms == 0 is stored as now.
-  bool PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle);
-  std::vector<v1::ModelInfo> ListModels() const;  // oldest first
+  virtual bool PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle) = 0;
+  virtual std::vector<v1::ModelInfo> ListModels() const = 0;  // oldest first
   // The bundle with its assets; without their data (names only) unless `asset_data`.
-  std::optional<v1::ModelBundle> GetModelBundle(const std::string& model_id,
-                                                bool asset_data = true) const;
+  virtual std::optional<v1::ModelBundle> GetModelBundle(const std::string& model_id,
+                                                        bool asset_data = true) const = 0;
   // Each stored model's size in bytes (its bundle row and its assets' data), by id.
-  std::map<std::string, int64_t> ModelBytes() const;
+  virtual std::map<std::string, int64_t> ModelBytes() const = 0;
 
   // Runs. PutRun inserts or replaces the run's row (its RunInfo, state, timestamps); the
   // run's frames and probes stay.
-  void PutRun(const v1::RunInfo& info);
-  std::optional<v1::RunInfo> GetRun(const std::string& run_id) const;
-  std::vector<v1::RunInfo> ListRuns() const;  // oldest first (created_unix_ms, then insertion)
+  virtual void PutRun(const v1::RunInfo& info) = 0;
+  virtual std::optional<v1::RunInfo> GetRun(const std::string& run_id) const = 0;
+  virtual std::vector<v1::RunInfo> ListRuns()
+      const = 0;  // oldest first (created_unix_ms, then insertion)
 
   // A run's frames are written while it runs, one chunk (frame_chunks.h) at a time, then
   // the last chunk together with the final info. A crash mid-run leaves the chunks stored so
@@ -62,50 +66,47 @@ class Store {
   //
   // Stores chunk number `index` (0, 1, 2, ... in seq order) of a run whose row exists,
   // replacing a chunk of that number. One transaction.
-  void PutFrameChunk(const std::string& run_id, int64_t index, const EncodedFrameChunk& chunk);
+  virtual void PutFrameChunk(const std::string& run_id, int64_t index,
+                             const EncodedFrameChunk& chunk) = 0;
   // Stores the run's final info and its last chunk (number `index`, skipped when it holds no
   // frames) in ONE transaction, and removes any chunk numbered after it: after a crash either
   // the final state and every frame are there, or the run still shows its previous row.
-  void FinishRun(const v1::RunInfo& info, int64_t index, const EncodedFrameChunk& last_chunk);
+  virtual void FinishRun(const v1::RunInfo& info, int64_t index,
+                         const EncodedFrameChunk& last_chunk) = 0;
   // The same for a run whose frames are all at hand (in seq order): they replace every frame
   // stored earlier for the run.
-  void FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& frames);
+  virtual void FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& frames) = 0;
 
   // Reads a run's frames one chunk at a time: the frames of the first stored chunk numbered
   // `index` or later are appended to `frames`, and the number to ask for next is returned;
   // nullopt when there is none. Each call holds the store's lock only to copy one chunk.
-  std::optional<int64_t> GetFrameChunk(const std::string& run_id, int64_t index,
-                                       std::vector<v1::Frame>& frames) const;
+  virtual std::optional<int64_t> GetFrameChunk(const std::string& run_id, int64_t index,
+                                               std::vector<v1::Frame>& frames) const = 0;
   std::vector<v1::Frame> GetFrames(const std::string& run_id) const;  // all, in seq order
 
   // Probe reports (stored as they arrive, batched by the caller; one transaction per call);
   // duplicates of (run_id, seq, probe) replace the old row.
-  void AddProbes(const std::vector<v1::ProbeReport>& reports);
-  std::vector<v1::ProbeReport> GetProbes(const std::string& run_id) const;  // by seq, probe
+  virtual void AddProbes(const std::vector<v1::ProbeReport>& reports) = 0;
+  virtual std::vector<v1::ProbeReport> GetProbes(
+      const std::string& run_id) const = 0;  // by seq, probe
 
   // Replays (store_replay.cc). The number of the stored chunk that holds frame `seq` of the
   // run (for a seek), nullopt when no chunk does.
-  std::optional<int64_t> FrameChunkHolding(const std::string& run_id, int64_t seq) const;
+  virtual std::optional<int64_t> FrameChunkHolding(const std::string& run_id,
+                                                   int64_t seq) const = 0;
   // A replay's probe set: created once (its id unique), its reports added in batches
   // (duplicates of (set, seq, probe) replace the old row), listed per run oldest first with
   // their report counts, read back by seq and probe.
-  void CreateProbeSet(const v1::ProbeSet& set);
-  void AddProbeSetReports(const std::string& set_id, const std::vector<v1::ProbeReport>& reports);
-  std::vector<v1::ProbeSet> ListProbeSets(const std::string& run_id) const;
-  std::optional<v1::ProbeSet> GetProbeSet(const std::string& set_id) const;
-  std::vector<v1::ProbeReport> GetProbeSetReports(const std::string& set_id) const;
+  virtual void CreateProbeSet(const v1::ProbeSet& set) = 0;
+  virtual void AddProbeSetReports(const std::string& set_id,
+                                  const std::vector<v1::ProbeReport>& reports) = 0;
+  virtual std::vector<v1::ProbeSet> ListProbeSets(const std::string& run_id) const = 0;
+  virtual std::optional<v1::ProbeSet> GetProbeSet(const std::string& set_id) const = 0;
+  virtual std::vector<v1::ProbeReport> GetProbeSetReports(const std::string& set_id) const = 0;
 
   // At server start: every run still QUEUED or RUNNING becomes INTERRUPTED with `message`
   // and ended_unix_ms = now; returns how many.
-  int MarkUnfinishedRunsInterrupted(const std::string& message);
-
-  // Private state, opaque here (defined in store_impl.h for the store's own .cc files).
-  struct Impl;
-
- private:
-  explicit Store(std::unique_ptr<Impl> impl);
-
-  std::unique_ptr<Impl> impl_;
+  virtual int MarkUnfinishedRunsInterrupted(const std::string& message) = 0;
 };
 
 }  // namespace mbstream

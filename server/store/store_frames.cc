@@ -1,8 +1,8 @@
 // Store: a run's frames, written chunk by chunk while it runs and read back chunk by chunk.
 #include "common/check.h"
 #include "server/store/frame_chunks.h"
+#include "server/store/sqlite_store.h"
 #include "server/store/sqlite_transaction.h"
-#include "server/store/store.h"
 #include "server/store/store_impl.h"
 
 namespace mbstream {
@@ -10,7 +10,7 @@ namespace mbstream {
 namespace {
 
 // Writes one chunk row (replacing one of the same number). The caller holds the mutex.
-void InsertChunkLocked(Store::Impl& impl, const std::string& run_id, int64_t index,
+void InsertChunkLocked(SqliteStore::Impl& impl, const std::string& run_id, int64_t index,
                        const EncodedFrameChunk& chunk) {
   SqliteStatement& insert = impl.insert_frame_chunk;
   ResetOnExit reset(insert);
@@ -24,13 +24,14 @@ void InsertChunkLocked(Store::Impl& impl, const std::string& run_id, int64_t ind
 
 }  // namespace
 
-void Store::PutFrameChunk(const std::string& run_id, int64_t index,
-                          const EncodedFrameChunk& chunk) {
+void SqliteStore::PutFrameChunk(const std::string& run_id, int64_t index,
+                                const EncodedFrameChunk& chunk) {
   std::lock_guard lock(impl_->mutex);
   InsertChunkLocked(*impl_, run_id, index, chunk);  // one statement: its own transaction
 }
 
-void Store::FinishRun(const v1::RunInfo& info, int64_t index, const EncodedFrameChunk& last_chunk) {
+void SqliteStore::FinishRun(const v1::RunInfo& info, int64_t index,
+                            const EncodedFrameChunk& last_chunk) {
   std::lock_guard lock(impl_->mutex);
   SqliteTransaction transaction(impl_->db, "finish run " + info.id());
   UpsertRunLocked(*impl_, info);
@@ -45,7 +46,7 @@ void Store::FinishRun(const v1::RunInfo& info, int64_t index, const EncodedFrame
   transaction.Commit();
 }
 
-void Store::FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& frames) {
+void SqliteStore::FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& frames) {
   // Serialize outside the lock: other runs' store calls only wait for the SQLite writes.
   const std::vector<EncodedFrameChunk> chunks = EncodeFrameChunks(frames);
 
@@ -64,8 +65,8 @@ void Store::FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& fra
   transaction.Commit();
 }
 
-std::optional<int64_t> Store::GetFrameChunk(const std::string& run_id, int64_t index,
-                                            std::vector<v1::Frame>& frames) const {
+std::optional<int64_t> SqliteStore::GetFrameChunk(const std::string& run_id, int64_t index,
+                                                  std::vector<v1::Frame>& frames) const {
   // Copy the chunk's blob under the lock, parse it after releasing it.
   std::string blob;
   int64_t found = 0;
@@ -86,13 +87,6 @@ std::optional<int64_t> Store::GetFrameChunk(const std::string& run_id, int64_t i
                         std::to_string(frames.size() - before) + " cannot be parsed)");
   }
   return found + 1;
-}
-
-std::vector<v1::Frame> Store::GetFrames(const std::string& run_id) const {
-  std::vector<v1::Frame> frames;
-  std::optional<int64_t> next = 0;
-  while (next) next = GetFrameChunk(run_id, *next, frames);
-  return frames;
 }
 
 }  // namespace mbstream

@@ -1,4 +1,4 @@
-// Store's private state: the connection, its mutex and the prepared statements. Shared by
+// SqliteStore's private state: the connection, its mutex and the prepared statements. Shared by
 // the store_*.cc files, which implement one group of Store's methods each.
 #pragma once
 
@@ -7,15 +7,14 @@
 #include <string>
 #include <string_view>
 
-#include <google/protobuf/message_lite.h>
-
 #include "server/store/sqlite_connection.h"
 #include "server/store/sqlite_statement.h"
-#include "server/store/store.h"
+#include "server/store/sqlite_store.h"
+#include "server/store/store_codec.h"
 
 namespace mbstream {
 
-struct Store::Impl {
+struct SqliteStore::Impl {
   explicit Impl(SqliteConnection connection);
 
   std::mutex mutex;  // guards everything below
@@ -43,20 +42,8 @@ struct Store::Impl {
   SqliteStatement select_probes;
 };
 
-// Milliseconds since the Unix epoch, from the system clock.
-int64_t UnixNowMs();
-
-// Serializes `message` for a blob column; throws InternalError when it cannot (a message over
-// protobuf's 2 GB limit).
-std::string SerializeForStore(const google::protobuf::MessageLite& message, std::string_view what);
-
-// Parses a blob column into `message`; throws InternalError naming `what` (e.g. "run r-1")
-// and the database when the stored bytes are corrupt.
-void ParseFromStore(std::string_view bytes, google::protobuf::MessageLite& message,
-                    std::string_view what, const std::string& path);
-
 // Writes the run row (insert, or update keeping the row's order and its frames). The caller
 // holds the mutex.
-void UpsertRunLocked(Store::Impl& impl, const v1::RunInfo& info);
+void UpsertRunLocked(SqliteStore::Impl& impl, const v1::RunInfo& info);
 
 }  // namespace mbstream

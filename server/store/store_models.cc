@@ -1,21 +1,15 @@
 // Store: models and their bundles (assets in their own rows).
 #include <utility>
 
+#include "server/store/sqlite_store.h"
 #include "server/store/sqlite_transaction.h"
-#include "server/store/store.h"
 #include "server/store/store_impl.h"
 
 namespace mbstream {
 
-bool Store::PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle) {
-  v1::ModelInfo stored_info = info;
-  if (stored_info.created_unix_ms() == 0) stored_info.set_created_unix_ms(UnixNowMs());
-  // The bundle row holds everything but the assets, which may be large meshes.
-  v1::ModelBundle bundle_without_assets = bundle;
-  bundle_without_assets.clear_assets();
+bool SqliteStore::PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle) {
+  const EncodedModel model = EncodeModelForStore(info, bundle);
   const std::string what = "model " + info.id();
-  const std::string info_bytes = SerializeForStore(stored_info, what);
-  const std::string bundle_bytes = SerializeForStore(bundle_without_assets, what + " bundle");
 
   std::lock_guard lock(impl_->mutex);
   SqliteTransaction transaction(impl_->db, "store " + what);
@@ -23,9 +17,9 @@ bool Store::PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle) {
     SqliteStatement& insert = impl_->insert_model;
     ResetOnExit reset(insert);
     insert.BindText(1, info.id());
-    insert.BindInt64(2, stored_info.created_unix_ms());
-    insert.BindBlob(3, info_bytes);
-    insert.BindBlob(4, bundle_bytes);
+    insert.BindInt64(2, model.created_unix_ms);
+    insert.BindBlob(3, model.info);
+    insert.BindBlob(4, model.bundle);
     insert.Run();
   }
   if (impl_->db.Changes() == 0) return false;  // the first stored copy wins; rolls back
@@ -42,7 +36,7 @@ bool Store::PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle) {
   return true;
 }
 
-std::vector<v1::ModelInfo> Store::ListModels() const {
+std::vector<v1::ModelInfo> SqliteStore::ListModels() const {
   std::vector<v1::ModelInfo> models;
   std::lock_guard lock(impl_->mutex);
   SqliteStatement& select = impl_->select_model_infos;
@@ -53,8 +47,8 @@ std::vector<v1::ModelInfo> Store::ListModels() const {
   return models;
 }
 
-std::optional<v1::ModelBundle> Store::GetModelBundle(const std::string& model_id,
-                                                     bool asset_data) const {
+std::optional<v1::ModelBundle> SqliteStore::GetModelBundle(const std::string& model_id,
+                                                           bool asset_data) const {
   v1::ModelBundle bundle;
   std::lock_guard lock(impl_->mutex);
   {
@@ -76,7 +70,7 @@ std::optional<v1::ModelBundle> Store::GetModelBundle(const std::string& model_id
   return bundle;
 }
 
-std::map<std::string, int64_t> Store::ModelBytes() const {
+std::map<std::string, int64_t> SqliteStore::ModelBytes() const {
   std::map<std::string, int64_t> sizes;
   std::lock_guard lock(impl_->mutex);
   SqliteStatement& select = impl_->select_model_bytes;

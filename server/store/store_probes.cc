@@ -1,11 +1,11 @@
 // Store: probe reports, keyed by (run_id, seq, probe).
+#include "server/store/sqlite_store.h"
 #include "server/store/sqlite_transaction.h"
-#include "server/store/store.h"
 #include "server/store/store_impl.h"
 
 namespace mbstream {
 
-void Store::AddProbes(const std::vector<v1::ProbeReport>& reports) {
+void SqliteStore::AddProbes(const std::vector<v1::ProbeReport>& reports) {
   if (reports.empty()) return;
   std::vector<std::string> bytes;
   bytes.reserve(reports.size());
@@ -26,7 +26,7 @@ void Store::AddProbes(const std::vector<v1::ProbeReport>& reports) {
   transaction.Commit();
 }
 
-std::vector<v1::ProbeReport> Store::GetProbes(const std::string& run_id) const {
+std::vector<v1::ProbeReport> SqliteStore::GetProbes(const std::string& run_id) const {
   std::vector<v1::ProbeReport> reports;
   std::lock_guard lock(impl_->mutex);
   SqliteStatement& select = impl_->select_probes;

@@ -1,7 +1,7 @@
 // Store: what replays need: the chunk holding a frame (seek) and the replays' probe sets.
 // Each statement is prepared per call: replays are rare next to frames and probes.
+#include "server/store/sqlite_store.h"
 #include "server/store/sqlite_transaction.h"
-#include "server/store/store.h"
 #include "server/store/store_impl.h"
 
 namespace mbstream {
@@ -21,7 +21,8 @@ v1::ProbeSet ReadSet(const SqliteStatement& select, const std::string& path) {
 
 }  // namespace
 
-std::optional<int64_t> Store::FrameChunkHolding(const std::string& run_id, int64_t seq) const {
+std::optional<int64_t> SqliteStore::FrameChunkHolding(const std::string& run_id,
+                                                      int64_t seq) const {
   std::lock_guard lock(impl_->mutex);
   SqliteStatement select(impl_->db,
                          "SELECT chunk FROM frame_chunks WHERE run_id = ?1 AND first_seq <= ?2 "
@@ -34,7 +35,7 @@ std::optional<int64_t> Store::FrameChunkHolding(const std::string& run_id, int64
   return select.ColumnInt64(0);
 }
 
-void Store::CreateProbeSet(const v1::ProbeSet& set) {
+void SqliteStore::CreateProbeSet(const v1::ProbeSet& set) {
   v1::ProbeSet stored = set;
   stored.set_reports(0);
   if (stored.created_unix_ms() == 0) stored.set_created_unix_ms(UnixNowMs());
@@ -49,8 +50,8 @@ void Store::CreateProbeSet(const v1::ProbeSet& set) {
   insert.Run();
 }
 
-void Store::AddProbeSetReports(const std::string& set_id,
-                               const std::vector<v1::ProbeReport>& reports) {
+void SqliteStore::AddProbeSetReports(const std::string& set_id,
+                                     const std::vector<v1::ProbeReport>& reports) {
   if (reports.empty()) return;
   std::vector<std::string> bytes;
   bytes.reserve(reports.size());
@@ -74,7 +75,7 @@ void Store::AddProbeSetReports(const std::string& set_id,
   transaction.Commit();
 }
 
-std::vector<v1::ProbeSet> Store::ListProbeSets(const std::string& run_id) const {
+std::vector<v1::ProbeSet> SqliteStore::ListProbeSets(const std::string& run_id) const {
   std::vector<v1::ProbeSet> sets;
   std::lock_guard lock(impl_->mutex);
   SqliteStatement select(impl_->db, std::string(kSelectSet) + "WHERE s.run_id = ?1 ORDER BY s.ord",
@@ -85,7 +86,7 @@ std::vector<v1::ProbeSet> Store::ListProbeSets(const std::string& run_id) const 
   return sets;
 }
 
-std::optional<v1::ProbeSet> Store::GetProbeSet(const std::string& set_id) const {
+std::optional<v1::ProbeSet> SqliteStore::GetProbeSet(const std::string& set_id) const {
   std::lock_guard lock(impl_->mutex);
   SqliteStatement select(impl_->db, std::string(kSelectSet) + "WHERE s.id = ?1", "read probe set");
   ResetOnExit reset(select);
@@ -94,7 +95,7 @@ std::optional<v1::ProbeSet> Store::GetProbeSet(const std::string& set_id) const 
   return ReadSet(select, impl_->db.path());
 }
 
-std::vector<v1::ProbeReport> Store::GetProbeSetReports(const std::string& set_id) const {
+std::vector<v1::ProbeReport> SqliteStore::GetProbeSetReports(const std::string& set_id) const {
   std::vector<v1::ProbeReport> reports;
   std::lock_guard lock(impl_->mutex);
   SqliteStatement select(impl_->db,

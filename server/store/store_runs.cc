@@ -1,11 +1,11 @@
 // Store: run rows (RunInfo with state and creation time as columns).
+#include "server/store/sqlite_store.h"
 #include "server/store/sqlite_transaction.h"
-#include "server/store/store.h"
 #include "server/store/store_impl.h"
 
 namespace mbstream {
 
-void UpsertRunLocked(Store::Impl& impl, const v1::RunInfo& info) {
+void UpsertRunLocked(SqliteStore::Impl& impl, const v1::RunInfo& info) {
   const std::string bytes = SerializeForStore(info, "run " + info.id());
   SqliteStatement& upsert = impl.upsert_run;
   ResetOnExit reset(upsert);
@@ -17,12 +17,12 @@ void UpsertRunLocked(Store::Impl& impl, const v1::RunInfo& info) {
   upsert.Run();
 }
 
-void Store::PutRun(const v1::RunInfo& info) {
+void SqliteStore::PutRun(const v1::RunInfo& info) {
   std::lock_guard lock(impl_->mutex);
   UpsertRunLocked(*impl_, info);
 }
 
-std::optional<v1::RunInfo> Store::GetRun(const std::string& run_id) const {
+std::optional<v1::RunInfo> SqliteStore::GetRun(const std::string& run_id) const {
   std::lock_guard lock(impl_->mutex);
   SqliteStatement& select = impl_->select_run;
   ResetOnExit reset(select);
@@ -33,7 +33,7 @@ std::optional<v1::RunInfo> Store::GetRun(const std::string& run_id) const {
   return info;
 }
 
-std::vector<v1::RunInfo> Store::ListRuns() const {
+std::vector<v1::RunInfo> SqliteStore::ListRuns() const {
   std::vector<v1::RunInfo> runs;
   std::lock_guard lock(impl_->mutex);
   SqliteStatement& select = impl_->select_runs;
@@ -44,7 +44,7 @@ std::vector<v1::RunInfo> Store::ListRuns() const {
   return runs;
 }
 
-int Store::MarkUnfinishedRunsInterrupted(const std::string& message) {
+int SqliteStore::MarkUnfinishedRunsInterrupted(const std::string& message) {
   const int64_t now_ms = UnixNowMs();
   std::lock_guard lock(impl_->mutex);
   SqliteTransaction transaction(impl_->db, "mark unfinished runs interrupted");
@@ -59,10 +59,7 @@ int Store::MarkUnfinishedRunsInterrupted(const std::string& message) {
     }
   }
   for (v1::RunInfo& info : unfinished) {
-    info.set_state(v1::INTERRUPTED);
-    info.set_message(message);
-    info.set_ended_unix_ms(now_ms);
-    info.set_subscribers(0);
+    MarkInterrupted(info, message, now_ms);
     UpsertRunLocked(*impl_, info);
   }
   transaction.Commit();

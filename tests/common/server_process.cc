@@ -1,5 +1,7 @@
 #include "tests/common/server_process.h"
 
+#include <algorithm>
+
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -19,7 +21,11 @@ ServerProcess::ServerProcess(const std::string& server_binary, const std::string
                              const std::vector<std::string>& extra_args, const std::string& listen)
     : log_(data_dir + ".log") {
   const std::string& log = log_;
-  std::vector<std::string> args = {server_binary, "--listen", listen, "--data", data_dir};
+  std::vector<std::string> args = {server_binary, "--listen", listen};
+  // A --store among the extra arguments replaces --data (the two exclude each other).
+  if (std::find(extra_args.begin(), extra_args.end(), "--store") == extra_args.end()) {
+    args.insert(args.end(), {"--data", data_dir});
+  }
   args.insert(args.end(), extra_args.begin(), extra_args.end());
   std::remove(log.c_str());  // a previous server's "listening on" line must not be read
   pid_ = fork();

@@ -14,7 +14,8 @@ namespace mbstream::testing {
 class ServerProcess {
  public:
   // Starts `server_binary --listen LISTEN --data data_dir` plus `extra_args`; waits up to
-  // 30 s for its address. The log goes to log_path() = data_dir + ".log".
+  // 30 s for its address. The log goes to log_path() = data_dir + ".log". With "--store" in
+  // `extra_args`, --data is left out.
   ServerProcess(const std::string& server_binary, const std::string& data_dir,
                 const std::vector<std::string>& extra_args = {},
                 const std::string& listen = "127.0.0.1:0");

@@ -18,11 +18,13 @@ using testing::MakeProbe;
 using testing::MakeRun;
 using testing::TempDirectory;
 
-TEST(StoreConcurrencyTest, ManyThreadsWriteAndRead) {
+class StoreConcurrencyTest : public testing::StoreBackendTest {};
+INSTANTIATE_STORE_BACKENDS(StoreConcurrencyTest);
+
+TEST_P(StoreConcurrencyTest, ManyThreadsWriteAndRead) {
   constexpr int kThreads = 6;
   constexpr int kRunsPerThread = 8;
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+  auto store = Open();
   std::vector<std::thread> threads;
   for (int t = 0; t < kThreads; ++t) {
     threads.emplace_back([&store, t] {

@@ -29,6 +29,9 @@ void ExpectSameFrames(const std::vector<v1::Frame>& actual, const std::vector<v1
   }
 }
 
+class StoreFramesTest : public testing::StoreBackendTest {};
+INSTANTIATE_STORE_BACKENDS(StoreFramesTest);
+
 TEST(FrameChunksTest, SplitsAndDecodes) {
   const std::vector<v1::Frame> frames = MakeFrames(10, 3);
   const auto chunks = EncodeFrameChunks(frames, 4);
@@ -47,9 +50,8 @@ TEST(FrameChunksTest, TruncatedChunkIsReportedCorrupt) {
       std::string_view(chunks[0].data).substr(0, chunks[0].data.size() - 3), decoded));
 }
 
-TEST(StoreFramesTest, RoundTripAcrossSeveralChunks) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+TEST_P(StoreFramesTest, RoundTripAcrossSeveralChunks) {
+  auto store = Open();
   const std::vector<v1::Frame> frames = MakeFrames(3 * kFramesPerChunk + 17, 6);
   const v1::RunInfo run = MakeRun("r-1", v1::FINISHED, 1000);
   store->FinishRun(run, frames);
@@ -57,18 +59,16 @@ TEST(StoreFramesTest, RoundTripAcrossSeveralChunks) {
   ExpectSameFrames(store->GetFrames("r-1"), frames);
 }
 
-TEST(StoreFramesTest, NoFramesAndUnknownRun) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+TEST_P(StoreFramesTest, NoFramesAndUnknownRun) {
+  auto store = Open();
   store->FinishRun(MakeRun("r-empty", v1::FAILED, 1000), {});
   EXPECT_EQ(store->GetRun("r-empty")->state(), v1::FAILED);
   EXPECT_TRUE(store->GetFrames("r-empty").empty());
   EXPECT_TRUE(store->GetFrames("r-missing").empty());
 }
 
-TEST(StoreFramesTest, FinishRunAgainReplacesFrames) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+TEST_P(StoreFramesTest, FinishRunAgainReplacesFrames) {
+  auto store = Open();
   store->FinishRun(MakeRun("r-1", v1::FINISHED, 1000), MakeFrames(kFramesPerChunk + 5, 2));
   const std::vector<v1::Frame> fewer = MakeFrames(3, 2);
   store->FinishRun(MakeRun("r-1", v1::FINISHED, 1000), fewer);
@@ -77,9 +77,8 @@ TEST(StoreFramesTest, FinishRunAgainReplacesFrames) {
 
 // A running run's frames go in chunk by chunk; the last chunk comes with the final info.
 // Readers see the stored chunks of the running run, then every frame once it ended.
-TEST(StoreFramesTest, ChunksWrittenDuringTheRunThenFinished) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+TEST_P(StoreFramesTest, ChunksWrittenDuringTheRunThenFinished) {
+  auto store = Open();
   store->PutRun(MakeRun("r-1", v1::RUNNING, 1000));
   const std::vector<v1::Frame> frames = MakeFrames(2 * kFramesPerChunk + 5, 6);
   FrameChunkBuilder builder;
@@ -111,9 +110,8 @@ TEST(StoreFramesTest, ChunksWrittenDuringTheRunThenFinished) {
   ExpectSameFrames(read, frames);
 }
 
-TEST(StoreFramesTest, FinishRunWithAnEmptyLastChunkDropsStaleChunks) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+TEST_P(StoreFramesTest, FinishRunWithAnEmptyLastChunkDropsStaleChunks) {
+  auto store = Open();
   store->PutRun(MakeRun("r-1", v1::RUNNING, 1000));
   const std::vector<EncodedFrameChunk> chunks = EncodeFrameChunks(MakeFrames(12, 2), 4);
   for (int i = 0; i < 3; ++i) store->PutFrameChunk("r-1", i, chunks[i]);
@@ -131,7 +129,7 @@ TEST(StoreFramesTest, FinishRunWithAnEmptyLastChunkDropsStaleChunks) {
 // A trigger added through a second connection makes the second chunk's insert fail: the
 // transaction must roll back the run row and the first chunk, and the error must say what
 // failed and why.
-TEST(StoreFramesTest, FinishRunIsAtomic) {
+TEST(StoreFramesSqliteTest, FinishRunIsAtomic) {
   TempDirectory temp;
   auto store = Store::Open(temp.str());
   const v1::RunInfo running = MakeRun("r-1", v1::RUNNING, 1000);
@@ -165,7 +163,7 @@ TEST(StoreFramesTest, FinishRunIsAtomic) {
 
 // The big case of the brief, measured once: run with --gtest_also_run_disabled_tests.
 // MBSTREAM_STORE_BIG_FRAMES overrides the frame count (default 1,000,000).
-TEST(StoreFramesTest, DISABLED_MillionFramesOfSixJoints) {
+TEST(StoreFramesSqliteTest, DISABLED_MillionFramesOfSixJoints) {
   const char* override_count = std::getenv("MBSTREAM_STORE_BIG_FRAMES");
   const int64_t count = override_count != nullptr ? std::atoll(override_count) : 1'000'000;
   TempDirectory temp;

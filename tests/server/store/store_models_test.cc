@@ -12,9 +12,11 @@ using testing::MakeModelInfo;
 using testing::Same;
 using testing::TempDirectory;
 
-TEST(StoreModelsTest, RoundTripWithAssets) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+class StoreModelsTest : public testing::StoreBackendTest {};
+INSTANTIATE_STORE_BACKENDS(StoreModelsTest);
+
+TEST_P(StoreModelsTest, RoundTripWithAssets) {
+  auto store = Open();
   const v1::ModelInfo info = MakeModelInfo("m-1", 1234);
   const v1::ModelBundle bundle = MakeBundle("arm", 3);
   EXPECT_TRUE(store->PutModel(info, bundle));
@@ -27,15 +29,13 @@ TEST(StoreModelsTest, RoundTripWithAssets) {
   EXPECT_EQ(loaded->assets(2).data(), bundle.assets(2).data());  // binary bytes intact
 }
 
-TEST(StoreModelsTest, UnknownModelHasNoBundle) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+TEST_P(StoreModelsTest, UnknownModelHasNoBundle) {
+  auto store = Open();
   EXPECT_FALSE(store->GetModelBundle("m-missing").has_value());
 }
 
-TEST(StoreModelsTest, PutModelIsIdempotentFirstCopyWins) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+TEST_P(StoreModelsTest, PutModelIsIdempotentFirstCopyWins) {
+  auto store = Open();
   const v1::ModelInfo first = MakeModelInfo("m-1", 100);
   v1::ModelInfo second = MakeModelInfo("m-1", 200);
   second.set_name("renamed");
@@ -50,9 +50,8 @@ TEST(StoreModelsTest, PutModelIsIdempotentFirstCopyWins) {
   EXPECT_EQ(bundle->assets_size(), 1);
 }
 
-TEST(StoreModelsTest, ListsOldestFirstAndFillsCreationTime) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+TEST_P(StoreModelsTest, ListsOldestFirstAndFillsCreationTime) {
+  auto store = Open();
   ASSERT_TRUE(store->PutModel(MakeModelInfo("m-late", 5000), MakeBundle("a", 0)));
   ASSERT_TRUE(store->PutModel(MakeModelInfo("m-early", 1000), MakeBundle("b", 0)));
   ASSERT_TRUE(store->PutModel(MakeModelInfo("m-now", 0), MakeBundle("c", 0)));

@@ -32,6 +32,9 @@ std::string OpenError(const std::string& directory) {
   return "(no InputError)";
 }
 
+class StoreReopenTest : public testing::StoreBackendTest {};
+INSTANTIATE_STORE_BACKENDS(StoreReopenTest);
+
 TEST(StoreOpenTest, CreatesNestedDirectoryAndFile) {
   TempDirectory temp;
   const auto directory = temp.path() / "a" / "b";
@@ -42,21 +45,20 @@ TEST(StoreOpenTest, CreatesNestedDirectoryAndFile) {
   EXPECT_TRUE(store->ListRuns().empty());
 }
 
-TEST(StoreOpenTest, ReopenKeepsEverything) {
-  TempDirectory temp;
+TEST_P(StoreReopenTest, ReopenKeepsEverything) {
   const v1::ModelInfo model = MakeModelInfo("m-1", 1000);
   const v1::ModelBundle bundle = MakeBundle("arm", 2);
   const v1::RunInfo finished = MakeRun("r-1", v1::FINISHED, 2000);
   const v1::RunInfo running = MakeRun("r-2", v1::RUNNING, 3000);
   const std::vector<v1::Frame> frames = MakeFrames(5000, 6);
   {
-    auto store = Store::Open(temp.str());
+    auto store = Open();
     ASSERT_TRUE(store->PutModel(model, bundle));
     store->FinishRun(finished, frames);
     store->PutRun(running);
     store->AddProbes({MakeProbe("r-1", 3, "tip")});
   }
-  auto store = Store::Open(temp.str());
+  auto store = Open();
   ASSERT_EQ(store->ListModels().size(), 1u);
   EXPECT_TRUE(Same(store->ListModels()[0], model));
   ASSERT_TRUE(store->GetModelBundle("m-1").has_value());

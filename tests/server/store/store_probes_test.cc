@@ -11,9 +11,11 @@ using testing::MakeProbe;
 using testing::Same;
 using testing::TempDirectory;
 
-TEST(StoreProbesTest, RoundTripSortedBySeqThenProbe) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+class StoreProbesTest : public testing::StoreBackendTest {};
+INSTANTIATE_STORE_BACKENDS(StoreProbesTest);
+
+TEST_P(StoreProbesTest, RoundTripSortedBySeqThenProbe) {
+  auto store = Open();
   store->AddProbes({MakeProbe("r-1", 2, "tip"), MakeProbe("r-1", 1, "tip"),
                     MakeProbe("r-1", 1, "elbow"), MakeProbe("r-2", 0, "tip")});
   store->AddProbes({MakeProbe("r-1", 0, "tip")});
@@ -28,9 +30,8 @@ TEST(StoreProbesTest, RoundTripSortedBySeqThenProbe) {
   EXPECT_TRUE(store->GetProbes("r-missing").empty());
 }
 
-TEST(StoreProbesTest, DuplicateReplacesOldRow) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+TEST_P(StoreProbesTest, DuplicateReplacesOldRow) {
+  auto store = Open();
   store->AddProbes({MakeProbe("r-1", 5, "tip")});
   v1::ProbeReport newer = MakeProbe("r-1", 5, "tip");
   newer.mutable_position_m()->set_x(-42.0);

@@ -19,9 +19,11 @@ v1::ProbeSet MakeSet(const std::string& id, const std::string& run_id) {
   return set;
 }
 
-TEST(StoreReplayTest, FrameChunkHoldingFindsTheChunkOfAnyFrame) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+class StoreReplayTest : public testing::StoreBackendTest {};
+INSTANTIATE_STORE_BACKENDS(StoreReplayTest);
+
+TEST_P(StoreReplayTest, FrameChunkHoldingFindsTheChunkOfAnyFrame) {
+  auto store = Open();
   store->PutRun(MakeRun("r-1", v1::FINISHED, 1));
   store->FinishRun(MakeRun("r-1", v1::FINISHED, 1), MakeFrames(2 * kFramesPerChunk + 10, 2));
   EXPECT_EQ(store->FrameChunkHolding("r-1", 0), 0);
@@ -32,9 +34,8 @@ TEST(StoreReplayTest, FrameChunkHoldingFindsTheChunkOfAnyFrame) {
   EXPECT_FALSE(store->FrameChunkHolding("r-2", 0));
 }
 
-TEST(StoreReplayTest, ProbeSetsAreKeptPerRunWithTheirReports) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+TEST_P(StoreReplayTest, ProbeSetsAreKeptPerRunWithTheirReports) {
+  auto store = Open();
   store->CreateProbeSet(MakeSet("ps-a", "r-1"));
   store->CreateProbeSet(MakeSet("ps-b", "r-1"));
   store->CreateProbeSet(MakeSet("ps-c", "r-2"));
@@ -62,7 +63,7 @@ TEST(StoreReplayTest, ProbeSetsAreKeptPerRunWithTheirReports) {
   EXPECT_TRUE(store->GetProbeSetReports("ps-none").empty());
 }
 
-TEST(StoreReplayTest, VersionOneStoreGainsProbeSetsAndKeepsItsRuns) {
+TEST(StoreReplaySqliteTest, VersionOneStoreGainsProbeSetsAndKeepsItsRuns) {
   TempDirectory temp;
   {
     auto store = Store::Open(temp.str());

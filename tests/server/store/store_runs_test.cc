@@ -15,9 +15,11 @@ using testing::MakeRun;
 using testing::Same;
 using testing::TempDirectory;
 
-TEST(StoreRunsTest, PutGetRoundTrip) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+class StoreRunsTest : public testing::StoreBackendTest {};
+INSTANTIATE_STORE_BACKENDS(StoreRunsTest);
+
+TEST_P(StoreRunsTest, PutGetRoundTrip) {
+  auto store = Open();
   const v1::RunInfo run = MakeRun("r-1", v1::QUEUED, 1000);
   store->PutRun(run);
   const auto loaded = store->GetRun("r-1");
@@ -26,9 +28,8 @@ TEST(StoreRunsTest, PutGetRoundTrip) {
   EXPECT_FALSE(store->GetRun("r-missing").has_value());
 }
 
-TEST(StoreRunsTest, PutRunReplacesKeepingOrderAndFrames) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+TEST_P(StoreRunsTest, PutRunReplacesKeepingOrderAndFrames) {
+  auto store = Open();
   store->PutRun(MakeRun("r-1", v1::QUEUED, 1000));
   store->PutRun(MakeRun("r-2", v1::QUEUED, 1000));  // same millisecond: insertion order
   store->FinishRun(MakeRun("r-1", v1::FINISHED, 1000), MakeFrames(10, 2));
@@ -43,9 +44,8 @@ TEST(StoreRunsTest, PutRunReplacesKeepingOrderAndFrames) {
   EXPECT_EQ(store->GetFrames("r-1").size(), 10u);
 }
 
-TEST(StoreRunsTest, ListsOldestFirst) {
-  TempDirectory temp;
-  auto store = Store::Open(temp.str());
+TEST_P(StoreRunsTest, ListsOldestFirst) {
+  auto store = Open();
   store->PutRun(MakeRun("r-c", v1::FINISHED, 3000));
   store->PutRun(MakeRun("r-a", v1::FINISHED, 1000));
   store->PutRun(MakeRun("r-b", v1::FINISHED, 2000));
@@ -56,16 +56,15 @@ TEST(StoreRunsTest, ListsOldestFirst) {
   EXPECT_EQ(runs[2].id(), "r-c");
 }
 
-TEST(StoreRunsTest, MarkUnfinishedRunsInterrupted) {
-  TempDirectory temp;
+TEST_P(StoreRunsTest, MarkUnfinishedRunsInterrupted) {
   {
-    auto store = Store::Open(temp.str());
+    auto store = Open();
     store->PutRun(MakeRun("r-queued", v1::QUEUED, 1000));
     store->PutRun(MakeRun("r-running", v1::RUNNING, 2000));
     store->PutRun(MakeRun("r-finished", v1::FINISHED, 3000));
     store->PutRun(MakeRun("r-cancelled", v1::CANCELLED, 4000));
   }  // the "crash"
-  auto store = Store::Open(temp.str());
+  auto store = Open();
   const int64_t before_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
                                 std::chrono::system_clock::now().time_since_epoch())
                                 .count();

@@ -6,6 +6,9 @@
 
 #include <unistd.h>
 
+#include "server/store/store_location.h"
+#include "tests/common/postgres_cluster.h"
+
 namespace mbstream::testing {
 
 TempDirectory::TempDirectory() {
@@ -19,6 +22,24 @@ TempDirectory::TempDirectory() {
 TempDirectory::~TempDirectory() {
   std::error_code ignored;
   std::filesystem::remove_all(path_, ignored);
+}
+
+void StoreBackendTest::SetUp() {
+  if (backend() != Backend::kPostgres) return;
+  if (const std::string why = PostgresCluster::Unavailable(); !why.empty()) {
+    GTEST_SKIP() << "PostgreSQL variant skipped: " << why;
+  }
+  static std::atomic<int> databases{0};
+  uri_ = SharedPostgresCluster().CreateDatabase("store_test_" + std::to_string(databases++));
+}
+
+std::unique_ptr<Store> StoreBackendTest::Open() {
+  if (backend() == Backend::kSqlite) return Store::Open(temp_.str());
+  return OpenStore(ParseStoreLocation(uri_));
+}
+
+std::string BackendName(const ::testing::TestParamInfo<Backend>& info) {
+  return info.param == Backend::kSqlite ? "sqlite" : "postgres";
 }
 
 v1::ModelInfo MakeModelInfo(const std::string& id, int64_t created_unix_ms) {

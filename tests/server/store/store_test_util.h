@@ -1,15 +1,19 @@
-// Helpers for the store tests: a temporary data directory and sample messages.
+// Helpers for the store tests: a temporary data directory, a fixture that runs a suite against
+// both store backends, and sample messages.
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <google/protobuf/util/message_differencer.h>
+#include <gtest/gtest.h>
 
 #include "mbstream/v1/frame.pb.h"
 #include "mbstream/v1/model.pb.h"
 #include "mbstream/v1/run.pb.h"
+#include "server/store/store.h"
 
 namespace mbstream::testing {
 
@@ -28,6 +32,33 @@ class TempDirectory {
  private:
   std::filesystem::path path_;
 };
+
+enum class Backend { kSqlite, kPostgres };
+
+// A suite of store tests run once per backend (TEST_P; INSTANTIATE_STORE_BACKENDS(Suite)):
+// SQLite in a temporary directory, PostgreSQL in a fresh database of this process's test
+// cluster (postgres_cluster.h). The PostgreSQL variants are skipped, with the reason, when
+// PostgreSQL is not installed.
+class StoreBackendTest : public ::testing::TestWithParam<Backend> {
+ protected:
+  void SetUp() override;
+  // Opens this test's store; again after the first store was destroyed, the same data.
+  std::unique_ptr<Store> Open();
+  Backend backend() const { return GetParam(); }
+  const std::string& uri() const { return uri_; }  // the PostgreSQL database's URI
+
+ private:
+  TempDirectory temp_;
+  std::string uri_;
+};
+
+std::string BackendName(const ::testing::TestParamInfo<Backend>& info);
+
+#define INSTANTIATE_STORE_BACKENDS(Suite)                                              \
+  INSTANTIATE_TEST_SUITE_P(Backends, Suite,                                            \
+                           ::testing::Values(::mbstream::testing::Backend::kSqlite,    \
+                                             ::mbstream::testing::Backend::kPostgres), \
+                           ::mbstream::testing::BackendName)
 
 v1::ModelInfo MakeModelInfo(const std::string& id, int64_t created_unix_ms);
 v1::ModelBundle MakeBundle(const std::string& name, int num_assets);

@@ -1,0 +1,123 @@
+#include "server/store/postgres_schema.h"
+
+#include <pqxx/pqxx>
+
+#include "common/check.h"
+#include "server/store/store_schema.h"
+
+namespace mbstream {
+namespace {
+
+// The tables of store_schema.cc in PostgreSQL's types: proto messages as bytea, columns only
+// for what queries filter or sort by, times in Unix epoch milliseconds, `ord` keeping
+// insertion order (upserts keep it). Probe names sort byte-wise (COLLATE "C") as in SQLite.
+constexpr const char* kSchemaV1 = R"sql(
+CREATE TABLE models (
+  ord bigint GENERATED ALWAYS AS IDENTITY PRIMARY KEY,
+  id text NOT NULL UNIQUE,
+  created_unix_ms bigint NOT NULL,
+  info bytea NOT NULL,     -- v1.ModelInfo
+  bundle bytea NOT NULL    -- v1.ModelBundle without its assets (they are in model_assets)
+);
+CREATE TABLE model_assets (
+  model_id text NOT NULL REFERENCES models(id) ON DELETE CASCADE,
+  position integer NOT NULL,  -- index in ModelBundle.assets
+  name text NOT NULL,
+  data bytea NOT NULL,
+  PRIMARY KEY (model_id, position)
+);
+CREATE TABLE runs (
+  ord bigint GENERATED ALWAYS AS IDENTITY PRIMARY KEY,
+  id text NOT NULL UNIQUE,
+  model_id text NOT NULL,
+  state integer NOT NULL,  -- v1.RunState
+  created_unix_ms bigint NOT NULL,
+  info bytea NOT NULL      -- v1.RunInfo
+);
+CREATE INDEX runs_by_created ON runs (created_unix_ms, ord);
+CREATE INDEX runs_by_state ON runs (state);
+CREATE INDEX runs_by_model ON runs (model_id);
+CREATE TABLE frame_chunks (
+  run_id text NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
+  chunk bigint NOT NULL,
+  first_seq bigint NOT NULL,
+  frame_count bigint NOT NULL,
+  data bytea NOT NULL,     -- length-delimited v1.Frame (frame_chunks.h)
+  PRIMARY KEY (run_id, chunk)
+);
+-- Serialized doubles hardly compress: store the chunks uncompressed, out of line.
+ALTER TABLE frame_chunks ALTER COLUMN data SET STORAGE EXTERNAL;
+CREATE TABLE probes (
+  run_id text NOT NULL,
+  seq bigint NOT NULL,
+  probe text COLLATE "C" NOT NULL,
+  report bytea NOT NULL,   -- v1.ProbeReport
+  PRIMARY KEY (run_id, seq, probe)
+);
+)sql";
+
+constexpr const char* kSchemaV2 = R"sql(
+CREATE TABLE probe_sets (
+  ord bigint GENERATED ALWAYS AS IDENTITY PRIMARY KEY,
+  id text NOT NULL UNIQUE,
+  run_id text NOT NULL,
+  info bytea NOT NULL      -- v1.ProbeSet (its `reports` count is computed when read)
+);
+CREATE INDEX probe_sets_by_run ON probe_sets (run_id, ord);
+CREATE TABLE probe_set_reports (
+  set_id text NOT NULL,
+  seq bigint NOT NULL,
+  probe text COLLATE "C" NOT NULL,
+  report bytea NOT NULL,   -- v1.ProbeReport
+  PRIMARY KEY (set_id, seq, probe)
+);
+)sql";
+
+struct Migration {
+  int version;      // the version the step leads to
+  const char* sql;  // from the version before
+};
+
+constexpr Migration kMigrations[] = {{1, kSchemaV1}, {2, kSchemaV2}};
+static_assert(sizeof(kMigrations) / sizeof(kMigrations[0]) == kPostgresSchemaVersion);
+static_assert(kPostgresSchemaVersion == kStoreSchemaVersion, "both stores, one behaviour");
+
+}  // namespace
+
+void EnsurePostgresSchema(pqxx::connection_base& db, const std::string& location,
+                          int target_version) {
+  pqxx::work tx(db, "mbstream schema");
+  tx.exec_params("SELECT pg_advisory_xact_lock($1)", static_cast<int64_t>(kStoreApplicationId));
+  int version = 0;
+  if (!tx.exec1("SELECT to_regclass('mbstream_schema') IS NOT NULL")[0].as<bool>()) {
+    const auto tables = tx.exec1(
+                              "SELECT count(*) FROM information_schema.tables "
+                              "WHERE table_schema = current_schema()")[0]
+                            .as<int64_t>();
+    if (tables > 0) {
+      throw InputError(location + " holds " + std::to_string(tables) +
+                       " tables of another program and no mbstream schema; give --store an "
+                       "empty database of its own (CREATE DATABASE mbstream)");
+    }
+    tx.exec("CREATE TABLE mbstream_schema (version integer NOT NULL)");
+    tx.exec("INSERT INTO mbstream_schema (version) VALUES (0)");
+  } else {
+    version = tx.exec1("SELECT version FROM mbstream_schema")[0].as<int>();
+  }
+  if (version > kPostgresSchemaVersion) {
+    throw InputError(location + " has store schema version " + std::to_string(version) +
+                     ", newer than the " + std::to_string(kPostgresSchemaVersion) +
+                     " this mbstream-server understands; run a newer mbstream-server or give "
+                     "--store another database");
+  }
+  for (const Migration& migration : kMigrations) {
+    if (migration.version > version && migration.version <= target_version) {
+      tx.exec(migration.sql,
+              "migrate the store schema to version " + std::to_string(migration.version));
+      tx.exec_params("UPDATE mbstream_schema SET version = $1", migration.version);
+    }
+  }
+  tx.commit();
+}
+
+}  // namespace mbstream

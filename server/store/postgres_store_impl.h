@@ -1,0 +1,63 @@
+// PostgresStore's private state: the connection, its mutex, and how each call runs in one
+// transaction with the driver's failures turned into PostgresError. Shared by the
+// postgres_store*.cc files.
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+
+#include <pqxx/pqxx>
+
+#include "server/store/postgres_error.h"
+#include "server/store/postgres_store.h"
+#include "server/store/store_codec.h"
+
+namespace mbstream {
+
+struct PostgresStore::Impl {
+  Impl(std::string location, std::unique_ptr<pqxx::connection> connection);
+
+  // Runs `body(transaction)` in one transaction under the mutex and commits it; a driver
+  // failure (SQL error, lost connection) becomes a PostgresError naming `operation`.
+  template <typename Body>
+  auto Transact(const std::string& operation, Body&& body) {
+    std::lock_guard lock(mutex);
+    try {
+      pqxx::work transaction(*db);
+      if constexpr (std::is_void_v<decltype(body(transaction))>) {
+        body(transaction);
+        transaction.commit();
+      } else {
+        auto result = body(transaction);
+        transaction.commit();
+        return result;
+      }
+    } catch (const pqxx::broken_connection& error) {
+      ThrowPostgresError(location, operation, error.what(), true);
+    } catch (const pqxx::pqxx_exception& error) {
+      ThrowPostgresError(location, operation, error.base().what(), false);
+    }
+  }
+
+  const std::string location;  // the URI without password, for messages
+  std::mutex mutex;            // guards db
+  std::unique_ptr<pqxx::connection> db;
+};
+
+// A bytea field's bytes (libpqxx unescapes the text form into `holder`).
+inline std::string_view BlobOf(const pqxx::field& field, pqxx::binarystring& holder) {
+  holder = pqxx::binarystring(field);
+  return {holder.get(), holder.size()};
+}
+
+// A bytea parameter (sent in binary form).
+inline pqxx::binarystring BlobParam(const std::string& bytes) { return pqxx::binarystring(bytes); }
+
+// Writes the run row (insert, or update keeping its order and its frames).
+void UpsertRun(pqxx::transaction_base& transaction, const v1::RunInfo& info);
+
+}  // namespace mbstream
