@@ -23,8 +23,8 @@ RunResult SimulateWithTarget(const Model& model, const RunConfig& config, FrameS
     stats.message = verification.message;
   }
   if (stats.status == RunStatus::kFinished && !choice.resolvable && verification.met != true) {
-    stats.message = "the target is not resolvable: " + choice.reason +
-                    (stats.message.empty() ? "" : "; " + stats.message);
+    stats.message =
+        "choice: " + choice.reason + (stats.message.empty() ? "" : "; " + stats.message);
   }
   return result;
 }
