@@ -27,6 +27,8 @@ class PostgresCluster {
   std::string Uri(const std::string& database) const;
 
  private:
+  void StartServer(const std::string& log);  // pg_ctl start -w
+
   std::string bin_;      // folder of initdb, pg_ctl
   std::string folder_;   // data/, socket/, log
   std::string as_user_;  // "runuser -u postgres -- " when root, else ""
