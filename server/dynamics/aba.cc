@@ -71,6 +71,84 @@ void AccelerationPass(const Vector6d& a_parent, int i, Data& data) {
   }
 }
 
+// Hybrid dynamics, pass 2 for a prescribed joint (qdd given): its subtree moves with a
+// known relative acceleration, so the whole articulated inertia reaches the parent and the
+// bias gains IA (c + S qdd) (Featherstone, RBDA 9.2).
+template <int Shape>
+void PrescribedBackwardPass(const Body& body, int i, double qdd, Data& data) {
+  if (body.parent == kBase) return;
+  Vector6d accel = data.c[i];
+  const int k = data.S_index[i];
+  if (k >= 0) {
+    accel(k) += qdd;
+  } else {
+    accel += data.S[i] * qdd;
+  }
+  Vector6d pa = data.pA[i];
+  pa.noalias() += data.IA[i] * accel;
+  AddInertiaAcross<Shape>(data.X_parent[i], data.IA[i], &data.IA[body.parent]);
+  data.pA[body.parent] += ForceToParentAcross<Shape>(data.X_parent[i], pa);
+}
+
+// Hybrid dynamics, pass 3 for a prescribed joint: the body's acceleration and the joint
+// force that produces it, S^T (IA a + pA) + armature qdd (IA, pA whole: never projected).
+template <int Shape>
+void PrescribedAccelerationPass(const Body& body, const Vector6d& a_parent, int i, Data& data) {
+  Vector6d& a = data.a[i];
+  const double qdd = data.qdd(i);
+  a = MotionToChildAcross<Shape>(data.X_parent[i], a_parent) + data.c[i];
+  const int k = data.S_index[i];
+  if (k >= 0) {
+    a(k) += qdd;
+    data.tau(i) = data.IA[i].row(k).dot(a) + data.pA[i](k);
+  } else {
+    a += data.S[i] * qdd;
+    data.tau(i) = data.S[i].dot(data.IA[i] * a + data.pA[i]);
+  }
+  data.tau(i) += body.joint.armature * qdd;
+}
+
+// ABA (kHybrid false: `prescribed` unused) or hybrid dynamics (joints with prescribed[i]
+// take data.qdd(i) as given and get their force in data.tau(i)).
+template <bool kHybrid>
+void ArticulatedBodyPasses(const Model& model, Data& data,
+                           const Eigen::Ref<const Eigen::VectorXd>& q,
+                           const Eigen::Ref<const Eigen::VectorXd>& qd,
+                           const Eigen::Ref<const Eigen::VectorXd>& tau,
+                           const std::vector<unsigned char>* prescribed) {
+  const int n = model.num_dofs();
+  for (int i = 0; i < n; ++i) {
+    const Body& body = model.bodies[i];
+    DispatchJointShape(body.joint,
+                       [&](auto shape) { ForwardPass<shape()>(body, i, q(i), qd(i), data); });
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    const Body& body = model.bodies[i];
+    if (kHybrid && (*prescribed)[i]) {
+      DispatchJointShape(body.joint, [&](auto shape) {
+        PrescribedBackwardPass<shape()>(body, i, data.qdd(i), data);
+      });
+    } else {
+      DispatchJointShape(body.joint,
+                         [&](auto shape) { BackwardPass<shape()>(body, i, tau(i), data); });
+    }
+  }
+  Vector6d a_base = Vector6d::Zero();
+  a_base.tail<3>() = -model.gravity;  // gravity as an upward acceleration of the base
+  for (int i = 0; i < n; ++i) {
+    const Body& body = model.bodies[i];
+    const Vector6d& a_parent = body.parent == kBase ? a_base : data.a[body.parent];
+    if (kHybrid && (*prescribed)[i]) {
+      DispatchJointShape(body.joint, [&](auto shape) {
+        PrescribedAccelerationPass<shape()>(body, a_parent, i, data);
+      });
+    } else {
+      DispatchJointShape(body.joint,
+                         [&](auto shape) { AccelerationPass<shape()>(a_parent, i, data); });
+    }
+  }
+}
+
 }  // namespace
 
 const Eigen::VectorXd& Aba(const Model& model, Data& data,
@@ -79,24 +157,23 @@ const Eigen::VectorXd& Aba(const Model& model, Data& data,
                            const Eigen::Ref<const Eigen::VectorXd>& tau) {
   const int n = model.num_dofs();
   MBSTREAM_CHECK(q.size() == n && qd.size() == n && tau.size() == n);
+  ArticulatedBodyPasses<false>(model, data, q, qd, tau, nullptr);
+  return data.qdd;
+}
+
+const Eigen::VectorXd& HybridAba(const Model& model, Data& data,
+                                 const Eigen::Ref<const Eigen::VectorXd>& q,
+                                 const Eigen::Ref<const Eigen::VectorXd>& qd,
+                                 const Eigen::Ref<const Eigen::VectorXd>& tau,
+                                 const Eigen::Ref<const Eigen::VectorXd>& qdd,
+                                 const std::vector<unsigned char>& prescribed) {
+  const int n = model.num_dofs();
+  MBSTREAM_CHECK(q.size() == n && qd.size() == n && tau.size() == n && qdd.size() == n &&
+                 static_cast<int>(prescribed.size()) == n);
   for (int i = 0; i < n; ++i) {
-    const Body& body = model.bodies[i];
-    DispatchJointShape(body.joint,
-                       [&](auto shape) { ForwardPass<shape()>(body, i, q(i), qd(i), data); });
+    if (prescribed[i]) data.qdd(i) = qdd(i);
   }
-  for (int i = n - 1; i >= 0; --i) {
-    const Body& body = model.bodies[i];
-    DispatchJointShape(body.joint,
-                       [&](auto shape) { BackwardPass<shape()>(body, i, tau(i), data); });
-  }
-  Vector6d a_base = Vector6d::Zero();
-  a_base.tail<3>() = -model.gravity;  // gravity as an upward acceleration of the base
-  for (int i = 0; i < n; ++i) {
-    const Body& body = model.bodies[i];
-    const Vector6d& a_parent = body.parent == kBase ? a_base : data.a[body.parent];
-    DispatchJointShape(body.joint,
-                       [&](auto shape) { AccelerationPass<shape()>(a_parent, i, data); });
-  }
+  ArticulatedBodyPasses<true>(model, data, q, qd, tau, &prescribed);
   return data.qdd;
 }
 
