@@ -6,6 +6,7 @@
 
 #include "server/dynamics/aba.h"
 #include "server/dynamics/crba.h"
+#include "server/dynamics/hybrid_dynamics.h"
 #include "server/dynamics/rnea.h"
 
 namespace mbstream {

@@ -9,6 +9,7 @@
 #include "server/dynamics/aba.h"
 #include "server/dynamics/crba.h"
 #include "server/dynamics/energy.h"
+#include "server/dynamics/hybrid_dynamics.h"
 #include "server/dynamics/rnea.h"
 #include "server/kinematics/forward_kinematics.h"
 #include "tests/common/test_models.h"
