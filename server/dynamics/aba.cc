@@ -7,7 +7,6 @@ namespace mbstream {
 
 using aba_passes::AccelerationPass;
 using aba_passes::BackwardPass;
-using aba_passes::ForwardPass;
 
 const Eigen::VectorXd& Aba(const Model& model, Data& data,
                            const Eigen::Ref<const Eigen::VectorXd>& q,
@@ -15,11 +14,7 @@ const Eigen::VectorXd& Aba(const Model& model, Data& data,
                            const Eigen::Ref<const Eigen::VectorXd>& tau) {
   const int n = model.num_dofs();
   MBSTREAM_CHECK(q.size() == n && qd.size() == n && tau.size() == n);
-  for (int i = 0; i < n; ++i) {
-    const Body& body = model.bodies[i];
-    DispatchJointShape(body.joint,
-                       [&](auto shape) { ForwardPass<shape()>(body, i, q(i), qd(i), data); });
-  }
+  aba_passes::ForwardPasses(model, q, qd, data);
   for (int i = n - 1; i >= 0; --i) {
     const Body& body = model.bodies[i];
     DispatchJointShape(body.joint,

@@ -74,4 +74,14 @@ void AccelerationPass(const Vector6d& a_parent, int i, Data& data) {
   }
 }
 
+// Pass 1 over every body.
+inline void ForwardPasses(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+                          const Eigen::Ref<const Eigen::VectorXd>& qd, Data& data) {
+  for (int i = 0; i < model.num_dofs(); ++i) {
+    const Body& body = model.bodies[i];
+    DispatchJointShape(body.joint,
+                       [&](auto shape) { ForwardPass<shape()>(body, i, q(i), qd(i), data); });
+  }
+}
+
 }  // namespace mbstream::aba_passes

@@ -9,7 +9,6 @@ namespace {
 
 using aba_passes::AccelerationPass;
 using aba_passes::BackwardPass;
-using aba_passes::ForwardPass;
 
 // Hybrid dynamics, pass 2 for a prescribed joint (qdd given): its subtree moves with a
 // known relative acceleration, so the whole articulated inertia reaches the parent and the
@@ -63,11 +62,7 @@ const Eigen::VectorXd& HybridAba(const Model& model, Data& data,
     if (prescribed[i]) data.qdd(i) = qdd(i);
   }
   // Aba's three passes, with the prescribed joints' own pass 2 and pass 3.
-  for (int i = 0; i < n; ++i) {
-    const Body& body = model.bodies[i];
-    DispatchJointShape(body.joint,
-                       [&](auto shape) { ForwardPass<shape()>(body, i, q(i), qd(i), data); });
-  }
+  aba_passes::ForwardPasses(model, q, qd, data);
   for (int i = n - 1; i >= 0; --i) {
     const Body& body = model.bodies[i];
     DispatchJointShape(body.joint, [&](auto shape) {
