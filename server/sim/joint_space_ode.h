@@ -65,7 +65,8 @@ class JointSpaceOde : public OdeSystem {
   // only when `want_efforts`). Returns false when any of them is not finite.
   bool EvaluateOutputs(double t, const double* y, bool want_efforts);
   // After Evaluate: the efforts the prescribed joints' drives must deliver (inverse
-  // dynamics, damping included) into drive_effort(). Allocates nothing.
+  // dynamics, damping included) into drive_effort(), from the forces Evaluate's hybrid
+  // dynamics computed (no further dynamics). Allocates nothing.
   void ComputePrescribedEfforts();
   const Eigen::VectorXd& q() const { return q_; }
   const Eigen::VectorXd& qd() const { return qd_; }
