@@ -9,6 +9,8 @@
 // random state from a pre-generated pool, so branch prediction sees realistic inputs.
 #include <benchmark/benchmark.h>
 
+#include <Eigen/Cholesky>
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -19,6 +21,7 @@
 
 #include "server/dynamics/aba.h"
 #include "server/dynamics/crba.h"
+#include "server/dynamics/hybrid_dynamics.h"
 #include "server/dynamics/rnea.h"
 #include "server/kinematics/forward_kinematics.h"
 #include "server/parse/urdf_import.h"
@@ -75,6 +78,51 @@ void BM_ForwardDynamics(benchmark::State& state, const Model* model) {
   });
 }
 
+// Mixed models (some joints prescribed, the joint-space ODE's right-hand side): min(6, n/2)
+// joints prescribed, spread evenly; their accelerations given, their forces computed.
+std::vector<unsigned char> PrescribedMask(int n) {
+  std::vector<unsigned char> mask(n, 0);
+  const int count = std::min(6, n / 2);
+  for (int k = 0; k < count; ++k) mask[k * n / count] = 1;
+  return mask;
+}
+
+void BM_HybridDynamics(benchmark::State& state, const Model* model) {
+  const std::vector<unsigned char> mask = PrescribedMask(model->num_dofs());
+  Run(state, *model, [&](const Model& m, Data& d, const auto& q, const auto& qd, const auto& x) {
+    benchmark::DoNotOptimize(HybridAba(m, d, q, qd, x, x, mask).data());
+  });
+}
+
+// What the joint-space ODE did before hybrid dynamics: RNEA for the bias, CRBA, a Cholesky
+// factorisation of the free-free block, and RNEA again for the prescribed joints' forces.
+void BM_PartitionedDynamics(benchmark::State& state, const Model* model) {
+  const int n = model->num_dofs();
+  const std::vector<unsigned char> mask = PrescribedMask(n);
+  std::vector<int> free;
+  for (int i = 0; i < n; ++i) {
+    if (!mask[i]) free.push_back(i);
+  }
+  const auto nf = static_cast<Eigen::Index>(free.size());
+  Eigen::MatrixXd M_free(nf, nf);
+  Eigen::VectorXd rhs(nf), qdd(n);
+  Eigen::LLT<Eigen::MatrixXd> llt(nf);
+  Run(state, *model, [&](const Model& m, Data& d, const auto& q, const auto& qd, const auto& x) {
+    qdd = x;
+    for (int i : free) qdd(i) = 0.0;
+    const Eigen::VectorXd& bias = Rnea(m, d, q, qd, qdd);
+    for (Eigen::Index a = 0; a < nf; ++a) rhs(a) = x(free[a]) - bias(free[a]);
+    const Eigen::MatrixXd& M = Crba(m, d, q);
+    for (Eigen::Index a = 0; a < nf; ++a) {
+      for (Eigen::Index b = 0; b < nf; ++b) M_free(a, b) = M(free[a], free[b]);
+    }
+    llt.compute(M_free);
+    llt.solveInPlace(rhs);
+    for (Eigen::Index a = 0; a < nf; ++a) qdd(free[a]) = rhs(a);
+    benchmark::DoNotOptimize(Rnea(m, d, q, qd, qdd).data());
+  });
+}
+
 // Registers every benchmark for the model of one URDF file, named after its robot.
 void RegisterModel(const std::string& path) {
   static std::vector<std::unique_ptr<Model>> models;  // alive until the benchmarks ran
@@ -86,6 +134,9 @@ void RegisterModel(const std::string& path) {
   benchmark::RegisterBenchmark(("BM_InverseDynamics" + robot).c_str(), BM_InverseDynamics, model);
   benchmark::RegisterBenchmark(("BM_MassMatrix" + robot).c_str(), BM_MassMatrix, model);
   benchmark::RegisterBenchmark(("BM_ForwardDynamics" + robot).c_str(), BM_ForwardDynamics, model);
+  benchmark::RegisterBenchmark(("BM_HybridDynamics" + robot).c_str(), BM_HybridDynamics, model);
+  benchmark::RegisterBenchmark(("BM_PartitionedDynamics" + robot).c_str(), BM_PartitionedDynamics,
+                               model);
 }
 
 }  // namespace

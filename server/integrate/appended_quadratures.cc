@@ -11,8 +11,7 @@ AppendedQuadratureOde::AppendedQuadratureOde(OdeSystem& system)
       jacobian_(system.HasJacobian() ? static_cast<size_t>(n_) * n_ : 0) {}
 
 int AppendedQuadratureOde::Rhs(double t, const double* z, double* zdot) {
-  if (const int code = system_.Rhs(t, z, zdot); code != 0) return code;
-  return system_.Quadrature(t, z, zdot + n_);
+  return system_.RhsAndQuadrature(t, z, zdot, zdot + n_);
 }
 
 int AppendedQuadratureOde::Jacobian(double t, const double* z, const double* fz,

@@ -37,6 +37,15 @@ class OdeSystem {
   // doubles); codes as Rhs. Must not allocate.
   virtual int num_quadratures() const { return 0; }
   virtual int Quadrature(double /*t*/, const double* /*y*/, double* /*qdot*/) { return -1; }
+
+  // f and g at the same (t, y), as the appended quadratures ask for them on every
+  // right-hand side: a system whose g needs what f computes (the joint-space ODE's drive
+  // efforts need its accelerations) overrides this to evaluate once. The result must equal
+  // Rhs followed by Quadrature bit for bit; codes as Rhs. Must not allocate.
+  virtual int RhsAndQuadrature(double t, const double* y, double* ydot, double* qdot) {
+    if (const int code = Rhs(t, y, ydot); code != 0) return code;
+    return Quadrature(t, y, qdot);
+  }
 };
 
 }  // namespace mbstream

@@ -6,6 +6,7 @@
 
 #include "server/dynamics/aba.h"
 #include "server/dynamics/crba.h"
+#include "server/dynamics/hybrid_dynamics.h"
 #include "server/dynamics/rnea.h"
 
 namespace mbstream {
@@ -21,14 +22,12 @@ JointSpaceOde::JointSpaceOde(const Model& model, const DriveSet& drives, bool tr
       qdd_(Eigen::VectorXd::Zero(n_)),
       effort_(Eigen::VectorXd::Zero(n_)),
       tau_(Eigen::VectorXd::Zero(n_)),
+      prescribed_force_(Eigen::VectorXd::Zero(n_)),
       drive_workspace_(drives.MakeWorkspace()) {
   for (int i = 0; i < n_; ++i) {
     (drives.prescribed(i) ? prescribed_ : free_).push_back(i);
+    prescribed_mask_.push_back(drives.prescribed(i) ? 1 : 0);
   }
-  const auto nf = static_cast<Eigen::Index>(free_.size());
-  M_free_ = Eigen::MatrixXd::Zero(nf, nf);
-  rhs_free_ = Eigen::VectorXd::Zero(nf);
-  llt_ = Eigen::LLT<Eigen::MatrixXd>(nf);
   // Every drive law is affine in (q, qd) (servo: kp (q_ref - q) + kd (qd_ref - qd); torque
   // laws and passive joints: constant in both), so two differences give its exact slopes.
   effort_dq_ = Eigen::VectorXd::Zero(n_);
@@ -70,23 +69,14 @@ void JointSpaceOde::EvaluateState(double t, const double* y) {
 }
 
 bool JointSpaceOde::EvaluateAccelerations() {
+  ++dynamics_evaluations_;
   if (drives_.num_prescribed() == 0) {
     qdd_ = Aba(model_, data_, q_, qd_, tau_);
   } else {
-    // Bias with the prescribed accelerations and zero free ones, then solve
-    // M_ff qdd_f = tau_f - bias_f, and read the prescribed joints' efforts off RNEA.
-    for (int i : free_) qdd_(i) = 0.0;
-    if (!free_.empty()) {
-      const Eigen::VectorXd& bias = Rnea(model_, data_, q_, qd_, qdd_);
-      for (size_t a = 0; a < free_.size(); ++a) rhs_free_(a) = tau_(free_[a]) - bias(free_[a]);
-      const Eigen::MatrixXd& M = Crba(model_, data_, q_);
-      for (size_t a = 0; a < free_.size(); ++a) {
-        for (size_t b = 0; b < free_.size(); ++b) M_free_(a, b) = M(free_[a], free_[b]);
-      }
-      llt_.compute(M_free_);
-      llt_.solveInPlace(rhs_free_);
-      for (size_t a = 0; a < free_.size(); ++a) qdd_(free_[a]) = rhs_free_(a);
-    }
+    // Hybrid dynamics: the free joints' accelerations and the prescribed joints' forces in
+    // one O(n) pass (tau_'s prescribed entries and qdd_'s free ones are not read).
+    qdd_ = HybridAba(model_, data_, q_, qd_, tau_, qdd_, prescribed_mask_);
+    for (int i : prescribed_) prescribed_force_(i) = data_.tau(i);
   }
   return qdd_.allFinite();
 }
@@ -101,11 +91,7 @@ bool JointSpaceOde::EvaluateOutputs(double t, const double* y, bool want_efforts
 }
 
 void JointSpaceOde::ComputePrescribedEfforts() {
-  if (drives_.num_prescribed() == 0) return;
-  const Eigen::VectorXd& tau = Rnea(model_, data_, q_, qd_, qdd_);
-  for (int i = 0; i < n_; ++i) {
-    if (drives_.prescribed(i)) effort_(i) = tau(i) + drives_.damping(i) * qd_(i);
-  }
+  for (int i : prescribed_) effort_(i) = prescribed_force_(i) + drives_.damping(i) * qd_(i);
 }
 
 int JointSpaceOde::Rhs(double t, const double* y, double* ydot) {
@@ -125,10 +111,24 @@ int JointSpaceOde::Quadrature(double t, const double* y, double* qdot) {
   } else {
     EvaluateState(t, y);
   }
+  WritePower(qdot);
+  return 0;
+}
+
+int JointSpaceOde::RhsAndQuadrature(double t, const double* y, double* ydot, double* qdot) {
+  if (!track_work_) return -1;
+  // Rhs's evaluation is the one Quadrature would repeat: EvaluateState is a function of
+  // (t, y) alone, and the dynamics' results (qdd_, prescribed_force_) of its outputs.
+  if (const int code = Rhs(t, y, ydot); code != 0) return code;
+  ComputePrescribedEfforts();
+  WritePower(qdot);
+  return 0;
+}
+
+void JointSpaceOde::WritePower(double* qdot) const {
   double power = 0.0;
   for (int i = 0; i < n_; ++i) power += (effort_(i) - drives_.damping(i) * qd_(i)) * qd_(i);
   qdot[0] = power;
-  return 0;
 }
 
 int JointSpaceOde::Jacobian(double /*t*/, const double* y, const double* fy,

@@ -3,9 +3,9 @@
 //
 // Prescribed joints impose q_ref(t) (or, as velocity sources, impose qd_ref(t) and take q
 // from the state); the dynamics then solves for the free joints' accelerations and the
-// prescribed joints' drive efforts together (a partitioned system: RNEA for the bias, CRBA
-// and a Cholesky factorisation of the free-free block). With no prescribed joint it is
-// plain ABA. With no prescribed joint the ODE supplies its own Jacobian (see Jacobian());
+// prescribed joints' drive efforts together, in O(n) by Featherstone's hybrid dynamics
+// (HybridAba: ABA with the prescribed joints' accelerations given). With no prescribed joint
+// it is plain ABA. With no prescribed joint the ODE supplies its own Jacobian (see Jacobian());
 // otherwise it is left to the integrator's difference quotients.
 #pragma once
 
@@ -44,6 +44,12 @@ class JointSpaceOde : public OdeSystem {
   // not of a quadrature over the output frames. Allocates nothing.
   int num_quadratures() const override { return track_work_ ? 1 : 0; }
   int Quadrature(double t, const double* y, double* qdot) override;
+  // Rhs and Quadrature at one (t, y) with one evaluation of the dynamics (the appended
+  // quadratures ask for both on every right-hand side); bit for bit the two calls' results.
+  int RhsAndQuadrature(double t, const double* y, double* ydot, double* qdot) override;
+
+  // How many times the dynamics (ABA or hybrid dynamics) ran: for tests of the work saved.
+  long dynamics_evaluations() const { return dynamics_evaluations_; }
 
   // Structural non-zeros of df/dy: the identity of q' = qd, and full rows of the free
   // joints' accelerations.
@@ -59,7 +65,8 @@ class JointSpaceOde : public OdeSystem {
   // only when `want_efforts`). Returns false when any of them is not finite.
   bool EvaluateOutputs(double t, const double* y, bool want_efforts);
   // After Evaluate: the efforts the prescribed joints' drives must deliver (inverse
-  // dynamics, damping included) into drive_effort(). Allocates nothing.
+  // dynamics, damping included) into drive_effort(), from the forces Evaluate's hybrid
+  // dynamics computed (no further dynamics). Allocates nothing.
   void ComputePrescribedEfforts();
   const Eigen::VectorXd& q() const { return q_; }
   const Eigen::VectorXd& qd() const { return qd_; }
@@ -69,19 +76,20 @@ class JointSpaceOde : public OdeSystem {
 
  private:
   void EvaluateState(double t, const double* y);  // q_, qd_, reference qdd_, efforts, tau_
-  bool EvaluateAccelerations();                   // qdd_ of the free joints
+  bool EvaluateAccelerations();                   // qdd_ of the free joints, prescribed_force_
+  void WritePower(double* qdot) const;            // W' from effort_ and qd_
   const Model& model_;
   const DriveSet& drives_;
   const int n_;
   const bool track_work_;
   Data data_;
   Eigen::VectorXd q_, qd_, qdd_, effort_, tau_;
-  std::vector<int> free_;                // indices of non-prescribed joints
-  std::vector<int> prescribed_;          // indices of prescribed joints
-  DriveSet::Workspace drive_workspace_;  // for DriveSet::ActuatorEfforts
-  Eigen::MatrixXd M_free_;               // free-free block of M
-  Eigen::VectorXd rhs_free_;
-  Eigen::LLT<Eigen::MatrixXd> llt_;
+  std::vector<int> free_;                       // indices of non-prescribed joints
+  std::vector<int> prescribed_;                 // indices of prescribed joints
+  std::vector<unsigned char> prescribed_mask_;  // per joint: 1 = prescribed (HybridAba)
+  Eigen::VectorXd prescribed_force_;            // the prescribed joints' forces from HybridAba
+  DriveSet::Workspace drive_workspace_;         // for DriveSet::ActuatorEfforts
+  long dynamics_evaluations_ = 0;
   // For Jacobian(): the drive laws' slopes d(effort)/dq and d(effort)/dqd, workspaces.
   Eigen::VectorXd effort_dq_, effort_dqd_;
   Eigen::VectorXd id0_;

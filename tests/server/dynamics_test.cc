@@ -4,10 +4,12 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <vector>
 
 #include "server/dynamics/aba.h"
 #include "server/dynamics/crba.h"
 #include "server/dynamics/energy.h"
+#include "server/dynamics/hybrid_dynamics.h"
 #include "server/dynamics/rnea.h"
 #include "server/kinematics/forward_kinematics.h"
 #include "tests/common/test_models.h"
@@ -45,6 +47,74 @@ TEST_P(DynamicsTest, RneaInvertsAba) {
     const Eigen::VectorXd qdd = Aba(model_, data_, q, qd, tau);
     const Eigen::VectorXd back = Rnea(model_, data_, q, qd, qdd);
     EXPECT_LT((back - tau).norm(), 1e-10 * tau.norm()) << "state " << k;
+  }
+}
+
+// Hybrid dynamics against the partitioned system it replaces in the joint-space ODE: with
+// the prescribed joints' accelerations given, M_ff qdd_f = tau_f - RNEA(q, qd, [qdd_p; 0])_f
+// and the prescribed joints' forces RNEA(q, qd, qdd)_p.
+TEST_P(DynamicsTest, HybridAbaAgreesWithPartitionedCrbaAndRnea) {
+  for (int k = 0; k < 50; ++k) {
+    std::vector<unsigned char> prescribed(n_);
+    for (int i = 0; i < n_; ++i) prescribed[i] = (i + k) % 3 == 0 ? 1 : 0;
+    const Eigen::VectorXd q = testing::RandomVector(rng_, n_, 3.0);
+    const Eigen::VectorXd qd = testing::RandomVector(rng_, n_, 2.0);
+    const Eigen::VectorXd tau = testing::RandomVector(rng_, n_, 50.0);
+    Eigen::VectorXd qdd_given = testing::RandomVector(rng_, n_, 5.0);
+    Eigen::VectorXd biased = qdd_given;
+    std::vector<int> free;
+    for (int i = 0; i < n_; ++i) {
+      if (!prescribed[i]) {
+        free.push_back(i);
+        biased(i) = 0.0;
+      }
+    }
+    const Eigen::VectorXd bias = Rnea(model_, data_, q, qd, biased);
+    const Eigen::MatrixXd M = Crba(model_, data_, q);
+    const int nf = static_cast<int>(free.size());
+    Eigen::MatrixXd M_ff(nf, nf);
+    Eigen::VectorXd rhs(nf);
+    for (int a = 0; a < nf; ++a) {
+      rhs(a) = tau(free[a]) - bias(free[a]);
+      for (int b = 0; b < nf; ++b) M_ff(a, b) = M(free[a], free[b]);
+    }
+    const Eigen::VectorXd qdd_free = M_ff.llt().solve(rhs);
+    Eigen::VectorXd expected = qdd_given;
+    for (int a = 0; a < nf; ++a) expected(free[a]) = qdd_free(a);
+    const Eigen::VectorXd forces = Rnea(model_, data_, q, qd, expected);
+
+    const Eigen::VectorXd qdd = HybridAba(model_, data_, q, qd, tau, qdd_given, prescribed);
+    EXPECT_LT((qdd - expected).norm(), 1e-10 * expected.norm()) << "state " << k;
+    for (int i = 0; i < n_; ++i) {
+      if (prescribed[i]) {
+        EXPECT_EQ(qdd(i), qdd_given(i));
+        EXPECT_NEAR(data_.tau(i), forces(i), 1e-10 * forces.norm()) << "joint " << i;
+      }
+    }
+  }
+}
+
+TEST_P(DynamicsTest, HybridAbaWithNothingPrescribedIsAbaBitForBit) {
+  const std::vector<unsigned char> none(n_, 0);
+  for (int k = 0; k < 10; ++k) {
+    const Eigen::VectorXd q = testing::RandomVector(rng_, n_, 3.0);
+    const Eigen::VectorXd qd = testing::RandomVector(rng_, n_, 2.0);
+    const Eigen::VectorXd tau = testing::RandomVector(rng_, n_, 50.0);
+    const Eigen::VectorXd aba = Aba(model_, data_, q, qd, tau);
+    const Eigen::VectorXd hybrid = HybridAba(model_, data_, q, qd, tau, data_.zeros, none);
+    for (int i = 0; i < n_; ++i) EXPECT_EQ(aba(i), hybrid(i));
+  }
+}
+
+TEST_P(DynamicsTest, HybridAbaWithEverythingPrescribedIsRnea) {
+  const std::vector<unsigned char> all(n_, 1);
+  for (int k = 0; k < 10; ++k) {
+    const Eigen::VectorXd q = testing::RandomVector(rng_, n_, 3.0);
+    const Eigen::VectorXd qd = testing::RandomVector(rng_, n_, 2.0);
+    const Eigen::VectorXd qdd = testing::RandomVector(rng_, n_, 5.0);
+    const Eigen::VectorXd rnea = Rnea(model_, data_, q, qd, qdd);
+    HybridAba(model_, data_, q, qd, data_.zeros, qdd, all);
+    EXPECT_LT((data_.tau - rnea).norm(), 1e-12 * rnea.norm());
   }
 }
 
