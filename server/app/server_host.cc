@@ -106,8 +106,8 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   replica.address = config.advertise;
   replica.lease_timeout_s = config.lease_timeout_s;
   replica.private_store = location.kind != StoreLocation::Kind::kPostgresql;
-  host->runs_ = std::make_unique<RunManager>(host->models_.get(), host->store_.get(),
-                                             config.limits, nullptr, replica);
+  host->runs_ = std::make_unique<RunManager>(host->models_.get(), host->store_.get(), config.limits,
+                                             nullptr, replica);
   host->grace_s_ = config.grace_s;
   host->service_ = std::make_unique<SimulationService>(host->models_.get(), host->runs_.get(),
                                                        host->authorizer_.get());

@@ -121,8 +121,7 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
     ApplyHandBack(info, info.ended_unix_ms(), outcome.message);
   }
   try {
-    const int64_t lease_ms = static_cast<int64_t>(replica_.lease_timeout_s * 1000.0);
-    if (run->lease_lost || !store_->RenewLease(run->id(), holder, NowUnixMs() + lease_ms)) {
+    if (run->lease_lost || !store_->RenewLease(run->id(), holder, NowUnixMs() + LeaseMs())) {
       run->lease_lost = true;
     } else if (info.state() == v1::QUEUED) {
       if (!store_->PutRunIfHeld(info, holder)) run->lease_lost = true;

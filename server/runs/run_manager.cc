@@ -204,8 +204,8 @@ v1::RunInfo RunManager::Cancel(const std::string& run_id) {
     return run->Info();
   }
   // Queued (here or by another replica): ended in the store unless a replica claimed it.
-  if (std::optional<v1::RunInfo> ended = store_->EndQueuedRun(
-          run_id, v1::CANCELLED, "cancelled before it started", NowUnixMs())) {
+  if (std::optional<v1::RunInfo> ended =
+          store_->EndQueuedRun(run_id, v1::CANCELLED, "cancelled before it started", NowUnixMs())) {
     if (run) EndPlaceholder(run, *ended);
     spdlog::info("run {} cancelled before it started", run_id);
     return *ended;

@@ -38,8 +38,8 @@ class Store;
 struct ReplicaOptions {
   std::string id;       // RunInfo.replica; empty: host name, process id and a random suffix
   std::string address;  // RunInfo.replica_address (--advertise); may be set later
-  // s a run's lease lasts unless renewed (renewed every quarter of it); a replica that dies
-  // has its runs reaped by another within about this time plus a quarter.
+  // s within which the runs of a replica that died are reaped by another (between half of it
+  // and all of it after the death; run_manager_queue.cc, LeaseMs).
   double lease_timeout_s = 10.0;
   // s between looks at the shared store's queue by an idle worker (runs started on other
   // replicas); a private store is looked at only when this replica queues a run.
@@ -165,6 +165,7 @@ class RunManager {
   std::shared_ptr<Run> ClaimNext();
   std::shared_ptr<Run> RunOf(const v1::RunInfo& info);  // model compiled, config prepared
   RunLease NewLease() const;
+  int64_t LeaseMs() const;  // how long a claim or renewal holds
   void KeeperLoop();
   void KeepLeases();  // renews, reaps, follows runs started here and claimed elsewhere
   // Records whether the store answered (when given) and tells the listener of a change.

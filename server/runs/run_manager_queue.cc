@@ -30,9 +30,16 @@ RunLease RunManager::NewLease() const {
     lease.address = replica_.address;
   }
   lease.now_unix_ms = NowUnixMs();
-  lease.expires_unix_ms =
-      lease.now_unix_ms + static_cast<int64_t>(replica_.lease_timeout_s * 1000.0);
+  lease.expires_unix_ms = lease.now_unix_ms + LeaseMs();
   return lease;
+}
+
+// Granted for 3/4 of --lease-timeout-s and renewed every 1/4 of it, while every replica's
+// keeper looks for expired leases every 1/4 of it: a replica that dies had renewed at most a
+// quarter before, its lease expires at most 3/4 later and is seen at most a quarter after
+// that, so its runs are marked between 1/2 and 1 lease timeout after its death.
+int64_t RunManager::LeaseMs() const {
+  return static_cast<int64_t>(replica_.lease_timeout_s * 750.0);
 }
 
 void RunManager::SetAdvertisedAddress(const std::string& address) {
@@ -86,8 +93,8 @@ std::shared_ptr<Run> RunManager::ClaimNext() {
       } catch (const std::exception& error) {
         v1::RunInfo failed = *claimed;
         failed.set_state(v1::FAILED);
-        failed.set_message("replica " + replica_.id + " could not prepare the run: " +
-                           error.what());
+        failed.set_message("replica " + replica_.id +
+                           " could not prepare the run: " + error.what());
         failed.set_ended_unix_ms(NowUnixMs());
         spdlog::error("run {}: {}", failed.id(), failed.message());
         try {
@@ -155,7 +162,8 @@ void RunManager::EndPlaceholder(const std::shared_ptr<Run>& run, const v1::RunIn
     if (auto found = active_.find(run->id()); found != active_.end() && found->second == run) {
       active_.erase(found);
     }
-    if (auto found = elsewhere_.find(run->id()); found != elsewhere_.end() && found->second == run) {
+    if (auto found = elsewhere_.find(run->id());
+        found != elsewhere_.end() && found->second == run) {
       elsewhere_.erase(found);
     }
   }
@@ -185,14 +193,15 @@ void RunManager::KeepLeases() {
   }
   try {
     const int64_t now_ms = NowUnixMs();
-    const auto expires_ms = now_ms + static_cast<int64_t>(replica_.lease_timeout_s * 1000.0);
+    const int64_t expires_ms = now_ms + LeaseMs();
     for (const auto& run : running) {
       const v1::RunInfo info = run->Info();
       if (info.replica().empty() || run->ended() || run->lease_lost) continue;
       if (!store_->RenewLease(run->id(), LeaseHolder(info), expires_ms)) {
-        spdlog::warn("run {}: replica {} lost its lease (another replica took the run over); "
-                     "stopping it here",
-                     run->id(), replica_.id);
+        spdlog::warn(
+            "run {}: replica {} lost its lease (another replica took the run over); "
+            "stopping it here",
+            run->id(), replica_.id);
         run->lease_lost = true;
         run->cancel = true;
       }

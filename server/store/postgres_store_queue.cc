@@ -28,16 +28,16 @@ void UpdateRun(pqxx::work& tx, const v1::RunInfo& info, const std::string* holde
     tx.exec_params("UPDATE runs SET lease_holder = $2, lease_expires_unix_ms = $3 WHERE id = $1",
                    info.id(), *holder, expires_unix_ms);
   } else {
-    tx.exec_params(
-        "UPDATE runs SET lease_holder = NULL, lease_expires_unix_ms = 0 WHERE id = $1",
-        info.id());
+    tx.exec_params("UPDATE runs SET lease_holder = NULL, lease_expires_unix_ms = 0 WHERE id = $1",
+                   info.id());
   }
 }
 
 bool HoldsLease(pqxx::work& tx, const std::string& run_id, const std::string& holder) {
-  return !tx.exec_params("SELECT 1 FROM runs WHERE id = $1 AND state = $2 AND lease_holder = $3 "
-                         "FOR UPDATE",
-                         run_id, kRunning, holder)
+  return !tx.exec_params(
+                "SELECT 1 FROM runs WHERE id = $1 AND state = $2 AND lease_holder = $3 "
+                "FOR UPDATE",
+                run_id, kRunning, holder)
               .empty();
 }
 
@@ -63,11 +63,10 @@ std::optional<v1::RunInfo> PostgresStore::ClaimQueuedRun(const RunLease& lease) 
 bool PostgresStore::RenewLease(const std::string& run_id, const std::string& holder,
                                int64_t expires_unix_ms) {
   return impl_->Transact("renew the lease of run " + run_id, [&](pqxx::work& tx) {
-    return tx
-               .exec_params(
-                   "UPDATE runs SET lease_expires_unix_ms = $3 "
-                   "WHERE id = $1 AND state = $4 AND lease_holder = $2",
-                   run_id, holder, expires_unix_ms, kRunning)
+    return tx.exec_params(
+                 "UPDATE runs SET lease_expires_unix_ms = $3 "
+                 "WHERE id = $1 AND state = $4 AND lease_holder = $2",
+                 run_id, holder, expires_unix_ms, kRunning)
                .affected_rows() == 1;
   });
 }
@@ -101,10 +100,10 @@ std::optional<v1::RunInfo> PostgresStore::EndQueuedRun(const std::string& run_id
                                                        const std::string& message,
                                                        int64_t now_unix_ms) {
   return impl_->Transact("end queued run " + run_id, [&](pqxx::work& tx) {
-    std::vector<v1::RunInfo> queued = Infos(
-        tx.exec_params("SELECT info FROM runs WHERE id = $1 AND state = $2 FOR UPDATE", run_id,
-                       kQueued),
-        "run " + run_id, impl_->location);
+    std::vector<v1::RunInfo> queued =
+        Infos(tx.exec_params("SELECT info FROM runs WHERE id = $1 AND state = $2 FOR UPDATE",
+                             run_id, kQueued),
+              "run " + run_id, impl_->location);
     std::optional<v1::RunInfo> ended;
     if (queued.empty()) return ended;
     ended = std::move(queued.front());

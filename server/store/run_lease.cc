@@ -11,8 +11,8 @@ bool HasAttemptsLeft(const v1::RunInfo& info) {
 // frames are replaced by the next attempt's), the replica fields keep naming who had it.
 void Requeue(v1::RunInfo& info, const std::string& why) {
   info.set_state(v1::QUEUED);
-  info.set_message(why + "; queued again (attempt " + std::to_string(info.attempts() + 1) +
-                   " of " + std::to_string(1 + info.spec().retries()) + ")");
+  info.set_message(why + "; queued again (attempt " + std::to_string(info.attempts() + 1) + " of " +
+                   std::to_string(1 + info.spec().retries()) + ")");
   info.clear_stats();
   info.set_frames(0);
   info.set_t_s(0.0);

@@ -53,8 +53,7 @@ class SqliteStore final : public Store {
                                              const std::string& reaper) override;
   bool PutRunIfHeld(const v1::RunInfo& info, const std::string& holder) override;
   std::optional<v1::RunInfo> EndQueuedRun(const std::string& run_id, v1::RunState state,
-                                          const std::string& message,
-                                          int64_t now_unix_ms) override;
+                                          const std::string& message, int64_t now_unix_ms) override;
 
   // Private state, opaque here (defined in store_impl.h for the store's own .cc files).
   struct Impl;

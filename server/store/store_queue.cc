@@ -79,8 +79,7 @@ std::vector<v1::RunInfo> SqliteStore::ReapExpiredLeases(int64_t now_unix_ms,
   std::lock_guard lock(impl_->mutex);
   SqliteTransaction transaction(impl_->db, "reap expired run leases");
   std::vector<v1::RunInfo> expired = SelectRuns(
-      *impl_,
-      "SELECT info FROM runs WHERE state = ?1 AND lease_expires_unix_ms < ?2 ORDER BY ord",
+      *impl_, "SELECT info FROM runs WHERE state = ?1 AND lease_expires_unix_ms < ?2 ORDER BY ord",
       "reap expired run leases", [&](SqliteStatement& s) {
         s.BindInt64(1, v1::RUNNING);
         s.BindInt64(2, now_unix_ms);
@@ -104,18 +103,17 @@ bool SqliteStore::PutRunIfHeld(const v1::RunInfo& info, const std::string& holde
   return true;
 }
 
-std::optional<v1::RunInfo> SqliteStore::EndQueuedRun(const std::string& run_id,
-                                                     v1::RunState state,
+std::optional<v1::RunInfo> SqliteStore::EndQueuedRun(const std::string& run_id, v1::RunState state,
                                                      const std::string& message,
                                                      int64_t now_unix_ms) {
   std::lock_guard lock(impl_->mutex);
   SqliteTransaction transaction(impl_->db, "end queued run " + run_id);
-  std::vector<v1::RunInfo> queued = SelectRuns(
-      *impl_, "SELECT info FROM runs WHERE id = ?1 AND state = ?2", "end a queued run",
-      [&](SqliteStatement& s) {
-        s.BindText(1, run_id);
-        s.BindInt64(2, v1::QUEUED);
-      });
+  std::vector<v1::RunInfo> queued =
+      SelectRuns(*impl_, "SELECT info FROM runs WHERE id = ?1 AND state = ?2", "end a queued run",
+                 [&](SqliteStatement& s) {
+                   s.BindText(1, run_id);
+                   s.BindInt64(2, v1::QUEUED);
+                 });
   if (queued.empty()) return std::nullopt;
   v1::RunInfo& info = queued.front();
   info.set_state(state);

@@ -56,7 +56,8 @@ class Replica {
     return info;
   }
   // Polls GetRun until `done` holds (an event of the cluster); the guard only fails the test.
-  v1::RunInfo WaitFor(const std::string& run_id, const std::function<bool(const v1::RunInfo&)>& done) {
+  v1::RunInfo WaitFor(const std::string& run_id,
+                      const std::function<bool(const v1::RunInfo&)>& done) {
     const auto guard = std::chrono::steady_clock::now() + kGuard;
     for (;;) {
       v1::RunInfo info = Get(run_id);
@@ -143,8 +144,8 @@ TEST_F(ClusterE2eTest, KilledReplicasRunIsInterruptedByTheOtherWhileOtherRunsFin
   victim.process().Kill();
   const auto killed = std::chrono::steady_clock::now();
 
-  const v1::RunInfo reaped = survivor.WaitFor(
-      slow.id(), [](const v1::RunInfo& i) { return i.state() != v1::RUNNING; });
+  const v1::RunInfo reaped =
+      survivor.WaitFor(slow.id(), [](const v1::RunInfo& i) { return i.state() != v1::RUNNING; });
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - killed).count();
   EXPECT_EQ(reaped.state(), v1::INTERRUPTED) << reaped.message();
