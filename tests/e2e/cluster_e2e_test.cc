@@ -8,8 +8,10 @@
 #include <grpcpp/grpcpp.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <iostream>
 #include <random>
 #include <set>
 #include <thread>
@@ -100,9 +102,16 @@ class ClusterE2eTest : public ::testing::Test {
   void TearDown() override {
     if (!dir_.empty()) fs::remove_all(dir_);
   }
+  // The lease timeout: 2 s, or MBSTREAM_CLUSTER_LEASE_S (to measure the default's timeline,
+  // docs/cluster.md).
+  static std::string LeaseTimeout() {
+    const char* lease = std::getenv("MBSTREAM_CLUSTER_LEASE_S");
+    return lease != nullptr ? lease : "2";
+  }
   std::unique_ptr<Replica> NewReplica(const std::string& name,
                                       std::vector<std::string> extra = {}) {
-    std::vector<std::string> args = {"--store", uri_, "--workers", "1", "--lease-timeout-s", "2"};
+    std::vector<std::string> args = {"--store",           uri_,          "--workers", "1",
+                                     "--lease-timeout-s", LeaseTimeout()};
     args.insert(args.end(), extra.begin(), extra.end());
     return std::make_unique<Replica>((dir_ / name).string(), args);
   }
@@ -151,7 +160,8 @@ TEST_F(ClusterE2eTest, KilledReplicasRunIsInterruptedByTheOtherWhileOtherRunsFin
   EXPECT_EQ(reaped.state(), v1::INTERRUPTED) << reaped.message();
   EXPECT_THAT(reaped.message(), HasSubstr("replica " + running.replica()));
   EXPECT_THAT(reaped.message(), HasSubstr("stopped renewing its lease"));
-  std::cout << "replica death to INTERRUPTED: " << seconds << " s (lease 2 s)\n";
+  std::cout << "replica death to INTERRUPTED: " << seconds << " s (--lease-timeout-s "
+            << LeaseTimeout() << ")\n";
   for (const std::string& id : others) {
     const v1::RunInfo ended = survivor.WaitForEnd(id);
     EXPECT_EQ(ended.state(), v1::FINISHED) << ended.message();
