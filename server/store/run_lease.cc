@@ -1,10 +1,14 @@
 #include "server/store/run_lease.h"
 
+#include <algorithm>
+
 namespace mbstream {
 namespace {
 
+// A run that ran has had one attempt at least (one written by a server before the queue
+// counted attempts has 0).
 bool HasAttemptsLeft(const v1::RunInfo& info) {
-  return info.attempts() < 1 + info.spec().retries();
+  return std::max(1, info.attempts()) < 1 + info.spec().retries();
 }
 
 // Back to the queue for the next attempt: the last attempt's progress is forgotten (its
