@@ -95,14 +95,20 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   host->authorizer_ = std::make_unique<Authorizer>(
       config.token_file.empty() ? Authorizer::AllowAll()
                                 : Authorizer::FromTokenFile(config.token_file));
-  host->store_ = OpenStore(StoreLocationOf(config));
+  const StoreLocation location = StoreLocationOf(config);
+  host->store_ = OpenStore(location);
   host->models_ = std::make_unique<ModelRegistry>(host->store_.get(), config.limits);
   const int stored = host->models_->LoadStored();
   const int builtin =
       config.models_dir.empty() ? 0 : host->models_->LoadBuiltins(config.models_dir);
   spdlog::info("{} stored and {} built-in models loaded", stored, builtin);
-  host->runs_ =
-      std::make_unique<RunManager>(host->models_.get(), host->store_.get(), config.limits);
+  ReplicaOptions replica;
+  replica.address = config.advertise;
+  replica.lease_timeout_s = config.lease_timeout_s;
+  replica.private_store = location.kind != StoreLocation::Kind::kPostgresql;
+  host->runs_ = std::make_unique<RunManager>(host->models_.get(), host->store_.get(), config.limits,
+                                             nullptr, replica);
+  host->grace_s_ = config.grace_s;
   host->service_ = std::make_unique<SimulationService>(host->models_.get(), host->runs_.get(),
                                                        host->authorizer_.get());
 
@@ -138,6 +144,10 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
                      ": is the address valid and the port free? (use port 0 for any free port)");
   }
   host->address_ = has_port ? name + ":" + std::to_string(port) : config.listen;
+  if (config.advertise.empty()) host->runs_->SetAdvertisedAddress(host->address_);
+  // grpc.health.v1: SERVING while the store answers and the replica is not draining.
+  grpc::HealthCheckServiceInterface* health = host->server_->GetHealthCheckService();
+  host->runs_->SetServingListener([health](bool serving) { health->SetServingStatus(serving); });
   return host;
 }
 
@@ -150,6 +160,12 @@ void ServerHost::Shutdown() {
   service_->Stop();
   runs_->Shutdown("the server was shut down");
   server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
+}
+
+void ServerHost::Drain() {
+  if (shut_down_ || !server_) return;
+  runs_->Drain(std::chrono::duration<double>(grace_s_), "the server was drained (SIGTERM)");
+  Shutdown();
 }
 
 void ServerHost::Wait() { server_->Wait(); }

@@ -32,6 +32,12 @@ struct ServerConfig {
                                      // limits.max_model_bytes)
   net::ServerTls tls;                // certificate and key files; empty = insecure
   std::string token_file;            // tokens and roles (see authorizer.h); empty = none
+  // Several replicas on one store (docs/cluster.md): the host:port other replicas and
+  // clients reach this one at (empty: the listening address), the lease of a run (s) and the
+  // time a draining replica gives its runs to end (s).
+  std::string advertise;
+  double lease_timeout_s = 10.0;
+  double grace_s = 30.0;
 };
 
 // What an operator should know about who can reach the server as configured: one sentence
@@ -53,6 +59,10 @@ class ServerHost {
   // Interrupts runs (stored as INTERRUPTED), ends streams with UNAVAILABLE, stops
   // listening. Idempotent.
   void Shutdown();
+  // Drains (SIGTERM): health NOT_SERVING, no more runs claimed, up to config.grace_s for the
+  // runs integrating here to end; then Shutdown(), which hands back (re-queues when the spec
+  // has retries left, else INTERRUPTED) what still runs.
+  void Drain();
   // Blocks until Shutdown() has been called (by another thread).
   void Wait();
 
@@ -67,6 +77,7 @@ class ServerHost {
   std::unique_ptr<SimulationService> service_;
   std::unique_ptr<grpc::Server> server_;
   std::string address_;
+  double grace_s_ = 30.0;
   bool shut_down_ = false;
 };
 

@@ -117,6 +117,18 @@ int main(int argc, char** argv) {
                  "tokens and roles, one `<token> <role>[,<role>]` per line (submit, run, view, "
                  "admin)")
       ->check(CLI::ExistingFile);
+  app.add_option("--advertise", config.advertise,
+                 "host:port other replicas and clients reach this server at (default: the "
+                 "listening address)");
+  app.add_option("--lease-timeout-s", config.lease_timeout_s,
+                 "s after which the run of a replica that stopped renewing its lease is "
+                 "reaped by another (INTERRUPTED, or queued again with spec.retries)")
+      ->check(CLI::Range(0.1, 3600.0))
+      ->capture_default_str();
+  app.add_option("--grace-s", config.grace_s,
+                 "s a draining server (SIGTERM) gives its runs to end before handing them back")
+      ->check(CLI::Range(0.0, 86400.0))
+      ->capture_default_str();
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
@@ -129,7 +141,8 @@ int main(int argc, char** argv) {
   limits.max_total_model_bytes = static_cast<int64_t>(std::min(max_models_mb, 1e12) * (1 << 20));
   spdlog::set_level(spdlog::level::from_str(log_level));
 
-  // SIGINT/SIGTERM are handled by one thread (sigwait) that shuts the server down cleanly.
+  // SIGINT/SIGTERM are handled by one thread (sigwait): SIGTERM drains the server (its runs
+  // get --grace-s to end), SIGINT stops it at once (runs INTERRUPTED); both exit 0.
   sigset_t signals;
   sigemptyset(&signals);
   sigaddset(&signals, SIGINT);
@@ -151,6 +164,7 @@ int main(int argc, char** argv) {
     int signal = 0;
     sigwait(&signals, &signal);
     spdlog::info("signal {} received", signal == SIGINT ? "SIGINT" : "SIGTERM");
+    if (signal == SIGTERM) host->Drain();
     host->Shutdown();
   });
   host->Wait();

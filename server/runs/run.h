@@ -63,6 +63,9 @@ class Run {
 
   std::atomic<bool> cancel{false};       // CancelRun or shutdown: stop the integration
   std::atomic<bool> interrupted{false};  // the server is shutting down
+  // The store shows this replica's lease on the run taken over (it was reaped after the
+  // lease expired): the run stops and stores nothing more (docs/cluster.md).
+  std::atomic<bool> lease_lost{false};
 
  private:
   const std::string id_;

@@ -100,12 +100,13 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
 
 void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome) {
   if (const std::shared_ptr<const v1::Frame> last = run->latest_frame();
-      last != nullptr && !run->interrupted) {
+      last != nullptr && !run->interrupted && !run->lease_lost) {
     run->WaitForProbes(last->seq(), std::chrono::duration<double>(limits_.probe_grace_s));
   }
   // Store first, then show the final state: whoever sees a run ended can fetch its result.
   // The frames are in the store already but for the spool's last chunk, written together
-  // with the final info.
+  // with the final info. Nothing is stored once another replica took the run over.
+  const std::string holder = LeaseHolder(run->Info());
   v1::RunInfo info = run->Info();
   info.set_state(outcome.state);
   info.set_message(outcome.message);
@@ -116,9 +117,19 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
     info.set_message("the frames could not be stored (" + error +
                      "); the run was stopped, the frames stored before are kept");
   }
+  if (run->interrupted && !replica_.private_store) {  // drained or stopped: hand it back
+    ApplyHandBack(info, info.ended_unix_ms(), outcome.message);
+  }
   try {
-    store_->AddProbes(run->TakeProbes());
-    run->spool().Finish(info, *store_);
+    if (run->lease_lost || !store_->RenewLease(run->id(), holder, NowUnixMs() + LeaseMs())) {
+      run->lease_lost = true;
+    } else if (info.state() == v1::QUEUED) {
+      if (!store_->PutRunIfHeld(info, holder)) run->lease_lost = true;
+      spdlog::info("run {} handed back to the queue: {}", run->id(), info.message());
+    } else {
+      store_->AddProbes(run->TakeProbes());
+      run->spool().Finish(info, *store_);
+    }
   } catch (const std::exception& error) {
     spdlog::error("run {}: storing the result failed: {}", run->id(), error.what());
     info.set_state(v1::FAILED);
@@ -129,11 +140,23 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
       spdlog::error("run {}: storing its final state failed too: {}", run->id(), again.what());
     }
   }
+  if (run->lease_lost) {  // show what the store holds, as the replica that took it over wrote
+    spdlog::warn("run {}: replica {} lost its lease; nothing more stored here", run->id(),
+                 replica_.id);
+    try {
+      if (std::optional<v1::RunInfo> stored = store_->GetRun(run->id())) info = *stored;
+    } catch (const std::exception& error) {
+      spdlog::error("run {}: reading it back failed: {}", run->id(), error.what());
+    }
+  }
   run->UpdateInfo([&](v1::RunInfo& live) { live = info; });
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    active_.erase(run->id());
+    if (auto found = active_.find(run->id()); found != active_.end() && found->second == run) {
+      active_.erase(found);
+    }
   }
+  idle_.notify_all();
   run->End();
   info = run->Info();
   spdlog::info("run {} {}: {} frames to t = {} s, {} steps, cpu {:.3f} ms, wall {:.3f} ms{}{}",

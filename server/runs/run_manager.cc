@@ -11,6 +11,7 @@
 
 #include "common/check.h"
 #include "server/runs/release_memory.h"
+#include "server/runs/replica_id.h"
 #include "server/runs/request_error.h"
 #include "server/runs/run_budget_caps.h"
 #include "server/runs/unix_time.h"
@@ -36,16 +37,25 @@ RequestError NotFound(const std::string& run_id) {
 }  // namespace
 
 RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& limits,
-                       RunClock* clock)
+                       RunClock* clock, ReplicaOptions replica)
     : models_(models),
       store_(store),
       limits_(limits),
-      clock_(clock != nullptr ? clock : &SteadyRunClock()) {
+      clock_(clock != nullptr ? clock : &SteadyRunClock()),
+      replica_(std::move(replica)) {
   MBSTREAM_CHECK(models_ != nullptr && store_ != nullptr && limits_.workers > 0);
-  const int interrupted = store_->MarkUnfinishedRunsInterrupted(
-      "the server stopped while this run was queued or running; start it again");
-  if (interrupted > 0) spdlog::warn("{} runs of a previous server marked INTERRUPTED", interrupted);
+  MBSTREAM_CHECK(replica_.lease_timeout_s > 0.0 && replica_.claim_poll_s > 0.0);
+  if (replica_.id.empty()) replica_.id = NewReplicaId();
+  if (replica_.private_store) {
+    const int interrupted = store_->MarkUnfinishedRunsInterrupted(
+        "the server stopped while this run was queued or running; start it again");
+    if (interrupted > 0) {
+      spdlog::warn("{} runs of a previous server marked INTERRUPTED", interrupted);
+    }
+  }
+  spdlog::info("replica {}: leases of {} s", replica_.id, replica_.lease_timeout_s);
   for (int i = 0; i < limits_.workers; ++i) workers_.emplace_back([this] { WorkerLoop(); });
+  keeper_ = std::thread([this] { KeeperLoop(); });
 }
 
 RunManager::~RunManager() { Shutdown("the server stopped"); }
@@ -65,11 +75,14 @@ std::string RunManager::NewRunId() const {
   }
 }
 
-v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& spec,
-                              const std::string& owner) {
-  std::shared_ptr<const CompiledModel> model = models_->Find(model_ref);
-  RunConfig config = ToRunConfig(spec, model->joint_names, "spec");
-  ValidateRun(model->model, config);  // the one validation; throws InputError
+RunConfig RunManager::PrepareConfig(const CompiledModel& model, const v1::RunSpec& spec,
+                                    std::vector<std::string>* warnings) const {
+  if (spec.retries() < 0 || spec.retries() > 100) {
+    throw InputError("spec.retries is " + std::to_string(spec.retries()) +
+                     "; give 0 (never run again) to 100 attempts after the first");
+  }
+  RunConfig config = ToRunConfig(spec, model.joint_names, "spec");
+  ValidateRun(model.model, config);  // the one validation; throws InputError
   if (config.duration > limits_.max_duration_s) {
     throw RequestError(RequestErrorKind::kResourceExhausted,
                        "spec.duration_s " + std::to_string(config.duration) +
@@ -98,7 +111,18 @@ v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& s
                            std::to_string(limits_.max_output_frames) +
                            "; lengthen spec.output_interval_s or shorten spec.duration_s");
   }
-  const std::vector<std::string> warnings = PrepareRunBudget(model->model, limits_, &config);
+  for (std::string& warning : PrepareRunBudget(model.model, limits_, &config)) {
+    warnings->push_back(std::move(warning));
+  }
+  return config;
+}
+
+v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& spec,
+                              const std::string& owner) {
+  std::shared_ptr<const CompiledModel> model = FindModel(model_ref);
+  std::vector<std::string> warnings;
+  RunConfig config = PrepareConfig(*model, spec, &warnings);
+  const int64_t frames = OutputFrameCount(config.duration, config.output_interval);
 
   v1::RunInfo info;
   info.set_model_id(model->info.id());
@@ -115,8 +139,9 @@ v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& s
   info.set_owner(owner);
   for (const std::string& warning : warnings) info.add_warnings(warning);
 
-  // No lock across the store's I/O: the id is checked free, then reserved in active_ under
-  // the lock (a reserved run counts against the queue limit), stored, and only then queued.
+  // No lock across the store's I/O: the id is checked free, then reserved in active_ and
+  // queue_ under the lock (counting against the queue limit), stored QUEUED (from then on
+  // any replica may claim it), and the workers woken.
   std::shared_ptr<Run> run;
   for (;;) {
     info.set_id(NewRunId());
@@ -125,32 +150,32 @@ v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& s
     if (active_.count(info.id())) continue;
     run = std::make_shared<Run>(info, config, model);
     active_[info.id()] = run;
-    ++reserved_;
+    queue_.push_back(run);
     break;
   }
-  bool queued = false;
-  std::string stop_reason;
+  auto forget = [&] {
+    std::lock_guard<std::mutex> lock(mutex_);
+    queue_.erase(std::remove(queue_.begin(), queue_.end(), run), queue_.end());
+    if (auto found = active_.find(info.id()); found != active_.end() && found->second == run) {
+      active_.erase(found);
+    }
+  };
   try {
     store_->PutRun(info);
-    std::lock_guard<std::mutex> lock(mutex_);
-    --reserved_;
-    if (!stopping_) {
-      queue_.push_back(run);
-      queued = true;
-    } else {
-      active_.erase(info.id());
-      stop_reason = stop_reason_;
-    }
   } catch (...) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    --reserved_;
-    active_.erase(info.id());
+    forget();
     throw;
   }
-  if (!queued) {  // the server began to stop while the run was being stored
-    info.set_state(v1::INTERRUPTED);
-    info.set_message(stop_reason + " before this run started");
-    store_->PutRun(info);
+  std::string stop_reason;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (stopping_) stop_reason = stop_reason_;
+    ++wakeups_;
+  }
+  if (!stop_reason.empty() &&  // the server began to stop while the run was being stored
+      store_->EndQueuedRun(info.id(), v1::INTERRUPTED, stop_reason + " before this run started",
+                           NowUnixMs())) {
+    forget();
     throw RequestError(RequestErrorKind::kUnavailable,
                        "the server is shutting down; start the run on another server");
   }
@@ -168,10 +193,35 @@ std::shared_ptr<Run> RunManager::FindActive(const std::string& run_id) const {
 
 v1::RunInfo RunManager::Cancel(const std::string& run_id) {
   std::shared_ptr<Run> run = FindActive(run_id);
-  if (!run) return Get(run_id);
-  run->cancel = true;
-  spdlog::info("run {} cancel requested", run_id);
-  return run->Info();
+  bool queued_here = false;
+  if (run) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    queued_here = std::find(queue_.begin(), queue_.end(), run) != queue_.end();
+  }
+  if (run && !queued_here) {  // integrating here
+    run->cancel = true;
+    spdlog::info("run {} cancel requested", run_id);
+    return run->Info();
+  }
+  // Queued (here or by another replica): ended in the store unless a replica claimed it.
+  if (std::optional<v1::RunInfo> ended =
+          store_->EndQueuedRun(run_id, v1::CANCELLED, "cancelled before it started", NowUnixMs())) {
+    if (run) EndPlaceholder(run, *ended);
+    spdlog::info("run {} cancelled before it started", run_id);
+    return *ended;
+  }
+  if (run = FindActive(run_id); run) {  // claimed by a worker of this replica meanwhile
+    run->cancel = true;
+    return run->Info();
+  }
+  v1::RunInfo info = Get(run_id);
+  if (!IsFinalState(info.state())) {
+    throw RequestError(RequestErrorKind::kFailedPrecondition,
+                       "run " + run_id + " is integrating on replica " + info.replica() + " (" +
+                           info.replica_address() + "); cancel it there (mbstream --server " +
+                           info.replica_address() + " cancel " + run_id + ")");
+  }
+  return info;
 }
 
 v1::RunInfo RunManager::Get(const std::string& run_id) const {
@@ -250,6 +300,11 @@ v1::RunInfo RunManager::ResultInfo(const std::string& run_id) const {
   }
   std::optional<v1::RunInfo> info = store_->GetRun(run_id);
   if (!info) throw NotFound(run_id);
+  if (!IsFinalState(info->state())) {  // queued, or integrating on another replica
+    throw RequestError(RequestErrorKind::kFailedPrecondition,
+                       "run " + run_id + " is " + v1::RunState_Name(info->state()) +
+                           "; wait for it to end (`mbstream run --watch` or WatchRun)");
+  }
   return *info;
 }
 
@@ -272,7 +327,11 @@ void RunManager::CheckAccepting() const {
     throw RequestError(RequestErrorKind::kUnavailable,
                        "the server is shutting down; start the run on another server");
   }
-  if (static_cast<int>(queue_.size()) + reserved_ >= limits_.max_queued_runs) {
+  if (draining_) {
+    throw RequestError(RequestErrorKind::kUnavailable,
+                       "this replica is draining (shutting down); start the run on another one");
+  }
+  if (static_cast<int>(queue_.size()) >= limits_.max_queued_runs) {
     throw RequestError(RequestErrorKind::kResourceExhausted,
                        "the run queue is full (" + std::to_string(limits_.max_queued_runs) +
                            " runs waiting); wait for runs to finish or cancel some");
@@ -300,8 +359,16 @@ void RunManager::AttachRun(const std::shared_ptr<Subscription>& subscriber,
     run->Attach(subscriber, send_started);
     return;
   }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (auto found = elsewhere_.find(run_id); found != elsewhere_.end()) {
+      found->second->Attach(subscriber, send_started);  // ended when the store shows it ended
+      return;
+    }
+  }
   if (!store_->GetRun(run_id)) throw NotFound(run_id);
-  // Ended and stored (a run leaves active_ only after it is stored and has ended).
+  // Ended and stored (a run leaves active_ only after it is stored and has ended), or on
+  // another replica (not followed here yet: docs/cluster.md).
   if (send_started) subscriber->Push({StreamEvent::Kind::kRunStarted, run_id, nullptr});
   subscriber->Push({StreamEvent::Kind::kRunEnded, run_id, nullptr});
 }
@@ -354,11 +421,16 @@ bool RunManager::AddProbes(const std::string& run_id, const std::vector<v1::Prob
 
 void RunManager::Shutdown(const std::string& reason) {
   std::vector<std::shared_ptr<Subscription>> followers;
+  std::deque<std::shared_ptr<Run>> queued;
+  std::map<std::string, std::shared_ptr<Run>> elsewhere;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (stopping_ && workers_.empty() && broadcasts_.empty()) return;
+    if (stopping_ && workers_.empty() && broadcasts_.empty() && !keeper_.joinable()) return;
     stopping_ = true;
     stop_reason_ = reason;
+    queued.swap(queue_);
+    elsewhere.swap(elsewhere_);
+    for (const auto& run : queued) active_.erase(run->id());
     for (auto& [id, run] : active_) {
       run->interrupted = true;
       run->cancel = true;
@@ -369,6 +441,27 @@ void RunManager::Shutdown(const std::string& reason) {
   broadcast_wake_.notify_all();
   for (std::thread& worker : workers_) worker.join();
   workers_.clear();
+  // Runs queued here and not claimed: INTERRUPTED with a private store; left queued in a
+  // shared one (another replica takes them).
+  for (const auto& run : queued) {
+    std::optional<v1::RunInfo> ended;
+    if (replica_.private_store) {
+      try {
+        ended = store_->EndQueuedRun(run->id(), v1::INTERRUPTED,
+                                     reason + " before this run started", NowUnixMs());
+      } catch (const std::exception& error) {
+        spdlog::error("run {}: storing its interruption failed: {}", run->id(), error.what());
+      }
+    }
+    EndPlaceholder(run, ended ? *ended : run->Info());
+  }
+  for (const auto& [id, run] : elsewhere) run->End();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    keeper_stop_ = true;
+  }
+  keeper_wake_.notify_all();
+  if (keeper_.joinable()) keeper_.join();
   std::vector<std::thread> broadcasts;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -376,32 +469,7 @@ void RunManager::Shutdown(const std::string& reason) {
   }
   for (std::thread& broadcast : broadcasts) broadcast.join();
   for (const auto& follower : followers) follower->Close();
-}
-
-void RunManager::WorkerLoop() {
-  for (;;) {
-    std::shared_ptr<Run> run;
-    {
-      std::unique_lock<std::mutex> lock(mutex_);
-      work_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
-      if (queue_.empty()) return;  // stopping
-      run = queue_.front();
-      queue_.pop_front();
-    }
-    Outcome outcome;
-    try {
-      outcome = Execute(run);
-    } catch (const InputError& error) {  // ValidateRun should have refused it: keep the reason
-      spdlog::error("run {}: invalid input found only by the worker: {}", run->id(), error.what());
-      outcome.state = v1::FAILED;
-      outcome.message = error.what();
-    } catch (const std::exception& error) {
-      spdlog::error("run {}: {}", run->id(), error.what());
-      outcome.state = v1::FAILED;
-      outcome.message = std::string("internal error: ") + error.what();
-    }
-    Finish(run, outcome);
-  }
+  UpdateServing();
 }
 
 }  // namespace mbstream

@@ -1,9 +1,16 @@
 // Runs on the server: a bounded queue, a fixed pool of worker threads, cancellation,
 // subscriptions (fan-out), probe reports and shutdown. gRPC-free: the service calls it.
+//
+// The queue is in the store (Store::ClaimQueuedRun): Start writes a run QUEUED, and an idle
+// worker of any replica on the same store claims the oldest queued run under a lease, which a
+// keeper thread renews while the run integrates and which lets the other replicas reap the
+// run of a replica that died (run_manager_queue.cc, docs/cluster.md).
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -21,18 +28,37 @@
 #include "server/runs/run_clock.h"
 #include "server/runs/server_limits.h"
 #include "server/runs/subscription.h"
+#include "server/store/run_lease.h"
 
 namespace mbstream {
 
 class Store;
 
+// How a run manager takes part in a cluster of replicas sharing one store.
+struct ReplicaOptions {
+  std::string id;       // RunInfo.replica; empty: host name, process id and a random suffix
+  std::string address;  // RunInfo.replica_address (--advertise); may be set later
+  // s within which the runs of a replica that died are reaped by another (between half of it
+  // and all of it after the death; run_manager_queue.cc, LeaseMs).
+  double lease_timeout_s = 10.0;
+  // s between looks at the shared store's queue by an idle worker (runs started on other
+  // replicas); a private store is looked at only when this replica queues a run.
+  double claim_poll_s = 0.25;
+  // A store of this server alone (SQLite): runs it left queued or running are INTERRUPTED at
+  // start, and queued ones when it stops. A shared store (PostgreSQL): they stay for the
+  // other replicas and the lease reaper, and interrupted runs with retries left are queued
+  // again.
+  bool private_store = true;
+};
+
 class RunManager {
  public:
   // `models`, `store` and `clock` are not owned and must outlive the manager (`clock` paces
-  // realtime runs; the steady clock when null). Marks runs the store still lists as queued
-  // or running (a previous server died) INTERRUPTED, then starts `limits.workers` threads.
+  // realtime runs; the steady clock when null). With a private store, marks runs the store
+  // still lists as queued or running (a previous server died) INTERRUPTED; then starts
+  // `limits.workers` threads and the lease keeper.
   RunManager(ModelRegistry* models, Store* store, const ServerLimits& limits,
-             RunClock* clock = nullptr);
+             RunClock* clock = nullptr, ReplicaOptions replica = {});
   ~RunManager();  // Shutdown("the server stopped")
 
   // Validates the spec against the model and the limits, queues the run and returns its
@@ -106,8 +132,21 @@ class RunManager {
   bool AddProbes(const std::string& run_id, const std::vector<v1::ProbeReport>& reports);
 
   // Stops accepting runs, interrupts queued and running ones (state INTERRUPTED, frames so
-  // far stored), closes every subscription and joins the workers. Idempotent.
+  // far stored; with a shared store, queued runs stay queued and running ones with retries
+  // left are queued again), closes every subscription and joins the workers. Idempotent.
   void Shutdown(const std::string& reason);
+  // Drains the replica: stops claiming runs, waits up to `grace` for the runs integrating
+  // here to end, then Shutdown(reason) (what still runs is handed back).
+  void Drain(std::chrono::duration<double> grace, const std::string& reason);
+
+  // This replica (run_manager_queue.cc). Its id; the address it advertises (set once the
+  // server listens); whether it should get calls: the store answered the keeper's last look
+  // and it is neither draining nor stopping. `listener` is called with each change of that
+  // (from the keeper's thread or Drain's caller), and at once with the present value.
+  const std::string& replica_id() const { return replica_.id; }
+  void SetAdvertisedAddress(const std::string& address);
+  bool serving() const;
+  void SetServingListener(std::function<void(bool)> listener);
 
   const ModelRegistry& models() const { return *models_; }
   const ServerLimits& limits() const { return limits_; }
@@ -120,6 +159,26 @@ class RunManager {
     v1::RunStats stats;
   };
   void WorkerLoop();
+  // The queue (run_manager_queue.cc). Claims the oldest queued run of the store for this
+  // replica, with its Run (the one Start made here, or one made from the stored info);
+  // nullptr when none is queued or the store failed.
+  std::shared_ptr<Run> ClaimNext();
+  std::shared_ptr<Run> RunOf(const v1::RunInfo& info);  // model compiled, config prepared
+  RunLease NewLease() const;
+  int64_t LeaseMs() const;  // how long a claim or renewal holds
+  void KeeperLoop();
+  void KeepLeases();  // renews, reaps, follows runs started here and claimed elsewhere
+  // Records whether the store answered (when given) and tells the listener of a change.
+  void UpdateServing(std::optional<bool> store_reachable = std::nullopt);
+  // A run started here ended without a worker of this replica (cancelled while queued,
+  // ended elsewhere): shows `info` and ends its streams.
+  void EndPlaceholder(const std::shared_ptr<Run>& run, const v1::RunInfo& info);
+  // The model by id or name, loading the store's list again once when it is unknown (a
+  // model submitted to another replica).
+  std::shared_ptr<const CompiledModel> FindModel(const std::string& model_ref) const;
+  // The spec checked against the model and turned into the run's config (warnings added).
+  RunConfig PrepareConfig(const CompiledModel& model, const v1::RunSpec& spec,
+                          std::vector<std::string>* warnings) const;
   Outcome Execute(const std::shared_ptr<Run>& run);
   void Finish(const std::shared_ptr<Run>& run, const Outcome& outcome);
   std::shared_ptr<Run> FindActive(const std::string& run_id) const;
@@ -135,11 +194,25 @@ class RunManager {
   const ServerLimits limits_;
   RunClock* clock_;
 
+  ReplicaOptions replica_;
+
   mutable std::mutex mutex_;
   std::condition_variable work_;
+  uint64_t wakeups_ = 0;  // runs queued by Start or the reaper: idle workers look at the store
+  // Runs started here and not yet claimed by any replica (also in active_), oldest first.
   std::deque<std::shared_ptr<Run>> queue_;
-  int reserved_ = 0;  // runs being stored by Start, not queued yet
-  std::map<std::string, std::shared_ptr<Run>> active_;  // queued and running
+  std::map<std::string, std::shared_ptr<Run>> active_;  // queued here and running here
+  // Runs started here that another replica claimed: ended (their streams) when the store
+  // shows them ended.
+  std::map<std::string, std::shared_ptr<Run>> elsewhere_;
+  std::condition_variable idle_;  // a run integrating here ended (Drain waits for it)
+  bool draining_ = false;
+  bool store_reachable_ = true;
+  bool serving_reported_ = true;  // the last value given to the listener
+  std::function<void(bool)> serving_listener_;
+  bool keeper_stop_ = false;
+  std::condition_variable keeper_wake_;
+  std::thread keeper_;
   std::vector<std::shared_ptr<Subscription>> followers_;
   int subscribers_ = 0;
   bool stopping_ = false;

@@ -73,12 +73,19 @@ CREATE TABLE probe_set_reports (
 );
 )sql";
 
+// The run queue's leases (run_lease.h), as in store_schema.cc.
+constexpr const char* kSchemaV3 = R"sql(
+ALTER TABLE runs ADD COLUMN lease_holder text;
+ALTER TABLE runs ADD COLUMN lease_expires_unix_ms bigint NOT NULL DEFAULT 0;
+CREATE INDEX runs_queue ON runs (state, created_unix_ms, ord);
+)sql";
+
 struct Migration {
   int version;      // the version the step leads to
   const char* sql;  // from the version before
 };
 
-constexpr Migration kMigrations[] = {{1, kSchemaV1}, {2, kSchemaV2}};
+constexpr Migration kMigrations[] = {{1, kSchemaV1}, {2, kSchemaV2}, {3, kSchemaV3}};
 static_assert(sizeof(kMigrations) / sizeof(kMigrations[0]) == kPostgresSchemaVersion);
 static_assert(kPostgresSchemaVersion == kStoreSchemaVersion, "both stores, one behaviour");
 

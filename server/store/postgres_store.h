@@ -49,6 +49,14 @@ class PostgresStore final : public Store {
   std::optional<v1::ProbeSet> GetProbeSet(const std::string& set_id) const override;
   std::vector<v1::ProbeReport> GetProbeSetReports(const std::string& set_id) const override;
   int MarkUnfinishedRunsInterrupted(const std::string& message) override;
+  std::optional<v1::RunInfo> ClaimQueuedRun(const RunLease& lease) override;
+  bool RenewLease(const std::string& run_id, const std::string& holder,
+                  int64_t expires_unix_ms) override;
+  std::vector<v1::RunInfo> ReapExpiredLeases(int64_t now_unix_ms,
+                                             const std::string& reaper) override;
+  bool PutRunIfHeld(const v1::RunInfo& info, const std::string& holder) override;
+  std::optional<v1::RunInfo> EndQueuedRun(const std::string& run_id, v1::RunState state,
+                                          const std::string& message, int64_t now_unix_ms) override;
 
   // Private state, opaque here (defined in postgres_store_impl.h for the store's own .cc files).
   struct Impl;

@@ -20,6 +20,7 @@
 #include "mbstream/v1/replay.pb.h"
 #include "mbstream/v1/run.pb.h"
 #include "server/store/frame_chunks.h"
+#include "server/store/run_lease.h"
 
 namespace mbstream {
 
@@ -107,6 +108,35 @@ class Store {
   // At server start: every run still QUEUED or RUNNING becomes INTERRUPTED with `message`
   // and ended_unix_ms = now; returns how many.
   virtual int MarkUnfinishedRunsInterrupted(const std::string& message) = 0;
+
+  // The run queue (store_queue.cc, postgres_store_queue.cc; rules in run_lease.h). Any
+  // replica on the store claims queued runs; the claim, renewal and expiry of a lease are one
+  // transaction each, so two replicas never hold one run.
+  //
+  // Claims the oldest QUEUED run (created_unix_ms, then insertion) under `lease`: its row
+  // becomes RUNNING (ApplyClaim) with the lease recorded. Returns the claimed info, nullopt
+  // when nothing is queued. PostgreSQL: SELECT ... FOR UPDATE SKIP LOCKED; SQLite: one
+  // BEGIN IMMEDIATE transaction.
+  virtual std::optional<v1::RunInfo> ClaimQueuedRun(const RunLease& lease) = 0;
+  // Extends the lease held by `holder` (LeaseHolder) on run `run_id` to `expires_unix_ms`.
+  // False when the run is no longer RUNNING under that holder's lease (expired and handed to
+  // another replica, re-queued, or ended): the holder must stop the run and store nothing.
+  virtual bool RenewLease(const std::string& run_id, const std::string& holder,
+                          int64_t expires_unix_ms) = 0;
+  // Every RUNNING run whose lease expired before `now_unix_ms` (a run without a lease
+  // counts as expired): queued again or INTERRUPTED (ApplyLeaseExpired, `reaper` named in
+  // the message), its frames kept. Returns the changed runs as stored.
+  virtual std::vector<v1::RunInfo> ReapExpiredLeases(int64_t now_unix_ms,
+                                                     const std::string& reaper) = 0;
+  // Writes `info` (an ended or re-queued run) only while `holder` still holds the run's
+  // lease, and drops the lease; false (nothing written) otherwise.
+  virtual bool PutRunIfHeld(const v1::RunInfo& info, const std::string& holder) = 0;
+  // Ends run `run_id` with `state` and `message` (ended now) if it is still QUEUED (CancelRun
+  // of a queued run; a server stopping). Returns the stored info, nullopt when the run is not
+  // queued (claimed meanwhile, or unknown).
+  virtual std::optional<v1::RunInfo> EndQueuedRun(const std::string& run_id, v1::RunState state,
+                                                  const std::string& message,
+                                                  int64_t now_unix_ms) = 0;
 };
 
 }  // namespace mbstream

@@ -81,6 +81,14 @@ CREATE TABLE probe_set_reports (
 ) WITHOUT ROWID;
 )sql";
 
+// Version 3: the run queue of several replicas (run_lease.h): who holds a running run's
+// lease ("replica/attempt") and until when (Unix ms; 0 = no lease).
+constexpr const char* kSchemaV3 = R"sql(
+ALTER TABLE runs ADD COLUMN lease_holder TEXT;
+ALTER TABLE runs ADD COLUMN lease_expires_unix_ms INTEGER NOT NULL DEFAULT 0;
+CREATE INDEX runs_queue ON runs (state, created_unix_ms, ord);
+)sql";
+
 void WriteVersion(SqliteConnection& connection) {
   connection.Exec("PRAGMA application_id = " + std::to_string(kStoreApplicationId) +
                       "; PRAGMA user_version = " + std::to_string(kStoreSchemaVersion),
@@ -105,6 +113,7 @@ void EnsureStoreSchema(SqliteConnection& connection) {
   if (application_id == 0 && version == 0 && tables == 0) {  // a new, empty database
     connection.Exec(kSchemaV1, "create schema");
     connection.Exec(kSchemaV2, "create schema version 2");
+    connection.Exec(kSchemaV3, "create schema version 3");
     WriteVersion(connection);
     transaction.Commit();
     return;
@@ -126,8 +135,11 @@ void EnsureStoreSchema(SqliteConnection& connection) {
   }
   if (version < 2) {  // a version-1 store: add the probe sets
     connection.Exec(kSchemaV2, "migrate schema to version 2");
-    WriteVersion(connection);
   }
+  if (version < 3) {  // add the run queue's leases
+    connection.Exec(kSchemaV3, "migrate schema to version 3");
+  }
+  if (version < kStoreSchemaVersion) WriteVersion(connection);
   transaction.Commit();
 }
 

@@ -81,7 +81,7 @@ TEST_F(ServerCliTest, SubmitRunWatchOutGivesTheSameFilesAsSimulate) {
   const CommandOutcome runs = Cli("runs");
   EXPECT_THAT(runs.output, HasSubstr(run_id));
   EXPECT_THAT(runs.output, HasSubstr("FINISHED"));
-  EXPECT_EQ(server_->Stop(), 0);  // SIGTERM: a clean exit
+  EXPECT_EQ(server_->Stop(), 0);  // SIGINT: a clean exit
 }
 
 TEST_F(ServerCliTest, ConcurrentRunsAreBitIdentical) {

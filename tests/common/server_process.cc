@@ -56,9 +56,13 @@ ServerProcess::ServerProcess(const std::string& server_binary, const std::string
 
 ServerProcess::~ServerProcess() { Stop(); }
 
-int ServerProcess::Stop() {
+int ServerProcess::Stop() { return Signal(SIGINT); }
+
+int ServerProcess::Drain() { return Signal(SIGTERM); }
+
+int ServerProcess::Signal(int signal) {
   if (pid_ <= 0) return -1;
-  kill(pid_, SIGTERM);
+  kill(pid_, signal);
   int status = 0;
   waitpid(pid_, &status, 0);
   pid_ = -1;

@@ -1,6 +1,6 @@
 // A real mbstream-server process for end-to-end tests: started on port 0 with a data
-// directory, its address read from its "listening on ADDR" line; stopped with SIGTERM (or
-// killed with SIGKILL to simulate a crash).
+// directory, its address read from its "listening on ADDR" line; stopped with SIGINT (at once,
+// runs INTERRUPTED), drained with SIGTERM, or killed with SIGKILL to simulate a crash.
 #pragma once
 
 #include <sys/types.h>
@@ -24,12 +24,15 @@ class ServerProcess {
   const std::string& address() const { return address_; }
   const std::string& log_path() const { return log_; }
   pid_t pid() const { return pid_; }
-  // SIGTERM and wait; returns the exit status (as from waitpid), -1 if already stopped.
+  // SIGINT and wait; returns the exit status (as from waitpid), -1 if already stopped.
   int Stop();
+  // SIGTERM (the server drains: its runs get --grace-s to end) and wait; as Stop.
+  int Drain();
   // SIGKILL and wait: a crash.
   void Kill();
 
  private:
+  int Signal(int signal);  // sends it and waits
   pid_t pid_ = -1;
   std::string address_;
   std::string log_;

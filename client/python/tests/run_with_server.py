@@ -6,9 +6,9 @@
 
 Starts PATH --listen 127.0.0.1:0 --data <a temporary folder>, waits for its
 `listening on ADDR` line, runs CMD with MBSTREAM_SERVER=ADDR (and `--server ADDR`
-appended when CMD is an example script), then stops the server with SIGTERM and removes the
-folder. With --viewer-binary, an offscreen viewer (xvfb-run) follows the server's runs
-while CMD runs. Exits with CMD's exit code, or 1 when the server fails to start or does not stop
+appended when CMD is an example script), then stops the server with SIGINT (at once, without
+draining) and removes the folder. With --viewer-binary, an offscreen viewer (xvfb-run) follows
+the server's runs while CMD runs. Exits with CMD's exit code, or 1 when the server fails to start or does not stop
 cleanly.
 """
 import argparse
@@ -86,13 +86,14 @@ def stop_viewer(viewer):
 
 
 def stop_server(server):
-    server.send_signal(signal.SIGTERM)
+    # SIGINT stops at once (runs INTERRUPTED); SIGTERM would drain, giving runs --grace-s.
+    server.send_signal(signal.SIGINT)
     try:
         return server.wait(STOP_TIMEOUT_S)
     except subprocess.TimeoutExpired:
         server.kill()
         server.wait()
-        print("run_with_server: the server did not stop within %d s of SIGTERM" % STOP_TIMEOUT_S,
+        print("run_with_server: the server did not stop within %d s of SIGINT" % STOP_TIMEOUT_S,
               file=sys.stderr)
         return -1
 

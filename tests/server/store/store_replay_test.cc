@@ -69,10 +69,13 @@ TEST(StoreReplaySqliteTest, VersionOneStoreGainsProbeSetsAndKeepsItsRuns) {
     auto store = Store::Open(temp.str());
     store->PutRun(MakeRun("r-1", v1::FINISHED, 1));
   }
-  {  // what a version-1 server left: no probe set tables
+  {  // what a version-1 server left: no probe set tables, no leases (version 3)
     auto raw = SqliteConnection::Open((temp.path() / Store::kFileName).string());
-    raw.Exec("DROP TABLE probe_set_reports; DROP TABLE probe_sets; PRAGMA user_version = 1",
-             "make a version-1 store");
+    raw.Exec(
+        "DROP TABLE probe_set_reports; DROP TABLE probe_sets; DROP INDEX runs_queue; "
+        "ALTER TABLE runs DROP COLUMN lease_holder; "
+        "ALTER TABLE runs DROP COLUMN lease_expires_unix_ms; PRAGMA user_version = 1",
+        "make a version-1 store");
   }
   auto store = Store::Open(temp.str());
   EXPECT_TRUE(store->GetRun("r-1"));

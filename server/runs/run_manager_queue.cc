@@ -1,0 +1,293 @@
+// RunManager's side of the store's run queue (docs/cluster.md): the workers claim queued runs
+// under a lease; the keeper thread renews the leases of the runs integrating here, reaps the
+// expired leases of dead replicas and follows the runs started here that another replica
+// claimed; health (serving) and draining.
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "common/check.h"
+#include "server/runs/request_error.h"
+#include "server/runs/run_manager.h"
+#include "server/runs/unix_time.h"
+#include "server/store/store.h"
+#include "server/wire/stats_conversion.h"
+
+namespace mbstream {
+
+namespace {
+
+std::chrono::duration<double> Seconds(double s) { return std::chrono::duration<double>(s); }
+
+}  // namespace
+
+RunLease RunManager::NewLease() const {
+  RunLease lease;
+  lease.replica = replica_.id;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    lease.address = replica_.address;
+  }
+  lease.now_unix_ms = NowUnixMs();
+  lease.expires_unix_ms = lease.now_unix_ms + LeaseMs();
+  return lease;
+}
+
+// Granted for 3/4 of --lease-timeout-s and renewed every 1/4 of it, while every replica's
+// keeper looks for expired leases every 1/4 of it: a replica that dies had renewed at most a
+// quarter before, its lease expires at most 3/4 later and is seen at most a quarter after
+// that, so its runs are marked between 1/2 and 1 lease timeout after its death.
+int64_t RunManager::LeaseMs() const {
+  return static_cast<int64_t>(replica_.lease_timeout_s * 750.0);
+}
+
+void RunManager::SetAdvertisedAddress(const std::string& address) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  replica_.address = address;
+}
+
+std::shared_ptr<const CompiledModel> RunManager::FindModel(const std::string& model_ref) const {
+  try {
+    return models_->Find(model_ref);
+  } catch (const RequestError& error) {
+    if (error.kind() != RequestErrorKind::kNotFound) throw;
+  }
+  // Submitted to another replica since this one listed the store's models.
+  if (models_->LoadStored() == 0) return models_->Find(model_ref);  // throws kNotFound again
+  spdlog::info("models of other replicas loaded from the store for '{}'", model_ref);
+  return models_->Find(model_ref);
+}
+
+std::shared_ptr<Run> RunManager::RunOf(const v1::RunInfo& info) {
+  std::shared_ptr<const CompiledModel> model = FindModel(info.model_id());
+  std::vector<std::string> warnings;
+  const RunConfig config = PrepareConfig(*model, info.spec(), &warnings);
+  return std::make_shared<Run>(info, config, std::move(model));
+}
+
+std::shared_ptr<Run> RunManager::ClaimNext() {
+  for (;;) {
+    std::optional<v1::RunInfo> claimed;
+    try {
+      claimed = store_->ClaimQueuedRun(NewLease());
+    } catch (const std::exception& error) {
+      spdlog::error("replica {}: claiming a queued run failed: {}", replica_.id, error.what());
+      UpdateServing(false);
+      return nullptr;
+    }
+    if (!claimed) return nullptr;
+    std::shared_ptr<Run> run;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      auto queued = std::find_if(queue_.begin(), queue_.end(),
+                                 [&](const auto& r) { return r->id() == claimed->id(); });
+      if (queued != queue_.end()) {  // started here
+        run = *queued;
+        queue_.erase(queued);
+      }
+    }
+    if (!run) {  // started on another replica, or queued again after its replica died
+      try {
+        run = RunOf(*claimed);
+      } catch (const std::exception& error) {
+        v1::RunInfo failed = *claimed;
+        failed.set_state(v1::FAILED);
+        failed.set_message("replica " + replica_.id +
+                           " could not prepare the run: " + error.what());
+        failed.set_ended_unix_ms(NowUnixMs());
+        spdlog::error("run {}: {}", failed.id(), failed.message());
+        try {
+          store_->PutRunIfHeld(failed, LeaseHolder(*claimed));
+        } catch (const std::exception& again) {
+          spdlog::error("run {}: storing its failure failed: {}", failed.id(), again.what());
+        }
+        continue;
+      }
+      std::lock_guard<std::mutex> lock(mutex_);
+      active_[run->id()] = run;  // replaces a run of an earlier attempt still finishing
+    }
+    run->UpdateInfo([&](v1::RunInfo& info) {
+      info.set_replica(claimed->replica());
+      info.set_replica_address(claimed->replica_address());
+      info.set_attempts(claimed->attempts());
+      info.set_message(claimed->message());
+    });
+    spdlog::info("run {} claimed by replica {} (attempt {})", run->id(), replica_.id,
+                 claimed->attempts());
+    return run;
+  }
+}
+
+void RunManager::WorkerLoop() {
+  uint64_t seen = 0;
+  for (;;) {
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      auto woken = [&] { return stopping_ || draining_ || wakeups_ != seen; };
+      if (replica_.private_store) {
+        work_.wait(lock, woken);
+      } else {
+        work_.wait_for(lock, Seconds(replica_.claim_poll_s), woken);
+      }
+      if (stopping_ || draining_) return;
+      seen = wakeups_;
+    }
+    while (std::shared_ptr<Run> run = ClaimNext()) {
+      Outcome outcome;
+      try {
+        outcome = Execute(run);
+      } catch (const InputError& error) {  // ValidateRun should have refused it
+        spdlog::error("run {}: invalid input found only by the worker: {}", run->id(),
+                      error.what());
+        outcome.state = v1::FAILED;
+        outcome.message = error.what();
+      } catch (const std::exception& error) {
+        spdlog::error("run {}: {}", run->id(), error.what());
+        outcome.state = v1::FAILED;
+        outcome.message = std::string("internal error: ") + error.what();
+      }
+      Finish(run, outcome);
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (stopping_ || draining_) return;
+    }
+  }
+}
+
+void RunManager::EndPlaceholder(const std::shared_ptr<Run>& run, const v1::RunInfo& info) {
+  run->UpdateInfo([&](v1::RunInfo& live) { live = info; });
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    queue_.erase(std::remove(queue_.begin(), queue_.end(), run), queue_.end());
+    if (auto found = active_.find(run->id()); found != active_.end() && found->second == run) {
+      active_.erase(found);
+    }
+    if (auto found = elsewhere_.find(run->id());
+        found != elsewhere_.end() && found->second == run) {
+      elsewhere_.erase(found);
+    }
+  }
+  run->End();
+}
+
+void RunManager::KeeperLoop() {
+  const auto period = Seconds(replica_.lease_timeout_s / 4.0);
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!keeper_stop_) {
+    lock.unlock();
+    KeepLeases();
+    lock.lock();
+    keeper_wake_.wait_for(lock, period, [&] { return keeper_stop_; });
+  }
+}
+
+void RunManager::KeepLeases() {
+  std::vector<std::shared_ptr<Run>> running, queued, elsewhere;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [id, run] : active_) {
+      if (std::find(queue_.begin(), queue_.end(), run) == queue_.end()) running.push_back(run);
+    }
+    queued.assign(queue_.begin(), queue_.end());
+    for (const auto& [id, run] : elsewhere_) elsewhere.push_back(run);
+  }
+  try {
+    const int64_t now_ms = NowUnixMs();
+    const int64_t expires_ms = now_ms + LeaseMs();
+    for (const auto& run : running) {
+      const v1::RunInfo info = run->Info();
+      if (info.replica().empty() || run->ended() || run->lease_lost) continue;
+      if (!store_->RenewLease(run->id(), LeaseHolder(info), expires_ms)) {
+        spdlog::warn(
+            "run {}: replica {} lost its lease (another replica took the run over); "
+            "stopping it here",
+            run->id(), replica_.id);
+        run->lease_lost = true;
+        run->cancel = true;
+      }
+    }
+    bool requeued = false;
+    for (const v1::RunInfo& reaped : store_->ReapExpiredLeases(now_ms, replica_.id)) {
+      spdlog::warn("run {} reaped by replica {}: {}: {}", reaped.id(), replica_.id,
+                   v1::RunState_Name(reaped.state()), reaped.message());
+      requeued = requeued || reaped.state() == v1::QUEUED;
+    }
+    if (requeued) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        ++wakeups_;
+      }
+      work_.notify_all();
+    }
+    // Runs started here: claimed by another replica (followed until they end there).
+    for (const auto& run : queued) {
+      std::optional<v1::RunInfo> stored = store_->GetRun(run->id());
+      if (!stored || stored->state() == v1::QUEUED || stored->replica() == replica_.id) continue;
+      std::lock_guard<std::mutex> lock(mutex_);
+      auto it = std::find(queue_.begin(), queue_.end(), run);
+      if (it == queue_.end()) continue;
+      queue_.erase(it);
+      active_.erase(run->id());
+      elsewhere_[run->id()] = run;
+      elsewhere.push_back(run);
+    }
+    for (const auto& run : elsewhere) {
+      std::optional<v1::RunInfo> stored = store_->GetRun(run->id());
+      if (stored && IsFinalState(stored->state())) EndPlaceholder(run, *stored);
+    }
+    UpdateServing(true);
+  } catch (const std::exception& error) {
+    spdlog::error("replica {}: the store did not answer the lease keeper: {}", replica_.id,
+                  error.what());
+    UpdateServing(false);
+  }
+}
+
+void RunManager::UpdateServing(std::optional<bool> store_reachable) {
+  std::function<void(bool)> listener;
+  bool serving = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (store_reachable) store_reachable_ = *store_reachable;
+    serving = store_reachable_ && !draining_ && !stopping_;
+    if (serving == serving_reported_) return;
+    serving_reported_ = serving;
+    listener = serving_listener_;
+  }
+  spdlog::info("replica {} {}", replica_.id, serving ? "SERVING" : "NOT_SERVING");
+  if (listener) listener(serving);
+}
+
+bool RunManager::serving() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return store_reachable_ && !draining_ && !stopping_;
+}
+
+void RunManager::SetServingListener(std::function<void(bool)> listener) {
+  bool serving = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    serving_listener_ = listener;
+    serving = store_reachable_ && !draining_ && !stopping_;
+    serving_reported_ = serving;
+  }
+  if (listener) listener(serving);
+}
+
+void RunManager::Drain(std::chrono::duration<double> grace, const std::string& reason) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    draining_ = true;
+  }
+  work_.notify_all();
+  UpdateServing();
+  spdlog::info("replica {} draining: no more claims, up to {} s for the runs integrating here",
+               replica_.id, grace.count());
+  {
+    std::unique_lock<std::mutex> lock(mutex_);
+    idle_.wait_for(lock, grace, [&] { return active_.size() == queue_.size(); });
+  }
+  Shutdown(reason);
+}
+
+}  // namespace mbstream
