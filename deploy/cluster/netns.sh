@@ -19,7 +19,8 @@
 # compose client's script) against HAProxy. Checks: every run of the sweep FINISHED; each
 # replica finished at least one of them and together exactly the sweep (each replica's
 # mbstream_runs_ended_total{state="finished"} from its /metrics); the viewer subscribed
-# through HAProxy and exits 0 on SIGTERM; every replica exits 0 on SIGTERM. Prints the sweep's
+# through HAProxy, followed a run and answered each of its frames with probes (then exits 0);
+# every replica exits 0 on SIGTERM. Prints the sweep's
 # runs per second. Needs root, `ip netns`, PostgreSQL and HAProxy; exits 77 (skipped) without.
 set -euo pipefail
 
@@ -194,8 +195,11 @@ cli() { ip netns exec "$ns_cli" "$client_bin" --server "$lb_addr" --ca "$secrets
 # ---- viewer ---------------------------------------------------------------------------------
 viewer_pid=""
 if [ "$viewer" -eq 1 ]; then
-  ip netns exec "$ns_view" xvfb-run -a "$viewer_bin" --server "$lb_addr" --follow --offscreen \
-    --ca "$secrets/ca.pem" --token-file "$secrets/viewer.token" \
+  # It follows the first run it sees and exits (--exit-after-runs 1). xvfb-run looks for a free
+  # display from a number of this script's own (-n), not from :99 as every other test does.
+  ip netns exec "$ns_view" xvfb-run -a -n $((100 + id % 800)) "$viewer_bin" --server "$lb_addr" \
+    --follow --offscreen --exit-after-runs 1 --ca "$secrets/ca.pem" \
+    --token-file "$secrets/viewer.token" \
     >"$tmp/logs/viewer.out" 2>"$tmp/logs/viewer.err" &
   viewer_pid=$!
   for _ in $(seq 1 200); do
@@ -240,28 +244,31 @@ done
 log "spread: $spread (by each replica's mbstream_runs_ended_total)"
 
 # ---- stop: viewer, balancer, replicas ---------------------------------------------------------
-stop() {  # stop PID NAME: SIGTERM, wait up to 10 s, the exit status must be 0
+stop() {  # stop PID NAME LOG: SIGTERM, wait up to 10 s, the exit status must be 0
   kill -TERM "$1"
-  stop_wait "$1" "$2"
+  stop_wait "$1" "$2" "$3"
 }
-stop_wait() {  # stop_wait PID NAME: wait up to 10 s for it to end, the exit status must be 0
+stop_wait() {  # stop_wait PID NAME LOG: wait up to 10 s for it to end, its status must be 0
   for _ in $(seq 1 100); do kill -0 "$1" 2>/dev/null || break; sleep 0.1; done
   kill -0 "$1" 2>/dev/null && fail "$2 did not stop within 10 s of SIGTERM"
   local rc=0
   wait "$1" || rc=$?
-  [ "$rc" -eq 0 ] || fail "$2 exited with $rc on SIGTERM"
+  if [ "$rc" -ne 0 ]; then
+    tail -n 20 "$tmp/logs/$3.err" >&2 || true
+    fail "$2 exited with $rc on SIGTERM"
+  fi
 }
 viewer_summary="not run"
 if [ -n "$viewer_pid" ]; then
-  # xvfb-run runs the viewer as its child: stop the viewer itself (by its process id), then
-  # xvfb-run ends with the viewer's status.
-  viewer_child=$(ps --ppid "$viewer_pid" -o pid=,comm= | awk '$2 == "mbstream-viewer" { print $1 }')
-  [ -n "$viewer_child" ] || fail "the viewer is not running under xvfb-run any more"
-  kill -TERM "$viewer_child"
-  stop_wait "$viewer_pid" "the viewer"
-  viewer_summary="$(cat "$tmp/logs/viewer.out" "$tmp/logs/viewer.err" | grep -c 'showing scene' || true) runs shown"
+  stop_wait "$viewer_pid" "the viewer" viewer
+  # "viewer done: 1 runs, last run R: F frames, P probe reports": every frame answered.
+  done_line=$(cat "$tmp/logs/viewer.out" "$tmp/logs/viewer.err" | grep -m1 -o 'viewer done: .*' || true)
+  read -r frames probes < <(sed -E 's/.*: ([0-9]+) frames, ([0-9]+) probe reports.*/\1 \2/' <<<"$done_line")
+  [ -n "$done_line" ] && [ "${frames:-0}" -gt 0 ] && [ "$frames" = "$probes" ] ||
+    fail "the viewer did not answer every frame of its run: '$done_line'"
+  viewer_summary=$done_line
 fi
-for i in $(seq 0 $((replicas - 1))); do stop "${srv_pids[$i]}" "replica $((i + 1))"; done
+for i in $(seq 0 $((replicas - 1))); do stop "${srv_pids[$i]}" "replica $((i + 1))" "server$((i + 1))"; done
 kill -TERM "$lb_pid" 2>/dev/null || true
 
 rate=$(awk -v n="$runs" -v s="$elapsed" 'BEGIN { printf "%.2f", n / s }')

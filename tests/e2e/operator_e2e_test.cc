@@ -1,6 +1,6 @@
-// A real server with --metrics on port 0 (issue 16, metrics for operators): its log names the
-// bound port, a short run moves the counters, and GET /metrics over loopback shows them in
-// the Prometheus text format.
+// What operators use on a real server (issue 16): --metrics on port 0 (its log names the bound
+// port, a short run moves the counters, GET /metrics over loopback shows them in the
+// Prometheus text format) and `mbstream health`, the readiness probe of deploy/k8s/.
 #include <gmock/gmock.h>
 
 #include <arpa/inet.h>
@@ -97,6 +97,25 @@ TEST(MetricsE2eTest, AnUnusableMetricsAddressIsRefusedAtStart) {
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_THAT(bad.output, HasSubstr("--metrics: cannot serve metrics on 203.0.113.1:0"));
   fs::remove_all("/tmp/mbstream-metrics-bad");
+}
+
+TEST(HealthCommandTest, SaysServingAndFailsWhenTheServerIsGone) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("mbstream-health-e2e-" + std::to_string(std::random_device()()));
+  std::string address;
+  {
+    ServerProcess server(MBSTREAM_SERVER, dir.string());
+    address = server.address();
+    const CommandOutcome health =
+        RunCommand(std::string(MBSTREAM_CLI) + " --server " + address + " health");
+    EXPECT_EQ(health.exit_code, 0) << health.output;
+    EXPECT_EQ(health.output, "SERVING\n");
+  }
+  const CommandOutcome gone =
+      RunCommand(std::string(MBSTREAM_CLI) + " --server " + address + " health");
+  EXPECT_EQ(gone.exit_code, 3) << gone.output;  // unreachable
+  EXPECT_THAT(gone.output, HasSubstr("mbstream health:"));
+  fs::remove_all(dir);
 }
 
 }  // namespace
