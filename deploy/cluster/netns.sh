@@ -169,6 +169,7 @@ for i in $(seq 0 $((replicas - 1))); do
   ip=${srv_ips[$i]} out=$tmp/logs/server$((i + 1))
   ip netns exec "${srv_ns[$i]}" "$server_bin" --listen "$ip:$port" --store "$store_uri" \
     --store-password-file "$secrets/pg.password" --metrics "$ip:$metrics_port" \
+    --models "$root/models" \
     --tls-cert "$secrets/server.pem" --tls-key "$secrets/server.key" \
     --token-file "$secrets/tokens" >"$out.out" 2>"$out.err" &
   srv_pids+=($!)
