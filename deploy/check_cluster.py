@@ -170,8 +170,10 @@ for replica in ("server2", "server3"):
 netns = read(os.path.join(CLUSTER, "netns.sh"))
 block = re.search(r'exec "\$\{srv_ns\[\$i\]\}" "\$server_bin" (.*?)>"\$out\.out"', netns, re.S)
 check(block is not None, "deploy/cluster/netns.sh: no server command found")
-if block:
-    netns_options = set(re.findall(r"(--[a-z][a-z-]*)", block.group(1)))
+store_args = re.search(r'store_args=\((--store "\$store_uri".*?)\)', netns)
+check(store_args is not None, "deploy/cluster/netns.sh: no PostgreSQL store_args found")
+if block and store_args:
+    netns_options = set(re.findall(r"(--[a-z][a-z-]*)", block.group(1) + store_args.group(1)))
     compose_options = {w for w in words if w.startswith("--")}
     check(netns_options == compose_options, "netns.sh gives the server %s, compose %s"
           % (sorted(netns_options), sorted(compose_options)))

@@ -5,10 +5,15 @@
 # network namespace), with TLS and tokens as in the demo.
 #
 #   deploy/cluster/netns.sh [--server-bin P] [--client-bin P] [--viewer-bin P] [--skip-viewer]
-#                           [--runs N] [--replicas N] [--keep]
+#                           [--runs N] [--replicas N] [--store sqlite|postgresql] [--direct]
+#                           [--client sweep|rate] [--keep]
 #
 #   --runs N       runs in the sweep (default 30)
 #   --replicas N   server replicas (default 3, at most 9)
+#   --store        the replicas' store (default postgresql; sqlite: each its own, --replicas 1)
+#   --direct       no HAProxy: the client talks to the one replica (--replicas 1)
+#   --client rate  instead of sweep-client.sh, sweep_rate.py: --runs short runs (1 s simulated,
+#                  kinematic) on one channel, at most 48 unfinished; prints runs per second
 #   --skip-viewer  no viewer host
 #   --keep         keep the temporary directory (certificates, configuration, logs)
 #
@@ -29,7 +34,7 @@ root=$(cd "$here/../.." && pwd)
 server_bin=$root/build/server/app/mbstream-server
 client_bin=$root/build/client/mbstream
 viewer_bin=$root/build/viewer/app/mbstream-viewer
-viewer=1 runs=30 replicas=3 keep=0
+viewer=1 runs=30 replicas=3 keep=0 store=postgresql direct=0 client=sweep
 while [ $# -gt 0 ]; do
   case "$1" in
     --server-bin) server_bin=$2; shift 2 ;;
@@ -38,6 +43,9 @@ while [ $# -gt 0 ]; do
     --skip-viewer) viewer=0; shift ;;
     --runs) runs=$2; shift 2 ;;
     --replicas) replicas=$2; shift 2 ;;
+    --store) store=$2; shift 2 ;;
+    --direct) direct=1; shift ;;
+    --client) client=$2; shift 2 ;;
     --keep) keep=1; shift ;;
     -h|--help) sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "cluster: unknown argument $1 (see --help)" >&2; exit 2 ;;
@@ -58,6 +66,10 @@ pg_bin=$(ls -d /usr/lib/postgresql/*/bin 2>/dev/null | sort -V | tail -n1)
 id postgres >/dev/null 2>&1 || skip "there is no postgres account to run PostgreSQL as"
 command -v curl >/dev/null || fail "curl not found"
 case "$replicas" in [1-9]) ;; *) fail "--replicas takes 1 to 9" ;; esac
+case "$store" in postgresql) ;; sqlite) [ "$replicas" -eq 1 ] || fail "--store sqlite takes --replicas 1" ;;
+  *) fail "--store takes sqlite or postgresql" ;; esac
+[ "$direct" -eq 0 ] || [ "$replicas" -eq 1 ] || fail "--direct takes --replicas 1"
+case "$client" in sweep|rate) ;; *) fail "--client takes sweep or rate" ;; esac
 for b in "$server_bin" "$client_bin"; do
   [ -x "$b" ] || fail "$b is not an executable; build it or pass --server-bin/--client-bin"
 done
@@ -148,27 +160,33 @@ reachable() {  # reachable NAMESPACE IP PORT: a TCP connection from that host wo
 "$here/make-secrets.sh" "$secrets" --san "$san" >/dev/null
 log "made a throwaway CA, a certificate for $san, tokens and a PostgreSQL password"
 
-# ---- PostgreSQL -----------------------------------------------------------------------------
-pg=$tmp/pg
-mkdir -p "$pg" && chown postgres "$pg"
-runuser -u postgres -- "$pg_bin/initdb" -D "$pg/data" -U postgres --auth-local=trust \
-  --auth-host=scram-sha-256 -E UTF8 >"$tmp/logs/initdb.log" 2>&1 || { cat "$tmp/logs/initdb.log" >&2; fail "initdb"; }
-echo "host all all $subnet.0/24 scram-sha-256" >>"$pg/data/pg_hba.conf"
-ip netns exec "$ns_pg" runuser -u postgres -- "$pg_bin/pg_ctl" -D "$pg/data" -w -s \
-  -l "$pg/postgresql.log" -o "-c listen_addresses=$pg_ip -k $pg -c fsync=off -c max_connections=200" start ||
-  { cat "$pg/postgresql.log" >&2; fail "PostgreSQL did not start"; }
-ip netns exec "$ns_pg" runuser -u postgres -- psql -h "$pg" -U postgres -q -v ON_ERROR_STOP=1 \
-  -c "CREATE ROLE mbstream LOGIN PASSWORD '$(cat "$secrets/pg.password")'" \
-  -c "CREATE DATABASE mbstream OWNER mbstream" >/dev/null
-store_uri=postgresql://mbstream@$pg_ip:5432/mbstream
-log "postgresql: $store_uri (password from a file)"
+# ---- PostgreSQL (or each replica its own SQLite) -------------------------------------------
+if [ "$store" = postgresql ]; then
+  pg=$tmp/pg
+  mkdir -p "$pg" && chown postgres "$pg"
+  runuser -u postgres -- "$pg_bin/initdb" -D "$pg/data" -U postgres --auth-local=trust \
+    --auth-host=scram-sha-256 -E UTF8 >"$tmp/logs/initdb.log" 2>&1 || { cat "$tmp/logs/initdb.log" >&2; fail "initdb"; }
+  echo "host all all $subnet.0/24 scram-sha-256" >>"$pg/data/pg_hba.conf"
+  ip netns exec "$ns_pg" runuser -u postgres -- "$pg_bin/pg_ctl" -D "$pg/data" -w -s \
+    -l "$pg/postgresql.log" -o "-c listen_addresses=$pg_ip -k $pg -c fsync=off -c max_connections=200" start ||
+    { cat "$pg/postgresql.log" >&2; fail "PostgreSQL did not start"; }
+  ip netns exec "$ns_pg" runuser -u postgres -- psql -h "$pg" -U postgres -q -v ON_ERROR_STOP=1 \
+    -c "CREATE ROLE mbstream LOGIN PASSWORD '$(cat "$secrets/pg.password")'" \
+    -c "CREATE DATABASE mbstream OWNER mbstream" >/dev/null
+  store_uri=postgresql://mbstream@$pg_ip:5432/mbstream
+  log "postgresql: $store_uri (password from a file)"
+  store_args=(--store "$store_uri" --store-password-file "$secrets/pg.password")
+else
+  store_args=(--store "sqlite:$tmp/data")
+  log "store: SQLite in $tmp/data"
+fi
 
 # ---- replicas -------------------------------------------------------------------------------
 srv_pids=()
 for i in $(seq 0 $((replicas - 1))); do
   ip=${srv_ips[$i]} out=$tmp/logs/server$((i + 1))
-  ip netns exec "${srv_ns[$i]}" "$server_bin" --listen "$ip:$port" --store "$store_uri" \
-    --store-password-file "$secrets/pg.password" --metrics "$ip:$metrics_port" \
+  ip netns exec "${srv_ns[$i]}" "$server_bin" --listen "$ip:$port" "${store_args[@]}" \
+    --metrics "$ip:$metrics_port" \
     --models "$root/models" \
     --tls-cert "$secrets/server.pem" --tls-key "$secrets/server.key" \
     --token-file "$secrets/tokens" >"$out.out" 2>"$out.err" &
@@ -182,16 +200,20 @@ for i in $(seq 0 $((replicas - 1))); do
   log "replica $((i + 1)): $(grep -m1 '^listening on' "$out.out"), $(grep -m1 '^metrics on' "$out.out")"
 done
 
-# ---- HAProxy --------------------------------------------------------------------------------
-"$here/haproxy-config.sh" "$lb_addr" "$secrets/haproxy.pem" "$secrets/ca.pem" \
-  $(printf "%s:$port " "${srv_ips[@]}") >"$tmp/haproxy.cfg"
-haproxy -c -q -f "$tmp/haproxy.cfg" || fail "haproxy rejected $tmp/haproxy.cfg"
-ip netns exec "$ns_lb" haproxy -db -f "$tmp/haproxy.cfg" >"$tmp/logs/haproxy.log" 2>&1 &
-lb_pid=$!
-reachable "$ns_cli" "$lb_ip" "$port" || fail "the client host cannot reach HAProxy at $lb_addr"
-log "haproxy: $lb_addr, round-robin per call over $replicas replicas (HTTP/2, TLS both sides)"
+# ---- HAProxy (or, --direct, none) ------------------------------------------------------------
+if [ "$direct" -eq 1 ]; then
+  lb_addr=${srv_ips[0]}:$port
+  log "no balancer: the client and viewer talk to replica 1 at $lb_addr"
+else
+  "$here/haproxy-config.sh" "$lb_addr" "$secrets/haproxy.pem" "$secrets/ca.pem" \
+    $(printf "%s:$port " "${srv_ips[@]}") >"$tmp/haproxy.cfg"
+  haproxy -c -q -f "$tmp/haproxy.cfg" || fail "haproxy rejected $tmp/haproxy.cfg"
+  ip netns exec "$ns_lb" haproxy -db -f "$tmp/haproxy.cfg" >"$tmp/logs/haproxy.log" 2>&1 &
+  lb_pid=$!
+  reachable "$ns_cli" "$lb_ip" "$port" || fail "the client host cannot reach HAProxy at $lb_addr"
+  log "haproxy: $lb_addr, round-robin per call over $replicas replicas (HTTP/2, TLS both sides)"
+fi
 
-cli() { ip netns exec "$ns_cli" "$client_bin" --server "$lb_addr" --ca "$secrets/ca.pem" --token-file "$secrets/client.token" "$@"; }
 
 # ---- viewer ---------------------------------------------------------------------------------
 viewer_pid=""
@@ -214,19 +236,34 @@ if [ "$viewer" -eq 1 ]; then
 fi
 
 # ---- the sweep ------------------------------------------------------------------------------
-log "client: submit models/irb1600, a sweep of $runs runs through $lb_addr"
 started=$(date +%s.%N)
 set +e
-ip netns exec "$ns_cli" env MBSTREAM_SERVER="$lb_addr" MBSTREAM_CA="$secrets/ca.pem" \
-  MBSTREAM_TOKEN_FILE="$secrets/client.token" MBSTREAM_CLI="$client_bin" \
-  "$here/sweep-client.sh" "$root/models/irb1600" "$root/models/irb1600/seed-run.json" "$runs" \
-  >"$tmp/logs/client.out" 2>"$tmp/logs/client.err"
+if [ "$client" = sweep ]; then
+  log "client: submit models/irb1600, a sweep of $runs runs through $lb_addr"
+  ip netns exec "$ns_cli" env MBSTREAM_SERVER="$lb_addr" MBSTREAM_CA="$secrets/ca.pem" \
+    MBSTREAM_TOKEN_FILE="$secrets/client.token" MBSTREAM_CLI="$client_bin" \
+    "$here/sweep-client.sh" "$root/models/irb1600" "$root/models/irb1600/seed-run.json" "$runs" \
+    >"$tmp/logs/client.out" 2>"$tmp/logs/client.err"
+else
+  log "client: $runs short runs of the built-in irb1600 on one channel through $lb_addr"
+  mkdir -p "$tmp/stubs"
+  protoc -I "$root/proto" --python_out="$tmp/stubs" --grpc_out="$tmp/stubs" \
+    --plugin=protoc-gen-grpc="$(command -v grpc_python_plugin)" "$root"/proto/mbstream/v1/*.proto
+  ip netns exec "$ns_cli" /usr/bin/python3 "$here/sweep_rate.py" --server "$lb_addr" \
+    --ca "$secrets/ca.pem" --token-file "$secrets/client.token" --stubs "$tmp/stubs" \
+    --runs "$runs" --spec "$root/models/irb1600/seed-run.json" \
+    >"$tmp/logs/client.out" 2>"$tmp/logs/client.err"
+fi
 client_rc=$?
 set -e
 elapsed=$(awk -v a="$started" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')
 sed 's/^/  client: /' "$tmp/logs/client.err"
-[ "$client_rc" -eq 0 ] || fail "the sweep client exited with $client_rc"
-[ "$(wc -l <"$tmp/logs/client.out")" -eq "$runs" ] || fail "the client printed $(wc -l <"$tmp/logs/client.out") run ids, expected $runs"
+[ "$client_rc" -eq 0 ] || { cat "$tmp/logs/client.out"; fail "the client exited with $client_rc"; }
+if [ "$client" = sweep ]; then
+  [ "$(wc -l <"$tmp/logs/client.out")" -eq "$runs" ] || fail "the client printed $(wc -l <"$tmp/logs/client.out") run ids, expected $runs"
+else
+  sed 's/^/  client: /' "$tmp/logs/client.out"
+fi
 
 # ---- spread over the replicas (each replica's own counters) -------------------------------
 finished_on() {  # finished_on IP: mbstream_runs_ended_total{state="finished"} of that replica
@@ -270,11 +307,11 @@ if [ -n "$viewer_pid" ]; then
   viewer_summary=$done_line
 fi
 for i in $(seq 0 $((replicas - 1))); do stop "${srv_pids[$i]}" "replica $((i + 1))" "server$((i + 1))"; done
-kill -TERM "$lb_pid" 2>/dev/null || true
+[ -n "${lb_pid:-}" ] && kill -TERM "$lb_pid" 2>/dev/null || true
 
 rate=$(awk -v n="$runs" -v s="$elapsed" 'BEGIN { printf "%.2f", n / s }')
 echo "cluster: ---- summary ----"
-echo "cluster: postgresql $pg_ip, haproxy $lb_addr, $replicas replicas (TLS+tokens, metrics on :$metrics_port)"
+echo "cluster: store $store, $([ "$direct" -eq 1 ] && echo "no balancer" || echo "haproxy $lb_addr"), $replicas replicas (TLS+tokens, metrics on :$metrics_port)"
 echo "cluster: sweep: $runs runs FINISHED in $elapsed s ($rate runs/s, submit and wait included)"
 echo "cluster: spread: $spread"
 echo "cluster: viewer: $viewer_summary"
