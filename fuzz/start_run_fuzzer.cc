@@ -75,6 +75,9 @@ class Server {
     limits_.max_duration_s = 0.2;  // accepted runs stay tiny: the fuzzer tests validation
     limits_.max_output_frames = 200;
     limits_.max_internal_steps = 20'000;
+    // A CPU cap as well: 20,000 steps of a 100-joint model take over a minute under ASan
+    // (models/big/chain100.urdf with seed-run.json did, and timed libFuzzer out).
+    limits_.max_run_cpu_s = 2.0;
     limits_.max_model_bytes = 1 << 20;
     limits_.probe_grace_s = 0.0;
     limits_.max_models = 1 << 20;  // the server is replaced before the store grows large

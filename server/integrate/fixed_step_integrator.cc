@@ -47,9 +47,16 @@ AdvanceResult FixedStepIntegrator::DoAdvance(double t_out, double* y) {
       return {IntegratorStatus::kTooMuchWork, t,
               TooMuchWorkMessage(name(), options().max_steps, t, t_out, false)};
     }
-    if (steps_ % kCpuCheckSteps == 0 && CpuDeadlinePassed()) {
-      std::copy(y_grid_.begin(), y_grid_.end(), y);
-      return {IntegratorStatus::kTooMuchWork, t, CpuBudgetMessage(name(), t, t_out)};
+    if (steps_ >= next_cpu_check_) {
+      if (CpuDeadlinePassed()) {
+        std::copy(y_grid_.begin(), y_grid_.end(), y);
+        return {IntegratorStatus::kTooMuchWork, t, CpuBudgetMessage(name(), t, t_out)};
+      }
+      CpuCheckPacer& pacer = cpu_check_pacer();
+      pacer.Finish(steps_ - cpu_chunk_start_);
+      pacer.Start();
+      cpu_chunk_start_ = steps_;
+      next_cpu_check_ = steps_ + pacer.Chunk(options().max_steps);
     }
     // The last grid point may lie a rounding error beyond t_final: never step past it.
     const double h = std::min(GridTime(k_ + 1), options().t_final) - t;

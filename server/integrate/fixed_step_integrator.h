@@ -39,7 +39,9 @@ class FixedStepIntegrator : public IntegratorBase {
   long k_ = 0;  // the grid point of y_grid_
   std::vector<double> y_grid_;
   std::vector<double> y_next_;
-  long steps_ = 0;  // grid steps (the partial steps to outputs are not counted)
+  long steps_ = 0;            // grid steps (the partial steps to outputs are not counted)
+  long cpu_chunk_start_ = 0;  // steps_ at the last check of the CPU budget
+  long next_cpu_check_ = 0;   // steps_ at which the CPU budget is checked next
   double last_step_ = 0.0;
 };
 

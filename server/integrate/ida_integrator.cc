@@ -197,7 +197,7 @@ AdvanceResult IdaIntegrator::DoAdvance(double t_out, double* y) {
   errors_.Clear();
   N_VSetArrayPointer(y, out_.get());
   // The step budget is over the whole run; with a CPU budget IDA is called in chunks of
-  // kCpuCheckSteps steps and the thread's CPU clock is read between them.
+  // steps (CpuCheckPacer) and the thread's CPU clock is read between them.
   const long max_steps = options().max_steps;
   const double cpu_deadline = options().cpu_deadline_s;
   const bool cpu_budget = std::isfinite(cpu_deadline);
@@ -220,11 +220,16 @@ AdvanceResult IdaIntegrator::DoAdvance(double t_out, double* y) {
       }
       break;
     }
-    const long chunk = cpu_budget ? std::min(remaining, kCpuCheckSteps) : remaining;
+    CpuCheckPacer& pacer = cpu_check_pacer();
+    const long chunk = cpu_budget ? pacer.Chunk(remaining) : remaining;
     CheckSetup(IDASetMaxNumSteps(memory_, chunk), "IDASetMaxNumSteps");
+    pacer.Start();
     std::fill(y, y + state_size(), std::numeric_limits<double>::quiet_NaN());
     t_reached = std::numeric_limits<double>::quiet_NaN();
     flag = IDASolve(memory_, t_out, &t_reached, out_.get(), yp_out_.get(), IDA_NORMAL);
+    long steps_after = steps;
+    IDAGetNumSteps(memory_, &steps_after);
+    pacer.Finish(steps_after - steps);
     if (flag >= 0) return {IntegratorStatus::kOk, t_out, {}};
     evolved = true;
     if (flag == IDA_TOO_MUCH_WORK && chunk < remaining) continue;  // only the chunk ran out

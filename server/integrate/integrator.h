@@ -23,7 +23,8 @@ struct IntegratorOptions {
   std::string erk_table;
   long max_steps = 10'000'000;  // internal steps in total, over all AdvanceTo calls
   // s, the calling thread's CPU clock (ThreadCpuSeconds) at which the integration stops
-  // with kTooMuchWork: the run's CPU budget. Checked every kCpuCheckSteps internal steps.
+  // with kTooMuchWork: the run's CPU budget. Checked between chunks of internal steps
+  // (CpuCheckPacer: about every 10 ms, at most 256 steps apart).
   // Infinity = no CPU budget.
   double cpu_deadline_s = std::numeric_limits<double>::infinity();
   // s, the integrator never steps past it (CVodeSetStopTime etc.); AdvanceTo may not ask
@@ -40,9 +41,6 @@ struct IntegratorOptions {
 // Throws InputError saying what is wrong and what to give instead. MakeIntegrator and
 // MakeIdaIntegrator call it; a run's validation calls it before the run is queued.
 void CheckIntegratorOptions(const IntegratorOptions& options);
-
-// Internal steps between two checks of IntegratorOptions::cpu_deadline_s.
-constexpr long kCpuCheckSteps = 256;
 
 // Cumulative solver statistics since creation.
 struct SolverStats {

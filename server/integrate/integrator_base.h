@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "server/integrate/cpu_check_pacer.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/integrator.h"
 #include "server/integrate/thread_cpu_clock.h"
@@ -34,11 +35,14 @@ class IntegratorBase : public Integrator {
   const IntegratorOptions& options() const { return options_; }
   // Whether the thread's CPU clock has passed options().cpu_deadline_s (cheap: CpuDeadline).
   bool CpuDeadlinePassed() { return cpu_deadline_.Passed(); }
+  // Paces the checks of the CPU budget (how many steps between two).
+  CpuCheckPacer& cpu_check_pacer() { return cpu_check_pacer_; }
 
  private:
   int size_;
   IntegratorOptions options_;
   CpuDeadline cpu_deadline_;
+  CpuCheckPacer cpu_check_pacer_;
   double last_t_;
   std::vector<double> last_y_;  // the last good output, at last_t_
   bool failed_ = false;

@@ -69,7 +69,7 @@ AdvanceResult SundialsIntegrator::DoAdvance(double t_out, double* y) {
   N_VSetArrayPointer(y, out_.get());
 
   // max_steps is a budget over the whole run; the solvers count per call. With a CPU budget
-  // the solver is called in chunks of kCpuCheckSteps steps and the thread's CPU clock is
+  // the solver is called in chunks of steps (CpuCheckPacer) and the thread's CPU clock is
   // read between them (a solver stopped by its per-call step limit resumes where it was).
   const long max_steps = options().max_steps;
   const double cpu_deadline = options().cpu_deadline_s;
@@ -93,13 +93,17 @@ AdvanceResult SundialsIntegrator::DoAdvance(double t_out, double* y) {
       }
       break;
     }
-    const long chunk = cpu_budget ? std::min(remaining, kCpuCheckSteps) : remaining;
+    CpuCheckPacer& pacer = cpu_check_pacer();
+    const long chunk = cpu_budget ? pacer.Chunk(remaining) : remaining;
     CheckSetup(SetMaxNumSteps(std::max(chunk, 1L)), "SetMaxNumSteps");
+    const long steps_before = NumSteps();
+    pacer.Start();
     // A failure before the first step leaves y and t_reached unwritten: poison them so the
     // base falls back to the last output.
     std::fill(y, y + state_size(), std::numeric_limits<double>::quiet_NaN());
     t_reached = std::numeric_limits<double>::quiet_NaN();
     flag = Evolve(t_out, out_.get(), &t_reached);
+    pacer.Finish(NumSteps() - steps_before);
     if (flag >= 0) return {IntegratorStatus::kOk, t_out, {}};
     evolved = true;
     if (flag == too_much_work && chunk < remaining) continue;  // only the chunk ran out

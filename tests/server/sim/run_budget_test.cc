@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "server/drives/drive_set.h"
+#include "server/integrate/cpu_check_pacer.h"
 #include "server/integrate/integrator.h"
 #include "server/integrate/thread_cpu_clock.h"
 #include "server/runs/run_budget_caps.h"
@@ -197,7 +198,7 @@ TEST(RunBudgetTest, CpuBudgetStopsEveryKindOfIntegrator) {
   }
 }
 
-// With a CPU deadline the SUNDIALS solvers are called in chunks of kCpuCheckSteps steps and
+// With a CPU deadline the SUNDIALS solvers are called in chunks of steps (CpuCheckPacer) and
 // the fixed-step loop reads the clock: the solution and the step count are the same bit for
 // bit as without, and advancing still allocates nothing.
 TEST(RunBudgetTest, CpuChecksLeaveTheSolutionBitForBitAndAllocateNothing) {
@@ -225,7 +226,7 @@ TEST(RunBudgetTest, CpuChecksLeaveTheSolutionBitForBitAndAllocateNothing) {
       ASSERT_EQ(integrator->AdvanceTo(2.0, y.data()).status, IntegratorStatus::kOk);
       EXPECT_EQ(testing::AllocationCount() - allocations, 0) << MethodName(method);
       steps[budgeted] = integrator->stats().steps;
-      EXPECT_GT(steps[budgeted] - steps_before, 2 * kCpuCheckSteps) << MethodName(method);
+      EXPECT_GT(steps[budgeted] - steps_before, 2 * CpuCheckPacer::kMaxSteps) << MethodName(method);
       states[budgeted].assign(y.data(), y.data() + y.size());
     }
     EXPECT_EQ(steps[0], steps[1]) << MethodName(method);
