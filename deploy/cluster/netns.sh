@@ -57,9 +57,8 @@ skip() { echo "cluster: SKIPPED: $*"; exit 77; }
 fail() { echo "cluster: FAIL: $*" >&2; exit 1; }
 
 # ---- preconditions -------------------------------------------------------------------
-[ "$(id -u)" -eq 0 ] || skip "needs root to create network namespaces (run as root)"
-command -v ip >/dev/null || skip "iproute2's ip is not installed"
-ip netns list >/dev/null 2>&1 || skip "'ip netns' does not work here"
+. "$here/../netns-hosts.sh"
+netns_preconditions
 command -v haproxy >/dev/null || skip "haproxy is not installed (scripts/setup.sh installs it)"
 pg_bin=$(ls -d /usr/lib/postgresql/*/bin 2>/dev/null | sort -V | tail -n1)
 [ -x "$pg_bin/initdb" ] || skip "PostgreSQL is not installed (scripts/setup.sh installs it)"
@@ -83,34 +82,8 @@ fi
 
 # ---- cleanup, on every exit path -------------------------------------------------------
 id=$$
-namespaces=()
 tmp=""
-cleanup() {
-  local rc=$?
-  set +e
-  trap - EXIT INT TERM
-  for ns in "${namespaces[@]}"; do
-    for pid in $(ip netns pids "$ns" 2>/dev/null); do kill -TERM "$pid" 2>/dev/null; done
-  done
-  for _ in $(seq 1 25); do
-    local left=0
-    for ns in "${namespaces[@]}"; do [ -n "$(ip netns pids "$ns" 2>/dev/null)" ] && left=1; done
-    [ "$left" -eq 0 ] && break
-    sleep 0.2
-  done
-  for ns in "${namespaces[@]}"; do
-    for pid in $(ip netns pids "$ns" 2>/dev/null); do kill -KILL "$pid" 2>/dev/null; done
-  done
-  wait 2>/dev/null
-  for ns in "${namespaces[@]}"; do ip netns del "$ns" 2>/dev/null; done
-  if [ -n "$tmp" ]; then
-    if [ "$keep" -eq 1 ]; then echo "cluster: kept $tmp"; else rm -rf "$tmp"; fi
-  fi
-  exit "$rc"
-}
-trap cleanup EXIT
-trap 'exit 130' INT
-trap 'exit 143' TERM
+netns_cleanup_on_exit
 
 tmp=$(mktemp -d /tmp/mbs-cluster.XXXXXX)
 chmod 755 "$tmp"  # PostgreSQL runs as postgres under it
@@ -122,39 +95,21 @@ subnet=10.214.0
 pg_ip=$subnet.2 lb_ip=$subnet.10 cli_ip=$subnet.20 view_ip=$subnet.21
 port=50051 metrics_port=9464
 lb_addr=$lb_ip:$port
-add_ns() { ip netns add "$1"; namespaces+=("$1"); ip -n "$1" link set lo up; }
 ns_br=mbc-br-$id
-add_ns "$ns_br"
-ip -n "$ns_br" link add br0 type bridge
-ip -n "$ns_br" link set br0 up
-host() {  # host NAMESPACE PORT_NAME IP: a veth from the bridge to eth0 in NAMESPACE
-  add_ns "$1"
-  ip -n "$ns_br" link add "$2" type veth peer name eth0 netns "$1"
-  ip -n "$ns_br" link set "$2" master br0 up
-  ip -n "$1" addr add "$3/24" dev eth0
-  ip -n "$1" link set eth0 up
-}
+netns_bridge "$ns_br"
 ns_pg=mbc-pg-$id ns_lb=mbc-lb-$id ns_cli=mbc-cli-$id ns_view=mbc-view-$id
-host "$ns_pg" p-pg "$pg_ip"
-host "$ns_lb" p-lb "$lb_ip"
-host "$ns_cli" p-cli "$cli_ip"
-[ "$viewer" -eq 1 ] && host "$ns_view" p-view "$view_ip"
+netns_host "$ns_pg" p-pg "$pg_ip"
+netns_host "$ns_lb" p-lb "$lb_ip"
+netns_host "$ns_cli" p-cli "$cli_ip"
+[ "$viewer" -eq 1 ] && netns_host "$ns_view" p-view "$view_ip"
 srv_ips=() srv_ns=()
 san="IP:$lb_ip"
 for i in $(seq 1 "$replicas"); do
   srv_ips+=("$subnet.1$i") srv_ns+=("mbc-srv$i-$id")
-  host "mbc-srv$i-$id" "p-srv$i" "$subnet.1$i"
+  netns_host "mbc-srv$i-$id" "p-srv$i" "$subnet.1$i"
   san="$san,IP:$subnet.1$i"
 done
 log "hosts: postgresql $pg_ip, haproxy $lb_ip, replicas ${srv_ips[*]}, client $cli_ip$([ "$viewer" -eq 1 ] && echo ", viewer $view_ip")"
-
-reachable() {  # reachable NAMESPACE IP PORT: a TCP connection from that host works
-  for _ in $(seq 1 100); do
-    ip netns exec "$1" timeout 1 bash -c "exec 3<>/dev/tcp/$2/$3" 2>/dev/null && return 0
-    sleep 0.1
-  done
-  return 1
-}
 
 # ---- secrets ------------------------------------------------------------------------------
 "$here/make-secrets.sh" "$secrets" --san "$san" >/dev/null
@@ -210,7 +165,7 @@ else
   haproxy -c -q -f "$tmp/haproxy.cfg" || fail "haproxy rejected $tmp/haproxy.cfg"
   ip netns exec "$ns_lb" haproxy -db -f "$tmp/haproxy.cfg" >"$tmp/logs/haproxy.log" 2>&1 &
   lb_pid=$!
-  reachable "$ns_cli" "$lb_ip" "$port" || fail "the client host cannot reach HAProxy at $lb_addr"
+  netns_reachable "$ns_cli" "$lb_ip" "$port" || fail "the client host cannot reach HAProxy at $lb_addr"
   log "haproxy: $lb_addr, round-robin per call over $replicas replicas (HTTP/2, TLS both sides)"
 fi
 

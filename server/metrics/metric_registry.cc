@@ -70,36 +70,39 @@ Registry::Entry& Registry::Add(const std::string& name, const std::string& help,
   return *entries_.back();
 }
 
-Family<Counter>& Registry::Counters(const std::string& name, const std::string& help,
-                                    std::vector<std::string> label_names) {
-  Entry& entry = Add(name, help, label_names);
-  auto family = std::make_unique<Family<Counter>>(std::move(label_names),
-                                                  [] { return std::make_unique<Counter>(); });
-  Family<Counter>& result = *family;
+namespace {
+
+// A new family of `Metric`s in `entry`, each child made by `make`.
+template <typename Metric, typename Entry, typename Make>
+Family<Metric>& NewFamily(Entry& entry, std::vector<std::string> label_names, Make make) {
+  auto family = std::make_unique<Family<Metric>>(std::move(label_names), std::move(make));
+  Family<Metric>& result = *family;
   entry.metrics = std::move(family);
   return result;
 }
 
+}  // namespace
+
+Family<Counter>& Registry::Counters(const std::string& name, const std::string& help,
+                                    std::vector<std::string> label_names) {
+  Entry& entry = Add(name, help, label_names);  // before label_names moves
+  return NewFamily<Counter>(entry, std::move(label_names),
+                            [] { return std::make_unique<Counter>(); });
+}
+
 Family<Gauge>& Registry::Gauges(const std::string& name, const std::string& help,
                                 std::vector<std::string> label_names) {
-  Entry& entry = Add(name, help, label_names);
-  auto family = std::make_unique<Family<Gauge>>(std::move(label_names),
-                                                [] { return std::make_unique<Gauge>(); });
-  Family<Gauge>& result = *family;
-  entry.metrics = std::move(family);
-  return result;
+  Entry& entry = Add(name, help, label_names);  // before label_names moves
+  return NewFamily<Gauge>(entry, std::move(label_names), [] { return std::make_unique<Gauge>(); });
 }
 
 Family<Histogram>& Registry::Histograms(const std::string& name, const std::string& help,
                                         std::vector<double> bounds,
                                         std::vector<std::string> label_names) {
   Histogram check(bounds);  // throws on bad bounds now, not at the first label set
-  Entry& entry = Add(name, help, label_names);
-  auto family = std::make_unique<Family<Histogram>>(
-      std::move(label_names), [bounds] { return std::make_unique<Histogram>(bounds); });
-  Family<Histogram>& result = *family;
-  entry.metrics = std::move(family);
-  return result;
+  Entry& entry = Add(name, help, label_names);  // before label_names moves
+  return NewFamily<Histogram>(entry, std::move(label_names),
+                              [bounds] { return std::make_unique<Histogram>(bounds); });
 }
 
 void Registry::GaugeFunction(const std::string& name, const std::string& help,

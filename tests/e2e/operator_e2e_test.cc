@@ -3,15 +3,11 @@
 // Prometheus text format) and `mbstream health`, the readiness probe of deploy/k8s/.
 #include <gmock/gmock.h>
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <filesystem>
 #include <random>
 #include <regex>
 
+#include "tests/common/http_get.h"
 #include "tests/common/server_process.h"
 
 namespace mbstream::testing {
@@ -22,22 +18,7 @@ using ::testing::HasSubstr;
 
 // GET /metrics from 127.0.0.1:port; the whole answer.
 std::string Scrape(int port) {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(static_cast<uint16_t>(port));
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
-    close(fd);
-    return "";
-  }
-  const std::string request = "GET /metrics HTTP/1.1\r\nHost: localhost\r\n\r\n";
-  send(fd, request.data(), request.size(), MSG_NOSIGNAL);
-  std::string answer;
-  char buffer[8192];
-  for (ssize_t n; (n = recv(fd, buffer, sizeof buffer, 0)) > 0;) answer.append(buffer, n);
-  close(fd);
-  return answer;
+  return HttpExchange(port, "GET /metrics HTTP/1.1\r\nHost: localhost\r\n\r\n");
 }
 
 // The value of the sample line that starts with `series` ("name{labels}"), or -1.

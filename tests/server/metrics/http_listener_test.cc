@@ -2,16 +2,10 @@
 // and the hot-path metric updates allocate nothing.
 #include <gmock/gmock.h>
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
-#include <thread>
-
 #include "server/metrics/http_listener.h"
 #include "server/metrics/metric_registry.h"
 #include "tests/common/allocation_counter.h"
+#include "tests/common/http_get.h"
 
 namespace mbstream::metrics {
 namespace {
@@ -19,24 +13,9 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-// Sends `request` to 127.0.0.1:port and returns the whole answer (the server closes).
 std::string Exchange(int port, const std::string& request) {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(static_cast<uint16_t>(port));
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
-    close(fd);
-    return "connect failed";
-  }
-  send(fd, request.data(), request.size(), MSG_NOSIGNAL);
-  shutdown(fd, SHUT_WR);  // an incomplete request ends here, not at the server's timeout
-  std::string answer;
-  char buffer[4096];
-  for (ssize_t n; (n = recv(fd, buffer, sizeof buffer, 0)) > 0;) answer.append(buffer, n);
-  close(fd);
-  return answer;
+  const std::string answer = mbstream::testing::HttpExchange(port, request);
+  return answer.empty() ? "connect failed" : answer;
 }
 
 int PortOf(const std::string& address) { return std::stoi(address.substr(address.rfind(':') + 1)); }
