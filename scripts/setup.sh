@@ -13,6 +13,8 @@ PACKAGES=(
   liburdfdom-dev libspdlog-dev libfmt-dev libcli11-dev libsqlite3-dev nlohmann-json3-dev
   # the shared store for several servers (--store postgresql://...); the tests start their own
   libpqxx-dev postgresql
+  # the load balancer of the cluster test (deploy/cluster/netns.sh: HTTP/2 to the replicas)
+  haproxy
   # wire contract
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc libssl-dev openssl
   # fuzzing (fuzz/): clang 14 and its libFuzzer + sanitizer runtimes

@@ -1,4 +1,4 @@
-// The commands that talk to a server: submit, models, runs, run, result, cancel
+// The commands that talk to a server: submit, models, runs, run, result, cancel, health
 // (design.md section 4). Each callback stores its exit code in *exit_code.
 #pragma once
 
@@ -18,5 +18,7 @@ void AddResultCommands(CLI::App& app, std::shared_ptr<const ClientOptions> optio
                        int* exit_code);  // result, cancel
 void AddReplayCommands(CLI::App& app, std::shared_ptr<const ClientOptions> options,
                        int* exit_code);  // probe-sets, replay
+void AddHealthCommand(CLI::App& app, std::shared_ptr<const ClientOptions> options,
+                      int* exit_code);  // health (gRPC health checking)
 
 }  // namespace mbstream::cli

@@ -49,9 +49,8 @@ skip() { echo "multihost: SKIPPED: $*"; exit 77; }
 fail() { echo "multihost: FAIL: $*" >&2; exit 1; }
 
 # ---- preconditions -------------------------------------------------------------------
-[ "$(id -u)" -eq 0 ] || skip "needs root to create network namespaces (run as root)"
-command -v ip >/dev/null || skip "iproute2's ip is not installed"
-ip netns list >/dev/null 2>&1 || skip "'ip netns' does not work here"
+. "$here/../netns-hosts.sh"
+netns_preconditions
 command -v openssl >/dev/null || fail "openssl not found (scripts/setup.sh installs it)"
 [ -x /usr/bin/python3 ] || fail "/usr/bin/python3 not found"
 for b in "$server_bin" "$client_bin"; do
@@ -80,41 +79,8 @@ fi
 # ---- cleanup, on every exit path -------------------------------------------------------
 id=$$
 ns_br=mbs-br-$id ns_srv=mbs-srv-$id ns_view=mbs-view-$id ns_cli=mbs-cli-$id
-namespaces=()
 tmp=""
-cleanup() {
-  local rc=$?
-  set +e
-  trap - EXIT INT TERM
-  # Whatever still runs inside our namespaces was started by this script: stop it.
-  for ns in "${namespaces[@]}"; do
-    for pid in $(ip netns pids "$ns" 2>/dev/null); do kill -TERM "$pid" 2>/dev/null; done
-  done
-  for _ in 1 2 3 4 5 6 7 8 9 10; do
-    local left=0
-    for ns in "${namespaces[@]}"; do
-      [ -n "$(ip netns pids "$ns" 2>/dev/null)" ] && left=1
-    done
-    [ "$left" -eq 0 ] && break
-    sleep 0.2
-  done
-  for ns in "${namespaces[@]}"; do
-    for pid in $(ip netns pids "$ns" 2>/dev/null); do kill -KILL "$pid" 2>/dev/null; done
-  done
-  wait 2>/dev/null
-  for ns in "${namespaces[@]}"; do ip netns del "$ns" 2>/dev/null; done
-  if [ -n "$tmp" ]; then
-    if [ "$keep" -eq 1 ]; then
-      echo "multihost: kept $tmp"
-    else
-      rm -rf "$tmp"
-    fi
-  fi
-  exit "$rc"
-}
-trap cleanup EXIT
-trap 'exit 130' INT
-trap 'exit 143' TERM
+netns_cleanup_on_exit
 
 tmp=$(mktemp -d /tmp/mbs-multihost.XXXXXX)
 secrets=$tmp/secrets out=$tmp/out
@@ -126,20 +92,10 @@ srv_ip=$subnet.1 view_ip=$subnet.2 cli_ip=$subnet.3
 port=50051
 server_addr=$srv_ip:$port
 
-add_ns() { ip netns add "$1"; namespaces+=("$1"); ip -n "$1" link set lo up; }
-add_ns "$ns_br"
-ip -n "$ns_br" link add br0 type bridge
-ip -n "$ns_br" link set br0 up
-host() {  # host NAMESPACE PORT_NAME IP: a veth from the bridge to eth0 in NAMESPACE
-  add_ns "$1"
-  ip -n "$ns_br" link add "$2" type veth peer name eth0 netns "$1"
-  ip -n "$ns_br" link set "$2" master br0 up
-  ip -n "$1" addr add "$3/24" dev eth0
-  ip -n "$1" link set eth0 up
-}
-host "$ns_srv" p-srv "$srv_ip"
-host "$ns_view" p-view "$view_ip"
-host "$ns_cli" p-cli "$cli_ip"
+netns_bridge "$ns_br"
+netns_host "$ns_srv" p-srv "$srv_ip"
+netns_host "$ns_view" p-view "$view_ip"
+netns_host "$ns_cli" p-cli "$cli_ip"
 log "hosts: server $srv_ip ($ns_srv), viewer $view_ip ($ns_view), client $cli_ip ($ns_cli)"
 
 # ---- secrets ------------------------------------------------------------------------------
@@ -159,13 +115,7 @@ done
 grep -q '^listening on' "$tmp/server.out" || fail "the server did not print 'listening on' in 10 s"
 log "server: $(grep -m1 '^listening on' "$tmp/server.out") (TLS, tokens)"
 
-reachable() {  # reachable NAMESPACE: a TCP connection to the server from that host works
-  for _ in $(seq 1 50); do
-    ip netns exec "$1" timeout 1 bash -c "exec 3<>/dev/tcp/$srv_ip/$port" 2>/dev/null && return 0
-    sleep 0.1
-  done
-  return 1
-}
+reachable() { netns_reachable "$1" "$srv_ip" "$port"; }  # reachable NAMESPACE: the server
 reachable "$ns_cli" || fail "the client host cannot reach $server_addr"
 
 # ---- viewer -------------------------------------------------------------------------------

@@ -14,6 +14,7 @@
 
 #include "common/check.h"
 #include "net/tls_files.h"
+#include "server/app/metrics_endpoint.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/run_manager.h"
 #include "server/service/authorizer.h"
@@ -97,6 +98,10 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
                                 : Authorizer::FromTokenFile(config.token_file));
   const StoreLocation location = StoreLocationOf(config);
   host->store_ = OpenStore(location);
+  if (!config.metrics.empty()) {
+    host->metrics_ = std::make_unique<MetricsEndpoint>();
+    host->store_ = host->metrics_->Measure(std::move(host->store_));
+  }
   host->models_ = std::make_unique<ModelRegistry>(host->store_.get(), config.limits);
   const int stored = host->models_->LoadStored();
   const int builtin =
@@ -148,10 +153,16 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   // grpc.health.v1: SERVING while the store answers and the replica is not draining.
   grpc::HealthCheckServiceInterface* health = host->server_->GetHealthCheckService();
   host->runs_->SetServingListener([health](bool serving) { health->SetServingStatus(serving); });
+  if (host->metrics_) host->metrics_->Serve(config.metrics, *host->runs_);
   return host;
 }
 
-ServerHost::~ServerHost() { Shutdown(); }
+ServerHost::~ServerHost() {
+  if (metrics_) metrics_->Stop();  // a scrape reads the run manager
+  Shutdown();
+}
+
+std::string ServerHost::metrics_address() const { return metrics_ ? metrics_->address() : ""; }
 
 void ServerHost::Shutdown() {
   if (shut_down_ || !server_) return;  // not started (Start threw) or already stopped

@@ -18,6 +18,7 @@ class ModelRegistry;
 class RunManager;
 class SimulationService;
 class Authorizer;
+class MetricsEndpoint;
 
 struct ServerConfig {
   std::string listen = "127.0.0.1:50051";  // host:port (port 0 = any free) or unix:/path
@@ -38,6 +39,7 @@ struct ServerConfig {
   std::string advertise;
   double lease_timeout_s = 10.0;
   double grace_s = 30.0;
+  std::string metrics;  // --metrics host:port serving GET /metrics (port 0 = any); empty = none
 };
 
 // What an operator should know about who can reach the server as configured: one sentence
@@ -55,6 +57,8 @@ class ServerHost {
 
   // The address clients use: host:port with the port actually bound, or unix:/path.
   const std::string& address() const { return address_; }
+  // host:port of the metrics endpoint with the port bound; "" without --metrics.
+  std::string metrics_address() const;
 
   // Interrupts runs (stored as INTERRUPTED), ends streams with UNAVAILABLE, stops
   // listening. Idempotent.
@@ -70,6 +74,7 @@ class ServerHost {
 
  private:
   ServerHost() = default;
+  std::unique_ptr<MetricsEndpoint> metrics_;  // before store_: the store may report to it
   std::unique_ptr<Store> store_;
   std::unique_ptr<ModelRegistry> models_;
   std::unique_ptr<RunManager> runs_;

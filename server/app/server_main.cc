@@ -129,6 +129,12 @@ int main(int argc, char** argv) {
                  "s a draining server (SIGTERM) gives its runs to end before handing them back")
       ->check(CLI::Range(0.0, 86400.0))
       ->capture_default_str();
+  app.add_option("--metrics", config.metrics,
+                 "host:port serving Prometheus metrics over plain HTTP at GET /metrics (port 0 = "
+                 "any free port, printed); give a loopback or private address")
+      ->check([](const std::string& value) {
+        return value.rfind(':') == std::string::npos ? "expected host:port" : "";
+      });
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
@@ -157,6 +163,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::cout << "listening on " << host->address() << std::endl;
+  if (!config.metrics.empty()) {
+    std::cout << "metrics on http://" << host->metrics_address() << "/metrics" << std::endl;
+  }
   spdlog::info("listening on {} (data in {})", host->address(),
                config.store.empty() ? config.data_dir : config.store);
   for (const std::string& warning : mbstream::ExposureWarnings(config)) spdlog::warn("{}", warning);

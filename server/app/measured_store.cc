@@ -1,0 +1,198 @@
+#include "server/app/measured_store.h"
+
+#include <chrono>
+
+namespace mbstream {
+
+namespace {
+
+// Records the time from construction to destruction in a histogram, s.
+class ScopedTimer {
+ public:
+  explicit ScopedTimer(metrics::Histogram& histogram)
+      : histogram_(histogram), start_(std::chrono::steady_clock::now()) {}
+  ~ScopedTimer() {
+    histogram_.Observe(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
+  }
+  ScopedTimer(const ScopedTimer&) = delete;
+  ScopedTimer& operator=(const ScopedTimer&) = delete;
+
+ private:
+  metrics::Histogram& histogram_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+bool IsUnfinished(v1::RunState state) { return state == v1::QUEUED || state == v1::RUNNING; }
+
+}  // namespace
+
+MeasuredStore::MeasuredStore(std::unique_ptr<Store> store, ServerMetrics& metrics)
+    : store_(std::move(store)), metrics_(metrics) {}
+
+template <typename Operation>
+auto MeasuredStore::Timed(StoreOperation which, Operation operation) const
+    -> decltype(operation()) {
+  ScopedTimer timer(metrics_.store(which));
+  return operation();
+}
+
+void MeasuredStore::CountState(const v1::RunInfo& info) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto known = unfinished_.find(info.id());
+  if (known != unfinished_.end()) {
+    if (known->second == info.state()) return;
+    metrics_.runs(known->second).Add(-1);
+  }
+  if (IsUnfinished(info.state())) {
+    metrics_.runs(info.state()).Add(1);
+    unfinished_[info.id()] = info.state();
+  } else if (known != unfinished_.end()) {
+    metrics_.runs_ended(info.state()).Add();
+    unfinished_.erase(known);
+  }
+}
+
+bool MeasuredStore::PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle) {
+  return Timed(StoreOperation::kPutModel, [&] { return store_->PutModel(info, bundle); });
+}
+
+std::vector<v1::ModelInfo> MeasuredStore::ListModels() const {
+  return Timed(StoreOperation::kListModels, [&] { return store_->ListModels(); });
+}
+
+std::optional<v1::ModelBundle> MeasuredStore::GetModelBundle(const std::string& model_id,
+                                                             bool asset_data) const {
+  return Timed(StoreOperation::kGetModelBundle,
+               [&] { return store_->GetModelBundle(model_id, asset_data); });
+}
+
+std::map<std::string, int64_t> MeasuredStore::ModelBytes() const {
+  return Timed(StoreOperation::kModelBytes, [&] { return store_->ModelBytes(); });
+}
+
+void MeasuredStore::PutRun(const v1::RunInfo& info) {
+  Timed(StoreOperation::kPutRun, [&] { store_->PutRun(info); });
+  CountState(info);
+}
+
+std::optional<v1::RunInfo> MeasuredStore::GetRun(const std::string& run_id) const {
+  return Timed(StoreOperation::kGetRun, [&] { return store_->GetRun(run_id); });
+}
+
+std::vector<v1::RunInfo> MeasuredStore::ListRuns() const {
+  return Timed(StoreOperation::kListRuns, [&] { return store_->ListRuns(); });
+}
+
+void MeasuredStore::PutFrameChunk(const std::string& run_id, int64_t index,
+                                  const EncodedFrameChunk& chunk) {
+  Timed(StoreOperation::kPutFrameChunk, [&] { store_->PutFrameChunk(run_id, index, chunk); });
+  metrics_.frames().Add(static_cast<double>(chunk.frame_count));
+}
+
+void MeasuredStore::FinishRun(const v1::RunInfo& info, int64_t index,
+                              const EncodedFrameChunk& last_chunk) {
+  Timed(StoreOperation::kFinishRun, [&] { store_->FinishRun(info, index, last_chunk); });
+  metrics_.frames().Add(static_cast<double>(last_chunk.frame_count));
+  CountState(info);
+}
+
+void MeasuredStore::FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& frames) {
+  Timed(StoreOperation::kFinishRun, [&] { store_->FinishRun(info, frames); });
+  metrics_.frames().Add(static_cast<double>(frames.size()));
+  CountState(info);
+}
+
+std::optional<int64_t> MeasuredStore::GetFrameChunk(const std::string& run_id, int64_t index,
+                                                    std::vector<v1::Frame>& frames) const {
+  return Timed(StoreOperation::kGetFrameChunk,
+               [&] { return store_->GetFrameChunk(run_id, index, frames); });
+}
+
+void MeasuredStore::AddProbes(const std::vector<v1::ProbeReport>& reports) {
+  Timed(StoreOperation::kAddProbes, [&] { store_->AddProbes(reports); });
+  for (const v1::ProbeReport& report : reports) {
+    metrics_.probe_latency().Observe(static_cast<double>(report.latency_us()) * 1e-6);
+  }
+}
+
+std::vector<v1::ProbeReport> MeasuredStore::GetProbes(const std::string& run_id) const {
+  return Timed(StoreOperation::kGetProbes, [&] { return store_->GetProbes(run_id); });
+}
+
+std::optional<int64_t> MeasuredStore::FrameChunkHolding(const std::string& run_id,
+                                                        int64_t seq) const {
+  return Timed(StoreOperation::kFrameChunkHolding,
+               [&] { return store_->FrameChunkHolding(run_id, seq); });
+}
+
+void MeasuredStore::CreateProbeSet(const v1::ProbeSet& set) {
+  Timed(StoreOperation::kCreateProbeSet, [&] { store_->CreateProbeSet(set); });
+}
+
+void MeasuredStore::AddProbeSetReports(const std::string& set_id,
+                                       const std::vector<v1::ProbeReport>& reports) {
+  Timed(StoreOperation::kAddProbeSetReports, [&] { store_->AddProbeSetReports(set_id, reports); });
+}
+
+std::vector<v1::ProbeSet> MeasuredStore::ListProbeSets(const std::string& run_id) const {
+  return Timed(StoreOperation::kListProbeSets, [&] { return store_->ListProbeSets(run_id); });
+}
+
+std::optional<v1::ProbeSet> MeasuredStore::GetProbeSet(const std::string& set_id) const {
+  return Timed(StoreOperation::kGetProbeSet, [&] { return store_->GetProbeSet(set_id); });
+}
+
+std::vector<v1::ProbeReport> MeasuredStore::GetProbeSetReports(const std::string& set_id) const {
+  return Timed(StoreOperation::kGetProbeSetReports,
+               [&] { return store_->GetProbeSetReports(set_id); });
+}
+
+int MeasuredStore::MarkUnfinishedRunsInterrupted(const std::string& message) {
+  const int marked = Timed(StoreOperation::kMarkUnfinishedRunsInterrupted,
+                           [&] { return store_->MarkUnfinishedRunsInterrupted(message); });
+  metrics_.runs_ended(v1::INTERRUPTED).Add(marked);
+  return marked;
+}
+
+std::optional<v1::RunInfo> MeasuredStore::ClaimQueuedRun(const RunLease& lease) {
+  std::optional<v1::RunInfo> claimed =
+      Timed(StoreOperation::kClaimQueuedRun, [&] { return store_->ClaimQueuedRun(lease); });
+  if (claimed) CountState(*claimed);
+  return claimed;
+}
+
+bool MeasuredStore::RenewLease(const std::string& run_id, const std::string& holder,
+                               int64_t expires_unix_ms) {
+  return Timed(StoreOperation::kRenewLease,
+               [&] { return store_->RenewLease(run_id, holder, expires_unix_ms); });
+}
+
+std::vector<v1::RunInfo> MeasuredStore::ReapExpiredLeases(int64_t now_unix_ms,
+                                                          const std::string& reaper) {
+  std::vector<v1::RunInfo> reaped = Timed(StoreOperation::kReapExpiredLeases, [&] {
+    return store_->ReapExpiredLeases(now_unix_ms, reaper);
+  });
+  for (const v1::RunInfo& info : reaped) CountState(info);
+  return reaped;
+}
+
+bool MeasuredStore::PutRunIfHeld(const v1::RunInfo& info, const std::string& holder) {
+  const bool written =
+      Timed(StoreOperation::kPutRunIfHeld, [&] { return store_->PutRunIfHeld(info, holder); });
+  if (written) CountState(info);
+  return written;
+}
+
+std::optional<v1::RunInfo> MeasuredStore::EndQueuedRun(const std::string& run_id,
+                                                       v1::RunState state,
+                                                       const std::string& message,
+                                                       int64_t now_unix_ms) {
+  std::optional<v1::RunInfo> ended = Timed(StoreOperation::kEndQueuedRun, [&] {
+    return store_->EndQueuedRun(run_id, state, message, now_unix_ms);
+  });
+  if (ended) CountState(*ended);
+  return ended;
+}
+
+}  // namespace mbstream
