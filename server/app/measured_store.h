@@ -58,8 +58,7 @@ class MeasuredStore final : public Store {
                                              const std::string& reaper) override;
   bool PutRunIfHeld(const v1::RunInfo& info, const std::string& holder) override;
   std::optional<v1::RunInfo> EndQueuedRun(const std::string& run_id, v1::RunState state,
-                                          const std::string& message,
-                                          int64_t now_unix_ms) override;
+                                          const std::string& message, int64_t now_unix_ms) override;
 
  private:
   // Calls `operation` and records its time under `which` (also when it throws).
