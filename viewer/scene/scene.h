@@ -52,7 +52,7 @@ class Scene {
   // Builds every pipeline, the camera and the lights; poses the initial joint values.
   // A mesh file that cannot be read is drawn as the part's fallback (a URDF link's
   // placeholder box) with a logged warning; without one, throws SceneError. Textures are not
-  // drawn (logged once per scene). Throws std::invalid_argument on a bad description.
+  // drawn (logged once per scene). Throws InputError (common/check.h) on a bad description.
   Scene(SceneDescription description, SceneOptions options);
   ~Scene();
   Scene(const Scene&) = delete;
@@ -62,7 +62,7 @@ class Scene {
   int dof() const { return solver_.dof(); }
 
   // ---- pose side: thread-safe, no VTK calls.
-  // Joint values in SI (rad, m), in the chain's joint order. Throws std::invalid_argument
+  // Joint values in SI (rad, m), in the chain's joint order. Throws InputError
   // naming both counts when q_si.size() != dof().
   void SetJointValues(std::span<const double> q_si);
   std::vector<ProbeReport> ProbeReports() const;
