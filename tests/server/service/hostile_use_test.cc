@@ -24,15 +24,6 @@ class HostileUseTest : public ServerTest {
  protected:
   void SetUp() override { StartServer(); }
 
-  void WaitForSubscribers(int count) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-    while (host().runs().subscriber_count() != count &&
-           std::chrono::steady_clock::now() < deadline) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    ASSERT_EQ(host().runs().subscriber_count(), count);
-  }
-
   // A fast kinematic run of the seed experiment with `frames` output frames.
   static v1::RunSpec FastRun(int frames) {
     v1::RunSpec spec = SceneSpec("seed-run.json");

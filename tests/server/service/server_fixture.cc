@@ -4,6 +4,7 @@
 #include <random>
 #include <thread>
 
+#include "server/runs/run_manager.h"
 #include "server/spec/run_spec_json.h"
 #include "server/wire/model_bundle_files.h"
 #include "server/wire/stats_conversion.h"
@@ -114,6 +115,14 @@ v1::RunSpec ServerTest::SceneSpec(const std::string& file) {
 v1::ModelBundle ServerTest::IrbBundle() {
   return ReadModelBundle(std::string(MBSTREAM_SOURCE_DIR) + "/models/irb1600/irb1600.urdf", "", {},
                          "");
+}
+
+void ServerTest::WaitForSubscribers(int count) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (host().runs().subscriber_count() != count && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_EQ(host().runs().subscriber_count(), count);
 }
 
 }  // namespace mbstream::testing

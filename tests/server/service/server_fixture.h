@@ -42,6 +42,8 @@ class ServerTest : public ::testing::Test {
   v1::RunInfo StartRunOk(const std::string& model, const v1::RunSpec& spec);
   // Polls GetRun until the run ended (or 60 s passed); returns the last info.
   v1::RunInfo WaitForEnd(const std::string& run_id);
+  // Waits until the server counts `count` open Subscribe/WatchRun streams (60 s at most).
+  void WaitForSubscribers(int count);
   // GetResult: info, frames and probes.
   grpc::Status Result(const std::string& run_id, v1::RunInfo* info, std::vector<v1::Frame>* frames,
                       std::vector<v1::ProbeReport>* probes);

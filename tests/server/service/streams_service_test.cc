@@ -31,15 +31,6 @@ class StreamsServiceTest : public ServerTest {
     EXPECT_EQ(acknowledgement.subscribed(), run_id.empty() ? "follow" : run_id);
     return stream;
   }
-
-  void WaitForSubscribers(int count) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-    while (host().runs().subscriber_count() != count &&
-           std::chrono::steady_clock::now() < deadline) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    EXPECT_EQ(host().runs().subscriber_count(), count);
-  }
 };
 
 TEST_F(StreamsServiceTest, ViewerAnswersEveryFrameAndProbesAreStoredWithLatency) {
