@@ -177,6 +177,10 @@ std::vector<v1::RunInfo> MeasuredStore::ReapExpiredLeases(int64_t now_unix_ms,
   return reaped;
 }
 
+std::vector<v1::RunInfo> MeasuredStore::ListRunningRuns() const {
+  return Timed(StoreOperation::kListRunningRuns, [&] { return store_->ListRunningRuns(); });
+}
+
 bool MeasuredStore::PutRunIfHeld(const v1::RunInfo& info, const std::string& holder) {
   const bool written =
       Timed(StoreOperation::kPutRunIfHeld, [&] { return store_->PutRunIfHeld(info, holder); });

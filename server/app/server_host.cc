@@ -18,6 +18,7 @@
 #include "server/runs/model_registry.h"
 #include "server/runs/run_manager.h"
 #include "server/service/authorizer.h"
+#include "server/service/peer_channels.h"
 #include "server/service/simulation_service.h"
 #include "server/store/store.h"
 #include "server/store/store_location.h"
@@ -114,8 +115,26 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   host->runs_ = std::make_unique<RunManager>(host->models_.get(), host->store_.get(), config.limits,
                                              nullptr, replica);
   host->grace_s_ = config.grace_s;
+  if (replica.private_store) {
+    if (!config.peer_ca.empty()) {
+      throw InputError("--peer-ca is for replicas sharing a PostgreSQL --store; this one has none");
+    }
+  } else {
+    PeerSecurity peer;
+    peer.tls = config.tls.enabled();
+    peer.ca_file = config.peer_ca.empty() ? config.tls.client_ca_file : config.peer_ca;
+    if (!config.tls.client_ca_file.empty()) {  // peers require a client certificate
+      peer.cert_file = config.tls.cert_file;
+      peer.key_file = config.tls.key_file;
+    }
+    try {
+      host->peers_ = std::make_unique<PeerChannels>(peer, host->runs_->replica_id());
+    } catch (const net::SecurityConfigError& error) {
+      throw InputError(error.what());
+    }
+  }
   host->service_ = std::make_unique<SimulationService>(host->models_.get(), host->runs_.get(),
-                                                       host->authorizer_.get());
+                                                       host->authorizer_.get(), host->peers_.get());
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
@@ -129,6 +148,8 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   grpc::ResourceQuota quota("mbstream-server");
   quota.SetMaxThreads(config.limits.max_subscribers + kUnaryThreads);
   builder.SetResourceQuota(quota);
+  // Other replicas proxying streams here ping idle connections every 20 s (peer_channels.cc).
+  builder.AddChannelArgument(GRPC_ARG_HTTP2_MIN_RECV_PING_INTERVAL_WITHOUT_DATA_MS, 10000);
   // A bundle travels in one SubmitModel message (and one GetModel reply): the message limit
   // holds the largest bundle allowed, plus 1 MiB for the other fields and framing.
   const int message_bytes = static_cast<int>(std::min<int64_t>(

@@ -19,6 +19,7 @@ class RunManager;
 class SimulationService;
 class Authorizer;
 class MetricsEndpoint;
+class PeerChannels;
 
 struct ServerConfig {
   std::string listen = "127.0.0.1:50051";  // host:port (port 0 = any free) or unix:/path
@@ -39,6 +40,9 @@ struct ServerConfig {
   std::string advertise;
   double lease_timeout_s = 10.0;
   double grace_s = 30.0;
+  // PEM CA trusted for the other replicas' certificates when proxying calls to them (TLS
+  // only; peer_channels.h); empty: --tls-client-ca when given, else the system's CAs.
+  std::string peer_ca;
   std::string metrics;  // --metrics host:port serving GET /metrics (port 0 = any); empty = none
 };
 
@@ -79,6 +83,7 @@ class ServerHost {
   std::unique_ptr<ModelRegistry> models_;
   std::unique_ptr<RunManager> runs_;
   std::unique_ptr<Authorizer> authorizer_;
+  std::unique_ptr<PeerChannels> peers_;  // a shared store's other replicas
   std::unique_ptr<SimulationService> service_;
   std::unique_ptr<grpc::Server> server_;
   std::string address_;

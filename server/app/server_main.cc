@@ -117,6 +117,10 @@ int main(int argc, char** argv) {
                  "tokens and roles, one `<token> <role>[,<role>]` per line (submit, run, view, "
                  "admin)")
       ->check(CLI::ExistingFile);
+  app.add_option("--peer-ca", config.peer_ca,
+                 "PEM CA trusted for the other replicas' certificates when calls about their "
+                 "runs are proxied to them (TLS; default: --tls-client-ca, else the system's CAs)")
+      ->check(CLI::ExistingFile);
   app.add_option("--advertise", config.advertise,
                  "host:port other replicas and clients reach this server at (default: the "
                  "listening address)");

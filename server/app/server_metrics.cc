@@ -31,7 +31,8 @@ constexpr const char* kStoreOperationNames[] = {"put_model",
                                                 "renew_lease",
                                                 "reap_expired_leases",
                                                 "put_run_if_held",
-                                                "end_queued_run"};
+                                                "end_queued_run",
+                                                "list_running_runs"};
 static_assert(std::size(kStoreOperationNames) == static_cast<size_t>(StoreOperation::kCount));
 
 bool IsFinal(v1::RunState state) { return state >= v1::FINISHED && state <= v1::INTERRUPTED; }

@@ -40,6 +40,7 @@ enum class StoreOperation {
   kReapExpiredLeases,
   kPutRunIfHeld,
   kEndQueuedRun,
+  kListRunningRuns,
   kCount
 };
 

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "common/check.h"
+#include "server/runs/cluster_follow.h"
 #include "server/runs/release_memory.h"
 #include "server/runs/replica_id.h"
 #include "server/runs/request_error.h"
@@ -56,6 +57,15 @@ RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& 
   spdlog::info("replica {}: leases of {} s", replica_.id, replica_.lease_timeout_s);
   for (int i = 0; i < limits_.workers; ++i) workers_.emplace_back([this] { WorkerLoop(); });
   keeper_ = std::thread([this] { KeeperLoop(); });
+  if (!replica_.private_store) {
+    cluster_follow_ = std::make_unique<ClusterFollow>(
+        store_, replica_.id, std::chrono::duration<double>(replica_.claim_poll_s),
+        [this] {
+          std::lock_guard<std::mutex> lock(mutex_);
+          return !followers_.empty();
+        },
+        [this](const v1::RunInfo& info) { AnnounceRemote(info); });
+  }
 }
 
 RunManager::~RunManager() { Shutdown("the server stopped"); }
@@ -373,7 +383,7 @@ void RunManager::AttachRun(const std::shared_ptr<Subscription>& subscriber,
   subscriber->Push({StreamEvent::Kind::kRunEnded, run_id, nullptr});
 }
 
-void RunManager::AttachFollow(const std::shared_ptr<Subscription>& subscriber) {
+void RunManager::AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber) {
   // Under mutex_, as the worker marks a run RUNNING and attaches the followers: the follower
   // sees each run exactly once, either here or from the worker.
   std::lock_guard<std::mutex> lock(mutex_);
@@ -388,6 +398,11 @@ void RunManager::AttachFollow(const std::shared_ptr<Subscription>& subscriber) {
     }
   }
   if (running) running->Attach(subscriber, true);
+}
+
+void RunManager::AttachFollow(const std::shared_ptr<Subscription>& subscriber) {
+  AttachLocalFollow(subscriber);
+  if (cluster_follow_) cluster_follow_->Attach();  // and the runs other replicas claim
 }
 
 std::shared_ptr<Subscription> RunManager::SubscribeRun(const std::string& run_id,
@@ -456,6 +471,7 @@ void RunManager::Shutdown(const std::string& reason) {
     EndPlaceholder(run, ended ? *ended : run->Info());
   }
   for (const auto& [id, run] : elsewhere) run->End();
+  if (cluster_follow_) cluster_follow_->Stop();
   {
     std::lock_guard<std::mutex> lock(mutex_);
     keeper_stop_ = true;

@@ -33,6 +33,7 @@
 namespace mbstream {
 
 class Store;
+class ClusterFollow;
 
 // How a run manager takes part in a cluster of replicas sharing one store.
 struct ReplicaOptions {
@@ -148,6 +149,24 @@ class RunManager {
   bool serving() const;
   void SetServingListener(std::function<void(bool)> listener);
 
+  // The cluster (run_manager_cluster.cc). Where run `run_id` integrates, for the service's
+  // proxies: here (with a private store: always, and the store is not read), queued in a
+  // shared store (any replica may claim it), on another replica (`info`, from the store,
+  // names it: replica, replica_address) or ended. Throws RequestError(kNotFound).
+  struct RunPlace {
+    enum class Where { kHere, kQueued, kElsewhere, kEnded };
+    Where where = Where::kHere;
+    v1::RunInfo info;
+  };
+  RunPlace Locate(const std::string& run_id) const;
+  bool shared_store() const { return !replica_.private_store; }
+  // Models submitted to other replicas: with a shared store, the store's model list is read
+  // again (not compiled: a model is compiled when a run first needs it).
+  void RefreshModels() const;
+  // A model's info by id or name, reading the store's list again once when it is unknown
+  // here (shared store). Throws as ModelRegistry::Info.
+  v1::ModelInfo ModelInfo(const std::string& id_or_name) const;
+
   const ModelRegistry& models() const { return *models_; }
   const ServerLimits& limits() const { return limits_; }
 
@@ -182,6 +201,7 @@ class RunManager {
   Outcome Execute(const std::shared_ptr<Run>& run);
   void Finish(const std::shared_ptr<Run>& run, const Outcome& outcome);
   std::shared_ptr<Run> FindActive(const std::string& run_id) const;
+  void AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber);
   // Counts one more subscriber (mutex_ held), or throws RESOURCE_EXHAUSTED at the limit.
   void CountSubscriber();
   // Throws UNAVAILABLE when stopping, RESOURCE_EXHAUSTED when the queue is full (mutex_ held).
@@ -223,6 +243,9 @@ class RunManager {
   std::vector<std::thread> broadcasts_;     // ReplayToFollowers, joined by Shutdown
   int broadcasting_ = 0;                    // of them still streaming
   std::condition_variable broadcast_wake_;  // Shutdown wakes pacing broadcasts
+  // Follow streams of a shared store also get the runs other replicas claim (kRemoteRun).
+  std::unique_ptr<ClusterFollow> cluster_follow_;
+  void AnnounceRemote(const v1::RunInfo& info);
   void Broadcast(const v1::RunInfo& info, double speed_x,
                  std::vector<std::shared_ptr<Subscription>> followers);
 };

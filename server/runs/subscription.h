@@ -25,7 +25,9 @@
 namespace mbstream {
 
 struct StreamEvent {
-  enum class Kind { kRunStarted, kFrame, kRunEnded };
+  // kRemoteRun: a run integrating on another replica started (follow subscriptions with a
+  // shared store; the stream proxies it from that replica).
+  enum class Kind { kRunStarted, kFrame, kRunEnded, kRemoteRun };
   Kind kind = Kind::kFrame;
   std::string run_id;
   std::shared_ptr<const v1::Frame> frame;  // kFrame

@@ -3,13 +3,14 @@
 #include <spdlog/spdlog.h>
 
 #include "common/check.h"
+#include "server/service/peer_proxy.h"
 #include "server/service/status_from_exception.h"
 
 namespace mbstream {
 
 SimulationService::SimulationService(ModelRegistry* models, RunManager* runs,
-                                     const Authorizer* authorizer)
-    : models_(models), runs_(runs), authorizer_(authorizer) {
+                                     const Authorizer* authorizer, PeerChannels* peers)
+    : models_(models), runs_(runs), authorizer_(authorizer), peers_(peers) {
   MBSTREAM_CHECK(models_ != nullptr && runs_ != nullptr && authorizer_ != nullptr);
 }
 
@@ -28,6 +29,7 @@ grpc::Status SimulationService::ListModels(grpc::ServerContext* context,
                                            const v1::ListModelsRequest*,
                                            v1::ListModelsResponse* response) {
   return Admit(*context, "ListModels", [&]() -> grpc::Status {
+    runs_->RefreshModels();  // models submitted to other replicas (a shared store)
     for (const v1::ModelInfo& info : models_->List()) *response->add_models() = info;
     return grpc::Status::OK;
   });
@@ -37,7 +39,7 @@ grpc::Status SimulationService::GetModel(grpc::ServerContext* context,
                                          const v1::GetModelRequest* request,
                                          v1::GetModelResponse* response) {
   return Admit(*context, "GetModel", [&]() -> grpc::Status {
-    *response->mutable_info() = models_->Info(request->model());
+    *response->mutable_info() = runs_->ModelInfo(request->model());
     if (request->include_bundle()) {
       *response->mutable_bundle() = models_->Bundle(response->info().id());
     }
@@ -65,6 +67,12 @@ grpc::Status SimulationService::CancelRun(grpc::ServerContext* context,
                           "run " + info.id() +
                               " was started with another token; only that token or an admin "
                               "token may cancel it");
+    }
+    if (peers_ != nullptr && !PeerChannels::IsProxied(*context)) {
+      if (RunManager::RunPlace place = runs_->Locate(info.id());
+          place.where == RunManager::RunPlace::Where::kElsewhere) {
+        return ProxyCancelRun(*peers_, *context, *request, place.info, response);
+      }
     }
     *response = runs_->Cancel(request->run_id());
     return grpc::Status::OK;

@@ -8,6 +8,7 @@
 #include "server/runs/model_registry.h"
 #include "server/runs/run_manager.h"
 #include "server/service/authorizer.h"
+#include "server/service/peer_channels.h"
 #include "server/service/rpc_roles.h"
 #include "server/service/status_from_exception.h"
 
@@ -15,8 +16,10 @@ namespace mbstream {
 
 class SimulationService final : public v1::Simulation::Service {
  public:
-  // None is owned; all must outlive the service.
-  SimulationService(ModelRegistry* models, RunManager* runs, const Authorizer* authorizer);
+  // None is owned; all must outlive the service. `peers` (a cluster's replicas on a shared
+  // store) proxies calls about runs integrating on other replicas; null: none are proxied.
+  SimulationService(ModelRegistry* models, RunManager* runs, const Authorizer* authorizer,
+                    PeerChannels* peers = nullptr);
 
   grpc::Status SubmitModel(grpc::ServerContext* context, const v1::SubmitModelRequest* request,
                            v1::ModelInfo* response) override;
@@ -61,6 +64,7 @@ class SimulationService final : public v1::Simulation::Service {
   ModelRegistry* models_;
   RunManager* runs_;
   const Authorizer* authorizer_;
+  PeerChannels* peers_;
   std::atomic<bool> stopping_{false};
 };
 

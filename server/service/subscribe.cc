@@ -10,7 +10,9 @@
 #include <optional>
 #include <thread>
 
+#include "server/service/follow_relays.h"
 #include "server/service/frame_batch.h"
+#include "server/service/peer_proxy.h"
 #include "server/service/replay_stream.h"
 #include "server/service/simulation_service.h"
 #include "server/service/status_from_exception.h"
@@ -23,6 +25,27 @@ constexpr int kDefaultBatch = 256;
 constexpr int kMaxBatch = 4096;
 
 using Stream = grpc::ServerReaderWriter<v1::SubscribeEvent, v1::SubscribeRequest>;
+
+// Messages of the viewer that go to another replica instead (peer_proxy.h, follow_relays.h):
+// `take` returns true for a message it sent on; `done` when the viewer half-closed.
+struct Divert {
+  std::function<bool(const v1::SubscribeRequest&)> take;
+  std::function<void()> done;
+};
+
+// The stream's writes: the handler's and, on a follow stream, its relays' (one at a time).
+class LockedWriter {
+ public:
+  explicit LockedWriter(Stream* stream) : stream_(stream) {}
+  bool Write(const v1::SubscribeEvent& event) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return stream_->Write(event);
+  }
+
+ private:
+  Stream* const stream_;
+  std::mutex mutex_;
+};
 
 // Reads the stream's `start` message; then, once the handler has accepted it (Go), probe
 // reports until the client half-closes or the call ends. A report is checked against the
@@ -56,11 +79,12 @@ class SubscribeReader {
   }
   // The start was accepted: read probe reports from now on (and, for a replay, its time
   // controls; its probe reports then go to `inbox`, which must outlive the reader).
-  void Go(ReplayInbox* inbox = nullptr) {
+  void Go(ReplayInbox* inbox = nullptr, Divert divert = {}) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       go_ = true;
       inbox_ = inbox;
+      divert_ = std::move(divert);
     }
     changed_.notify_all();
   }
@@ -98,6 +122,7 @@ class SubscribeReader {
     }
     std::vector<v1::ProbeReport> one(1);
     while (stream->Read(&request)) {
+      if (divert_.take && divert_.take(request)) continue;
       if (inbox_ && request.has_control()) inbox_->PushControl(request.control());
       if (!request.has_probe()) continue;
       v1::ProbeReport& report = one[0];
@@ -112,6 +137,7 @@ class SubscribeReader {
       }
     }
     if (inbox_) inbox_->Wake();
+    if (divert_.done) divert_.done();
     std::lock_guard<std::mutex> lock(mutex_);
     done_ = true;
     changed_.notify_all();
@@ -126,6 +152,7 @@ class SubscribeReader {
   bool stop_ = false;
   bool done_ = false;
   ReplayInbox* inbox_ = nullptr;  // set by Go, before the reader reads past the start
+  Divert divert_;                 // set by Go, as inbox_
   std::atomic<int64_t> accepted_{0};
   std::atomic<int64_t> refused_{0};
   std::thread thread_;
@@ -138,19 +165,21 @@ struct SubscribeTarget {
   const std::atomic<bool>* stopping_flag;
   bool follow = false;
   int max_batch = kDefaultBatch;
+  FollowRelays* relays = nullptr;  // a follow stream's runs of other replicas (shared store)
 
   bool stopping() const { return *stopping_flag; }
   void FillRunStarted(const std::string& run_id, v1::SubscribeEvent::RunStarted* started) const {
     *started->mutable_run() = runs->Get(run_id);
-    *started->mutable_model() = models->Info(started->run().model_id());
+    *started->mutable_model() = runs->ModelInfo(started->run().model_id());
     *started->mutable_bundle() = models->Bundle(started->model().id());
   }
 };
 
 // Sends the subscription's events until its one run ended, the client left or said goodbye,
 // or the server stops.
-grpc::Status SendEvents(grpc::ServerContext* context, Stream* stream, const SubscribeTarget& target,
-                        Subscription* subscription, SubscribeReader* reader, SentFrames* sent) {
+grpc::Status SendEvents(grpc::ServerContext* context, LockedWriter* stream,
+                        const SubscribeTarget& target, Subscription* subscription,
+                        SubscribeReader* reader, SentFrames* sent) {
   const grpc::Status gone(grpc::StatusCode::CANCELLED, "the subscriber went away");
   v1::SubscribeEvent event;
   std::deque<StreamEvent> events;
@@ -169,6 +198,10 @@ grpc::Status SendEvents(grpc::ServerContext* context, Stream* stream, const Subs
     if (reader->done()) return grpc::Status::OK;  // the viewer said goodbye
     if (events.empty()) continue;
     const StreamEvent& head = events.front();
+    if (head.kind == StreamEvent::Kind::kRemoteRun) {
+      if (target.relays != nullptr) target.relays->Open(head.run_id);
+      continue;
+    }
     if (head.kind == StreamEvent::Kind::kFrame || missed > 0) {
       FillFrameBatch(events, missed, event.mutable_frames(), sent);
       if (!stream->Write(event)) return gone;
@@ -182,6 +215,25 @@ grpc::Status SendEvents(grpc::ServerContext* context, Stream* stream, const Subs
     if (!stream->Write(event)) return gone;
     if (head.kind == StreamEvent::Kind::kRunEnded && !target.follow) return grpc::Status::OK;
   }
+}
+
+// The events of the owner's stream, passed on unchanged until it ends; its end as this
+// stream's. The owner gone: `closing` (the viewer half-closes and reconnects), UNAVAILABLE.
+grpc::Status RelaySubscribe(Stream* stream, PeerSubscribe* upstream) {
+  v1::SubscribeEvent event;
+  while (upstream->Read(&event)) {
+    if (!stream->Write(event)) {
+      upstream->Cancel();
+      (void)upstream->Finish();
+      return grpc::Status(grpc::StatusCode::CANCELLED, "the subscriber went away");
+    }
+  }
+  const grpc::Status status = upstream->Finish();
+  if (status.error_code() == grpc::StatusCode::UNAVAILABLE) {
+    event.set_closing(status.error_message());
+    (void)stream->Write(event);
+  }
+  return status;
 }
 
 }  // namespace
@@ -198,6 +250,11 @@ grpc::Status SimulationService::Subscribe(grpc::ServerContext* context, Stream* 
 
     SentFrames sent;
     std::optional<ReplayInbox> inbox;  // a replay's; outlives the reader, which feeds it
+    // A run of another replica (its owner's stream), or a follow stream's relays of such
+    // runs: both outlive the reader, which sends them the viewer's messages.
+    std::optional<PeerSubscribe> upstream;
+    LockedWriter writer(stream);
+    std::optional<FollowRelays> relays;
     SubscribeReader reader(context, stream, runs_, &sent);
     const grpc::Status status = Serve([&]() -> grpc::Status {
       const std::optional<v1::SubscribeRequest> first =
@@ -245,18 +302,41 @@ grpc::Status SimulationService::Subscribe(grpc::ServerContext* context, Stream* 
                                      target.max_batch};
         return SendReplay(io, *plan);
       }
+      if (!target.follow) {
+        if (std::optional<v1::RunInfo> owner =
+                RemoteOwner(peers_, *runs_, start.run_id(), *context, stopping_, true)) {
+          upstream.emplace(*peers_, *context, *owner, *first);  // throws UNAVAILABLE
+          reader.Go(nullptr,
+                    {[&](const v1::SubscribeRequest& r) { return upstream->Write(r), true; },
+                     [&] { upstream->WritesDone(); }});
+          return RelaySubscribe(stream, &*upstream);
+        }
+      }
       if (target.follow) {
         runs_->AttachFollow(subscription);
+        if (peers_ != nullptr && runs_->shared_store()) {
+          relays.emplace(
+              peers_, runs_, context,
+              [&writer](const v1::SubscribeEvent& e) { return writer.Write(e); }, target.max_batch);
+          target.relays = &*relays;
+        }
       } else {
         runs_->AttachRun(subscription, start.run_id(), true);
       }
-      reader.Go();
+      if (relays) {
+        reader.Go(nullptr, {[&](const v1::SubscribeRequest& r) { return relays->Divert(r); }, {}});
+      } else {
+        reader.Go();
+      }
       v1::SubscribeEvent event;
       event.set_subscribed(target.follow ? "follow" : start.run_id());
-      if (!stream->Write(event)) {
+      if (!writer.Write(event)) {
         return grpc::Status(grpc::StatusCode::CANCELLED, "the subscriber went away");
       }
-      return SendEvents(context, stream, target, subscription.get(), &reader, &sent);
+      const grpc::Status sent_all =
+          SendEvents(context, &writer, target, subscription.get(), &reader, &sent);
+      if (relays) relays->Stop();
+      return sent_all;
     });
     // A one-run subscriber half-closes after run_ended (its last probes arrive before), and
     // every viewer after `closing`; otherwise, or if it does not, end the call so that the

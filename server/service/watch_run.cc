@@ -9,6 +9,7 @@
 
 #include "common/check.h"
 #include "server/service/frame_batch.h"
+#include "server/service/peer_proxy.h"
 #include "server/service/simulation_service.h"
 #include "server/service/status_from_exception.h"
 #include "server/wire/stats_conversion.h"
@@ -61,6 +62,14 @@ grpc::Status SimulationService::WatchRun(grpc::ServerContext* context,
                             "the server is shutting down; the run is INTERRUPTED");
       }
       if (Clock::now() >= next_progress) {
+        // Queued, or integrating on another replica (shared store): watched there once it is.
+        if (info.state() == v1::QUEUED ||
+            (info.state() == v1::RUNNING && info.replica() != runs_->replica_id())) {
+          if (std::optional<v1::RunInfo> owner =
+                  RemoteOwner(peers_, *runs_, run_id, *context, stopping_, false)) {
+            return ProxyWatchRun(*peers_, context, *request, writer, *owner);
+          }
+        }
         info = runs_->Get(run_id);
         next_progress = Clock::now() + interval;
         // With frames, the final state goes out after the run-ended event (below).

@@ -87,6 +87,13 @@ std::vector<v1::RunInfo> PostgresStore::ReapExpiredLeases(int64_t now_unix_ms,
   });
 }
 
+std::vector<v1::RunInfo> PostgresStore::ListRunningRuns() const {
+  return impl_->Transact("list running runs", [&](pqxx::work& tx) {
+    return Infos(tx.exec_params("SELECT info FROM runs WHERE state = $1 ORDER BY ord", kRunning),
+                 "running run", impl_->location);
+  });
+}
+
 bool PostgresStore::PutRunIfHeld(const v1::RunInfo& info, const std::string& holder) {
   return impl_->Transact("write run " + info.id(), [&](pqxx::work& tx) {
     if (!HoldsLease(tx, info.id(), holder)) return false;

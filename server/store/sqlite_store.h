@@ -51,6 +51,7 @@ class SqliteStore final : public Store {
                   int64_t expires_unix_ms) override;
   std::vector<v1::RunInfo> ReapExpiredLeases(int64_t now_unix_ms,
                                              const std::string& reaper) override;
+  std::vector<v1::RunInfo> ListRunningRuns() const override;
   bool PutRunIfHeld(const v1::RunInfo& info, const std::string& holder) override;
   std::optional<v1::RunInfo> EndQueuedRun(const std::string& run_id, v1::RunState state,
                                           const std::string& message, int64_t now_unix_ms) override;

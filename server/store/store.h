@@ -128,6 +128,9 @@ class Store {
   // the message), its frames kept. Returns the changed runs as stored.
   virtual std::vector<v1::RunInfo> ReapExpiredLeases(int64_t now_unix_ms,
                                                      const std::string& reaper) = 0;
+  // Every RUNNING run, oldest claim first (ord): what the replicas integrate now (a follow
+  // stream announces those of other replicas, cluster_follow.h). Reads only.
+  virtual std::vector<v1::RunInfo> ListRunningRuns() const = 0;
   // Writes `info` (an ended or re-queued run) only while `holder` still holds the run's
   // lease, and drops the lease; false (nothing written) otherwise.
   virtual bool PutRunIfHeld(const v1::RunInfo& info, const std::string& holder) = 0;
