@@ -1,5 +1,8 @@
 // SimulationService::WatchRun: progress (and optionally frames) of one run until it ends.
 //
+// A run integrating on another replica (shared store) is watched there: the owner's events are
+// relayed unchanged (peer_proxy.h).
+//
 // With frames, the stream ends only after the subscription's run-ended event, which comes
 // after the run's last frame: every frame is delivered or counted in a batch's `missed`
 // before the final progress event.
@@ -40,6 +43,30 @@ grpc::Status SimulationService::WatchRun(grpc::ServerContext* context,
     const Clock::duration interval = ProgressInterval(request->progress_interval_s());
     const std::string& run_id = request->run_id();
     v1::RunInfo info = runs_->Get(run_id);  // NOT_FOUND first
+    Clock::time_point next_progress = Clock::now();
+    // A shared store: progress while the run is queued; once a replica claims it, watched
+    // there (proxied) or here.
+    const grpc::Status gone(grpc::StatusCode::CANCELLED, "client gone");
+    v1::WatchEvent event;
+    if (runs_->shared_store() && peers_ != nullptr && !PeerChannels::IsProxied(*context)) {
+      for (RunManager::RunPlace place = runs_->Locate(run_id);; place = runs_->Locate(run_id)) {
+        if (place.where == RunManager::RunPlace::Where::kElsewhere) {
+          return ProxyWatchRun(*peers_, context, *request, writer, place.info);
+        }
+        if (place.where != RunManager::RunPlace::Where::kQueued) break;
+        if (context->IsCancelled()) return gone;
+        if (stopping_) {
+          return grpc::Status(grpc::StatusCode::UNAVAILABLE,
+                              "the server is shutting down; watch the run on another replica");
+        }
+        if (Clock::now() >= next_progress) {
+          *event.mutable_progress() = place.info;
+          if (!writer->Write(event)) return gone;
+          next_progress = Clock::now() + interval;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      }
+    }
     // Every watch counts against the subscriber limit (it holds a thread); only a watch
     // with frames is attached to the run.
     std::shared_ptr<Subscription> slot =
@@ -51,9 +78,6 @@ grpc::Status SimulationService::WatchRun(grpc::ServerContext* context,
     } unsubscribe{runs_, slot};
     Subscription* frames = request->frames() ? slot.get() : nullptr;
 
-    const grpc::Status gone(grpc::StatusCode::CANCELLED, "client gone");
-    v1::WatchEvent event;
-    Clock::time_point next_progress = Clock::now();
     std::deque<StreamEvent> events;
     for (;;) {
       if (context->IsCancelled()) return gone;
@@ -62,14 +86,6 @@ grpc::Status SimulationService::WatchRun(grpc::ServerContext* context,
                             "the server is shutting down; the run is INTERRUPTED");
       }
       if (Clock::now() >= next_progress) {
-        // Queued, or integrating on another replica (shared store): watched there once it is.
-        if (info.state() == v1::QUEUED ||
-            (info.state() == v1::RUNNING && info.replica() != runs_->replica_id())) {
-          if (std::optional<v1::RunInfo> owner =
-                  RemoteOwner(peers_, *runs_, run_id, *context, stopping_, false)) {
-            return ProxyWatchRun(*peers_, context, *request, writer, *owner);
-          }
-        }
         info = runs_->Get(run_id);
         next_progress = Clock::now() + interval;
         // With frames, the final state goes out after the run-ended event (below).

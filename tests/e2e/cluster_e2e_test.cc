@@ -2,8 +2,12 @@
 // started on one replica are integrated by both; a replica killed mid-run has its run marked
 // INTERRUPTED by the other while the other runs finish; a drained replica (SIGTERM) lets its
 // run finish, or hands it back to the queue for another replica; the gRPC health service
-// says NOT_SERVING while draining or without the store. Waits are for events (a state seen
-// through GetRun, a health status on a Watch stream); deadlines are failure guards only.
+// says NOT_SERVING while draining or without the store. Calls about a run integrating on
+// the other replica are proxied to it: WatchRun and Subscribe give the owner's frames bit for
+// bit, a probe answered through the proxy is stored, a follower sees the other replica's
+// runs, CancelRun reaches the owner, models are shared, and a killed owner ends the proxied
+// streams with UNAVAILABLE. Waits are for events (a state seen through GetRun, a health
+// status on a Watch stream, stream messages); deadlines are failure guards only.
 #include <gmock/gmock.h>
 #include <grpcpp/grpcpp.h>
 
@@ -12,6 +16,7 @@
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <map>
 #include <random>
 #include <set>
 #include <thread>
@@ -70,6 +75,7 @@ class Replica {
   v1::RunInfo WaitForEnd(const std::string& run_id) {
     return WaitFor(run_id, [](const v1::RunInfo& info) { return info.ended_unix_ms() > 0; });
   }
+  v1::Simulation::Stub& stub() { return *stub_; }
   ServerProcess& process() { return process_; }
   const std::string& address() const { return process_.address(); }
 
@@ -85,6 +91,112 @@ v1::RunSpec Paced(double duration_s, int retries = 0) {
   spec.set_realtime(1.0);  // duration_s of wall time: long enough to be seen running
   spec.set_retries(retries);
   return spec;
+}
+
+// What a Subscribe stream brought: frames by seq (each as sent), its end.
+struct Received {
+  std::map<int64_t, std::string> frames;  // seq -> the serialized Frame
+  int64_t missed = 0;
+  int64_t probes_sent = 0;
+  bool started = false;
+  v1::RunInfo ended;  // id empty until run_ended
+  std::string closing;
+  grpc::Status status;
+};
+
+void AddFrames(const v1::FrameBatch& batch, Received* got) {
+  got->missed += batch.missed();
+  for (const v1::Frame& frame : batch.frames())
+    got->frames[frame.seq()] = frame.SerializeAsString();
+}
+
+// Subscribes on `address` (run `run_id`, or follow when `follow`) and reads until run
+// `run_id` ended (then half-closes) or the stream ends. With `answer`, each frame of that run
+// is answered with one probe report. `on_subscribed` runs once the server said `subscribed`,
+// `on_frame` after each batch of the run.
+Received SubscribeTo(const std::string& address, const std::string& run_id, bool follow,
+                     bool answer, const std::function<void()>& on_subscribed = {},
+                     const std::function<void(const Received&)>& on_frame = {}) {
+  auto stub =
+      v1::Simulation::NewStub(grpc::CreateChannel(address, grpc::InsecureChannelCredentials()));
+  grpc::ClientContext context;
+  auto stream = stub->Subscribe(&context);
+  v1::SubscribeRequest start;
+  if (follow) {
+    start.mutable_start()->set_follow(true);
+  } else {
+    start.mutable_start()->set_run_id(run_id);
+  }
+  start.mutable_start()->set_max_batch(16);
+  EXPECT_TRUE(stream->Write(start));
+  Received got;
+  v1::SubscribeEvent event;
+  while (stream->Read(&event)) {
+    if (event.has_subscribed() && on_subscribed) on_subscribed();
+    if (event.has_closing()) {
+      got.closing = event.closing();
+      break;
+    }
+    if (event.has_run_started() && event.run_started().run().id() == run_id) got.started = true;
+    if (event.has_frames() && event.frames().run_id() == run_id) {
+      AddFrames(event.frames(), &got);
+      for (const v1::Frame& frame : event.frames().frames()) {
+        if (!answer) break;
+        v1::SubscribeRequest reply;
+        v1::ProbeReport* probe = reply.mutable_probe();
+        probe->set_run_id(run_id);
+        probe->set_seq(frame.seq());
+        probe->set_probe("tcp");
+        probe->set_frame("World");
+        probe->mutable_position_m()->set_x(frame.t_s());
+        if (stream->Write(reply)) ++got.probes_sent;
+      }
+      if (on_frame) on_frame(got);
+    }
+    if (event.has_run_ended() && event.run_ended().id() == run_id) {
+      got.ended = event.run_ended();
+      break;
+    }
+  }
+  stream->WritesDone();
+  while (stream->Read(&event)) {
+  }
+  got.status = stream->Finish();
+  return got;
+}
+
+// WatchRun with frames on `address` until its end.
+Received WatchFrames(const std::string& address, const std::string& run_id) {
+  auto stub =
+      v1::Simulation::NewStub(grpc::CreateChannel(address, grpc::InsecureChannelCredentials()));
+  grpc::ClientContext context;
+  v1::WatchRunRequest request;
+  request.set_run_id(run_id);
+  request.set_frames(true);
+  auto reader = stub->WatchRun(&context, request);
+  Received got;
+  v1::WatchEvent event;
+  while (reader->Read(&event)) {
+    if (event.has_frames()) AddFrames(event.frames(), &got);
+    if (event.has_progress()) got.ended = event.progress();
+  }
+  got.status = reader->Finish();
+  return got;
+}
+
+// Every frame `proxied` got is the one `direct` got with the same seq, byte for byte; the
+// proxied frames run without a gap to the run's last frame.
+void ExpectSameFrames(const Received& direct, const Received& proxied, int64_t last_seq) {
+  ASSERT_FALSE(proxied.frames.empty());
+  EXPECT_EQ(proxied.missed, 0);
+  EXPECT_EQ(proxied.frames.rbegin()->first, last_seq);
+  EXPECT_EQ(static_cast<int64_t>(proxied.frames.size()),
+            last_seq - proxied.frames.begin()->first + 1);
+  for (const auto& [seq, bytes] : proxied.frames) {
+    auto same = direct.frames.find(seq);
+    ASSERT_NE(same, direct.frames.end()) << "frame " << seq << " not seen directly";
+    EXPECT_EQ(same->second, bytes) << "frame " << seq << " differs through the proxy";
+  }
 }
 
 class ClusterE2eTest : public ::testing::Test {
@@ -115,8 +227,30 @@ class ClusterE2eTest : public ::testing::Test {
     args.insert(args.end(), extra.begin(), extra.end());
     return std::make_unique<Replica>((dir_ / name).string(), args);
   }
+  // Two replicas where `busy_` (started first) integrates a long run on its only worker, so
+  // that every run started afterwards is claimed by `free_`: the proxies' tests need to know
+  // which replica owns a run.
+  void StartBusyAndFree() {
+    busy_ = NewReplica("busy");
+    long_run_ = busy_->Start(Paced(120.0)).id();
+    ASSERT_EQ(
+        busy_->WaitFor(long_run_, [](const v1::RunInfo& i) { return i.state() == v1::RUNNING; })
+            .state(),
+        v1::RUNNING);
+    free_ = NewReplica("free");
+  }
+  // A run started on `free_` and claimed there (waited for).
+  v1::RunInfo RunOnFree(double duration_s) {
+    const v1::RunInfo started = free_->Start(Paced(duration_s));
+    const v1::RunInfo running =
+        free_->WaitFor(started.id(), [](const v1::RunInfo& i) { return i.state() != v1::QUEUED; });
+    EXPECT_EQ(running.replica_address(), free_->address());
+    return running;
+  }
   fs::path dir_;
   std::unique_ptr<PostgresCluster> cluster_;
+  std::unique_ptr<Replica> busy_, free_;
+  std::string long_run_;
   std::string uri_;
 };
 
@@ -209,6 +343,161 @@ TEST_F(ClusterE2eTest, HealthIsNotServingWithoutTheStore) {
   cluster_.reset();  // PostgreSQL stops
   EXPECT_TRUE(health.WaitFor(Serving::NOT_SERVING));
   EXPECT_EQ(CheckHealth(a->address()), Serving::NOT_SERVING);
+}
+
+TEST_F(ClusterE2eTest, WatchRunAndSubscribeThroughTheOtherReplicaGetTheOwnersFramesBitForBit) {
+  StartBusyAndFree();
+  const v1::RunInfo run = free_->Start(Paced(1.5));
+  Received direct, proxied, watched_direct, watched_proxied;
+  std::thread a([&] { direct = SubscribeTo(free_->address(), run.id(), false, false); });
+  std::thread b([&] { proxied = SubscribeTo(busy_->address(), run.id(), false, false); });
+  std::thread c([&] { watched_direct = WatchFrames(free_->address(), run.id()); });
+  std::thread d([&] { watched_proxied = WatchFrames(busy_->address(), run.id()); });
+  for (std::thread* t : {&a, &b, &c, &d}) t->join();
+  for (const Received* got : {&direct, &proxied, &watched_direct, &watched_proxied}) {
+    EXPECT_TRUE(got->status.ok()) << got->status.error_message();
+    EXPECT_EQ(got->ended.state(), v1::FINISHED) << got->ended.message();
+    EXPECT_EQ(got->ended.replica_address(), free_->address());
+  }
+  EXPECT_TRUE(proxied.started);
+  const int64_t last = direct.ended.frames() - 1;
+  ExpectSameFrames(direct, proxied, last);
+  ExpectSameFrames(watched_direct, watched_proxied, last);
+  std::cout << "frames through the proxy: Subscribe " << proxied.frames.size() << ", WatchRun "
+            << watched_proxied.frames.size() << " of " << last + 1 << "\n";
+}
+
+TEST_F(ClusterE2eTest, ProbeReportsAnsweredThroughTheOtherReplicaAreStoredByTheOwner) {
+  StartBusyAndFree();
+  const v1::RunInfo run = RunOnFree(1.0);
+  const Received got = SubscribeTo(busy_->address(), run.id(), false, true);
+  ASSERT_TRUE(got.status.ok()) << got.status.error_message();
+  ASSERT_GT(got.probes_sent, 0);
+  const v1::RunInfo ended = busy_->WaitForEnd(run.id());
+  EXPECT_EQ(ended.state(), v1::FINISHED) << ended.message();
+  EXPECT_EQ(ended.probe_reports(), got.probes_sent);
+  EXPECT_EQ(ended.probe_reports(), static_cast<int64_t>(got.frames.size()));
+}
+
+TEST_F(ClusterE2eTest, FollowOnOneReplicaSeesARunClaimedByTheOther) {
+  StartBusyAndFree();
+  auto stub = v1::Simulation::NewStub(
+      grpc::CreateChannel(busy_->address(), grpc::InsecureChannelCredentials()));
+  grpc::ClientContext context;
+  auto stream = stub->Subscribe(&context);
+  v1::SubscribeRequest start;
+  start.mutable_start()->set_follow(true);
+  ASSERT_TRUE(stream->Write(start));
+  v1::SubscribeEvent event;
+  ASSERT_TRUE(stream->Read(&event));
+  ASSERT_EQ(event.subscribed(), "follow");
+  const v1::RunInfo run = free_->Start(Paced(1.0));  // claimed by free_: busy_ is busy
+  Received got;
+  while (stream->Read(&event)) {
+    if (event.has_run_started() && event.run_started().run().id() == run.id()) {
+      got.started = true;
+      EXPECT_EQ(event.run_started().model().id(), run.model_id());
+      EXPECT_FALSE(event.run_started().bundle().urdf().empty());
+    }
+    if (event.has_frames() && event.frames().run_id() == run.id()) {
+      AddFrames(event.frames(), &got);
+      for (const v1::Frame& frame : event.frames().frames()) {
+        v1::SubscribeRequest reply;
+        reply.mutable_probe()->set_run_id(run.id());
+        reply.mutable_probe()->set_seq(frame.seq());
+        reply.mutable_probe()->set_probe("tcp");
+        reply.mutable_probe()->set_frame("World");
+        if (stream->Write(reply)) ++got.probes_sent;
+      }
+    }
+    if (event.has_run_ended() && event.run_ended().id() == run.id()) {
+      got.ended = event.run_ended();
+      break;
+    }
+  }
+  stream->WritesDone();
+  while (stream->Read(&event)) {
+  }
+  EXPECT_TRUE(stream->Finish().ok());
+  EXPECT_TRUE(got.started);
+  EXPECT_EQ(got.ended.state(), v1::FINISHED) << got.ended.message();
+  EXPECT_EQ(got.ended.replica_address(), free_->address());
+  ASSERT_FALSE(got.frames.empty());
+  EXPECT_EQ(got.frames.rbegin()->first, got.ended.frames() - 1);
+  EXPECT_EQ(got.missed, 0);
+  EXPECT_EQ(free_->WaitForEnd(run.id()).probe_reports(), got.probes_sent);
+}
+
+TEST_F(ClusterE2eTest, CancelThroughTheOtherReplicaCancelsTheRunOnItsOwner) {
+  StartBusyAndFree();
+  grpc::ClientContext context;
+  v1::CancelRunRequest request;
+  request.set_run_id(long_run_);
+  v1::RunInfo answer;
+  const grpc::Status status = free_->stub().CancelRun(&context, request, &answer);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  const v1::RunInfo ended = free_->WaitForEnd(long_run_);
+  EXPECT_EQ(ended.state(), v1::CANCELLED) << ended.message();
+  EXPECT_EQ(ended.replica_address(), busy_->address());
+}
+
+TEST_F(ClusterE2eTest, ModelsSubmittedToOneReplicaAreListedAndRunByTheOther) {
+  auto a = NewReplica("a");
+  auto b = NewReplica("b");
+  v1::SubmitModelRequest submit;
+  submit.mutable_bundle()->set_name("pendulum_of_a");
+  submit.mutable_bundle()->set_urdf(
+      "<robot name='pendulum_of_a'><link name='base'/>"
+      "<joint name='j' type='continuous'><parent link='base'/><child link='bob'/>"
+      "<axis xyz='0 1 0'/></joint>"
+      "<link name='bob'><inertial><origin xyz='0 0 -0.5'/><mass value='2'/>"
+      "<inertia ixx='1e-3' ixy='0' ixz='0' iyy='1e-3' iyz='0' izz='1e-3'/></inertial></link>"
+      "</robot>");
+  v1::ModelInfo submitted;
+  {
+    grpc::ClientContext context;
+    const grpc::Status status = a->stub().SubmitModel(&context, submit, &submitted);
+    ASSERT_TRUE(status.ok()) << status.error_message();
+  }
+  grpc::ClientContext list_context;
+  v1::ListModelsResponse listed;
+  ASSERT_TRUE(b->stub().ListModels(&list_context, v1::ListModelsRequest(), &listed).ok());
+  bool found = false;
+  for (const v1::ModelInfo& model : listed.models()) found = found || model.id() == submitted.id();
+  EXPECT_TRUE(found) << "ListModels on the other replica lacks " << submitted.id();
+  grpc::ClientContext get_context;
+  v1::GetModelRequest get;
+  get.set_model("pendulum_of_a");
+  v1::GetModelResponse model;
+  const grpc::Status got = b->stub().GetModel(&get_context, get, &model);
+  ASSERT_TRUE(got.ok()) << got.error_message();
+  EXPECT_EQ(model.info().id(), submitted.id());
+}
+
+TEST_F(ClusterE2eTest, KilledOwnerEndsTheProxiedStreamsWithUnavailable) {
+  StartBusyAndFree();
+  const v1::RunInfo run = RunOnFree(60.0);
+  Received watched;
+  std::thread watcher([&] { watched = WatchFrames(busy_->address(), run.id()); });
+  bool killed = false;
+  const Received got =
+      SubscribeTo(busy_->address(), run.id(), false, false, {}, [&](const Received&) {
+        if (!killed) free_->process().Kill();
+        killed = true;
+      });
+  watcher.join();
+  ASSERT_TRUE(killed) << got.status.error_message();
+  EXPECT_EQ(got.status.error_code(), grpc::StatusCode::UNAVAILABLE);
+  EXPECT_THAT(got.status.error_message(), HasSubstr(free_->address()));
+  EXPECT_THAT(got.closing, HasSubstr(free_->address()));
+  EXPECT_EQ(watched.status.error_code(), grpc::StatusCode::UNAVAILABLE);
+  EXPECT_THAT(watched.status.error_message(), HasSubstr(free_->address()));
+  // A new subscription is refused at once while the dead owner's lease runs, naming it.
+  const Received again = SubscribeTo(busy_->address(), run.id(), false, false);
+  if (again.ended.id().empty()) {  // not reaped yet
+    EXPECT_EQ(again.status.error_code(), grpc::StatusCode::UNAVAILABLE);
+    EXPECT_THAT(again.status.error_message(), HasSubstr(free_->address()));
+  }
 }
 
 }  // namespace
