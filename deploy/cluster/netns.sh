@@ -23,10 +23,12 @@
 # (mbc-view-PID); a bridge in mbc-br-PID joins them. The client runs sweep-client.sh (the
 # compose client's script) against HAProxy. Checks: every run of the sweep FINISHED; each
 # replica finished at least one of them and together exactly the sweep (each replica's
-# mbstream_runs_ended_total{state="finished"} from its /metrics); the viewer subscribed
-# through HAProxy, followed a run and answered each of its frames with probes (then exits 0);
-# every replica exits 0 on SIGTERM. Prints the sweep's
-# runs per second. Needs root, `ip netns`, PostgreSQL and HAProxy; exits 77 (skipped) without.
+# mbstream_runs_ended_total{state="finished"} from its /metrics); before the sweep, a viewer
+# following replica 1 directly answered every frame of a run integrated on replica 2 (relayed
+# by replica 1; replica 2 stored the probe reports); after it, a replica killed (SIGKILL)
+# during a run has that run INTERRUPTED (--lease-timeout-s 3) while the runs of the other
+# replicas FINISH; the other replicas exit 0 on SIGTERM. Prints the sweep's runs per second
+# and the time from the kill to INTERRUPTED. Needs root, `ip netns`, PostgreSQL and HAProxy; exits 77 (skipped) without.
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -35,6 +37,7 @@ server_bin=$root/build/server/app/mbstream-server
 client_bin=$root/build/client/mbstream
 viewer_bin=$root/build/viewer/app/mbstream-viewer
 viewer=1 runs=30 replicas=3 keep=0 store=postgresql direct=0 client=sweep
+lease_s=3  # --lease-timeout-s: a killed replica's run is marked within 1.5 .. 3 s
 while [ $# -gt 0 ]; do
   case "$1" in
     --server-bin) server_bin=$2; shift 2 ;;
@@ -144,7 +147,9 @@ for i in $(seq 0 $((replicas - 1))); do
     --metrics "$ip:$metrics_port" \
     --models "$root/models" \
     --tls-cert "$secrets/server.pem" --tls-key "$secrets/server.key" \
-    --token-file "$secrets/tokens" >"$out.out" 2>"$out.err" &
+    --token-file "$secrets/tokens" \
+    --peer-ca "$secrets/ca.pem" --peer-tls-name "$lb_ip" --lease-timeout-s "$lease_s" \
+    >"$out.out" 2>"$out.err" &
   srv_pids+=($!)
   for _ in $(seq 1 300); do
     grep -q '^metrics on' "$out.out" 2>/dev/null && break
@@ -170,24 +175,72 @@ else
 fi
 
 
-# ---- viewer ---------------------------------------------------------------------------------
-viewer_pid=""
-if [ "$viewer" -eq 1 ]; then
-  # It follows the first run it sees and exits (--exit-after-runs 1). xvfb-run looks for a free
-  # display from a number of this script's own (-n), not from :99 as every other test does.
-  ip netns exec "$ns_view" xvfb-run -a -n $((100 + id % 800)) "$viewer_bin" --server "$lb_addr" \
-    --follow --offscreen --exit-after-runs 1 --ca "$secrets/ca.pem" \
-    --token-file "$secrets/viewer.token" \
-    >"$tmp/logs/viewer.out" 2>"$tmp/logs/viewer.err" &
-  viewer_pid=$!
-  for _ in $(seq 1 200); do
-    kill -0 "$viewer_pid" 2>/dev/null || { cat "$tmp/logs/viewer.err" >&2; fail "the viewer exited at start"; }
-    grep -qs "subscribed to" "$tmp/logs/viewer.out" "$tmp/logs/viewer.err" && break
-    sleep 0.1
+# ---- viewer: a run of another replica, through the replica it follows ------------------------
+cli() {  # cli ADDRESS ARGS...: the CLI on the client host against ADDRESS
+  local address=$1
+  shift
+  ip netns exec "$ns_cli" env MBSTREAM_SERVER="$address" MBSTREAM_CA="$secrets/ca.pem" \
+    MBSTREAM_TOKEN_FILE="$secrets/client.token" "$client_bin" "$@"
+}
+owner_of() {  # owner_of RUN: the number of the replica that claimed RUN (its log says so)
+  local i
+  for i in $(seq 1 "$replicas"); do
+    grep -qs "run $1 claimed by replica" "$tmp/logs/server$i.out" "$tmp/logs/server$i.err" &&
+      { echo "$i"; return; }
   done
-  grep -qs "subscribed to" "$tmp/logs/viewer.out" "$tmp/logs/viewer.err" ||
-    fail "the viewer did not subscribe through $lb_addr within 20 s"
-  log "viewer: following runs through $lb_addr from $view_ip (offscreen under Xvfb)"
+  echo 0
+}
+state_of() {  # state_of ADDRESS RUN: its state as `mbstream runs` lists it
+  cli "$1" runs | awk -v id="$2" '$1 == id { print $3 }'
+}
+viewer_summary="not run" extra=0
+if [ "$viewer" -eq 1 ] && [ "$replicas" -ge 2 ]; then
+  # The viewer follows replica 1 directly; the run is started on replica 2, whose worker is
+  # woken at once (replica 1 looks at the queue every 0.25 s): replica 2 integrates it and
+  # replica 1 relays it to the viewer, whose probe reports go back to replica 2. Should
+  # replica 1 win the claim, the viewer and the run are started again (at most 3 times).
+  viewer_addr=${srv_ips[0]}:$port
+  for attempt in 1 2 3; do
+    # xvfb-run looks for a free display from a number of this script's own (-n), not from
+    # :99 as every other test does.
+    ip netns exec "$ns_view" xvfb-run -a -n $((100 + id % 800)) "$viewer_bin" --server "$viewer_addr" \
+      --follow --offscreen --exit-after-runs 1 --ca "$secrets/ca.pem" \
+      --token-file "$secrets/viewer.token" \
+      >"$tmp/logs/viewer.out" 2>"$tmp/logs/viewer.err" &
+    viewer_pid=$!
+    for _ in $(seq 1 200); do
+      kill -0 "$viewer_pid" 2>/dev/null || { cat "$tmp/logs/viewer.err" >&2; fail "the viewer exited at start"; }
+      grep -qs "subscribed to" "$tmp/logs/viewer.out" "$tmp/logs/viewer.err" && break
+      sleep 0.1
+    done
+    grep -qs "subscribed to" "$tmp/logs/viewer.out" "$tmp/logs/viewer.err" ||
+      fail "the viewer did not subscribe to replica 1 at $viewer_addr within 20 s"
+    extra=$((extra + 1))  # FINISHED runs besides the sweep's
+    shown=$(cli "${srv_ips[1]}:$port" run irb1600 --spec "$root/models/irb1600/seed-run.json" \
+      --duration 2 --realtime 1)
+    for _ in $(seq 1 300); do kill -0 "$viewer_pid" 2>/dev/null || break; sleep 0.1; done
+    kill -0 "$viewer_pid" 2>/dev/null && fail "the viewer did not end after run $shown within 30 s"
+    wait "$viewer_pid" || fail "the viewer exited with $? after run $shown"
+    viewer_pid=""
+    owner=$(owner_of "$shown")
+    [ "$owner" -ne 1 ] && break
+    log "run $shown was claimed by replica 1 itself; again (attempt $attempt)"
+  done
+  [ "$owner" -ge 2 ] || fail "run $shown was never integrated on another replica than the viewer's"
+  # "viewer done: 1 runs, last run R: F frames, P probe reports": every frame answered.
+  done_line=$(cat "$tmp/logs/viewer.out" "$tmp/logs/viewer.err" | grep -m1 -o 'viewer done: .*' || true)
+  read -r frames probes < <(sed -E 's/.*: ([0-9]+) frames, ([0-9]+) probe reports.*/\1 \2/' <<<"$done_line")
+  [[ "$done_line" == *"last run $shown:"* ]] && [ "${frames:-0}" -gt 0 ] && [ "$frames" = "$probes" ] ||
+    fail "the viewer on replica 1 did not answer every frame of run $shown (replica $owner): '$done_line'"
+  # The owner stored them (replica 1 only relayed): its probe latency histogram counted them.
+  stored=$(ip netns exec "$ns_cli" curl -sf "http://${srv_ips[$((owner - 1))]}:$metrics_port/metrics" |
+    awk '$1 == "mbstream_probe_latency_seconds_count" { print $2 }')
+  [ "${stored:-0}" -ge "$probes" ] ||
+    fail "replica $owner counted ${stored:-0} probe reports of the viewer's $probes"
+  viewer_summary="followed replica 1, run $shown integrated on replica $owner: $frames frames, $probes probe reports (stored by replica $owner)"
+  log "viewer: $viewer_summary"
+elif [ "$viewer" -eq 1 ]; then
+  log "viewer: skipped (one replica: no run of another replica to follow)"
 fi
 
 # ---- the sweep ------------------------------------------------------------------------------
@@ -233,10 +286,65 @@ for i in $(seq 0 $((replicas - 1))); do
   total=$((total + n))
   [ "$n" -ge 1 ] || fail "replica $((i + 1)) finished no run of the sweep ($spread): not balanced"
 done
-[ "$total" -eq "$runs" ] || fail "the replicas finished $total runs together, the sweep had $runs"
+[ "$total" -eq "$((runs + extra))" ] ||
+  fail "the replicas finished $total runs together, the sweep had $runs (and the viewer's $extra)"
 log "spread: $spread (by each replica's mbstream_runs_ended_total)"
 
-# ---- stop: viewer, balancer, replicas ---------------------------------------------------------
+# ---- a replica killed (SIGKILL) during a run --------------------------------------------------
+# Four paced runs (8 s of wall time each, no retries) started through the balancer; once all
+# run, the replica integrating the first is killed. That run must become INTERRUPTED (its
+# lease expires: within --lease-timeout-s), the runs of the other replicas FINISHED.
+kill_summary="not run"
+if [ "$replicas" -ge 2 ]; then
+  kill_ids=()
+  for _ in 1 2 3 4; do
+    kill_ids+=("$(cli "$lb_addr" run irb1600 --spec "$root/models/irb1600/seed-run.json" --duration 8 --realtime 1)")
+  done
+  for _ in $(seq 1 300); do
+    listing=$(cli "$lb_addr" runs)
+    running=0
+    for r in "${kill_ids[@]}"; do
+      [ "$(awk -v id="$r" '$1 == id { print $3 }' <<<"$listing")" = RUNNING ] && running=$((running + 1))
+    done
+    [ "$running" -eq 4 ] && break
+    sleep 0.1
+  done
+  [ "$running" -eq 4 ] || fail "the four runs to kill a replica under did not all run within 30 s"
+  victim=$(owner_of "${kill_ids[0]}")
+  [ "$victim" -ge 1 ] || fail "no replica says it claimed run ${kill_ids[0]}"
+  survivor=$(( victim == 1 ? 2 : 1 ))
+  survivor_addr=${srv_ips[$((survivor - 1))]}:$port
+  kill -KILL "${srv_pids[$((victim - 1))]}"
+  killed_at=$(date +%s.%N)
+  wait "${srv_pids[$((victim - 1))]}" 2>/dev/null || true
+  for _ in $(seq 1 300); do
+    [ "$(state_of "$survivor_addr" "${kill_ids[0]}")" = RUNNING ] || break
+    sleep 0.05
+  done
+  marked=$(awk -v a="$killed_at" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')
+  final=$(state_of "$survivor_addr" "${kill_ids[0]}")
+  [ "$final" = INTERRUPTED ] ||
+    fail "run ${kill_ids[0]} of the killed replica $victim is $final, not INTERRUPTED (no retries)"
+  others=0 lost=0
+  for r in "${kill_ids[@]:1}"; do
+    for _ in $(seq 1 300); do
+      state=$(state_of "$survivor_addr" "$r")
+      case "$state" in QUEUED|RUNNING|"") sleep 0.1 ;; *) break ;; esac
+    done
+    if [ "$(owner_of "$r")" -eq "$victim" ]; then
+      lost=$((lost + 1))  # also on the killed replica: INTERRUPTED as well
+      [ "$state" = INTERRUPTED ] || fail "run $r of the killed replica $victim is $state"
+    else
+      others=$((others + 1))
+      [ "$state" = FINISHED ] || fail "run $r of replica $(owner_of "$r") is $state after replica $victim was killed"
+    fi
+  done
+  [ "$others" -ge 1 ] || fail "all four runs were on replica $victim: nothing shows the others unaffected"
+  kill_summary="replica $victim killed during run ${kill_ids[0]}: INTERRUPTED $marked s later (--lease-timeout-s $lease_s); $others runs of other replicas FINISHED, $lost more of replica $victim INTERRUPTED"
+  log "kill: $kill_summary"
+fi
+
+# ---- stop: balancer, replicas ---------------------------------------------------------
 stop() {  # stop PID NAME LOG: SIGTERM, wait up to 10 s, the exit status must be 0
   kill -TERM "$1"
   stop_wait "$1" "$2" "$3"
@@ -251,17 +359,10 @@ stop_wait() {  # stop_wait PID NAME LOG: wait up to 10 s for it to end, its stat
     fail "$2 exited with $rc on SIGTERM"
   fi
 }
-viewer_summary="not run"
-if [ -n "$viewer_pid" ]; then
-  stop_wait "$viewer_pid" "the viewer" viewer
-  # "viewer done: 1 runs, last run R: F frames, P probe reports": every frame answered.
-  done_line=$(cat "$tmp/logs/viewer.out" "$tmp/logs/viewer.err" | grep -m1 -o 'viewer done: .*' || true)
-  read -r frames probes < <(sed -E 's/.*: ([0-9]+) frames, ([0-9]+) probe reports.*/\1 \2/' <<<"$done_line")
-  [ -n "$done_line" ] && [ "${frames:-0}" -gt 0 ] && [ "$frames" = "$probes" ] ||
-    fail "the viewer did not answer every frame of its run: '$done_line'"
-  viewer_summary=$done_line
-fi
-for i in $(seq 0 $((replicas - 1))); do stop "${srv_pids[$i]}" "replica $((i + 1))" "server$((i + 1))"; done
+for i in $(seq 0 $((replicas - 1))); do
+  [ "$((i + 1))" -eq "${victim:-0}" ] && continue  # killed above
+  stop "${srv_pids[$i]}" "replica $((i + 1))" "server$((i + 1))"
+done
 [ -n "${lb_pid:-}" ] && kill -TERM "$lb_pid" 2>/dev/null || true
 
 rate=$(awk -v n="$runs" -v s="$elapsed" 'BEGIN { printf "%.2f", n / s }')
@@ -270,5 +371,6 @@ echo "cluster: store $store, $([ "$direct" -eq 1 ] && echo "no balancer" || echo
 echo "cluster: sweep: $runs runs FINISHED in $elapsed s ($rate runs/s, submit and wait included)"
 echo "cluster: spread: $spread"
 echo "cluster: viewer: $viewer_summary"
-echo "cluster: replicas exit 0 on SIGTERM"
+echo "cluster: kill: $kill_summary"
+echo "cluster: the other replicas exit 0 on SIGTERM"
 echo "cluster: PASS"

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -123,6 +124,7 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
     PeerSecurity peer;
     peer.tls = config.tls.enabled();
     peer.ca_file = config.peer_ca.empty() ? config.tls.client_ca_file : config.peer_ca;
+    peer.tls_name = config.peer_tls_name;
     if (!config.tls.client_ca_file.empty()) {  // peers require a client certificate
       peer.cert_file = config.tls.cert_file;
       peer.key_file = config.tls.key_file;
@@ -170,7 +172,14 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
                      ": is the address valid and the port free? (use port 0 for any free port)");
   }
   host->address_ = has_port ? name + ":" + std::to_string(port) : config.listen;
-  if (config.advertise.empty()) host->runs_->SetAdvertisedAddress(host->address_);
+  if (config.advertise.empty()) {
+    // A wildcard address is no address to reach: this host's name instead (a container's).
+    char hostname[256] = {};
+    const bool wildcard = name == "0.0.0.0" || name == "[::]" || name == "::";
+    host->runs_->SetAdvertisedAddress(wildcard && gethostname(hostname, sizeof(hostname) - 1) == 0
+                                          ? std::string(hostname) + ":" + std::to_string(port)
+                                          : host->address_);
+  }
   // grpc.health.v1: SERVING while the store answers and the replica is not draining.
   grpc::HealthCheckServiceInterface* health = host->server_->GetHealthCheckService();
   host->runs_->SetServingListener([health](bool serving) { health->SetServingStatus(serving); });

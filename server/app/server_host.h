@@ -35,7 +35,8 @@ struct ServerConfig {
   net::ServerTls tls;                // certificate and key files; empty = insecure
   std::string token_file;            // tokens and roles (see authorizer.h); empty = none
   // Several replicas on one store (docs/cluster.md): the host:port other replicas and
-  // clients reach this one at (empty: the listening address), the lease of a run (s) and the
+  // clients reach this one at (empty: the listening address; this host's name for a wildcard
+  // 0.0.0.0 or [::]), the lease of a run (s) and the
   // time a draining replica gives its runs to end (s).
   std::string advertise;
   double lease_timeout_s = 10.0;
@@ -43,6 +44,10 @@ struct ServerConfig {
   // PEM CA trusted for the other replicas' certificates when proxying calls to them (TLS
   // only; peer_channels.h); empty: --tls-client-ca when given, else the system's CAs.
   std::string peer_ca;
+  // The name the other replicas' certificates are checked against; empty: the host of their
+  // advertised address. For a cluster whose replicas share one certificate (Compose: the
+  // advertised host is a container id the certificate cannot name).
+  std::string peer_tls_name;
   std::string metrics;  // --metrics host:port serving GET /metrics (port 0 = any); empty = none
 };
 

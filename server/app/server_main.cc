@@ -121,6 +121,9 @@ int main(int argc, char** argv) {
                  "PEM CA trusted for the other replicas' certificates when calls about their "
                  "runs are proxied to them (TLS; default: --tls-client-ca, else the system's CAs)")
       ->check(CLI::ExistingFile);
+  app.add_option("--peer-tls-name", config.peer_tls_name,
+                 "name checked in the other replicas' certificates (default: the host of their "
+                 "advertised address; give the shared certificate's name when they share one)");
   app.add_option("--advertise", config.advertise,
                  "host:port other replicas and clients reach this server at (default: the "
                  "listening address)");

@@ -24,6 +24,7 @@ PeerChannels::PeerChannels(const PeerSecurity& security, std::string replica_id)
     options.pem_private_key = net::ReadSecurityFile(security.key_file, "--tls-key");
   }
   credentials_ = grpc::SslCredentials(options);
+  tls_name_ = security.tls_name;
 }
 
 std::shared_ptr<grpc::Channel> PeerChannels::Connect(const v1::RunInfo& owner) {
@@ -44,6 +45,7 @@ std::shared_ptr<grpc::Channel> PeerChannels::Connect(const v1::RunInfo& owner) {
       args.SetInt(GRPC_ARG_KEEPALIVE_TIMEOUT_MS, 10000);
       args.SetInt(GRPC_ARG_MAX_RECEIVE_MESSAGE_LENGTH, -1);
       args.SetInt(GRPC_ARG_MAX_SEND_MESSAGE_LENGTH, -1);
+      if (!tls_name_.empty()) args.SetSslTargetNameOverride(tls_name_);
       cached = grpc::CreateCustomChannel(address, credentials_, args);
     }
     channel = cached;

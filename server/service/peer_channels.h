@@ -30,6 +30,7 @@ struct PeerSecurity {
   std::string ca_file;    // PEM CA trusted for peers' certificates; empty: the system's CAs
   std::string cert_file;  // presented to peers that require client certificates; may be empty
   std::string key_file;
+  std::string tls_name;  // checked in peers' certificates; empty: their advertised host
 };
 
 class PeerChannels {
@@ -57,6 +58,7 @@ class PeerChannels {
 
  private:
   std::shared_ptr<grpc::ChannelCredentials> credentials_;
+  std::string tls_name_;
   const std::string replica_id_;
   std::mutex mutex_;
   std::map<std::string, std::shared_ptr<grpc::Channel>> channels_;
