@@ -441,7 +441,7 @@ TEST_F(ClusterE2eTest, CancelThroughTheOtherReplicaCancelsTheRunOnItsOwner) {
   EXPECT_EQ(ended.replica_address(), busy_->address());
 }
 
-TEST_F(ClusterE2eTest, ModelsSubmittedToOneReplicaAreListedAndRunByTheOther) {
+TEST_F(ClusterE2eTest, ModelsSubmittedToOneReplicaAreListedAndReadByTheOther) {
   auto a = NewReplica("a");
   auto b = NewReplica("b");
   v1::SubmitModelRequest submit;
