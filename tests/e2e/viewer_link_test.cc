@@ -31,7 +31,7 @@ class ViewerLinkTest : public ::testing::Test {
     return RunCommand(std::string(MBSTREAM_CLI) + " --server " + server_->address() + " " + args);
   }
   std::string Viewer(const std::string& args) {
-    return "xvfb-run -a " + std::string(MBSTREAM_VIEWER) + " --server " + server_->address() +
+    return "scripts/with-xvfb.sh " + std::string(MBSTREAM_VIEWER) + " --server " + server_->address() +
            " --offscreen --size 320x240 " + args;
   }
   fs::path dir_;
@@ -109,7 +109,7 @@ TEST_F(ViewerLinkTest, SigtermWhileFollowingARunExitsCleanly) {
               0);
     ASSERT_TRUE(WaitForLineIn(log.string(), "answering with probe reports from frame"))
         << ReadTextFile(log.string());
-    // The viewer itself, not xvfb-run's shell (whose command line starts with the shell).
+    // The viewer itself, not with-xvfb.sh (whose command line starts with the shell).
     ASSERT_EQ(RunCommand("pkill -TERM -f '^" + std::string(MBSTREAM_VIEWER) + " --server " +
                          server_->address() + " '")
                   .exit_code,
