@@ -77,7 +77,11 @@ Rate Subscribe(const std::string& address, const std::string& run_id) {
   stream->WritesDone();
   while (stream->Read(&event)) {
   }
-  stream->Finish();
+  const grpc::Status status = stream->Finish();
+  if (!status.ok() || rate.frames == 0) {
+    std::printf("run %s: %d %s\n", run_id.c_str(), static_cast<int>(status.error_code()),
+                status.error_message().c_str());
+  }
   rate.frames_per_s = seconds > 0 ? static_cast<double>(rate.frames) / seconds : 0;
   return rate;
 }
