@@ -51,6 +51,24 @@ TEST_P(StoreQueueTest, ClaimsTheOldestQueuedRunOnceAndRecordsTheReplica) {
   EXPECT_FALSE(store->ClaimQueuedRun(Lease("a", 5002)).has_value());
 }
 
+// What follow streams read (cluster_follow.h): the RUNNING runs only, oldest claim first.
+TEST_P(StoreQueueTest, ListsTheRunningRunsInClaimOrder) {
+  auto store = Open();
+  EXPECT_TRUE(store->ListRunningRuns().empty());
+  store->PutRun(Queued("r-1", 1000));
+  store->PutRun(Queued("r-2", 2000));
+  store->PutRun(Queued("r-3", 3000));
+  store->PutRun(MakeRun("r-done", v1::FINISHED, 500));
+  ASSERT_TRUE(store->ClaimQueuedRun(Lease("a", 5000)).has_value());
+  ASSERT_TRUE(store->ClaimQueuedRun(Lease("b", 5001)).has_value());
+  const std::vector<v1::RunInfo> running = store->ListRunningRuns();
+  ASSERT_EQ(running.size(), 2u);
+  EXPECT_EQ(running[0].id(), "r-1");
+  EXPECT_EQ(running[0].replica(), "a");
+  EXPECT_EQ(running[1].id(), "r-2");
+  EXPECT_EQ(running[1].replica(), "b");
+}
+
 // Two replicas (two connections) claiming as fast as they can: every run exactly once.
 TEST_P(StoreQueueTest, ConcurrentClaimsNeverTakeOneRunTwice) {
   constexpr int kRuns = 40;
