@@ -128,11 +128,13 @@ read -r frames probes < <(sed -E 's/.*: ([0-9]+) frames, ([0-9]+) probe reports.
 [ -n "$done_line" ] && [ "${frames:-0}" -gt 0 ] && [ "$frames" = "$probes" ] ||
   fail "the viewer did not answer every frame of its run: '$done_line'"
 
-# A replica killed during a run: four paced runs through the balancer, the first's replica
-# killed once all run.
-kill_ids=()
-for _ in 1 2 3 4; do kill_ids+=("$(cli lb:50051 run irb1600 --spec "$seed" --duration 12 --realtime 1)"); done
-for _ in $(seq 1 60); do
+# A replica killed during a run: four paced runs (40 s) through the balancer, the first's
+# replica killed once all run.
+# One client container starts all four (a container start takes seconds here).
+mapfile -t kill_ids < <(dc run --rm --no-deps -e MBSTREAM_SERVER=lb:50051 --entrypoint sh client -c \
+  "for i in 1 2 3 4; do mbstream run irb1600 --spec $seed --duration 40 --realtime 1; done" 2>/dev/null)
+[ "${#kill_ids[@]}" -eq 4 ] || fail "starting the four runs to kill a replica under failed"
+for _ in $(seq 1 10); do
   listing=$(cli lb:50051 runs)
   running=0
   for r in "${kill_ids[@]}"; do
