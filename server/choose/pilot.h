@@ -2,7 +2,8 @@
 // 100 times apart. The looser run's distance from the tighter one is its error; the error
 // is taken proportional to the tolerance, grown from the pilot span to the whole run linearly
 // in time or, where nearby solutions separate, exponentially;
-// the steps follow rtol^-beta with beta from the two runs, at the pilot's CPU cost per step.
+// the steps follow rtol^-beta with beta from the two runs (at least the method's order allows),
+// at the tighter run's right-hand sides per step.
 #pragma once
 
 #include <atomic>
@@ -40,8 +41,9 @@ RunResult RunPilot(const Model& model, const RunConfig& config, const PilotSpan&
 
 // Fills the run's and the check's tolerances and predicted CPU times of a usable candidate
 // for `target` over the whole run of `duration` s; `separation_rate` (1/s, >= 0): how fast
-// nearby solutions separate (StiffnessProbe::separation_rate).
+// nearby solutions separate (StiffnessProbe::separation_rate); `rhs_cost_s`: s of CPU per
+// right-hand side (StiffnessProbe::rhs_cost_s).
 void PredictCandidate(const AccuracyTarget& target, double duration, const PilotSpan& span,
-                      double separation_rate, Candidate* candidate);
+                      double separation_rate, double rhs_cost_s, Candidate* candidate);
 
 }  // namespace mbstream
