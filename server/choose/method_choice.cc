@@ -45,9 +45,18 @@ std::vector<Candidate> CandidatesFor(const RunConfig& config) {
           MakeCandidate(Method::kDirk)};
 }
 
+// A joint no servo holds and no trajectory prescribes (passive or under a torque law).
+bool AnyFreeJoint(const RunConfig& config, int num_dofs) {
+  if (static_cast<int>(config.drives.size()) < num_dofs) return true;
+  return std::any_of(config.drives.begin(), config.drives.end(), [](const DriveConfig& d) {
+    return d.kind != DriveConfig::Kind::kPdServo && d.kind != DriveConfig::Kind::kPrescribed;
+  });
+}
+
 bool IsExplicit(const Candidate& c) { return c.stability_reach > 0.0; }
 
 constexpr double kSeparationShare = 0.75;
+constexpr double kRepilotBelow = 10.0;  // re-pilot when the run's rtol is this far below
 
 std::string Pretty(double value) { return FormatString("%.3g", value); }
 
@@ -79,7 +88,7 @@ MethodChoice ChooseMethod(const Model& model_in, const RunConfig& config,
   choice.pilot = PilotSpanFor(config);
   choice.candidates = CandidatesFor(config);
   const double duration = config.duration;
-  const double rtol = PilotRtol(config.target);
+  double rtol = PilotRtol(config.target);
 
   // The first candidate's pilot, then the stiffness at the initial state and, unless that
   // alone settles what the samples decide, at three of its states.
@@ -94,18 +103,30 @@ MethodChoice ChooseMethod(const Model& model_in, const RunConfig& config,
       states.push_back(StateOf(tight, k));
     }
   }
-  // Errors grow exponentially only where nothing dissipates: a servo or damping contracts
-  // nearby trajectories whatever the local real parts (seed-servo has 1.9 1/s and its error
-  // does not grow). There, half the local rate: the average separation (the Lyapunov
-  // exponent) is smaller than its largest local value.
+  // Errors grow exponentially only where some joint is free: a servo on every joint
+  // contracts nearby trajectories whatever the local real parts (seed-servo has 1.9 1/s and
+  // its error does not grow), damping on one joint does not stop the others separating.
+  // There, 0.75 of the local rate: the average separation (the Lyapunov exponent) is smaller
+  // than its largest local value.
+  const bool free_joint = AnyFreeJoint(config, model.num_dofs());
   auto predict = [&](Candidate* c) {
     const double separation =
-        drives.any_work() ? 0.0 : kSeparationShare * choice.stiffness.separation_rate;
+        free_joint ? kSeparationShare * choice.stiffness.separation_rate : 0.0;
     choice.separation_rate_used = separation;
-    PredictCandidate(config.target, duration, choice.pilot, separation,
-                     choice.stiffness.rhs_cost_s, c);
+    PredictCandidate(config.target, duration, choice.pilot, separation, choice.stiffness.rhs_cost_s,
+                     c);
   };
   if (first.usable) predict(&first);
+  // Where the run's tolerance lies far below the pilots' (a chaotic scene: errors grow a
+  // million times), the error per tolerance would be extrapolated over decades, and it is not
+  // proportional over decades (BDF's and Adams' exponent is below 1): pilot again at ten
+  // times the predicted tolerance, the other candidates there too.
+  if (first.usable && first.run_rtol < first.rtol[1] / kRepilotBelow) {
+    rtol = std::max(10.0 * first.run_rtol, 100.0 * kMinRtol);
+    first = MakeCandidate(first.method, first.table);
+    RunPilot(model, config, choice.pilot, rtol, &first, cancel);
+    if (first.usable) predict(&first);
+  }
   // The explicit candidates' CPU floor (stability alone) at the stiffness seen so far.
   auto explicit_floor = [&](Candidate* c) {
     const double h = ExplicitStepLimit(c->stability_reach, choice.stiffness.largest);
@@ -114,7 +135,7 @@ MethodChoice ChooseMethod(const Model& model_in, const RunConfig& config,
   };
   // More samples can only raise the largest eigenvalue (and matter to the growth only when
   // nothing dissipates): they are needed unless every explicit candidate is already out.
-  bool settled = first.usable && drives.any_work() && choice.stiffness.largest > 0.0;
+  bool settled = first.usable && !free_joint && choice.stiffness.largest > 0.0;
   for (Candidate& c : choice.candidates) {
     if (!IsExplicit(c) || !settled) continue;
     explicit_floor(&c);

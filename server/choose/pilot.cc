@@ -110,6 +110,10 @@ void PredictCandidate(const AccuracyTarget& target, double duration, const Pilot
   candidate->growth.energy_rel = Growth(span.span_s, duration, 0.0);  // chaos spares energy
   candidate->resolvable = RtolFor(target, *candidate, kRunSafety, &candidate->run_rtol);
   RtolFor(target, *candidate, kCheckSafety, &candidate->check_rtol);
+  // At least as far below the run's as the safeties are apart (a run held at kMaxRtol would
+  // otherwise be checked at its own tolerance).
+  candidate->check_rtol = std::max(
+      kMinRtol, std::min(candidate->check_rtol, candidate->run_rtol * kCheckSafety / kRunSafety));
   candidate->run_cpu_s = PredictedCpu(*candidate, candidate->run_rtol, duration, span.span_s);
   candidate->check_cpu_s = PredictedCpu(*candidate, candidate->check_rtol, duration, span.span_s);
 }

@@ -18,11 +18,13 @@ namespace mbstream {
 // error of every method here (docs/accuracy.md, the reference floors).
 constexpr double kMinRtol = 1e-13;
 constexpr double kMaxRtol = 1e-3;
-// The run aims this far below the target; its check this far below it: the check's own
-// error is then about a tenth of the run's, so |run - check| estimates the run's error
-// within about 10 % (a check 100 times tighter would cost twice as much for 9 % more).
+// The run aims this far below the target; its check this far below it. The check's own error
+// (predicted at a tenth of the target) is counted against the run: the target is met when the
+// run's distance from its check plus that tenth stays within it (verification.h). A check
+// predicted at 3 % (a tolerance 10 times tighter than the run's) cost 1.3-1.5 runs of BDF on
+// the reference scenes; at 10 % (3 times tighter) 1.1-1.2.
 constexpr double kRunSafety = 0.3;
-constexpr double kCheckSafety = 0.03;  // a tolerance 10 times tighter than the run's
+constexpr double kCheckSafety = 0.1;
 
 struct PilotSpan {
   double span_s = 0.0;      // s, the pilot's simulated time
