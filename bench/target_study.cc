@@ -125,6 +125,13 @@ int Main(int argc, char** argv) {
   app.add_option("--csv", csv, "the work-precision study's CSV");
   app.add_option("--scenes", scenes, "scenes")->delimiter(',');
   app.add_option("--targets", targets, "TCP targets (m)")->delimiter(',');
+  std::string json_dir;
+  std::vector<double> sweep;
+  std::string sweep_method = "bdf";
+  app.add_option("--sweep", sweep, "instead: plain runs at these rtols (atol rtol/100)")
+      ->delimiter(',');
+  app.add_option("--sweep-method", sweep_method, "the sweep's method (erk-verner for Verner)");
+  app.add_option("--json-dir", json_dir, "write each case's stats.json choice here");
   CLI11_PARSE(app, argc, argv);
   const std::string dir = std::string(MBSTREAM_SOURCE_DIR) + "/models/irb1600/";
   const Model model = ImportUrdfFile(dir + "irb1600.urdf").model;
@@ -153,6 +160,18 @@ int Main(int argc, char** argv) {
       ref.max_steps = 20'000'000;
       reference = Simulate(model, ref);
     }
+    for (double rtol : sweep) {
+      CsvRow row{scene, "joint", sweep_method, rtol, rtol / 100, 0, 0, 0, "FINISHED"};
+      const RunConfig config = ConfigOf(base, row);
+      std::array<double, 3> cpu{};
+      RunResult run;
+      for (double& c : cpu) c = (run = Simulate(model, config)).stats.cpu_s;
+      std::printf("%s %s rtol %.1e: %.4f ms, %ld steps, %ld rhs, error %.3e\n", scene.c_str(),
+                  sweep_method.c_str(), rtol, 1e3 * Median3(cpu), run.stats.solver.steps,
+                  run.stats.solver.rhs_evals,
+                  closed_form ? 0.0 : CompareTracks(TrackOf(run), TrackOf(reference)).tcp_m);
+    }
+    if (!sweep.empty()) continue;
     for (double target : targets) {
       RunConfig asked = base;
       asked.target.tcp_error_m = target;
@@ -164,6 +183,11 @@ int Main(int argc, char** argv) {
         total = nlohmann::json::parse(result.stats.choice_json)["cpu_s"]["total"].get<double>();
       }
       const nlohmann::json choice = nlohmann::json::parse(result.stats.choice_json);
+      if (!json_dir.empty()) {
+        char name[128];
+        std::snprintf(name, sizeof(name), "/%s-%.0e.json", scene.c_str(), target);
+        std::ofstream(json_dir + name) << choice.dump(1) << "\n";
+      }
       const double achieved = closed_form
                                   ? result.stats.tcp_error_max
                                   : CompareTracks(TrackOf(result), TrackOf(reference)).tcp_m;

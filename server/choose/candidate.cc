@@ -12,10 +12,19 @@ Candidate MakeCandidate(Method method, const std::string& table) {
     case Method::kErk:  // Dormand-Prince: 6 new stages a step (FSAL); Verner 8-5-6: 8
       candidate.stability_reach = table == "verner" ? 3.6 : 3.3;
       candidate.rhs_per_step = table == "verner" ? 8.0 : 6.0;
+      // Dormand-Prince's error estimate is of order 4 (h^5), Verner 8-5-6's of order 5 (h^6)
+      candidate.min_steps_exponent = table == "verner" ? 1.0 / 6.0 : 1.0 / 5.0;
       break;
     case Method::kAdams:  // functional iteration converges for h |lambda| below about 1
       candidate.stability_reach = 1.0;
       candidate.rhs_per_step = 2.0;
+      candidate.min_steps_exponent = 1.0 / 13.0;  // CVODE's Adams: order up to 12
+      break;
+    case Method::kBdf:
+      candidate.min_steps_exponent = 1.0 / 6.0;  // order up to 5
+      break;
+    case Method::kDirk:
+      candidate.min_steps_exponent = 1.0 / 4.0;  // ARKODE's default DIRK: error estimate order 3
       break;
     default:
       break;

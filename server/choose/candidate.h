@@ -22,6 +22,11 @@ struct Candidate {
   std::string table;             // ARKODE table name for erk ("" = default)
   double stability_reach = 0.0;  // explicit methods: stable for h |lambda| below this
   double rhs_per_step = 1.0;     // explicit methods: right-hand sides per step
+  // The least exponent beta of steps ~ rtol^-beta: with local error ~ h^(p+1) at its
+  // highest order p (the error estimate's order for an embedded pair), a step can grow no
+  // faster than rtol^(1/(p+1)). A pilot's own fit is smaller where its few steps are mostly
+  // the start-up (BDF and Adams start at order 1 with tiny steps), so the larger of the two.
+  double min_steps_exponent = 0.0;
 
   bool piloted = false;
   bool usable = false;  // piloted, both pilots finished, the fit is defined
@@ -30,10 +35,15 @@ struct Candidate {
   // The pilot: two runs over [0, pilot span] at rtol[0] and rtol[1] = rtol[0] / 100.
   double rtol[2] = {0.0, 0.0};
   long steps[2] = {0, 0};
+  long rhs_evals[2] = {0, 0};
   double cpu_s[2] = {0.0, 0.0};
   ErrorFigures error;           // at rtol[0] over the pilot span (tcp, joint: against rtol[1])
   ErrorFigures growth;          // factor from the pilot span to the whole run, per criterion
   double steps_exponent = 0.0;  // steps ~ rtol^-steps_exponent
+  // s of CPU per step: the tighter pilot's right-hand sides per step (the Newton iterations
+  // and finite-difference Jacobians included) at the probe's CPU per right-hand side. (The
+  // pilots' own CPU per step is mostly their start-up: a few dozen steps against a set-up
+  // that costs as much as a hundred.)
   double cpu_per_step_s = 0.0;
 
   // Predictions for the run (rtol_for) and its check (check_rtol), at their tolerances.

@@ -15,13 +15,14 @@ namespace mbstream {
 
 namespace {
 
-// The pilots' looser tolerance: a tenth of the tightest target, within what pilots resolve.
+// The pilots' looser tolerance: the tightest target, within what pilots resolve (the tighter
+// pilot is 100 times below it).
 double PilotRtol(const AccuracyTarget& target) {
   double smallest = std::numeric_limits<double>::infinity();
   for (double asked : {target.tcp_error_m, target.joint_error_rad, target.energy_error_rel}) {
     if (asked > 0.0) smallest = std::min(smallest, asked);
   }
-  return std::clamp(0.1 * smallest, 1e-11, 1e-4);
+  return std::clamp(smallest, 100.0 * kMinRtol, kMaxRtol);
 }
 
 // y = [q; qd] of frame k of a result.
@@ -44,9 +45,18 @@ std::vector<Candidate> CandidatesFor(const RunConfig& config) {
           MakeCandidate(Method::kDirk)};
 }
 
+// A joint no servo holds and no trajectory prescribes (passive or under a torque law).
+bool AnyFreeJoint(const RunConfig& config, int num_dofs) {
+  if (static_cast<int>(config.drives.size()) < num_dofs) return true;
+  return std::any_of(config.drives.begin(), config.drives.end(), [](const DriveConfig& d) {
+    return d.kind != DriveConfig::Kind::kPdServo && d.kind != DriveConfig::Kind::kPrescribed;
+  });
+}
+
 bool IsExplicit(const Candidate& c) { return c.stability_reach > 0.0; }
 
 constexpr double kSeparationShare = 0.75;
+constexpr double kRepilotBelow = 10.0;  // re-pilot when the run's rtol is this far below
 
 std::string Pretty(double value) { return FormatString("%.3g", value); }
 
@@ -78,28 +88,63 @@ MethodChoice ChooseMethod(const Model& model_in, const RunConfig& config,
   choice.pilot = PilotSpanFor(config);
   choice.candidates = CandidatesFor(config);
   const double duration = config.duration;
-  const double rtol = PilotRtol(config.target);
+  double rtol = PilotRtol(config.target);
 
-  // The first candidate's pilot, then the stiffness at the initial state and its states.
+  // The first candidate's pilot, then the stiffness at the initial state and, unless that
+  // alone settles what the samples decide, at three of its states.
   Candidate& first = choice.candidates.front();
   const RunResult tight = RunPilot(model, config, choice.pilot, rtol, &first, cancel);
   std::vector<double> times{0.0};
   std::vector<Eigen::VectorXd> states{InitialJointState(config, drives, model.num_dofs())};
+  choice.stiffness = ProbeStiffness(model, drives, times, states);
   for (int k : {tight.num_frames() / 3, 2 * tight.num_frames() / 3, tight.num_frames() - 1}) {
     if (k > 0 && k < tight.num_frames()) {
       times.push_back(tight.t[static_cast<size_t>(k)]);
       states.push_back(StateOf(tight, k));
     }
   }
-  choice.stiffness = ProbeStiffness(model, drives, times, states);
-  // Errors grow exponentially only where nothing dissipates: a servo or damping contracts
-  // nearby trajectories whatever the local real parts (seed-servo has 1.9 1/s and its error
-  // does not grow). There, half the local rate: the average separation (the Lyapunov
-  // exponent) is smaller than its largest local value.
-  const double separation =
-      drives.any_work() ? 0.0 : kSeparationShare * choice.stiffness.separation_rate;
-  choice.separation_rate_used = separation;
-  if (first.usable) PredictCandidate(config.target, duration, choice.pilot, separation, &first);
+  // Errors grow exponentially only where some joint is free: a servo on every joint
+  // contracts nearby trajectories whatever the local real parts (seed-servo has 1.9 1/s and
+  // its error does not grow), damping on one joint does not stop the others separating.
+  // There, 0.75 of the local rate: the average separation (the Lyapunov exponent) is smaller
+  // than its largest local value.
+  const bool free_joint = AnyFreeJoint(config, model.num_dofs());
+  auto predict = [&](Candidate* c) {
+    const double separation =
+        free_joint ? kSeparationShare * choice.stiffness.separation_rate : 0.0;
+    choice.separation_rate_used = separation;
+    PredictCandidate(config.target, duration, choice.pilot, separation, choice.stiffness.rhs_cost_s,
+                     c);
+  };
+  if (first.usable) predict(&first);
+  // Where the run's tolerance lies far below the pilots' (a chaotic scene: errors grow a
+  // million times), the error per tolerance would be extrapolated over decades, and it is not
+  // proportional over decades (BDF's and Adams' exponent is below 1): pilot again at ten
+  // times the predicted tolerance, the other candidates there too.
+  if (first.usable && first.run_rtol < first.rtol[1] / kRepilotBelow) {
+    rtol = std::max(10.0 * first.run_rtol, 100.0 * kMinRtol);
+    first = MakeCandidate(first.method, first.table);
+    RunPilot(model, config, choice.pilot, rtol, &first, cancel);
+    if (first.usable) predict(&first);
+  }
+  // The explicit candidates' CPU floor (stability alone) at the stiffness seen so far.
+  auto explicit_floor = [&](Candidate* c) {
+    const double h = ExplicitStepLimit(c->stability_reach, choice.stiffness.largest);
+    c->explicit_cpu_floor_s = duration / h * c->rhs_per_step * choice.stiffness.rhs_cost_s;
+    return h;
+  };
+  // More samples can only raise the largest eigenvalue (and matter to the growth only when
+  // nothing dissipates): they are needed unless every explicit candidate is already out.
+  bool settled = first.usable && !free_joint && choice.stiffness.largest > 0.0;
+  for (Candidate& c : choice.candidates) {
+    if (!IsExplicit(c) || !settled) continue;
+    explicit_floor(&c);
+    settled = c.explicit_cpu_floor_s > 3.0 * first.run_cpu_s;
+  }
+  if (!settled && states.size() > 1) {
+    choice.stiffness = ProbeStiffness(model, drives, times, states);
+    if (first.usable) predict(&first);
+  }
   if (first.method == Method::kBdf && first.steps[0] > 0) {
     choice.bdf_mean_step_s = choice.pilot.span_s / static_cast<double>(first.steps[0]);
   }
@@ -114,8 +159,7 @@ MethodChoice ChooseMethod(const Model& model_in, const RunConfig& config,
       continue;
     }
     if (IsExplicit(c) && choice.stiffness.largest > 0.0) {
-      const double h = ExplicitStepLimit(c.stability_reach, choice.stiffness.largest);
-      c.explicit_cpu_floor_s = duration / h * c.rhs_per_step * choice.stiffness.rhs_cost_s;
+      const double h = explicit_floor(&c);
       if (first.usable && c.explicit_cpu_floor_s > 3.0 * first.run_cpu_s) {
         c.verdict = "not piloted: stability alone holds its step below " + Pretty(h) +
                     " s (|lambda| " + Pretty(choice.stiffness.largest) + " 1/s), which costs at " +
@@ -125,7 +169,7 @@ MethodChoice ChooseMethod(const Model& model_in, const RunConfig& config,
       }
     }
     RunPilot(model, config, choice.pilot, rtol, &c, cancel);
-    if (c.usable) PredictCandidate(config.target, duration, choice.pilot, separation, &c);
+    if (c.usable) predict(&c);
   }
 
   for (size_t k = 0; k < choice.candidates.size(); ++k) {

@@ -26,8 +26,8 @@ struct MethodChoice {
   PilotSpan pilot;
   StiffnessProbe stiffness;
   double bdf_mean_step_s = 0.0;  // s, BDF's mean step in its looser pilot
-  // 1/s, the error growth rate the predictions used: 0 unless the scene is conservative (no
-  // drive and no damping), then half the Jacobian's largest real part.
+  // 1/s, the error growth rate the predictions used: 0 when every joint is on a servo or
+  // prescribed, else 0.75 x the Jacobian's largest real part.
   double separation_rate_used = 0.0;
   std::vector<Candidate> candidates;
   int pick = -1;           // index into candidates (-1: closed form)

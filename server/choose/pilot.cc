@@ -51,6 +51,7 @@ RunResult RunPilot(const Model& model, const RunConfig& config, const PilotSpan&
     results[k] =
         Simulate(model, WithCandidate(pilot, *candidate, candidate->rtol[k]), nullptr, cancel);
     candidate->steps[k] = results[k].stats.solver.steps;
+    candidate->rhs_evals[k] = results[k].stats.solver.rhs_evals;
     candidate->cpu_s[k] = results[k].stats.cpu_s;
     if (results[k].stats.status != RunStatus::kFinished) {
       candidate->verdict =
@@ -65,10 +66,9 @@ RunResult RunPilot(const Model& model, const RunConfig& config, const PilotSpan&
   candidate->error.energy_rel = results[0].stats.energy_error_max;
   const double step_ratio =
       static_cast<double>(std::max(candidate->steps[1], 1L)) / std::max(candidate->steps[0], 1L);
-  candidate->steps_exponent = std::clamp(
-      std::log(step_ratio) / std::log(candidate->rtol[0] / candidate->rtol[1]), 0.0, 1.0);
-  candidate->cpu_per_step_s =
-      candidate->cpu_s[1] / static_cast<double>(std::max(candidate->steps[1], 1L));
+  candidate->steps_exponent =
+      std::clamp(std::log(step_ratio) / std::log(candidate->rtol[0] / candidate->rtol[1]),
+                 candidate->min_steps_exponent, 1.0);
   candidate->usable = true;
   return results[1];
 }
@@ -91,21 +91,29 @@ bool RtolFor(const AccuracyTarget& target, const Candidate& c, double fraction, 
   return best >= kMinRtol;
 }
 
+// From the tighter pilot: its steps are the least dominated by the start-up, and its
+// tolerance is the nearer to the run's.
 double PredictedCpu(const Candidate& c, double rtol, double duration, double span) {
-  const double steps = static_cast<double>(std::max(c.steps[0], 1L)) *
-                       std::pow(c.rtol[0] / rtol, c.steps_exponent) * duration / span;
+  const double steps = static_cast<double>(std::max(c.steps[1], 1L)) *
+                       std::pow(c.rtol[1] / rtol, c.steps_exponent) * duration / span;
   return std::max(steps * c.cpu_per_step_s, c.explicit_cpu_floor_s);
 }
 
 }  // namespace
 
 void PredictCandidate(const AccuracyTarget& target, double duration, const PilotSpan& span,
-                      double separation_rate, Candidate* candidate) {
+                      double separation_rate, double rhs_cost_s, Candidate* candidate) {
+  candidate->cpu_per_step_s = rhs_cost_s * static_cast<double>(candidate->rhs_evals[1]) /
+                              static_cast<double>(std::max(candidate->steps[1], 1L));
   candidate->growth.tcp_m = Growth(span.span_s, duration, separation_rate);
   candidate->growth.joint_rad = Growth(span.span_s, duration, separation_rate);
   candidate->growth.energy_rel = Growth(span.span_s, duration, 0.0);  // chaos spares energy
   candidate->resolvable = RtolFor(target, *candidate, kRunSafety, &candidate->run_rtol);
   RtolFor(target, *candidate, kCheckSafety, &candidate->check_rtol);
+  // At least as far below the run's as the safeties are apart (a run held at kMaxRtol would
+  // otherwise be checked at its own tolerance).
+  candidate->check_rtol = std::max(
+      kMinRtol, std::min(candidate->check_rtol, candidate->run_rtol * kCheckSafety / kRunSafety));
   candidate->run_cpu_s = PredictedCpu(*candidate, candidate->run_rtol, duration, span.span_s);
   candidate->check_cpu_s = PredictedCpu(*candidate, candidate->check_rtol, duration, span.span_s);
 }

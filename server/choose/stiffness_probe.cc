@@ -10,7 +10,7 @@ namespace mbstream {
 
 namespace {
 
-constexpr int kTimedEvaluations = 200;  // right-hand sides timed for their cost
+constexpr int kTimedEvaluations = 40;  // right-hand sides timed for their cost
 
 }  // namespace
 

@@ -1,7 +1,9 @@
 // The check after a target run: an independent estimate of the error it achieved, from a run
-// of the cheapest candidate at a tolerance about 10 times tighter (predicted error 3 % of the
-// target; pilot.h, kCheckSafety), compared on the output frames. Measured, never assumed; budgeted
-// (10 times its predicted CPU time, at least 1 s); skipped with RunConfig::verify false.
+// of the cheapest candidate at a tolerance about 3 times tighter (predicted error 10 % of the
+// target; pilot.h, kCheckSafety), compared on the output frames; the target is met when that
+// distance plus the check's predicted error stays within it. Measured, never assumed;
+// budgeted (10 times its predicted CPU time, at least 1 s); skipped with RunConfig::verify
+// false.
 #pragma once
 
 #include <atomic>
