@@ -11,12 +11,17 @@
 // the next. Prints wall time, runs per second and CPU time per run of each side (the server
 // process's from /proc, the client's and the in-process threads' from getrusage), and the
 // server's overhead. `--duration D` (s) shortens the scene: the 10,000 short kinematic runs
-// are `--runs 10000 --scene seed-run --duration 1`.
+// are `--runs 10000 --scene seed-run --duration 1`. `--rounds N` alternates the two sides N
+// times (a fresh server each round) and prints the median of each round's ratios, so that a
+// machine whose load changes affects both sides alike; `--baseline-server B` adds a third
+// side to each round, the same sweep through binary B (e.g. the previous build), for a
+// before/after comparison in one invocation.
 #include <grpcpp/grpcpp.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -167,11 +172,34 @@ Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec
   return m;
 }
 
+double Median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// Per round: a server side against the round's in-process side.
+struct Ratios {
+  std::vector<double> wall, server_cpu, total_cpu;
+  void Add(const Measured& local, const Measured& served) {
+    wall.push_back(served.wall_s / local.wall_s);
+    server_cpu.push_back(served.cpu_s / local.cpu_s);
+    total_cpu.push_back((served.cpu_s + served.client_cpu_s) / local.cpu_s);
+  }
+  void Print(const char* what) const {
+    std::printf(
+        "%-10s median of %zu rounds: wall time %.3fx in-process (runs/s %.3fx); CPU per run: "
+        "server %.3fx, server + client %.3fx in-process\n",
+        what, wall.size(), Median(wall), 1.0 / Median(wall), Median(server_cpu), Median(total_cpu));
+  }
+};
+
 void Print(const char* what, const Measured& m, int runs) {
   std::printf("%-10s %8.3f s wall  %8.1f runs/s  CPU per run %8.1f us", what, m.wall_s,
               runs / m.wall_s, 1e6 * m.cpu_s / runs);
   if (m.client_cpu_s > 0) std::printf(" + client %6.1f us", 1e6 * m.client_cpu_s / runs);
   std::printf("  frames %ld\n", m.frames);
+  std::fflush(stdout);
 }
 
 }  // namespace
@@ -180,8 +208,8 @@ void Print(const char* what, const Measured& m, int runs) {
 int main(int argc, char** argv) {
   using namespace mbstream;
   CLI::App app{"A sweep through a real mbstream-server against the same runs in-process"};
-  std::string server_binary, scene = "seed-servo";
-  int runs = 1000, window = 32;
+  std::string server_binary, baseline_binary, scene = "seed-servo";
+  int runs = 1000, window = 32, rounds = 1;
   double duration = 0.0;
   bool server_only = false;
   app.add_option("--server", server_binary, "the mbstream-server binary")->required();
@@ -190,6 +218,10 @@ int main(int argc, char** argv) {
   app.add_option("--duration", duration, "s; 0 = the scene's");
   app.add_option("--window", window, "runs submitted and not yet fetched (at most 64 queue)");
   app.add_flag("--server-only", server_only, "skip the in-process side (for profiling)");
+  app.add_option("--rounds", rounds, "alternate the sides this many times; medians of ratios")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--baseline-server", baseline_binary,
+                 "also measure this mbstream-server binary in each round (before/after)");
   CLI11_PARSE(app, argc, argv);
   try {
     const std::string path = MBSTREAM_SOURCE_DIR "/models/irb1600/" + scene + ".json";
@@ -208,20 +240,36 @@ int main(int argc, char** argv) {
                   }
                   return text;
                 }());
-    Measured local;
-    if (!server_only) {
-      local = InProcess(model, config, runs);
-      Print("in-process", local, runs);
+    Ratios ratios, baseline_ratios;
+    for (int round = 0; round < rounds; ++round) {
+      if (rounds > 1) std::printf("round %d\n", round + 1);
+      Measured local;
+      if (!server_only) {
+        local = InProcess(model, config, runs);
+        Print("in-process", local, runs);
+      }
+      auto baseline = [&] {
+        if (baseline_binary.empty()) return;
+        const Measured before = ThroughServer(baseline_binary, spec, runs, window);
+        Print("baseline", before, runs);
+        if (!server_only) baseline_ratios.Add(local, before);
+      };
+      if (round % 2 == 0) baseline();  // the two servers take turns to go first
+      const Measured served = ThroughServer(server_binary, spec, runs, window);
+      Print("server", served, runs);
+      if (round % 2 == 1) baseline();
+      if (!server_only) {
+        ratios.Add(local, served);
+        std::printf(
+            "server overhead: %+.1f %% wall time; %+.1f us CPU per run (server + client - "
+            "in-process)\n",
+            100.0 * (served.wall_s / local.wall_s - 1.0),
+            1e6 * (served.cpu_s + served.client_cpu_s - local.cpu_s) / runs);
+      }
+      std::fflush(stdout);
     }
-    const Measured served = ThroughServer(server_binary, spec, runs, window);
-    Print("server", served, runs);
-    if (!server_only) {
-      std::printf(
-          "server overhead: %+.1f %% wall time; %+.1f us CPU per run (server + client - "
-          "in-process)\n",
-          100.0 * (served.wall_s / local.wall_s - 1.0),
-          1e6 * (served.cpu_s + served.client_cpu_s - local.cpu_s) / runs);
-    }
+    if (!server_only && !baseline_binary.empty()) baseline_ratios.Print("baseline");
+    if (!server_only) ratios.Print("server");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "sweep_bench: %s\n", e.what());
     return 1;

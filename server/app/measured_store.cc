@@ -103,10 +103,10 @@ void MeasuredStore::FinishRun(const v1::RunInfo& info, const std::vector<v1::Fra
   CountState(info);
 }
 
-std::optional<int64_t> MeasuredStore::GetFrameChunk(const std::string& run_id, int64_t index,
-                                                    std::vector<v1::Frame>& frames) const {
+std::optional<int64_t> MeasuredStore::GetFrameChunkData(const std::string& run_id, int64_t index,
+                                                        std::string& data) const {
   return Timed(StoreOperation::kGetFrameChunk,
-               [&] { return store_->GetFrameChunk(run_id, index, frames); });
+               [&] { return store_->GetFrameChunkData(run_id, index, data); });
 }
 
 void MeasuredStore::AddProbes(const std::vector<v1::ProbeReport>& reports) {

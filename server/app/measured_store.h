@@ -39,8 +39,8 @@ class MeasuredStore final : public Store {
   void FinishRun(const v1::RunInfo& info, int64_t index,
                  const EncodedFrameChunk& last_chunk) override;
   void FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& frames) override;
-  std::optional<int64_t> GetFrameChunk(const std::string& run_id, int64_t index,
-                                       std::vector<v1::Frame>& frames) const override;
+  std::optional<int64_t> GetFrameChunkData(const std::string& run_id, int64_t index,
+                                           std::string& data) const override;
   void AddProbes(const std::vector<v1::ProbeReport>& reports) override;
   std::vector<v1::ProbeReport> GetProbes(const std::string& run_id) const override;
   std::optional<int64_t> FrameChunkHolding(const std::string& run_id, int64_t seq) const override;

@@ -1,5 +1,6 @@
 #include "server/runs/frame_spool.h"
 
+#include <algorithm>
 #include <exception>
 #include <utility>
 
@@ -7,11 +8,21 @@
 
 namespace mbstream {
 
-FrameSpool::FrameSpool(std::string run_id, std::size_t frames_per_chunk)
-    : run_id_(std::move(run_id)), frames_per_chunk_(frames_per_chunk) {}
+FrameSpool::FrameSpool(std::string run_id, int64_t expected_frames, std::size_t frames_per_chunk)
+    : run_id_(std::move(run_id)),
+      frames_per_chunk_(frames_per_chunk),
+      frames_left_(expected_frames) {}
 
 void FrameSpool::Add(const v1::Frame& frame, Store& store) {
   if (!error_.empty()) return;
+  if (pending_.empty() && frames_left_ > 1) {
+    // A later frame is longer by at most its scalars that are zero now and not serialized
+    // (seq 11 bytes, times and energies 9 each) and a longer size prefix: 41 bytes.
+    constexpr std::size_t kMaxGrowth = 48;
+    const int64_t frames = std::min<int64_t>(frames_left_, static_cast<int64_t>(frames_per_chunk_));
+    pending_.Reserve(static_cast<std::size_t>(frames) * (frame.ByteSizeLong() + kMaxGrowth));
+  }
+  --frames_left_;
   pending_.Add(frame);
   if (static_cast<std::size_t>(pending_.frame_count()) < frames_per_chunk_) return;
   const EncodedFrameChunk chunk = pending_.Take();

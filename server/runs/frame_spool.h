@@ -18,7 +18,9 @@ class Store;
 
 class FrameSpool {
  public:
-  explicit FrameSpool(std::string run_id, std::size_t frames_per_chunk = kFramesPerChunk);
+  // `expected_frames` (0: unknown) sizes each chunk's buffer once, from its first frame.
+  explicit FrameSpool(std::string run_id, int64_t expected_frames = 0,
+                      std::size_t frames_per_chunk = kFramesPerChunk);
 
   // Adds the next frame (in seq order); stores the chunk when it is full. A store failure
   // does not throw: it is kept in error() and later frames are dropped (the run should stop).
@@ -34,6 +36,7 @@ class FrameSpool {
  private:
   const std::string run_id_;
   const std::size_t frames_per_chunk_;
+  int64_t frames_left_;  // expected and not yet added
   FrameChunkBuilder pending_;
   int64_t next_chunk_ = 0;
   std::string error_;

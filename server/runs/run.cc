@@ -13,7 +13,7 @@ Run::Run(const v1::RunInfo& info, const RunConfig& config,
       config_(config),
       realtime_(info.spec().realtime()),
       info_(info),
-      spool_(info.id()) {
+      spool_(info.id(), info.expected_frames()) {
   MBSTREAM_CHECK(model_ != nullptr);
 }
 
@@ -38,21 +38,26 @@ void Run::Attach(const std::shared_ptr<Subscription>& subscriber, bool send_star
     subscriber->Push({StreamEvent::Kind::kRunEnded, id_, nullptr});
     return;
   }
-  if (latest_frame_) subscriber->Push({StreamEvent::Kind::kFrame, id_, latest_frame_});
+  if (published_ > 0) {
+    subscriber->Push(
+        {StreamEvent::Kind::kFrame, id_, std::make_shared<const v1::Frame>(latest_frame_)});
+  }
   subscribers_.push_back(subscriber);
 }
 
-void Run::Publish(std::shared_ptr<const v1::Frame> frame) {
+void Run::Publish(v1::Frame* frame) {
   std::lock_guard<std::mutex> lock(mutex_);
-  latest_frame_ = frame;
+  latest_frame_.Swap(frame);  // both on the heap: the fields' storage is exchanged, not copied
   info_.set_frames(++published_);
-  info_.set_t_s(frame->t_s());
+  info_.set_t_s(latest_frame_.t_s());
   // Detach subscribers whose streams have gone, then fan out.
   subscribers_.erase(std::remove_if(subscribers_.begin(), subscribers_.end(),
                                     [](const auto& s) { return s->cancelled(); }),
                      subscribers_.end());
+  if (subscribers_.empty()) return;
+  const auto shared = std::make_shared<const v1::Frame>(latest_frame_);
   for (const auto& subscriber : subscribers_) {
-    subscriber->Push({StreamEvent::Kind::kFrame, id_, frame});
+    subscriber->Push({StreamEvent::Kind::kFrame, id_, shared});
   }
 }
 
@@ -67,7 +72,8 @@ void Run::End() {
 
 std::shared_ptr<const v1::Frame> Run::latest_frame() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return latest_frame_;
+  if (published_ == 0) return nullptr;
+  return std::make_shared<const v1::Frame>(latest_frame_);
 }
 
 bool Run::ended() const {

@@ -41,14 +41,16 @@ class Run {
   // every later frame; a subscriber attached after the run ended gets only the run-ended
   // event. Attaching a subscriber that is attached already does nothing. Publish keeps the
   // frame as the latest (only that one: the result is in the store, see spool()) and pushes
-  // it to every subscriber.
+  // it to every subscriber. It swaps `frame` in: `frame` gets the previous latest frame's
+  // storage back, for the caller to fill again, so that a run nobody subscribes to allocates
+  // nothing per frame (subscribers get one shared copy of each frame).
   void Attach(const std::shared_ptr<Subscription>& subscriber, bool send_started);
-  void Publish(std::shared_ptr<const v1::Frame> frame);
+  void Publish(v1::Frame* frame);
   // Marks the run ended: pushes the run-ended event and detaches every subscriber.
   void End();
   bool ended() const;
   int subscriber_count() const;
-  std::shared_ptr<const v1::Frame> latest_frame() const;
+  std::shared_ptr<const v1::Frame> latest_frame() const;  // a copy; nullptr before the first
 
   // The frames on their way to the store; the run's worker thread only.
   FrameSpool& spool() { return spool_; }
@@ -76,9 +78,9 @@ class Run {
   mutable std::mutex mutex_;
   std::condition_variable probes_arrived_;
   v1::RunInfo info_;
-  std::shared_ptr<const v1::Frame> latest_frame_;  // what a late subscriber gets first
-  int64_t published_ = 0;                          // frames published
-  FrameSpool spool_;                               // the run's thread only, no lock
+  v1::Frame latest_frame_;  // what a late subscriber gets first (when published_ > 0)
+  int64_t published_ = 0;   // frames published
+  FrameSpool spool_;        // the run's thread only, no lock
   std::vector<std::shared_ptr<Subscription>> subscribers_;
   std::vector<v1::ProbeReport> probes_;
   int64_t probe_count_ = 0;

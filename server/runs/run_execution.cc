@@ -16,8 +16,10 @@ namespace mbstream {
 
 namespace {
 
-// Converts each frame to its wire form, paces it (realtime factor), publishes it and hands it
-// to the run's spool (which stores it with the next chunk). A store failure stops the run.
+// Converts each frame to its wire form, paces it (realtime factor), hands it to the run's
+// spool (which stores it with the next chunk) and publishes it. A store failure stops the
+// run. One message is filled again for every frame (Run::Publish hands its storage back):
+// no allocation per frame while nobody subscribes.
 class PublishingSink : public FrameSink {
  public:
   PublishingSink(Run* run, Store* store, RunClock* clock)
@@ -32,12 +34,10 @@ class PublishingSink : public FrameSink {
         info.set_has_energy(result.has_energy);
       });
     }
-    auto message = std::make_shared<v1::Frame>();
-    FrameToProto(result, frame, message.get());
+    FrameToProto(result, frame, &message_);
     Pace(result.t[frame]);
-    std::shared_ptr<const v1::Frame> published = message;
-    run_->Publish(std::move(message));
-    run_->spool().Add(*published, *store_);
+    run_->spool().Add(message_, *store_);
+    run_->Publish(&message_);
     if (!run_->spool().error().empty()) run_->cancel = true;
   }
 
@@ -55,6 +55,7 @@ class PublishingSink : public FrameSink {
   Store* store_;
   RunClock* clock_;
   RunClock::TimePoint start_;
+  v1::Frame message_;  // the frame being converted; the previous one's storage, after the first
 };
 
 }  // namespace
@@ -70,16 +71,13 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
   {
     // One step under mutex_ with AttachFollow: each follower gets this run exactly once.
     std::lock_guard<std::mutex> lock(mutex_);
-    run->UpdateInfo([&](v1::RunInfo& info) {
-      info.set_state(v1::RUNNING);
-      info.set_started_unix_ms(NowUnixMs());
-    });
+    run->UpdateInfo([&](v1::RunInfo& info) { info.set_state(v1::RUNNING); });
     followers_.erase(std::remove_if(followers_.begin(), followers_.end(),
                                     [](const auto& f) { return f->cancelled(); }),
                      followers_.end());
     for (const auto& follower : followers_) run->Attach(follower, true);
   }
-  store_->PutRun(run->Info());
+  // Stored RUNNING already, by the claim (ClaimNext): the row is written again when it ends.
   spdlog::info("run {} started", run->id());
 
   PublishingSink sink(run.get(), store_, clock_);

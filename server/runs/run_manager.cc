@@ -319,8 +319,9 @@ v1::RunInfo RunManager::ResultInfo(const std::string& run_id) const {
 }
 
 std::optional<int64_t> RunManager::ResultFrames(const std::string& run_id, int64_t index,
-                                                std::vector<v1::Frame>& frames) const {
-  return store_->GetFrameChunk(run_id, index, frames);
+                                                std::string& data,
+                                                std::vector<std::string_view>& frames) const {
+  return store_->GetSerializedFrames(run_id, index, data, frames);
 }
 
 void RunManager::ReleaseMemory() const {

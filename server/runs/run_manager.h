@@ -16,6 +16,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -85,11 +86,12 @@ class RunManager {
 
   // The stored result of an ended run, read piece by piece (a long run is never in memory
   // at once). ResultInfo throws RequestError: kNotFound, or kFailedPrecondition while the
-  // run is queued or running. ResultFrames appends the frames of stored chunk `index` (or the
-  // next one) to `frames` and returns the index to ask for next, nullopt after the last.
+  // run is queued or running. ResultFrames reads stored chunk `index` (or the next one) into
+  // `data` and appends its frames' serialized bytes (views into `data`) to `frames`; it
+  // returns the index to ask for next, nullopt after the last (Store::GetSerializedFrames).
   v1::RunInfo ResultInfo(const std::string& run_id) const;
-  std::optional<int64_t> ResultFrames(const std::string& run_id, int64_t index,
-                                      std::vector<v1::Frame>& frames) const;
+  std::optional<int64_t> ResultFrames(const std::string& run_id, int64_t index, std::string& data,
+                                      std::vector<std::string_view>& frames) const;
   std::vector<v1::ProbeReport> ResultProbes(const std::string& run_id) const;
   // Replays (run_manager_replay.cc). Whether the run is queued or running now; a cursor over
   // an ended run's stored frames (`info` from ResultInfo); the replays' probe sets: a new

@@ -107,7 +107,8 @@ std::shared_ptr<Run> RunManager::ClaimNext() {
       std::lock_guard<std::mutex> lock(mutex_);
       active_[run->id()] = run;  // replaces a run of an earlier attempt still finishing
     }
-    run->UpdateInfo([&](v1::RunInfo& info) {
+    run->UpdateInfo([&](v1::RunInfo& info) {  // as the claim stored it
+      info.set_started_unix_ms(claimed->started_unix_ms());
       info.set_replica(claimed->replica());
       info.set_replica_address(claimed->replica_address());
       info.set_attempts(claimed->attempts());

@@ -1,5 +1,7 @@
 // SimulationService::GetResult: a stored result in chunks under the message size limit, read
-// from the store one frame chunk at a time (a long run is never in memory at once).
+// from the store one frame chunk at a time (a long run is never in memory at once). The
+// frames go out as stored, not parsed and serialized again (encoded_result_chunk.h).
+#include "server/service/encoded_result_chunk.h"
 #include "server/service/simulation_service.h"
 #include "server/service/status_from_exception.h"
 
@@ -15,39 +17,36 @@ grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
   size_t sent_bytes = 0;  // frames and probes, all messages
   const grpc::Status status = Admit(*context, "GetResult", [&]() -> grpc::Status {
     const std::string& run_id = request->run_id();
-    v1::ResultChunk chunk;
-    *chunk.mutable_info() = runs_->ResultInfo(run_id);
+    v1::ResultChunk head;
+    *head.mutable_info() = runs_->ResultInfo(run_id);
     // A replay's probe set is checked (NOT_FOUND) before anything is sent.
     std::vector<v1::ProbeReport> probes;
     if (!request->probe_set().empty()) probes = runs_->ResultProbeSet(run_id, request->probe_set());
     const grpc::Status gone(grpc::StatusCode::CANCELLED, "client gone");
-    if (!writer->Write(chunk)) return gone;
-    chunk.Clear();
-    size_t bytes = 0;
+    if (!writer->Write(head)) return gone;
+    EncodedResultChunk chunk;
     auto flush = [&] {
-      if (chunk.frames_size() == 0 && chunk.probes_size() == 0) return true;
-      const bool ok = !context->IsCancelled() && writer->Write(chunk);
+      if (chunk.empty()) return true;
+      const bool ok = !context->IsCancelled() && writer->Write(chunk.message());
+      sent_bytes += chunk.bytes();
       chunk.Clear();
-      sent_bytes += bytes;
-      bytes = 0;
       return ok;
     };
-    std::vector<v1::Frame> frames;  // one stored chunk at a time
+    std::string data;  // one stored chunk at a time
+    std::vector<std::string_view> frames;
     for (std::optional<int64_t> next = 0; next;) {
       frames.clear();
-      next = runs_->ResultFrames(run_id, *next, frames);
-      for (v1::Frame& frame : frames) {
-        bytes += frame.ByteSizeLong();
-        *chunk.add_frames() = std::move(frame);
-        if (bytes >= kChunkBytes && !flush()) return gone;
+      next = runs_->ResultFrames(run_id, *next, data, frames);
+      for (std::string_view frame : frames) {
+        chunk.AddFrame(frame);
+        if (chunk.bytes() >= kChunkBytes && !flush()) return gone;
       }
     }
-    std::vector<v1::Frame>().swap(frames);
+    std::string().swap(data);
     if (request->probe_set().empty()) probes = runs_->ResultProbes(run_id);
-    for (v1::ProbeReport& probe : probes) {
-      bytes += probe.ByteSizeLong();
-      *chunk.add_probes() = std::move(probe);
-      if (bytes >= kChunkBytes && !flush()) return gone;
+    for (const v1::ProbeReport& probe : probes) {
+      chunk.AddProbe(probe);
+      if (chunk.bytes() >= kChunkBytes && !flush()) return gone;
     }
     if (!flush()) return gone;
     return grpc::Status::OK;

@@ -51,6 +51,56 @@ EncodedFrameChunk FrameChunkBuilder::Take() {
   return chunk;
 }
 
+namespace {
+
+// Skips the fields of one serialized message up to the stream's limit (`coded` limited to
+// it). False when a tag, varint or length is malformed or runs past the limit; groups
+// (deprecated, never in a Frame) count as malformed.
+bool SkipFields(google::protobuf::io::CodedInputStream& coded) {
+  using google::protobuf::io::CodedInputStream;
+  while (coded.BytesUntilLimit() > 0) {
+    const uint32_t tag = coded.ReadTag();
+    if ((tag >> 3) == 0) return false;
+    uint64_t varint = 0;
+    uint32_t length = 0;
+    switch (tag & 7) {
+      case 0:  // varint
+        if (!coded.ReadVarint64(&varint)) return false;
+        break;
+      case 1:  // 64-bit
+        if (!coded.Skip(8)) return false;
+        break;
+      case 2:  // length-delimited
+        if (!coded.ReadVarint32(&length) || !coded.Skip(static_cast<int>(length))) return false;
+        break;
+      case 5:  // 32-bit
+        if (!coded.Skip(4)) return false;
+        break;
+      default:
+        return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+bool SplitFrameChunk(std::string_view data, std::vector<std::string_view>& out) {
+  if (data.size() > static_cast<std::size_t>(INT_MAX)) return false;
+  google::protobuf::io::CodedInputStream coded(reinterpret_cast<const uint8_t*>(data.data()),
+                                               static_cast<int>(data.size()));
+  while (static_cast<std::size_t>(coded.CurrentPosition()) < data.size()) {
+    uint32_t size = 0;
+    if (!coded.ReadVarint32(&size) || size > data.size() - coded.CurrentPosition()) return false;
+    const int begin = coded.CurrentPosition();
+    const auto limit = coded.PushLimit(static_cast<int>(size));
+    if (!SkipFields(coded)) return false;
+    coded.PopLimit(limit);
+    out.push_back(data.substr(static_cast<std::size_t>(begin), size));
+  }
+  return true;
+}
+
 bool DecodeFrameChunk(std::string_view data, std::vector<v1::Frame>& out) {
   if (data.size() > static_cast<std::size_t>(INT_MAX)) return false;
   google::protobuf::io::CodedInputStream coded(reinterpret_cast<const uint8_t*>(data.data()),

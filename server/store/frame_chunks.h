@@ -28,6 +28,7 @@ struct EncodedFrameChunk {
 class FrameChunkBuilder {
  public:
   void Add(const v1::Frame& frame);
+  void Reserve(std::size_t bytes) { chunk_.data.reserve(bytes); }
   int64_t frame_count() const { return chunk_.frame_count; }
   bool empty() const { return chunk_.frame_count == 0; }
   // The chunk built so far; the builder is empty afterwards.
@@ -40,6 +41,13 @@ class FrameChunkBuilder {
 // Splits `frames` (in seq order) into chunks of at most `frames_per_chunk` and serializes each.
 std::vector<EncodedFrameChunk> EncodeFrameChunks(const std::vector<v1::Frame>& frames,
                                                  std::size_t frames_per_chunk = kFramesPerChunk);
+
+// Appends the serialized frames of one chunk blob to `out`, each as a view of its bytes in
+// `data` (without the length prefix), after checking each frame's wire structure (field tags,
+// lengths and the blob's framing) without parsing the values: what is sent on as stored
+// (GetResult) is not parsed and serialized again. Returns false when the blob is corrupt; the
+// frames before the damage are then already appended.
+bool SplitFrameChunk(std::string_view data, std::vector<std::string_view>& out);
 
 // Appends the frames of one chunk blob to `out`. Returns false when the blob is corrupt (not a
 // sequence of delimited frames); the frames before the damage are then already appended.

@@ -113,27 +113,17 @@ void PostgresStore::FinishRun(const v1::RunInfo& info, const std::vector<v1::Fra
   });
 }
 
-std::optional<int64_t> PostgresStore::GetFrameChunk(const std::string& run_id, int64_t index,
-                                                    std::vector<v1::Frame>& frames) const {
-  // Copy the chunk's blob in the transaction, parse it after.
-  pqxx::binarystring blob(nullptr, 0);
-  const std::optional<int64_t> found =
-      impl_->Transact("read frames of run " + run_id, [&](pqxx::work& tx) {
-        std::optional<int64_t> chunk;
-        const pqxx::result rows = tx.exec_prepared("select_frame_chunk", run_id, index);
-        if (rows.empty()) return chunk;
-        chunk = rows[0][0].as<int64_t>();
-        blob = pqxx::binarystring(rows[0][1]);
-        return chunk;
-      });
-  if (!found) return std::nullopt;
-  const std::size_t before = frames.size();
-  if (!DecodeFrameChunk(std::string_view(blob.get(), blob.size()), frames)) {
-    throw InternalError("store " + impl_->location + ": the stored frames of run " + run_id +
-                        " are corrupt (chunk " + std::to_string(*found) + " after its frame " +
-                        std::to_string(frames.size() - before) + " cannot be parsed)");
-  }
-  return *found + 1;
+std::optional<int64_t> PostgresStore::GetFrameChunkData(const std::string& run_id, int64_t index,
+                                                        std::string& data) const {
+  return impl_->Transact("read frames of run " + run_id, [&](pqxx::work& tx) {
+    std::optional<int64_t> next;
+    const pqxx::result rows = tx.exec_prepared("select_frame_chunk", run_id, index);
+    if (rows.empty()) return next;
+    const pqxx::binarystring blob(rows[0][1]);
+    data.assign(blob.get(), blob.size());
+    next = rows[0][0].as<int64_t>() + 1;
+    return next;
+  });
 }
 
 std::optional<int64_t> PostgresStore::FrameChunkHolding(const std::string& run_id,

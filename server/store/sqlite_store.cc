@@ -85,6 +85,14 @@ SqliteStore::Impl::Impl(SqliteConnection connection)
       select_runs(db, "SELECT info FROM runs ORDER BY created_unix_ms, ord", "list runs"),
       select_unfinished_runs(db, "SELECT info FROM runs WHERE state IN (?1, ?2) ORDER BY ord",
                              "list unfinished runs"),
+      select_oldest_queued_run(
+          db, "SELECT info FROM runs WHERE state = ?1 ORDER BY created_unix_ms, ord LIMIT 1",
+          "claim a queued run"),
+      select_run_lease(db, "SELECT 1 FROM runs WHERE id = ?1 AND state = ?2 AND lease_holder = ?3",
+                       "check run lease"),
+      update_run_lease(
+          db, "UPDATE runs SET lease_holder = ?2, lease_expires_unix_ms = ?3 WHERE id = ?1",
+          "write run lease"),
       delete_frame_chunks(db, "DELETE FROM frame_chunks WHERE run_id = ?1", "delete old frames"),
       delete_frame_chunks_after(db, "DELETE FROM frame_chunks WHERE run_id = ?1 AND chunk > ?2",
                                 "delete stale frames"),

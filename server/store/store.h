@@ -13,6 +13,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mbstream/v1/frame.pb.h"
@@ -78,11 +79,21 @@ class Store {
   // stored earlier for the run.
   virtual void FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& frames) = 0;
 
-  // Reads a run's frames one chunk at a time: the frames of the first stored chunk numbered
-  // `index` or later are appended to `frames`, and the number to ask for next is returned;
-  // nullopt when there is none. Each call holds the store's lock only to copy one chunk.
-  virtual std::optional<int64_t> GetFrameChunk(const std::string& run_id, int64_t index,
-                                               std::vector<v1::Frame>& frames) const = 0;
+  // Reads a run's frames one chunk at a time, as stored: `data` gets the blob of the first
+  // stored chunk numbered `index` or later (frame_chunks.h, unchecked), and the number to
+  // ask for next is returned; nullopt when there is none. Each call holds the store's lock
+  // only to copy one chunk.
+  virtual std::optional<int64_t> GetFrameChunkData(const std::string& run_id, int64_t index,
+                                                   std::string& data) const = 0;
+  // The same, parsed: the chunk's frames are appended to `frames`. Throws InternalError when
+  // the stored blob is corrupt.
+  std::optional<int64_t> GetFrameChunk(const std::string& run_id, int64_t index,
+                                       std::vector<v1::Frame>& frames) const;
+  // The same, not parsed: `frames` gets each frame's serialized bytes, views into `data`
+  // (SplitFrameChunk: their wire structure checked). Throws InternalError when corrupt.
+  std::optional<int64_t> GetSerializedFrames(const std::string& run_id, int64_t index,
+                                             std::string& data,
+                                             std::vector<std::string_view>& frames) const;
   std::vector<v1::Frame> GetFrames(const std::string& run_id) const;  // all, in seq order
 
   // Probe reports (stored as they arrive, batched by the caller; one transaction per call);

@@ -65,28 +65,16 @@ void SqliteStore::FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame
   transaction.Commit();
 }
 
-std::optional<int64_t> SqliteStore::GetFrameChunk(const std::string& run_id, int64_t index,
-                                                  std::vector<v1::Frame>& frames) const {
-  // Copy the chunk's blob under the lock, parse it after releasing it.
-  std::string blob;
-  int64_t found = 0;
-  {
-    std::lock_guard lock(impl_->mutex);
-    SqliteStatement& select = impl_->select_frame_chunk;
-    ResetOnExit reset(select);
-    select.BindText(1, run_id);
-    select.BindInt64(2, index);
-    if (!select.Step()) return std::nullopt;
-    found = select.ColumnInt64(0);
-    blob = std::string(select.ColumnBlob(1));
-  }
-  const std::size_t before = frames.size();
-  if (!DecodeFrameChunk(blob, frames)) {
-    throw InternalError("store " + impl_->db.path() + ": the stored frames of run " + run_id +
-                        " are corrupt (chunk " + std::to_string(found) + " after its frame " +
-                        std::to_string(frames.size() - before) + " cannot be parsed)");
-  }
-  return found + 1;
+std::optional<int64_t> SqliteStore::GetFrameChunkData(const std::string& run_id, int64_t index,
+                                                      std::string& data) const {
+  std::lock_guard lock(impl_->mutex);
+  SqliteStatement& select = impl_->select_frame_chunk;
+  ResetOnExit reset(select);
+  select.BindText(1, run_id);
+  select.BindInt64(2, index);
+  if (!select.Step()) return std::nullopt;
+  data.assign(select.ColumnBlob(1));
+  return select.ColumnInt64(0) + 1;
 }
 
 }  // namespace mbstream

@@ -32,6 +32,10 @@ struct SqliteStore::Impl {
   SqliteStatement select_run;
   SqliteStatement select_runs;
   SqliteStatement select_unfinished_runs;
+  // The run queue (store_queue.cc): prepared once, used for every run.
+  SqliteStatement select_oldest_queued_run;
+  SqliteStatement select_run_lease;
+  SqliteStatement update_run_lease;
 
   SqliteStatement delete_frame_chunks;
   SqliteStatement delete_frame_chunks_after;

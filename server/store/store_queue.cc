@@ -10,9 +10,7 @@ namespace {
 
 void SetLease(SqliteStore::Impl& impl, const std::string& run_id, const std::string* holder,
               int64_t expires_unix_ms) {
-  SqliteStatement update(
-      impl.db, "UPDATE runs SET lease_holder = ?2, lease_expires_unix_ms = ?3 WHERE id = ?1",
-      "write run lease");
+  SqliteStatement& update = impl.update_run_lease;
   ResetOnExit reset(update);
   update.BindText(1, run_id);
   if (holder != nullptr) update.BindText(2, *holder);
@@ -20,12 +18,11 @@ void SetLease(SqliteStore::Impl& impl, const std::string& run_id, const std::str
   update.Run();
 }
 
-// The infos of the rows `sql` selects (its first column), with `bind` applied first.
+// The infos of the rows `select` selects (its first column), with `bind` applied first.
 template <typename Bind>
-std::vector<v1::RunInfo> SelectRuns(SqliteStore::Impl& impl, const char* sql, const char* what,
-                                    Bind bind) {
+std::vector<v1::RunInfo> SelectRuns(SqliteStore::Impl& impl, SqliteStatement& select,
+                                    const char* what, Bind bind) {
   std::vector<v1::RunInfo> runs;
-  SqliteStatement select(impl.db, sql, what);
   ResetOnExit reset(select);
   bind(select);
   while (select.Step()) {
@@ -36,9 +33,7 @@ std::vector<v1::RunInfo> SelectRuns(SqliteStore::Impl& impl, const char* sql, co
 
 // Whether `holder` holds the lease of RUNNING run `run_id` (the caller holds the mutex).
 bool HoldsLease(SqliteStore::Impl& impl, const std::string& run_id, const std::string& holder) {
-  SqliteStatement select(impl.db,
-                         "SELECT 1 FROM runs WHERE id = ?1 AND state = ?2 AND lease_holder = ?3",
-                         "check run lease");
+  SqliteStatement& select = impl.select_run_lease;
   ResetOnExit reset(select);
   select.BindText(1, run_id);
   select.BindInt64(2, v1::RUNNING);
@@ -51,9 +46,9 @@ bool HoldsLease(SqliteStore::Impl& impl, const std::string& run_id, const std::s
 std::optional<v1::RunInfo> SqliteStore::ClaimQueuedRun(const RunLease& lease) {
   std::lock_guard lock(impl_->mutex);
   SqliteTransaction transaction(impl_->db, "claim a queued run");
-  std::vector<v1::RunInfo> oldest = SelectRuns(
-      *impl_, "SELECT info FROM runs WHERE state = ?1 ORDER BY created_unix_ms, ord LIMIT 1",
-      "claim a queued run", [](SqliteStatement& s) { s.BindInt64(1, v1::QUEUED); });
+  std::vector<v1::RunInfo> oldest =
+      SelectRuns(*impl_, impl_->select_oldest_queued_run, "claim a queued run",
+                 [](SqliteStatement& s) { s.BindInt64(1, v1::QUEUED); });
   if (oldest.empty()) return std::nullopt;
   v1::RunInfo& info = oldest.front();
   ApplyClaim(info, lease);
@@ -78,9 +73,12 @@ std::vector<v1::RunInfo> SqliteStore::ReapExpiredLeases(int64_t now_unix_ms,
                                                         const std::string& reaper) {
   std::lock_guard lock(impl_->mutex);
   SqliteTransaction transaction(impl_->db, "reap expired run leases");
-  std::vector<v1::RunInfo> expired = SelectRuns(
-      *impl_, "SELECT info FROM runs WHERE state = ?1 AND lease_expires_unix_ms < ?2 ORDER BY ord",
-      "reap expired run leases", [&](SqliteStatement& s) {
+  SqliteStatement select(
+      impl_->db,
+      "SELECT info FROM runs WHERE state = ?1 AND lease_expires_unix_ms < ?2 ORDER BY ord",
+      "reap expired run leases");
+  std::vector<v1::RunInfo> expired =
+      SelectRuns(*impl_, select, "reap expired run leases", [&](SqliteStatement& s) {
         s.BindInt64(1, v1::RUNNING);
         s.BindInt64(2, now_unix_ms);
       });
@@ -114,12 +112,13 @@ std::optional<v1::RunInfo> SqliteStore::EndQueuedRun(const std::string& run_id, 
                                                      int64_t now_unix_ms) {
   std::lock_guard lock(impl_->mutex);
   SqliteTransaction transaction(impl_->db, "end queued run " + run_id);
+  SqliteStatement select(impl_->db, "SELECT info FROM runs WHERE id = ?1 AND state = ?2",
+                         "end a queued run");
   std::vector<v1::RunInfo> queued =
-      SelectRuns(*impl_, "SELECT info FROM runs WHERE id = ?1 AND state = ?2", "end a queued run",
-                 [&](SqliteStatement& s) {
-                   s.BindText(1, run_id);
-                   s.BindInt64(2, v1::QUEUED);
-                 });
+      SelectRuns(*impl_, select, "end a queued run", [&](SqliteStatement& s) {
+        s.BindText(1, run_id);
+        s.BindInt64(2, v1::QUEUED);
+      });
   if (queued.empty()) return std::nullopt;
   v1::RunInfo& info = queued.front();
   info.set_state(state);

@@ -50,6 +50,56 @@ TEST(FrameChunksTest, TruncatedChunkIsReportedCorrupt) {
       std::string_view(chunks[0].data).substr(0, chunks[0].data.size() - 3), decoded));
 }
 
+// GetResult sends the stored bytes: each split frame is the frame's own serialization.
+TEST(FrameChunksTest, SplitGivesEachFrameAsSerialized) {
+  const std::vector<v1::Frame> frames = MakeFrames(10, 6);
+  const auto chunks = EncodeFrameChunks(frames, 4);
+  std::vector<std::string_view> split;
+  for (const auto& chunk : chunks) ASSERT_TRUE(SplitFrameChunk(chunk.data, split));
+  ASSERT_EQ(split.size(), frames.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    EXPECT_EQ(split[i], frames[i].SerializeAsString()) << "frame " << i;
+  }
+  EXPECT_TRUE(SplitFrameChunk("", split));
+  EXPECT_EQ(split.size(), frames.size());
+}
+
+TEST(FrameChunksTest, SplitReportsDamage) {
+  const std::string data = EncodeFrameChunks(MakeFrames(3, 2))[0].data;
+  const std::string_view whole(data);
+  std::vector<std::string_view> split;
+  EXPECT_FALSE(SplitFrameChunk(whole.substr(0, whole.size() - 3), split));  // truncated
+  EXPECT_EQ(split.size(), 2u);  // the frames before the damage
+  std::string bad_tag = data;
+  bad_tag[1] = 0x07;  // the first frame's first tag: field 0, wire type 7
+  split.clear();
+  EXPECT_FALSE(SplitFrameChunk(bad_tag, split));
+  EXPECT_TRUE(split.empty());
+  std::string long_field = data;
+  long_field[0] = static_cast<char>(long_field[0] - 1);  // the first frame ends inside a field
+  EXPECT_FALSE(SplitFrameChunk(long_field, split));
+}
+
+TEST_P(StoreFramesTest, SerializedFramesAsStored) {
+  auto store = Open();
+  const std::vector<v1::Frame> frames = MakeFrames(kFramesPerChunk + 7, 6);
+  store->FinishRun(MakeRun("r-1", v1::FINISHED, 1000), frames);
+  std::string data;
+  std::vector<std::string_view> split;
+  std::size_t checked = 0;
+  for (std::optional<int64_t> next = 0; next;) {
+    split.clear();
+    next = store->GetSerializedFrames("r-1", *next, data, split);
+    for (std::string_view bytes : split) {
+      ASSERT_LT(checked, frames.size());
+      EXPECT_EQ(bytes, frames[checked].SerializeAsString()) << "frame " << checked;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, frames.size());
+  EXPECT_FALSE(store->GetSerializedFrames("r-missing", 0, data, split).has_value());
+}
+
 TEST_P(StoreFramesTest, RoundTripAcrossSeveralChunks) {
   auto store = Open();
   const std::vector<v1::Frame> frames = MakeFrames(3 * kFramesPerChunk + 17, 6);
