@@ -64,7 +64,7 @@ wait_for "$out/server.log" "^listening on "
 address=$(grep -m1 "^listening on " "$out/server.log" | cut -d' ' -f3)
 
 echo "demo: starting the offscreen viewer (Xvfb) on $address"
-xvfb-run -a -s "-screen 0 1024x768x24" "$viewer" --server "$address" --follow \
+XVFB_SCREEN=1024x768x24 scripts/with-xvfb.sh "$viewer" --server "$address" --follow \
   --exit-after-runs 1 --offscreen --size 640x480 --record "$out/robot.ogv" \
   --snapshots "$out/snapshots" --snapshot-every 40 >"$out/viewer.log" 2>&1 &
 viewer_pid=$!
@@ -88,7 +88,7 @@ bdf=$("$cli" --server "$address" run irb1600 --spec models/irb1600/seed-servo.js
 # Euler's own error indicators may call its result untrusted (exit 4): that is the point.
 euler=$("$cli" --server "$address" run irb1600 --spec models/irb1600/seed-servo.json \
   --method euler --step 1e-4 --realtime 0 --watch --accept-untrusted --out "$out/compare/euler")
-xvfb-run -a -s "-screen 0 1024x768x24" "$viewer" --server "$address" --run "$bdf" \
+XVFB_SCREEN=1024x768x24 scripts/with-xvfb.sh "$viewer" --server "$address" --run "$bdf" \
   --compare "$euler" --speed "$realtime" --offscreen --size 640x480 \
   --record "$out/compare_bdf_euler.ogv" >"$out/compare_viewer.log" 2>&1
 grep "compare $bdf with ghost" "$out/compare_viewer.log"

@@ -41,7 +41,7 @@ class ReplayE2eTest : public ::testing::Test {
   // Starts a --follow viewer in the background that exits after one run; waits until it
   // is subscribed.
   void StartFollower(const fs::path& log) {
-    ASSERT_EQ(RunCommand("xvfb-run -a " + std::string(MBSTREAM_VIEWER) + " --server " +
+    ASSERT_EQ(RunCommand("scripts/with-xvfb.sh " + std::string(MBSTREAM_VIEWER) + " --server " +
                          server_->address() + " --offscreen --size 320x240 --follow " +
                          "--exit-after-runs 1 > " + log.string() + " 2>&1 &")
                   .exit_code,
@@ -50,7 +50,7 @@ class ReplayE2eTest : public ::testing::Test {
   }
   // Runs a viewer to its end; returns its output.
   CommandOutcome Viewer(const std::string& args) {
-    return RunCommand("xvfb-run -a " + std::string(MBSTREAM_VIEWER) + " --server " +
+    return RunCommand("scripts/with-xvfb.sh " + std::string(MBSTREAM_VIEWER) + " --server " +
                       server_->address() + " --offscreen --size 320x240 " + args);
   }
   std::string RunId(const CommandOutcome& run) {
@@ -212,7 +212,7 @@ TEST_F(ReplayE2eTest, ControlServiceStepsAndSeeksAPausedReplay) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::string run_id = RunId(run);
   const fs::path log = dir_ / "paused.log";
-  ASSERT_EQ(RunCommand("xvfb-run -a " + std::string(MBSTREAM_VIEWER) + " --server " +
+  ASSERT_EQ(RunCommand("scripts/with-xvfb.sh " + std::string(MBSTREAM_VIEWER) + " --server " +
                        server_->address() + " --offscreen --size 320x240 --run " + run_id +
                        " --paused --from-frame 100 --speed 0 --listen 127.0.0.1:0 > " +
                        log.string() + " 2>&1 &")

@@ -34,7 +34,7 @@ TEST(ViewerControlTest, StatusSnapshotAndLoadScene) {
   fs::create_directories(dir);
   ServerProcess server(MBSTREAM_SERVER, (dir / "data").string());
   const fs::path log = dir / "viewer.log";
-  ASSERT_EQ(RunCommand("xvfb-run -a " + std::string(MBSTREAM_VIEWER) + " --server " +
+  ASSERT_EQ(RunCommand("scripts/with-xvfb.sh " + std::string(MBSTREAM_VIEWER) + " --server " +
                        server.address() + " --follow --exit-after-runs 1 --offscreen --size " +
                        "320x240 --listen 127.0.0.1:0 > " + log.string() + " 2>&1 &")
                 .exit_code,

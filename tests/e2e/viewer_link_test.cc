@@ -31,7 +31,7 @@ class ViewerLinkTest : public ::testing::Test {
     return RunCommand(std::string(MBSTREAM_CLI) + " --server " + server_->address() + " " + args);
   }
   std::string Viewer(const std::string& args) {
-    return "xvfb-run -a " + std::string(MBSTREAM_VIEWER) + " --server " + server_->address() +
+    return "scripts/with-xvfb.sh " + std::string(MBSTREAM_VIEWER) + " --server " + server_->address() +
            " --offscreen --size 320x240 " + args;
   }
   fs::path dir_;
@@ -92,6 +92,34 @@ TEST_F(ViewerLinkTest, RunModeJoinsARunningRunAndAnswersFromThenOn) {
   ASSERT_FALSE(probes.empty());
   ExpectProbesMatchTcp(dir_ / "out", std::stoll(probes.front()[0]),
                        static_cast<int64_t>(tcp.size()) - 1);
+}
+
+// SIGTERM while frames are flowing: the viewer stops its stream and exits 0 (it used to abort
+// now and then, cancelling a stream context that was being destroyed).
+TEST_F(ViewerLinkTest, SigtermWhileFollowingARunExitsCleanly) {
+  const CommandOutcome started =
+      Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 1");
+  ASSERT_EQ(started.exit_code, 0) << started.output;
+  const std::string run = started.output.substr(0, started.output.find('\n'));
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    const fs::path log = dir_ / ("viewer-" + std::to_string(attempt) + ".log");
+    ASSERT_EQ(RunCommand("(" + Viewer("--follow") + "; echo \"viewer exit $?\") > " + log.string() +
+                         " 2>&1 &")
+                  .exit_code,
+              0);
+    ASSERT_TRUE(WaitForLineIn(log.string(), "answering with probe reports from frame"))
+        << ReadTextFile(log.string());
+    // The viewer itself, not with-xvfb.sh (whose command line starts with the shell).
+    ASSERT_EQ(RunCommand("pkill -TERM -f '^" + std::string(MBSTREAM_VIEWER) + " --server " +
+                         server_->address() + " '")
+                  .exit_code,
+              0);
+    const std::optional<std::string> exit = WaitForLineIn(log.string(), "viewer exit ");
+    ASSERT_TRUE(exit) << ReadTextFile(log.string());
+    EXPECT_EQ(*exit, "0") << ReadTextFile(log.string());
+    EXPECT_THAT(ReadTextFile(log.string()), HasSubstr("SIGTERM received"));
+  }
+  Cli("cancel " + run);
 }
 
 TEST_F(ViewerLinkTest, SceneThatDoesNotFitTheModelIsAnErrorNamingBoth) {

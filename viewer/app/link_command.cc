@@ -3,8 +3,11 @@
 #include <grpcpp/grpcpp.h>
 #include <spdlog/spdlog.h>
 
+#include <pthread.h>
+
 #include <csignal>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <thread>
 
@@ -20,12 +23,47 @@ namespace mbstream::viewer {
 
 namespace {
 
-std::atomic<SubscriberLink*> g_link{nullptr};
 constexpr double kGhostOpacity = 0.35;  // --compare: the ghost's opacity
 
-void OnSignal(int) {
-  if (SubscriberLink* link = g_link.load()) link->Stop();
-}
+// SIGINT and SIGTERM handled by a thread of their own (sigwait), as the server does: a signal
+// handler may not call into gRPC (cancelling a call takes its locks, and the signal may
+// interrupt a thread holding them: the viewer then aborted now and then on SIGTERM). Built
+// before any other thread starts, so that every thread inherits the blocked mask; SIGUSR2
+// (thread-directed, from the destructor) ends the waiter when the link ended by itself.
+class SignalStopper {
+ public:
+  SignalStopper() {
+    sigemptyset(&signals_);
+    sigaddset(&signals_, SIGINT);
+    sigaddset(&signals_, SIGTERM);
+    sigaddset(&signals_, SIGUSR2);
+    pthread_sigmask(SIG_BLOCK, &signals_, nullptr);
+  }
+  ~SignalStopper() { Finish(); }
+  SignalStopper(const SignalStopper&) = delete;
+  SignalStopper& operator=(const SignalStopper&) = delete;
+
+  // Calls `stop` (on the waiter thread) at the first SIGINT or SIGTERM.
+  void Start(std::function<void()> stop) {
+    waiter_ = std::thread([this, stop = std::move(stop)] {
+      int signal = 0;
+      if (sigwait(&signals_, &signal) == 0 && signal != SIGUSR2) {
+        spdlog::info("{} received: stopping", signal == SIGINT ? "SIGINT" : "SIGTERM");
+        stop();
+      }
+    });
+  }
+  // Ends the waiter (once this returns, `stop` is not called any more).
+  void Finish() {
+    if (!waiter_.joinable()) return;
+    pthread_kill(waiter_.native_handle(), SIGUSR2);  // harmless if it already returned
+    waiter_.join();
+  }
+
+ private:
+  sigset_t signals_;
+  std::thread waiter_;
+};
 
 bool HasDisplay() {
   const char* display = std::getenv("DISPLAY");
@@ -40,6 +78,7 @@ int RunLink(const LinkCommandOptions& options) {
                  "xvfb-run -a mbstream-viewer --server ADDR --follow --offscreen\n";
     return 2;
   }
+  SignalStopper signals;  // first: before any thread (gRPC's, VTK's, ours) starts
   RunSceneSource scenes;
   scenes.asset_root =
       std::filesystem::temp_directory_path() / ("mbstream-viewer-" + std::to_string(getpid()));
@@ -90,9 +129,7 @@ int RunLink(const LinkCommandOptions& options) {
     std::cout << "control service listening on " << address << std::endl;
   }
 
-  g_link = &link;
-  std::signal(SIGINT, OnSignal);
-  std::signal(SIGTERM, OnSignal);
+  signals.Start([&link] { link.Stop(); });
   std::atomic<bool> stop{false};
   int exit_code = 0;
   std::thread network([&] {
@@ -106,7 +143,7 @@ int RunLink(const LinkCommandOptions& options) {
   }
   RunRenderLoop(&slot, &status, render, stop);
   network.join();
-  g_link = nullptr;
+  signals.Finish();  // before `link` goes
   if (control_server) control_server->Shutdown();
   std::error_code ignored;
   std::filesystem::remove_all(

@@ -56,7 +56,8 @@ SubscriberLink::SubscriberLink(LinkOptions options, RunSceneSource scenes, Scene
 
 void SubscriberLink::Stop() {
   stop_ = true;
-  if (auto* context = static_cast<grpc::ClientContext*>(context_.load())) context->TryCancel();
+  std::lock_guard<std::mutex> lock(context_mutex_);
+  if (context_) static_cast<grpc::ClientContext*>(context_)->TryCancel();
 }
 
 bool SubscriberLink::SendControl(const v1::ReplayControl& control) {
@@ -114,12 +115,18 @@ bool SubscriberLink::Write(const v1::SubscribeRequest& request) {
 SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
   auto stub = v1::Simulation::NewStub(net::MakeChannel(options_.server, options_.security));
   grpc::ClientContext context;
-  context_ = &context;
-  struct ClearContext {
-    std::atomic<void*>* slot;
-    ~ClearContext() { *slot = nullptr; }
-  } clear{&context_};
-  if (stop_) return StreamEnd::kDone;
+  {
+    std::lock_guard<std::mutex> lock(context_mutex_);
+    if (stop_) return StreamEnd::kDone;  // Stop() came first: it cancels no later stream
+    context_ = &context;
+  }
+  struct ClearContext {  // before `context` goes (declared after it)
+    SubscriberLink* link;
+    ~ClearContext() {
+      std::lock_guard<std::mutex> lock(link->context_mutex_);
+      link->context_ = nullptr;
+    }
+  } clear{this};
   auto stream = stub->Subscribe(&context);
   v1::SubscribeRequest start;
   if (options_.follow) {

@@ -73,8 +73,11 @@ class SubscriberLink {
   SceneSlot* slot_;
   LinkStatus* status_;
   std::atomic<bool> stop_{false};
-  std::atomic<void*> context_{nullptr};  // grpc::ClientContext of the open stream
-  std::mutex write_mutex_;               // one writer at a time on the open stream
+  // grpc::ClientContext of the open stream, null when none. Guarded by context_mutex_, so that
+  // Stop() never cancels a context being destroyed (it did, and gRPC aborted).
+  std::mutex context_mutex_;
+  void* context_ = nullptr;
+  std::mutex write_mutex_;  // one writer at a time on the open stream
   // grpc::ClientReaderWriter of the open stream, guarded by write_mutex_; null when none.
   void* writer_ = nullptr;
 };

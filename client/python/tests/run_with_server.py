@@ -7,8 +7,8 @@
 Starts PATH --listen 127.0.0.1:0 --data <a temporary folder>, waits for its
 `listening on ADDR` line, runs CMD with MBSTREAM_SERVER=ADDR (and `--server ADDR`
 appended when CMD is an example script), then stops the server with SIGINT (at once, without
-draining) and removes the folder. With --viewer-binary, an offscreen viewer (xvfb-run) follows
-the server's runs while CMD runs. Exits with CMD's exit code, or 1 when the server fails to start or does not stop
+draining) and removes the folder. With --viewer-binary, an offscreen viewer
+(scripts/with-xvfb.sh) follows the server's runs while CMD runs. Exits with CMD's exit code, or 1 when the server fails to start or does not stop
 cleanly.
 """
 import argparse
@@ -19,6 +19,10 @@ import sys
 import tempfile
 import threading
 import time
+
+# A private Xvfb per viewer, its display number picked by Xvfb itself (race-free).
+WITH_XVFB = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                         "scripts", "with-xvfb.sh")
 
 START_TIMEOUT_S = 30
 STOP_TIMEOUT_S = 20
@@ -51,9 +55,9 @@ def start_server(binary, data_dir, extra_args):
 
 
 def start_viewer(binary, address):
-    command = ["xvfb-run", "-a", binary, "--server", address, "--follow", "--offscreen",
+    command = [WITH_XVFB, binary, "--server", address, "--follow", "--offscreen",
                "--size", "320x240", "--no-hud"]
-    # Its own process group: SIGTERM then reaches the viewer, not only xvfb-run.
+    # Its own process group: SIGTERM then reaches the viewer, not only with-xvfb.sh.
     viewer = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                               text=True, start_new_session=True)
     subscribed = threading.Event()
@@ -73,7 +77,7 @@ def start_viewer(binary, address):
 
 
 def stop_viewer(viewer):
-    """SIGTERM to the viewer's process group (xvfb-run, Xvfb and the viewer)."""
+    """SIGTERM to the viewer's process group (with-xvfb.sh, Xvfb and the viewer)."""
     try:
         os.killpg(viewer.pid, signal.SIGTERM)
         viewer.wait(STOP_TIMEOUT_S)
