@@ -104,6 +104,22 @@ TEST_P(AxisKernelsTest, ForwardAndHybridDynamicsMatchTheGeneralPath) {
   }
 }
 
+TEST_P(AxisKernelsTest, RotorInertiaMatchesTheGeneralPath) {
+  // The shipped URDFs have none: give every joint some (kg*m^2 or kg).
+  Model model = model_;
+  for (int i = 0; i < model.num_dofs(); ++i) model.bodies[i].joint.armature = 0.01 * (i + 1);
+  const Model general = OnGeneralPath(model);
+  Data data(model), general_data(general);
+  std::mt19937 rng(13);
+  const int n = model.num_dofs();
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::VectorXd q = Random(rng, n, 20.0), qd = Random(rng, n, 3.0),
+                          x = Random(rng, n, 10.0);
+    ASSERT_TRUE(Close("tau", Rnea(model, data, q, qd, x), Rnea(general, general_data, q, qd, x)));
+    ASSERT_TRUE(Close("qdd", Aba(model, data, q, qd, x), Aba(general, general_data, q, qd, x)));
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(ShippedUrdfs, AxisKernelsTest,
                          ::testing::Values("irb1600/irb1600.urdf", "big/tree38.urdf",
                                            "big/chain100.urdf", "pendulum/single_pendulum.urdf",
