@@ -4,6 +4,7 @@
 #pragma once
 
 #include "common/check.h"
+#include "server/dynamics/axis_joint_steps.h"
 #include "server/kinematics/joint_inertia_transform.h"
 #include "server/kinematics/joint_spatial_transform.h"
 #include "server/kinematics/joint_transform.h"
@@ -11,6 +12,81 @@
 #include "server/model/model.h"
 
 namespace mbstream::aba_passes {
+
+// The three passes for a revolute joint about coordinate axis K with an unrotated origin, in
+// scalars (axis_joint_steps.h): S = e_K, and c = v x (S qd) is zero in components K and 3 + K.
+
+template <int K>
+void ForwardPassAboutAxis(const Body& body, int i, double q, double qd, Data& data) {
+  using namespace axis_joint;
+  const Vector3d& p = body.joint.X_PJ.p;
+  const AxisRotation r = WritePose<K>(q, p, &data.X_parent[i]);
+  double* v = data.v[i].data();
+  double* c = data.c[i].data();
+  for (int e = 0; e < 6; ++e) c[e] = 0.0;
+  if (body.parent == kBase) {
+    for (int e = 0; e < 6; ++e) v[e] = 0.0;
+  } else {
+    MotionToChild<K>(r, p.data(), data.v[body.parent].data(), v);
+    AddCrossJointRate<K>(v, qd, c);
+  }
+  v[K] += qd;
+  data.IA[i] = data.I[i];
+  double h[6];
+  ApplyInertia(body.inertia, v, h);
+  CrossForce<false>(v, h, data.pA[i].data());
+}
+
+template <int K>
+void BackwardPassAboutAxis(const Body& body, int i, double tau, Data& data) {
+  using namespace axis_joint;
+  Matrix6d& IA = data.IA[i];
+  const double* pA = data.pA[i].data();
+  double* U = data.U[i].data();
+  const double* ia = IA.data();  // column-major, symmetric
+  for (int e = 0; e < 6; ++e) U[e] = ia[6 * K + e];
+  const double D = U[K] + body.joint.armature;
+  const double u = tau - pA[K];
+  data.D[i] = D;
+  data.u[i] = u;
+  MBSTREAM_CHECK_MSG(D > 0.0, "articulated inertia of a joint is not positive");
+  if (body.parent == kBase) return;
+  const double inv_D = 1.0 / D;
+  // pa = pA + Ia c + U u / D with Ia = IA - U U^T / D, i.e. pA + IA c + U (u - U.c) / D
+  // (IA still whole here); c's components K and 3 + K are zero.
+  constexpr int i1 = (K + 1) % 3, i2 = (K + 2) % 3;
+  constexpr int cols[4] = {i1, i2, 3 + i1, 3 + i2};
+  const double* c = data.c[i].data();
+  const double x =
+      (u - (U[i1] * c[i1] + U[i2] * c[i2] + U[3 + i1] * c[3 + i1] + U[3 + i2] * c[3 + i2])) * inv_D;
+  double pa[6];
+  for (int e = 0; e < 6; ++e) {
+    double IAc = 0.0;
+    for (int col : cols) IAc += ia[6 * col + e] * c[col];
+    pa[e] = (pA[e] + U[e] * x) + IAc;
+  }
+  const Pose& X = data.X_parent[i];
+  AddProjectedInertiaAcross<K>(X, IA, data.U[i], inv_D, &data.IA[body.parent]);
+  AddForceToParent<K>(RotationOf<K>(X), X.p.data(), pa, data.pA[body.parent].data());
+}
+
+template <int K>
+void AccelerationPassAboutAxis(const Vector6d& a_parent, int i, Data& data) {
+  using namespace axis_joint;
+  const Pose& X = data.X_parent[i];
+  double* a = data.a[i].data();
+  const double* c = data.c[i].data();
+  const double* U = data.U[i].data();
+  MotionToChild<K>(RotationOf<K>(X), X.p.data(), a_parent.data(), a);
+  double Ua = 0.0;
+  for (int e = 0; e < 6; ++e) {
+    a[e] += c[e];
+    Ua += U[e] * a[e];
+  }
+  const double qdd = (data.u[i] - Ua) / data.D[i];
+  data.qdd(i) = qdd;
+  a[K] += qdd;
+}
 
 // The three passes' work for body i, specialised on its joint's Shape (see
 // joint_spatial_transform.h). S_index >= 0 (S a coordinate unit vector) reads IA S as a
@@ -20,6 +96,10 @@ namespace mbstream::aba_passes {
 // articulated inertia and bias force initialised to the body's own.
 template <int Shape>
 void ForwardPass(const Body& body, int i, double q, double qd, Data& data) {
+  if constexpr (Shape >= 0) {
+    ForwardPassAboutAxis<Shape>(body, i, q, qd, data);
+    return;
+  }
   JointTransformOfShape<Shape>(body.joint, q, &data.X_parent[i]);
   const Vector6d vJ = data.S[i] * qd;
   if (body.parent == kBase) {
@@ -37,6 +117,10 @@ void ForwardPass(const Body& body, int i, double q, double qd, Data& data) {
 // bias force added to its parent's.
 template <int Shape>
 void BackwardPass(const Body& body, int i, double tau, Data& data) {
+  if constexpr (Shape >= 0) {
+    BackwardPassAboutAxis<Shape>(body, i, tau, data);
+    return;
+  }
   const int k = data.S_index[i];
   Matrix6d& IA = data.IA[i];
   if (k >= 0) {
@@ -63,6 +147,10 @@ void BackwardPass(const Body& body, int i, double tau, Data& data) {
 // Pass 3 (base to tips): the joint's acceleration and the body's.
 template <int Shape>
 void AccelerationPass(const Vector6d& a_parent, int i, Data& data) {
+  if constexpr (Shape >= 0) {
+    AccelerationPassAboutAxis<Shape>(a_parent, i, data);
+    return;
+  }
   Vector6d& a = data.a[i];
   a = MotionToChildAcross<Shape>(data.X_parent[i], a_parent) + data.c[i];
   data.qdd(i) = (data.u[i] - data.U[i].dot(a)) / data.D[i];

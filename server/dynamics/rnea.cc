@@ -1,6 +1,7 @@
 #include "server/dynamics/rnea.h"
 
 #include "common/check.h"
+#include "server/dynamics/axis_joint_steps.h"
 #include "server/kinematics/joint_spatial_transform.h"
 #include "server/kinematics/joint_transform.h"
 
@@ -28,6 +29,35 @@ void ForwardPass(const Body& body, int i, double q, double qd, double qdd, const
   data.f[i] = inertia.Apply(data.a[i]) + CrossForce(data.v[i], inertia.Apply(data.v[i]));
 }
 
+// The same for a revolute joint about coordinate axis K with an unrotated origin, in scalars
+// (axis_joint_steps.h).
+template <int K>
+void ForwardPassAboutAxis(const Body& body, int i, double q, double qd, double qdd,
+                          const Vector6d& a_base, Data& data) {
+  using namespace axis_joint;
+  const Vector3d& p = body.joint.X_PJ.p;
+  const AxisRotation r = WritePose<K>(q, p, &data.X_parent[i]);
+  double* v = data.v[i].data();
+  double* a = data.a[i].data();
+  if (body.parent == kBase) {
+    for (int e = 0; e < 6; ++e) v[e] = 0.0;
+    v[K] = qd;
+    MotionToChild<K>(r, p.data(), a_base.data(), a);
+    a[K] += qdd;
+  } else {
+    MotionToChild<K>(r, p.data(), data.v[body.parent].data(), v);
+    v[K] += qd;
+    MotionToChild<K>(r, p.data(), data.a[body.parent].data(), a);
+    a[K] += qdd;
+    AddCrossJointRate<K>(v, qd, a);
+  }
+  double h[6];
+  double* f = data.f[i].data();
+  ApplyInertia(body.inertia, a, f);
+  ApplyInertia(body.inertia, v, h);
+  CrossForce<true>(v, h, f);
+}
+
 }  // namespace
 
 const Eigen::VectorXd& Rnea(const Model& model, Data& data, ConstVectorRef q, ConstVectorRef qd,
@@ -39,17 +69,30 @@ const Eigen::VectorXd& Rnea(const Model& model, Data& data, ConstVectorRef q, Co
   for (int i = 0; i < n; ++i) {
     const Body& body = model.bodies[i];
     DispatchJointShape(body.joint, [&](auto shape) {
-      ForwardPass<shape()>(body, i, q(i), qd(i), qdd(i), a_base, data);
+      if constexpr (shape() >= 0) {
+        ForwardPassAboutAxis<shape()>(body, i, q(i), qd(i), qdd(i), a_base, data);
+      } else {
+        ForwardPass<shape()>(body, i, q(i), qd(i), qdd(i), a_base, data);
+      }
     });
   }
   for (int i = n - 1; i >= 0; --i) {
     const Body& body = model.bodies[i];
-    data.tau(i) = data.S[i].dot(data.f[i]) + body.joint.armature * qdd(i);
-    if (body.parent != kBase) {
-      DispatchJointShape(body.joint, [&](auto shape) {
-        data.f[body.parent] += ForceToParentAcross<shape()>(data.X_parent[i], data.f[i]);
-      });
-    }
+    DispatchJointShape(body.joint, [&](auto shape) {
+      if constexpr (shape() >= 0) {
+        data.tau(i) = data.f[i](shape()) + body.joint.armature * qdd(i);
+        if (body.parent != kBase) {
+          axis_joint::AddForceToParent<shape()>(axis_joint::RotationOf<shape()>(data.X_parent[i]),
+                                                body.joint.X_PJ.p.data(), data.f[i].data(),
+                                                data.f[body.parent].data());
+        }
+      } else {
+        data.tau(i) = data.S[i].dot(data.f[i]) + body.joint.armature * qdd(i);
+        if (body.parent != kBase) {
+          data.f[body.parent] += ForceToParentAcross<shape()>(data.X_parent[i], data.f[i]);
+        }
+      }
+    });
   }
   return data.tau;
 }

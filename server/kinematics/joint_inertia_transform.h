@@ -37,7 +37,7 @@ inline void RotateAboutCoordinateAxis(double c, double s, Matrix3d& M) {
 // inertia or an articulated one): only their upper triangles are read and computed. With
 // kProject, I_B - U U^T / D (inv_D = 1 / D) is moved instead, without forming it: the
 // articulated-body algorithm's projected inertia.
-template <int K, bool kProject = false>
+template <int K, bool kProject = false, bool kShift = true>
 inline void AddInertiaAcrossCoordinateJoint(double c, double s, const Vector3d& p,
                                             const Matrix6d& I_B, Matrix6d* I_A,
                                             const Vector6d* U = nullptr, double inv_D = 0.0) {
@@ -86,6 +86,27 @@ inline void AddInertiaAcrossCoordinateJoint(double c, double s, const Vector3d& 
     }
     RotateAboutCoordinateAxis<K>(c, s, B);
   }
+  if constexpr (!kShift) {
+    // p = 0 (the joint's origin is its parent's): the rotated blocks are the result.
+    Matrix6d& out = *I_A;
+#pragma GCC unroll 8
+    for (int r = 0; r < 3; ++r) {
+#pragma GCC unroll 8
+      for (int q = 0; q < 3; ++q) {
+        if (q >= r) {
+          out(r, q) += a[r][q];
+          out(3 + r, 3 + q) += cc[r][q];
+          if (q != r) {
+            out(q, r) += a[r][q];
+            out(3 + q, 3 + r) += cc[r][q];
+          }
+        }
+        out(r, 3 + q) += B(r, q);
+        out(3 + q, r) += B(r, q);
+      }
+    }
+    return;
+  }
   // Shift the reference point from Bo to Ao by p (see AddInertiaToParent):
   //   TL += A + T + T^T + W, TR += B + Q, BR += C, with
   //   T = [p]x B^T, Q = [p]x C, W = [p]x C [p]x^T = Q [p]x^T.
@@ -133,7 +154,8 @@ inline void AddInertiaAcrossCoordinateJoint(double c, double s, const Vector3d& 
 }
 
 // AddInertiaAcrossCoordinateJoint<K, kProject> for a joint of Shape >= kTranslatingJoint,
-// its (cos, sin) read from X_AB.R (see CoordinateRotation in joint_transform.h).
+// its (cos, sin) read from X_AB.R (see CoordinateRotation in joint_transform.h). A joint whose
+// origin is its parent's (p = 0, e.g. the IRB 1600's wrist) skips the shift: the same values.
 template <int Shape, bool kProject>
 inline void AddInertiaAcrossShape(const Pose& X_AB, const Matrix6d& I_B, Matrix6d* I_A,
                                   const Vector6d* U = nullptr, double inv_D = 0.0) {
@@ -141,8 +163,12 @@ inline void AddInertiaAcrossShape(const Pose& X_AB, const Matrix6d& I_B, Matrix6
     AddInertiaAcrossCoordinateJoint<-1, kProject>(1.0, 0.0, X_AB.p, I_B, I_A, U, inv_D);
   } else {
     constexpr int i = (Shape + 1) % 3, j = (Shape + 2) % 3;
-    AddInertiaAcrossCoordinateJoint<Shape, kProject>(X_AB.R(i, i), X_AB.R(j, i), X_AB.p, I_B, I_A,
-                                                     U, inv_D);
+    const double c = X_AB.R(i, i), s = X_AB.R(j, i);
+    if (X_AB.p.x() == 0.0 && X_AB.p.y() == 0.0 && X_AB.p.z() == 0.0) {
+      AddInertiaAcrossCoordinateJoint<Shape, kProject, false>(c, s, X_AB.p, I_B, I_A, U, inv_D);
+    } else {
+      AddInertiaAcrossCoordinateJoint<Shape, kProject>(c, s, X_AB.p, I_B, I_A, U, inv_D);
+    }
   }
 }
 

@@ -4,10 +4,12 @@
 #include <atomic>
 #include <cstdlib>
 #include <new>
+#include <vector>
 
 #include "server/dynamics/aba.h"
 #include "server/dynamics/crba.h"
 #include "server/dynamics/energy.h"
+#include "server/dynamics/hybrid_dynamics.h"
 #include "server/dynamics/rnea.h"
 #include "server/kinematics/forward_kinematics.h"
 #include "server/kinematics/point_jacobian.h"
@@ -45,6 +47,8 @@ TEST(NoAllocationTest, PhysicsAlgorithmsDoNotAllocate) {
     const Eigen::VectorXd q = testing::RandomVector(rng, n, 1.0);
     const Eigen::VectorXd qd = testing::RandomVector(rng, n, 1.0);
     const Eigen::VectorXd tau = testing::RandomVector(rng, n, 1.0);
+    std::vector<unsigned char> prescribed(n, 0);
+    prescribed[n / 2] = 1;
     double sink = 0.0;
     const long before = testing::AllocationCount();
     ForwardKinematics(model, data, q);
@@ -54,6 +58,7 @@ TEST(NoAllocationTest, PhysicsAlgorithmsDoNotAllocate) {
     sink += GravityVector(model, data, q)(0);
     sink += Crba(model, data, q)(0, 0);
     sink += Aba(model, data, q, qd, tau)(0);
+    sink += HybridAba(model, data, q, qd, tau, tau, prescribed)(0);
     sink += KineticEnergy(model, data, q, qd);
     sink += PotentialEnergy(model, data);
     EXPECT_EQ(testing::AllocationCount() - before, 0) << model.name;
