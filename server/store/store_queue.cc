@@ -93,8 +93,10 @@ std::vector<v1::RunInfo> SqliteStore::ReapExpiredLeases(int64_t now_unix_ms,
 
 std::vector<v1::RunInfo> SqliteStore::ListRunningRuns() const {
   std::lock_guard lock(impl_->mutex);
-  return SelectRuns(*impl_, "SELECT info FROM runs WHERE state = ?1 ORDER BY ord",
-                    "list running runs", [](SqliteStatement& s) { s.BindInt64(1, v1::RUNNING); });
+  SqliteStatement select(impl_->db, "SELECT info FROM runs WHERE state = ?1 ORDER BY ord",
+                         "list running runs");
+  return SelectRuns(*impl_, select, "list running runs",
+                    [](SqliteStatement& s) { s.BindInt64(1, v1::RUNNING); });
 }
 
 bool SqliteStore::PutRunIfHeld(const v1::RunInfo& info, const std::string& holder) {
