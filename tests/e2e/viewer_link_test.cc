@@ -31,8 +31,8 @@ class ViewerLinkTest : public ::testing::Test {
     return RunCommand(std::string(MBSTREAM_CLI) + " --server " + server_->address() + " " + args);
   }
   std::string Viewer(const std::string& args) {
-    return "scripts/with-xvfb.sh " + std::string(MBSTREAM_VIEWER) + " --server " + server_->address() +
-           " --offscreen --size 320x240 " + args;
+    return "scripts/with-xvfb.sh " + std::string(MBSTREAM_VIEWER) + " --server " +
+           server_->address() + " --offscreen --size 320x240 " + args;
   }
   fs::path dir_;
   std::unique_ptr<ServerProcess> server_;
