@@ -55,6 +55,18 @@ namespace mbstream::testing {
 bool CountsCAllocations() { return true; }
 }  // namespace mbstream::testing
 
+#elif defined(MBSTREAM_THREAD_SANITIZED)
+// ThreadSanitizer's runtime defines operator new (in a static archive that is linked whole, so
+// a replacement collides with it) and owns malloc. It calls this hook after every allocation
+// it makes for the program, C or C++, from any thread.
+#include <sanitizer/allocator_interface.h>
+
+extern "C" void __sanitizer_malloc_hook(const volatile void*, size_t) { Count(); }
+
+namespace mbstream::testing {
+bool CountsCAllocations() { return true; }
+}  // namespace mbstream::testing
+
 #else  // MBSTREAM_SANITIZED: count C++ allocations through a replaced operator new.
 
 namespace {
@@ -117,7 +129,7 @@ namespace mbstream::testing {
 bool CountsCAllocations() { return false; }
 }  // namespace mbstream::testing
 
-#endif  // MBSTREAM_SANITIZED
+#endif  // MBSTREAM_SANITIZED, MBSTREAM_THREAD_SANITIZED
 
 namespace mbstream::testing {
 long AllocationCount() { return g_allocations.load(std::memory_order_relaxed); }

@@ -6,7 +6,8 @@
 // operator new (which calls malloc) and C libraries such as SUNDIALS are both seen. In a
 // sanitizer build (tests/common/sanitized_build.h) malloc belongs to the sanitizer and cannot
 // be replaced: there the global operator new is replaced instead and C allocations are not
-// counted (CountsCAllocations() is false; a test that needs them skips itself).
+// counted (CountsCAllocations() is false; a test that needs them skips itself). ThreadSanitizer
+// defines operator new itself: there the sanitizers' allocation hook counts every allocation.
 #pragma once
 
 namespace mbstream::testing {

@@ -5,6 +5,17 @@
 // out first (steps or CPU seconds) must choose its budgets with this in mind.
 #pragma once
 
+// MBSTREAM_THREAD_SANITIZED: a ThreadSanitizer build in particular (its runtime defines every
+// form of operator new itself, so tests/common/allocation_counter.cc counts through the
+// sanitizers' allocation hook there instead of replacing operator new).
+#if defined(__SANITIZE_THREAD__)
+#define MBSTREAM_THREAD_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define MBSTREAM_THREAD_SANITIZED 1
+#endif
+#endif
+
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 #define MBSTREAM_SANITIZED 1
 #elif defined(__has_feature)
