@@ -29,7 +29,7 @@ void ClusterFollow::Stop() {
   if (thread_.joinable()) thread_.join();
 }
 
-void ClusterFollow::Attach() {
+std::optional<v1::RunInfo> ClusterFollow::Attach() {
   bool first = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -37,11 +37,12 @@ void ClusterFollow::Attach() {
     active_ = true;
     ++attaches_;
   }
-  if (first) Look(false);
+  std::optional<v1::RunInfo> newest = Look(false, first);
   wake_.notify_all();
+  return newest;
 }
 
-bool ClusterFollow::Look(bool announce_new) {
+std::optional<v1::RunInfo> ClusterFollow::Look(bool announce_new, bool note_seen) {
   std::vector<v1::RunInfo> running;
   try {
     running = store_->ListRunningRuns();
@@ -52,24 +53,28 @@ bool ClusterFollow::Look(bool announce_new) {
                    replica_id_, error.what());
     }
     store_failed_ = true;
-    return false;
+    return std::nullopt;
   }
   std::set<std::string> now;
   std::vector<const v1::RunInfo*> fresh;
+  const v1::RunInfo* newest = nullptr;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     store_failed_ = false;
     for (const v1::RunInfo& info : running) {
       std::string key = info.id() + "/" + std::to_string(info.attempts());
-      if (announce_new && info.replica() != replica_id_ && !seen_.count(key)) {
-        fresh.push_back(&info);
+      const bool elsewhere = info.replica() != replica_id_;
+      if (elsewhere && (newest == nullptr || info.started_unix_ms() > newest->started_unix_ms())) {
+        newest = &info;
       }
+      if (announce_new && elsewhere && !seen_.count(key)) fresh.push_back(&info);
       now.insert(std::move(key));
     }
-    seen_.swap(now);
+    if (note_seen) seen_.swap(now);
   }
   for (const v1::RunInfo* info : fresh) announce_(*info);
-  return true;
+  if (newest == nullptr) return std::nullopt;
+  return *newest;
 }
 
 void ClusterFollow::Loop() {
@@ -83,7 +88,7 @@ void ClusterFollow::Loop() {
     const uint64_t attaches = attaches_;
     lock.unlock();
     const bool wanted = wanted_();
-    if (wanted) Look(true);
+    if (wanted) Look(true, true);
     lock.lock();
     // No follower: the next one notes the running runs again (unless one attached meanwhile).
     if (!wanted && attaches == attaches_) active_ = false;

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 #include <thread>
@@ -28,16 +29,19 @@ class ClusterFollow {
                 std::function<bool()> wanted, std::function<void(const v1::RunInfo&)> announce);
   ~ClusterFollow();  // Stop()
 
-  // A follower attaches: when none was before, the runs running now are noted as seen (a
-  // follower sees runs claimed from now on) before this returns. Reads the store then.
-  void Attach();
+  // A follower attaches: reads the store's running runs; when no follower was attached
+  // before, notes them as seen (runs claimed from now on are announced). Returns the newest
+  // run running on another replica now (none when the store failed), so that a follower
+  // attached during a run sees that run as it would a run of its own replica.
+  std::optional<v1::RunInfo> Attach();
   void Stop();  // joins the thread; idempotent
 
  private:
   void Loop();
   // The runs running now, by "id/attempt"; announces those of other replicas not seen yet
-  // when `announce_new`. False when the store failed (logged once until it answers again).
-  bool Look(bool announce_new);
+  // when `announce_new`; notes them as seen when `note_seen`. Returns the newest one of
+  // another replica; none when the store failed (logged once until it answers again).
+  std::optional<v1::RunInfo> Look(bool announce_new, bool note_seen);
 
   Store* const store_;
   const std::string replica_id_;

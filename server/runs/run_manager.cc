@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <ctime>
+#include <optional>
 #include <random>
 
 #include "common/check.h"
@@ -384,7 +385,7 @@ void RunManager::AttachRun(const std::shared_ptr<Subscription>& subscriber,
   subscriber->Push({StreamEvent::Kind::kRunEnded, run_id, nullptr});
 }
 
-void RunManager::AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber) {
+bool RunManager::AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber) {
   // Under mutex_, as the worker marks a run RUNNING and attaches the followers: the follower
   // sees each run exactly once, either here or from the worker.
   std::lock_guard<std::mutex> lock(mutex_);
@@ -399,11 +400,18 @@ void RunManager::AttachLocalFollow(const std::shared_ptr<Subscription>& subscrib
     }
   }
   if (running) running->Attach(subscriber, true);
+  return running != nullptr;
 }
 
 void RunManager::AttachFollow(const std::shared_ptr<Subscription>& subscriber) {
-  AttachLocalFollow(subscriber);
-  if (cluster_follow_) cluster_follow_->Attach();  // and the runs other replicas claim
+  const bool running_here = AttachLocalFollow(subscriber);
+  if (!cluster_follow_) return;
+  // The runs other replicas claim from now on; and, with none running here, the newest one
+  // running elsewhere now (the follow relays open each run once, whoever announces it).
+  const std::optional<v1::RunInfo> elsewhere = cluster_follow_->Attach();
+  if (!running_here && elsewhere) {
+    subscriber->Push({StreamEvent::Kind::kRemoteRun, elsewhere->id(), nullptr});
+  }
 }
 
 std::shared_ptr<Subscription> RunManager::SubscribeRun(const std::string& run_id,

@@ -119,8 +119,9 @@ class RunManager {
   // (RESOURCE_EXHAUSTED at the limit) until Unsubscribe, attached to something or not.
   // AttachRun: the run's events (started if `send_started`, latest frame, frames, ended); an
   // ended run gives started + ended at once; NOT_FOUND for an unknown run. AttachFollow:
-  // every run that starts from now on, and the one running now (the newest), each with
-  // started/frames/ended, each exactly once. SubscribeRun = NewSubscription + AttachRun.
+  // every run that starts from now on, and the one running now (the newest; with a shared
+  // store, the newest of the cluster's when none runs here), each with started/frames/ended,
+  // each exactly once. SubscribeRun = NewSubscription + AttachRun.
   std::shared_ptr<Subscription> NewSubscription();
   void AttachRun(const std::shared_ptr<Subscription>& subscriber, const std::string& run_id,
                  bool send_started);
@@ -203,7 +204,8 @@ class RunManager {
   Outcome Execute(const std::shared_ptr<Run>& run);
   void Finish(const std::shared_ptr<Run>& run, const Outcome& outcome);
   std::shared_ptr<Run> FindActive(const std::string& run_id) const;
-  void AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber);
+  // False when no run of this replica is running (the follower waits for the next).
+  bool AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber);
   // Counts one more subscriber (mutex_ held), or throws RESOURCE_EXHAUSTED at the limit.
   void CountSubscriber();
   // Throws UNAVAILABLE when stopping, RESOURCE_EXHAUSTED when the queue is full (mutex_ held).

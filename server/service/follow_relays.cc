@@ -37,6 +37,10 @@ void FollowRelays::Open(const std::string& run_id) {
       ++it;
     }
   }
+  // A run announced twice (at attach and by the cluster's next look) is relayed once.
+  for (const auto& open : relays_) {
+    if (open->run_id == run_id) return;
+  }
   auto relay = std::make_shared<Relay>();
   relay->run_id = run_id;
   Relay* raw = relay.get();

@@ -30,7 +30,8 @@ class FollowRelays {
                std::function<bool(const v1::SubscribeEvent&)> write, int max_batch);
   ~FollowRelays();  // Stop()
 
-  // A run announced by the run manager: relayed from its replica if it integrates elsewhere.
+  // A run announced by the run manager: relayed from its replica if it integrates elsewhere
+  // and no relay of it is open.
   void Open(const std::string& run_id);
   // A follower's message: true when it was a probe report of a relayed run (sent on to its
   // replica), false when it is for this replica.

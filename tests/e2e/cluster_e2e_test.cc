@@ -5,9 +5,10 @@
 // says NOT_SERVING while draining or without the store. Calls about a run integrating on
 // the other replica are proxied to it: WatchRun and Subscribe give the owner's frames bit for
 // bit, a probe answered through the proxy is stored, a follower sees the other replica's
-// runs, CancelRun reaches the owner, models are shared, and a killed owner ends the proxied
-// streams with UNAVAILABLE. Waits are for events (a state seen through GetRun, a health
-// status on a Watch stream, stream messages); deadlines are failure guards only.
+// runs (one attached during such a run sees it too), CancelRun reaches the owner, models are
+// shared, and a killed owner ends the proxied streams with UNAVAILABLE. Waits are for events (a
+// state seen through GetRun, a health status on a Watch stream, stream messages); deadlines are
+// failure guards only.
 #include <gmock/gmock.h>
 #include <grpcpp/grpcpp.h>
 
@@ -426,6 +427,28 @@ TEST_F(ClusterE2eTest, FollowOnOneReplicaSeesARunClaimedByTheOther) {
   EXPECT_EQ(got.frames.rbegin()->first, got.ended.frames() - 1);
   EXPECT_EQ(got.missed, 0);
   EXPECT_EQ(free_->WaitForEnd(run.id()).probe_reports(), got.probes_sent);
+}
+
+TEST_F(ClusterE2eTest, FollowAttachedDuringARunOfTheOtherReplicaSeesThatRun) {
+  StartBusyAndFree();  // long_run_ runs on busy_ before anyone follows; free_ runs nothing
+  bool cancelled = false;
+  const Received got =
+      SubscribeTo(free_->address(), long_run_, /*follow=*/true, /*answer=*/false, {},
+                  [&](const Received&) {  // a frame of it came through free_: end it on its owner
+                    if (cancelled) return;
+                    cancelled = true;
+                    grpc::ClientContext context;
+                    v1::CancelRunRequest request;
+                    request.set_run_id(long_run_);
+                    v1::RunInfo answer;
+                    EXPECT_TRUE(busy_->stub().CancelRun(&context, request, &answer).ok());
+                  });
+  EXPECT_TRUE(got.started);
+  EXPECT_FALSE(got.frames.empty());
+  EXPECT_EQ(got.missed, 0);
+  EXPECT_EQ(got.ended.id(), long_run_);
+  EXPECT_EQ(got.ended.state(), v1::CANCELLED) << got.ended.message();
+  EXPECT_EQ(got.ended.replica_address(), busy_->address());
 }
 
 TEST_F(ClusterE2eTest, CancelThroughTheOtherReplicaCancelsTheRunOnItsOwner) {
