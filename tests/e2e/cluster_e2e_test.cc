@@ -100,7 +100,8 @@ struct Received {
   int64_t missed = 0;
   int64_t probes_sent = 0;
   bool started = false;
-  v1::RunInfo ended;  // id empty until run_ended
+  v1::SubscribeEvent::RunStarted run_started;  // as received
+  v1::RunInfo ended;                           // id empty until run_ended
   std::string closing;
   grpc::Status status;
 };
@@ -114,7 +115,8 @@ void AddFrames(const v1::FrameBatch& batch, Received* got) {
 // Subscribes on `address` (run `run_id`, or follow when `follow`) and reads until run
 // `run_id` ended (then half-closes) or the stream ends. With `answer`, each frame of that run
 // is answered with one probe report. `on_subscribed` runs once the server said `subscribed`,
-// `on_frame` after each batch of the run.
+// `on_frame` after each batch of the run. `run_id` is read as events come (`on_subscribed` may
+// set it: a follower subscribes before the run exists).
 Received SubscribeTo(const std::string& address, const std::string& run_id, bool follow,
                      bool answer, const std::function<void()>& on_subscribed = {},
                      const std::function<void(const Received&)>& on_frame = {}) {
@@ -138,7 +140,10 @@ Received SubscribeTo(const std::string& address, const std::string& run_id, bool
       got.closing = event.closing();
       break;
     }
-    if (event.has_run_started() && event.run_started().run().id() == run_id) got.started = true;
+    if (event.has_run_started() && event.run_started().run().id() == run_id) {
+      got.started = true;
+      got.run_started = event.run_started();
+    }
     if (event.has_frames() && event.frames().run_id() == run_id) {
       AddFrames(event.frames(), &got);
       for (const v1::Frame& frame : event.frames().frames()) {
@@ -382,45 +387,16 @@ TEST_F(ClusterE2eTest, ProbeReportsAnsweredThroughTheOtherReplicaAreStoredByTheO
 
 TEST_F(ClusterE2eTest, FollowOnOneReplicaSeesARunClaimedByTheOther) {
   StartBusyAndFree();
-  auto stub = v1::Simulation::NewStub(
-      grpc::CreateChannel(busy_->address(), grpc::InsecureChannelCredentials()));
-  grpc::ClientContext context;
-  auto stream = stub->Subscribe(&context);
-  v1::SubscribeRequest start;
-  start.mutable_start()->set_follow(true);
-  ASSERT_TRUE(stream->Write(start));
-  v1::SubscribeEvent event;
-  ASSERT_TRUE(stream->Read(&event));
-  ASSERT_EQ(event.subscribed(), "follow");
-  const v1::RunInfo run = free_->Start(Paced(1.0));  // claimed by free_: busy_ is busy
-  Received got;
-  while (stream->Read(&event)) {
-    if (event.has_run_started() && event.run_started().run().id() == run.id()) {
-      got.started = true;
-      EXPECT_EQ(event.run_started().model().id(), run.model_id());
-      EXPECT_FALSE(event.run_started().bundle().urdf().empty());
-    }
-    if (event.has_frames() && event.frames().run_id() == run.id()) {
-      AddFrames(event.frames(), &got);
-      for (const v1::Frame& frame : event.frames().frames()) {
-        v1::SubscribeRequest reply;
-        reply.mutable_probe()->set_run_id(run.id());
-        reply.mutable_probe()->set_seq(frame.seq());
-        reply.mutable_probe()->set_probe("tcp");
-        reply.mutable_probe()->set_frame("World");
-        if (stream->Write(reply)) ++got.probes_sent;
-      }
-    }
-    if (event.has_run_ended() && event.run_ended().id() == run.id()) {
-      got.ended = event.run_ended();
-      break;
-    }
-  }
-  stream->WritesDone();
-  while (stream->Read(&event)) {
-  }
-  EXPECT_TRUE(stream->Finish().ok());
+  v1::RunInfo run;
+  std::string run_id;  // the run started once the follow stream is subscribed
+  const Received got = SubscribeTo(busy_->address(), run_id, /*follow=*/true, /*answer=*/true, [&] {
+    run = free_->Start(Paced(1.0));  // claimed by free_: busy_ is busy
+    run_id = run.id();
+  });
+  EXPECT_TRUE(got.status.ok()) << got.status.error_message();
   EXPECT_TRUE(got.started);
+  EXPECT_EQ(got.run_started.model().id(), run.model_id());
+  EXPECT_FALSE(got.run_started.bundle().urdf().empty());
   EXPECT_EQ(got.ended.state(), v1::FINISHED) << got.ended.message();
   EXPECT_EQ(got.ended.replica_address(), free_->address());
   ASSERT_FALSE(got.frames.empty());
