@@ -63,9 +63,12 @@ cli() {  # cli SERVER ARGS...: the CLI in a client container against SERVER (hos
   dc run --rm --no-deps -e MBSTREAM_SERVER="$server" --entrypoint mbstream client "$@" 2>/dev/null
 }
 owner_of() {  # owner_of RUN: the service (server1..3) whose log says it claimed RUN
-  local s
+  local s logs
   for s in server1 server2 server3; do
-    dc logs --no-color "$s" 2>&1 | grep -q "run $1 claimed by replica" && { echo "$s"; return; }
+    # The log read whole first: `dc logs | grep -q` fails under pipefail when grep's early exit
+    # makes the writer die of SIGPIPE.
+    logs=$(dc logs --no-color "$s" 2>&1 || true)
+    grep -q "run $1 claimed by replica" <<<"$logs" && { echo "$s"; return; }
   done
   echo none
 }
@@ -82,7 +85,7 @@ for attempt in 1 2 3; do
     --server server1:50051 --follow --offscreen --ca /run/secrets/ca \
     --token-file /run/secrets/viewer_token --exit-after-runs 1 >/dev/null
   for _ in $(seq 1 200); do
-    docker logs "$project-direct-viewer-$attempt" 2>&1 | grep -q "subscribed to" && break
+    grep -q "subscribed to" <<<"$(docker logs "$project-direct-viewer-$attempt" 2>&1 || true)" && break
     sleep 0.1
   done
   shown=$(cli server2:50051 run irb1600 --spec "$seed" --duration 2 --realtime 1)

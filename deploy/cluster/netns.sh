@@ -76,7 +76,7 @@ for b in "$server_bin" "$client_bin"; do
   [ -x "$b" ] || fail "$b is not an executable; build it or pass --server-bin/--client-bin"
 done
 server_bin=$(realpath "$server_bin") client_bin=$(realpath "$client_bin")
-"$server_bin" --help | grep -q -- '--metrics' || fail "$server_bin has no --metrics option"
+grep -q -- '--metrics' <<<"$("$server_bin" --help)" || fail "$server_bin has no --metrics option"
 if [ "$viewer" -eq 1 ]; then
   [ -x "$viewer_bin" ] || fail "$viewer_bin is not an executable (or give --skip-viewer)"
   command -v xvfb-run >/dev/null || fail "xvfb-run is not installed (or give --skip-viewer)"

@@ -61,7 +61,7 @@ if [ "$viewer_mode" != skip ]; then
   why=""
   if [ ! -x "$viewer_bin" ]; then
     why="$viewer_bin is not an executable"
-  elif ! "$viewer_bin" --help 2>&1 | grep -q -- '--follow'; then
+  elif ! grep -q -- '--follow' <<<"$("$viewer_bin" --help 2>&1)"; then
     why="$viewer_bin has no --follow option yet"
   elif ! command -v xvfb-run >/dev/null; then
     why="xvfb-run is not installed (scripts/setup.sh installs xvfb)"
