@@ -378,11 +378,37 @@ void RunManager::AttachRun(const std::shared_ptr<Subscription>& subscriber,
       return;
     }
   }
-  if (!store_->GetRun(run_id)) throw NotFound(run_id);
+  std::optional<v1::RunInfo> stored = store_->GetRun(run_id);
+  if (!stored) throw NotFound(run_id);
+  // Claimed here a moment ago (a proxied subscriber comes as soon as the claim is stored).
+  if (std::shared_ptr<Run> run = AwaitClaimedHere(std::move(*stored))) {
+    run->Attach(subscriber, send_started);
+    return;
+  }
   // Ended and stored (a run leaves active_ only after it is stored and has ended), or on
   // another replica (not followed here yet: docs/cluster.md).
   if (send_started) subscriber->Push({StreamEvent::Kind::kRunStarted, run_id, nullptr});
   subscriber->Push({StreamEvent::Kind::kRunEnded, run_id, nullptr});
+}
+
+std::shared_ptr<Run> RunManager::AwaitClaimedHere(v1::RunInfo stored) {
+  // Woken by each claim the workers prepare; the store is read again then and every
+  // kRecheck (a failed preparation is stored FAILED, a lost lease reaped).
+  constexpr auto kRecheck = std::chrono::milliseconds(100);
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    if (auto it = active_.find(stored.id()); it != active_.end()) return it->second;
+    if (stopping_ || stored.state() != v1::RUNNING || stored.replica() != replica_.id) {
+      return nullptr;
+    }
+    claimed_.wait_for(lock, kRecheck);
+    if (auto it = active_.find(stored.id()); it != active_.end()) return it->second;
+    lock.unlock();
+    std::optional<v1::RunInfo> again = store_->GetRun(stored.id());
+    lock.lock();
+    if (!again) return nullptr;
+    stored = std::move(*again);
+  }
 }
 
 bool RunManager::AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber) {
@@ -463,6 +489,7 @@ void RunManager::Shutdown(const std::string& reason) {
   }
   work_.notify_all();
   broadcast_wake_.notify_all();
+  claimed_.notify_all();
   for (std::thread& worker : workers_) worker.join();
   workers_.clear();
   // Runs queued here and not claimed: INTERRUPTED with a private store; left queued in a

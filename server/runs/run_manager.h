@@ -204,6 +204,10 @@ class RunManager {
   Outcome Execute(const std::shared_ptr<Run>& run);
   void Finish(const std::shared_ptr<Run>& run, const Outcome& outcome);
   std::shared_ptr<Run> FindActive(const std::string& run_id) const;
+  // A run `stored` says RUNNING here that is not in active_ yet: claimed by a worker of this
+  // replica that is still preparing it (ClaimNext). Waits until the worker lists it (the run)
+  // or the store shows it otherwise (null: ended, reaped, another replica's).
+  std::shared_ptr<Run> AwaitClaimedHere(v1::RunInfo stored);
   // False when no run of this replica is running (the follower waits for the next).
   bool AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber);
   // Counts one more subscriber (mutex_ held), or throws RESOURCE_EXHAUSTED at the limit.
@@ -230,6 +234,8 @@ class RunManager {
   // shows them ended.
   std::map<std::string, std::shared_ptr<Run>> elsewhere_;
   std::condition_variable idle_;  // a run integrating here ended (Drain waits for it)
+  // A claim of this replica was prepared (listed in active_) or failed (AwaitClaimedHere).
+  std::condition_variable claimed_;
   bool draining_ = false;
   bool store_reachable_ = true;
   bool serving_reported_ = true;  // the last value given to the listener

@@ -102,10 +102,14 @@ std::shared_ptr<Run> RunManager::ClaimNext() {
         } catch (const std::exception& again) {
           spdlog::error("run {}: storing its failure failed: {}", failed.id(), again.what());
         }
+        claimed_.notify_all();  // AwaitClaimedHere reads the store again
         continue;
       }
-      std::lock_guard<std::mutex> lock(mutex_);
-      active_[run->id()] = run;  // replaces a run of an earlier attempt still finishing
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        active_[run->id()] = run;  // replaces a run of an earlier attempt still finishing
+      }
+      claimed_.notify_all();
     }
     run->UpdateInfo([&](v1::RunInfo& info) {  // as the claim stored it
       info.set_started_unix_ms(claimed->started_unix_ms());

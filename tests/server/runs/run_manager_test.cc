@@ -1,15 +1,20 @@
 // RunManager without gRPC, paced by a manual clock: a realtime run sends each frame when its
-// wall time comes, not before; cancel and shutdown end a waiting run at once.
+// wall time comes, not before; cancel and shutdown end a waiting run at once; a subscriber of a
+// run claimed here and not yet prepared waits for it.
 #include "server/runs/run_manager.h"
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include <unistd.h>
 
+#include "server/store/run_lease.h"
 #include "server/store/store.h"
 #include "tests/server/runs/manual_run_clock.h"
 
@@ -118,6 +123,54 @@ TEST_F(RunManagerTest, ShutdownInterruptsAWaitingRunAndKeepsItsFrames) {
   EXPECT_EQ(stored->frames(), 2);  // frame 0, and frame 1 that was waiting for its time
   EXPECT_NE(stored->message().find("the test stopped the server"), std::string::npos)
       << stored->message();
+}
+
+// On a shared store a run is RUNNING here in the store as soon as a worker of this replica
+// claimed it, before the worker has prepared it; another replica sees the claim and proxies a
+// subscriber here at once. That subscriber waits for the run; it is not told the run ended
+// (it used to be: started and ended at once, no frames). Here the test holds the claim, as a
+// worker still preparing, and then ends the run itself.
+TEST_F(RunManagerTest, SubscriberOfARunClaimedHereAndNotYetPreparedWaitsForIt) {
+  runs_.reset();
+  v1::RunInfo queued;
+  queued.set_id("r-claimed-here");
+  queued.set_state(v1::QUEUED);
+  queued.set_created_unix_ms(1);
+  store_->PutRun(queued);
+  RunLease lease;
+  lease.replica = "b";
+  lease.now_unix_ms = 2;
+  lease.expires_unix_ms = std::numeric_limits<int64_t>::max() / 2;  // never reaped here
+  const std::optional<v1::RunInfo> claimed = store_->ClaimQueuedRun(lease);
+  ASSERT_TRUE(claimed.has_value());
+  ReplicaOptions replica;
+  replica.id = "b";
+  replica.private_store = false;
+  RunManager b(models_.get(), store_.get(), limits_, &clock_, replica);
+
+  std::atomic<bool> attached{false};
+  std::shared_ptr<Subscription> subscription;
+  std::thread subscriber([&] {
+    subscription = b.SubscribeRun(claimed->id(), true);
+    attached = true;
+  });
+  while (b.subscriber_count() == 0) std::this_thread::yield();  // it is in SubscribeRun
+  EXPECT_FALSE(attached.load()) << "the subscriber was answered while the run was being prepared";
+  v1::RunInfo finished = *claimed;
+  finished.set_state(v1::FINISHED);
+  finished.set_ended_unix_ms(3);
+  ASSERT_TRUE(store_->PutRunIfHeld(finished, LeaseHolder(*claimed)));
+  subscriber.join();
+  ASSERT_TRUE(subscription);
+  std::deque<StreamEvent> events;
+  int64_t missed = 0;
+  while (events.size() < 2 && subscription->Pop(std::chrono::seconds(30), 16, &events, &missed)) {
+  }
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0].kind, StreamEvent::Kind::kRunStarted);
+  EXPECT_EQ(events[1].kind, StreamEvent::Kind::kRunEnded);
+  EXPECT_EQ(b.Get(claimed->id()).state(), v1::FINISHED);
+  b.Unsubscribe(subscription);
 }
 
 }  // namespace
