@@ -6,8 +6,9 @@ network-namespace test (deploy/cluster/netns.sh).
     check_cluster.py [REPO_ROOT]
 
 - Commands: the server's, viewer's and client's commands are the same word for word, except
-  the address clients use (Compose's `lb`, the Kubernetes Service `mbstream`) and the
-  viewer's --exit-after-runs (Compose's test follows one run; a Deployment follows forever);
+  the address clients use (Compose's `lb`, the Kubernetes Service `mbstream`), the server
+  pod's --advertise (its IP: other pods cannot resolve its name) and the viewer's
+  --exit-after-runs (Compose's test follows one run; a Deployment follows forever);
   netns.sh passes the server the same options; images are the same.
 - Ports: the server listens on 50051 (gRPC) and 9464 (metrics) in both; the Kubernetes
   container and Service declare both; the readiness probe and Compose health check ask
@@ -90,7 +91,13 @@ def compose_env(service):
 
 
 def k8s_env(c):
-    return {e["name"]: e["value"] for e in c.get("env", [])}
+    """The literal variables (those from the downward API are checked where they are used)."""
+    return {e["name"]: e["value"] for e in c.get("env", []) if "value" in e}
+
+
+def with_pod_advertise(words):
+    """A pod advertises its own IP (from the downward API): other pods cannot resolve its name."""
+    return words + ["--advertise", "$(POD_IP):50051"]
 
 
 def lb_to_service(words):
@@ -110,7 +117,7 @@ def without_exit_after_runs(words):
 
 
 pairs = [  # compose service, k8s kind and name, how compose's command maps to k8s'
-    ("server1", "Deployment", "mbstream-server", lambda w: w),
+    ("server1", "Deployment", "mbstream-server", with_pod_advertise),
     ("viewer", "Deployment", "mbstream-viewer", lambda w: without_exit_after_runs(lb_to_service(w))),
     ("client", "Job", "mbstream-sweep", lambda w: w),
     ("postgres", "StatefulSet", "postgres", lambda w: w),
@@ -142,6 +149,12 @@ for service_name, kind, name, mapped in pairs:
               % (kind, name, key, path))
     check(set(items) == given, "%s %s is given secrets %s, compose %s %s"
           % (kind, name, sorted(items), service_name, sorted(given)))
+
+# The server pod's POD_IP is its IP, from the downward API.
+c, _ = container("Deployment", "mbstream-server")
+pod_ip = [e for e in c.get("env", []) if e["name"] == "POD_IP"]
+check(len(pod_ip) == 1 and pod_ip[0].get("valueFrom", {}).get("fieldRef", {}).get("fieldPath")
+      == "status.podIP", "the server container's POD_IP is not the downward API's status.podIP")
 
 # Ports of the server.
 server = services["server1"]
