@@ -4,8 +4,8 @@
 #   scripts/test.sh --ci       the same, then the TSan, ASan+UBSan and fuzz stages (CI runs this):
 #     --asan    AddressSanitizer + UndefinedBehaviorSanitizer build (clang, build-asan), the
 #               whole suite
-#     --tsan    ThreadSanitizer build (clang, build-tsan) of the service, runs and
-#               viewer-link tests
+#     --tsan    ThreadSanitizer build (clang, build-tsan) of the service, runs and cluster
+#               tests
 #     --fuzz    the libFuzzer targets (fuzz/run.sh; in build-asan with --asan), FUZZ_SECONDS
 #               each
 #   Each stage flag alone adds that stage; --no-release skips the Release stage.
@@ -136,10 +136,10 @@ sanitized_ctest() {  # sanitized_ctest DIR ctest-args...: ctest, then no report 
 # build's job (-Werror there), so a clang-only warning does not stop the sanitizer stages.
 CLANG=(-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DMBSTREAM_WERROR=OFF)
 
-# ThreadSanitizer: the tests whose code is threaded, the service (gRPC handlers, run
-# manager, fan-out) and the viewer link (server + viewer processes); a runs_test too when
-# there is one.
-TSAN_EXES=(service_test runs_test)
+# ThreadSanitizer: the tests whose code is threaded: the service (gRPC handlers, run
+# manager, fan-out), the run manager, and the cluster (two server processes on a test
+# PostgreSQL: proxies, follow relays, leases).
+TSAN_EXES=(service_test runs_test cluster_e2e_test)
 tsan_build() {
   configure build-tsan "${CLANG[@]}" -DMBSTREAM_SANITIZE=thread -DMBSTREAM_BUILD_BENCH=OFF
   local available targets=()
