@@ -53,6 +53,19 @@ void MeasuredStore::CountState(const v1::RunInfo& info) {
   }
 }
 
+void MeasuredStore::ForgetIfTakenElsewhere(const v1::RunInfo& stored) const {
+  if (stored.state() == v1::QUEUED) return;
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto known = unfinished_.find(stored.id());
+  if (known == unfinished_.end() || known->second != v1::QUEUED) return;
+  // A claim of this replica that the store has committed and this replica has not counted
+  // yet is counted RUNNING when ClaimQueuedRun returns (the run is unknown here by then). An
+  // end this replica has committed and not counted yet (EndQueuedRun) is then not counted as
+  // ended here: a read in those microseconds costs one count, never a gauge that stays up.
+  metrics_.runs(v1::QUEUED).Add(-1);
+  unfinished_.erase(known);
+}
+
 bool MeasuredStore::PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle) {
   return Timed(StoreOperation::kPutModel, [&] { return store_->PutModel(info, bundle); });
 }
@@ -77,7 +90,10 @@ void MeasuredStore::PutRun(const v1::RunInfo& info) {
 }
 
 std::optional<v1::RunInfo> MeasuredStore::GetRun(const std::string& run_id) const {
-  return Timed(StoreOperation::kGetRun, [&] { return store_->GetRun(run_id); });
+  std::optional<v1::RunInfo> stored =
+      Timed(StoreOperation::kGetRun, [&] { return store_->GetRun(run_id); });
+  if (stored) ForgetIfTakenElsewhere(*stored);
+  return stored;
 }
 
 std::vector<v1::RunInfo> MeasuredStore::ListRuns() const {

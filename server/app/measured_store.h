@@ -6,8 +6,9 @@
 // Runs are counted by the states this replica writes: a run put QUEUED or RUNNING is counted
 // in that gauge until the replica writes its final state, which moves it to the ended
 // counter (once per run, however many times the final row is written). With several replicas
-// on one store a run accepted here may be claimed by another: this replica's queued gauge
-// then keeps it until the run's end is written here (docs/cluster.md says so).
+// on one store a run accepted here may be claimed by another: when this replica reads its
+// row (the run manager does, for each run it queued) and finds it no longer QUEUED, the run
+// leaves this replica's queued gauge; the replica that claimed it counts it from then on.
 #pragma once
 
 #include <map>
@@ -67,11 +68,14 @@ class MeasuredStore final : public Store {
   auto Timed(StoreOperation which, Operation operation) const -> decltype(operation());
   // Moves the run's count from the state this replica last wrote to `info`'s state.
   void CountState(const v1::RunInfo& info);
+  // A run queued here whose row `stored` says it left the queue without this replica writing
+  // it (another replica claimed or ended it): no longer in this replica's queued gauge.
+  void ForgetIfTakenElsewhere(const v1::RunInfo& stored) const;
 
   std::unique_ptr<Store> store_;
   ServerMetrics& metrics_;
-  std::mutex mutex_;
-  std::map<std::string, v1::RunState> unfinished_;  // run id -> QUEUED or RUNNING
+  mutable std::mutex mutex_;
+  mutable std::map<std::string, v1::RunState> unfinished_;  // run id -> QUEUED or RUNNING
 };
 
 }  // namespace mbstream

@@ -5,6 +5,7 @@
 #include "server/app/measured_store.h"
 #include "server/app/server_metrics.h"
 #include "server/metrics/metric_registry.h"
+#include "server/store/run_lease.h"
 #include "tests/server/store/store_test_util.h"
 
 namespace mbstream::testing {
@@ -40,6 +41,36 @@ TEST_F(MeasuredStoreTest, CountsRunsByStateOncePerRun) {
   EXPECT_EQ(store_.GetFrames("r-1").size(), 10u);  // stored beneath
   EXPECT_EQ(metrics_.store(StoreOperation::kPutRun).count(), 6u);
   EXPECT_EQ(metrics_.store(StoreOperation::kFinishRun).count(), 1u);
+}
+
+TEST_F(MeasuredStoreTest, RunQueuedHereAndClaimedByAnotherReplicaLeavesTheQueuedGauge) {
+  store_.PutRun(MakeRun("r-1", v1::QUEUED, 1000));
+  store_.PutRun(MakeRun("r-2", v1::QUEUED, 1001));
+  ASSERT_EQ(metrics_.runs(v1::QUEUED).value(), 2);
+  {  // another replica, on the same store, claims the oldest queued run (r-1)
+    std::unique_ptr<Store> other = Store::Open(temp_.str());
+    RunLease lease;
+    lease.replica = "other";
+    lease.now_unix_ms = 2000;
+    lease.expires_unix_ms = 9000;
+    ASSERT_EQ(other->ClaimQueuedRun(lease)->id(), "r-1");
+  }
+  store_.GetRun("r-2");  // still queued: counted here
+  EXPECT_EQ(metrics_.runs(v1::QUEUED).value(), 2);
+  EXPECT_EQ(store_.GetRun("r-1")->state(), v1::RUNNING);  // this replica looks at its run
+  EXPECT_EQ(metrics_.runs(v1::QUEUED).value(), 1);
+  EXPECT_EQ(metrics_.runs(v1::RUNNING).value(), 0);  // the other replica's to count
+  store_.GetRun("r-1");
+  EXPECT_EQ(metrics_.runs(v1::QUEUED).value(), 1);
+  // This replica's own claim of r-2 moves it from queued to running, as before.
+  RunLease here;
+  here.replica = "here";
+  here.now_unix_ms = 3000;
+  here.expires_unix_ms = 9000;
+  ASSERT_EQ(store_.ClaimQueuedRun(here)->id(), "r-2");
+  store_.GetRun("r-2");
+  EXPECT_EQ(metrics_.runs(v1::QUEUED).value(), 0);
+  EXPECT_EQ(metrics_.runs(v1::RUNNING).value(), 1);
 }
 
 TEST_F(MeasuredStoreTest, ObservesProbeLatencyAndExposesEverything) {
