@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "server/store/sqlite_checkpointer.h"
 #include "server/store/sqlite_connection.h"
 #include "server/store/sqlite_statement.h"
 #include "server/store/sqlite_store.h"
@@ -44,6 +45,9 @@ struct SqliteStore::Impl {
 
   SqliteStatement upsert_probe;
   SqliteStatement select_probes;
+
+  // Last: unhooked from `db` before anything else is torn down.
+  SqliteCheckpointer checkpointer;
 };
 
 // Writes the run row (insert, or update keeping the row's order and its frames). The caller
