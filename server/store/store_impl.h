@@ -54,4 +54,8 @@ struct SqliteStore::Impl {
 // holds the mutex.
 void UpsertRunLocked(SqliteStore::Impl& impl, const v1::RunInfo& info);
 
+// Whether `holder` holds the lease of RUNNING run `run_id`. The caller holds the mutex.
+bool HoldsLeaseLocked(SqliteStore::Impl& impl, const std::string& run_id,
+                      const std::string& holder);
+
 }  // namespace mbstream
