@@ -26,7 +26,7 @@ const Eigen::VectorXd& Aba(const Model& model, Data& data,
     const Body& body = model.bodies[i];
     const Vector6d& a_parent = body.parent == kBase ? a_base : data.a[body.parent];
     DispatchJointShape(body.joint,
-                       [&](auto shape) { AccelerationPass<shape()>(a_parent, i, data); });
+                       [&](auto shape) { AccelerationPass<shape()>(body, a_parent, i, data); });
   }
   return data.qdd;
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "common/check.h"
+#include "server/dynamics/axis_inertia_move.h"
 #include "server/dynamics/axis_joint_steps.h"
 #include "server/kinematics/joint_inertia_transform.h"
 #include "server/kinematics/joint_spatial_transform.h"
@@ -13,10 +14,30 @@
 
 namespace mbstream::aba_passes {
 
-// The three passes for a revolute joint about coordinate axis K with an unrotated origin, in
-// scalars (axis_joint_steps.h): S = e_K, and c = v x (S qd) is zero in components K and 3 + K.
+// The articulated inertias IA are kept as their upper triangles only (entries (r, q) with
+// r <= q; axis_inertia_move.h): the passes for an axis joint read and add only those, and
+// the general passes first copy the upper triangle into the lower one.
+inline void FillLowerTriangle(Matrix6d& M) {
+  for (int q = 0; q < 6; ++q) {
+    for (int r = q + 1; r < 6; ++r) M(r, q) = M(q, r);
+  }
+}
 
-template <int K>
+// Entry (r, q) of a symmetric matrix of which only the upper triangle is kept.
+template <int r, int q>
+[[gnu::always_inline]] inline double Upper(const Matrix6d& M) {
+  if constexpr (r <= q) {
+    return M.data()[r + 6 * q];  // column-major
+  } else {
+    return M.data()[q + 6 * r];
+  }
+}
+
+// The three passes for a revolute joint about coordinate axis K with an unrotated origin whose
+// offset has shape L (axis_joint::OffsetMayBeNonzero), in scalars (axis_joint_steps.h):
+// S = e_K, and c = v x (S qd) is zero in components K and 3 + K.
+
+template <int K, int L>
 void ForwardPassAboutAxis(const Body& body, int i, double q, double qd, Data& data) {
   using namespace axis_joint;
   const Vector3d& p = body.joint.X_PJ.p;
@@ -27,7 +48,7 @@ void ForwardPassAboutAxis(const Body& body, int i, double q, double qd, Data& da
   if (body.parent == kBase) {
     for (int e = 0; e < 6; ++e) v[e] = 0.0;
   } else {
-    MotionToChild<K>(r, p.data(), data.v[body.parent].data(), v);
+    MotionToChild<K, L>(r, p.data(), data.v[body.parent].data(), v);
     AddCrossJointRate<K>(v, qd, c);
   }
   v[K] += qd;
@@ -37,14 +58,13 @@ void ForwardPassAboutAxis(const Body& body, int i, double q, double qd, Data& da
   CrossForce<false>(v, h, data.pA[i].data());
 }
 
-template <int K>
+template <int K, int L>
 void BackwardPassAboutAxis(const Body& body, int i, double tau, Data& data) {
   using namespace axis_joint;
-  Matrix6d& IA = data.IA[i];
+  const Matrix6d& IA = data.IA[i];  // upper triangle
   const double* pA = data.pA[i].data();
   double* U = data.U[i].data();
-  const double* ia = IA.data();  // column-major, symmetric
-  for (int e = 0; e < 6; ++e) U[e] = ia[6 * K + e];
+  Unroll<6>([&](auto e) { U[e] = Upper<e, K>(IA); });
   const double D = U[K] + body.joint.armature;
   const double u = tau - pA[K];
   data.D[i] = D;
@@ -52,32 +72,37 @@ void BackwardPassAboutAxis(const Body& body, int i, double tau, Data& data) {
   MBSTREAM_CHECK_MSG(D > 0.0, "articulated inertia of a joint is not positive");
   if (body.parent == kBase) return;
   const double inv_D = 1.0 / D;
-  // pa = pA + Ia c + U u / D with Ia = IA - U U^T / D, i.e. pA + IA c + U (u - U.c) / D
-  // (IA still whole here); c's components K and 3 + K are zero.
+  // pa = pA + Ia c + U u / D with Ia = IA - U U^T / D, i.e. pA + IA c + U (u - U.c) / D;
+  // c's components K and 3 + K are zero.
   constexpr int i1 = (K + 1) % 3, i2 = (K + 2) % 3;
   constexpr int cols[4] = {i1, i2, 3 + i1, 3 + i2};
   const double* c = data.c[i].data();
   const double x =
       (u - (U[i1] * c[i1] + U[i2] * c[i2] + U[3 + i1] * c[3 + i1] + U[3 + i2] * c[3 + i2])) * inv_D;
   double pa[6];
-  for (int e = 0; e < 6; ++e) {
-    double IAc = 0.0;
-    for (int col : cols) IAc += ia[6 * col + e] * c[col];
+  Unroll<6>([&](auto e) {
+    double IAc = -0.0;  // x + -0.0 folds to x
+    Unroll<4>([&](auto n) { IAc += Upper<e, cols[n]>(IA) * c[cols[n]]; });
     pa[e] = (pA[e] + U[e] * x) + IAc;
-  }
+  });
   const Pose& X = data.X_parent[i];
-  AddProjectedInertiaAcross<K>(X, IA, data.U[i], inv_D, &data.IA[body.parent]);
-  AddForceToParent<K>(RotationOf<K>(X), X.p.data(), pa, data.pA[body.parent].data());
+  const AxisRotation r = RotationOf<K>(X);
+  if (body.joint.armature == 0.0) {
+    AddProjectedInertiaToParent<K, L, true>(r, X.p.data(), IA, U, inv_D, &data.IA[body.parent]);
+  } else {
+    AddProjectedInertiaToParent<K, L, false>(r, X.p.data(), IA, U, inv_D, &data.IA[body.parent]);
+  }
+  AddForceToParent<K, L>(r, X.p.data(), pa, data.pA[body.parent].data());
 }
 
-template <int K>
+template <int K, int L>
 void AccelerationPassAboutAxis(const Vector6d& a_parent, int i, Data& data) {
   using namespace axis_joint;
   const Pose& X = data.X_parent[i];
   double* a = data.a[i].data();
   const double* c = data.c[i].data();
   const double* U = data.U[i].data();
-  MotionToChild<K>(RotationOf<K>(X), X.p.data(), a_parent.data(), a);
+  MotionToChild<K, L>(RotationOf<K>(X), X.p.data(), a_parent.data(), a);
   double Ua = 0.0;
   for (int e = 0; e < 6; ++e) {
     a[e] += c[e];
@@ -97,7 +122,9 @@ void AccelerationPassAboutAxis(const Vector6d& a_parent, int i, Data& data) {
 template <int Shape>
 void ForwardPass(const Body& body, int i, double q, double qd, Data& data) {
   if constexpr (Shape >= 0) {
-    ForwardPassAboutAxis<Shape>(body, i, q, qd, data);
+    axis_joint::DispatchOffset(body.joint, [&](auto offset) {
+      ForwardPassAboutAxis<Shape, offset()>(body, i, q, qd, data);
+    });
     return;
   }
   JointTransformOfShape<Shape>(body.joint, q, &data.X_parent[i]);
@@ -118,11 +145,14 @@ void ForwardPass(const Body& body, int i, double q, double qd, Data& data) {
 template <int Shape>
 void BackwardPass(const Body& body, int i, double tau, Data& data) {
   if constexpr (Shape >= 0) {
-    BackwardPassAboutAxis<Shape>(body, i, tau, data);
+    axis_joint::DispatchOffset(body.joint, [&](auto offset) {
+      BackwardPassAboutAxis<Shape, offset()>(body, i, tau, data);
+    });
     return;
   }
   const int k = data.S_index[i];
   Matrix6d& IA = data.IA[i];
+  FillLowerTriangle(IA);
   if (k >= 0) {
     data.U[i] = IA.col(k);
     data.D[i] = data.U[i](k) + body.joint.armature;
@@ -146,9 +176,11 @@ void BackwardPass(const Body& body, int i, double tau, Data& data) {
 
 // Pass 3 (base to tips): the joint's acceleration and the body's.
 template <int Shape>
-void AccelerationPass(const Vector6d& a_parent, int i, Data& data) {
+void AccelerationPass(const Body& body, const Vector6d& a_parent, int i, Data& data) {
   if constexpr (Shape >= 0) {
-    AccelerationPassAboutAxis<Shape>(a_parent, i, data);
+    axis_joint::DispatchOffset(body.joint, [&](auto offset) {
+      AccelerationPassAboutAxis<Shape, offset()>(a_parent, i, data);
+    });
     return;
   }
   Vector6d& a = data.a[i];

@@ -15,6 +15,7 @@ using aba_passes::BackwardPass;
 // bias gains IA (c + S qdd) (Featherstone, RBDA 9.2).
 template <int Shape>
 void PrescribedBackwardPass(const Body& body, int i, double qdd, Data& data) {
+  aba_passes::FillLowerTriangle(data.IA[i]);  // its children added their upper triangles
   if (body.parent == kBase) return;
   Vector6d accel = data.c[i];
   const int k = data.S_index[i];
@@ -82,7 +83,7 @@ const Eigen::VectorXd& HybridAba(const Model& model, Data& data,
       if (prescribed[i]) {
         PrescribedAccelerationPass<shape()>(body, a_parent, i, data);
       } else {
-        AccelerationPass<shape()>(a_parent, i, data);
+        AccelerationPass<shape()>(body, a_parent, i, data);
       }
     });
   }

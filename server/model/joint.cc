@@ -18,6 +18,13 @@ void DeriveJointShape(Joint& joint) {
     if (joint.axis == Vector3d::Unit(k)) joint.axis_index = k;
   }
   joint.origin_rotation_identity = joint.X_PJ.R == Matrix3d::Identity();
+  const Vector3d& p = joint.X_PJ.p;
+  const int nonzero = (p.x() != 0.0) + (p.y() != 0.0) + (p.z() != 0.0);
+  joint.offset_axis = kAnyOffset;
+  if (nonzero == 0) joint.offset_axis = kNoOffset;
+  for (int k = 0; k < 3 && nonzero == 1; ++k) {
+    if (p(k) != 0.0) joint.offset_axis = k;
+  }
 }
 
 }  // namespace mbstream
