@@ -122,9 +122,8 @@ void AccelerationPassAboutAxis(const Vector6d& a_parent, int i, Data& data) {
 template <int Shape>
 void ForwardPass(const Body& body, int i, double q, double qd, Data& data) {
   if constexpr (Shape >= 0) {
-    axis_joint::DispatchOffset(body.joint, [&](auto offset) {
-      ForwardPassAboutAxis<Shape, offset()>(body, i, q, qd, data);
-    });
+    ForwardPassAboutAxis<Shape, kAnyOffset>(
+        body, i, q, qd, data);  // any offset: also right without Joint::axis_kernel
     return;
   }
   JointTransformOfShape<Shape>(body.joint, q, &data.X_parent[i]);
@@ -145,9 +144,8 @@ void ForwardPass(const Body& body, int i, double q, double qd, Data& data) {
 template <int Shape>
 void BackwardPass(const Body& body, int i, double tau, Data& data) {
   if constexpr (Shape >= 0) {
-    axis_joint::DispatchOffset(body.joint, [&](auto offset) {
-      BackwardPassAboutAxis<Shape, offset()>(body, i, tau, data);
-    });
+    BackwardPassAboutAxis<Shape, kAnyOffset>(
+        body, i, tau, data);  // any offset: also right without Joint::axis_kernel
     return;
   }
   const int k = data.S_index[i];
@@ -176,11 +174,10 @@ void BackwardPass(const Body& body, int i, double tau, Data& data) {
 
 // Pass 3 (base to tips): the joint's acceleration and the body's.
 template <int Shape>
-void AccelerationPass(const Body& body, const Vector6d& a_parent, int i, Data& data) {
+void AccelerationPass(const Vector6d& a_parent, int i, Data& data) {
   if constexpr (Shape >= 0) {
-    axis_joint::DispatchOffset(body.joint, [&](auto offset) {
-      AccelerationPassAboutAxis<Shape, offset()>(a_parent, i, data);
-    });
+    AccelerationPassAboutAxis<Shape, kAnyOffset>(
+        a_parent, i, data);  // any offset: also right without Joint::axis_kernel
     return;
   }
   Vector6d& a = data.a[i];
@@ -194,13 +191,59 @@ void AccelerationPass(const Body& body, const Vector6d& a_parent, int i, Data& d
   }
 }
 
+// Calls axis(std::integral_constant<int, K>{}, std::integral_constant<int, L>{}) for a joint
+// with an axis kernel (Joint::axis_kernel: a revolute joint about coordinate axis K with an
+// unrotated origin of offset shape L), else other(std::integral_constant<int, Shape>{}) for
+// its JointShape: one jump per body and pass.
+template <typename FAxis, typename FOther>
+[[gnu::always_inline]] inline void DispatchStep(const Joint& joint, FAxis&& axis, FOther&& other) {
+  using std::integral_constant;
+  constexpr int kAny = kAnyOffset;
+  switch (joint.axis_kernel) {
+    case 0:
+      return axis(integral_constant<int, 0>{}, integral_constant<int, 0>{});
+    case 1:
+      return axis(integral_constant<int, 0>{}, integral_constant<int, 1>{});
+    case 2:
+      return axis(integral_constant<int, 0>{}, integral_constant<int, 2>{});
+    case 3:
+      return axis(integral_constant<int, 0>{}, integral_constant<int, kNoOffset>{});
+    case 4:
+      return axis(integral_constant<int, 0>{}, integral_constant<int, kAny>{});
+    case 5:
+      return axis(integral_constant<int, 1>{}, integral_constant<int, 0>{});
+    case 6:
+      return axis(integral_constant<int, 1>{}, integral_constant<int, 1>{});
+    case 7:
+      return axis(integral_constant<int, 1>{}, integral_constant<int, 2>{});
+    case 8:
+      return axis(integral_constant<int, 1>{}, integral_constant<int, kNoOffset>{});
+    case 9:
+      return axis(integral_constant<int, 1>{}, integral_constant<int, kAny>{});
+    case 10:
+      return axis(integral_constant<int, 2>{}, integral_constant<int, 0>{});
+    case 11:
+      return axis(integral_constant<int, 2>{}, integral_constant<int, 1>{});
+    case 12:
+      return axis(integral_constant<int, 2>{}, integral_constant<int, 2>{});
+    case 13:
+      return axis(integral_constant<int, 2>{}, integral_constant<int, kNoOffset>{});
+    case 14:
+      return axis(integral_constant<int, 2>{}, integral_constant<int, kAny>{});
+    default:
+      return DispatchJointShape(joint, other);
+  }
+}
+
 // Pass 1 over every body.
 inline void ForwardPasses(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
                           const Eigen::Ref<const Eigen::VectorXd>& qd, Data& data) {
   for (int i = 0; i < model.num_dofs(); ++i) {
     const Body& body = model.bodies[i];
-    DispatchJointShape(body.joint,
-                       [&](auto shape) { ForwardPass<shape()>(body, i, q(i), qd(i), data); });
+    DispatchStep(
+        body.joint,
+        [&](auto K, auto L) { ForwardPassAboutAxis<K(), L()>(body, i, q(i), qd(i), data); },
+        [&](auto shape) { ForwardPass<shape()>(body, i, q(i), qd(i), data); });
   }
 }
 

@@ -56,23 +56,6 @@ template <int K>
 // and drop the products by p's components that are zero for that shape.
 constexpr bool OffsetMayBeNonzero(int L, int m) { return L == kAnyOffset || L == m; }
 
-// Calls f(std::integral_constant<int, joint.offset_axis>{}).
-template <typename F>
-[[gnu::always_inline]] inline decltype(auto) DispatchOffset(const Joint& joint, F&& f) {
-  switch (joint.offset_axis) {
-    case 0:
-      return f(std::integral_constant<int, 0>{});
-    case 1:
-      return f(std::integral_constant<int, 1>{});
-    case 2:
-      return f(std::integral_constant<int, 2>{});
-    case kNoOffset:
-      return f(std::integral_constant<int, kNoOffset>{});
-    default:
-      return f(std::integral_constant<int, kAnyOffset>{});
-  }
-}
-
 // base + (w x p)_r (kPFirst: base + (p x w)_r), without the products by p's zero components.
 template <int L, int r, bool kPFirst = false>
 [[gnu::always_inline]] inline double AddCrossOffset(double base, const double* w, const double* p) {

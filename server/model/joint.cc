@@ -25,6 +25,12 @@ void DeriveJointShape(Joint& joint) {
   for (int k = 0; k < 3 && nonzero == 1; ++k) {
     if (p(k) != 0.0) joint.offset_axis = k;
   }
+  joint.axis_kernel = -1;
+  if (joint.type == JointType::kRevolute && joint.origin_rotation_identity &&
+      joint.axis_index >= 0) {
+    joint.axis_kernel =
+        5 * joint.axis_index + (joint.offset_axis == kAnyOffset ? 4 : joint.offset_axis);
+  }
 }
 
 }  // namespace mbstream

@@ -36,6 +36,9 @@ struct Joint {
   // 0, 1, 2 when X_PJ.p lies on that coordinate axis (one nonzero component), kNoOffset when
   // X_PJ.p = 0, kAnyOffset otherwise.
   int offset_axis = -1;
+  // 5 K + (offset_axis, or 4 for kAnyOffset) for a revolute joint about coordinate axis K with
+  // an unrotated origin (0..14), else -1: the dynamics kernels' dispatch index.
+  int axis_kernel = -1;
 };
 
 inline constexpr int kAnyOffset = -1;

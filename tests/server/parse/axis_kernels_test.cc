@@ -25,6 +25,7 @@ Model OnGeneralPath(Model model) {
   for (Body& body : model.bodies) {
     body.joint.axis_index = -1;
     body.joint.origin_rotation_identity = false;
+    body.joint.axis_kernel = -1;
   }
   return model;
 }
@@ -62,6 +63,7 @@ TEST_P(AxisKernelsTest, ModelHasAxisJointsAndTheGeneralCopyHasNone) {
   for (int i = 0; i < model_.num_dofs(); ++i) {
     if (JointShape(model_.bodies[i].joint) >= 0) ++axis_joints;
     EXPECT_EQ(JointShape(general_.bodies[i].joint), kGeneralJoint);
+    EXPECT_EQ(general_.bodies[i].joint.axis_kernel, -1);
   }
   EXPECT_GT(axis_joints, 0) << "the specialised steps would not be exercised";
 }
