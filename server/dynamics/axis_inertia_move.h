@@ -74,11 +74,14 @@ template <int r, int k>
 
 // IA_parent += X^T (IA - U U^T inv_D) X for X = (rotation r about K, offset p of shape L);
 // reads IA's upper triangle, adds to IA_parent's upper triangle. kFold requires the joint's
-// armature to be 0 (then D = U_K, inv_D = 1 / D).
+// armature to be 0 (then D = U_K, inv_D = 1 / D). Also writes the bias force that goes with it,
+// pa = pA + Ia c + U u / D, in the child's frame (c_K = c_(3 + K) = 0).
 template <int K, int L, bool kFold>
 [[gnu::always_inline]] inline void AddProjectedInertiaToParent(AxisRotation rot, const double* p,
                                                                const Matrix6d& IA, const double* U,
-                                                               double inv_D, Matrix6d* IA_parent) {
+                                                               double inv_D, const double* pA,
+                                                               const double* c_vel, double u,
+                                                               double* pa, Matrix6d* IA_parent) {
   using S = MoveStructure<K, L, kFold>;
   constexpr int i = (K + 1) % 3, j = (K + 2) % 3;
   const double c = rot.c, s = rot.s;
@@ -100,6 +103,27 @@ template <int K, int L, bool kFold>
       }
     });
   });
+  // pa = pA + Ia c + U (u / D), Ia read from its blocks (zero where kFold made it so).
+  {
+    constexpr int cols[4] = {i, j, 3 + i, 3 + j};
+    const double uD = u * inv_D;
+    Unroll<6>([&](auto e) {
+      double sum = -0.0;  // x + -0.0 folds to x
+      Unroll<4>([&](auto n) {
+        constexpr int col = cols[n];
+        if constexpr (e < 3 && col < 3) {
+          if constexpr (S::A(e, col)) sum += A[e][col] * c_vel[col];
+        } else if constexpr (e < 3) {
+          if constexpr (S::B(e, 0)) sum += B[e][col - 3] * c_vel[col];
+        } else if constexpr (col < 3) {
+          sum += B[col][e - 3] * c_vel[col];  // col is i or j: never a zero row
+        } else {
+          sum += C[e - 3][col - 3] * c_vel[col];
+        }
+      });
+      pa[e] = (pA[e] + U[e] * uD) + sum;
+    });
+  }
   // Rotated into the parent's orientation: X R X^T for the symmetric blocks (kFold: A's row
   // and column K are zero and stay so), R B R^T for B.
   const double cs = c * s, c2 = c * c, s2 = s * s;
