@@ -54,12 +54,17 @@ void ForwardPassAboutAxis(const Body& body, int i, double q, double qd, Data& da
   const AxisRotation r = WritePose<K>(q, p, &data.X_parent[i]);
   double* v = data.v[i].data();
   double* c = data.c[i].data();
-  for (int e = 0; e < 6; ++e) c[e] = 0.0;
   if (body.parent == kBase) {
-    for (int e = 0; e < 6; ++e) v[e] = 0.0;
+    for (int e = 0; e < 6; ++e) v[e] = c[e] = 0.0;
   } else {
     MotionToChild<K, L>(r, p.data(), data.v[body.parent].data(), v);
-    AddCrossJointRate<K>(v, qd, c);
+    // c = v x (e_K qd), AddCrossJointRate written as assignments.
+    constexpr int i1 = (K + 1) % 3, i2 = (K + 2) % 3;
+    c[K] = c[3 + K] = 0.0;
+    c[i1] = v[i2] * qd;
+    c[i2] = -(v[i1] * qd);
+    c[3 + i1] = v[3 + i2] * qd;
+    c[3 + i2] = -(v[3 + i1] * qd);
   }
   v[K] += qd;
   CopyUpperTriangle(data.I[i], data.IA[i]);
@@ -103,15 +108,18 @@ void AccelerationPassAboutAxis(const Vector6d& a_parent, int i, Data& data) {
   double* a = data.a[i].data();
   const double* c = data.c[i].data();
   const double* U = data.U[i].data();
-  MotionToChild<K, L>(RotationOf<K>(X), X.p.data(), a_parent.data(), a);
-  double Ua = 0.0;
-  for (int e = 0; e < 6; ++e) {
-    a[e] += c[e];
-    Ua += U[e] * a[e];
-  }
+  double x[6];
+  MotionToChild<K, L>(RotationOf<K>(X), X.p.data(), a_parent.data(), x);
+  // a = X^T a_parent + c (c_K = c_(3 + K) = 0), qdd = (u - U.a) / D, a += e_K qdd.
+  double Ua = -0.0;  // x + -0.0 folds to x
+  Unroll<6>([&](auto e) {
+    if constexpr (e != K && e != 3 + K) x[e] += c[e];
+    Ua += U[e] * x[e];
+  });
   const double qdd = (data.u[i] - Ua) / data.D[i];
   data.qdd(i) = qdd;
-  a[K] += qdd;
+  x[K] += qdd;
+  for (int e = 0; e < 6; ++e) a[e] = x[e];
 }
 
 // The three passes' work for body i, specialised on its joint's Shape (see
