@@ -8,7 +8,8 @@
 // threads, the model imported once. Server: a fresh mbstream-server (2 workers, a fresh data
 // directory) and one client that keeps up to `--window` runs submitted (StartRun), waits for
 // the oldest to end (WatchRun) and fetches its result (GetResult, every frame), then submits
-// the next. Prints wall time, runs per second and CPU time per run of each side (the server
+// the next (`--watch`: waits with WatchRun first, as a client did before GetResult's `wait`).
+// Prints wall time, runs per second and CPU time per run of each side (the server
 // process's from /proc, the client's and the in-process threads' from getrusage), and the
 // server's overhead. `--duration D` (s) shortens the scene: the 10,000 short kinematic runs
 // are `--runs 10000 --scene seed-run --duration 1`. `--rounds N` alternates the two sides N
@@ -108,7 +109,7 @@ void Check(const grpc::Status& status, const char* what) {
 }
 
 Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec, int runs,
-                       int window) {
+                       int window, bool watch) {
   const fs::path data = fs::temp_directory_path() / ("mbstream-sweep-" + std::to_string(getpid()));
   fs::remove_all(data);
   testing::ServerProcess server(
@@ -140,7 +141,7 @@ Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec
     }
     const std::string id = in_flight.front();
     in_flight.pop_front();
-    {  // wait for its end
+    if (watch) {  // wait for its end
       grpc::ClientContext context;
       v1::WatchRunRequest request;
       request.set_run_id(id);
@@ -154,10 +155,11 @@ Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec
       Check(reader->Finish(), "WatchRun");
       if (state != v1::FINISHED) throw std::runtime_error("run " + id + " did not finish");
     }
-    {  // fetch every frame
+    {  // fetch every frame (waiting for the run's end, unless watched)
       grpc::ClientContext context;
       v1::GetResultRequest request;
       request.set_run_id(id);
+      request.set_wait(!watch);
       auto reader = stub->GetResult(&context, request);
       v1::ResultChunk chunk;
       while (reader->Read(&chunk)) m.frames += chunk.frames_size();
@@ -211,13 +213,16 @@ int main(int argc, char** argv) {
   std::string server_binary, baseline_binary, scene = "seed-servo";
   int runs = 1000, window = 32, rounds = 1;
   double duration = 0.0;
-  bool server_only = false;
+  bool server_only = false, watch = false;
   app.add_option("--server", server_binary, "the mbstream-server binary")->required();
   app.add_option("--runs", runs, "runs on each side");
   app.add_option("--scene", scene, "models/irb1600/SCENE.json");
   app.add_option("--duration", duration, "s; 0 = the scene's");
   app.add_option("--window", window, "runs submitted and not yet fetched (at most 64 queue)");
   app.add_flag("--server-only", server_only, "skip the in-process side (for profiling)");
+  app.add_flag("--watch", watch,
+               "wait for each run's end with WatchRun before GetResult (three calls per run, "
+               "as before GetResult could wait)");
   app.add_option("--rounds", rounds, "alternate the sides this many times; medians of ratios")
       ->check(CLI::PositiveNumber);
   app.add_option("--baseline-server", baseline_binary,
@@ -250,12 +255,12 @@ int main(int argc, char** argv) {
       }
       auto baseline = [&] {
         if (baseline_binary.empty()) return;
-        const Measured before = ThroughServer(baseline_binary, spec, runs, window);
+        const Measured before = ThroughServer(baseline_binary, spec, runs, window, watch);
         Print("baseline", before, runs);
         if (!server_only) baseline_ratios.Add(local, before);
       };
       if (round % 2 == 0) baseline();  // the two servers take turns to go first
-      const Measured served = ThroughServer(server_binary, spec, runs, window);
+      const Measured served = ThroughServer(server_binary, spec, runs, window, watch);
       Print("server", served, runs);
       if (round % 2 == 1) baseline();
       if (!server_only) {

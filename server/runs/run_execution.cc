@@ -77,6 +77,7 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
                      followers_.end());
     for (const auto& follower : followers_) run->Attach(follower, true);
   }
+  NoteStateChange();
   // Stored RUNNING already, by the claim (ClaimNext): the row is written again when it ends.
   spdlog::info("run {} started", run->id());
 
@@ -156,6 +157,7 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
   }
   idle_.notify_all();
   run->End();
+  NoteStateChange();
   info = run->Info();
   spdlog::info("run {} {}: {} frames to t = {} s, {} steps, cpu {:.3f} ms, wall {:.3f} ms{}{}",
                run->id(), v1::RunState_Name(info.state()), info.frames(),

@@ -490,6 +490,7 @@ void RunManager::Shutdown(const std::string& reason) {
   work_.notify_all();
   broadcast_wake_.notify_all();
   claimed_.notify_all();
+  state_changed_.notify_all();
   for (std::thread& worker : workers_) worker.join();
   workers_.clear();
   // Runs queued here and not claimed: INTERRUPTED with a private store; left queued in a

@@ -73,6 +73,12 @@ class RunManager {
   // returned unchanged. Throws RequestError(kNotFound).
   v1::RunInfo Cancel(const std::string& run_id);
   v1::RunInfo Get(const std::string& run_id) const;  // throws RequestError(kNotFound)
+  // Waits until run `run_id`'s state is other than `from`, `until` passes or the manager
+  // stops, and returns its info then (run_manager_await.cc). The changes of this replica
+  // (claimed, running, ended) wake it at once; those of other replicas sharing the store
+  // are seen within 0.1 s. Throws as Get.
+  v1::RunInfo AwaitChange(const std::string& run_id, v1::RunState from,
+                          std::chrono::steady_clock::time_point until) const;
   // One page of runs, newest first (see ListRunsRequest): at most `page_size` runs
   // (0 = 100, at most 1000) and kMaxPageBytes, of `model`'s runs (all when empty), at most
   // `limit` overall (0 = no limit), after `page_token`. Throws InputError for a bad token.
@@ -236,6 +242,11 @@ class RunManager {
   std::condition_variable idle_;  // a run integrating here ended (Drain waits for it)
   // A claim of this replica was prepared (listed in active_) or failed (AwaitClaimedHere).
   std::condition_variable claimed_;
+  // A run of this replica changed state (AwaitChange): counted and notified by
+  // NoteStateChange, which is called without mutex_.
+  mutable std::condition_variable state_changed_;
+  uint64_t state_changes_ = 0;
+  void NoteStateChange();
   bool draining_ = false;
   bool store_reachable_ = true;
   bool serving_reported_ = true;  // the last value given to the listener

@@ -173,6 +173,7 @@ void RunManager::EndPlaceholder(const std::shared_ptr<Run>& run, const v1::RunIn
     }
   }
   run->End();
+  NoteStateChange();
 }
 
 void RunManager::KeeperLoop() {

@@ -1,14 +1,35 @@
 // SimulationService::GetResult: a stored result in chunks under the message size limit, read
 // from the store one frame chunk at a time (a long run is never in memory at once). The
-// frames go out as stored, not parsed and serialized again (encoded_result_chunk.h).
+// frames go out as stored, not parsed and serialized again (encoded_result_chunk.h). With
+// `wait`, a run not yet ended is waited for (RunManager::AwaitChange) instead of refused.
+#include <chrono>
+
 #include "server/service/encoded_result_chunk.h"
 #include "server/service/simulation_service.h"
 #include "server/service/status_from_exception.h"
+#include "server/wire/stats_conversion.h"
 
 namespace mbstream {
 
 namespace {
 constexpr size_t kChunkBytes = 1 << 20;  // about 1 MiB of frames or probes per message
+}
+
+grpc::Status SimulationService::AwaitEnd(const grpc::ServerContext& context,
+                                         const std::string& run_id) {
+  // Woken by the run's changes; looks at the client and the server at least every second.
+  constexpr auto kLook = std::chrono::seconds(1);
+  for (v1::RunInfo info = runs_->Get(run_id); !IsFinalState(info.state());) {
+    if (context.IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "client gone");
+    if (stopping_) {
+      return grpc::Status(grpc::StatusCode::UNAVAILABLE,
+                          "the server is shutting down while run " + run_id + " was " +
+                              v1::RunState_Name(info.state()) +
+                              "; ask again (another replica, or this server once restarted)");
+    }
+    info = runs_->AwaitChange(run_id, info.state(), std::chrono::steady_clock::now() + kLook);
+  }
+  return grpc::Status::OK;
 }
 
 grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
@@ -17,6 +38,9 @@ grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
   size_t sent_bytes = 0;  // frames and probes, all messages
   const grpc::Status status = Admit(*context, "GetResult", [&]() -> grpc::Status {
     const std::string& run_id = request->run_id();
+    if (request->wait()) {
+      if (grpc::Status waited = AwaitEnd(*context, run_id); !waited.ok()) return waited;
+    }
     v1::ResultChunk head;
     *head.mutable_info() = runs_->ResultInfo(run_id);
     // A replay's probe set is checked (NOT_FOUND) before anything is sent.

@@ -61,6 +61,10 @@ class SimulationService final : public v1::Simulation::Service {
     return Serve(body);
   }
 
+  // GetResult's wait: until run `run_id` has ended (OK), the client is gone (CANCELLED) or
+  // the server stops (UNAVAILABLE). get_result.cc.
+  grpc::Status AwaitEnd(const grpc::ServerContext& context, const std::string& run_id);
+
   ModelRegistry* models_;
   RunManager* runs_;
   const Authorizer* authorizer_;

@@ -22,6 +22,8 @@ namespace mbstream {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+// The longest wait between looks at the client (gone?) and the server (stopping?).
+constexpr auto kLook = std::chrono::milliseconds(250);
 
 // s of wall time between progress events: 0 = the default; otherwise within the bounds.
 Clock::duration ProgressInterval(double interval_s) {
@@ -97,9 +99,11 @@ grpc::Status SimulationService::WatchRun(grpc::ServerContext* context,
       }
       const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(
           std::max(next_progress - Clock::now(), Clock::duration::zero()));
-      if (!frames) {
-        std::this_thread::sleep_for(std::min(wait, std::chrono::milliseconds(20)));
-        if (runs_->Get(run_id).state() != info.state()) next_progress = Clock::now();
+      if (!frames) {  // a change of state is sent at once, the counters every interval
+        const Clock::time_point look = Clock::now() + std::min(wait, kLook);
+        if (runs_->AwaitChange(run_id, info.state(), look).state() != info.state()) {
+          next_progress = Clock::now();
+        }
         continue;
       }
       events.clear();

@@ -179,15 +179,13 @@ class Run:
     def result(self, wait: bool = True, check: bool = False, probe_set: str = "") -> Result:
         """The run's stored result (mbstream_client.Result: NumPy arrays and stats). Waits
         for the run to end first unless `wait` is False (the server then answers
-        FAILED_PRECONDITION while it runs). With `check`, a run that did not finish raises
+        FAILED_PRECONDITION while it runs); the server does the waiting, in the same call. With `check`, a run that did not finish raises
         RunFailed (code: its state, message: the server's); otherwise the partial result
         comes back with its state. probe_set: the id of one of the run's replay probe sets
         (Client.probe_sets): `probes` then holds that replay's reports, not the live run's."""
-        if wait:
-            self.wait()
         with rpc_errors():
             chunks = self._client.stub.GetResult(
-                service_pb2.GetResultRequest(run_id=self.id, probe_set=probe_set))
+                service_pb2.GetResultRequest(run_id=self.id, probe_set=probe_set, wait=wait))
             result = result_from_chunks(chunks)
         self.info = result.info
         if check and not result.finished:

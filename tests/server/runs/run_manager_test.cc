@@ -14,6 +14,7 @@
 
 #include <unistd.h>
 
+#include "server/runs/request_error.h"
 #include "server/store/run_lease.h"
 #include "server/store/store.h"
 #include "tests/server/runs/manual_run_clock.h"
@@ -123,6 +124,24 @@ TEST_F(RunManagerTest, ShutdownInterruptsAWaitingRunAndKeepsItsFrames) {
   EXPECT_EQ(stored->frames(), 2);  // frame 0, and frame 1 that was waiting for its time
   EXPECT_NE(stored->message().find("the test stopped the server"), std::string::npos)
       << stored->message();
+}
+
+// AwaitChange returns with the change of state that ends the wait, not after its deadline: the
+// run waits for the manual clock, which never reaches its end, and the cancel ends it.
+TEST_F(RunManagerTest, AwaitChangeReturnsWhenTheRunChangesState) {
+  const auto far = std::chrono::steady_clock::now() + std::chrono::hours(1);
+  const v1::RunInfo started = runs_->Start("single_pendulum", Swing(20.0, 1.0));
+  EXPECT_EQ(runs_->AwaitChange(started.id(), v1::QUEUED, far).state(), v1::RUNNING);
+  ASSERT_TRUE(clock_.WaitForWaiter().has_value());  // running, waiting for frame 1's time
+  // A deadline that has passed: the run as it is.
+  EXPECT_EQ(runs_->AwaitChange(started.id(), v1::RUNNING, std::chrono::steady_clock::now()).state(),
+            v1::RUNNING);
+  std::thread cancel([&] { runs_->Cancel(started.id()); });
+  const v1::RunInfo ended = runs_->AwaitChange(started.id(), v1::RUNNING, far);
+  cancel.join();
+  EXPECT_EQ(ended.state(), v1::CANCELLED) << ended.message();
+  EXPECT_EQ(ended.frames(), 2);
+  EXPECT_THROW(runs_->AwaitChange("nosuch", v1::QUEUED, far), RequestError);
 }
 
 // On a shared store a run is RUNNING here in the store as soon as a worker of this replica

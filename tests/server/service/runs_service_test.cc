@@ -140,6 +140,41 @@ TEST_F(RunsServiceTest, ResultOfARunningRunIsFailedPrecondition) {
   EXPECT_THAT(status.error_message(), HasSubstr("wait for it to end"));
 }
 
+TEST_F(RunsServiceTest, ResultWithWaitArrivesWhenTheRunEnds) {
+  v1::RunSpec spec = SceneSpec("seed-run.json");
+  spec.set_realtime(20.0);  // 1 s of wall time: the call is made long before the end
+  const v1::RunInfo started = StartRunOk("irb1600", spec);
+  v1::RunInfo info;
+  std::vector<v1::Frame> frames;
+  const grpc::Status status = Result(started.id(), &info, &frames, nullptr, /*wait=*/true);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  EXPECT_EQ(info.state(), v1::FINISHED);
+  ASSERT_EQ(frames.size(), 401u);
+  EXPECT_EQ(frames.back().seq(), 400);
+  EXPECT_DOUBLE_EQ(frames.back().t_s(), 20.0);
+}
+
+TEST_F(RunsServiceTest, ResultWithWaitEndsWithTheCallsDeadline) {
+  v1::RunSpec spec = SceneSpec("seed-run.json");
+  spec.set_realtime(1.0);  // 20 s of wall time unless cancelled
+  const v1::RunInfo started = StartRunOk("irb1600", spec);
+  v1::RunInfo info;
+  std::vector<v1::Frame> frames;
+  const grpc::Status status =
+      Result(started.id(), &info, &frames, nullptr, /*wait=*/true, std::chrono::milliseconds(300));
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED) << status.error_message();
+  EXPECT_TRUE(frames.empty());
+  grpc::ClientContext context;
+  v1::CancelRunRequest request;
+  request.set_run_id(started.id());
+  v1::RunInfo cancelled;
+  ASSERT_TRUE(stub().CancelRun(&context, request, &cancelled).ok());
+  // The run ends CANCELLED; a waiting GetResult then gets what it stored.
+  ASSERT_TRUE(Result(started.id(), &info, &frames, nullptr, /*wait=*/true).ok());
+  EXPECT_EQ(info.state(), v1::CANCELLED);
+  EXPECT_EQ(static_cast<int64_t>(frames.size()), info.frames());
+}
+
 TEST_F(RunsServiceTest, BadRequestsGetTheirStatusCodes) {
   v1::RunInfo info;
   EXPECT_EQ(StartRun("nosuch", v1::RunSpec(), &info).error_code(), grpc::StatusCode::NOT_FOUND);

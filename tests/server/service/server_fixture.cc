@@ -77,27 +77,32 @@ v1::RunInfo ServerTest::StartRunOk(const std::string& model, const v1::RunSpec& 
 }
 
 v1::RunInfo ServerTest::WaitForEnd(const std::string& run_id) {
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
+  v1::WatchRunRequest request;
+  request.set_run_id(run_id);
+  request.set_progress_interval_s(60.0);  // a change of state is sent at once
+  auto reader = stub_->WatchRun(&context, request);
+  v1::WatchEvent event;
   v1::RunInfo info;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (std::chrono::steady_clock::now() < deadline) {
-    grpc::ClientContext context;
-    v1::GetRunRequest request;
-    request.set_run_id(run_id);
-    const grpc::Status status = stub_->GetRun(&context, request, &info);
-    EXPECT_TRUE(status.ok()) << status.error_message();
-    if (!status.ok() || IsFinalState(info.state())) return info;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  while (reader->Read(&event)) {
+    if (event.has_progress()) info = event.progress();
   }
-  ADD_FAILURE() << "run " << run_id << " did not end within 60 s";
+  const grpc::Status status = reader->Finish();
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  EXPECT_TRUE(IsFinalState(info.state())) << "run " << run_id << " did not end within 60 s";
   return info;
 }
 
 grpc::Status ServerTest::Result(const std::string& run_id, v1::RunInfo* info,
                                 std::vector<v1::Frame>* frames,
-                                std::vector<v1::ProbeReport>* probes) {
+                                std::vector<v1::ProbeReport>* probes, bool wait,
+                                std::chrono::milliseconds deadline) {
   grpc::ClientContext context;
+  if (deadline.count() > 0) context.set_deadline(std::chrono::system_clock::now() + deadline);
   v1::GetResultRequest request;
   request.set_run_id(run_id);
+  request.set_wait(wait);
   auto reader = stub_->GetResult(&context, request);
   v1::ResultChunk chunk;
   while (reader->Read(&chunk)) {

@@ -4,6 +4,7 @@
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -40,13 +41,15 @@ class ServerTest : public ::testing::Test {
   grpc::Status Submit(const v1::ModelBundle& bundle, v1::ModelInfo* info);
   grpc::Status StartRun(const std::string& model, const v1::RunSpec& spec, v1::RunInfo* info);
   v1::RunInfo StartRunOk(const std::string& model, const v1::RunSpec& spec);
-  // Polls GetRun until the run ended (or 60 s passed); returns the last info.
+  // Watches the run (WatchRun, no frames) until it ended (60 s at most); returns the last info.
   v1::RunInfo WaitForEnd(const std::string& run_id);
   // Waits until the server counts `count` open Subscribe/WatchRun streams (60 s at most).
   void WaitForSubscribers(int count);
-  // GetResult: info, frames and probes.
+  // GetResult: info, frames and probes; `wait`: GetResultRequest.wait, with the call's
+  // `deadline` (none when zero).
   grpc::Status Result(const std::string& run_id, v1::RunInfo* info, std::vector<v1::Frame>* frames,
-                      std::vector<v1::ProbeReport>* probes);
+                      std::vector<v1::ProbeReport>* probes, bool wait = false,
+                      std::chrono::milliseconds deadline = std::chrono::milliseconds(0));
 
   // A spec from a JSON file of models/irb1600/ (e.g. "seed-run.json").
   static v1::RunSpec SceneSpec(const std::string& file);

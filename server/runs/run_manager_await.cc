@@ -1,0 +1,38 @@
+// RunManager: waiting for a run's state to change (GetResult's wait, WatchRun's progress)
+// on the changes this replica makes, instead of reading the run again and again.
+#include <algorithm>
+
+#include "server/runs/run_manager.h"
+
+namespace mbstream {
+
+void RunManager::NoteStateChange() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++state_changes_;
+  }
+  state_changed_.notify_all();
+}
+
+v1::RunInfo RunManager::AwaitChange(const std::string& run_id, v1::RunState from,
+                                    std::chrono::steady_clock::time_point until) const {
+  // Changes made here wake the wait at once; a run integrating on another replica (shared
+  // store) or a claim that failed is read again every kRecheck.
+  constexpr auto kRecheck = std::chrono::milliseconds(100);
+  for (;;) {
+    uint64_t seen = 0;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      seen = state_changes_;  // before reading the run: no change is missed in between
+    }
+    v1::RunInfo info = Get(run_id);
+    const auto now = std::chrono::steady_clock::now();
+    if (info.state() != from || now >= until) return info;
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (stopping_) return info;
+    state_changed_.wait_until(lock, std::min(until, now + kRecheck),
+                              [&] { return stopping_ || state_changes_ != seen; });
+  }
+}
+
+}  // namespace mbstream
