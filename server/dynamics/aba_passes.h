@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstring>
+#include <type_traits>
+#include <utility>
 
 #include "common/check.h"
 #include "server/dynamics/axis_inertia_move.h"
@@ -200,48 +202,23 @@ void AccelerationPass(const Vector6d& a_parent, int i, Data& data) {
   }
 }
 
-// Calls axis(std::integral_constant<int, K>{}, std::integral_constant<int, L>{}) for a joint
-// with an axis kernel (Joint::axis_kernel: a revolute joint about coordinate axis K with an
-// unrotated origin of offset shape L), else other(std::integral_constant<int, Shape>{}) for
-// its JointShape: one jump per body and pass.
+// Joint::axis_kernel C = 5 K + (L, or 4 for kAnyOffset) as the constants K and L.
+template <int C>
+using KernelAxis = std::integral_constant<int, C / 5>;
+template <int C>
+using KernelOffset = std::integral_constant<int, (C % 5 == 4 ? kAnyOffset : C % 5)>;
+
+// Calls axis(KernelAxis<C>{}, KernelOffset<C>{}) for a joint with axis kernel C
+// (Joint::axis_kernel: a revolute joint about coordinate axis K with an unrotated origin of
+// offset shape L), else other(std::integral_constant<int, Shape>{}) for its JointShape: one
+// jump per body and pass (GCC makes the comparisons one jump table).
 template <typename FAxis, typename FOther>
 [[gnu::always_inline]] inline void DispatchStep(const Joint& joint, FAxis&& axis, FOther&& other) {
-  using std::integral_constant;
-  constexpr int kAny = kAnyOffset;
-  switch (joint.axis_kernel) {
-    case 0:
-      return axis(integral_constant<int, 0>{}, integral_constant<int, 0>{});
-    case 1:
-      return axis(integral_constant<int, 0>{}, integral_constant<int, 1>{});
-    case 2:
-      return axis(integral_constant<int, 0>{}, integral_constant<int, 2>{});
-    case 3:
-      return axis(integral_constant<int, 0>{}, integral_constant<int, kNoOffset>{});
-    case 4:
-      return axis(integral_constant<int, 0>{}, integral_constant<int, kAny>{});
-    case 5:
-      return axis(integral_constant<int, 1>{}, integral_constant<int, 0>{});
-    case 6:
-      return axis(integral_constant<int, 1>{}, integral_constant<int, 1>{});
-    case 7:
-      return axis(integral_constant<int, 1>{}, integral_constant<int, 2>{});
-    case 8:
-      return axis(integral_constant<int, 1>{}, integral_constant<int, kNoOffset>{});
-    case 9:
-      return axis(integral_constant<int, 1>{}, integral_constant<int, kAny>{});
-    case 10:
-      return axis(integral_constant<int, 2>{}, integral_constant<int, 0>{});
-    case 11:
-      return axis(integral_constant<int, 2>{}, integral_constant<int, 1>{});
-    case 12:
-      return axis(integral_constant<int, 2>{}, integral_constant<int, 2>{});
-    case 13:
-      return axis(integral_constant<int, 2>{}, integral_constant<int, kNoOffset>{});
-    case 14:
-      return axis(integral_constant<int, 2>{}, integral_constant<int, kAny>{});
-    default:
-      return DispatchJointShape(joint, other);
-  }
+  const int kernel = joint.axis_kernel;
+  const auto try_kernels = [&]<int... C>(std::integer_sequence<int, C...>) {
+    return ((kernel == C && (axis(KernelAxis<C>{}, KernelOffset<C>{}), true)) || ...);
+  };
+  if (!try_kernels(std::make_integer_sequence<int, 15>{})) DispatchJointShape(joint, other);
 }
 
 // Pass 1 over every body.
