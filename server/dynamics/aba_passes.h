@@ -87,8 +87,9 @@ void BackwardPassAboutAxis(const Body& body, int i, double tau, Data& data) {
   data.D[i] = D;
   data.u[i] = u;
   MBSTREAM_CHECK_MSG(D > 0.0, "articulated inertia of a joint is not positive");
-  if (body.parent == kBase) return;
   const double inv_D = 1.0 / D;
+  data.inv_D[i] = inv_D;  // pass 3 multiplies: no division on its parent-to-child chain
+  if (body.parent == kBase) return;
   const double* c = data.c[i].data();
   double pa[6];
   const Pose& X = data.X_parent[i];
@@ -112,13 +113,15 @@ void AccelerationPassAboutAxis(const Vector6d& a_parent, int i, Data& data) {
   const double* U = data.U[i].data();
   double x[6];
   MotionToChild<K, L>(RotationOf<K>(X), X.p.data(), a_parent.data(), x);
-  // a = X^T a_parent + c (c_K = c_(3 + K) = 0), qdd = (u - U.a) / D, a += e_K qdd.
-  double Ua = -0.0;  // x + -0.0 folds to x
+  // a = X^T a_parent + c (c_K = c_(3 + K) = 0), qdd = (u - U.a) / D, a += e_K qdd: the
+  // chain from the parent's acceleration to the child's (every body waits for its parent's)
+  // kept short, U.a summed pairwise and no division.
   Unroll<6>([&](auto e) {
     if constexpr (e != K && e != 3 + K) x[e] += c[e];
-    Ua += U[e] * x[e];
   });
-  const double qdd = (data.u[i] - Ua) / data.D[i];
+  const double Ua =
+      ((U[0] * x[0] + U[1] * x[1]) + (U[2] * x[2] + U[3] * x[3])) + (U[4] * x[4] + U[5] * x[5]);
+  const double qdd = (data.u[i] - Ua) * data.inv_D[i];
   data.qdd(i) = qdd;
   x[K] += qdd;
   for (int e = 0; e < 6; ++e) a[e] = x[e];
