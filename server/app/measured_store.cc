@@ -106,11 +106,14 @@ void MeasuredStore::PutFrameChunk(const std::string& run_id, int64_t index,
   metrics_.frames().Add(static_cast<double>(chunk.frame_count));
 }
 
-void MeasuredStore::FinishRun(const v1::RunInfo& info, int64_t index,
-                              const EncodedFrameChunk& last_chunk) {
-  Timed(StoreOperation::kFinishRun, [&] { store_->FinishRun(info, index, last_chunk); });
+bool MeasuredStore::FinishRun(const v1::RunInfo& info, int64_t index,
+                              const EncodedFrameChunk& last_chunk, const std::string& holder) {
+  const bool written = Timed(StoreOperation::kFinishRun,
+                             [&] { return store_->FinishRun(info, index, last_chunk, holder); });
+  if (!written) return false;
   metrics_.frames().Add(static_cast<double>(last_chunk.frame_count));
   CountState(info);
+  return true;
 }
 
 void MeasuredStore::FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& frames) {

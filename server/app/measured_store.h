@@ -37,8 +37,8 @@ class MeasuredStore final : public Store {
   std::vector<v1::RunInfo> ListRuns() const override;
   void PutFrameChunk(const std::string& run_id, int64_t index,
                      const EncodedFrameChunk& chunk) override;
-  void FinishRun(const v1::RunInfo& info, int64_t index,
-                 const EncodedFrameChunk& last_chunk) override;
+  bool FinishRun(const v1::RunInfo& info, int64_t index, const EncodedFrameChunk& last_chunk,
+                 const std::string& holder) override;
   void FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& frames) override;
   std::optional<int64_t> GetFrameChunkData(const std::string& run_id, int64_t index,
                                            std::string& data) const override;

@@ -35,10 +35,11 @@ void FrameSpool::Add(const v1::Frame& frame, Store& store) {
   }
 }
 
-void FrameSpool::Finish(const v1::RunInfo& info, Store& store) {
+bool FrameSpool::Finish(const v1::RunInfo& info, Store& store, const std::string& holder) {
   const EncodedFrameChunk chunk = pending_.Take();
-  store.FinishRun(info, next_chunk_, chunk);
+  if (!store.FinishRun(info, next_chunk_, chunk, holder)) return false;
   if (chunk.frame_count > 0) ++next_chunk_;
+  return true;
 }
 
 }  // namespace mbstream

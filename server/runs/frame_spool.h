@@ -25,9 +25,10 @@ class FrameSpool {
   // Adds the next frame (in seq order); stores the chunk when it is full. A store failure
   // does not throw: it is kept in error() and later frames are dropped (the run should stop).
   void Add(const v1::Frame& frame, Store& store);
-  // Stores `info` and the frames not yet stored in one transaction (Store::FinishRun).
+  // Stores `info` and the frames not yet stored in one transaction (Store::FinishRun), with
+  // a `holder` only while it holds the run's lease: false (nothing stored) otherwise.
   // Throws what the store throws.
-  void Finish(const v1::RunInfo& info, Store& store);
+  bool Finish(const v1::RunInfo& info, Store& store, const std::string& holder = {});
 
   // Why a chunk could not be stored; empty while every chunk was.
   const std::string& error() const { return error_; }

@@ -120,14 +120,18 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
     ApplyHandBack(info, info.ended_unix_ms(), outcome.message);
   }
   try {
-    if (run->lease_lost || !store_->RenewLease(run->id(), holder, NowUnixMs() + LeaseMs())) {
+    // The lease is checked in the transaction that stores the result (one transaction per
+    // run, not two); probe reports, stored before it, need a renewal of their own first.
+    std::vector<v1::ProbeReport> probes = run->TakeProbes();
+    if (run->lease_lost ||
+        (!probes.empty() && !store_->RenewLease(run->id(), holder, NowUnixMs() + LeaseMs()))) {
       run->lease_lost = true;
     } else if (info.state() == v1::QUEUED) {
       if (!store_->PutRunIfHeld(info, holder)) run->lease_lost = true;
       spdlog::info("run {} handed back to the queue: {}", run->id(), info.message());
     } else {
-      store_->AddProbes(run->TakeProbes());
-      run->spool().Finish(info, *store_);
+      if (!probes.empty()) store_->AddProbes(probes);
+      if (!run->spool().Finish(info, *store_, holder)) run->lease_lost = true;
     }
   } catch (const std::exception& error) {
     spdlog::error("run {}: storing the result failed: {}", run->id(), error.what());

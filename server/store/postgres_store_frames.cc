@@ -92,13 +92,15 @@ void PostgresStore::PutFrameChunk(const std::string& run_id, int64_t index,
                   [&](pqxx::work& tx) { UpsertChunk(tx, run_id, index, chunk); });
 }
 
-void PostgresStore::FinishRun(const v1::RunInfo& info, int64_t index,
-                              const EncodedFrameChunk& last_chunk) {
-  impl_->Transact("finish run " + info.id(), [&](pqxx::work& tx) {
+bool PostgresStore::FinishRun(const v1::RunInfo& info, int64_t index,
+                              const EncodedFrameChunk& last_chunk, const std::string& holder) {
+  return impl_->Transact("finish run " + info.id(), [&](pqxx::work& tx) {
+    if (!holder.empty() && !HoldsLease(tx, info.id(), holder)) return false;
     UpsertRun(tx, info);
     if (last_chunk.frame_count > 0) UpsertChunk(tx, info.id(), index, last_chunk);
     tx.exec_prepared("delete_frame_chunks_after", info.id(),
                      last_chunk.frame_count > 0 ? index : index - 1);
+    return true;
   });
 }
 

@@ -60,4 +60,8 @@ inline pqxx::binarystring BlobParam(const std::string& bytes) { return pqxx::bin
 // Writes the run row (insert, or update keeping its order and its frames).
 void UpsertRun(pqxx::transaction_base& transaction, const v1::RunInfo& info);
 
+// Whether `holder` holds the lease of RUNNING run `run_id`; locks the row (FOR UPDATE).
+bool HoldsLease(pqxx::transaction_base& transaction, const std::string& run_id,
+                const std::string& holder);
+
 }  // namespace mbstream

@@ -33,15 +33,15 @@ void UpdateRun(pqxx::work& tx, const v1::RunInfo& info, const std::string* holde
   }
 }
 
-bool HoldsLease(pqxx::work& tx, const std::string& run_id, const std::string& holder) {
+}  // namespace
+
+bool HoldsLease(pqxx::transaction_base& tx, const std::string& run_id, const std::string& holder) {
   return !tx.exec_params(
                 "SELECT 1 FROM runs WHERE id = $1 AND state = $2 AND lease_holder = $3 "
                 "FOR UPDATE",
                 run_id, kRunning, holder)
               .empty();
 }
-
-}  // namespace
 
 std::optional<v1::RunInfo> PostgresStore::ClaimQueuedRun(const RunLease& lease) {
   return impl_->Transact("claim a queued run", [&](pqxx::work& tx) {

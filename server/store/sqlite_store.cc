@@ -110,7 +110,8 @@ SqliteStore::Impl::Impl(SqliteConnection connection)
                    "VALUES (?1, ?2, ?3, ?4)",
                    "write probe report"),
       select_probes(db, "SELECT report FROM probes WHERE run_id = ?1 ORDER BY seq, probe",
-                    "read probe reports") {}
+                    "read probe reports"),
+      checkpointer(db) {}
 
 std::unique_ptr<SqliteStore> SqliteStore::Open(const std::string& directory) {
   CreateDirectory(directory);

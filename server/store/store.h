@@ -73,8 +73,11 @@ class Store {
   // Stores the run's final info and its last chunk (number `index`, skipped when it holds no
   // frames) in ONE transaction, and removes any chunk numbered after it: after a crash either
   // the final state and every frame are there, or the run still shows its previous row.
-  virtual void FinishRun(const v1::RunInfo& info, int64_t index,
-                         const EncodedFrameChunk& last_chunk) = 0;
+  // With a `holder` (LeaseHolder; empty: unconditionally), only while that holder still holds the
+  // run's lease (as RenewLease checks it, in the same transaction): false, and nothing written,
+  // otherwise.
+  virtual bool FinishRun(const v1::RunInfo& info, int64_t index,
+                         const EncodedFrameChunk& last_chunk, const std::string& holder) = 0;
   // The same for a run whose frames are all at hand (in seq order): they replace every frame
   // stored earlier for the run.
   virtual void FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& frames) = 0;

@@ -30,10 +30,11 @@ void SqliteStore::PutFrameChunk(const std::string& run_id, int64_t index,
   InsertChunkLocked(*impl_, run_id, index, chunk);  // one statement: its own transaction
 }
 
-void SqliteStore::FinishRun(const v1::RunInfo& info, int64_t index,
-                            const EncodedFrameChunk& last_chunk) {
+bool SqliteStore::FinishRun(const v1::RunInfo& info, int64_t index,
+                            const EncodedFrameChunk& last_chunk, const std::string& holder) {
   std::lock_guard lock(impl_->mutex);
   SqliteTransaction transaction(impl_->db, "finish run " + info.id());
+  if (!holder.empty() && !HoldsLeaseLocked(*impl_, info.id(), holder)) return false;
   UpsertRunLocked(*impl_, info);
   if (last_chunk.frame_count > 0) InsertChunkLocked(*impl_, info.id(), index, last_chunk);
   {
@@ -44,6 +45,7 @@ void SqliteStore::FinishRun(const v1::RunInfo& info, int64_t index,
     remove.Run();
   }
   transaction.Commit();
+  return true;
 }
 
 void SqliteStore::FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& frames) {

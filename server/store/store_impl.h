@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "server/store/sqlite_checkpointer.h"
 #include "server/store/sqlite_connection.h"
 #include "server/store/sqlite_statement.h"
 #include "server/store/sqlite_store.h"
@@ -44,10 +45,17 @@ struct SqliteStore::Impl {
 
   SqliteStatement upsert_probe;
   SqliteStatement select_probes;
+
+  // Last: unhooked from `db` before anything else is torn down.
+  SqliteCheckpointer checkpointer;
 };
 
 // Writes the run row (insert, or update keeping the row's order and its frames). The caller
 // holds the mutex.
 void UpsertRunLocked(SqliteStore::Impl& impl, const v1::RunInfo& info);
+
+// Whether `holder` holds the lease of RUNNING run `run_id`. The caller holds the mutex.
+bool HoldsLeaseLocked(SqliteStore::Impl& impl, const std::string& run_id,
+                      const std::string& holder);
 
 }  // namespace mbstream

@@ -31,8 +31,10 @@ std::vector<v1::RunInfo> SelectRuns(SqliteStore::Impl& impl, SqliteStatement& se
   return runs;
 }
 
-// Whether `holder` holds the lease of RUNNING run `run_id` (the caller holds the mutex).
-bool HoldsLease(SqliteStore::Impl& impl, const std::string& run_id, const std::string& holder) {
+}  // namespace
+
+bool HoldsLeaseLocked(SqliteStore::Impl& impl, const std::string& run_id,
+                      const std::string& holder) {
   SqliteStatement& select = impl.select_run_lease;
   ResetOnExit reset(select);
   select.BindText(1, run_id);
@@ -40,8 +42,6 @@ bool HoldsLease(SqliteStore::Impl& impl, const std::string& run_id, const std::s
   select.BindText(3, holder);
   return select.Step();
 }
-
-}  // namespace
 
 std::optional<v1::RunInfo> SqliteStore::ClaimQueuedRun(const RunLease& lease) {
   std::lock_guard lock(impl_->mutex);
@@ -63,7 +63,7 @@ bool SqliteStore::RenewLease(const std::string& run_id, const std::string& holde
                              int64_t expires_unix_ms) {
   std::lock_guard lock(impl_->mutex);
   SqliteTransaction transaction(impl_->db, "renew a run lease");
-  if (!HoldsLease(*impl_, run_id, holder)) return false;
+  if (!HoldsLeaseLocked(*impl_, run_id, holder)) return false;
   SetLease(*impl_, run_id, &holder, expires_unix_ms);
   transaction.Commit();
   return true;
@@ -102,7 +102,7 @@ std::vector<v1::RunInfo> SqliteStore::ListRunningRuns() const {
 bool SqliteStore::PutRunIfHeld(const v1::RunInfo& info, const std::string& holder) {
   std::lock_guard lock(impl_->mutex);
   SqliteTransaction transaction(impl_->db, "write run " + info.id());
-  if (!HoldsLease(*impl_, info.id(), holder)) return false;
+  if (!HoldsLeaseLocked(*impl_, info.id(), holder)) return false;
   UpsertRunLocked(*impl_, info);
   SetLease(*impl_, info.id(), nullptr, 0);
   transaction.Commit();

@@ -143,7 +143,7 @@ TEST_P(StoreFramesTest, ChunksWrittenDuringTheRunThenFinished) {
   EXPECT_EQ(store->GetFrames("r-1").size(), 2 * kFramesPerChunk);  // visible while it runs
 
   const v1::RunInfo finished = MakeRun("r-1", v1::FINISHED, 1000);
-  store->FinishRun(finished, index, builder.Take());
+  EXPECT_TRUE(store->FinishRun(finished, index, builder.Take(), ""));
   EXPECT_TRUE(builder.empty());
   EXPECT_TRUE(Same(*store->GetRun("r-1"), finished));
   ExpectSameFrames(store->GetFrames("r-1"), frames);
@@ -166,7 +166,7 @@ TEST_P(StoreFramesTest, FinishRunWithAnEmptyLastChunkDropsStaleChunks) {
   const std::vector<EncodedFrameChunk> chunks = EncodeFrameChunks(MakeFrames(12, 2), 4);
   for (int i = 0; i < 3; ++i) store->PutFrameChunk("r-1", i, chunks[i]);
   // Finished after two chunks (e.g. a chunk 2 left by an earlier attempt): chunk 2 goes.
-  store->FinishRun(MakeRun("r-1", v1::CANCELLED, 1000), 2, EncodedFrameChunk());
+  EXPECT_TRUE(store->FinishRun(MakeRun("r-1", v1::CANCELLED, 1000), 2, EncodedFrameChunk(), ""));
   EXPECT_EQ(store->GetRun("r-1")->state(), v1::CANCELLED);
   const std::vector<v1::Frame> frames = store->GetFrames("r-1");
   ASSERT_EQ(frames.size(), 8u);

@@ -5,6 +5,7 @@
 
 #include <gmock/gmock.h>
 
+#include "server/store/frame_chunks.h"
 #include "server/store/store.h"
 #include "tests/server/store/store_test_util.h"
 
@@ -152,6 +153,31 @@ TEST_P(StoreQueueTest, HolderWritesItsEndOnlyWhileItHoldsTheLease) {
   EXPECT_EQ(store->GetRun("r-1")->state(), v1::FINISHED);
   EXPECT_FALSE(store->RenewLease("r-1", LeaseHolder(run), 9000));  // the lease is dropped
   EXPECT_TRUE(store->ReapExpiredLeases(99999, "b").empty());       // ended runs are left
+}
+
+// FinishRun with a holder: the lease check and the result are one transaction.
+TEST_P(StoreQueueTest, FinishRunStoresTheResultOnlyWhileTheHolderHoldsTheLease) {
+  auto store = Open();
+  store->PutRun(Queued("r-1", 1000));
+  store->PutRun(Queued("r-2", 2000));
+  v1::RunInfo run = *store->ClaimQueuedRun(Lease("a", 5000));
+  ASSERT_EQ(run.id(), "r-1");
+  const EncodedFrameChunk chunk = EncodeFrameChunks(MakeFrames(3, 2)).front();
+  run.set_state(v1::FINISHED);
+  EXPECT_FALSE(store->FinishRun(run, 0, chunk, "replica b"));  // not the holder
+  EXPECT_EQ(store->GetRun("r-1")->state(), v1::RUNNING);
+  EXPECT_TRUE(store->GetFrames("r-1").empty());
+  EXPECT_TRUE(store->FinishRun(run, 0, chunk, LeaseHolder(run)));
+  EXPECT_EQ(store->GetRun("r-1")->state(), v1::FINISHED);
+  EXPECT_EQ(store->GetFrames("r-1").size(), 3u);
+
+  // Reaped before it ended: the old holder stores nothing.
+  v1::RunInfo second = *store->ClaimQueuedRun(Lease("a", 6000));
+  ASSERT_EQ(store->ReapExpiredLeases(99999, "b").size(), 1u);
+  second.set_state(v1::FINISHED);
+  EXPECT_FALSE(store->FinishRun(second, 0, chunk, LeaseHolder(second)));
+  EXPECT_EQ(store->GetRun("r-2")->state(), v1::INTERRUPTED);
+  EXPECT_TRUE(store->GetFrames("r-2").empty());
 }
 
 TEST_P(StoreQueueTest, EndQueuedRunOnlyEndsARunStillQueued) {

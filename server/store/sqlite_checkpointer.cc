@@ -1,0 +1,65 @@
+#include "server/store/sqlite_checkpointer.h"
+
+#include <sqlite3.h>
+
+namespace mbstream {
+
+SqliteCheckpointer::SqliteCheckpointer(SqliteConnection& writer)
+    : writer_(writer), own_(SqliteConnection::Open(writer.path())) {
+  // A connection checkpoints only a database it has seen in WAL mode (else: a no-op).
+  own_.Exec("PRAGMA journal_mode = WAL", "open the checkpointer's connection");
+  thread_ = std::thread([this] { Loop(); });
+  sqlite3_wal_hook(writer_.get(), &SqliteCheckpointer::OnCommit, this);
+}
+
+SqliteCheckpointer::~SqliteCheckpointer() {
+  sqlite3_wal_hook(writer_.get(), nullptr, nullptr);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+int SqliteCheckpointer::OnCommit(void* self, sqlite3* db, const char* schema, int wal_pages) {
+  auto* checkpointer = static_cast<SqliteCheckpointer*>(self);
+  if (wal_pages >= kBackstopPages) {
+    // Behind: the writer copies what it can itself (PASSIVE, like SQLite's own; a failure
+    // leaves the WAL as it is, for the next commit to try again).
+    sqlite3_wal_checkpoint_v2(db, schema, SQLITE_CHECKPOINT_PASSIVE, nullptr, nullptr);
+  } else if (wal_pages >= kBackgroundPages) {
+    {
+      std::lock_guard<std::mutex> lock(checkpointer->mutex_);
+      checkpointer->asked_ = true;
+    }
+    checkpointer->wake_.notify_one();
+  }
+  return SQLITE_OK;
+}
+
+void SqliteCheckpointer::Loop() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    wake_.wait(lock, [&] { return stop_ || asked_; });
+    if (stop_) return;
+    asked_ = false;
+    running_ = true;
+    lock.unlock();
+    // SQLITE_BUSY (the writer's backstop checkpoints meanwhile) or an I/O error: the WAL
+    // stays as it is and the next commit past the threshold asks again.
+    sqlite3_wal_checkpoint_v2(own_.get(), "main", SQLITE_CHECKPOINT_PASSIVE, nullptr, nullptr);
+    lock.lock();
+    running_ = false;
+    ++done_;
+    idle_.notify_all();
+  }
+}
+
+int64_t SqliteCheckpointer::WaitIdle() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  idle_.wait(lock, [&] { return !asked_ && !running_; });
+  return done_;
+}
+
+}  // namespace mbstream

@@ -1,0 +1,56 @@
+// Checkpoints a WAL database on a thread of its own, so that a commit never waits for the
+// copy of the WAL into the database file and its fdatasyncs. SQLite's automatic checkpoint
+// runs inside the commit that crosses its threshold: with one store lock, every run's store
+// call waited for it (a run's 84 KB of frames fills the default 1,000-page WAL every ~40
+// runs; docs/performance.md).
+//
+// The writer's connection gets a WAL hook instead of the automatic checkpoint: from
+// kBackgroundPages of WAL on, a commit wakes the checkpointer, which checkpoints PASSIVE on a
+// connection of its own (it never blocks a writer or a reader; the next write after a
+// complete checkpoint starts the WAL from its beginning again). From kBackstopPages on (the
+// checkpointer fell behind, e.g. behind a long reader) the committing writer checkpoints
+// itself, as SQLite's own automatic checkpoint would.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+
+#include "server/store/sqlite_connection.h"
+
+namespace mbstream {
+
+class SqliteCheckpointer {
+ public:
+  static constexpr int kBackgroundPages = 1000;  // SQLite's default automatic checkpoint
+  static constexpr int kBackstopPages = 16000;   // 64 MB of 4 KB pages
+
+  // Hooks into `writer` (which must outlive this) and opens a connection of its own to the
+  // same file. Throws SqliteError when that connection cannot be opened.
+  explicit SqliteCheckpointer(SqliteConnection& writer);
+  ~SqliteCheckpointer();  // unhooks, then stops and joins the thread
+  SqliteCheckpointer(const SqliteCheckpointer&) = delete;
+  SqliteCheckpointer& operator=(const SqliteCheckpointer&) = delete;
+
+  // Waits until no checkpoint is asked for or running (tests); returns the checkpoints
+  // completed so far on the thread.
+  int64_t WaitIdle();
+
+ private:
+  static int OnCommit(void* self, struct sqlite3* db, const char* schema, int wal_pages);
+  void Loop();
+
+  SqliteConnection& writer_;
+  SqliteConnection own_;
+  std::mutex mutex_;
+  std::condition_variable wake_;  // a checkpoint asked for, or stop
+  std::condition_variable idle_;  // a checkpoint done
+  bool asked_ = false;
+  bool running_ = false;
+  bool stop_ = false;
+  int64_t done_ = 0;
+  std::thread thread_;
+};
+
+}  // namespace mbstream
