@@ -174,6 +174,11 @@ int MeasuredStore::MarkUnfinishedRunsInterrupted(const std::string& message) {
   return marked;
 }
 
+void MeasuredStore::NoteClaimed(const v1::RunInfo& info) {
+  store_->NoteClaimed(info);
+  CountState(info);
+}
+
 std::optional<v1::RunInfo> MeasuredStore::ClaimQueuedRun(const RunLease& lease) {
   std::optional<v1::RunInfo> claimed =
       Timed(StoreOperation::kClaimQueuedRun, [&] { return store_->ClaimQueuedRun(lease); });

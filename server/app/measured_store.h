@@ -53,6 +53,7 @@ class MeasuredStore final : public Store {
   std::vector<v1::ProbeReport> GetProbeSetReports(const std::string& set_id) const override;
   int MarkUnfinishedRunsInterrupted(const std::string& message) override;
   std::optional<v1::RunInfo> ClaimQueuedRun(const RunLease& lease) override;
+  void NoteClaimed(const v1::RunInfo& info) override;
   bool RenewLease(const std::string& run_id, const std::string& holder,
                   int64_t expires_unix_ms) override;
   std::vector<v1::RunInfo> ReapExpiredLeases(int64_t now_unix_ms,

@@ -78,7 +78,8 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
     for (const auto& follower : followers_) run->Attach(follower, true);
   }
   NoteStateChange();
-  // Stored RUNNING already, by the claim (ClaimNext): the row is written again when it ends.
+  // Stored RUNNING already by the claim (ClaimNext; still QUEUED with a private store): the
+  // row is written again when it ends.
   spdlog::info("run {} started", run->id());
 
   PublishingSink sink(run.get(), store_, clock_);
@@ -105,7 +106,8 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
   // Store first, then show the final state: whoever sees a run ended can fetch its result.
   // The frames are in the store already but for the spool's last chunk, written together
   // with the final info. Nothing is stored once another replica took the run over.
-  const std::string holder = LeaseHolder(run->Info());
+  // A private store's runs hold no lease (ClaimPrivate): stored unconditionally.
+  const std::string holder = replica_.private_store ? std::string() : LeaseHolder(run->Info());
   v1::RunInfo info = run->Info();
   info.set_state(outcome.state);
   info.set_message(outcome.message);
@@ -123,8 +125,8 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
     // The lease is checked in the transaction that stores the result (one transaction per
     // run, not two); probe reports, stored before it, need a renewal of their own first.
     std::vector<v1::ProbeReport> probes = run->TakeProbes();
-    if (run->lease_lost ||
-        (!probes.empty() && !store_->RenewLease(run->id(), holder, NowUnixMs() + LeaseMs()))) {
+    if (run->lease_lost || (!probes.empty() && !holder.empty() &&
+                            !store_->RenewLease(run->id(), holder, NowUnixMs() + LeaseMs()))) {
       run->lease_lost = true;
     } else if (info.state() == v1::QUEUED) {
       if (!store_->PutRunIfHeld(info, holder)) run->lease_lost = true;

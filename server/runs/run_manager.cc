@@ -162,10 +162,12 @@ v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& s
     run = std::make_shared<Run>(info, config, model);
     active_[info.id()] = run;
     queue_.push_back(run);
+    unstored_.insert(run.get());
     break;
   }
   auto forget = [&] {
     std::lock_guard<std::mutex> lock(mutex_);
+    unstored_.erase(run.get());
     queue_.erase(std::remove(queue_.begin(), queue_.end(), run), queue_.end());
     if (auto found = active_.find(info.id()); found != active_.end() && found->second == run) {
       active_.erase(found);
@@ -180,6 +182,7 @@ v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& s
   std::string stop_reason;
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    unstored_.erase(run.get());
     if (stopping_) stop_reason = stop_reason_;
     ++wakeups_;
   }
@@ -204,16 +207,24 @@ std::shared_ptr<Run> RunManager::FindActive(const std::string& run_id) const {
 
 v1::RunInfo RunManager::Cancel(const std::string& run_id) {
   std::shared_ptr<Run> run = FindActive(run_id);
-  bool queued_here = false;
+  bool queued_here = false, dequeued = false;
   if (run) {
     std::lock_guard<std::mutex> lock(mutex_);
-    queued_here = std::find(queue_.begin(), queue_.end(), run) != queue_.end();
+    auto queued = std::find(queue_.begin(), queue_.end(), run);
+    queued_here = queued != queue_.end();
+    // A private store's claims are made in queue_ (ClaimPrivate), not in the store: taken
+    // out of it here, no worker claims the run while its row is ended.
+    if (queued_here && replica_.private_store && !unstored_.count(run.get())) {
+      queue_.erase(queued);
+      dequeued = true;
+    }
   }
   if (run && !queued_here) {  // integrating here
     run->cancel = true;
     spdlog::info("run {} cancel requested", run_id);
     return run->Info();
   }
+  if (dequeued) return CancelDequeued(run);
   // Queued (here or by another replica): ended in the store unless a replica claimed it.
   if (std::optional<v1::RunInfo> ended =
           store_->EndQueuedRun(run_id, v1::CANCELLED, "cancelled before it started", NowUnixMs())) {
@@ -233,6 +244,29 @@ v1::RunInfo RunManager::Cancel(const std::string& run_id) {
                            info.replica_address() + " cancel " + run_id + ")");
   }
   return info;
+}
+
+v1::RunInfo RunManager::CancelDequeued(const std::shared_ptr<Run>& run) {
+  std::optional<v1::RunInfo> ended;
+  try {
+    ended =
+        store_->EndQueuedRun(run->id(), v1::CANCELLED, "cancelled before it started", NowUnixMs());
+  } catch (const std::exception& error) {
+    spdlog::error("run {}: storing its cancellation failed: {}", run->id(), error.what());
+  }
+  if (!ended) {  // a worker ends it CANCELLED instead (Execute), storing it again
+    run->cancel = true;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      queue_.push_front(run);
+      ++wakeups_;
+    }
+    work_.notify_one();
+    return run->Info();
+  }
+  EndPlaceholder(run, *ended);
+  spdlog::info("run {} cancelled before it started", run->id());
+  return *ended;
 }
 
 v1::RunInfo RunManager::Get(const std::string& run_id) const {

@@ -15,6 +15,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -189,8 +190,15 @@ class RunManager {
   void WorkerLoop();
   // The queue (run_manager_queue.cc). Claims the oldest queued run of the store for this
   // replica, with its Run (the one Start made here, or one made from the stored info);
-  // nullptr when none is queued or the store failed.
+  // nullptr when none is queued or the store failed. With a private store the queue is
+  // this process's own: ClaimPrivate takes the oldest stored run of queue_ without a store
+  // transaction (its row stays QUEUED until the run ends; a crash marks either INTERRUPTED
+  // at the next start).
   std::shared_ptr<Run> ClaimNext();
+  std::shared_ptr<Run> ClaimPrivate();
+  // Cancels a queued run Cancel took out of a private store's queue_: ended in the store, or
+  // (the store failed) queued again with `cancel` set, for a worker to end.
+  v1::RunInfo CancelDequeued(const std::shared_ptr<Run>& run);
   std::shared_ptr<Run> RunOf(const v1::RunInfo& info);  // model compiled, config prepared
   RunLease NewLease() const;
   int64_t LeaseMs() const;  // how long a claim or renewal holds
@@ -235,6 +243,8 @@ class RunManager {
   uint64_t wakeups_ = 0;  // runs queued by Start or the reaper: idle workers look at the store
   // Runs started here and not yet claimed by any replica (also in active_), oldest first.
   std::deque<std::shared_ptr<Run>> queue_;
+  // Runs of queue_ whose QUEUED row Start has not stored yet: not claimable (ClaimPrivate).
+  std::set<const Run*> unstored_;
   std::map<std::string, std::shared_ptr<Run>> active_;  // queued here and running here
   // Runs started here that another replica claimed: ended (their streams) when the store
   // shows them ended.

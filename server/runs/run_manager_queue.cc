@@ -66,7 +66,32 @@ std::shared_ptr<Run> RunManager::RunOf(const v1::RunInfo& info) {
   return std::make_shared<Run>(info, config, std::move(model));
 }
 
+std::shared_ptr<Run> RunManager::ClaimPrivate() {
+  std::shared_ptr<Run> run;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto next = std::find_if(queue_.begin(), queue_.end(),
+                             [&](const auto& r) { return !unstored_.count(r.get()); });
+    if (next == queue_.end()) return nullptr;
+    run = *next;
+    queue_.erase(next);
+  }
+  RunLease lease = NewLease();
+  v1::RunInfo claimed = run->Info();
+  ApplyClaim(claimed, lease);
+  store_->NoteClaimed(claimed);
+  run->UpdateInfo([&](v1::RunInfo& info) {
+    info.set_started_unix_ms(claimed.started_unix_ms());
+    info.set_replica(claimed.replica());
+    info.set_replica_address(claimed.replica_address());
+    info.set_attempts(claimed.attempts());
+  });
+  spdlog::info("run {} claimed by replica {}", run->id(), replica_.id);
+  return run;
+}
+
 std::shared_ptr<Run> RunManager::ClaimNext() {
+  if (replica_.private_store) return ClaimPrivate();
   for (;;) {
     std::optional<v1::RunInfo> claimed;
     try {
@@ -200,6 +225,10 @@ void RunManager::KeepLeases() {
   try {
     const int64_t now_ms = NowUnixMs();
     const int64_t expires_ms = now_ms + LeaseMs();
+    if (replica_.private_store) {  // no leases, no other replica (ClaimPrivate)
+      running.clear();
+      queued.clear();
+    }
     for (const auto& run : running) {
       const v1::RunInfo info = run->Info();
       if (info.replica().empty() || run->ended() || run->lease_lost) continue;

@@ -24,11 +24,20 @@ SqliteCheckpointer::~SqliteCheckpointer() {
 
 int SqliteCheckpointer::OnCommit(void* self, sqlite3* db, const char* schema, int wal_pages) {
   auto* checkpointer = static_cast<SqliteCheckpointer*>(self);
+  // Called on the writer's thread only (its connection is used by one thread at a time).
+  if (wal_pages < checkpointer->last_wal_pages_) {  // the WAL started again from its beginning
+    checkpointer->next_ask_pages_ = kBackgroundPages;
+  }
+  checkpointer->last_wal_pages_ = wal_pages;
   if (wal_pages >= kBackstopPages) {
     // Behind: the writer copies what it can itself (PASSIVE, like SQLite's own; a failure
     // leaves the WAL as it is, for the next commit to try again).
     sqlite3_wal_checkpoint_v2(db, schema, SQLITE_CHECKPOINT_PASSIVE, nullptr, nullptr);
-  } else if (wal_pages >= kBackgroundPages) {
+  } else if (wal_pages >= checkpointer->next_ask_pages_) {
+    // Once per kBackgroundPages of WAL: commits made while a checkpoint runs keep the WAL
+    // from starting again, and asking at every one of them would checkpoint (and fdatasync)
+    // after every commit.
+    checkpointer->next_ask_pages_ = wal_pages + kBackgroundPages;
     {
       std::lock_guard<std::mutex> lock(checkpointer->mutex_);
       checkpointer->asked_ = true;

@@ -43,6 +43,10 @@ class SqliteCheckpointer {
 
   SqliteConnection& writer_;
   SqliteConnection own_;
+  // The writer's thread only (OnCommit): the WAL's size at the last commit, and the size
+  // from which the next checkpoint is asked for.
+  int last_wal_pages_ = 0;
+  int next_ask_pages_ = kBackgroundPages;
   std::mutex mutex_;
   std::condition_variable wake_;  // a checkpoint asked for, or stop
   std::condition_variable idle_;  // a checkpoint done

@@ -137,6 +137,11 @@ class Store {
   // another replica, re-queued, or ended): the holder must stop the run and store nothing.
   virtual bool RenewLease(const std::string& run_id, const std::string& holder,
                           int64_t expires_unix_ms) = 0;
+  // A claim made without the store, by the one server of a private store (its queue is that
+  // process's own): `info` as claimed (RUNNING). Nothing is written (the row stays QUEUED
+  // until the run ends; a crash marks either INTERRUPTED at the next start); a decorator
+  // counts it (MeasuredStore).
+  virtual void NoteClaimed(const v1::RunInfo& info) { (void)info; }
   // Every RUNNING run whose lease expired before `now_unix_ms` (a run without a lease
   // counts as expired): queued again or INTERRUPTED (ApplyLeaseExpired, `reaper` named in
   // the message), its frames kept. Returns the changed runs as stored.

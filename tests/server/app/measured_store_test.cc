@@ -5,6 +5,7 @@
 #include "server/app/measured_store.h"
 #include "server/app/server_metrics.h"
 #include "server/metrics/metric_registry.h"
+#include "server/store/frame_chunks.h"
 #include "server/store/run_lease.h"
 #include "tests/server/store/store_test_util.h"
 
@@ -41,6 +42,24 @@ TEST_F(MeasuredStoreTest, CountsRunsByStateOncePerRun) {
   EXPECT_EQ(store_.GetFrames("r-1").size(), 10u);  // stored beneath
   EXPECT_EQ(metrics_.store(StoreOperation::kPutRun).count(), 6u);
   EXPECT_EQ(metrics_.store(StoreOperation::kFinishRun).count(), 1u);
+}
+
+// A private store's claim (RunManager::ClaimPrivate) writes nothing and is counted; a result
+// the store refused (the lease is not held) is not.
+TEST_F(MeasuredStoreTest, CountsAClaimMadeWithoutTheStoreAndOnlyStoredResults) {
+  store_.PutRun(MakeRun("r-1", v1::QUEUED, 1000));
+  store_.NoteClaimed(MakeRun("r-1", v1::RUNNING, 1000));
+  EXPECT_EQ(metrics_.runs(v1::QUEUED).value(), 0);
+  EXPECT_EQ(metrics_.runs(v1::RUNNING).value(), 1);
+  EXPECT_EQ(store_.GetRun("r-1")->state(), v1::QUEUED);  // nothing written
+  const EncodedFrameChunk chunk = EncodeFrameChunks(MakeFrames(4, 2)).front();
+  EXPECT_FALSE(store_.FinishRun(MakeRun("r-1", v1::FINISHED, 1000), 0, chunk, "replica x"));
+  EXPECT_EQ(metrics_.runs(v1::RUNNING).value(), 1);
+  EXPECT_EQ(metrics_.frames().value(), 0);
+  EXPECT_TRUE(store_.FinishRun(MakeRun("r-1", v1::FINISHED, 1000), 0, chunk, ""));
+  EXPECT_EQ(metrics_.runs(v1::RUNNING).value(), 0);
+  EXPECT_EQ(metrics_.runs_ended(v1::FINISHED).value(), 1);
+  EXPECT_EQ(metrics_.frames().value(), 4);
 }
 
 TEST_F(MeasuredStoreTest, RunQueuedHereAndClaimedByAnotherReplicaLeavesTheQueuedGauge) {

@@ -1,6 +1,7 @@
 // RunManager without gRPC, paced by a manual clock: a realtime run sends each frame when its
-// wall time comes, not before; cancel and shutdown end a waiting run at once; a subscriber of a
-// run claimed here and not yet prepared waits for it.
+// wall time comes, not before; cancel and shutdown end a waiting run at once; a private
+// store's claims are made in memory; a subscriber of a run claimed here and not yet prepared
+// waits for it.
 #include "server/runs/run_manager.h"
 
 #include <gtest/gtest.h>
@@ -149,6 +150,34 @@ TEST_F(RunManagerTest, AwaitChangeReturnsWhenTheRunChangesState) {
 // subscriber here at once. That subscriber waits for the run; it is not told the run ended
 // (it used to be: started and ended at once, no frames). Here the test holds the claim, as a
 // worker still preparing, and then ends the run itself.
+// A private store's queue is the server's own: the claim is made in memory (the running
+// run's row stays QUEUED until it ends) and a queued run cancelled is never started.
+TEST_F(RunManagerTest, PrivateStoreClaimsInMemoryAndCancelsAQueuedRunBeforeAnyWorker) {
+  runs_.reset();
+  limits_.workers = 1;
+  runs_ = std::make_unique<RunManager>(models_.get(), store_.get(), limits_, &clock_);
+  const v1::RunInfo first = runs_->Start("single_pendulum", Swing(20.0, 1.0));
+  ASSERT_TRUE(clock_.WaitForWaiter().has_value());  // the one worker integrates it
+  const v1::RunInfo second = runs_->Start("single_pendulum", Swing(0.5, 0.0));
+  EXPECT_EQ(runs_->Get(first.id()).state(), v1::RUNNING);
+  EXPECT_EQ(store_->GetRun(first.id())->state(), v1::QUEUED);  // no claim transaction
+  EXPECT_EQ(runs_->Get(second.id()).state(), v1::QUEUED);
+
+  const v1::RunInfo cancelled = runs_->Cancel(second.id());
+  EXPECT_EQ(cancelled.state(), v1::CANCELLED);
+  EXPECT_EQ(runs_->Get(second.id()).state(), v1::CANCELLED);
+  EXPECT_EQ(store_->GetRun(second.id())->state(), v1::CANCELLED);
+
+  const auto subscription = runs_->SubscribeRun(first.id(), false);
+  runs_->Cancel(first.id());
+  const v1::RunInfo ended = WaitForEnd(subscription, first.id());
+  EXPECT_EQ(ended.state(), v1::CANCELLED);
+  EXPECT_EQ(store_->GetRun(first.id())->state(), v1::CANCELLED);
+  EXPECT_EQ(store_->GetRun(second.id())->state(), v1::CANCELLED);  // no worker started it
+  EXPECT_EQ(store_->GetRun(second.id())->frames(), 0);
+  runs_->Unsubscribe(subscription);
+}
+
 TEST_F(RunManagerTest, SubscriberOfARunClaimedHereAndNotYetPreparedWaitsForIt) {
   runs_.reset();
   v1::RunInfo queued;
