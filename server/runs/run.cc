@@ -76,6 +76,11 @@ std::shared_ptr<const v1::Frame> Run::latest_frame() const {
   return std::make_shared<const v1::Frame>(latest_frame_);
 }
 
+v1::RunState Run::state() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return info_.state();
+}
+
 bool Run::ended() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return ended_;

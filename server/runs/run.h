@@ -30,6 +30,7 @@ class Run {
 
   // A snapshot of the run's info with live counters (frames, t, subscribers, probes).
   v1::RunInfo Info() const;
+  v1::RunState state() const;  // Info().state() without the copy
   // Changes the info under the run's lock.
   template <typename Change>
   void UpdateInfo(Change change) {

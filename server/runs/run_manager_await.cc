@@ -25,13 +25,23 @@ v1::RunInfo RunManager::AwaitChange(const std::string& run_id, v1::RunState from
       std::lock_guard<std::mutex> lock(mutex_);
       seen = state_changes_;  // before reading the run: no change is missed in between
     }
-    v1::RunInfo info = Get(run_id);
     const auto now = std::chrono::steady_clock::now();
-    if (info.state() != from || now >= until) return info;
-    std::unique_lock<std::mutex> lock(mutex_);
-    if (stopping_) return info;
-    state_changed_.wait_until(lock, std::min(until, now + kRecheck),
-                              [&] { return stopping_ || state_changes_ != seen; });
+    // A run of this replica is looked at without copying its info (woken by every run's
+    // changes, most waits see their run unchanged).
+    if (std::shared_ptr<Run> run = FindActive(run_id);
+        run == nullptr || run->state() != from || now >= until) {
+      v1::RunInfo info = Get(run_id);
+      if (info.state() != from || now >= until) return info;
+    }
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (!stopping_) {
+        state_changed_.wait_until(lock, std::min(until, now + kRecheck),
+                                  [&] { return stopping_ || state_changes_ != seen; });
+        continue;
+      }
+    }
+    return Get(run_id);  // stopping
   }
 }
 

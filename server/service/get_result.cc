@@ -16,10 +16,11 @@ constexpr size_t kChunkBytes = 1 << 20;  // about 1 MiB of frames or probes per 
 }
 
 grpc::Status SimulationService::AwaitEnd(const grpc::ServerContext& context,
-                                         const std::string& run_id) {
+                                         const std::string& run_id, v1::RunInfo* ended) {
   // Woken by the run's changes; looks at the client and the server at least every second.
   constexpr auto kLook = std::chrono::seconds(1);
-  for (v1::RunInfo info = runs_->Get(run_id); !IsFinalState(info.state());) {
+  v1::RunInfo& info = *ended;
+  for (info = runs_->Get(run_id); !IsFinalState(info.state());) {
     if (context.IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "client gone");
     if (stopping_) {
       return grpc::Status(grpc::StatusCode::UNAVAILABLE,
@@ -38,11 +39,14 @@ grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
   size_t sent_bytes = 0;  // frames and probes, all messages
   const grpc::Status status = Admit(*context, "GetResult", [&]() -> grpc::Status {
     const std::string& run_id = request->run_id();
-    if (request->wait()) {
-      if (grpc::Status waited = AwaitEnd(*context, run_id); !waited.ok()) return waited;
-    }
     v1::ResultChunk head;
-    *head.mutable_info() = runs_->ResultInfo(run_id);
+    if (request->wait()) {  // the final info as the wait read it (stored before it was shown)
+      if (grpc::Status waited = AwaitEnd(*context, run_id, head.mutable_info()); !waited.ok()) {
+        return waited;
+      }
+    } else {
+      *head.mutable_info() = runs_->ResultInfo(run_id);
+    }
     // A replay's probe set is checked (NOT_FOUND) before anything is sent.
     std::vector<v1::ProbeReport> probes;
     if (!request->probe_set().empty()) probes = runs_->ResultProbeSet(run_id, request->probe_set());

@@ -61,9 +61,10 @@ class SimulationService final : public v1::Simulation::Service {
     return Serve(body);
   }
 
-  // GetResult's wait: until run `run_id` has ended (OK), the client is gone (CANCELLED) or
-  // the server stops (UNAVAILABLE). get_result.cc.
-  grpc::Status AwaitEnd(const grpc::ServerContext& context, const std::string& run_id);
+  // GetResult's wait: until run `run_id` has ended (OK, `ended` gets its final info), the
+  // client is gone (CANCELLED) or the server stops (UNAVAILABLE). get_result.cc.
+  grpc::Status AwaitEnd(const grpc::ServerContext& context, const std::string& run_id,
+                        v1::RunInfo* ended);
 
   ModelRegistry* models_;
   RunManager* runs_;
