@@ -17,16 +17,20 @@ const Eigen::VectorXd& Aba(const Model& model, Data& data,
   aba_passes::ForwardPasses(model, q, qd, data);
   for (int i = n - 1; i >= 0; --i) {
     const Body& body = model.bodies[i];
-    DispatchJointShape(body.joint,
-                       [&](auto shape) { BackwardPass<shape()>(body, i, tau(i), data); });
+    aba_passes::DispatchStep(
+        body.joint,
+        [&](auto K, auto L) { aba_passes::BackwardPassAboutAxis<K(), L()>(body, i, tau(i), data); },
+        [&](auto shape) { BackwardPass<shape()>(body, i, tau(i), data); });
   }
   Vector6d a_base = Vector6d::Zero();
   a_base.tail<3>() = -model.gravity;  // gravity as an upward acceleration of the base
   for (int i = 0; i < n; ++i) {
     const Body& body = model.bodies[i];
     const Vector6d& a_parent = body.parent == kBase ? a_base : data.a[body.parent];
-    DispatchJointShape(body.joint,
-                       [&](auto shape) { AccelerationPass<shape()>(a_parent, i, data); });
+    aba_passes::DispatchStep(
+        body.joint,
+        [&](auto K, auto L) { aba_passes::AccelerationPassAboutAxis<K(), L()>(a_parent, i, data); },
+        [&](auto shape) { AccelerationPass<shape()>(a_parent, i, data); });
   }
   return data.qdd;
 }

@@ -3,7 +3,12 @@
 // (hybrid_dynamics.cc). Internal to server/dynamics.
 #pragma once
 
+#include <cstring>
+#include <type_traits>
+#include <utility>
+
 #include "common/check.h"
+#include "server/dynamics/axis_inertia_move.h"
 #include "server/dynamics/axis_joint_steps.h"
 #include "server/kinematics/joint_inertia_transform.h"
 #include "server/kinematics/joint_spatial_transform.h"
@@ -13,79 +18,113 @@
 
 namespace mbstream::aba_passes {
 
-// The three passes for a revolute joint about coordinate axis K with an unrotated origin, in
-// scalars (axis_joint_steps.h): S = e_K, and c = v x (S qd) is zero in components K and 3 + K.
+// The articulated inertias IA are kept as their upper triangles only (entries (r, q) with
+// r <= q; axis_inertia_move.h): the passes for an axis joint read and add only those, and
+// the general passes first copy the upper triangle into the lower one.
+inline void FillLowerTriangle(Matrix6d& M) {
+  for (int q = 0; q < 6; ++q) {
+    for (int r = q + 1; r < 6; ++r) M(r, q) = M(q, r);
+  }
+}
 
-template <int K>
+// The upper triangle of `from` into `to`'s, column by column (column q's rows 0..q are
+// contiguous: 21 doubles in 6 copies instead of 36).
+[[gnu::always_inline]] inline void CopyUpperTriangle(const Matrix6d& from, Matrix6d& to) {
+  axis_joint::Unroll<6>([&](auto q) {
+    std::memcpy(to.data() + 6 * q, from.data() + 6 * q, (q + 1) * sizeof(double));
+  });
+}
+
+// Entry (r, q) of a symmetric matrix of which only the upper triangle is kept.
+template <int r, int q>
+[[gnu::always_inline]] inline double Upper(const Matrix6d& M) {
+  if constexpr (r <= q) {
+    return M.data()[r + 6 * q];  // column-major
+  } else {
+    return M.data()[q + 6 * r];
+  }
+}
+
+// The three passes for a revolute joint about coordinate axis K with an unrotated origin whose
+// offset has shape L (axis_joint::OffsetMayBeNonzero), in scalars (axis_joint_steps.h):
+// S = e_K, and c = v x (S qd) is zero in components K and 3 + K.
+
+template <int K, int L>
 void ForwardPassAboutAxis(const Body& body, int i, double q, double qd, Data& data) {
   using namespace axis_joint;
   const Vector3d& p = body.joint.X_PJ.p;
   const AxisRotation r = WritePose<K>(q, p, &data.X_parent[i]);
   double* v = data.v[i].data();
   double* c = data.c[i].data();
-  for (int e = 0; e < 6; ++e) c[e] = 0.0;
   if (body.parent == kBase) {
-    for (int e = 0; e < 6; ++e) v[e] = 0.0;
+    for (int e = 0; e < 6; ++e) v[e] = c[e] = 0.0;
   } else {
-    MotionToChild<K>(r, p.data(), data.v[body.parent].data(), v);
-    AddCrossJointRate<K>(v, qd, c);
+    MotionToChild<K, L>(r, p.data(), data.v[body.parent].data(), v);
+    // c = v x (e_K qd), AddCrossJointRate written as assignments.
+    constexpr int i1 = (K + 1) % 3, i2 = (K + 2) % 3;
+    c[K] = c[3 + K] = 0.0;
+    c[i1] = v[i2] * qd;
+    c[i2] = -(v[i1] * qd);
+    c[3 + i1] = v[3 + i2] * qd;
+    c[3 + i2] = -(v[3 + i1] * qd);
   }
   v[K] += qd;
-  data.IA[i] = data.I[i];
+  CopyUpperTriangle(data.I[i], data.IA[i]);
   double h[6];
   ApplyInertia(body.inertia, v, h);
   CrossForce<false>(v, h, data.pA[i].data());
 }
 
-template <int K>
+template <int K, int L>
 void BackwardPassAboutAxis(const Body& body, int i, double tau, Data& data) {
   using namespace axis_joint;
-  Matrix6d& IA = data.IA[i];
+  const Matrix6d& IA = data.IA[i];  // upper triangle
   const double* pA = data.pA[i].data();
   double* U = data.U[i].data();
-  const double* ia = IA.data();  // column-major, symmetric
-  for (int e = 0; e < 6; ++e) U[e] = ia[6 * K + e];
+  Unroll<6>([&](auto e) { U[e] = Upper<e, K>(IA); });
   const double D = U[K] + body.joint.armature;
   const double u = tau - pA[K];
   data.D[i] = D;
   data.u[i] = u;
   MBSTREAM_CHECK_MSG(D > 0.0, "articulated inertia of a joint is not positive");
-  if (body.parent == kBase) return;
   const double inv_D = 1.0 / D;
-  // pa = pA + Ia c + U u / D with Ia = IA - U U^T / D, i.e. pA + IA c + U (u - U.c) / D
-  // (IA still whole here); c's components K and 3 + K are zero.
-  constexpr int i1 = (K + 1) % 3, i2 = (K + 2) % 3;
-  constexpr int cols[4] = {i1, i2, 3 + i1, 3 + i2};
+  data.inv_D[i] = inv_D;  // pass 3 multiplies: no division on its parent-to-child chain
+  if (body.parent == kBase) return;
   const double* c = data.c[i].data();
-  const double x =
-      (u - (U[i1] * c[i1] + U[i2] * c[i2] + U[3 + i1] * c[3 + i1] + U[3 + i2] * c[3 + i2])) * inv_D;
   double pa[6];
-  for (int e = 0; e < 6; ++e) {
-    double IAc = 0.0;
-    for (int col : cols) IAc += ia[6 * col + e] * c[col];
-    pa[e] = (pA[e] + U[e] * x) + IAc;
-  }
   const Pose& X = data.X_parent[i];
-  AddProjectedInertiaAcross<K>(X, IA, data.U[i], inv_D, &data.IA[body.parent]);
-  AddForceToParent<K>(RotationOf<K>(X), X.p.data(), pa, data.pA[body.parent].data());
+  const AxisRotation r = RotationOf<K>(X);
+  if (body.joint.armature == 0.0) {
+    AddProjectedInertiaToParent<K, L, true>(r, X.p.data(), IA, U, inv_D, pA, c, u, pa,
+                                            &data.IA[body.parent]);
+  } else {
+    AddProjectedInertiaToParent<K, L, false>(r, X.p.data(), IA, U, inv_D, pA, c, u, pa,
+                                             &data.IA[body.parent]);
+  }
+  AddForceToParent<K, L>(r, X.p.data(), pa, data.pA[body.parent].data());
 }
 
-template <int K>
+template <int K, int L>
 void AccelerationPassAboutAxis(const Vector6d& a_parent, int i, Data& data) {
   using namespace axis_joint;
   const Pose& X = data.X_parent[i];
   double* a = data.a[i].data();
   const double* c = data.c[i].data();
   const double* U = data.U[i].data();
-  MotionToChild<K>(RotationOf<K>(X), X.p.data(), a_parent.data(), a);
-  double Ua = 0.0;
-  for (int e = 0; e < 6; ++e) {
-    a[e] += c[e];
-    Ua += U[e] * a[e];
-  }
-  const double qdd = (data.u[i] - Ua) / data.D[i];
+  double x[6];
+  MotionToChild<K, L>(RotationOf<K>(X), X.p.data(), a_parent.data(), x);
+  // a = X^T a_parent + c (c_K = c_(3 + K) = 0), qdd = (u - U.a) / D, a += e_K qdd: the
+  // chain from the parent's acceleration to the child's (every body waits for its parent's)
+  // kept short, U.a summed pairwise and no division.
+  Unroll<6>([&](auto e) {
+    if constexpr (e != K && e != 3 + K) x[e] += c[e];
+  });
+  const double Ua =
+      ((U[0] * x[0] + U[1] * x[1]) + (U[2] * x[2] + U[3] * x[3])) + (U[4] * x[4] + U[5] * x[5]);
+  const double qdd = (data.u[i] - Ua) * data.inv_D[i];
   data.qdd(i) = qdd;
-  a[K] += qdd;
+  x[K] += qdd;
+  for (int e = 0; e < 6; ++e) a[e] = x[e];
 }
 
 // The three passes' work for body i, specialised on its joint's Shape (see
@@ -97,7 +136,8 @@ void AccelerationPassAboutAxis(const Vector6d& a_parent, int i, Data& data) {
 template <int Shape>
 void ForwardPass(const Body& body, int i, double q, double qd, Data& data) {
   if constexpr (Shape >= 0) {
-    ForwardPassAboutAxis<Shape>(body, i, q, qd, data);
+    ForwardPassAboutAxis<Shape, kAnyOffset>(
+        body, i, q, qd, data);  // any offset: also right without Joint::axis_kernel
     return;
   }
   JointTransformOfShape<Shape>(body.joint, q, &data.X_parent[i]);
@@ -118,11 +158,13 @@ void ForwardPass(const Body& body, int i, double q, double qd, Data& data) {
 template <int Shape>
 void BackwardPass(const Body& body, int i, double tau, Data& data) {
   if constexpr (Shape >= 0) {
-    BackwardPassAboutAxis<Shape>(body, i, tau, data);
+    BackwardPassAboutAxis<Shape, kAnyOffset>(
+        body, i, tau, data);  // any offset: also right without Joint::axis_kernel
     return;
   }
   const int k = data.S_index[i];
   Matrix6d& IA = data.IA[i];
+  FillLowerTriangle(IA);
   if (k >= 0) {
     data.U[i] = IA.col(k);
     data.D[i] = data.U[i](k) + body.joint.armature;
@@ -148,7 +190,8 @@ void BackwardPass(const Body& body, int i, double tau, Data& data) {
 template <int Shape>
 void AccelerationPass(const Vector6d& a_parent, int i, Data& data) {
   if constexpr (Shape >= 0) {
-    AccelerationPassAboutAxis<Shape>(a_parent, i, data);
+    AccelerationPassAboutAxis<Shape, kAnyOffset>(
+        a_parent, i, data);  // any offset: also right without Joint::axis_kernel
     return;
   }
   Vector6d& a = data.a[i];
@@ -162,13 +205,34 @@ void AccelerationPass(const Vector6d& a_parent, int i, Data& data) {
   }
 }
 
+// Joint::axis_kernel C = 5 K + (L, or 4 for kAnyOffset) as the constants K and L.
+template <int C>
+using KernelAxis = std::integral_constant<int, C / 5>;
+template <int C>
+using KernelOffset = std::integral_constant<int, (C % 5 == 4 ? kAnyOffset : C % 5)>;
+
+// Calls axis(KernelAxis<C>{}, KernelOffset<C>{}) for a joint with axis kernel C
+// (Joint::axis_kernel: a revolute joint about coordinate axis K with an unrotated origin of
+// offset shape L), else other(std::integral_constant<int, Shape>{}) for its JointShape: one
+// jump per body and pass (GCC makes the comparisons one jump table).
+template <typename FAxis, typename FOther>
+[[gnu::always_inline]] inline void DispatchStep(const Joint& joint, FAxis&& axis, FOther&& other) {
+  const int kernel = joint.axis_kernel;
+  const auto try_kernels = [&]<int... C>(std::integer_sequence<int, C...>) {
+    return ((kernel == C && (axis(KernelAxis<C>{}, KernelOffset<C>{}), true)) || ...);
+  };
+  if (!try_kernels(std::make_integer_sequence<int, 15>{})) DispatchJointShape(joint, other);
+}
+
 // Pass 1 over every body.
 inline void ForwardPasses(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
                           const Eigen::Ref<const Eigen::VectorXd>& qd, Data& data) {
   for (int i = 0; i < model.num_dofs(); ++i) {
     const Body& body = model.bodies[i];
-    DispatchJointShape(body.joint,
-                       [&](auto shape) { ForwardPass<shape()>(body, i, q(i), qd(i), data); });
+    DispatchStep(
+        body.joint,
+        [&](auto K, auto L) { ForwardPassAboutAxis<K(), L()>(body, i, q(i), qd(i), data); },
+        [&](auto shape) { ForwardPass<shape()>(body, i, q(i), qd(i), data); });
   }
 }
 

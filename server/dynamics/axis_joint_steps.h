@@ -13,9 +13,12 @@
 // more shuffles than they save here. Internal to server/dynamics; allocate nothing.
 #pragma once
 
+#include <type_traits>
+
 #include "server/math/rigid_inertia.h"
 #include "server/math/sin_cos.h"
 #include "server/math/spatial.h"
+#include "server/model/joint.h"
 
 namespace mbstream::axis_joint {
 
@@ -48,14 +51,41 @@ template <int K>
   return AxisRotation{X_PB.R(i, i), X_PB.R(j, i)};
 }
 
+// Offset shape L of a joint's origin p (Joint::offset_axis): 0, 1, 2 = p on that coordinate
+// axis, kNoOffset = p = 0, kAnyOffset = any p. The steps below take L as a template argument
+// and drop the products by p's components that are zero for that shape.
+constexpr bool OffsetMayBeNonzero(int L, int m) { return L == kAnyOffset || L == m; }
+
+// base + (w x p)_r (kPFirst: base + (p x w)_r), without the products by p's zero components.
+template <int L, int r, bool kPFirst = false>
+[[gnu::always_inline]] inline double AddCrossOffset(double base, const double* w, const double* p) {
+  constexpr int r1 = (r + 1) % 3, r2 = (r + 2) % 3;
+  // (w x p)_r = w[r1] p[r2] - w[r2] p[r1]; (p x w)_r = p[r1] w[r2] - p[r2] w[r1].
+  constexpr int plus = kPFirst ? r1 : r2, minus = kPFirst ? r2 : r1;
+  constexpr bool has_plus = OffsetMayBeNonzero(L, plus), has_minus = OffsetMayBeNonzero(L, minus);
+  if constexpr (has_plus && has_minus) {
+    if constexpr (kPFirst) {
+      return base + (p[r1] * w[r2] - p[r2] * w[r1]);
+    } else {
+      return base + (w[r1] * p[r2] - w[r2] * p[r1]);
+    }
+  } else if constexpr (has_plus) {
+    return base + (kPFirst ? p[r1] * w[r2] : w[r1] * p[r2]);
+  } else if constexpr (has_minus) {
+    return base - (kPFirst ? p[r2] * w[r1] : w[r2] * p[r1]);
+  } else {
+    return base;
+  }
+}
+
 // out = X^T m: the parent's motion vector m (at the parent's origin, in its axes) in the
-// child's frame, [R^T w; R^T (v + w x p)].
-template <int K>
+// child's frame, [R^T w; R^T (v + w x p)], for p of offset shape L.
+template <int K, int L = kAnyOffset>
 [[gnu::always_inline]] inline void MotionToChild(AxisRotation r, const double* p, const double* m,
                                                  double* out) {
   constexpr int i = (K + 1) % 3, j = (K + 2) % 3;
-  const double t[3] = {m[3] + (m[1] * p[2] - m[2] * p[1]), m[4] + (m[2] * p[0] - m[0] * p[2]),
-                       m[5] + (m[0] * p[1] - m[1] * p[0])};
+  const double t[3] = {AddCrossOffset<L, 0>(m[3], m, p), AddCrossOffset<L, 1>(m[4], m, p),
+                       AddCrossOffset<L, 2>(m[5], m, p)};
   out[K] = m[K];
   out[i] = r.c * m[i] + r.s * m[j];
   out[j] = r.c * m[j] - r.s * m[i];
@@ -65,8 +95,8 @@ template <int K>
 }
 
 // out += X^* f: the child's force vector f (moment about the child's origin, in its axes)
-// added to the parent's, [R n + p x (R f); R f].
-template <int K>
+// added to the parent's, [R n + p x (R f); R f], for p of offset shape L.
+template <int K, int L = kAnyOffset>
 [[gnu::always_inline]] inline void AddForceToParent(AxisRotation r, const double* p,
                                                     const double* f, double* out) {
   constexpr int i = (K + 1) % 3, j = (K + 2) % 3;
@@ -77,9 +107,9 @@ template <int K>
   g[K] = f[3 + K];
   g[i] = r.c * f[3 + i] - r.s * f[3 + j];
   g[j] = r.s * f[3 + i] + r.c * f[3 + j];
-  out[0] += n[0] + (p[1] * g[2] - p[2] * g[1]);
-  out[1] += n[1] + (p[2] * g[0] - p[0] * g[2]);
-  out[2] += n[2] + (p[0] * g[1] - p[1] * g[0]);
+  out[0] += AddCrossOffset<L, 0, true>(n[0], g, p);
+  out[1] += AddCrossOffset<L, 1, true>(n[1], g, p);
+  out[2] += AddCrossOffset<L, 2, true>(n[2], g, p);
   out[3] += g[0];
   out[4] += g[1];
   out[5] += g[2];

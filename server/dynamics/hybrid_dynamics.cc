@@ -15,6 +15,7 @@ using aba_passes::BackwardPass;
 // bias gains IA (c + S qdd) (Featherstone, RBDA 9.2).
 template <int Shape>
 void PrescribedBackwardPass(const Body& body, int i, double qdd, Data& data) {
+  aba_passes::FillLowerTriangle(data.IA[i]);  // its children added their upper triangles
   if (body.parent == kBase) return;
   Vector6d accel = data.c[i];
   const int k = data.S_index[i];
@@ -65,26 +66,44 @@ const Eigen::VectorXd& HybridAba(const Model& model, Data& data,
   aba_passes::ForwardPasses(model, q, qd, data);
   for (int i = n - 1; i >= 0; --i) {
     const Body& body = model.bodies[i];
-    DispatchJointShape(body.joint, [&](auto shape) {
-      if (prescribed[i]) {
-        PrescribedBackwardPass<shape()>(body, i, data.qdd(i), data);
-      } else {
-        BackwardPass<shape()>(body, i, tau(i), data);
-      }
-    });
+    aba_passes::DispatchStep(
+        body.joint,
+        [&](auto K, auto L) {
+          if (prescribed[i]) {
+            PrescribedBackwardPass<K()>(body, i, data.qdd(i), data);
+          } else {
+            aba_passes::BackwardPassAboutAxis<K(), L()>(body, i, tau(i), data);
+          }
+        },
+        [&](auto shape) {
+          if (prescribed[i]) {
+            PrescribedBackwardPass<shape()>(body, i, data.qdd(i), data);
+          } else {
+            BackwardPass<shape()>(body, i, tau(i), data);
+          }
+        });
   }
   Vector6d a_base = Vector6d::Zero();
   a_base.tail<3>() = -model.gravity;
   for (int i = 0; i < n; ++i) {
     const Body& body = model.bodies[i];
     const Vector6d& a_parent = body.parent == kBase ? a_base : data.a[body.parent];
-    DispatchJointShape(body.joint, [&](auto shape) {
-      if (prescribed[i]) {
-        PrescribedAccelerationPass<shape()>(body, a_parent, i, data);
-      } else {
-        AccelerationPass<shape()>(a_parent, i, data);
-      }
-    });
+    aba_passes::DispatchStep(
+        body.joint,
+        [&](auto K, auto L) {
+          if (prescribed[i]) {
+            PrescribedAccelerationPass<K()>(body, a_parent, i, data);
+          } else {
+            aba_passes::AccelerationPassAboutAxis<K(), L()>(a_parent, i, data);
+          }
+        },
+        [&](auto shape) {
+          if (prescribed[i]) {
+            PrescribedAccelerationPass<shape()>(body, a_parent, i, data);
+          } else {
+            AccelerationPass<shape()>(a_parent, i, data);
+          }
+        });
   }
   return data.qdd;
 }

@@ -18,6 +18,7 @@ Data::Data(const Model& model) {
   U.assign(n, Vector6d::Zero());
   S_index.assign(n, -1);
   D.assign(n, 0.0);
+  inv_D.assign(n, 0.0);
   u.assign(n, 0.0);
   for (size_t i = 0; i < n; ++i) {
     I[i] = model.bodies[i].inertia.ToMatrix();

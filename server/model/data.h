@@ -19,18 +19,19 @@ struct Data {
   std::vector<Pose> frame_world;  // X_WF for every Model::frames entry
 
   // Per-body spatial quantities, in the body's own frame (see server/math/spatial.h).
-  std::vector<Vector6d> v;   // spatial velocity
-  std::vector<Vector6d> a;   // spatial acceleration (gravity included as a base accel.)
-  std::vector<Vector6d> f;   // force transmitted by the body's joint
-  std::vector<Vector6d> c;   // velocity-product acceleration v x S qd
-  std::vector<Vector6d> S;   // joint motion subspace (axis), constant
-  std::vector<int> S_index;  // k when S is the unit vector e_k (a coordinate axis), else -1
-  std::vector<Matrix6d> I;   // body spatial inertia about its origin, constant
-  std::vector<Matrix6d> IA;  // articulated-body (ABA) or composite (CRBA) inertia
-  std::vector<Vector6d> pA;  // articulated bias force
-  std::vector<Vector6d> U;   // IA S
-  std::vector<double> D;     // S^T IA S + armature
-  std::vector<double> u;     // tau - S^T pA
+  std::vector<Vector6d> v;    // spatial velocity
+  std::vector<Vector6d> a;    // spatial acceleration (gravity included as a base accel.)
+  std::vector<Vector6d> f;    // force transmitted by the body's joint
+  std::vector<Vector6d> c;    // velocity-product acceleration v x S qd
+  std::vector<Vector6d> S;    // joint motion subspace (axis), constant
+  std::vector<int> S_index;   // k when S is the unit vector e_k (a coordinate axis), else -1
+  std::vector<Matrix6d> I;    // body spatial inertia about its origin, constant
+  std::vector<Matrix6d> IA;   // articulated-body (ABA) or composite (CRBA) inertia
+  std::vector<Vector6d> pA;   // articulated bias force
+  std::vector<Vector6d> U;    // IA S
+  std::vector<double> D;      // S^T IA S + armature
+  std::vector<double> inv_D;  // 1 / D (ABA's pass 3 for an axis joint multiplies by it)
+  std::vector<double> u;      // tau - S^T pA
 
   Eigen::VectorXd zeros;  // num_dofs zeros, for calls with qd = 0 or qdd = 0
 

@@ -18,6 +18,19 @@ void DeriveJointShape(Joint& joint) {
     if (joint.axis == Vector3d::Unit(k)) joint.axis_index = k;
   }
   joint.origin_rotation_identity = joint.X_PJ.R == Matrix3d::Identity();
+  const Vector3d& p = joint.X_PJ.p;
+  const int nonzero = (p.x() != 0.0) + (p.y() != 0.0) + (p.z() != 0.0);
+  joint.offset_axis = kAnyOffset;
+  if (nonzero == 0) joint.offset_axis = kNoOffset;
+  for (int k = 0; k < 3 && nonzero == 1; ++k) {
+    if (p(k) != 0.0) joint.offset_axis = k;
+  }
+  joint.axis_kernel = -1;
+  if (joint.type == JointType::kRevolute && joint.origin_rotation_identity &&
+      joint.axis_index >= 0) {
+    joint.axis_kernel =
+        5 * joint.axis_index + (joint.offset_axis == kAnyOffset ? 4 : joint.offset_axis);
+  }
 }
 
 }  // namespace mbstream

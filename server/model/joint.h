@@ -33,7 +33,16 @@ struct Joint {
   // Derived by ModelBuilder, for fast paths in the algorithms:
   int axis_index = -1;                    // 0, 1, 2 when axis is exactly +x, +y, +z; else -1
   bool origin_rotation_identity = false;  // X_PJ.R is exactly the identity
+  // 0, 1, 2 when X_PJ.p lies on that coordinate axis (one nonzero component), kNoOffset when
+  // X_PJ.p = 0, kAnyOffset otherwise.
+  int offset_axis = -1;
+  // 5 K + (offset_axis, or 4 for kAnyOffset) for a revolute joint about coordinate axis K with
+  // an unrotated origin (0..14), else -1: the dynamics kernels' dispatch index.
+  int axis_kernel = -1;
 };
+
+inline constexpr int kAnyOffset = -1;
+inline constexpr int kNoOffset = 3;
 
 // Sets the derived fields of `joint` from its axis and origin.
 void DeriveJointShape(Joint& joint);

@@ -2,6 +2,8 @@
 // joint_inertia_transform.h) against the general ones, for every shape.
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include "server/kinematics/joint_inertia_transform.h"
 #include "server/kinematics/joint_spatial_transform.h"
 #include "server/kinematics/joint_transform.h"
@@ -65,6 +67,29 @@ TEST_P(JointShapeTest, SpecialisedTransformsMatchTheGeneralOnes) {
     EXPECT_LT((added_projected - expected_projected).cwiseAbs().maxCoeff(),
               1e-12 * expected_projected.norm());
   });
+}
+
+TEST(JointOffsetShapeTest, OffsetAxisAndAxisKernelAreDerived) {
+  Joint joint;
+  joint.axis = Vector3d::UnitY();
+  const std::pair<Vector3d, int> cases[] = {{Vector3d(0.3, 0, 0), 0},
+                                            {Vector3d(0, -0.2, 0), 1},
+                                            {Vector3d(0, 0, 0.7), 2},
+                                            {Vector3d::Zero(), kNoOffset},
+                                            {Vector3d(0.15, 0, 0.4865), kAnyOffset}};
+  for (const auto& [p, offset_axis] : cases) {
+    joint.X_PJ.p = p;
+    DeriveJointShape(joint);
+    EXPECT_EQ(joint.offset_axis, offset_axis) << p.transpose();
+    EXPECT_EQ(joint.axis_kernel, 5 + (offset_axis == kAnyOffset ? 4 : offset_axis));
+  }
+  joint.type = JointType::kPrismatic;  // no axis kernel: prismatic, or a rotated origin
+  DeriveJointShape(joint);
+  EXPECT_EQ(joint.axis_kernel, -1);
+  joint.type = JointType::kRevolute;
+  joint.X_PJ.R = AxisAngleRotation(Vector3d::UnitX(), 0.3);
+  DeriveJointShape(joint);
+  EXPECT_EQ(joint.axis_kernel, -1);
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -25,6 +25,7 @@ Model OnGeneralPath(Model model) {
   for (Body& body : model.bodies) {
     body.joint.axis_index = -1;
     body.joint.origin_rotation_identity = false;
+    body.joint.axis_kernel = -1;
   }
   return model;
 }
@@ -62,6 +63,7 @@ TEST_P(AxisKernelsTest, ModelHasAxisJointsAndTheGeneralCopyHasNone) {
   for (int i = 0; i < model_.num_dofs(); ++i) {
     if (JointShape(model_.bodies[i].joint) >= 0) ++axis_joints;
     EXPECT_EQ(JointShape(general_.bodies[i].joint), kGeneralJoint);
+    EXPECT_EQ(general_.bodies[i].joint.axis_kernel, -1);
   }
   EXPECT_GT(axis_joints, 0) << "the specialised steps would not be exercised";
 }
@@ -117,6 +119,68 @@ TEST_P(AxisKernelsTest, RotorInertiaMatchesTheGeneralPath) {
                           x = Random(rng, n, 10.0);
     ASSERT_TRUE(Close("tau", Rnea(model, data, q, qd, x), Rnea(general, general_data, q, qd, x)));
     ASSERT_TRUE(Close("qdd", Aba(model, data, q, qd, x), Aba(general, general_data, q, qd, x)));
+  }
+}
+
+// A branching tree with a joint of every kernel (axis K x offset shape: on x, y, z, zero,
+// anywhere), mixed with prismatic and rotated-origin joints (the general path, so that the
+// upper-triangle articulated inertias meet a parent that reads all of its matrix).
+Model EveryKernelTree(std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const Vector3d offsets[5] = {
+      {0.3, 0, 0}, {0, -0.2, 0}, {0, 0, 0.25}, {0, 0, 0}, {0.1, -0.2, 0.3}};
+  Model model;
+  auto add = [&](JointType type, const Vector3d& axis, const Vector3d& offset, bool rotated) {
+    Body body;
+    const int index = model.num_dofs();
+    body.name = "b" + std::to_string(index);
+    body.parent = index == 0 ? kBase : (index - 1) / 2;  // two children per body
+    body.joint.type = type;
+    body.joint.axis = axis;
+    body.joint.X_PJ.p = offset;
+    if (rotated) body.joint.X_PJ.R = AxisAngleRotation(Vector3d(1, 2, -1).normalized(), 0.7);
+    DeriveJointShape(body.joint);
+    body.inertia.mass = 1.0 + unit(rng) * 0.5;
+    body.inertia.com = Vector3d(unit(rng), unit(rng), unit(rng)) * 0.1;
+    const Matrix3d a = Matrix3d::Random();
+    body.inertia.inertia_com = 0.01 * (a * a.transpose() + Matrix3d::Identity());
+    model.bodies.push_back(body);
+  };
+  for (int k = 0; k < 3; ++k) {
+    for (const Vector3d& offset : offsets) {
+      add(JointType::kRevolute, Vector3d::Unit(k), offset, false);
+    }
+    add(JointType::kPrismatic, Vector3d::Unit(k), offsets[4], false);
+    add(JointType::kRevolute, Vector3d::Unit(k), offsets[k], true);
+  }
+  return model;
+}
+
+TEST(AxisKernelsEveryShapeTest, ForwardAndHybridDynamicsMatchTheGeneralPath) {
+  std::mt19937 rng(14);
+  Model model = EveryKernelTree(rng);
+  std::vector<bool> kernel_seen(15, false);
+  for (const Body& body : model.bodies) {
+    if (body.joint.axis_kernel >= 0) kernel_seen[body.joint.axis_kernel] = true;
+  }
+  for (int kernel = 0; kernel < 15; ++kernel) EXPECT_TRUE(kernel_seen[kernel]) << kernel;
+  const int n = model.num_dofs();
+  std::vector<unsigned char> prescribed(n, 0);
+  for (int i = 0; i < n; i += 4) prescribed[i] = 1;
+  for (double armature : {0.0, 0.02}) {  // 0: the move's folded zeros; else the full projection
+    for (Body& body : model.bodies) body.joint.armature = armature;
+    const Model general = OnGeneralPath(model);
+    Data data(model), general_data(general);
+    for (int trial = 0; trial < 50; ++trial) {
+      const Eigen::VectorXd q = Random(rng, n, 20.0), qd = Random(rng, n, 3.0),
+                            tau = Random(rng, n, 5.0), qdd = Random(rng, n, 10.0);
+      ASSERT_TRUE(
+          Close("qdd", Aba(model, data, q, qd, tau), Aba(general, general_data, q, qd, tau)))
+          << "armature " << armature;
+      ASSERT_TRUE(Close("hybrid qdd", HybridAba(model, data, q, qd, tau, qdd, prescribed),
+                        HybridAba(general, general_data, q, qd, tau, qdd, prescribed)));
+      ASSERT_TRUE(Close("hybrid tau", data.tau, general_data.tau));
+    }
   }
 }
 
