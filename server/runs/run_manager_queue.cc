@@ -214,7 +214,9 @@ void RunManager::KeeperLoop() {
 
 void RunManager::KeepLeases() {
   std::vector<std::shared_ptr<Run>> running, queued, elsewhere;
-  {
+  // A private store has no leases and no other replica (ClaimPrivate): nothing to renew or
+  // follow, only the reap below (which also tells whether the store answers).
+  if (!replica_.private_store) {
     std::lock_guard<std::mutex> lock(mutex_);
     for (const auto& [id, run] : active_) {
       if (std::find(queue_.begin(), queue_.end(), run) == queue_.end()) running.push_back(run);
@@ -225,10 +227,6 @@ void RunManager::KeepLeases() {
   try {
     const int64_t now_ms = NowUnixMs();
     const int64_t expires_ms = now_ms + LeaseMs();
-    if (replica_.private_store) {  // no leases, no other replica (ClaimPrivate)
-      running.clear();
-      queued.clear();
-    }
     for (const auto& run : running) {
       const v1::RunInfo info = run->Info();
       if (info.replica().empty() || run->ended() || run->lease_lost) continue;
