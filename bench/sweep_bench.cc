@@ -8,7 +8,8 @@
 // threads, the model imported once. Server: a fresh mbstream-server (2 workers, a fresh data
 // directory) and one client that keeps up to `--window` runs submitted (StartRun), waits for
 // the oldest to end (WatchRun) and fetches its result (GetResult, every frame), then submits
-// the next (`--watch`: waits with WatchRun first, as a client did before GetResult's `wait`).
+// the next (`--watch`: waits with WatchRun first, as a client did before GetResult's `wait`;
+// `--batch N`: StartRuns of N runs at a time and GetResults of each batch, two calls per batch).
 // Prints wall time, runs per second and CPU time per run of each side (the server
 // process's from /proc, the client's and the in-process threads' from getrusage), and the
 // server's overhead. `--duration D` (s) shortens the scene: the 10,000 short kinematic runs
@@ -108,8 +109,46 @@ void Check(const grpc::Status& status, const char* what) {
   if (!status.ok()) throw std::runtime_error(std::string(what) + ": " + status.error_message());
 }
 
+// The sweep in batches: StartRuns of `batch` runs while at most `window` are in flight, then
+// GetResults (waiting) of the oldest batch: two calls per batch.
+void BatchedSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs, int window,
+                  int batch, Measured& m) {
+  std::deque<std::vector<std::string>> in_flight;
+  int submitted = 0, flying = 0;
+  while (submitted < runs || !in_flight.empty()) {
+    while (submitted < runs && flying + std::min(batch, runs - submitted) <= window) {
+      grpc::ClientContext context;
+      v1::StartRunsRequest request;
+      request.set_model("irb1600");
+      const int n = std::min(batch, runs - submitted);
+      for (int i = 0; i < n; ++i) *request.add_specs() = spec;
+      v1::StartRunsResponse response;
+      Check(stub.StartRuns(&context, request, &response), "StartRuns");
+      std::vector<std::string>& ids = in_flight.emplace_back();
+      for (const v1::RunInfo& info : response.runs()) ids.push_back(info.id());
+      submitted += n;
+      flying += n;
+    }
+    grpc::ClientContext context;
+    v1::GetResultsRequest request;
+    for (const std::string& id : in_flight.front()) request.add_run_ids(id);
+    request.set_wait(true);
+    flying -= static_cast<int>(in_flight.front().size());
+    in_flight.pop_front();
+    auto reader = stub.GetResults(&context, request);
+    v1::ResultChunk chunk;
+    while (reader->Read(&chunk)) {
+      if (chunk.has_info() && chunk.info().state() != v1::FINISHED) {
+        throw std::runtime_error("run " + chunk.info().id() + " did not finish");
+      }
+      m.frames += chunk.frames_size();
+    }
+    Check(reader->Finish(), "GetResults");
+  }
+}
+
 Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec, int runs,
-                       int window, bool watch) {
+                       int window, int batch, bool watch) {
   const fs::path data = fs::temp_directory_path() / ("mbstream-sweep-" + std::to_string(getpid()));
   fs::remove_all(data);
   testing::ServerProcess server(
@@ -134,6 +173,10 @@ Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec
   const Clock::time_point start = Clock::now();
   std::deque<std::string> in_flight;
   int submitted = 0;
+  if (batch > 0) {
+    BatchedSweep(*stub, spec, runs, window, batch, m);
+    submitted = runs;
+  }
   while (submitted < runs || !in_flight.empty()) {
     while (submitted < runs && static_cast<int>(in_flight.size()) < window) {
       in_flight.push_back(start_run());
@@ -211,7 +254,7 @@ int main(int argc, char** argv) {
   using namespace mbstream;
   CLI::App app{"A sweep through a real mbstream-server against the same runs in-process"};
   std::string server_binary, baseline_binary, scene = "seed-servo";
-  int runs = 1000, window = 32, rounds = 1;
+  int runs = 1000, window = 32, rounds = 1, batch = 0;
   double duration = 0.0;
   bool server_only = false, watch = false;
   app.add_option("--server", server_binary, "the mbstream-server binary")->required();
@@ -219,6 +262,9 @@ int main(int argc, char** argv) {
   app.add_option("--scene", scene, "models/irb1600/SCENE.json");
   app.add_option("--duration", duration, "s; 0 = the scene's");
   app.add_option("--window", window, "runs submitted and not yet fetched (at most 64 queue)");
+  app.add_option("--batch", batch,
+                 "runs per StartRuns and GetResults call (two calls per batch, --window runs in "
+                 "flight); 0 = StartRun and GetResult for each run");
   app.add_flag("--server-only", server_only, "skip the in-process side (for profiling)");
   app.add_flag("--watch", watch,
                "wait for each run's end with WatchRun before GetResult (three calls per run, "
@@ -255,12 +301,12 @@ int main(int argc, char** argv) {
       }
       auto baseline = [&] {
         if (baseline_binary.empty()) return;
-        const Measured before = ThroughServer(baseline_binary, spec, runs, window, watch);
+        const Measured before = ThroughServer(baseline_binary, spec, runs, window, batch, watch);
         Print("baseline", before, runs);
         if (!server_only) baseline_ratios.Add(local, before);
       };
       if (round % 2 == 0) baseline();  // the two servers take turns to go first
-      const Measured served = ThroughServer(server_binary, spec, runs, window, watch);
+      const Measured served = ThroughServer(server_binary, spec, runs, window, batch, watch);
       Print("server", served, runs);
       if (round % 2 == 1) baseline();
       if (!server_only) {

@@ -89,6 +89,11 @@ void MeasuredStore::PutRun(const v1::RunInfo& info) {
   CountState(info);
 }
 
+void MeasuredStore::PutRuns(const std::vector<v1::RunInfo>& infos) {
+  Timed(StoreOperation::kPutRun, [&] { store_->PutRuns(infos); });
+  for (const v1::RunInfo& info : infos) CountState(info);
+}
+
 std::optional<v1::RunInfo> MeasuredStore::GetRun(const std::string& run_id) const {
   std::optional<v1::RunInfo> stored =
       Timed(StoreOperation::kGetRun, [&] { return store_->GetRun(run_id); });

@@ -130,73 +130,126 @@ RunConfig RunManager::PrepareConfig(const CompiledModel& model, const v1::RunSpe
 
 v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& spec,
                               const std::string& owner) {
+  google::protobuf::RepeatedPtrField<v1::RunSpec> one;
+  *one.Add() = spec;
+  return std::move(StartMany(model_ref, one, owner).front());
+}
+
+std::vector<v1::RunInfo> RunManager::StartMany(
+    const std::string& model_ref, const google::protobuf::RepeatedPtrField<v1::RunSpec>& specs,
+    const std::string& owner) {
   std::shared_ptr<const CompiledModel> model = FindModel(model_ref);
-  std::vector<std::string> warnings;
-  RunConfig config = PrepareConfig(*model, spec, &warnings);
-  const int64_t frames = OutputFrameCount(config.duration, config.output_interval);
-
-  v1::RunInfo info;
-  info.set_model_id(model->info.id());
-  info.set_model_name(model->info.name());
-  *info.mutable_spec() = spec;
-  info.mutable_spec()->DiscardUnknownFields();  // kept in every RunInfo: only what we read
-  info.set_state(v1::QUEUED);
-  info.set_expected_frames(frames);
-  info.set_duration_s(config.duration);
-  info.set_num_dofs(model->model.num_dofs());
-  for (const std::string& name : model->joint_names) info.add_joint_names(name);
-  info.set_created_unix_ms(NowUnixMs());
-  info.set_mbstream_version(MBSTREAM_VERSION);
-  info.set_owner(owner);
-  for (const std::string& warning : warnings) info.add_warnings(warning);
-
-  // No lock across the store's I/O: the id is checked free, then reserved in active_ and
-  // queue_ under the lock (counting against the queue limit), stored QUEUED (from then on
-  // any replica may claim it), and the workers woken.
-  std::shared_ptr<Run> run;
-  for (;;) {
-    info.set_id(NewRunId());
-    std::lock_guard<std::mutex> lock(mutex_);
-    CheckAccepting();
-    if (active_.count(info.id())) continue;
-    run = std::make_shared<Run>(info, config, model);
-    active_[info.id()] = run;
-    queue_.push_back(run);
-    unstored_.insert(run.get());
-    break;
+  const int count = specs.size();
+  if (count == 0) throw InputError("specs is empty; give at least one run spec");
+  if (count > limits_.max_queued_runs) {
+    throw RequestError(RequestErrorKind::kResourceExhausted,
+                       std::to_string(count) +
+                           " runs at once exceed this server's run queue; start them in "
+                           "batches of at most " +
+                           std::to_string(limits_.max_queued_runs));
   }
-  auto forget = [&] {
+  // Every spec checked before anything is queued; a batch's errors name the spec.
+  std::vector<v1::RunInfo> infos(count);
+  std::vector<RunConfig> configs;
+  configs.reserve(count);
+  for (int i = 0; i < count; ++i) {
+    const v1::RunSpec& spec = specs[i];
+    const std::string where = count > 1 ? "specs[" + std::to_string(i) + "]: " : "";
+    std::vector<std::string> warnings;
+    try {
+      configs.push_back(PrepareConfig(*model, spec, &warnings));
+    } catch (const InputError& e) {
+      if (where.empty()) throw;
+      throw InputError(where + e.what());
+    } catch (const RequestError& e) {
+      if (where.empty()) throw;
+      throw RequestError(e.kind(), where + e.what());
+    }
+    const RunConfig& config = configs.back();
+    v1::RunInfo& info = infos[i];
+    info.set_model_id(model->info.id());
+    info.set_model_name(model->info.name());
+    *info.mutable_spec() = spec;
+    info.mutable_spec()->DiscardUnknownFields();  // kept in every RunInfo: only what we read
+    info.set_state(v1::QUEUED);
+    info.set_expected_frames(OutputFrameCount(config.duration, config.output_interval));
+    info.set_duration_s(config.duration);
+    info.set_num_dofs(model->model.num_dofs());
+    for (const std::string& name : model->joint_names) info.add_joint_names(name);
+    info.set_created_unix_ms(NowUnixMs());
+    info.set_mbstream_version(MBSTREAM_VERSION);
+    info.set_owner(owner);
+    for (const std::string& warning : warnings) info.add_warnings(warning);
+  }
+
+  // No lock across the store's I/O: the ids are checked free, then reserved in active_ and
+  // queue_ under the lock (counting against the queue limit), stored QUEUED in one
+  // transaction (from then on any replica may claim them), and the workers woken.
+  std::vector<std::shared_ptr<Run>> runs(count);
+  for (bool reserved = false; !reserved;) {
+    for (v1::RunInfo& info : infos) info.set_id(NewRunId());
     std::lock_guard<std::mutex> lock(mutex_);
-    unstored_.erase(run.get());
-    queue_.erase(std::remove(queue_.begin(), queue_.end(), run), queue_.end());
-    if (auto found = active_.find(info.id()); found != active_.end() && found->second == run) {
-      active_.erase(found);
+    CheckAccepting(count);
+    std::set<std::string> ids;
+    for (const v1::RunInfo& info : infos) {
+      if (active_.count(info.id()) || !ids.insert(info.id()).second) break;
+    }
+    if (static_cast<int>(ids.size()) < count) continue;  // an id taken meanwhile: new ids
+    for (int i = 0; i < count; ++i) {
+      runs[i] = std::make_shared<Run>(infos[i], configs[i], model);
+      active_[infos[i].id()] = runs[i];
+      queue_.push_back(runs[i]);
+      unstored_.insert(runs[i].get());
+    }
+    reserved = true;
+  }
+  auto forget = [&](const std::vector<std::shared_ptr<Run>>& forgotten) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const std::shared_ptr<Run>& run : forgotten) {
+      unstored_.erase(run.get());
+      queue_.erase(std::remove(queue_.begin(), queue_.end(), run), queue_.end());
+      if (auto found = active_.find(run->id()); found != active_.end() && found->second == run) {
+        active_.erase(found);
+      }
     }
   };
   try {
-    store_->PutRun(info);
+    store_->PutRuns(infos);
   } catch (...) {
-    forget();
+    forget(runs);
     throw;
   }
   std::string stop_reason;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    unstored_.erase(run.get());
+    for (const std::shared_ptr<Run>& run : runs) unstored_.erase(run.get());
     if (stopping_) stop_reason = stop_reason_;
     ++wakeups_;
   }
-  if (!stop_reason.empty() &&  // the server began to stop while the run was being stored
-      store_->EndQueuedRun(info.id(), v1::INTERRUPTED, stop_reason + " before this run started",
-                           NowUnixMs())) {
-    forget();
-    throw RequestError(RequestErrorKind::kUnavailable,
-                       "the server is shutting down; start the run on another server");
+  if (!stop_reason.empty()) {  // the server began to stop while the runs were being stored
+    std::vector<std::shared_ptr<Run>> ended;
+    for (int i = 0; i < count; ++i) {
+      if (store_->EndQueuedRun(infos[i].id(), v1::INTERRUPTED,
+                               stop_reason + " before this run started", NowUnixMs())) {
+        ended.push_back(runs[i]);
+      }
+    }
+    if (!ended.empty()) {
+      forget(ended);
+      throw RequestError(RequestErrorKind::kUnavailable,
+                         "the server is shutting down; start the run on another server");
+    }
   }
-  work_.notify_one();
-  spdlog::info("run {} queued: model {} '{}', {} s, {} frames", info.id(), model->info.id(),
-               model->info.name(), config.duration, frames);
-  return info;
+  if (count == 1) {
+    work_.notify_one();
+  } else {
+    work_.notify_all();
+  }
+  for (const v1::RunInfo& info : infos) {
+    spdlog::info("run {} queued: model {} '{}', {} s, {} frames", info.id(), model->info.id(),
+                 model->info.name(), info.duration_s(), info.expected_frames());
+  }
+  return infos;
 }
 
 std::shared_ptr<Run> RunManager::FindActive(const std::string& run_id) const {
@@ -368,7 +421,7 @@ std::vector<v1::ProbeReport> RunManager::ResultProbes(const std::string& run_id)
   return store_->GetProbes(run_id);
 }
 
-void RunManager::CheckAccepting() const {
+void RunManager::CheckAccepting(int runs) const {
   if (stopping_) {
     throw RequestError(RequestErrorKind::kUnavailable,
                        "the server is shutting down; start the run on another server");
@@ -377,10 +430,16 @@ void RunManager::CheckAccepting() const {
     throw RequestError(RequestErrorKind::kUnavailable,
                        "this replica is draining (shutting down); start the run on another one");
   }
-  if (static_cast<int>(queue_.size()) >= limits_.max_queued_runs) {
+  if (static_cast<int>(queue_.size()) + runs > limits_.max_queued_runs) {
     throw RequestError(RequestErrorKind::kResourceExhausted,
-                       "the run queue is full (" + std::to_string(limits_.max_queued_runs) +
-                           " runs waiting); wait for runs to finish or cancel some");
+                       runs == 1 ? "the run queue is full (" +
+                                       std::to_string(limits_.max_queued_runs) +
+                                       " runs waiting); wait for runs to finish or cancel some"
+                                 : "the run queue has room for " +
+                                       std::to_string(limits_.max_queued_runs -
+                                                      static_cast<int>(queue_.size())) +
+                                       " of these " + std::to_string(runs) +
+                                       " runs; wait for runs to finish, or start fewer");
   }
 }
 

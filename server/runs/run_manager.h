@@ -70,6 +70,13 @@ class RunManager {
   // `owner` is recorded in the run's info (RunInfo.owner).
   v1::RunInfo Start(const std::string& model, const v1::RunSpec& spec,
                     const std::string& owner = "");
+  // Start for several runs of one model at once (a sweep): every spec is validated first
+  // (errors name it: "specs[3]: ..."), then either all are queued, stored in one store
+  // transaction, or none is (queue too small, store failure, shutting down). Infos in the
+  // specs' order.
+  std::vector<v1::RunInfo> StartMany(
+      const std::string& model, const google::protobuf::RepeatedPtrField<v1::RunSpec>& specs,
+      const std::string& owner = "");
   // Stops a queued or running run (state CANCELLED with the frames so far); an ended run is
   // returned unchanged. Throws RequestError(kNotFound).
   v1::RunInfo Cancel(const std::string& run_id);
@@ -226,8 +233,9 @@ class RunManager {
   bool AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber);
   // Counts one more subscriber (mutex_ held), or throws RESOURCE_EXHAUSTED at the limit.
   void CountSubscriber();
-  // Throws UNAVAILABLE when stopping, RESOURCE_EXHAUSTED when the queue is full (mutex_ held).
-  void CheckAccepting() const;
+  // Throws UNAVAILABLE when stopping, RESOURCE_EXHAUSTED when the queue cannot take `runs`
+  // more (mutex_ held).
+  void CheckAccepting(int runs = 1) const;
   // A run id used by no active or stored run (reads the store: call without mutex_).
   std::string NewRunId() const;
 

@@ -1,4 +1,4 @@
-// SimulationService::GetResult: a stored result in chunks under the message size limit, read
+// SimulationService::GetResult and GetResults: a stored result in chunks under the message size limit, read
 // from the store one frame chunk at a time (a long run is never in memory at once). The
 // frames go out as stored, not parsed and serialized again (encoded_result_chunk.h). With
 // `wait`, a run not yet ended is waited for (RunManager::AwaitChange) instead of refused.
@@ -33,54 +33,83 @@ grpc::Status SimulationService::AwaitEnd(const grpc::ServerContext& context,
   return grpc::Status::OK;
 }
 
+grpc::Status SimulationService::SendResult(grpc::ServerContext& context, const std::string& run_id,
+                                           const std::string& probe_set, bool wait,
+                                           grpc::ServerWriter<v1::ResultChunk>& writer,
+                                           size_t& sent_bytes) {
+  v1::ResultChunk head;
+  if (wait) {  // the final info as the wait read it (stored before it was shown)
+    if (grpc::Status waited = AwaitEnd(context, run_id, head.mutable_info()); !waited.ok()) {
+      return waited;
+    }
+  } else {
+    *head.mutable_info() = runs_->ResultInfo(run_id);
+  }
+  // A replay's probe set is checked (NOT_FOUND) before anything is sent.
+  std::vector<v1::ProbeReport> probes;
+  if (!probe_set.empty()) probes = runs_->ResultProbeSet(run_id, probe_set);
+  const grpc::Status gone(grpc::StatusCode::CANCELLED, "client gone");
+  if (!writer.Write(head)) return gone;
+  EncodedResultChunk chunk;
+  auto flush = [&] {
+    if (chunk.empty()) return true;
+    const bool ok = !context.IsCancelled() && writer.Write(chunk.message());
+    sent_bytes += chunk.bytes();
+    chunk.Clear();
+    return ok;
+  };
+  std::string data;  // one stored chunk at a time
+  std::vector<std::string_view> frames;
+  for (std::optional<int64_t> next = 0; next;) {
+    frames.clear();
+    next = runs_->ResultFrames(run_id, *next, data, frames);
+    for (std::string_view frame : frames) {
+      chunk.AddFrame(frame);
+      if (chunk.bytes() >= kChunkBytes && !flush()) return gone;
+    }
+  }
+  std::string().swap(data);
+  if (probe_set.empty()) probes = runs_->ResultProbes(run_id);
+  for (const v1::ProbeReport& probe : probes) {
+    chunk.AddProbe(probe);
+    if (chunk.bytes() >= kChunkBytes && !flush()) return gone;
+  }
+  if (!flush()) return gone;
+  return grpc::Status::OK;
+}
+
 grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
                                           const v1::GetResultRequest* request,
                                           grpc::ServerWriter<v1::ResultChunk>* writer) {
   size_t sent_bytes = 0;  // frames and probes, all messages
   const grpc::Status status = Admit(*context, "GetResult", [&]() -> grpc::Status {
-    const std::string& run_id = request->run_id();
-    v1::ResultChunk head;
-    if (request->wait()) {  // the final info as the wait read it (stored before it was shown)
-      if (grpc::Status waited = AwaitEnd(*context, run_id, head.mutable_info()); !waited.ok()) {
-        return waited;
-      }
-    } else {
-      *head.mutable_info() = runs_->ResultInfo(run_id);
-    }
-    // A replay's probe set is checked (NOT_FOUND) before anything is sent.
-    std::vector<v1::ProbeReport> probes;
-    if (!request->probe_set().empty()) probes = runs_->ResultProbeSet(run_id, request->probe_set());
-    const grpc::Status gone(grpc::StatusCode::CANCELLED, "client gone");
-    if (!writer->Write(head)) return gone;
-    EncodedResultChunk chunk;
-    auto flush = [&] {
-      if (chunk.empty()) return true;
-      const bool ok = !context->IsCancelled() && writer->Write(chunk.message());
-      sent_bytes += chunk.bytes();
-      chunk.Clear();
-      return ok;
-    };
-    std::string data;  // one stored chunk at a time
-    std::vector<std::string_view> frames;
-    for (std::optional<int64_t> next = 0; next;) {
-      frames.clear();
-      next = runs_->ResultFrames(run_id, *next, data, frames);
-      for (std::string_view frame : frames) {
-        chunk.AddFrame(frame);
-        if (chunk.bytes() >= kChunkBytes && !flush()) return gone;
-      }
-    }
-    std::string().swap(data);
-    if (request->probe_set().empty()) probes = runs_->ResultProbes(run_id);
-    for (const v1::ProbeReport& probe : probes) {
-      chunk.AddProbe(probe);
-      if (chunk.bytes() >= kChunkBytes && !flush()) return gone;
-    }
-    if (!flush()) return gone;
-    return grpc::Status::OK;
+    return SendResult(*context, request->run_id(), request->probe_set(), request->wait(),
+                      *writer, sent_bytes);
   });
   // After the handler's messages and frames are freed, when they were a burst (a message
   // of 1 MiB or more; after every small result it cost more than the result).
+  if (sent_bytes >= kChunkBytes) runs_->ReleaseMemory();
+  return status;
+}
+
+grpc::Status SimulationService::GetResults(grpc::ServerContext* context,
+                                           const v1::GetResultsRequest* request,
+                                           grpc::ServerWriter<v1::ResultChunk>* writer) {
+  size_t sent_bytes = 0;
+  const grpc::Status status = Admit(*context, "GetResults", [&]() -> grpc::Status {
+    if (request->run_ids().empty()) {
+      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                          "run_ids is empty; name at least one run");
+    }
+    for (const std::string& run_id : request->run_ids()) {
+      if (grpc::Status sent = SendResult(*context, run_id, "", request->wait(), *writer,
+                                         sent_bytes);
+          !sent.ok()) {
+        return sent;
+      }
+    }
+    return grpc::Status::OK;
+  });
   if (sent_bytes >= kChunkBytes) runs_->ReleaseMemory();
   return status;
 }

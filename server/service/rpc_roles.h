@@ -18,10 +18,12 @@ inline constexpr RpcRole kRpcRoles[] = {
     {"ListModels", Role::kView},     //
     {"GetModel", Role::kView},       //
     {"StartRun", Role::kRun},        // occupies a worker
+    {"StartRuns", Role::kRun},       // occupies workers
     {"CancelRun", Role::kRun},       // the run's own token, or admin (checked in the handler)
     {"GetRun", Role::kView},         //
     {"ListRuns", Role::kView},       //
     {"GetResult", Role::kView},      //
+    {"GetResults", Role::kView},     //
     {"WatchRun", Role::kView},       //
     {"Subscribe", Role::kView},      // viewers; their probe reports are checked per stream
     {"ListProbeSets", Role::kView},  //

@@ -29,6 +29,8 @@ class SimulationService final : public v1::Simulation::Service {
                         v1::GetModelResponse* response) override;
   grpc::Status StartRun(grpc::ServerContext* context, const v1::StartRunRequest* request,
                         v1::RunInfo* response) override;
+  grpc::Status StartRuns(grpc::ServerContext* context, const v1::StartRunsRequest* request,
+                         v1::StartRunsResponse* response) override;
   grpc::Status CancelRun(grpc::ServerContext* context, const v1::CancelRunRequest* request,
                          v1::RunInfo* response) override;
   grpc::Status GetRun(grpc::ServerContext* context, const v1::GetRunRequest* request,
@@ -37,6 +39,8 @@ class SimulationService final : public v1::Simulation::Service {
                         v1::ListRunsResponse* response) override;
   grpc::Status GetResult(grpc::ServerContext* context, const v1::GetResultRequest* request,
                          grpc::ServerWriter<v1::ResultChunk>* writer) override;  // get_result.cc
+  grpc::Status GetResults(grpc::ServerContext* context, const v1::GetResultsRequest* request,
+                          grpc::ServerWriter<v1::ResultChunk>* writer) override;  // get_result.cc
   grpc::Status ListProbeSets(grpc::ServerContext* context, const v1::ListProbeSetsRequest* request,
                              v1::ListProbeSetsResponse* response) override;  // replay_rpcs.cc
   grpc::Status ReplayRun(grpc::ServerContext* context, const v1::ReplayRunRequest* request,
@@ -65,6 +69,12 @@ class SimulationService final : public v1::Simulation::Service {
   // client is gone (CANCELLED) or the server stops (UNAVAILABLE). get_result.cc.
   grpc::Status AwaitEnd(const grpc::ServerContext& context, const std::string& run_id,
                         v1::RunInfo* ended);
+
+  // One run's result onto `writer` (GetResult's body; GetResults sends several). Adds the
+  // frames' and probes' bytes sent to `sent_bytes`. get_result.cc.
+  grpc::Status SendResult(grpc::ServerContext& context, const std::string& run_id,
+                          const std::string& probe_set, bool wait,
+                          grpc::ServerWriter<v1::ResultChunk>& writer, size_t& sent_bytes);
 
   ModelRegistry* models_;
   RunManager* runs_;

@@ -174,6 +174,12 @@ void PostgresStore::PutRun(const v1::RunInfo& info) {
   impl_->Transact("write run " + info.id(), [&](pqxx::work& tx) { UpsertRun(tx, info); });
 }
 
+void PostgresStore::PutRuns(const std::vector<v1::RunInfo>& infos) {
+  impl_->Transact("write " + std::to_string(infos.size()) + " runs", [&](pqxx::work& tx) {
+    for (const v1::RunInfo& info : infos) UpsertRun(tx, info);
+  });
+}
+
 std::optional<v1::RunInfo> PostgresStore::GetRun(const std::string& run_id) const {
   return impl_->Transact("read run", [&](pqxx::work& tx) {
     std::optional<v1::RunInfo> info;

@@ -22,6 +22,13 @@ void SqliteStore::PutRun(const v1::RunInfo& info) {
   UpsertRunLocked(*impl_, info);
 }
 
+void SqliteStore::PutRuns(const std::vector<v1::RunInfo>& infos) {
+  std::lock_guard lock(impl_->mutex);
+  SqliteTransaction transaction(impl_->db, "write " + std::to_string(infos.size()) + " runs");
+  for (const v1::RunInfo& info : infos) UpsertRunLocked(*impl_, info);
+  transaction.Commit();
+}
+
 std::optional<v1::RunInfo> SqliteStore::GetRun(const std::string& run_id) const {
   std::lock_guard lock(impl_->mutex);
   SqliteStatement& select = impl_->select_run;

@@ -44,6 +44,14 @@ TEST_F(MeasuredStoreTest, CountsRunsByStateOncePerRun) {
   EXPECT_EQ(metrics_.store(StoreOperation::kFinishRun).count(), 1u);
 }
 
+TEST_F(MeasuredStoreTest, CountsEveryRunOfABatchAndTimesTheBatchOnce) {
+  store_.PutRuns({MakeRun("r-1", v1::QUEUED, 1000), MakeRun("r-2", v1::QUEUED, 1000),
+                  MakeRun("r-3", v1::QUEUED, 1000)});
+  EXPECT_EQ(metrics_.runs(v1::QUEUED).value(), 3);
+  EXPECT_EQ(metrics_.store(StoreOperation::kPutRun).count(), 1u);
+  EXPECT_EQ(store_.ListRuns().size(), 3u);
+}
+
 // A private store's claim (RunManager::ClaimPrivate) writes nothing and is counted; a result
 // the store refused (the lease is not held) is not.
 TEST_F(MeasuredStoreTest, CountsAClaimMadeWithoutTheStoreAndOnlyStoredResults) {

@@ -44,6 +44,21 @@ TEST_P(StoreRunsTest, PutRunReplacesKeepingOrderAndFrames) {
   EXPECT_EQ(store->GetFrames("r-1").size(), 10u);
 }
 
+TEST_P(StoreRunsTest, PutRunsWritesEveryRowInOrderAndReplacesStoredOnes) {
+  auto store = Open();
+  store->PutRun(MakeRun("r-2", v1::QUEUED, 1000));
+  v1::RunInfo replaced = MakeRun("r-2", v1::QUEUED, 1000);
+  replaced.set_expected_frames(41);
+  store->PutRuns({MakeRun("r-1", v1::QUEUED, 1000), replaced, MakeRun("r-3", v1::QUEUED, 1000)});
+  const auto runs = store->ListRuns();
+  ASSERT_EQ(runs.size(), 3u);
+  EXPECT_EQ(runs[0].id(), "r-2");  // stored first, replaced in place
+  EXPECT_TRUE(Same(runs[0], replaced));
+  EXPECT_EQ(runs[1].id(), "r-1");
+  EXPECT_EQ(runs[2].id(), "r-3");
+  EXPECT_TRUE(Same(runs[2], MakeRun("r-3", v1::QUEUED, 1000)));
+}
+
 TEST_P(StoreRunsTest, ListsOldestFirst) {
   auto store = Open();
   store->PutRun(MakeRun("r-c", v1::FINISHED, 3000));
