@@ -431,15 +431,14 @@ void RunManager::CheckAccepting(int runs) const {
                        "this replica is draining (shutting down); start the run on another one");
   }
   if (static_cast<int>(queue_.size()) + runs > limits_.max_queued_runs) {
-    throw RequestError(RequestErrorKind::kResourceExhausted,
-                       runs == 1 ? "the run queue is full (" +
-                                       std::to_string(limits_.max_queued_runs) +
-                                       " runs waiting); wait for runs to finish or cancel some"
-                                 : "the run queue has room for " +
-                                       std::to_string(limits_.max_queued_runs -
-                                                      static_cast<int>(queue_.size())) +
-                                       " of these " + std::to_string(runs) +
-                                       " runs; wait for runs to finish, or start fewer");
+    throw RequestError(
+        RequestErrorKind::kResourceExhausted,
+        runs == 1 ? "the run queue is full (" + std::to_string(limits_.max_queued_runs) +
+                        " runs waiting); wait for runs to finish or cancel some"
+                  : "the run queue has room for " +
+                        std::to_string(limits_.max_queued_runs - static_cast<int>(queue_.size())) +
+                        " of these " + std::to_string(runs) +
+                        " runs; wait for runs to finish, or start fewer");
   }
 }
 

@@ -74,9 +74,9 @@ class RunManager {
   // (errors name it: "specs[3]: ..."), then either all are queued, stored in one store
   // transaction, or none is (queue too small, store failure, shutting down). Infos in the
   // specs' order.
-  std::vector<v1::RunInfo> StartMany(
-      const std::string& model, const google::protobuf::RepeatedPtrField<v1::RunSpec>& specs,
-      const std::string& owner = "");
+  std::vector<v1::RunInfo> StartMany(const std::string& model,
+                                     const google::protobuf::RepeatedPtrField<v1::RunSpec>& specs,
+                                     const std::string& owner = "");
   // Stops a queued or running run (state CANCELLED with the frames so far); an ended run is
   // returned unchanged. Throws RequestError(kNotFound).
   v1::RunInfo Cancel(const std::string& run_id);

@@ -1,5 +1,5 @@
-// SimulationService::GetResult and GetResults: a stored result in chunks under the message size limit, read
-// from the store one frame chunk at a time (a long run is never in memory at once). The
+// SimulationService::GetResult and GetResults: a stored result in chunks under the message size
+// limit, read from the store one frame chunk at a time (a long run is never in memory at once). The
 // frames go out as stored, not parsed and serialized again (encoded_result_chunk.h). With
 // `wait`, a run not yet ended is waited for (RunManager::AwaitChange) instead of refused.
 #include <chrono>
@@ -83,8 +83,8 @@ grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
                                           grpc::ServerWriter<v1::ResultChunk>* writer) {
   size_t sent_bytes = 0;  // frames and probes, all messages
   const grpc::Status status = Admit(*context, "GetResult", [&]() -> grpc::Status {
-    return SendResult(*context, request->run_id(), request->probe_set(), request->wait(),
-                      *writer, sent_bytes);
+    return SendResult(*context, request->run_id(), request->probe_set(), request->wait(), *writer,
+                      sent_bytes);
   });
   // After the handler's messages and frames are freed, when they were a burst (a message
   // of 1 MiB or more; after every small result it cost more than the result).
@@ -102,8 +102,8 @@ grpc::Status SimulationService::GetResults(grpc::ServerContext* context,
                           "run_ids is empty; name at least one run");
     }
     for (const std::string& run_id : request->run_ids()) {
-      if (grpc::Status sent = SendResult(*context, run_id, "", request->wait(), *writer,
-                                         sent_bytes);
+      if (grpc::Status sent =
+              SendResult(*context, run_id, "", request->wait(), *writer, sent_bytes);
           !sent.ok()) {
         return sent;
       }

@@ -60,8 +60,8 @@ grpc::Status SimulationService::StartRuns(grpc::ServerContext* context,
                                           const v1::StartRunsRequest* request,
                                           v1::StartRunsResponse* response) {
   return Admit(*context, "StartRuns", [&]() -> grpc::Status {
-    for (v1::RunInfo& info : runs_->StartMany(request->model(), request->specs(),
-                                              authorizer_->CallerId(*context))) {
+    for (v1::RunInfo& info :
+         runs_->StartMany(request->model(), request->specs(), authorizer_->CallerId(*context))) {
       *response->add_runs() = std::move(info);
     }
     return grpc::Status::OK;

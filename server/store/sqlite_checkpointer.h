@@ -5,9 +5,9 @@
 // runs; docs/performance.md).
 //
 // The writer's connection gets a WAL hook instead of the automatic checkpoint: from
-// kBackgroundPages of WAL on, a commit wakes the checkpointer, which checkpoints PASSIVE on a
+// kBackgroundBytes of WAL on, a commit wakes the checkpointer, which checkpoints PASSIVE on a
 // connection of its own (it never blocks a writer or a reader; the next write after a
-// complete checkpoint starts the WAL from its beginning again). From kBackstopPages on (the
+// complete checkpoint starts the WAL from its beginning again). From kBackstopBytes on (the
 // checkpointer fell behind, e.g. behind a long reader) the committing writer checkpoints
 // itself, as SQLite's own automatic checkpoint would.
 #pragma once
@@ -23,8 +23,10 @@ namespace mbstream {
 
 class SqliteCheckpointer {
  public:
-  static constexpr int kBackgroundPages = 1000;  // SQLite's default automatic checkpoint
-  static constexpr int kBackstopPages = 16000;   // 64 MB of 4 KB pages
+  // In bytes of WAL, turned into pages of the database's page size: SQLite's default
+  // automatic checkpoint (1,000 pages of 4 KB), and 16 times that.
+  static constexpr int64_t kBackgroundBytes = 1000 * 4096;
+  static constexpr int64_t kBackstopBytes = 16 * kBackgroundBytes;
 
   // Hooks into `writer` (which must outlive this) and opens a connection of its own to the
   // same file. Throws SqliteError when that connection cannot be opened.
@@ -45,8 +47,10 @@ class SqliteCheckpointer {
   SqliteConnection own_;
   // The writer's thread only (OnCommit): the WAL's size at the last commit, and the size
   // from which the next checkpoint is asked for.
+  int background_pages_;  // kBackgroundBytes and kBackstopBytes in pages
+  int backstop_pages_;
   int last_wal_pages_ = 0;
-  int next_ask_pages_ = kBackgroundPages;
+  int next_ask_pages_;
   std::mutex mutex_;
   std::condition_variable wake_;  // a checkpoint asked for, or stop
   std::condition_variable idle_;  // a checkpoint done
