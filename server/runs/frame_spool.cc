@@ -36,8 +36,9 @@ void FrameSpool::Add(const v1::Frame& frame, Store& store) {
 }
 
 bool FrameSpool::Finish(const v1::RunInfo& info, Store& store, const std::string& holder) {
-  const EncodedFrameChunk chunk = pending_.Take();
+  EncodedFrameChunk chunk = pending_.Take();
   if (!store.FinishRun(info, next_chunk_, chunk, holder)) return false;
+  if (chunk.frame_count > 0 && next_chunk_ == 0) whole_result_ = std::move(chunk.data);
   if (chunk.frame_count > 0) ++next_chunk_;
   return true;
 }

@@ -30,6 +30,10 @@ class FrameSpool {
   // Throws what the store throws.
   bool Finish(const v1::RunInfo& info, Store& store, const std::string& holder = {});
 
+  // After a Finish that stored every frame of the run in one chunk: that chunk's blob
+  // (moved out; RecentResults keeps it). Empty otherwise.
+  std::string TakeWholeResult() { return std::move(whole_result_); }
+
   // Why a chunk could not be stored; empty while every chunk was.
   const std::string& error() const { return error_; }
   int64_t stored_chunks() const { return next_chunk_; }
@@ -41,6 +45,7 @@ class FrameSpool {
   FrameChunkBuilder pending_;
   int64_t next_chunk_ = 0;
   std::string error_;
+  std::string whole_result_;
 };
 
 }  // namespace mbstream

@@ -133,7 +133,13 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
       spdlog::info("run {} handed back to the queue: {}", run->id(), info.message());
     } else {
       if (!probes.empty()) store_->AddProbes(probes);
-      if (!run->spool().Finish(info, *store_, holder)) run->lease_lost = true;
+      if (!run->spool().Finish(info, *store_, holder)) {
+        run->lease_lost = true;
+      } else if (std::string whole = run->spool().TakeWholeResult();
+                 !whole.empty() && (info.state() == v1::FINISHED || info.state() == v1::FAILED ||
+                                    info.state() == v1::CANCELLED)) {
+        recent_results_.Put(run->id(), std::move(whole));  // before anyone sees the run ended
+      }
     }
   } catch (const std::exception& error) {
     spdlog::error("run {}: storing the result failed: {}", run->id(), error.what());

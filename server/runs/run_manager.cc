@@ -20,6 +20,7 @@
 #include "server/sim/run_validation.h"
 #include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
+#include "server/store/frame_chunks.h"
 #include "server/store/store.h"
 #include "server/wire/stats_conversion.h"
 
@@ -44,7 +45,9 @@ RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& 
       store_(store),
       limits_(limits),
       clock_(clock != nullptr ? clock : &SteadyRunClock()),
-      replica_(std::move(replica)) {
+      replica_(std::move(replica)),
+      recent_results_(
+          static_cast<std::size_t>(std::max<int64_t>(limits_.recent_results_bytes, 0))) {
   MBSTREAM_CHECK(models_ != nullptr && store_ != nullptr && limits_.workers > 0);
   MBSTREAM_CHECK(replica_.lease_timeout_s > 0.0 && replica_.claim_poll_s > 0.0);
   if (replica_.id.empty()) replica_.id = NewReplicaId();
@@ -409,6 +412,10 @@ v1::RunInfo RunManager::ResultInfo(const std::string& run_id) const {
 std::optional<int64_t> RunManager::ResultFrames(const std::string& run_id, int64_t index,
                                                 std::string& data,
                                                 std::vector<std::string_view>& frames) const {
+  if (index == 0 && recent_results_.Get(run_id, data)) {  // the whole result, one chunk
+    MBSTREAM_CHECK(SplitFrameChunk(data, frames));
+    return std::nullopt;
+  }
   return store_->GetSerializedFrames(run_id, index, data, frames);
 }
 

@@ -25,6 +25,7 @@
 #include "mbstream/v1/run.pb.h"
 #include "mbstream/v1/run_spec.pb.h"
 #include "server/runs/model_registry.h"
+#include "server/runs/recent_results.h"
 #include "server/runs/replay_cursor.h"
 #include "server/runs/run.h"
 #include "server/runs/run_clock.h"
@@ -245,6 +246,7 @@ class RunManager {
   RunClock* clock_;
 
   ReplicaOptions replica_;
+  RecentResults recent_results_;  // frames of ended runs for their GetResult
 
   mutable std::mutex mutex_;
   std::condition_variable work_;

@@ -26,6 +26,9 @@ struct ServerLimits {
   int max_models = 1000;                  // models submitted by users, stored (built-ins apart)
   int64_t max_total_model_bytes = int64_t{4} << 30;  // their total stored size, bytes
   int compiled_models_cached = 16;  // compiled models kept in memory (runs keep theirs)
+  // Bytes of ended runs' frames kept in memory for their GetResult (recent_results.h): a
+  // sweep's window of 64 runs of 401 frames of a 6-joint arm is 5.4 MB.
+  int64_t recent_results_bytes = int64_t{16} << 20;
 };
 
 }  // namespace mbstream

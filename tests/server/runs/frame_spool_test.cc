@@ -53,5 +53,35 @@ TEST(FrameSpoolTest, OneAllocationPerChunk) {
   fs::remove_all(dir);
 }
 
+// The result of a run stored whole in its final transaction is handed on as stored; one
+// stored in several chunks is not.
+TEST(FrameSpoolTest, HandsOnAResultStoredWholeInItsOneChunk) {
+  const fs::path dir = fs::temp_directory_path() / ("mbstream-spool-w-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  {
+    auto store = Store::Open(dir.string());
+    for (const int64_t frames : {10, 25}) {
+      v1::RunInfo info;
+      info.set_id("r-" + std::to_string(frames));
+      store->PutRun(info);
+      FrameSpool spool(info.id(), frames, /*frames_per_chunk=*/20);
+      for (int64_t seq = 0; seq < frames; ++seq) spool.Add(MakeFrame(seq), *store);
+      info.set_state(v1::FINISHED);
+      ASSERT_TRUE(spool.Finish(info, *store));
+      const std::string whole = spool.TakeWholeResult();
+      if (frames > 20) {
+        EXPECT_TRUE(whole.empty());
+        continue;
+      }
+      std::string stored;
+      std::vector<std::string_view> stored_frames;
+      EXPECT_FALSE(store->GetSerializedFrames(info.id(), 0, stored, stored_frames).value() != 1);
+      EXPECT_EQ(whole, stored);
+      EXPECT_TRUE(spool.TakeWholeResult().empty());  // moved out once
+    }
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace mbstream

@@ -16,8 +16,10 @@
 #include <unistd.h>
 
 #include "server/runs/request_error.h"
+#include "server/store/frame_chunks.h"
 #include "server/store/run_lease.h"
 #include "server/store/store.h"
+#include "server/wire/stats_conversion.h"
 #include "tests/server/runs/manual_run_clock.h"
 
 namespace mbstream {
@@ -176,6 +178,49 @@ TEST_F(RunManagerTest, PrivateStoreClaimsInMemoryAndCancelsAQueuedRunBeforeAnyWo
   EXPECT_EQ(store_->GetRun(second.id())->state(), v1::CANCELLED);  // no worker started it
   EXPECT_EQ(store_->GetRun(second.id())->frames(), 0);
   runs_->Unsubscribe(subscription);
+}
+
+// The result of a run that just ended is served from memory as it was stored (a sweep's
+// GetResult follows every end): the store is not read for it. Without that memory, it is.
+TEST_F(RunManagerTest, AnEndedRunsResultIsServedFromMemoryAsStored) {
+  auto result = [&](const std::string& run_id) {
+    std::string data;
+    std::vector<std::string_view> views;
+    std::vector<std::string> frames;
+    for (std::optional<int64_t> next = 0; next;) {
+      next = runs_->ResultFrames(run_id, *next, data, views);
+      for (std::string_view view : views) frames.emplace_back(view);
+      views.clear();
+    }
+    return frames;
+  };
+  const auto far = std::chrono::steady_clock::now() + std::chrono::hours(1);
+  for (const int64_t kept_bytes : {int64_t{16} << 20, int64_t{0}}) {
+    runs_.reset();
+    limits_.recent_results_bytes = kept_bytes;
+    runs_ = std::make_unique<RunManager>(models_.get(), store_.get(), limits_, &clock_);
+    const v1::RunInfo started = runs_->Start("single_pendulum", Swing(1.0, 0.0));
+    v1::RunInfo info = runs_->Get(started.id());
+    while (!IsFinalState(info.state())) info = runs_->AwaitChange(info.id(), info.state(), far);
+    ASSERT_EQ(info.state(), v1::FINISHED) << info.message();
+    const std::vector<std::string> stored = result(info.id());
+    ASSERT_EQ(stored.size(), 11u);  // t = 0, 0.1, ..., 1 s
+
+    // The store's copy replaced behind the manager's back (frames never change after a run's
+    // end; this only shows which copy is read).
+    EncodedFrameChunk other;
+    other.frame_count = 1;
+    std::vector<v1::Frame> one(1);
+    one[0].set_seq(0);
+    other.data = EncodeFrameChunks(one).front().data;
+    store_->PutFrameChunk(info.id(), 0, other);
+    const std::vector<std::string> again = result(info.id());
+    if (kept_bytes > 0) {
+      EXPECT_EQ(again, stored);
+    } else {
+      EXPECT_EQ(again.size(), 1u);
+    }
+  }
 }
 
 TEST_F(RunManagerTest, SubscriberOfARunClaimedHereAndNotYetPreparedWaitsForIt) {
