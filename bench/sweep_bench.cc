@@ -254,7 +254,7 @@ int main(int argc, char** argv) {
   using namespace mbstream;
   CLI::App app{"A sweep through a real mbstream-server against the same runs in-process"};
   std::string server_binary, baseline_binary, scene = "seed-servo";
-  int runs = 1000, window = 32, rounds = 1, batch = 0;
+  int runs = 1000, window = 32, rounds = 1, batch = 0, baseline_batch = -1;
   double duration = 0.0;
   bool server_only = false, watch = false;
   app.add_option("--server", server_binary, "the mbstream-server binary")->required();
@@ -265,6 +265,9 @@ int main(int argc, char** argv) {
   app.add_option("--batch", batch,
                  "runs per StartRuns and GetResults call (two calls per batch, --window runs in "
                  "flight); 0 = StartRun and GetResult for each run");
+  app.add_option("--baseline-batch", baseline_batch,
+                 "--batch for the baseline server (default: the same; 0 for a binary without "
+                 "StartRuns, or to compare the two patterns on one binary)");
   app.add_flag("--server-only", server_only, "skip the in-process side (for profiling)");
   app.add_flag("--watch", watch,
                "wait for each run's end with WatchRun before GetResult (three calls per run, "
@@ -301,7 +304,8 @@ int main(int argc, char** argv) {
       }
       auto baseline = [&] {
         if (baseline_binary.empty()) return;
-        const Measured before = ThroughServer(baseline_binary, spec, runs, window, batch, watch);
+        const Measured before = ThroughServer(baseline_binary, spec, runs, window,
+                                              baseline_batch >= 0 ? baseline_batch : batch, watch);
         Print("baseline", before, runs);
         if (!server_only) baseline_ratios.Add(local, before);
       };

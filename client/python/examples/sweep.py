@@ -8,7 +8,6 @@ and the CPU time.
     sweep.py --server ADDR [--sweep rtol|amplitude] [--values V,V,...] [--duration S]
 """
 import argparse
-import concurrent.futures
 import sys
 
 import _common
@@ -43,16 +42,16 @@ def main():
     base = mb.load_spec(_common.model_file("irb1600", "seed-run.json"), formulation="joint",
                         duration=args.duration)
     with mb.connect(args.server, ca_file=args.ca, token=args.token) as server:
-        runs = []
-        for value in values:  # start every run, then collect: they run concurrently
+        specs = []
+        for value in values:  # every run started in one call, then collected in one
             if args.sweep == "rtol":
                 overrides = {"rtol": value, "atol": value / 100}
             else:
                 overrides = {"rtol": args.rtol, "atol": args.rtol / 100,
                              "drives": scaled_drives(base, value)}
-            runs.append(server.run("irb1600", base, **overrides))
-        with concurrent.futures.ThreadPoolExecutor(len(runs)) as pool:
-            results = list(pool.map(lambda run: run.result(), runs))
+            specs.append(mb.load_spec(base, **overrides))
+        runs = server.run_many("irb1600", specs)
+        results = server.results(runs)
 
     print("irb1600 seed-run, joint space, %g s simulated, %d runs at once"
           % (args.duration, len(runs)))

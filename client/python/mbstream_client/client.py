@@ -10,7 +10,7 @@ from .bundle import PathLike, read_model_bundle
 from .compare import Comparison, compare_results
 from .channel import make_channel
 from .errors import rpc_errors
-from .result import Result
+from .result import Result, result_from_chunks
 from .run import Run
 from .server_check import ServerCheck, check_server
 from .spec import SpecLike, load_spec
@@ -111,6 +111,41 @@ class Client:
                 call = self.stub.WatchRun(service_pb2.WatchRunRequest(run_id=info.id,
                                                                       frames=True))
         return Run(self, info, call)
+
+    def run_many(self, model: str, specs: Iterable[SpecLike],
+                 **overrides: Any) -> List[Run]:
+        """Starts one run of `model` per spec in ONE call (a sweep): either every run is
+        queued or none is (a bad spec raises with its index: "specs[3]: ..."; more runs than
+        the server's queue takes raise RESOURCE_EXHAUSTED). Each spec as in run(); the
+        overrides apply to every spec. Returns the Run handles in the specs' order; fetch
+        their results with results()."""
+        request = service_pb2.StartRunsRequest(
+            model=model, specs=[load_spec(spec, **overrides) for spec in specs])
+        with rpc_errors():
+            response = self.stub.StartRuns(request)
+        return [Run(self, info) for info in response.runs]
+
+    def results(self, runs: Iterable[Union[Run, str]], wait: bool = True) -> List["Result"]:
+        """The results of several runs (Run handles or ids) in ONE call, in the order given;
+        each waits for its run's end unless `wait` is False (see Run.result)."""
+        asked = list(runs)
+        handles = [run if isinstance(run, Run) else None for run in asked]
+        ids = [run.id if isinstance(run, Run) else run for run in asked]
+        request = service_pb2.GetResultsRequest(run_ids=ids, wait=wait)
+        results: List[Result] = []
+        with rpc_errors():
+            chunks: List[Any] = []
+            for chunk in self.stub.GetResults(request):
+                if chunk.HasField("info") and chunks:
+                    results.append(result_from_chunks(chunks))
+                    chunks = []
+                chunks.append(chunk)
+            if chunks:
+                results.append(result_from_chunks(chunks))
+        for handle, result in zip(handles, results):
+            if handle is not None:
+                handle.info = result.info
+        return results
 
     def get_run(self, run_id: str) -> Run:
         """A Run handle on an existing run."""

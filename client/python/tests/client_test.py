@@ -246,6 +246,24 @@ class ClientTest(unittest.TestCase):
         self.assertIn(run.id, [r.id for r in self.client.runs()])
         self.assertEqual(self.client.runs(limit=1)[0].id, kinematic.run_id)
 
+    def test_run_many_and_results_in_one_call_each(self):
+        durations = [0.5, 1.0, 0.25]
+        runs = self.client.run_many(
+            "irb1600", [mb.load_spec(SEED_SERVO, duration=d) for d in durations])
+        self.assertEqual(len(runs), 3)
+        self.assertEqual(len({run.id for run in runs}), 3)
+        asked = [runs[2], runs[0].id, runs[1]]  # handles or ids, in any order
+        results = self.client.results(asked)
+        self.assertEqual([r.run_id for r in results], [runs[2].id, runs[0].id, runs[1].id])
+        for result, duration in zip(results, [durations[2], durations[0], durations[1]]):
+            self.assertTrue(result.finished, result.message)
+            self.assertEqual(len(result.t), round(duration / 0.05) + 1)
+            self.assertAlmostEqual(result.t[-1], duration)
+        self.assertEqual(runs[2].info.state, results[0].info.state)  # handles updated
+        with self.assertRaises(mb.BadRequest) as caught:
+            self.client.run_many("irb1600", [SEED_SERVO, SEED_SERVO], duration=-1.0)
+        self.assertIn("specs[0]", str(caught.exception))  # the first bad one is named
+
     def test_concurrent_runs_from_threads(self):
         with concurrent.futures.ThreadPoolExecutor(3) as pool:
             results = list(pool.map(
