@@ -80,12 +80,18 @@ ALTER TABLE runs ADD COLUMN lease_expires_unix_ms bigint NOT NULL DEFAULT 0;
 CREATE INDEX runs_queue ON runs (state, created_unix_ms, ord);
 )sql";
 
+// One index less, as in store_schema.cc (runs_queue answers every lookup by state).
+constexpr const char* kSchemaV4 = R"sql(
+DROP INDEX IF EXISTS runs_by_state;
+)sql";
+
 struct Migration {
   int version;      // the version the step leads to
   const char* sql;  // from the version before
 };
 
-constexpr Migration kMigrations[] = {{1, kSchemaV1}, {2, kSchemaV2}, {3, kSchemaV3}};
+constexpr Migration kMigrations[] = {
+    {1, kSchemaV1}, {2, kSchemaV2}, {3, kSchemaV3}, {4, kSchemaV4}};
 static_assert(sizeof(kMigrations) / sizeof(kMigrations[0]) == kPostgresSchemaVersion);
 static_assert(kPostgresSchemaVersion == kStoreSchemaVersion, "both stores, one behaviour");
 

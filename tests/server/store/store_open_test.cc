@@ -8,6 +8,7 @@
 
 #include "common/check.h"
 #include "server/store/sqlite_connection.h"
+#include "server/store/sqlite_statement.h"
 #include "server/store/store.h"
 #include "tests/server/store/store_test_util.h"
 
@@ -114,6 +115,41 @@ TEST(StoreOpenTest, AnotherProgramsSqliteDatabaseIsAnInputError) {
     other.Exec("CREATE TABLE notes (text TEXT)", "create");
   }
   EXPECT_THAT(OpenError(temp.str()), HasSubstr("another program, not an mbstream database"));
+}
+
+TEST(StoreOpenTest, VersionThreeStoreLosesTheIndexByStateAndKeepsItsRuns) {
+  TempDirectory temp;
+  const std::string file = (temp.path() / Store::kFileName).string();
+  auto indexes = [&] {
+    auto raw = SqliteConnection::Open(file);
+    SqliteStatement query(raw, "SELECT count(*) FROM sqlite_master WHERE name = 'runs_by_state'",
+                          "count");
+    EXPECT_TRUE(query.Step());
+    const int64_t count = query.ColumnInt64(0);
+    query.Reset();
+    return count;
+  };
+  {
+    auto store = Store::Open(temp.str());
+    store->PutRun(MakeRun("r-1", v1::QUEUED, 1));
+  }
+  EXPECT_EQ(indexes(), 0);
+  {  // what a version-3 server left
+    auto raw = SqliteConnection::Open(file);
+    raw.Exec("CREATE INDEX runs_by_state ON runs (state); PRAGMA user_version = 3",
+             "make a version-3 store");
+  }
+  EXPECT_EQ(indexes(), 1);
+  auto store = Store::Open(temp.str());
+  EXPECT_EQ(indexes(), 0);
+  ASSERT_TRUE(store->GetRun("r-1"));
+  RunLease lease;
+  lease.replica = "replica-a";
+  lease.now_unix_ms = 5000;
+  lease.expires_unix_ms = 15000;
+  const auto claimed = store->ClaimQueuedRun(lease);  // found by its state
+  ASSERT_TRUE(claimed.has_value());
+  EXPECT_EQ(claimed->id(), "r-1");
 }
 
 TEST(StoreOpenTest, NewerSchemaVersionIsAnInputError) {

@@ -159,6 +159,8 @@ TEST_F(PostgresStoreTest, VersionOneDatabaseIsMigratedKeepingItsRuns) {
   pqxx::connection raw(uri_);
   pqxx::work tx(raw);
   EXPECT_EQ(tx.exec1("SELECT version FROM mbstream_schema")[0].as<int>(), kPostgresSchemaVersion);
+  EXPECT_FALSE(tx.exec1("SELECT to_regclass('runs_by_state') IS NOT NULL")[0].as<bool>());
+  EXPECT_TRUE(tx.exec1("SELECT to_regclass('runs_queue') IS NOT NULL")[0].as<bool>());
 }
 
 // A trigger makes the second chunk's insert fail: the whole FinishRun rolls back, the error
