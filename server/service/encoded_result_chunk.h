@@ -16,11 +16,14 @@ namespace mbstream {
 // holding them parsed would, and the receiver parses them as frames and probes.
 class EncodedResultChunk {
  public:
+  // The run's info, sent in the same message as the first frames (one message for a short
+  // result): a parsed field, serialized before the frames and probes.
+  v1::RunInfo* mutable_info() { return message_.mutable_info(); }
   void AddFrame(std::string_view serialized_frame);
   void AddProbe(const v1::ProbeReport& probe);
 
-  bool empty() const { return items_ == 0; }
-  std::size_t bytes() const { return bytes_; }  // frames and probes added, serialized
+  bool empty() const { return items_ == 0 && !message_.has_info(); }
+  std::size_t bytes() const { return bytes_; }  // frames and probes added (not the info)
   const v1::ResultChunk& message() const { return message_; }
   void Clear();
 

@@ -37,20 +37,19 @@ grpc::Status SimulationService::SendResult(grpc::ServerContext& context, const s
                                            const std::string& probe_set, bool wait,
                                            grpc::ServerWriter<v1::ResultChunk>& writer,
                                            size_t& sent_bytes) {
-  v1::ResultChunk head;
+  // The info goes in the first message, with the first frames (a short result is one
+  // message).
+  EncodedResultChunk chunk;
+  v1::RunInfo& info = *chunk.mutable_info();
   if (wait) {  // the final info as the wait read it (stored before it was shown)
-    if (grpc::Status waited = AwaitEnd(context, run_id, head.mutable_info()); !waited.ok()) {
-      return waited;
-    }
+    if (grpc::Status waited = AwaitEnd(context, run_id, &info); !waited.ok()) return waited;
   } else {
-    *head.mutable_info() = runs_->ResultInfo(run_id);
+    info = runs_->ResultInfo(run_id);
   }
   // A replay's probe set is checked (NOT_FOUND) before anything is sent.
   std::vector<v1::ProbeReport> probes;
   if (!probe_set.empty()) probes = runs_->ResultProbeSet(run_id, probe_set);
   const grpc::Status gone(grpc::StatusCode::CANCELLED, "client gone");
-  if (!writer.Write(head)) return gone;
-  EncodedResultChunk chunk;
   auto flush = [&] {
     if (chunk.empty()) return true;
     const bool ok = !context.IsCancelled() && writer.Write(chunk.message());

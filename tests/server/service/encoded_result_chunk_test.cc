@@ -55,10 +55,23 @@ TEST(EncodedResultChunkTest, SameBytesAsTheParsedMessage) {
   EXPECT_EQ(received.frames(4).SerializeAsString(), MakeFrame(4).SerializeAsString());
   EXPECT_EQ(received.probes(2).probe(), "tcp");
 
+  // With the run's info: the parsed message's bytes still, the info first on the wire.
+  encoded.mutable_info()->set_id("r-1");
+  *parsed.mutable_info() = encoded.message().info();
+  EXPECT_EQ(encoded.bytes(), bytes);
+  const std::string with_info = encoded.message().SerializeAsString();
+  ASSERT_TRUE(received.ParseFromString(with_info));
+  EXPECT_EQ(received.info().id(), "r-1");
+  EXPECT_EQ(received.frames_size(), 5);
+  EXPECT_EQ(received.SerializeAsString(), parsed.SerializeAsString());
+  EXPECT_EQ(with_info.substr(0, 1), std::string(1, '\x0a'));  // field 1, length-delimited
+
   encoded.Clear();
   EXPECT_TRUE(encoded.empty());
   EXPECT_EQ(encoded.bytes(), 0u);
   EXPECT_EQ(encoded.message().ByteSizeLong(), 0u);
+  encoded.mutable_info()->set_id("r-2");
+  EXPECT_FALSE(encoded.empty());  // an info alone is a message to send
 }
 
 }  // namespace

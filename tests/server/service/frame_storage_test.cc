@@ -96,7 +96,10 @@ TEST_F(FrameStorageTest, GetResultOfALargeRunArrivesInChunksWithEveryFrame) {
   int64_t next_seq = 0;
   bool info_first = false;
   for (int message = 0; reader->Read(&chunk); ++message) {
-    if (message == 0) info_first = chunk.has_info() && chunk.frames_size() == 0;
+    if (message == 0) info_first = chunk.has_info();
+    if (message > 0) {
+      EXPECT_FALSE(chunk.has_info()) << "the info again in message " << message;
+    }
     if (chunk.frames_size() > 0) ++messages_with_frames;
     largest_message = std::max(largest_message, chunk.ByteSizeLong());
     for (const v1::Frame& frame : chunk.frames()) {
