@@ -293,11 +293,7 @@ TEST_F(ReplayServiceTest, BadReplaysAreRefusedWithTheirStatus) {
     context.TryCancel();
     stream->Finish();
   }
-  grpc::ClientContext cancel_context;
-  v1::CancelRunRequest cancel;
-  cancel.set_run_id(running.id());
-  v1::RunInfo cancelled;
-  ASSERT_TRUE(stub().CancelRun(&cancel_context, cancel, &cancelled).ok());
+  CancelRunOk(running.id());
 }
 
 TEST_F(ReplayServiceTest, ComparisonSendsTheGhostsFramesOnTheCommonGrid) {

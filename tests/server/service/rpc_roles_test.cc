@@ -74,6 +74,14 @@ class RpcGateTest : public ServerTest {
            v1::RunInfo info;
            return stub().StartRun(&context, request, &info);
          }},
+        {"StartRuns",
+         [&] {
+           v1::StartRunsRequest request;
+           request.set_model("single_pendulum");
+           request.add_specs();
+           v1::StartRunsResponse response;
+           return stub().StartRuns(&context, request, &response);
+         }},
         {"CancelRun",
          [&] {
            v1::CancelRunRequest request;
@@ -98,6 +106,12 @@ class RpcGateTest : public ServerTest {
            v1::GetResultRequest request;
            request.set_run_id("r-nosuch");
            return finish(stub().GetResult(&context, request), v1::ResultChunk());
+         }},
+        {"GetResults",
+         [&] {
+           v1::GetResultsRequest request;
+           request.add_run_ids("r-nosuch");
+           return finish(stub().GetResults(&context, request), v1::ResultChunk());
          }},
         {"WatchRun",
          [&] {

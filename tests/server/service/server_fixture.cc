@@ -76,6 +76,16 @@ v1::RunInfo ServerTest::StartRunOk(const std::string& model, const v1::RunSpec& 
   return info;
 }
 
+v1::RunInfo ServerTest::CancelRunOk(const std::string& run_id) {
+  grpc::ClientContext context;
+  v1::CancelRunRequest request;
+  request.set_run_id(run_id);
+  v1::RunInfo info;
+  const grpc::Status status = stub_->CancelRun(&context, request, &info);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  return info;
+}
+
 v1::RunInfo ServerTest::WaitForEnd(const std::string& run_id) {
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));

@@ -41,6 +41,8 @@ class ServerTest : public ::testing::Test {
   grpc::Status Submit(const v1::ModelBundle& bundle, v1::ModelInfo* info);
   grpc::Status StartRun(const std::string& model, const v1::RunSpec& spec, v1::RunInfo* info);
   v1::RunInfo StartRunOk(const std::string& model, const v1::RunSpec& spec);
+  // CancelRun, expected to succeed; returns the run's info.
+  v1::RunInfo CancelRunOk(const std::string& run_id);
   // Watches the run (WatchRun, no frames) until it ended (60 s at most); returns the last info.
   v1::RunInfo WaitForEnd(const std::string& run_id);
   // Waits until the server counts `count` open Subscribe/WatchRun streams (60 s at most).

@@ -132,11 +132,7 @@ TEST_F(StreamsServiceTest, VanishedSubscriberIsCleanedUp) {
     stream->Finish();
   }
   WaitForSubscribers(0);
-  grpc::ClientContext context;
-  v1::CancelRunRequest request;
-  request.set_run_id(run.id());
-  v1::RunInfo info;
-  ASSERT_TRUE(stub().CancelRun(&context, request, &info).ok());
+  CancelRunOk(run.id());
 }
 
 TEST_F(StreamsServiceTest, FollowAttachesToEachNewRun) {
