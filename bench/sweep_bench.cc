@@ -147,39 +147,21 @@ void BatchedSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs,
   }
 }
 
-Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec, int runs,
-                       int window, int batch, bool watch) {
-  const fs::path data = fs::temp_directory_path() / ("mbstream-sweep-" + std::to_string(getpid()));
-  fs::remove_all(data);
-  testing::ServerProcess server(
-      server_binary, data.string(),
-      {"--models", MBSTREAM_SOURCE_DIR "/models", "--workers", "2", "--log-level", "warn"});
-  grpc::ChannelArguments arguments;
-  arguments.SetMaxReceiveMessageSize(256 << 20);
-  auto stub = v1::Simulation::NewStub(
-      grpc::CreateCustomChannel(server.address(), grpc::InsecureChannelCredentials(), arguments));
-  auto start_run = [&] {
-    grpc::ClientContext context;
-    v1::StartRunRequest request;
-    request.set_model("irb1600");
-    *request.mutable_spec() = spec;
-    v1::RunInfo info;
-    Check(stub->StartRun(&context, request, &info), "StartRun");
-    return info.id();
-  };
-  Measured m;
-  const double server_cpu0 = ProcessCpuSeconds(server.pid());
-  const double client_cpu0 = OwnCpuSeconds();
-  const Clock::time_point start = Clock::now();
+// The sweep a call per run: StartRun while fewer than `window` runs are in flight, then
+// GetResult (waiting, or after WatchRun with `watch`) of the oldest.
+void PerRunSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs, int window,
+                 bool watch, Measured& m) {
   std::deque<std::string> in_flight;
   int submitted = 0;
-  if (batch > 0) {
-    BatchedSweep(*stub, spec, runs, window, batch, m);
-    submitted = runs;
-  }
   while (submitted < runs || !in_flight.empty()) {
     while (submitted < runs && static_cast<int>(in_flight.size()) < window) {
-      in_flight.push_back(start_run());
+      grpc::ClientContext context;
+      v1::StartRunRequest request;
+      request.set_model("irb1600");
+      *request.mutable_spec() = spec;
+      v1::RunInfo info;
+      Check(stub.StartRun(&context, request, &info), "StartRun");
+      in_flight.push_back(info.id());
       ++submitted;
     }
     const std::string id = in_flight.front();
@@ -189,7 +171,7 @@ Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec
       v1::WatchRunRequest request;
       request.set_run_id(id);
       request.set_progress_interval_s(10.0);
-      auto reader = stub->WatchRun(&context, request);
+      auto reader = stub.WatchRun(&context, request);
       v1::WatchEvent event;
       v1::RunState state = v1::RUN_STATE_UNSPECIFIED;
       while (reader->Read(&event)) {
@@ -203,11 +185,33 @@ Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec
       v1::GetResultRequest request;
       request.set_run_id(id);
       request.set_wait(!watch);
-      auto reader = stub->GetResult(&context, request);
+      auto reader = stub.GetResult(&context, request);
       v1::ResultChunk chunk;
       while (reader->Read(&chunk)) m.frames += chunk.frames_size();
       Check(reader->Finish(), "GetResult");
     }
+  }
+}
+
+Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec, int runs,
+                       int window, int batch, bool watch) {
+  const fs::path data = fs::temp_directory_path() / ("mbstream-sweep-" + std::to_string(getpid()));
+  fs::remove_all(data);
+  testing::ServerProcess server(
+      server_binary, data.string(),
+      {"--models", MBSTREAM_SOURCE_DIR "/models", "--workers", "2", "--log-level", "warn"});
+  grpc::ChannelArguments arguments;
+  arguments.SetMaxReceiveMessageSize(256 << 20);
+  auto stub = v1::Simulation::NewStub(
+      grpc::CreateCustomChannel(server.address(), grpc::InsecureChannelCredentials(), arguments));
+  Measured m;
+  const double server_cpu0 = ProcessCpuSeconds(server.pid());
+  const double client_cpu0 = OwnCpuSeconds();
+  const Clock::time_point start = Clock::now();
+  if (batch > 0) {
+    BatchedSweep(*stub, spec, runs, window, batch, m);
+  } else {
+    PerRunSweep(*stub, spec, runs, window, watch, m);
   }
   m.wall_s = Seconds(start);
   m.cpu_s = ProcessCpuSeconds(server.pid()) - server_cpu0;

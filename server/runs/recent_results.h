@@ -1,7 +1,7 @@
 // The frames of the runs that ended last on this replica, kept in memory for the GetResult
 // that usually follows a run's end at once (a sweep fetches every result): served from here,
 // the result is not read back from the store. Only a result stored whole in its run's final
-// transaction (one chunk) and final for good (FINISHED, FAILED, CANCELLED) is kept, as stored
+// transaction (one chunk) and final for good (any final state but INTERRUPTED) is kept, as stored
 // (frame_chunks.h), oldest out first beyond `max_bytes`. Thread-safe.
 #pragma once
 

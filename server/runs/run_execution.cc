@@ -136,8 +136,7 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
       if (!run->spool().Finish(info, *store_, holder)) {
         run->lease_lost = true;
       } else if (std::string whole = run->spool().TakeWholeResult();
-                 !whole.empty() && (info.state() == v1::FINISHED || info.state() == v1::FAILED ||
-                                    info.state() == v1::CANCELLED)) {
+                 !whole.empty() && info.state() != v1::INTERRUPTED) {  // final for good
         recent_results_.Put(run->id(), std::move(whole));  // before anyone sees the run ended
       }
     }

@@ -2,6 +2,7 @@
 // limit, read from the store one frame chunk at a time (a long run is never in memory at once). The
 // frames go out as stored, not parsed and serialized again (encoded_result_chunk.h). With
 // `wait`, a run not yet ended is waited for (RunManager::AwaitChange) instead of refused.
+#include <algorithm>
 #include <chrono>
 
 #include "server/service/encoded_result_chunk.h"
@@ -94,22 +95,23 @@ grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
 grpc::Status SimulationService::GetResults(grpc::ServerContext* context,
                                            const v1::GetResultsRequest* request,
                                            grpc::ServerWriter<v1::ResultChunk>* writer) {
-  size_t sent_bytes = 0;
+  size_t largest = 0;  // the largest result's frames and probes: a burst as in GetResult
   const grpc::Status status = Admit(*context, "GetResults", [&]() -> grpc::Status {
     if (request->run_ids().empty()) {
       return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
                           "run_ids is empty; name at least one run");
     }
     for (const std::string& run_id : request->run_ids()) {
-      if (grpc::Status sent =
-              SendResult(*context, run_id, "", request->wait(), *writer, sent_bytes);
-          !sent.ok()) {
-        return sent;
-      }
+      size_t sent_bytes = 0;
+      const grpc::Status sent =
+          SendResult(*context, run_id, "", request->wait(), *writer, sent_bytes);
+      largest = std::max(largest, sent_bytes);
+      if (!sent.ok()) return sent;
     }
     return grpc::Status::OK;
   });
-  if (sent_bytes >= kChunkBytes) runs_->ReleaseMemory();
+  // Not after every batch of small results (their sum passes 1 MiB every dozen or so).
+  if (largest >= kChunkBytes) runs_->ReleaseMemory();
   return status;
 }
 

@@ -75,7 +75,8 @@ TEST(FrameSpoolTest, HandsOnAResultStoredWholeInItsOneChunk) {
       }
       std::string stored;
       std::vector<std::string_view> stored_frames;
-      EXPECT_FALSE(store->GetSerializedFrames(info.id(), 0, stored, stored_frames).value() != 1);
+      EXPECT_EQ(store->GetSerializedFrames(info.id(), 0, stored, stored_frames),
+                std::optional<int64_t>(1));  // one chunk, the last
       EXPECT_EQ(whole, stored);
       EXPECT_TRUE(spool.TakeWholeResult().empty());  // moved out once
     }
