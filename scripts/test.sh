@@ -91,11 +91,27 @@ build() {  # build DIR [targets...]
     cmake --build "$dir" --parallel "$JOBS"
   fi
 }
+# The last lines of each failed test's output, printed again after ctest's summary: with
+# two tests at a time a failure's output lies hundreds of lines up, among passing tests.
+failed_outputs() {  # failed_outputs DIR
+  local failed=$1/Testing/Temporary/LastTestsFailed.log name
+  [ -f "$failed" ] || return 0
+  while IFS= read -r name; do
+    name=${name#*:}
+    echo "==== test.sh: failed: $name (its last 60 lines of output)"
+    awk -v name="$name" '
+      $0 ~ "^[0-9]+/[0-9]+ Test: " && substr($0, index($0, "Test: ") + 6) == name { inside = 1; next }
+      inside && /^<end of output>$/ { exit }
+      inside { print }' "$1/Testing/Temporary/LastTest.log" | tail -n 60
+  done <"$failed"
+}
 run_ctest() {  # run_ctest DIR extra-ctest-args...
-  local dir=$1
+  local dir=$1 status=0
   shift
   # shellcheck disable=SC2086  # CTEST_ARGS is a list of flags
-  (cd "$dir" && ctest --output-on-failure --parallel "$JOBS" "$@" ${CTEST_ARGS:-})
+  (cd "$dir" && ctest --output-on-failure --parallel "$JOBS" "$@" ${CTEST_ARGS:-}) || status=$?
+  if [ "$status" != 0 ]; then failed_outputs "$dir"; fi
+  return "$status"
 }
 
 if [ "$RELEASE" = 1 ]; then

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cctype>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
@@ -72,10 +73,13 @@ std::string PostgresCluster::Unavailable() {
 }
 
 PostgresCluster::PostgresCluster() : bin_(FindBinaries()) {
-  static int counter = 0;
-  folder_ = (fs::temp_directory_path() /
-             ("mbstream-pg-" + std::to_string(::getpid()) + "-" + std::to_string(counter++)))
-                .string();
+  // A folder no other process can have: named by the process id, a folder left behind by a
+  // killed test would be reused by the next process given the same id (ids wrap at 32768).
+  std::string name = (fs::temp_directory_path() / "mbstream-pg-XXXXXX").string();
+  if (::mkdtemp(name.data()) == nullptr) {
+    throw std::runtime_error("test PostgreSQL: cannot make a folder " + name);
+  }
+  folder_ = name;
   fs::create_directories(folder_ + "/socket");
   if (::geteuid() == 0) {
     const passwd* account = ::getpwnam("postgres");
