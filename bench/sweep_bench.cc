@@ -17,7 +17,10 @@
 // times (a fresh server each round) and prints the median of each round's ratios, so that a
 // machine whose load changes affects both sides alike; `--baseline-server B` adds a third
 // side to each round, the same sweep through binary B (e.g. the previous build), for a
-// before/after comparison in one invocation.
+// before/after comparison in one invocation. `--files`: both sides end each run as a user's
+// command would, with its results directory (the CSV files and stats.json, then removed):
+// in-process as `mbstream simulate --out` writes it, the client as `mbstream results --out`
+// writes a fetched result; without it the in-process side keeps the frames in memory only.
 #include <grpcpp/grpcpp.h>
 #include <sys/resource.h>
 #include <unistd.h>
@@ -39,8 +42,10 @@
 
 #include "mbstream/v1/simulation_service.grpc.pb.h"
 #include "server/parse/urdf_import.h"
+#include "server/results/results_files.h"
 #include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
+#include "server/wire/frame_conversion.h"
 #include "tests/common/server_process.h"
 
 namespace mbstream {
@@ -82,7 +87,54 @@ struct Measured {
   long frames = 0;
 };
 
-Measured InProcess(const Model& model, const RunConfig& config, int runs) {
+// Writes a results directory (the CSV files and stats.json) and removes it again.
+void WriteAndRemove(const RunResult& result, const RunProvenance& provenance,
+                    const std::string& directory) {
+  WriteResultsDirectory(result, provenance, directory);
+  fs::remove_all(directory);
+}
+
+// With --files, the client writes each result it fetches as `mbstream results RUN --out DIR`
+// does (cli/result_download.cc): the frames of one result, from the chunk with its info to
+// the next such chunk, become a RunResult and its results directory.
+class ResultFiles {
+ public:
+  explicit ResultFiles(std::string directory) : directory_(std::move(directory)) {}
+
+  void Add(v1::ResultChunk& chunk) {
+    if (directory_.empty()) return;
+    if (chunk.has_info()) {
+      Flush();
+      info_ = chunk.info();
+      started_ = true;
+    }
+    for (v1::Frame& frame : *chunk.mutable_frames()) frames_.push_back(std::move(frame));
+  }
+
+  // Writes the last result's directory (call after the stream's last chunk).
+  void Flush() {
+    if (!started_) return;
+    const RunResult result = ResultFromFrames(info_, frames_);
+    const std::string spec_json =
+        RunSpecToJson(ToRunSpec(ToRunConfig(info_.spec(), result.joint_names, "spec")));
+    WriteAndRemove(result,
+                   RunProvenance{info_.model_name(), "model " + info_.model_id(), spec_json,
+                                 info_.model_id(), info_.id()},
+                   directory_ + "/" + info_.id());
+    frames_.clear();
+    started_ = false;
+  }
+
+  std::string directory_;
+  v1::RunInfo info_;
+  std::vector<v1::Frame> frames_;
+  bool started_ = false;
+};
+
+// `files` (empty: none): each run also writes its results directory under it, as `mbstream
+// simulate --out` does (the CSV files and stats.json), then the directory is removed.
+Measured InProcess(const Model& model, const RunConfig& config, int runs,
+                   const std::string& files) {
   Measured m;
   std::atomic<int> next{0};
   std::atomic<long> frames{0};
@@ -91,15 +143,21 @@ Measured InProcess(const Model& model, const RunConfig& config, int runs) {
   std::vector<std::thread> threads;
   for (int t = 0; t < 2; ++t) {
     threads.emplace_back([&] {
-      while (next.fetch_add(1) < runs) {
+      for (int run; (run = next.fetch_add(1)) < runs;) {
         const RunResult result = Simulate(model, config);
         if (result.stats.status != RunStatus::kFinished) throw std::runtime_error("run failed");
         frames += static_cast<long>(result.t.size());
+        if (!files.empty()) {  // as `mbstream simulate MODEL --spec F --out DIR` ends
+          const RunProvenance provenance{model.name, "irb1600.urdf",
+                                         RunSpecToJson(ToRunSpec(config)), "", ""};
+          WriteAndRemove(result, provenance, files + "/run-" + std::to_string(run));
+        }
       }
     });
   }
   for (std::thread& thread : threads) thread.join();
   m.wall_s = Seconds(start);
+  if (!files.empty()) fs::remove_all(files);
   m.cpu_s = OwnCpuSeconds() - cpu0;
   m.frames = frames;
   return m;
@@ -112,7 +170,7 @@ void Check(const grpc::Status& status, const char* what) {
 // The sweep in batches: StartRuns of `batch` runs while at most `window` are in flight, then
 // GetResults (waiting) of the oldest batch: two calls per batch.
 void BatchedSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs, int window,
-                  int batch, Measured& m) {
+                  int batch, const std::string& files, Measured& m) {
   std::deque<std::vector<std::string>> in_flight;
   int submitted = 0, flying = 0;
   while (submitted < runs || !in_flight.empty()) {
@@ -137,20 +195,23 @@ void BatchedSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs,
     in_flight.pop_front();
     auto reader = stub.GetResults(&context, request);
     v1::ResultChunk chunk;
+    ResultFiles results(files);
     while (reader->Read(&chunk)) {
       if (chunk.has_info() && chunk.info().state() != v1::FINISHED) {
         throw std::runtime_error("run " + chunk.info().id() + " did not finish");
       }
       m.frames += chunk.frames_size();
+      results.Add(chunk);
     }
     Check(reader->Finish(), "GetResults");
+    results.Flush();
   }
 }
 
 // The sweep a call per run: StartRun while fewer than `window` runs are in flight, then
 // GetResult (waiting, or after WatchRun with `watch`) of the oldest.
 void PerRunSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs, int window,
-                 bool watch, Measured& m) {
+                 bool watch, const std::string& files, Measured& m) {
   std::deque<std::string> in_flight;
   int submitted = 0;
   while (submitted < runs || !in_flight.empty()) {
@@ -187,14 +248,26 @@ void PerRunSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs, 
       request.set_wait(!watch);
       auto reader = stub.GetResult(&context, request);
       v1::ResultChunk chunk;
-      while (reader->Read(&chunk)) m.frames += chunk.frames_size();
+      ResultFiles results(files);
+      while (reader->Read(&chunk)) {
+        m.frames += chunk.frames_size();
+        results.Add(chunk);
+      }
       Check(reader->Finish(), "GetResult");
+      results.Flush();
     }
   }
 }
 
+struct ClientPattern {
+  int window = 32;
+  int batch = 0;
+  bool watch = false;
+  std::string files;  // with --simulate-files: where the client writes each result
+};
+
 Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec, int runs,
-                       int window, int batch, bool watch) {
+                       const ClientPattern& client) {
   const fs::path data = fs::temp_directory_path() / ("mbstream-sweep-" + std::to_string(getpid()));
   fs::remove_all(data);
   testing::ServerProcess server(
@@ -208,10 +281,10 @@ Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec
   const double server_cpu0 = ProcessCpuSeconds(server.pid());
   const double client_cpu0 = OwnCpuSeconds();
   const Clock::time_point start = Clock::now();
-  if (batch > 0) {
-    BatchedSweep(*stub, spec, runs, window, batch, m);
+  if (client.batch > 0) {
+    BatchedSweep(*stub, spec, runs, client.window, client.batch, client.files, m);
   } else {
-    PerRunSweep(*stub, spec, runs, window, watch, m);
+    PerRunSweep(*stub, spec, runs, client.window, client.watch, client.files, m);
   }
   m.wall_s = Seconds(start);
   m.cpu_s = ProcessCpuSeconds(server.pid()) - server_cpu0;
@@ -260,7 +333,7 @@ int main(int argc, char** argv) {
   std::string server_binary, baseline_binary, scene = "seed-servo";
   int runs = 1000, window = 32, rounds = 1, batch = 0, baseline_batch = -1;
   double duration = 0.0;
-  bool server_only = false, watch = false;
+  bool server_only = false, watch = false, simulate_files = false;
   app.add_option("--server", server_binary, "the mbstream-server binary")->required();
   app.add_option("--runs", runs, "runs on each side");
   app.add_option("--scene", scene, "models/irb1600/SCENE.json");
@@ -273,6 +346,10 @@ int main(int argc, char** argv) {
                  "--batch for the baseline server (default: the same; 0 for a binary without "
                  "StartRuns, or to compare the two patterns on one binary)");
   app.add_flag("--server-only", server_only, "skip the in-process side (for profiling)");
+  app.add_flag("--files", simulate_files,
+               "both sides write each run's results directory (CSV files and stats.json) and "
+               "remove it: in-process as `mbstream simulate --out`, the client as `mbstream "
+               "results --out` after fetching");
   app.add_flag("--watch", watch,
                "wait for each run's end with WatchRun before GetResult (three calls per run, "
                "as before GetResult could wait)");
@@ -298,23 +375,31 @@ int main(int argc, char** argv) {
                   }
                   return text;
                 }());
+    // Beside the server's data directory (ThroughServer), on the same file system.
+    const std::string files =
+        simulate_files
+            ? (fs::temp_directory_path() / ("mbstream-simulate-" + std::to_string(getpid())))
+                  .string()
+            : "";
+    const ClientPattern client{window, batch, watch, files.empty() ? "" : files + "-client"};
     Ratios ratios, baseline_ratios;
     for (int round = 0; round < rounds; ++round) {
       if (rounds > 1) std::printf("round %d\n", round + 1);
       Measured local;
       if (!server_only) {
-        local = InProcess(model, config, runs);
+        local = InProcess(model, config, runs, files);
         Print("in-process", local, runs);
       }
       auto baseline = [&] {
         if (baseline_binary.empty()) return;
-        const Measured before = ThroughServer(baseline_binary, spec, runs, window,
-                                              baseline_batch >= 0 ? baseline_batch : batch, watch);
+        ClientPattern pattern = client;
+        if (baseline_batch >= 0) pattern.batch = baseline_batch;
+        const Measured before = ThroughServer(baseline_binary, spec, runs, pattern);
         Print("baseline", before, runs);
         if (!server_only) baseline_ratios.Add(local, before);
       };
       if (round % 2 == 0) baseline();  // the two servers take turns to go first
-      const Measured served = ThroughServer(server_binary, spec, runs, window, batch, watch);
+      const Measured served = ThroughServer(server_binary, spec, runs, client);
       Print("server", served, runs);
       if (round % 2 == 1) baseline();
       if (!server_only) {

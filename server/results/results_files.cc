@@ -2,10 +2,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include <cstdio>
+#include <charconv>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <system_error>
 
 #include "common/check.h"
 
@@ -19,10 +20,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Number(double x) {
+// Appends x in the shortest form that reads back as the same double (std::to_chars): exact,
+// and several times faster than printf's "%.17g", which also writes digits beyond those that
+// identify the double (0.1 as 0.10000000000000001).
+void AppendNumber(std::string& out, double x) {
   char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", x);
-  return buffer;
+  const std::to_chars_result written = std::to_chars(buffer, buffer + sizeof(buffer), x);
+  MBSTREAM_CHECK(written.ec == std::errc());
+  out.append(buffer, written.ptr);
+}
+
+std::string Number(double x) {
+  std::string text;
+  AppendNumber(text, x);
+  return text;
 }
 
 // Writes path atomically: to path.tmp, then rename.
@@ -47,12 +58,17 @@ void WriteFile(const fs::path& path, const std::function<void(std::ostream&)>& w
 void WriteSeries(const fs::path& path, const std::string& header, const RunResult& result,
                  const std::vector<double>& values, int width) {
   WriteFile(path, [&](std::ostream& out) {
-    out << header << '\n';
+    std::string text = header + '\n';
+    text.reserve(text.size() + static_cast<size_t>(result.num_frames()) * (width + 1) * 24);
     for (int k = 0; k < result.num_frames(); ++k) {
-      out << Number(result.t[k]);
-      for (int j = 0; j < width; ++j) out << ',' << Number(values[k * width + j]);
-      out << '\n';
+      AppendNumber(text, result.t[k]);
+      for (int j = 0; j < width; ++j) {
+        text += ',';
+        AppendNumber(text, values[k * width + j]);
+      }
+      text += '\n';
     }
+    out << text;
   });
 }
 

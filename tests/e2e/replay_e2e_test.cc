@@ -105,7 +105,7 @@ TEST_F(ReplayE2eTest, ReplayAnswersWithTheLiveRunsProbesBitForBit) {
   ASSERT_EQ(live.size(), 401u);
   ASSERT_EQ(replayed.size(), live.size());
   for (size_t i = 0; i < live.size(); ++i) {
-    for (int column : {0, 1, 2, 3, 4, 5}) {  // seq, t, name, x, y, z: the same text, %.17g
+    for (int column : {0, 1, 2, 3, 4, 5}) {  // seq, t, name, x, y, z: the same text
       ASSERT_EQ(replayed[i][column], live[i][column]) << "row " << i << " column " << column;
     }
   }
