@@ -6,11 +6,16 @@
 // spec as shipped except for the formulation and method in the name ("auto" and "none"
 // keep the spec's choice; kinematic runs report drive torques by inverse dynamics at each
 // of the 401 outputs). Counters: the run's internal steps and its own CPU time (RunStats).
+// BM_ResultsDirectory/seed-servo: the results directory of a seed-servo run (401 frames, every
+// CSV and stats.json), as `mbstream simulate --out` writes it after the run.
 // BM_RhsEval/seed-servo: one evaluation of the joint-space ODE's right-hand side;
 // BM_ResidualEval/seed-run/body-index2 and BM_RhsEval/seed-servo/body-baumgarte: one
 // evaluation of the body formulations' DAE residual and ODE right-hand side.
 #include <benchmark/benchmark.h>
 
+#include <unistd.h>
+
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -19,6 +24,7 @@
 #include "server/body/consistent_init.h"
 #include "server/drives/drive_set.h"
 #include "server/parse/urdf_import.h"
+#include "server/results/results_files.h"
 #include "server/sim/joint_space_ode.h"
 #include "server/sim/run_config.h"
 #include "server/sim/simulate.h"
@@ -121,6 +127,22 @@ void BM_BodyEval(benchmark::State& state, const RunConfig& config, bool dae) {
   }
 }
 
+// What `mbstream simulate --out` and `mbstream results --out` do after the run: the results
+// directory of the scene's result (every CSV and stats.json), written and removed again.
+void BM_ResultsDirectory(benchmark::State& state, RunConfig config) {
+  config.want_torques = true;
+  const RunResult result = Simulate(Irb1600(), config);
+  const RunProvenance provenance{Irb1600().name, "irb1600.urdf", RunSpecToJson(ToRunSpec(config)),
+                                 "", ""};
+  const std::filesystem::path directory =
+      std::filesystem::temp_directory_path() / ("mbstream-scene-bench-" + std::to_string(getpid()));
+  for (auto _ : state) {
+    WriteResultsDirectory(result, provenance, directory.string());
+    std::filesystem::remove_all(directory);
+  }
+  state.counters["frames"] = result.num_frames();
+}
+
 void RegisterAll() {
   for (const SceneCase& c : kCases) {
     RunConfig config = LoadScene(c.scene);
@@ -131,6 +153,9 @@ void RegisterAll() {
         std::string("BM_Scene/") + c.scene + "/" + c.formulation + "/" + c.method;
     benchmark::RegisterBenchmark(name.c_str(), BM_Scene, config)->Unit(benchmark::kMillisecond);
   }
+  benchmark::RegisterBenchmark("BM_ResultsDirectory/seed-servo", BM_ResultsDirectory,
+                               LoadScene("seed-servo"))
+      ->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("BM_RhsEval/seed-servo", BM_RhsEval, LoadScene("seed-servo"))
       ->Unit(benchmark::kNanosecond);
   benchmark::RegisterBenchmark("BM_ResidualEval/seed-run/body-index2", BM_BodyEval,
