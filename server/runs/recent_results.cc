@@ -5,30 +5,40 @@
 
 namespace mbstream {
 
-void RecentResults::Put(const std::string& run_id, std::string chunk) {
+void RecentResults::Put(const v1::RunInfo& info, std::string chunk) {
+  const std::string& run_id = info.id();
   std::lock_guard<std::mutex> lock(mutex_);
-  if (auto kept = chunks_.find(run_id); kept != chunks_.end()) {  // never a stale copy
-    bytes_ -= kept->second.size();
-    chunks_.erase(kept);
+  if (auto kept = kept_.find(run_id); kept != kept_.end()) {  // never a stale copy
+    bytes_ -= kept->second.bytes;
+    kept_.erase(kept);
     order_.erase(std::find(order_.begin(), order_.end(), run_id));
   }
-  if (chunk.size() > max_bytes_) return;
-  bytes_ += chunk.size();
-  chunks_.emplace(run_id, std::move(chunk));
+  const std::size_t bytes = chunk.size() + info.ByteSizeLong();
+  if (bytes > max_bytes_) return;
+  bytes_ += bytes;
+  kept_.emplace(run_id, Kept{info, std::move(chunk), bytes});
   order_.push_back(run_id);
   while (bytes_ > max_bytes_) {
-    auto oldest = chunks_.find(order_.front());
-    bytes_ -= oldest->second.size();
-    chunks_.erase(oldest);
+    auto oldest = kept_.find(order_.front());
+    bytes_ -= oldest->second.bytes;
+    kept_.erase(oldest);
     order_.pop_front();
   }
 }
 
 bool RecentResults::Get(const std::string& run_id, std::string& chunk) const {
   std::lock_guard<std::mutex> lock(mutex_);
-  auto kept = chunks_.find(run_id);
-  if (kept == chunks_.end()) return false;
-  chunk.assign(kept->second);
+  auto kept = kept_.find(run_id);
+  if (kept == kept_.end()) return false;
+  chunk.assign(kept->second.chunk);
+  return true;
+}
+
+bool RecentResults::GetInfo(const std::string& run_id, v1::RunInfo& info) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto kept = kept_.find(run_id);
+  if (kept == kept_.end()) return false;
+  info = kept->second.info;
   return true;
 }
 

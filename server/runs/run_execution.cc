@@ -137,7 +137,7 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
         run->lease_lost = true;
       } else if (std::string whole = run->spool().TakeWholeResult();
                  !whole.empty() && info.state() != v1::INTERRUPTED) {  // final for good
-        recent_results_.Put(run->id(), std::move(whole));  // before anyone sees the run ended
+        recent_results_.Put(info, std::move(whole));  // before anyone sees the run ended
       }
     }
   } catch (const std::exception& error) {

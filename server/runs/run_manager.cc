@@ -327,6 +327,7 @@ v1::RunInfo RunManager::CancelDequeued(const std::shared_ptr<Run>& run) {
 
 v1::RunInfo RunManager::Get(const std::string& run_id) const {
   if (std::shared_ptr<Run> run = FindActive(run_id)) return run->Info();
+  if (v1::RunInfo info; recent_results_.GetInfo(run_id, info)) return info;  // ended here
   std::optional<v1::RunInfo> stored = store_->GetRun(run_id);
   if (!stored) throw NotFound(run_id);
   return *stored;

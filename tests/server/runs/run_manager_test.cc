@@ -182,7 +182,7 @@ TEST_F(RunManagerTest, PrivateStoreClaimsInMemoryAndCancelsAQueuedRunBeforeAnyWo
 
 // The result of a run that just ended is served from memory as it was stored (a sweep's
 // GetResult follows every end): the store is not read for it. Without that memory, it is.
-TEST_F(RunManagerTest, AnEndedRunsResultIsServedFromMemoryAsStored) {
+TEST_F(RunManagerTest, AnEndedRunsResultAndInfoAreServedFromMemoryAsStored) {
   auto result = [&](const std::string& run_id) {
     std::string data;
     std::vector<std::string_view> views;
@@ -214,11 +214,16 @@ TEST_F(RunManagerTest, AnEndedRunsResultIsServedFromMemoryAsStored) {
     one[0].set_seq(0);
     other.data = EncodeFrameChunks(one).front().data;
     store_->PutFrameChunk(info.id(), 0, other);
+    v1::RunInfo changed = info;  // and its row (an ended run's info never changes either)
+    changed.set_message("changed in the store");
+    store_->PutRun(changed);
     const std::vector<std::string> again = result(info.id());
     if (kept_bytes > 0) {
       EXPECT_EQ(again, stored);
+      EXPECT_EQ(runs_->Get(info.id()).message(), info.message());
     } else {
       EXPECT_EQ(again.size(), 1u);
+      EXPECT_EQ(runs_->Get(info.id()).message(), "changed in the store");
     }
   }
 }
