@@ -85,13 +85,17 @@ constexpr const char* kSchemaV4 = R"sql(
 DROP INDEX IF EXISTS runs_by_state;
 )sql";
 
+// Version 5 changed the SQLite store only (its frames moved to a file of their own,
+// frame_file.h); PostgreSQL keeps them in frame_chunks.data, which replicas share.
+constexpr const char* kSchemaV5 = "SELECT 1";
+
 struct Migration {
   int version;      // the version the step leads to
   const char* sql;  // from the version before
 };
 
 constexpr Migration kMigrations[] = {
-    {1, kSchemaV1}, {2, kSchemaV2}, {3, kSchemaV3}, {4, kSchemaV4}};
+    {1, kSchemaV1}, {2, kSchemaV2}, {3, kSchemaV3}, {4, kSchemaV4}, {5, kSchemaV5}};
 static_assert(sizeof(kMigrations) / sizeof(kMigrations[0]) == kPostgresSchemaVersion);
 static_assert(kPostgresSchemaVersion == kStoreSchemaVersion, "both stores, one behaviour");
 

@@ -3,13 +3,15 @@
 #include <sqlite3.h>
 
 #include <algorithm>
+#include <exception>
+#include <utility>
 
 #include "server/store/sqlite_statement.h"
 
 namespace mbstream {
 
-SqliteCheckpointer::SqliteCheckpointer(SqliteConnection& writer)
-    : writer_(writer), own_(SqliteConnection::Open(writer.path())) {
+SqliteCheckpointer::SqliteCheckpointer(SqliteConnection& writer, std::function<void()> before)
+    : before_(std::move(before)), writer_(writer), own_(SqliteConnection::Open(writer.path())) {
   // A connection checkpoints only a database it has seen in WAL mode (else: a no-op).
   own_.Exec("PRAGMA journal_mode = WAL", "open the checkpointer's connection");
   SqliteStatement page_size(own_, "PRAGMA page_size", "read the page size");
@@ -43,7 +45,9 @@ int SqliteCheckpointer::OnCommit(void* self, sqlite3* db, const char* schema, in
   if (wal_pages >= checkpointer->backstop_pages_) {
     // Behind: the writer copies what it can itself (PASSIVE, like SQLite's own; a failure
     // leaves the WAL as it is, for the next commit to try again).
-    sqlite3_wal_checkpoint_v2(db, schema, SQLITE_CHECKPOINT_PASSIVE, nullptr, nullptr);
+    if (checkpointer->Before()) {
+      sqlite3_wal_checkpoint_v2(db, schema, SQLITE_CHECKPOINT_PASSIVE, nullptr, nullptr);
+    }
   } else if (wal_pages >= checkpointer->next_ask_pages_) {
     // Once per kBackgroundBytes of WAL: commits made while a checkpoint runs keep the WAL
     // from starting again, and asking at every one of them would checkpoint (and fdatasync)
@@ -68,11 +72,23 @@ void SqliteCheckpointer::Loop() {
     lock.unlock();
     // SQLITE_BUSY (the writer's backstop checkpoints meanwhile) or an I/O error: the WAL
     // stays as it is and the next commit past the threshold asks again.
-    sqlite3_wal_checkpoint_v2(own_.get(), "main", SQLITE_CHECKPOINT_PASSIVE, nullptr, nullptr);
+    if (Before()) {
+      sqlite3_wal_checkpoint_v2(own_.get(), "main", SQLITE_CHECKPOINT_PASSIVE, nullptr, nullptr);
+    }
     lock.lock();
     running_ = false;
     ++done_;
     idle_.notify_all();
+  }
+}
+
+bool SqliteCheckpointer::Before() const {
+  if (!before_) return true;
+  try {
+    before_();
+    return true;
+  } catch (const std::exception&) {  // e.g. fdatasync failed: the WAL stays as it is
+    return false;
   }
 }
 

@@ -14,6 +14,7 @@
 
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <thread>
 
@@ -29,8 +30,10 @@ class SqliteCheckpointer {
   static constexpr int64_t kBackstopBytes = 16 * kBackgroundBytes;
 
   // Hooks into `writer` (which must outlive this) and opens a connection of its own to the
-  // same file. Throws SqliteError when that connection cannot be opened.
-  explicit SqliteCheckpointer(SqliteConnection& writer);
+  // same file. Throws SqliteError when that connection cannot be opened. `before` (if any)
+  // runs before each checkpoint (the store makes its frames file durable there, frame_file.h);
+  // when it throws, that checkpoint is skipped.
+  explicit SqliteCheckpointer(SqliteConnection& writer, std::function<void()> before = {});
   ~SqliteCheckpointer();  // unhooks, then stops and joins the thread
   SqliteCheckpointer(const SqliteCheckpointer&) = delete;
   SqliteCheckpointer& operator=(const SqliteCheckpointer&) = delete;
@@ -42,7 +45,9 @@ class SqliteCheckpointer {
  private:
   static int OnCommit(void* self, struct sqlite3* db, const char* schema, int wal_pages);
   void Loop();
+  bool Before() const;  // runs before_; false when it threw
 
+  std::function<void()> before_;
   SqliteConnection& writer_;
   SqliteConnection own_;
   // The writer's thread only (OnCommit): the WAL's size at the last commit, and the size

@@ -36,6 +36,7 @@ class SqliteStatement {
   void Run();
 
   int64_t ColumnInt64(int column) const;
+  bool ColumnIsNull(int column) const;
   // Views into SQLite's memory: valid until the next Step or Reset.
   std::string_view ColumnText(int column) const;
   std::string_view ColumnBlob(int column) const;

@@ -50,7 +50,7 @@ SqliteConnection OpenConfigured(const std::string& path) {
 
 }  // namespace
 
-SqliteStore::Impl::Impl(SqliteConnection connection)
+SqliteStore::Impl::Impl(SqliteConnection connection, const std::string& frames_path)
     : db(std::move(connection)),
       insert_model(db,
                    "INSERT INTO models (id, created_unix_ms, info, bundle) VALUES (?1, ?2, ?3, ?4) "
@@ -98,11 +98,12 @@ SqliteStore::Impl::Impl(SqliteConnection connection)
                                 "delete stale frames"),
       insert_frame_chunk(db,
                          "INSERT OR REPLACE INTO frame_chunks "
-                         "(run_id, chunk, first_seq, frame_count, data) "
-                         "VALUES (?1, ?2, ?3, ?4, ?5)",
+                         "(run_id, chunk, first_seq, frame_count, data, file_offset, file_bytes, "
+                         "file_crc32c) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)",
                          "insert frames"),
       select_frame_chunk(db,
-                         "SELECT chunk, data FROM frame_chunks WHERE run_id = ?1 AND chunk >= ?2 "
+                         "SELECT chunk, data, file_offset, file_bytes, file_crc32c FROM "
+                         "frame_chunks WHERE run_id = ?1 AND chunk >= ?2 "
                          "ORDER BY chunk LIMIT 1",
                          "read frames"),
       upsert_probe(db,
@@ -111,7 +112,8 @@ SqliteStore::Impl::Impl(SqliteConnection connection)
                    "write probe report"),
       select_probes(db, "SELECT report FROM probes WHERE run_id = ?1 ORDER BY seq, probe",
                     "read probe reports"),
-      checkpointer(db) {}
+      frames(frames_path),
+      checkpointer(db, [this] { frames.Sync(); }) {}
 
 std::unique_ptr<SqliteStore> SqliteStore::Open(const std::string& directory) {
   CreateDirectory(directory);
@@ -119,8 +121,8 @@ std::unique_ptr<SqliteStore> SqliteStore::Open(const std::string& directory) {
   try {
     SqliteConnection connection = OpenConfigured(path);
     EnsureStoreSchema(connection);
-    return std::unique_ptr<SqliteStore>(
-        new SqliteStore(std::make_unique<Impl>(std::move(connection))));
+    return std::unique_ptr<SqliteStore>(new SqliteStore(std::make_unique<Impl>(
+        std::move(connection), (std::filesystem::path(directory) / kFramesFileName).string())));
   } catch (const SqliteError& error) {
     switch (error.code() & 0xff) {
       case SQLITE_NOTADB:

@@ -29,6 +29,7 @@ class Store {
  public:
   // File name of the SQLite database inside the data directory.
   static constexpr const char* kFileName = "mbstream.sqlite3";
+  static constexpr const char* kFramesFileName = "mbstream.frames";  // frame_file.h
 
   // The SQLite store in `directory` (as --data; see SqliteStore::Open).
   static std::unique_ptr<Store> Open(const std::string& directory);

@@ -9,16 +9,22 @@ namespace mbstream {
 
 namespace {
 
-// Writes one chunk row (replacing one of the same number). The caller holds the mutex.
+// Appends one chunk's frames to the frames file and writes its row pointing at them
+// (replacing one of the same number). The caller holds the mutex; the bytes are written
+// before the row's transaction commits (frame_file.h).
 void InsertChunkLocked(SqliteStore::Impl& impl, const std::string& run_id, int64_t index,
                        const EncodedFrameChunk& chunk) {
+  const FrameExtent extent = impl.frames.Append(chunk.data);
   SqliteStatement& insert = impl.insert_frame_chunk;
   ResetOnExit reset(insert);
   insert.BindText(1, run_id);
   insert.BindInt64(2, index);
   insert.BindInt64(3, chunk.first_seq);
   insert.BindInt64(4, chunk.frame_count);
-  insert.BindBlob(5, chunk.data);
+  insert.BindBlob(5, std::string_view());
+  insert.BindInt64(6, extent.offset);
+  insert.BindInt64(7, extent.bytes);
+  insert.BindInt64(8, extent.crc32c);
   insert.Run();
 }
 
@@ -75,8 +81,23 @@ std::optional<int64_t> SqliteStore::GetFrameChunkData(const std::string& run_id,
   select.BindText(1, run_id);
   select.BindInt64(2, index);
   if (!select.Step()) return std::nullopt;
-  data.assign(select.ColumnBlob(1));
-  return select.ColumnInt64(0) + 1;
+  const int64_t chunk = select.ColumnInt64(0);
+  if (select.ColumnIsNull(2)) {  // written before schema version 5: in the row
+    data.assign(select.ColumnBlob(1));
+    return chunk + 1;
+  }
+  const FrameExtent extent{select.ColumnInt64(2), select.ColumnInt64(3),
+                           static_cast<uint32_t>(select.ColumnInt64(4))};
+  if (!impl_->frames.Read(extent, data)) {
+    throw InternalError("store " + impl_->db.path() + ": the frames of run " + run_id + " (chunk " +
+                        std::to_string(chunk) + ", " + std::to_string(extent.bytes) +
+                        " bytes at offset " + std::to_string(extent.offset) + " of " +
+                        impl_->frames.path() +
+                        ") are missing or damaged: the file is shorter or the bytes do not " +
+                        "match their checksum (the machine may have stopped before they " +
+                        "reached the disk); run the simulation again");
+  }
+  return chunk + 1;
 }
 
 }  // namespace mbstream

@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "server/store/frame_file.h"
 #include "server/store/sqlite_checkpointer.h"
 #include "server/store/sqlite_connection.h"
 #include "server/store/sqlite_statement.h"
@@ -16,7 +17,7 @@
 namespace mbstream {
 
 struct SqliteStore::Impl {
-  explicit Impl(SqliteConnection connection);
+  Impl(SqliteConnection connection, const std::string& frames_path);
 
   std::mutex mutex;  // guards everything below
   SqliteConnection db;
@@ -45,6 +46,8 @@ struct SqliteStore::Impl {
 
   SqliteStatement upsert_probe;
   SqliteStatement select_probes;
+
+  FrameFile frames;  // every chunk's frames since schema version 5
 
   // Last: unhooked from `db` before anything else is torn down.
   SqliteCheckpointer checkpointer;

@@ -96,6 +96,15 @@ constexpr const char* kSchemaV4 = R"sql(
 DROP INDEX IF EXISTS runs_by_state;
 )sql";
 
+// Version 5: a chunk's frames may live in the frames file beside the database (frame_file.h):
+// then `data` is empty and the three columns say where (NULL: the frames are in `data`, as
+// every chunk written before version 5).
+constexpr const char* kSchemaV5 = R"sql(
+ALTER TABLE frame_chunks ADD COLUMN file_offset INTEGER;
+ALTER TABLE frame_chunks ADD COLUMN file_bytes INTEGER;
+ALTER TABLE frame_chunks ADD COLUMN file_crc32c INTEGER;
+)sql";
+
 void WriteVersion(SqliteConnection& connection) {
   connection.Exec("PRAGMA application_id = " + std::to_string(kStoreApplicationId) +
                       "; PRAGMA user_version = " + std::to_string(kStoreSchemaVersion),
@@ -122,6 +131,7 @@ void EnsureStoreSchema(SqliteConnection& connection) {
     connection.Exec(kSchemaV2, "create schema version 2");
     connection.Exec(kSchemaV3, "create schema version 3");
     connection.Exec(kSchemaV4, "create schema version 4");
+    connection.Exec(kSchemaV5, "create schema version 5");
     WriteVersion(connection);
     transaction.Commit();
     return;
@@ -149,6 +159,9 @@ void EnsureStoreSchema(SqliteConnection& connection) {
   }
   if (version < 4) {  // one index less
     connection.Exec(kSchemaV4, "migrate schema to version 4");
+  }
+  if (version < 5) {  // frames outside the database
+    connection.Exec(kSchemaV5, "migrate schema to version 5");
   }
   if (version < kStoreSchemaVersion) WriteVersion(connection);
   transaction.Commit();

@@ -15,7 +15,9 @@ inline constexpr int32_t kStoreApplicationId = 0x6d627374;
 // older versions in EnsureStoreSchema.
 // 2: the replays' probe sets (probe_sets, probe_set_reports).
 // 3: the run queue's leases (runs.lease_holder, runs.lease_expires_unix_ms).
-inline constexpr int32_t kStoreSchemaVersion = 4;
+// 4: runs_by_state dropped.
+// 5: frames in the frames file (frame_chunks.file_offset, file_bytes, file_crc32c).
+inline constexpr int32_t kStoreSchemaVersion = 5;
 
 // Creates the schema in a new (empty) database, or checks that an existing one is an mbstream
 // database this build can use. Throws InputError naming the file and what to do when it is

@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -209,6 +210,84 @@ TEST(StoreFramesSqliteTest, FinishRunIsAtomic) {
   store->FinishRun(MakeRun("r-1", v1::FINISHED, 1000), frames);
   EXPECT_EQ(store->GetRun("r-1")->state(), v1::FINISHED);
   ExpectSameFrames(store->GetFrames("r-1"), frames);
+}
+
+// Since schema version 5 the frames are in mbstream.frames beside the database, the row
+// only points at them; bytes that do not match their checksum (a machine that stopped before
+// the file reached the disk) are reported, never served.
+TEST(StoreFramesSqliteTest, FramesLiveInTheFramesFileAndDamagedOnesAreReported) {
+  TempDirectory temp;
+  auto store = Store::Open(temp.str());
+  const std::vector<v1::Frame> frames = MakeFrames(50, 6);
+  store->FinishRun(MakeRun("r-1", v1::FINISHED, 1000), frames);
+  ExpectSameFrames(store->GetFrames("r-1"), frames);
+
+  const std::filesystem::path file = temp.path() / Store::kFramesFileName;
+  const std::string chunk = EncodeFrameChunks(frames).front().data;
+  EXPECT_EQ(std::filesystem::file_size(file), chunk.size());
+  auto raw = SqliteConnection::Open(store->path());
+  SqliteStatement row(raw, "SELECT length(data), file_offset, file_bytes FROM frame_chunks",
+                      "read chunk row");
+  ASSERT_TRUE(row.Step());
+  EXPECT_EQ(row.ColumnInt64(0), 0);  // nothing in the row
+  EXPECT_EQ(row.ColumnInt64(1), 0);
+  EXPECT_EQ(static_cast<std::size_t>(row.ColumnInt64(2)), chunk.size());
+  row.Reset();
+
+  // A second run's frames follow the first's; reopening the store appends after both.
+  store->FinishRun(MakeRun("r-2", v1::FINISHED, 1001), frames);
+  store.reset();
+  store = Store::Open(temp.str());
+  store->FinishRun(MakeRun("r-3", v1::FINISHED, 1002), frames);
+  EXPECT_EQ(std::filesystem::file_size(file), 3 * chunk.size());
+  for (const char* id : {"r-1", "r-2", "r-3"}) ExpectSameFrames(store->GetFrames(id), frames);
+
+  {  // one byte of r-2's frames changed on disk
+    std::FILE* f = std::fopen(file.c_str(), "r+b");
+    ASSERT_NE(f, nullptr);
+    std::fseek(f, static_cast<long>(chunk.size() + 10), SEEK_SET);
+    const int byte = std::fgetc(f);
+    std::fseek(f, static_cast<long>(chunk.size() + 10), SEEK_SET);
+    std::fputc(byte ^ 0x40, f);
+    std::fclose(f);
+  }
+  try {
+    store->GetFrames("r-2");
+    FAIL() << "damaged frames were served";
+  } catch (const InternalError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("the frames of run r-2 (chunk 0"));
+    EXPECT_THAT(error.what(), HasSubstr("missing or damaged"));
+  }
+  ExpectSameFrames(store->GetFrames("r-1"), frames);                        // the others are intact
+  std::filesystem::resize_file(file, 2 * chunk.size() + chunk.size() / 2);  // r-3 cut short
+  EXPECT_THROW(store->GetFrames("r-3"), InternalError);
+}
+
+TEST(StoreFramesSqliteTest, FramesStoredInTheRowBeforeVersionFiveAreStillRead) {
+  TempDirectory temp;
+  const std::vector<v1::Frame> frames = MakeFrames(30, 6);
+  {
+    auto store = Store::Open(temp.str());
+    store->PutRun(MakeRun("r-1", v1::FINISHED, 1000));
+  }
+  {  // what a version-4 server left: the frames in frame_chunks.data
+    auto raw = SqliteConnection::Open((temp.path() / Store::kFileName).string());
+    raw.Exec(std::string(kDropFrameFileColumns) + "PRAGMA user_version = 4",
+             "make a version-4 store");
+    SqliteStatement insert(raw,
+                           "INSERT INTO frame_chunks (run_id, chunk, first_seq, frame_count, data) "
+                           "VALUES ('r-1', 0, 0, 30, ?1)",
+                           "insert a version-4 chunk");
+    const std::string data = EncodeFrameChunks(frames).front().data;
+    insert.BindBlob(1, data);
+    insert.Run();
+    insert.Reset();
+  }
+  auto store = Store::Open(temp.str());
+  ExpectSameFrames(store->GetFrames("r-1"), frames);
+  store->FinishRun(MakeRun("r-2", v1::FINISHED, 1001), frames);  // new ones go to the file
+  ExpectSameFrames(store->GetFrames("r-2"), frames);
+  EXPECT_GT(std::filesystem::file_size(temp.path() / Store::kFramesFileName), 0u);
 }
 
 // The big case of the brief, measured once: run with --gtest_also_run_disabled_tests.

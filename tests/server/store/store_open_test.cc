@@ -136,7 +136,8 @@ TEST(StoreOpenTest, VersionThreeStoreLosesTheIndexByStateAndKeepsItsRuns) {
   EXPECT_EQ(indexes(), 0);
   {  // what a version-3 server left
     auto raw = SqliteConnection::Open(file);
-    raw.Exec("CREATE INDEX runs_by_state ON runs (state); PRAGMA user_version = 3",
+    raw.Exec("CREATE INDEX runs_by_state ON runs (state); " + std::string(kDropFrameFileColumns) +
+                 "PRAGMA user_version = 3",
              "make a version-3 store");
   }
   EXPECT_EQ(indexes(), 1);

@@ -74,7 +74,8 @@ TEST(StoreReplaySqliteTest, VersionOneStoreGainsProbeSetsAndKeepsItsRuns) {
     raw.Exec(
         "DROP TABLE probe_set_reports; DROP TABLE probe_sets; DROP INDEX runs_queue; "
         "ALTER TABLE runs DROP COLUMN lease_holder; "
-        "ALTER TABLE runs DROP COLUMN lease_expires_unix_ms; PRAGMA user_version = 1",
+        "ALTER TABLE runs DROP COLUMN lease_expires_unix_ms; " +
+            std::string(kDropFrameFileColumns) + "PRAGMA user_version = 1",
         "make a version-1 store");
   }
   auto store = Store::Open(temp.str());
