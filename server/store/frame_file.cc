@@ -63,18 +63,11 @@ uint32_t Crc32c(std::string_view data) {
 }
 
 FrameFile::FrameFile(std::string path) : path_(std::move(path)) {
-  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  fd_ = ::open(path_.c_str(), O_RDWR | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0) {
     throw InputError("cannot open " + path_ + " for writing (" + SystemError() +
                      "); fix the permissions of the data directory or choose another --data");
   }
-  struct stat status {};
-  if (::fstat(fd_, &status) != 0) {
-    const std::string error = SystemError();
-    ::close(fd_);
-    throw InputError("cannot read the size of " + path_ + " (" + error + ")");
-  }
-  end_ = status.st_size;
 }
 
 FrameFile::~FrameFile() {
@@ -82,21 +75,32 @@ FrameFile::~FrameFile() {
 }
 
 FrameExtent FrameFile::Append(std::string_view data) {
-  const FrameExtent extent{end_, static_cast<int64_t>(data.size()), Crc32c(data)};
-  std::size_t written = 0;
-  while (written < data.size()) {
-    const ssize_t n = ::pwrite(fd_, data.data() + written, data.size() - written,
-                               static_cast<off_t>(end_ + static_cast<int64_t>(written)));
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      throw InputError("cannot write frames to " + path_ + " (" +
-                       (n < 0 ? SystemError() : std::string("nothing written")) +
-                       "); is the disk full?");
-    }
-    written += static_cast<std::size_t>(n);
+  FrameExtent extent{0, static_cast<int64_t>(data.size()), Crc32c(data)};
+  // One write: with O_APPEND the kernel places it at the end of the file as one piece, even
+  // when another process appends to the same file, and leaves this descriptor's offset just
+  // after it. A short write (a full disk) leaves bytes no row points at.
+  ssize_t n;
+  do {
+    n = ::write(fd_, data.data(), data.size());
+  } while (n < 0 && errno == EINTR);
+  if (n != static_cast<ssize_t>(data.size())) {
+    throw InputError(
+        "cannot write frames to " + path_ + " (" +
+        (n < 0 ? SystemError()
+               : std::to_string(n) + " of " + std::to_string(data.size()) + " bytes written") +
+        "); is the disk full?");
   }
-  end_ += extent.bytes;
+  const off_t end = ::lseek(fd_, 0, SEEK_CUR);
+  if (end < 0) {
+    throw InputError("cannot tell where the frames went in " + path_ + " (" + SystemError() + ")");
+  }
+  extent.offset = static_cast<int64_t>(end) - extent.bytes;
   return extent;
+}
+
+int64_t FrameFile::end() const {
+  struct stat status {};
+  return ::fstat(fd_, &status) == 0 ? static_cast<int64_t>(status.st_size) : -1;
 }
 
 bool FrameFile::Read(const FrameExtent& extent, std::string& out) const {

@@ -36,9 +36,11 @@ class FrameFile {
   FrameFile(const FrameFile&) = delete;
   FrameFile& operator=(const FrameFile&) = delete;
 
-  // Writes `data` at the end. Not thread-safe against another Append (the store's mutex
-  // serialises them); Read may run alongside. Throws InputError (naming the file and the
-  // system's error) when the write fails; the end is then unchanged.
+  // Writes `data` at the end of the file in one piece (O_APPEND: another FrameFile or process
+  // appending to the same file meanwhile cannot interleave with it). Not thread-safe against
+  // another Append on this object (the store's mutex serialises them); Read may run alongside.
+  // Throws InputError (naming the file and the system's error) when the write fails or is
+  // short; its bytes are then referenced by nothing.
   FrameExtent Append(std::string_view data);
   // Reads the extent into `out`; false when the file is too short or the bytes do not match
   // their checksum.
@@ -47,12 +49,11 @@ class FrameFile {
   void Sync() const;
 
   const std::string& path() const { return path_; }
-  int64_t end() const { return end_; }
+  int64_t end() const;  // the file's size
 
  private:
   std::string path_;
   int fd_ = -1;
-  int64_t end_ = 0;
 };
 
 // CRC-32C of `data` (the SSE4.2 instruction where the processor has it).

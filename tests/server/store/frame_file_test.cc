@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -64,6 +66,30 @@ TEST(FrameFileTest, AppendsReadBackAcrossAReopenAndDamageIsRefused) {
   }
   EXPECT_FALSE(file.Read(a, out));
   EXPECT_TRUE(file.Read(b, out));
+}
+
+// Two writers of one file (two stores on one data directory, or a test's second one): each
+// append lands whole where its extent says, none overwrites the other's.
+TEST(FrameFileTest, TwoWritersOfOneFileNeverOverwriteEachOther) {
+  TempDirectory temp;
+  std::filesystem::create_directories(temp.path());
+  const std::string path = (temp.path() / "frames").string();
+  FrameFile one(path), two(path);
+  std::vector<std::pair<FrameExtent, std::string>> written;
+  for (int i = 0; i < 6; ++i) {
+    const std::string data = std::string(1000 + i, static_cast<char>('a' + i));
+    written.emplace_back((i % 2 == 0 ? one : two).Append(data), data);
+  }
+  EXPECT_EQ(one.end(), two.end());
+  int64_t total = 0;
+  for (const auto& [extent, data] : written) {
+    std::string out;
+    ASSERT_TRUE(one.Read(extent, out));
+    EXPECT_EQ(out, data);
+    EXPECT_EQ(extent.offset, total);
+    total += extent.bytes;
+  }
+  EXPECT_EQ(one.end(), total);
 }
 
 TEST(FrameFileTest, AFileThatCannotBeOpenedIsAnInputErrorNamingIt) {
