@@ -89,9 +89,10 @@ void MeasuredStore::PutRun(const v1::RunInfo& info) {
   CountState(info);
 }
 
-void MeasuredStore::PutRuns(const std::vector<v1::RunInfo>& infos) {
-  Timed(StoreOperation::kPutRun, [&] { store_->PutRuns(infos); });
+bool MeasuredStore::AddRuns(const std::vector<v1::RunInfo>& infos) {
+  if (!Timed(StoreOperation::kPutRun, [&] { return store_->AddRuns(infos); })) return false;
   for (const v1::RunInfo& info : infos) CountState(info);
+  return true;
 }
 
 std::optional<v1::RunInfo> MeasuredStore::GetRun(const std::string& run_id) const {

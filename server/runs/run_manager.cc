@@ -80,13 +80,12 @@ std::string RunManager::NewRunId() const {
   gmtime_r(&now, &utc);
   char stamp[32];
   std::strftime(stamp, sizeof(stamp), "%Y%m%d-%H%M%S", &utc);
+  // 32 random bits: at thousands of runs a second, ids of one second collide about once in
+  // a million seconds; StartMany then draws again (the store refuses a taken id, AddRuns).
   static thread_local std::mt19937_64 random(std::random_device{}());
-  for (;;) {
-    char suffix[16];
-    std::snprintf(suffix, sizeof(suffix), "%04x", static_cast<unsigned>(random() & 0xffff));
-    std::string id = std::string("r-") + stamp + "-" + suffix;
-    if (!FindActive(id) && !store_->GetRun(id)) return id;
-  }
+  char suffix[16];
+  std::snprintf(suffix, sizeof(suffix), "%08x", static_cast<unsigned>(random() & 0xffffffffu));
+  return std::string("r-") + stamp + "-" + suffix;
 }
 
 RunConfig RunManager::PrepareConfig(const CompiledModel& model, const v1::RunSpec& spec,
@@ -138,6 +137,32 @@ v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& s
   return std::move(StartMany(model_ref, one, owner).front());
 }
 
+// New ids for `infos`, free among this replica's runs, reserved in active_ and queue_ (as
+// `runs`, not yet stored) while the queue has room for them all.
+void RunManager::ReserveNewRuns(std::vector<v1::RunInfo>& infos,
+                                const std::vector<RunConfig>& configs,
+                                const std::shared_ptr<const CompiledModel>& model,
+                                std::vector<std::shared_ptr<Run>>& runs) {
+  const int count = static_cast<int>(infos.size());
+  for (;;) {
+    for (v1::RunInfo& info : infos) info.set_id(NewRunId());
+    std::lock_guard<std::mutex> lock(mutex_);
+    CheckAccepting(count);
+    std::set<std::string> ids;
+    for (const v1::RunInfo& info : infos) {
+      if (active_.count(info.id()) || !ids.insert(info.id()).second) break;
+    }
+    if (static_cast<int>(ids.size()) < count) continue;  // an id taken meanwhile: new ids
+    for (int i = 0; i < count; ++i) {
+      runs[i] = std::make_shared<Run>(infos[i], configs[i], model);
+      active_[infos[i].id()] = runs[i];
+      queue_.push_back(runs[i]);
+      unstored_.insert(runs[i].get());
+    }
+    return;
+  }
+}
+
 std::vector<v1::RunInfo> RunManager::StartMany(
     const std::string& model_ref, const google::protobuf::RepeatedPtrField<v1::RunSpec>& specs,
     const std::string& owner) {
@@ -185,27 +210,11 @@ std::vector<v1::RunInfo> RunManager::StartMany(
     for (const std::string& warning : warnings) info.add_warnings(warning);
   }
 
-  // No lock across the store's I/O: the ids are checked free, then reserved in active_ and
-  // queue_ under the lock (counting against the queue limit), stored QUEUED in one
-  // transaction (from then on any replica may claim them), and the workers woken.
+  // No lock across the store's I/O: new ids are reserved in active_ and queue_ under the lock
+  // (counting against the queue limit), stored QUEUED in one transaction that refuses an id
+  // already stored by any replica (from then on any replica may claim them; a taken id: new
+  // ids for all, again), and the workers woken.
   std::vector<std::shared_ptr<Run>> runs(count);
-  for (bool reserved = false; !reserved;) {
-    for (v1::RunInfo& info : infos) info.set_id(NewRunId());
-    std::lock_guard<std::mutex> lock(mutex_);
-    CheckAccepting(count);
-    std::set<std::string> ids;
-    for (const v1::RunInfo& info : infos) {
-      if (active_.count(info.id()) || !ids.insert(info.id()).second) break;
-    }
-    if (static_cast<int>(ids.size()) < count) continue;  // an id taken meanwhile: new ids
-    for (int i = 0; i < count; ++i) {
-      runs[i] = std::make_shared<Run>(infos[i], configs[i], model);
-      active_[infos[i].id()] = runs[i];
-      queue_.push_back(runs[i]);
-      unstored_.insert(runs[i].get());
-    }
-    reserved = true;
-  }
   auto forget = [&](const std::vector<std::shared_ptr<Run>>& forgotten) {
     std::lock_guard<std::mutex> lock(mutex_);
     for (const std::shared_ptr<Run>& run : forgotten) {
@@ -216,11 +225,19 @@ std::vector<v1::RunInfo> RunManager::StartMany(
       }
     }
   };
-  try {
-    store_->PutRuns(infos);
-  } catch (...) {
+  constexpr int kIdAttempts = 100;  // each fails with odds of about 1e-6 (NewRunId)
+  for (int attempt = 1;; ++attempt) {
+    ReserveNewRuns(infos, configs, model, runs);
+    bool stored = false;
+    try {
+      stored = store_->AddRuns(infos);
+    } catch (...) {
+      forget(runs);
+      throw;
+    }
+    if (stored) break;
     forget(runs);
-    throw;
+    MBSTREAM_CHECK_MSG(attempt < kIdAttempts, "no free run ids after 100 attempts");
   }
   std::string stop_reason;
   {

@@ -239,6 +239,9 @@ class RunManager {
   void CheckAccepting(int runs = 1) const;
   // A run id used by no active or stored run (reads the store: call without mutex_).
   std::string NewRunId() const;
+  void ReserveNewRuns(std::vector<v1::RunInfo>& infos, const std::vector<RunConfig>& configs,
+                      const std::shared_ptr<const CompiledModel>& model,
+                      std::vector<std::shared_ptr<Run>>& runs);
 
   ModelRegistry* models_;
   Store* store_;

@@ -32,6 +32,9 @@ constexpr std::pair<const char*, const char*> kStatements[] = {
      "INSERT INTO runs (id, model_id, state, created_unix_ms, info) VALUES ($1, $2, $3, $4, $5) "
      "ON CONFLICT (id) DO UPDATE SET model_id = excluded.model_id, state = excluded.state, "
      "created_unix_ms = excluded.created_unix_ms, info = excluded.info"},
+    {"insert_new_run",
+     "INSERT INTO runs (id, model_id, state, created_unix_ms, info) VALUES ($1, $2, $3, $4, $5) "
+     "ON CONFLICT (id) DO NOTHING"},
     {"select_run", "SELECT info FROM runs WHERE id = $1"},
     {"select_runs", "SELECT info FROM runs ORDER BY created_unix_ms, ord"},
     {"select_unfinished_runs",
@@ -174,10 +177,25 @@ void PostgresStore::PutRun(const v1::RunInfo& info) {
   impl_->Transact("write run " + info.id(), [&](pqxx::work& tx) { UpsertRun(tx, info); });
 }
 
-void PostgresStore::PutRuns(const std::vector<v1::RunInfo>& infos) {
-  impl_->Transact("write " + std::to_string(infos.size()) + " runs", [&](pqxx::work& tx) {
-    for (const v1::RunInfo& info : infos) UpsertRun(tx, info);
-  });
+namespace {
+struct RunIdTaken {};  // leaves Transact without committing: the transaction is aborted
+}  // namespace
+
+bool PostgresStore::AddRuns(const std::vector<v1::RunInfo>& infos) {
+  try {
+    impl_->Transact("write " + std::to_string(infos.size()) + " runs", [&](pqxx::work& tx) {
+      for (const v1::RunInfo& info : infos) {
+        const std::string bytes = SerializeForStore(info, "run " + info.id());
+        const pqxx::result inserted = tx.exec_prepared("insert_new_run", info.id(), info.model_id(),
+                                                       static_cast<int>(info.state()),
+                                                       info.created_unix_ms(), BlobParam(bytes));
+        if (inserted.affected_rows() == 0) throw RunIdTaken{};
+      }
+    });
+  } catch (const RunIdTaken&) {
+    return false;
+  }
+  return true;
 }
 
 std::optional<v1::RunInfo> PostgresStore::GetRun(const std::string& run_id) const {

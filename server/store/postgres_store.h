@@ -30,7 +30,7 @@ class PostgresStore final : public Store {
                                                 bool asset_data = true) const override;
   std::map<std::string, int64_t> ModelBytes() const override;
   void PutRun(const v1::RunInfo& info) override;
-  void PutRuns(const std::vector<v1::RunInfo>& infos) override;
+  bool AddRuns(const std::vector<v1::RunInfo>& infos) override;
   std::optional<v1::RunInfo> GetRun(const std::string& run_id) const override;
   std::vector<v1::RunInfo> ListRuns() const override;
   void PutFrameChunk(const std::string& run_id, int64_t index,

@@ -81,6 +81,10 @@ SqliteStore::Impl::Impl(SqliteConnection connection, const std::string& frames_p
                  "model_id = excluded.model_id, state = excluded.state, "
                  "created_unix_ms = excluded.created_unix_ms, info = excluded.info",
                  "write run"),
+      insert_new_run(db,
+                     "INSERT INTO runs (id, model_id, state, created_unix_ms, info) "
+                     "VALUES (?1, ?2, ?3, ?4, ?5) ON CONFLICT (id) DO NOTHING",
+                     "write new run"),
       select_run(db, "SELECT info FROM runs WHERE id = ?1", "read run"),
       select_runs(db, "SELECT info FROM runs ORDER BY created_unix_ms, ord", "list runs"),
       select_unfinished_runs(db, "SELECT info FROM runs WHERE state IN (?1, ?2) ORDER BY ord",

@@ -59,8 +59,10 @@ class Store {
   // Runs. PutRun inserts or replaces the run's row (its RunInfo, state, timestamps); the
   // run's frames and probes stay.
   virtual void PutRun(const v1::RunInfo& info) = 0;
-  // PutRun for several runs in ONE transaction: every row is written or none is.
-  virtual void PutRuns(const std::vector<v1::RunInfo>& infos) = 0;
+  // New runs in ONE transaction: every row is inserted, or none is and the result is false
+  // when any of their ids is stored already (by this replica or another: run ids are made
+  // unique here, not by asking first).
+  virtual bool AddRuns(const std::vector<v1::RunInfo>& infos) = 0;
   virtual std::optional<v1::RunInfo> GetRun(const std::string& run_id) const = 0;
   virtual std::vector<v1::RunInfo> ListRuns()
       const = 0;  // oldest first (created_unix_ms, then insertion)

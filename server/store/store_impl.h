@@ -31,6 +31,7 @@ struct SqliteStore::Impl {
   SqliteStatement select_model_bytes;
 
   SqliteStatement upsert_run;
+  SqliteStatement insert_new_run;  // nothing when the id is taken
   SqliteStatement select_run;
   SqliteStatement select_runs;
   SqliteStatement select_unfinished_runs;

@@ -22,11 +22,23 @@ void SqliteStore::PutRun(const v1::RunInfo& info) {
   UpsertRunLocked(*impl_, info);
 }
 
-void SqliteStore::PutRuns(const std::vector<v1::RunInfo>& infos) {
+bool SqliteStore::AddRuns(const std::vector<v1::RunInfo>& infos) {
   std::lock_guard lock(impl_->mutex);
   SqliteTransaction transaction(impl_->db, "write " + std::to_string(infos.size()) + " runs");
-  for (const v1::RunInfo& info : infos) UpsertRunLocked(*impl_, info);
+  for (const v1::RunInfo& info : infos) {
+    const std::string bytes = SerializeForStore(info, "run " + info.id());
+    SqliteStatement& insert = impl_->insert_new_run;
+    ResetOnExit reset(insert);
+    insert.BindText(1, info.id());
+    insert.BindText(2, info.model_id());
+    insert.BindInt64(3, info.state());
+    insert.BindInt64(4, info.created_unix_ms());
+    insert.BindBlob(5, bytes);
+    insert.Run();
+    if (impl_->db.Changes() == 0) return false;  // the id is taken: none of them is stored
+  }
   transaction.Commit();
+  return true;
 }
 
 std::optional<v1::RunInfo> SqliteStore::GetRun(const std::string& run_id) const {

@@ -45,10 +45,15 @@ TEST_F(MeasuredStoreTest, CountsRunsByStateOncePerRun) {
 }
 
 TEST_F(MeasuredStoreTest, CountsEveryRunOfABatchAndTimesTheBatchOnce) {
-  store_.PutRuns({MakeRun("r-1", v1::QUEUED, 1000), MakeRun("r-2", v1::QUEUED, 1000),
-                  MakeRun("r-3", v1::QUEUED, 1000)});
+  EXPECT_TRUE(store_.AddRuns({MakeRun("r-1", v1::QUEUED, 1000), MakeRun("r-2", v1::QUEUED, 1000),
+                              MakeRun("r-3", v1::QUEUED, 1000)}));
   EXPECT_EQ(metrics_.runs(v1::QUEUED).value(), 3);
   EXPECT_EQ(metrics_.store(StoreOperation::kPutRun).count(), 1u);
+  EXPECT_EQ(store_.ListRuns().size(), 3u);
+  // A batch with a taken id stores nothing and counts nothing.
+  EXPECT_FALSE(
+      store_.AddRuns({MakeRun("r-4", v1::QUEUED, 1000), MakeRun("r-2", v1::QUEUED, 1000)}));
+  EXPECT_EQ(metrics_.runs(v1::QUEUED).value(), 3);
   EXPECT_EQ(store_.ListRuns().size(), 3u);
 }
 

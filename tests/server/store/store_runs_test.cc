@@ -44,19 +44,25 @@ TEST_P(StoreRunsTest, PutRunReplacesKeepingOrderAndFrames) {
   EXPECT_EQ(store->GetFrames("r-1").size(), 10u);
 }
 
-TEST_P(StoreRunsTest, PutRunsWritesEveryRowInOrderAndReplacesStoredOnes) {
+TEST_P(StoreRunsTest, AddRunsWritesEveryRowInOrderOrNoneWhenAnIdIsTaken) {
   auto store = Open();
-  store->PutRun(MakeRun("r-2", v1::QUEUED, 1000));
-  v1::RunInfo replaced = MakeRun("r-2", v1::QUEUED, 1000);
-  replaced.set_expected_frames(41);
-  store->PutRuns({MakeRun("r-1", v1::QUEUED, 1000), replaced, MakeRun("r-3", v1::QUEUED, 1000)});
+  const v1::RunInfo stored = MakeRun("r-2", v1::FINISHED, 1000);
+  store->PutRun(stored);
+  v1::RunInfo again = MakeRun("r-2", v1::QUEUED, 1000);  // a new run given a taken id
+  again.set_expected_frames(41);
+  EXPECT_FALSE(store->AddRuns({MakeRun("r-1", v1::QUEUED, 1000), again}));
+  ASSERT_EQ(store->ListRuns().size(), 1u);           // not even r-1, stored before the taken id
+  EXPECT_TRUE(Same(*store->GetRun("r-2"), stored));  // untouched
+
+  EXPECT_TRUE(store->AddRuns({MakeRun("r-1", v1::QUEUED, 1000), MakeRun("r-3", v1::QUEUED, 1000)}));
   const auto runs = store->ListRuns();
   ASSERT_EQ(runs.size(), 3u);
-  EXPECT_EQ(runs[0].id(), "r-2");  // stored first, replaced in place
-  EXPECT_TRUE(Same(runs[0], replaced));
+  EXPECT_EQ(runs[0].id(), "r-2");
   EXPECT_EQ(runs[1].id(), "r-1");
   EXPECT_EQ(runs[2].id(), "r-3");
   EXPECT_TRUE(Same(runs[2], MakeRun("r-3", v1::QUEUED, 1000)));
+  EXPECT_FALSE(store->AddRuns({MakeRun("r-3", v1::QUEUED, 2000)}));  // a batch of one
+  EXPECT_EQ(store->GetRun("r-3")->created_unix_ms(), 1000);
 }
 
 TEST_P(StoreRunsTest, ListsOldestFirst) {
