@@ -5,16 +5,24 @@
 
 namespace mbstream {
 
-void UpsertRunLocked(SqliteStore::Impl& impl, const v1::RunInfo& info) {
+namespace {
+
+// Runs `statement` (upsert_run or insert_new_run: the same five parameters) for `info`.
+void WriteRunLocked(SqliteStatement& statement, const v1::RunInfo& info) {
   const std::string bytes = SerializeForStore(info, "run " + info.id());
-  SqliteStatement& upsert = impl.upsert_run;
-  ResetOnExit reset(upsert);
-  upsert.BindText(1, info.id());
-  upsert.BindText(2, info.model_id());
-  upsert.BindInt64(3, info.state());
-  upsert.BindInt64(4, info.created_unix_ms());
-  upsert.BindBlob(5, bytes);
-  upsert.Run();
+  ResetOnExit reset(statement);
+  statement.BindText(1, info.id());
+  statement.BindText(2, info.model_id());
+  statement.BindInt64(3, info.state());
+  statement.BindInt64(4, info.created_unix_ms());
+  statement.BindBlob(5, bytes);
+  statement.Run();
+}
+
+}  // namespace
+
+void UpsertRunLocked(SqliteStore::Impl& impl, const v1::RunInfo& info) {
+  WriteRunLocked(impl.upsert_run, info);
 }
 
 void SqliteStore::PutRun(const v1::RunInfo& info) {
@@ -26,15 +34,7 @@ bool SqliteStore::AddRuns(const std::vector<v1::RunInfo>& infos) {
   std::lock_guard lock(impl_->mutex);
   SqliteTransaction transaction(impl_->db, "write " + std::to_string(infos.size()) + " runs");
   for (const v1::RunInfo& info : infos) {
-    const std::string bytes = SerializeForStore(info, "run " + info.id());
-    SqliteStatement& insert = impl_->insert_new_run;
-    ResetOnExit reset(insert);
-    insert.BindText(1, info.id());
-    insert.BindText(2, info.model_id());
-    insert.BindInt64(3, info.state());
-    insert.BindInt64(4, info.created_unix_ms());
-    insert.BindBlob(5, bytes);
-    insert.Run();
+    WriteRunLocked(impl_->insert_new_run, info);
     if (impl_->db.Changes() == 0) return false;  // the id is taken: none of them is stored
   }
   transaction.Commit();
