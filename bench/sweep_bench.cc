@@ -112,24 +112,27 @@ class ResultFiles {
   }
 
   // Writes the last result's directory (call after the stream's last chunk).
-  void Flush() {
-    if (!started_) return;
-    const RunResult result = ResultFromFrames(info_, frames_);
-    const std::string spec_json =
-        RunSpecToJson(ToRunSpec(ToRunConfig(info_.spec(), result.joint_names, "spec")));
-    WriteAndRemove(result,
-                   RunProvenance{info_.model_name(), "model " + info_.model_id(), spec_json,
-                                 info_.model_id(), info_.id()},
-                   directory_ + "/" + info_.id());
-    frames_.clear();
-    started_ = false;
-  }
+  void Flush();
 
+ private:
   std::string directory_;
   v1::RunInfo info_;
   std::vector<v1::Frame> frames_;
   bool started_ = false;
 };
+
+void ResultFiles::Flush() {
+  if (!started_) return;
+  const RunResult result = ResultFromFrames(info_, frames_);
+  const std::string spec_json =
+      RunSpecToJson(ToRunSpec(ToRunConfig(info_.spec(), result.joint_names, "spec")));
+  WriteAndRemove(result,
+                 RunProvenance{info_.model_name(), "model " + info_.model_id(), spec_json,
+                               info_.model_id(), info_.id()},
+                 directory_ + "/" + info_.id());
+  frames_.clear();
+  started_ = false;
+}
 
 // `files` (empty: none): each run also writes its results directory under it, as `mbstream
 // simulate --out` does (the CSV files and stats.json), then the directory is removed.
@@ -263,7 +266,7 @@ struct ClientPattern {
   int window = 32;
   int batch = 0;
   bool watch = false;
-  std::string files;  // with --simulate-files: where the client writes each result
+  std::string files;  // with --files: where the client writes each result
 };
 
 Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec, int runs,

@@ -137,8 +137,6 @@ v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& s
   return std::move(StartMany(model_ref, one, owner).front());
 }
 
-// New ids for `infos`, free among this replica's runs, reserved in active_ and queue_ (as
-// `runs`, not yet stored) while the queue has room for them all.
 void RunManager::ReserveNewRuns(std::vector<v1::RunInfo>& infos,
                                 const std::vector<RunConfig>& configs,
                                 const std::shared_ptr<const CompiledModel>& model,

@@ -237,8 +237,10 @@ class RunManager {
   // Throws UNAVAILABLE when stopping, RESOURCE_EXHAUSTED when the queue cannot take `runs`
   // more (mutex_ held).
   void CheckAccepting(int runs = 1) const;
-  // A run id used by no active or stored run (reads the store: call without mutex_).
+  // A new run id: the time and 32 random bits (free in the store only once AddRuns took it).
   std::string NewRunId() const;
+  // New ids for `infos` reserved in active_ and queue_ as `runs` (not yet stored), once the
+  // queue has room for them all; throws as CheckAccepting. Call without mutex_.
   void ReserveNewRuns(std::vector<v1::RunInfo>& infos, const std::vector<RunConfig>& configs,
                       const std::shared_ptr<const CompiledModel>& model,
                       std::vector<std::shared_ptr<Run>>& runs);

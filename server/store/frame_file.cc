@@ -104,7 +104,8 @@ int64_t FrameFile::end() const {
 }
 
 bool FrameFile::Read(const FrameExtent& extent, std::string& out) const {
-  if (extent.offset < 0 || extent.bytes < 0) return false;
+  // A damaged row's extent is not trusted with an allocation beyond the file.
+  if (extent.offset < 0 || extent.bytes < 0 || extent.bytes > end() - extent.offset) return false;
   out.resize(static_cast<std::size_t>(extent.bytes));
   std::size_t read = 0;
   while (read < out.size()) {

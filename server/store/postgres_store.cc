@@ -167,10 +167,19 @@ std::map<std::string, int64_t> PostgresStore::ModelBytes() const {
   });
 }
 
-void UpsertRun(pqxx::transaction_base& tx, const v1::RunInfo& info) {
+namespace {
+
+// Runs prepared `statement` (upsert_run or insert_new_run: the same five parameters) for `info`.
+pqxx::result WriteRun(pqxx::transaction_base& tx, const char* statement, const v1::RunInfo& info) {
   const std::string bytes = SerializeForStore(info, "run " + info.id());
-  tx.exec_prepared("upsert_run", info.id(), info.model_id(), static_cast<int>(info.state()),
-                   info.created_unix_ms(), BlobParam(bytes));
+  return tx.exec_prepared(statement, info.id(), info.model_id(), static_cast<int>(info.state()),
+                          info.created_unix_ms(), BlobParam(bytes));
+}
+
+}  // namespace
+
+void UpsertRun(pqxx::transaction_base& tx, const v1::RunInfo& info) {
+  WriteRun(tx, "upsert_run", info);
 }
 
 void PostgresStore::PutRun(const v1::RunInfo& info) {
@@ -185,11 +194,7 @@ bool PostgresStore::AddRuns(const std::vector<v1::RunInfo>& infos) {
   try {
     impl_->Transact("write " + std::to_string(infos.size()) + " runs", [&](pqxx::work& tx) {
       for (const v1::RunInfo& info : infos) {
-        const std::string bytes = SerializeForStore(info, "run " + info.id());
-        const pqxx::result inserted = tx.exec_prepared("insert_new_run", info.id(), info.model_id(),
-                                                       static_cast<int>(info.state()),
-                                                       info.created_unix_ms(), BlobParam(bytes));
-        if (inserted.affected_rows() == 0) throw RunIdTaken{};
+        if (WriteRun(tx, "insert_new_run", info).affected_rows() == 0) throw RunIdTaken{};
       }
     });
   } catch (const RunIdTaken&) {
