@@ -39,6 +39,14 @@ RunConfig WithCandidate(RunConfig config, const Candidate& candidate, double rto
   config.atol = rtol / 100.0;
   config.method_auto = false;
   config.target = AccuracyTarget{};
+  config.prefix = nullptr;
+  config.keep_integration = false;
+  for (const std::shared_ptr<const RunPrefix>& pilot : candidate.pilots) {
+    if (pilot != nullptr && pilot->rtol <= rtol && pilot->HasIntegration() &&
+        (config.prefix == nullptr || pilot->rtol > config.prefix->rtol)) {
+      config.prefix = pilot;
+    }
+  }
   return config;
 }
 

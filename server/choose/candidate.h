@@ -2,10 +2,12 @@
 // relations that predict its error and cost at any tolerance over the whole run.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "server/integrate/method.h"
 #include "server/sim/run_config.h"
+#include "server/sim/run_prefix.h"
 
 namespace mbstream {
 
@@ -45,6 +47,10 @@ struct Candidate {
   // pilots' own CPU per step is mostly their start-up: a few dozen steps against a set-up
   // that costs as much as a hundred.)
   double cpu_per_step_s = 0.0;
+  // The pilots' frames, each with its integration still alive at the span's end: the run or
+  // check of this candidate at a tolerance no tighter than a pilot's takes the tighter such
+  // pilot over (RunConfig::prefix) instead of integrating the span again.
+  std::shared_ptr<const RunPrefix> pilots[2];
 
   // Predictions for the run (rtol_for) and its check (check_rtol), at their tolerances.
   double explicit_cpu_floor_s = -1.0;  // explicit: the CPU stability alone needs
@@ -56,7 +62,10 @@ struct Candidate {
 // erk with its default table is "erk"; with table "verner" "erk-verner".
 Candidate MakeCandidate(Method method, const std::string& table = "");
 
-// The run's configuration with this candidate's method and tolerance (atol = rtol / 100).
+// The run's configuration with this candidate's method and tolerance (atol = rtol / 100),
+// continuing the loosest of the candidate's pilots that is at least as tight as `rtol` and
+// whose integration no run has taken yet (from the start when there is none): the run takes
+// the looser pilot where it can, which leaves the tighter one to its check.
 RunConfig WithCandidate(RunConfig config, const Candidate& candidate, double rtol);
 
 }  // namespace mbstream

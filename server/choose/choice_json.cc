@@ -39,10 +39,21 @@ Json CandidateJson(const Candidate& c) {
   return j;
 }
 
+// Where a run took its first frames from a pilot (RunConfig::prefix) and integrated on.
+Json Continuation(const RunPrefix& prefix, double from_s) {
+  return {{"from_s", from_s},
+          {"method", prefix.method},
+          {"rtol", prefix.rtol},
+          {"note",
+           "the frames up to from_s are the tighter pilot's (computed during the choice, "
+           "its CPU time counted there); the integrator started from its state there"}};
+}
+
 }  // namespace
 
 std::string ChoiceJson(const RunConfig& asked, const MethodChoice& choice,
-                       const Verification& verification, double run_cpu_s) {
+                       const Verification& verification, const RunStats& run) {
+  const double run_cpu_s = run.cpu_s;
   Json j;
   j["target"] = {
       {"tcp_error_m", Figure(asked.target.tcp_error_m > 0 ? asked.target.tcp_error_m : -1)},
@@ -78,6 +89,8 @@ std::string ChoiceJson(const RunConfig& asked, const MethodChoice& choice,
                  {"rtol", choice.run.rtol},
                  {"atol", choice.run.atol},
                  {"resolvable", choice.resolvable}};
+    if (run.continued_from_s > 0.0)
+      j["pick"]["continues_pilot"] = Continuation(*choice.run.prefix, run.continued_from_s);
   }
   j["reason"] = choice.reason;
   j["verification"] = {{"how", verification.how},
@@ -88,6 +101,10 @@ std::string ChoiceJson(const RunConfig& asked, const MethodChoice& choice,
                        {"target_met", verification.met ? Json(*verification.met) : Json()},
                        {"horizon_s", Figure(verification.horizon_s)},
                        {"message", verification.message}};
+  if (verification.continued_from_s > 0.0 && verification.prefix != nullptr) {
+    j["verification"]["continues_pilot"] =
+        Continuation(*verification.prefix, verification.continued_from_s);
+  }
   j["cpu_s"] = {{"choice", choice.cpu_s},
                 {"run", run_cpu_s},
                 {"verification", verification.cpu_s},

@@ -11,8 +11,8 @@
 
 namespace mbstream {
 
-// `run_cpu_s`: the chosen run's own CPU time.
+// `run`: the chosen run's own statistics (its CPU time, where it continued a pilot).
 std::string ChoiceJson(const RunConfig& asked, const MethodChoice& choice,
-                       const Verification& verification, double run_cpu_s);
+                       const Verification& verification, const RunStats& run);
 
 }  // namespace mbstream

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "common/check.h"
 #include "common/format.h"
@@ -56,6 +57,22 @@ bool AnyFreeJoint(const RunConfig& config, int num_dofs) {
 bool IsExplicit(const Candidate& c) { return c.stability_reach > 0.0; }
 
 constexpr double kSeparationShare = 0.75;
+// A looser pilot the run may go on from on a scene held by servos: its measured error at
+// most this share of the target.
+constexpr double kLooserPilotShare = 0.1;
+
+// Whether every error asked for and measured is within `share` of its target.
+bool WithinShare(const AccuracyTarget& target, const ErrorFigures& error, double share) {
+  bool any = false;
+  for (auto [asked, value] : {std::pair{target.tcp_error_m, error.tcp_m},
+                              std::pair{target.joint_error_rad, error.joint_rad},
+                              std::pair{target.energy_error_rel, error.energy_rel}}) {
+    if (!(asked > 0.0)) continue;
+    if (!(value >= 0.0 && value <= share * asked)) return false;
+    any = true;
+  }
+  return any;
+}
 constexpr double kRepilotBelow = 10.0;  // re-pilot when the run's rtol is this far below
 
 std::string Pretty(double value) { return FormatString("%.3g", value); }
@@ -210,6 +227,22 @@ MethodChoice ChooseMethod(const Model& model_in, const RunConfig& config,
   choice.resolvable = pick.resolvable;
   choice.run = WithCandidate(config, pick, pick.run_rtol);
   choice.run.formulation = Formulation::kJoint;
+  // The run goes on from a pilot at least as tight as itself (WithCandidate) or, on a scene
+  // held by servos, where an error of the state at the pilot's end does not grow, from a
+  // looser one whose error is within a tenth of the target (the looser pilot's as measured,
+  // the tighter's in proportion to its tolerance): the loosest such, which leaves the
+  // tighter pilot to the check where it can. (The check compares the whole run, the pilot's
+  // frames included, with its own.)
+  for (int k = 0; k < 2 && !free_joint; ++k) {
+    const std::shared_ptr<const RunPrefix>& pilot = pick.pilots[k];
+    if (choice.run.prefix != nullptr && choice.run.prefix->rtol >= pilot->rtol) break;
+    if (pilot == nullptr || !pilot->HasIntegration()) continue;
+    const double share = kLooserPilotShare * pick.rtol[0] / pilot->rtol;
+    if (WithinShare(config.target, pick.error, share)) {
+      choice.run.prefix = pilot;
+      break;
+    }
+  }
   choice.reason = pick.name + " at rtol " + Pretty(pick.run_rtol) +
                   " has the lowest predicted CPU time (" + Pretty(pick.run_cpu_s) +
                   " s) for an error predicted at " + Pretty(kRunSafety) + " x the target";

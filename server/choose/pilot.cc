@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "common/format.h"
 #include "server/choose/frame_track.h"
@@ -20,6 +21,11 @@ constexpr double kTinyError = 1e-15;  // below this the pilots agree to round-of
 // pilot of 5 % of the run cannot tell how the error grows later: a servo's error may stay flat
 // there and grow once the motion speeds up, and chaos shows only over seconds; fits of the
 // growth within the pilot over- or underestimated it by orders of magnitude.)
+RunConfig KeepingIntegration(RunConfig config) {
+  config.keep_integration = true;
+  return config;
+}
+
 double Growth(double span, double duration, double rate) {
   const double linear = std::max(1.0, duration / span);
   return std::max(linear, std::exp(std::min(std::max(rate, 0.0) * (duration - span), 700.0)));
@@ -29,8 +35,11 @@ double Growth(double span, double duration, double rate) {
 
 PilotSpan PilotSpanFor(const RunConfig& config) {
   PilotSpan pilot;
-  pilot.span_s = std::min(config.duration,
-                          std::max(kPilotFraction * config.duration, 2.0 * config.output_interval));
+  const double interval = config.output_interval;
+  const double span = std::max(kPilotFraction * config.duration, 2.0 * interval);
+  // A whole number of the run's output intervals: the pilot's frames are then the run's first
+  // frames, and the run can take a pilot over (run_prefix.h).
+  pilot.span_s = std::min(config.duration, std::ceil(span / interval * (1.0 - 1e-12)) * interval);
   pilot.interval_s = std::min(config.output_interval, pilot.span_s / 4.0);
   return pilot;
 }
@@ -38,6 +47,7 @@ PilotSpan PilotSpanFor(const RunConfig& config) {
 RunResult RunPilot(const Model& model, const RunConfig& config, const PilotSpan& span, double rtol,
                    Candidate* candidate, const std::atomic<bool>* cancel) {
   candidate->piloted = true;
+  candidate->pilots[0] = candidate->pilots[1] = nullptr;
   RunConfig pilot = config;
   pilot.formulation = Formulation::kJoint;
   pilot.duration = span.span_s;
@@ -49,7 +59,8 @@ RunResult RunPilot(const Model& model, const RunConfig& config, const PilotSpan&
   for (int k = 0; k < 2; ++k) {
     candidate->rtol[k] = std::max(kMinRtol, rtol / (k == 0 ? 1.0 : 100.0));
     results[k] =
-        Simulate(model, WithCandidate(pilot, *candidate, candidate->rtol[k]), nullptr, cancel);
+        Simulate(model, KeepingIntegration(WithCandidate(pilot, *candidate, candidate->rtol[k])),
+                 nullptr, cancel);
     candidate->steps[k] = results[k].stats.solver.steps;
     candidate->rhs_evals[k] = results[k].stats.solver.rhs_evals;
     candidate->cpu_s[k] = results[k].stats.cpu_s;
@@ -70,6 +81,10 @@ RunResult RunPilot(const Model& model, const RunConfig& config, const PilotSpan&
       std::clamp(std::log(step_ratio) / std::log(candidate->rtol[0] / candidate->rtol[1]),
                  candidate->min_steps_exponent, 1.0);
   candidate->usable = true;
+  for (int k = 0; k < 2; ++k) {
+    candidate->pilots[k] =
+        MakePrefix(results[k], candidate->rtol[k], MethodName(candidate->method));
+  }
   return results[1];
 }
 

@@ -31,7 +31,8 @@ struct PilotSpan {
   double interval_s = 0.0;  // s between its output frames
 };
 
-// 5 % of the run, at least two output frames of it, at most the whole run.
+// 5 % of the run, at least two output frames of it, rounded up to whole output intervals, at
+// most the whole run.
 PilotSpan PilotSpanFor(const RunConfig& config);
 
 // Runs the pilot of `candidate` at rtol[0] = `rtol` (the run's configuration `config`, with

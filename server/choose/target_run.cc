@@ -18,7 +18,7 @@ RunResult SimulateWithTarget(const Model& model, const RunConfig& config, FrameS
       VerifyTarget(model, config, choice, result, tracking.track(), cancel);
   RunStats& stats = result.stats;
   stats.target_met = verification.met;
-  stats.choice_json = ChoiceJson(config, choice, verification, stats.cpu_s);
+  stats.choice_json = ChoiceJson(config, choice, verification, stats);
   if (stats.status == RunStatus::kFinished && !verification.message.empty()) {
     stats.message = verification.message;
   }

@@ -78,6 +78,8 @@ Verification VerifyTarget(const Model& model, const RunConfig& asked, const Meth
   const RunResult reference = Simulate(model, config, nullptr, cancel);
   v.ran = true;
   v.cpu_s = reference.stats.cpu_s;
+  v.continued_from_s = reference.stats.continued_from_s;
+  v.prefix = config.prefix;
   if (reference.stats.status != RunStatus::kFinished) {
     v.message = FormatString(
         "not verified: the check (%s) ended %s at t = %.4g s after %.3g s of CPU (budget %.3g "

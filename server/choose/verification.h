@@ -7,6 +7,7 @@
 #pragma once
 
 #include <atomic>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -23,7 +24,10 @@ struct Verification {
   std::string how;    // "closed form: ...", "erk-verner at rtol 1e-12 ...", "skipped: ..."
   double rtol = 0.0;  // the check's tolerance
   double budget_cpu_s = 0.0;
-  double cpu_s = 0.0;       // s of CPU the check took
+  double cpu_s = 0.0;  // s of CPU the check took
+  // The check continued a pilot from this time (s; 0: from the start), that pilot's frames.
+  double continued_from_s = 0.0;
+  std::shared_ptr<const RunPrefix> prefix;
   ErrorFigures achieved;    // the run's error estimates (< 0: not measured)
   std::optional<bool> met;  // empty: not verified
   double horizon_s = -1.0;  // missed: up to when the run and its check agree within the target

@@ -48,6 +48,11 @@ class AppendedQuadratureIntegrator : public Integrator {
   }
 
   SolverStats stats() const override { return integrator_->stats(); }
+  bool Retune(const IntegratorOptions& options) override {
+    IntegratorOptions inner = options;
+    inner.error_states = n_;
+    return integrator_->Retune(inner);
+  }
   const char* name() const override { return integrator_->name(); }
 
   bool Quadratures(double* q) override {

@@ -47,11 +47,8 @@ ArkStepIntegrator::ArkStepIntegrator(Variant variant, OdeSystem& system, double 
     CheckSetup(ARKStepSetTableNum(ark, ARKODE_DIRK_NONE, static_cast<ARKODE_ERKTableID>(table_.id)),
                "ARKStepSetTableNum");
   }
-  if (options.error_states > 0 && options.error_states < system.size()) {
-    CheckSetup(ARKStepWFtolerances(ark, ErrorWeightCallback), "ARKStepWFtolerances");
-  } else {
-    CheckSetup(ARKStepSStolerances(ark, options.rtol, options.atol), "ARKStepSStolerances");
-  }
+  // The weights from callback_data() (its tolerances), so that Retune can change them.
+  CheckSetup(ARKStepWFtolerances(ark, ErrorWeightCallback), "ARKStepWFtolerances");
   if (options.max_step > 0.0) {
     CheckSetup(ARKStepSetMaxStep(ark, options.max_step), "ARKStepSetMaxStep");
   }
@@ -89,6 +86,10 @@ int ArkStepIntegrator::SetMaxNumSteps(long steps) {
 
 int ArkStepIntegrator::Evolve(double t_out, N_Vector y, double* t_reached) {
   return ARKStepEvolve(memory_.get(), t_out, y, t_reached, ARK_NORMAL);
+}
+
+int ArkStepIntegrator::SetStopTime(double t_final) {
+  return ARKStepSetStopTime(memory_.get(), t_final);
 }
 
 SolverStats ArkStepIntegrator::stats() const {

@@ -36,6 +36,7 @@ class ArkStepIntegrator final : public SundialsIntegrator {
   double CurrentTime() const override;
   int SetMaxNumSteps(long steps) override;
   int Evolve(double t_out, N_Vector y, double* t_reached) override;
+  int SetStopTime(double t_final) override;
 
   Variant variant_;
   const ButcherTableInfo& table_;

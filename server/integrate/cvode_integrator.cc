@@ -24,11 +24,8 @@ CvodeIntegrator::CvodeIntegrator(Variant variant, OdeSystem& system, double t0, 
   CheckSetup(CVodeInit(cvode, RhsCallback, t0, initial_state()), "CVodeInit");
   callback_data().solver = cvode;
   CheckSetup(CVodeSetUserData(cvode, &callback_data()), "CVodeSetUserData");
-  if (options.error_states > 0 && options.error_states < system.size()) {
-    CheckSetup(CVodeWFtolerances(cvode, ErrorWeightCallback), "CVodeWFtolerances");
-  } else {
-    CheckSetup(CVodeSStolerances(cvode, options.rtol, options.atol), "CVodeSStolerances");
-  }
+  // The weights from callback_data() (its tolerances), so that Retune can change them.
+  CheckSetup(CVodeWFtolerances(cvode, ErrorWeightCallback), "CVodeWFtolerances");
   if (options.max_step > 0.0) {
     CheckSetup(CVodeSetMaxStep(cvode, options.max_step), "CVodeSetMaxStep");
   }
@@ -75,6 +72,10 @@ int CvodeIntegrator::SetMaxNumSteps(long steps) {
 
 int CvodeIntegrator::Evolve(double t_out, N_Vector y, double* t_reached) {
   return CVode(memory_.get(), t_out, y, t_reached, CV_NORMAL);
+}
+
+int CvodeIntegrator::SetStopTime(double t_final) {
+  return CVodeSetStopTime(memory_.get(), t_final);
 }
 
 SolverStats CvodeIntegrator::stats() const {

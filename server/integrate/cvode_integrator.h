@@ -24,6 +24,7 @@ class CvodeIntegrator final : public SundialsIntegrator {
   double CurrentTime() const override;
   int SetMaxNumSteps(long steps) override;
   int Evolve(double t_out, N_Vector y, double* t_reached) override;
+  int SetStopTime(double t_final) override;
 
   Variant variant_;
   // Destroyed in reverse order: the solver memory before the solvers it uses.

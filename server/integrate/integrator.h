@@ -93,6 +93,14 @@ class Integrator {
 
   // e.g. "CVODE BDF", "ARKODE ERK (Dormand-Prince 7-4-5)", "fixed-step RK4".
   virtual const char* name() const = 0;
+
+  // Goes on from the last output with other tolerances, stop time and budgets (rtol, atol,
+  // t_final, cpu_deadline_s; max_steps counted from now), keeping the method's step size and
+  // order: a run continuing a pilot does not start again at order 1 with tiny steps. The
+  // method, table, max_step and divergence limit must be those it was made with. Returns
+  // false, changing nothing, when it cannot (a fixed-step method, another method, a failed
+  // integration, t_final before the last output).
+  virtual bool Retune(const IntegratorOptions& /*options*/) { return false; }
 };
 
 // Creates the integrator for `system` starting at (t0, y0); keeps a reference to `system`,

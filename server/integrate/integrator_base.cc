@@ -17,6 +17,11 @@ IntegratorBase::IntegratorBase(int size, double t0, const double* y0,
       last_t_(t0),
       last_y_(y0, y0 + size) {}
 
+void IntegratorBase::ReplaceOptions(const IntegratorOptions& options) {
+  options_ = options;
+  cpu_deadline_ = CpuDeadline(options.cpu_deadline_s);
+}
+
 AdvanceResult IntegratorBase::AdvanceTo(double t_out, double* y) {
   MBSTREAM_CHECK_MSG(std::isfinite(t_out) && t_out >= last_t_,
                      "AdvanceTo needs finite, non-decreasing output times");

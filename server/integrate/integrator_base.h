@@ -33,6 +33,9 @@ class IntegratorBase : public Integrator {
   double last_time() const { return last_t_; }
   const double* last_state() const { return last_y_.data(); }  // the last output, at last_time()
   const IntegratorOptions& options() const { return options_; }
+  // Replaces the options (Retune): the CPU deadline with them.
+  void ReplaceOptions(const IntegratorOptions& options);
+  bool failed() const { return failed_; }
   // Whether the thread's CPU clock has passed options().cpu_deadline_s (cheap: CpuDeadline).
   bool CpuDeadlinePassed() { return cpu_deadline_.Passed(); }
   // Paces the checks of the CPU budget (how many steps between two).

@@ -16,7 +16,8 @@ struct CallbackData {
   void* solver = nullptr;  // the CVODE or ARKStep memory (for the finite differences)
   Family family = Family::kCvode;
   bool own_jacobian = false;  // the system's Jacobian, not finite differences
-  // For ErrorWeightCallback: the tolerances and how many leading states they apply to.
+  // For ErrorWeightCallback: the tolerances and how many leading states they apply to (all
+  // but appended quadratures).
   double rtol = 0.0, atol = 0.0;
   int error_states = 0;
 };

@@ -32,13 +32,14 @@ SundialsIntegrator::SundialsIntegrator(OdeSystem& system, double t0, const doubl
                                        bool implicit, bool fixed_point)
     : IntegratorBase(system.size(), t0, y0, options),
       rhs_(system, options.divergence_limit),
-      callback_data_{&rhs_,
-                     nullptr,
-                     family,
-                     system.HasJacobian(),
-                     options.rtol,
-                     options.atol,
-                     options.error_states},
+      callback_data_{
+          &rhs_,
+          nullptr,
+          family,
+          system.HasJacobian(),
+          options.rtol,
+          options.atol,
+          options.error_states > 0 ? std::min(options.error_states, system.size()) : system.size()},
       family_(family),
       implicit_(implicit),
       fixed_point_(fixed_point),
@@ -62,6 +63,23 @@ void SundialsIntegrator::CheckSetup(int flag, const char* call) const {
 
 void SundialsIntegrator::CheckCreated(const void* object, const char* call) const {
   MBSTREAM_CHECK_MSG(object != nullptr, FormatString("%s failed", call));
+}
+
+bool SundialsIntegrator::Retune(const IntegratorOptions& next) {
+  const IntegratorOptions& now = options();
+  if (failed() || next.method != now.method || next.erk_table != now.erk_table ||
+      next.max_step != now.max_step || next.divergence_limit != now.divergence_limit ||
+      !(next.t_final >= last_time()) || !(next.rtol > 0.0) || !(next.atol > 0.0)) {
+    return false;
+  }
+  IntegratorOptions options = next;
+  options.error_states = now.error_states;
+  options.max_steps = NumSteps() + next.max_steps;
+  if (std::isfinite(options.t_final)) CheckSetup(SetStopTime(options.t_final), "SetStopTime");
+  callback_data_.rtol = options.rtol;
+  callback_data_.atol = options.atol;
+  ReplaceOptions(options);
+  return true;
 }
 
 AdvanceResult SundialsIntegrator::DoAdvance(double t_out, double* y) {

@@ -11,6 +11,9 @@
 namespace mbstream::sundials {
 
 class SundialsIntegrator : public IntegratorBase {
+ public:
+  bool Retune(const IntegratorOptions& options) final;
+
  protected:
   SundialsIntegrator(OdeSystem& system, double t0, const double* y0,
                      const IntegratorOptions& options, Family family, bool implicit,
@@ -22,6 +25,11 @@ class SundialsIntegrator : public IntegratorBase {
   virtual int SetMaxNumSteps(long steps) = 0;  // per call of Evolve
   // CVode / ARKStepEvolve in normal mode (interpolating at t_out).
   virtual int Evolve(double t_out, N_Vector y, double* t_reached) = 0;
+  // The stop time, for Retune. (The tolerances need no call: the error weights come from
+  // ErrorWeightCallback, which reads them from callback_data(). CVODE and ARKODE hand their
+  // weight function its data only in their initial set-up: *SStolerances after the first
+  // step would leave it without.)
+  virtual int SetStopTime(double t_final) = 0;
 
   // Throws InternalError naming `call` and SUNDIALS' message when flag < 0 (set-up only).
   void CheckSetup(int flag, const char* call) const;

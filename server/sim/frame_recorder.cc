@@ -38,6 +38,7 @@ FrameRecorder::FrameRecorder(const Model& model, const DriveSet& drives, RunResu
 
 void FrameRecorder::UseIntegratedWork() {
   integrated_work_ = true;
+  result_.work.reserve(result_.t.capacity());
   result_.stats.energy_work_approximate = false;
   result_.stats.energy_work = kEnergyWorkIntegrated;
 }
@@ -72,6 +73,7 @@ bool FrameRecorder::Record(double t, const Eigen::VectorXd& q, const Eigen::Vect
     result_.tau.clear();
     result_.kinetic.clear();
     result_.potential.clear();
+    result_.work.clear();
   }
   result_.t.push_back(t);
   result_.q.insert(result_.q.end(), q.data(), q.data() + q.size());
@@ -84,6 +86,7 @@ bool FrameRecorder::Record(double t, const Eigen::VectorXd& q, const Eigen::Vect
     result_.kinetic.push_back(kinetic);
     result_.potential.push_back(potential);
     TrackEnergy(t, kinetic + potential, qd, effort);
+    if (integrated_work_) result_.work.push_back(work_);
   }
   if (track_tcp_error_) TrackTcpError(t, tcp);
   result_.stats.t_reached = t;

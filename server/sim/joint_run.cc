@@ -8,19 +8,35 @@
 #include "server/sim/frame_loop.h"
 #include "server/sim/initial_state.h"
 #include "server/sim/integrator_options_from.h"
+#include "server/sim/joint_integration.h"
 #include "server/sim/joint_space_ode.h"
+#include "server/sim/run_prefix.h"
 
 namespace mbstream {
 
 namespace {
 
+// The integration's state as the frame loop drives it. Frames 0 .. prefix_frames - 1 are
+// a prefix's (run_prefix.h), whose integration this run has taken over: their states and
+// work are the prefix's, and the integrator goes on from the last of them.
 class JointSpaceSource : public FrameSource {
  public:
-  JointSpaceSource(JointSpaceOde& ode, Integrator& integrator, Eigen::VectorXd& y, bool need_effort,
-                   BudgetTracking* budget)
-      : ode_(ode), integrator_(integrator), y_(y), need_effort_(need_effort), budget_(budget) {}
+  JointSpaceSource(JointIntegration& live, bool need_effort, BudgetTracking* budget,
+                   const RunPrefix* prefix, size_t prefix_frames)
+      : ode_(live.ode),
+        integrator_(*live.integrator),
+        y_(live.y),
+        need_effort_(need_effort),
+        budget_(budget),
+        prefix_(prefix),
+        prefix_frames_(prefix_frames) {}
 
   bool Advance(const std::vector<double>& times, size_t k, RunStats* stats) override {
+    frame_ = k;
+    if (k < prefix_frames_) {
+      LoadPrefixState(k);
+      return true;
+    }
     if (AdvanceToFrame(integrator_, times, k, y_.data(), stats, "", &budget_->t_stop)) return true;
     if (stats->status == RunStatus::kTooMuchWork) {
       // The failure path only (it allocates); y is the last good state.
@@ -30,7 +46,13 @@ class JointSpaceSource : public FrameSource {
   }
 
   bool Record(double t, FrameRecorder& recorder) override {
-    if (ode_.num_quadratures() > 0 && integrator_.Quadratures(&work_)) recorder.SetWork(work_);
+    if (ode_.num_quadratures() > 0) {
+      if (frame_ < prefix_frames_) {
+        recorder.SetWork(prefix_->work[frame_]);
+      } else if (integrator_.Quadratures(&work_)) {
+        recorder.SetWork(work_);
+      }
+    }
     const bool finite = ode_.EvaluateOutputs(t, y_.data(), need_effort_);
     return finite &&
            recorder.Record(t, ode_.q(), ode_.qd(), need_effort_ ? &ode_.drive_effort() : nullptr);
@@ -42,13 +64,51 @@ class JointSpaceSource : public FrameSource {
   }
 
  private:
+  // y = [q; qd] of the prefix's frame k (allocates nothing).
+  void LoadPrefixState(size_t k) {
+    const size_t n = static_cast<size_t>(prefix_->num_dofs);
+    for (size_t i = 0; i < n; ++i) {
+      y_(static_cast<Eigen::Index>(i)) = prefix_->q[k * n + i];
+      y_(static_cast<Eigen::Index>(n + i)) = prefix_->qd[k * n + i];
+    }
+  }
+
   JointSpaceOde& ode_;
   Integrator& integrator_;
   Eigen::VectorXd& y_;
   const bool need_effort_;
   BudgetTracking* budget_;
-  double work_ = 0.0;  // J, the integrated work of drives and damping (when tracked)
+  const RunPrefix* prefix_;     // null without one
+  const size_t prefix_frames_;  // frames taken from the prefix (0: none)
+  size_t frame_ = 0;            // the frame being advanced to and recorded
+  double work_ = 0.0;  // J, the integrated work of drives and damping since t = 0 (when tracked)
 };
+
+// config.prefix's integration, taken over and retuned to `options`, when the prefix's frames
+// are all on the run's first output times (at least two: the first is the initial state) and
+// its integration, still there, is of this ODE; null otherwise (the run starts at t = 0).
+std::shared_ptr<JointIntegration> TakeOverPrefix(const RunConfig& config,
+                                                 const std::vector<double>& times, int n,
+                                                 bool track_work, const IntegratorOptions& options,
+                                                 size_t* prefix_frames) {
+  const RunPrefix* prefix = config.prefix.get();
+  *prefix_frames = 0;
+  if (prefix == nullptr || prefix->num_dofs != n || prefix->frames() < 2 ||
+      MatchingFrames(*prefix, times) != prefix->frames() ||
+      prefix->q.size() != prefix->frames() * static_cast<size_t>(n) ||
+      prefix->qd.size() != prefix->q.size() ||
+      (track_work && prefix->work.size() != prefix->frames())) {
+    return nullptr;
+  }
+  std::shared_ptr<JointIntegration> live = prefix->TakeIntegration();
+  if (live == nullptr || live->track_work != track_work || live->ode.size() != 2 * n ||
+      static_cast<int>(live->drives.size()) != n || !live->integrator->Retune(options)) {
+    return nullptr;
+  }
+  live->before = live->integrator->stats();
+  *prefix_frames = prefix->frames();
+  return live;
+}
 
 }  // namespace
 
@@ -63,17 +123,25 @@ void RunJointSpace(const Model& model, const RunConfig& config, const DriveSet& 
   bool damped = false;
   for (int i = 0; i < drives.size(); ++i) damped = damped || drives.damping(i) > 0.0;
   const bool track_work = result.has_energy && damped;
-  JointSpaceOde ode(model, drives, track_work);
+  const IntegratorOptions options =
+      IntegratorOptionsFrom(config, times.back(), budget->cpu_deadline_s);
+  size_t prefix_frames = 0;
+  std::shared_ptr<JointIntegration> live =
+      TakeOverPrefix(config, times, n, track_work, options, &prefix_frames);
+  if (live == nullptr)
+    live = std::make_shared<JointIntegration>(model, config, track_work, options);
   if (track_work) recorder.UseIntegratedWork();
-  result.stats.equations = ode.size();
-  result.stats.jacobian_nnz = ode.JacobianNonZeros();
-  Eigen::VectorXd y = InitialJointState(config, drives, n);
-  std::unique_ptr<Integrator> integrator = MakeIntegrator(
-      ode, 0.0, y.data(), IntegratorOptionsFrom(config, times.back(), budget->cpu_deadline_s));
-  result.stats.integrator = integrator->name();
-  JointSpaceSource source(ode, *integrator, y, result.has_torques || result.has_energy, budget);
+  result.stats.equations = live->ode.size();
+  result.stats.jacobian_nnz = live->ode.JacobianNonZeros();
+  result.stats.integrator = live->integrator->name();
+  result.stats.continued_from_s = prefix_frames > 0 ? times[prefix_frames - 1] : 0.0;
+  JointSpaceSource source(*live, result.has_torques || result.has_energy, budget,
+                          config.prefix.get(), prefix_frames);
   RunFrames(times, source, recorder, result, sink, cancel);
-  result.stats.solver = integrator->stats();
+  result.stats.solver = StatsSince(live->integrator->stats(), live->before);
+  if (config.keep_integration && result.stats.status == RunStatus::kFinished) {
+    result.integration = std::move(live);
+  }
 }
 
 }  // namespace mbstream

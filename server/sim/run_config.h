@@ -3,6 +3,7 @@
 // edge (server/spec/), validating it there.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,8 @@
 #include "server/integrate/method.h"
 
 namespace mbstream {
+
+struct RunPrefix;  // run_prefix.h
 
 // How the mechanism is modelled ("model no more than a scene needs").
 enum class Formulation {
@@ -60,6 +63,14 @@ struct RunConfig {
   AccuracyTarget target;
   bool method_auto = false;  // method "auto": chosen for the target (needs one)
   bool verify = true;        // check the achieved error after a target run
+  // Internal, never from a spec (server/choose/ sets them). `prefix`: the run's first frames,
+  // computed already by a pilot of the same scene with the same method (run_prefix.h); a
+  // joint-space run whose first output times they all are takes them and the pilot's
+  // integration over and goes on from there. Otherwise (another formulation, other times,
+  // the integration taken already) it starts at t = 0 as usual. `keep_integration`: a
+  // finished joint-space run hands its integration on in RunResult::integration.
+  std::shared_ptr<const RunPrefix> prefix;
+  bool keep_integration = false;
 };
 
 const char* FormulationName(Formulation formulation);  // "auto", "kinematic", "joint", ...

@@ -1,6 +1,7 @@
 // What a run produces: output frames, statistics, accuracy figures and its status.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -8,6 +9,8 @@
 #include "server/integrate/integrator.h"
 
 namespace mbstream {
+
+struct JointIntegration;  // joint_integration.h
 
 // RunStats::energy_work.
 inline constexpr char kEnergyWorkNone[] = "none: no drive or damping does work";
@@ -58,6 +61,10 @@ struct RunStats {
   std::string integrator;  // e.g. "CVODE BDF"
   SolverStats solver;
   double cpu_s = 0.0;  // CPU time of the run's thread
+  // s: the run took its frames up to this time from a pilot's (RunConfig::prefix) and went
+  // on with the pilot's integration from there; `solver` counts its own steps only. 0: it
+  // integrated from t = 0.
+  double continued_from_s = 0.0;
   double wall_s = 0.0;
 
   // Accuracy, where a reference exists (negative = no reference).
@@ -99,10 +106,16 @@ struct RunResult {
   std::vector<double> tcp;                 // m, world frame, 3 per frame
   std::vector<double> tau;                 // drive efforts, N*m or N (when has_torques)
   std::vector<double> kinetic, potential;  // J (when has_energy)
+  // J, the work of drives and damping since t = 0 at each frame, when the run integrates it
+  // (RunStats::energy_work is kEnergyWorkIntegrated); empty otherwise.
+  std::vector<double> work;
   // Seq of frame 0: the frames dropped before it. Nonzero only when the FrameSink keeps the
   // frames itself (FrameSink::KeepsFrames) and the arrays hold just the latest frame.
   long first_seq = 0;
   RunStats stats;
+  // A finished joint-space run made with RunConfig::keep_integration: its integration, at
+  // the last frame (run_prefix.h); null otherwise.
+  std::shared_ptr<JointIntegration> integration;
 
   int num_frames() const { return static_cast<int>(t.size()); }
 };

@@ -85,6 +85,15 @@ TEST(ChooseTest, StiffServoPicksBdfAndMeetsItsTargets) {
     const double achieved = choice["verification"]["achieved"]["tcp_m"].get<double>();
     EXPECT_LE(achieved, target);
     EXPECT_LE(ErrorAgainstReference(Irb1600(), config, result, Method::kBdf, 1e-12), target);
+    // Run and check each go on from a pilot (the servos hold every joint): the looser pilot
+    // for the run, the tighter for the check, both at the pilot span's end.
+    const double span = choice["pilot"]["span_s"].get<double>();
+    ASSERT_TRUE(choice["pick"].contains("continues_pilot")) << choice.dump(1);
+    ASSERT_TRUE(choice["verification"].contains("continues_pilot")) << choice.dump(1);
+    EXPECT_DOUBLE_EQ(choice["pick"]["continues_pilot"]["from_s"].get<double>(), span);
+    EXPECT_DOUBLE_EQ(result.stats.continued_from_s, span);
+    EXPECT_LT(choice["verification"]["continues_pilot"]["rtol"].get<double>(),
+              choice["pick"]["continues_pilot"]["rtol"].get<double>());
   }
 }
 

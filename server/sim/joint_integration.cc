@@ -1,0 +1,27 @@
+#include "server/sim/joint_integration.h"
+
+#include "server/sim/initial_state.h"
+
+namespace mbstream {
+
+JointIntegration::JointIntegration(const Model& model_in, const RunConfig& config,
+                                   bool track_work_in, const IntegratorOptions& options)
+    : model(model_in),
+      drives(model, config.drives),
+      ode(model, drives, track_work_in),
+      track_work(track_work_in),
+      y(InitialJointState(config, drives, model.num_dofs())),
+      integrator(MakeIntegrator(ode, 0.0, y.data(), options)) {}
+
+SolverStats StatsSince(const SolverStats& now, const SolverStats& before) {
+  SolverStats s = now;
+  s.steps -= before.steps;
+  s.rhs_evals -= before.rhs_evals;
+  s.jac_evals -= before.jac_evals;
+  s.nonlinear_iterations -= before.nonlinear_iterations;
+  s.error_test_failures -= before.error_test_failures;
+  s.convergence_failures -= before.convergence_failures;
+  return s;
+}
+
+}  // namespace mbstream

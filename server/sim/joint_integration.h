@@ -1,0 +1,39 @@
+// A joint-space integration that can outlive its run: the model (with the run's gravity), the
+// drives, the ODE, its state and the integrator. A run made with RunConfig::keep_integration
+// hands it on (RunResult::integration); a later run of the same scene that continues those
+// frames (RunConfig::prefix, run_prefix.h) takes it over and goes on from where it stopped,
+// with its own tolerances, keeping the integrator's step size and order.
+#pragma once
+
+#include <memory>
+
+#include <Eigen/Core>
+
+#include "server/drives/drive_set.h"
+#include "server/integrate/integrator.h"
+#include "server/model/model.h"
+#include "server/sim/joint_space_ode.h"
+#include "server/sim/run_config.h"
+
+namespace mbstream {
+
+struct JointIntegration {
+  // At t = 0 from the run's initial state; `model` already has the run's gravity.
+  JointIntegration(const Model& model, const RunConfig& config, bool track_work,
+                   const IntegratorOptions& options);
+  JointIntegration(const JointIntegration&) = delete;
+  JointIntegration& operator=(const JointIntegration&) = delete;
+
+  const Model model;
+  const DriveSet drives;
+  JointSpaceOde ode;
+  const bool track_work;
+  Eigen::VectorXd y;  // [q; qd] at the last output
+  std::unique_ptr<Integrator> integrator;
+  SolverStats before;  // the integrator's statistics when the current run took it over
+};
+
+// `now` less `before` (the counts; the last step and order of `now`).
+SolverStats StatsSince(const SolverStats& now, const SolverStats& before);
+
+}  // namespace mbstream
