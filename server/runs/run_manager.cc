@@ -143,7 +143,7 @@ void RunManager::ReserveNewRuns(std::vector<v1::RunInfo>& infos,
                                 std::vector<std::shared_ptr<Run>>& runs) {
   const int count = static_cast<int>(infos.size());
   for (;;) {
-    for (v1::RunInfo& info : infos) info.set_id(NewRunId());
+    for (v1::RunInfo& info : infos) info.set_id(run_id_source_ ? run_id_source_() : NewRunId());
     std::lock_guard<std::mutex> lock(mutex_);
     CheckAccepting(count);
     std::set<std::string> ids;

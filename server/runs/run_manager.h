@@ -19,6 +19,7 @@
 #include <string>
 #include <string_view>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "mbstream/v1/replay.pb.h"
@@ -78,6 +79,11 @@ class RunManager {
   std::vector<v1::RunInfo> StartMany(const std::string& model,
                                      const google::protobuf::RepeatedPtrField<v1::RunSpec>& specs,
                                      const std::string& owner = "");
+  // Tests only: where new run ids come from (the time and 32 random bits by default), to
+  // force the collisions the store refuses. Call before the first Start.
+  void SetRunIdSourceForTesting(std::function<std::string()> source) {
+    run_id_source_ = std::move(source);
+  }
   // Stops a queued or running run (state CANCELLED with the frames so far); an ended run is
   // returned unchanged. Throws RequestError(kNotFound).
   v1::RunInfo Cancel(const std::string& run_id);
@@ -284,6 +290,7 @@ class RunManager {
   bool stopping_ = false;
   std::string stop_reason_;
   int run_counter_ = 0;
+  std::function<std::string()> run_id_source_;  // SetRunIdSourceForTesting; empty: NewRunId
   std::vector<std::thread> workers_;
   static constexpr int kMaxBroadcasts = 4;  // ReplayToFollowers at the same time
   std::vector<std::thread> broadcasts_;     // ReplayToFollowers, joined by Shutdown

@@ -271,5 +271,80 @@ TEST_F(RunManagerTest, SubscriberOfARunClaimedHereAndNotYetPreparedWaitsForIt) {
   b.Unsubscribe(subscription);
 }
 
+// Run ids: the store refuses one it holds already (another replica's, or a run of before)
+// and the manager draws new ids for the whole batch; ids repeated within a batch are drawn
+// again before anything is stored; when no free id turns up the batch is refused whole.
+class RunIdCollisionTest : public RunManagerTest {
+ protected:
+  // Ids from `ids` in turn, then "r-fresh-1", "r-fresh-2", ...
+  void DrawIds(std::vector<std::string> ids) {
+    runs_->SetRunIdSourceForTesting([ids = std::move(ids), next = size_t{0}]() mutable {
+      return next < ids.size() ? ids[next++] : "r-fresh-" + std::to_string(++next - ids.size());
+    });
+  }
+  // An ended run stored under `id` as another replica would have, before this manager.
+  v1::RunInfo StoreEndedRun(const std::string& id) {
+    v1::RunInfo info;
+    info.set_id(id);
+    info.set_model_name("someone else's model");
+    info.set_state(v1::FINISHED);
+    info.set_message("stored before");
+    store_->PutRun(info);
+    return info;
+  }
+};
+
+TEST_F(RunIdCollisionTest, AnIdTheStoreHoldsIsDrawnAgainAndTheStoredRunIsKept) {
+  const v1::RunInfo before = StoreEndedRun("r-taken");
+  DrawIds({"r-taken", "r-taken"});
+  const v1::RunInfo started = runs_->Start("single_pendulum", Swing(0.2, 0.0));
+  EXPECT_EQ(started.id(), "r-fresh-1");
+  const std::optional<v1::RunInfo> kept = store_->GetRun("r-taken");
+  ASSERT_TRUE(kept.has_value());
+  EXPECT_EQ(kept->model_name(), before.model_name());
+  EXPECT_EQ(kept->state(), v1::FINISHED);
+  EXPECT_EQ(kept->message(), "stored before");
+  const std::optional<v1::RunInfo> stored = store_->GetRun("r-fresh-1");
+  ASSERT_TRUE(stored.has_value());
+  EXPECT_EQ(stored->model_name(), "single_pendulum");
+  // It runs to its end under its new id.
+  const auto far = std::chrono::steady_clock::now() + std::chrono::hours(1);
+  v1::RunInfo info = runs_->Get(started.id());
+  while (!IsFinalState(info.state())) info = runs_->AwaitChange(info.id(), info.state(), far);
+  EXPECT_EQ(info.state(), v1::FINISHED) << info.message();
+}
+
+TEST_F(RunIdCollisionTest, ABatchWithOneTakenIdIsStoredWholeUnderNewIds) {
+  StoreEndedRun("r-taken");
+  // The batch's first draw: one id taken in the store; the second: one id twice.
+  DrawIds({"r-a", "r-taken", "r-b", "r-b"});
+  google::protobuf::RepeatedPtrField<v1::RunSpec> specs;
+  *specs.Add() = Swing(0.2, 0.0);
+  *specs.Add() = Swing(0.2, 0.0);
+  const std::vector<v1::RunInfo> started = runs_->StartMany("single_pendulum", specs);
+  ASSERT_EQ(started.size(), 2u);
+  EXPECT_EQ(started[0].id(), "r-fresh-1");
+  EXPECT_EQ(started[1].id(), "r-fresh-2");
+  // Nothing of the refused draw was stored: all or none.
+  EXPECT_FALSE(store_->GetRun("r-a").has_value());
+  EXPECT_FALSE(store_->GetRun("r-b").has_value());
+  EXPECT_EQ(store_->GetRun("r-taken")->model_name(), "someone else's model");
+}
+
+TEST_F(RunIdCollisionTest, NoFreeIdRefusesTheBatchAndQueuesNothing) {
+  StoreEndedRun("r-taken");
+  runs_->SetRunIdSourceForTesting([] { return std::string("r-taken"); });
+  EXPECT_THROW(runs_->Start("single_pendulum", Swing(0.2, 0.0)), std::exception);
+  EXPECT_EQ(runs_->List("", 0, 0, "").runs.size(), 1u);  // only the run stored before
+  // The manager goes on: with free ids the next run starts and ends.
+  DrawIds({});
+  const v1::RunInfo started = runs_->Start("single_pendulum", Swing(0.2, 0.0));
+  EXPECT_EQ(started.id(), "r-fresh-1");
+  const auto far = std::chrono::steady_clock::now() + std::chrono::hours(1);
+  v1::RunInfo info = runs_->Get(started.id());
+  while (!IsFinalState(info.state())) info = runs_->AwaitChange(info.id(), info.state(), far);
+  EXPECT_EQ(info.state(), v1::FINISHED) << info.message();
+}
+
 }  // namespace
 }  // namespace mbstream
