@@ -45,8 +45,9 @@ Json Continuation(const RunPrefix& prefix, double from_s) {
           {"method", prefix.method},
           {"rtol", prefix.rtol},
           {"note",
-           "the frames up to from_s are the tighter pilot's (computed during the choice, "
-           "its CPU time counted there); the integrator started from its state there"}};
+           "the frames up to from_s are this pilot's (computed during the choice, its CPU "
+           "time counted there); the pilot's integration went on from there at this run's "
+           "tolerance"}};
 }
 
 }  // namespace

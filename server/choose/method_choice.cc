@@ -235,8 +235,9 @@ MethodChoice ChooseMethod(const Model& model_in, const RunConfig& config,
   // frames included, with its own.)
   for (int k = 0; k < 2 && !free_joint; ++k) {
     const std::shared_ptr<const RunPrefix>& pilot = pick.pilots[k];
+    if (pilot == nullptr) continue;
     if (choice.run.prefix != nullptr && choice.run.prefix->rtol >= pilot->rtol) break;
-    if (pilot == nullptr || !pilot->HasIntegration()) continue;
+    if (!pilot->HasIntegration()) continue;
     const double share = kLooserPilotShare * pick.rtol[0] / pilot->rtol;
     if (WithinShare(config.target, pick.error, share)) {
       choice.run.prefix = pilot;

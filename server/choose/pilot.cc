@@ -15,17 +15,18 @@ namespace {
 constexpr double kPilotFraction = 0.05;
 constexpr double kTinyError = 1e-15;  // below this the pilots agree to round-off
 
+// The pilot's configuration, its integration kept for the run or check that continues it.
+RunConfig KeepingIntegration(RunConfig config) {
+  config.keep_integration = true;
+  return config;
+}
+
 // Growth of an error from the pilot span to the whole run: linear in time, as local errors
 // accumulate into the global one, or exponential at `rate` (1/s) where nearby solutions
 // separate (the Jacobian's largest real part, stiffness_probe.h), whichever is larger. (A
 // pilot of 5 % of the run cannot tell how the error grows later: a servo's error may stay flat
 // there and grow once the motion speeds up, and chaos shows only over seconds; fits of the
 // growth within the pilot over- or underestimated it by orders of magnitude.)
-RunConfig KeepingIntegration(RunConfig config) {
-  config.keep_integration = true;
-  return config;
-}
-
 double Growth(double span, double duration, double rate) {
   const double linear = std::max(1.0, duration / span);
   return std::max(linear, std::exp(std::min(std::max(rate, 0.0) * (duration - span), 700.0)));

@@ -6,7 +6,6 @@
 #include "server/integrate/stiffness_estimate.h"
 #include "server/sim/advance_to_frame.h"
 #include "server/sim/frame_loop.h"
-#include "server/sim/initial_state.h"
 #include "server/sim/integrator_options_from.h"
 #include "server/sim/joint_integration.h"
 #include "server/sim/joint_space_ode.h"

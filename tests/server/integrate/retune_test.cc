@@ -1,6 +1,7 @@
 // Integrator::Retune: an integration goes on with other tolerances and a later stop time,
 // keeping its step size and order (a run that continues a pilot, server/sim/run_prefix.h).
 #include <cmath>
+#include <exception>
 
 #include <gtest/gtest.h>
 
@@ -87,8 +88,9 @@ TEST(RetuneTest, RefusesWhatItCannotContinue) {
   IntegratorOptions no_rtol = Options(Method::kBdf, 2.0);
   no_rtol.rtol = 0.0;
   EXPECT_FALSE(bdf->Retune(no_rtol));
-  // Refused retunes change nothing: the integration still stops at t = 1.
+  // Refused retunes change nothing: the stop time is still t = 1.
   EXPECT_EQ(bdf->AdvanceTo(1.0, y).status, IntegratorStatus::kOk);
+  EXPECT_THROW(bdf->AdvanceTo(1.5, y), std::exception);
   auto rk4 = MakeIntegrator(system, 0.0, y, Options(Method::kRk4, 1.0));
   EXPECT_FALSE(rk4->Retune(Options(Method::kRk4, 2.0)));  // fixed step: nothing to keep
 }
