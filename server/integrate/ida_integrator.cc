@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 
 #include <ida/ida.h>
 #include <ida/ida_ls.h>
@@ -193,53 +192,38 @@ const char* IdaIntegrator::name() const {
 
 const double* IdaIntegrator::derivative() const { return N_VGetArrayPointer(yp_out_.get()); }
 
+long IdaIntegrator::NumSteps() const {
+  long steps = 0;
+  IDAGetNumSteps(memory_, &steps);
+  return steps;
+}
+
+double IdaIntegrator::CurrentTime() const {
+  double t = last_time();
+  IDAGetCurrentTime(memory_, &t);
+  return t;
+}
+
+void IdaIntegrator::LimitSteps(long steps) {
+  CheckSetup(IDASetMaxNumSteps(memory_, steps), "IDASetMaxNumSteps");
+}
+
+int IdaIntegrator::Solve(double t_out, double* t_reached) {
+  return IDASolve(memory_, t_out, t_reached, out_.get(), yp_out_.get(), IDA_NORMAL);
+}
+
+int IdaIntegrator::TooMuchWorkFlag() const { return IDA_TOO_MUCH_WORK; }
+
 AdvanceResult IdaIntegrator::DoAdvance(double t_out, double* y) {
   errors_.Clear();
   N_VSetArrayPointer(y, out_.get());
-  // The step budget is over the whole run; with a CPU budget IDA is called in chunks of
-  // steps (CpuCheckPacer) and the thread's CPU clock is read between them.
-  const long max_steps = options().max_steps;
-  const double cpu_deadline = options().cpu_deadline_s;
-  const bool cpu_budget = std::isfinite(cpu_deadline);
-  int flag = IDA_TOO_MUCH_WORK;
-  double t_reached = last_time();
-  bool evolved = false;
-  bool cpu_spent = false;
-  for (;;) {
-    long steps = 0;
-    IDAGetNumSteps(memory_, &steps);
-    const long remaining = max_steps - steps;
-    double t_current = t_reached;
-    IDAGetCurrentTime(memory_, &t_current);
-    cpu_spent = cpu_budget && t_out > t_current && CpuDeadlinePassed();
-    if (remaining <= 0 || cpu_spent) {
-      flag = IDA_TOO_MUCH_WORK;
-      if (!evolved) {
-        t_reached = last_time();
-        std::copy(last_state(), last_state() + state_size(), y);
-      }
-      break;
-    }
-    CpuCheckPacer& pacer = cpu_check_pacer();
-    const long chunk = cpu_budget ? pacer.Chunk(remaining) : remaining;
-    CheckSetup(IDASetMaxNumSteps(memory_, chunk), "IDASetMaxNumSteps");
-    pacer.Start();
-    std::fill(y, y + state_size(), std::numeric_limits<double>::quiet_NaN());
-    t_reached = std::numeric_limits<double>::quiet_NaN();
-    flag = IDASolve(memory_, t_out, &t_reached, out_.get(), yp_out_.get(), IDA_NORMAL);
-    long steps_after = steps;
-    IDAGetNumSteps(memory_, &steps_after);
-    pacer.Finish(steps_after - steps);
-    if (flag >= 0) return {IntegratorStatus::kOk, t_out, {}};
-    evolved = true;
-    if (flag == IDA_TOO_MUCH_WORK && chunk < remaining) continue;  // only the chunk ran out
-    break;
-  }
+  const ChunkedSolve solve = SolveInChunks(t_out, y, *this);
+  if (solve.flag >= 0) return {IntegratorStatus::kOk, t_out, {}};
   const SolverStats s = stats();
-  IdaFailureContext context{flag,
-                            t_reached,
+  IdaFailureContext context{solve.flag,
+                            solve.t_reached,
                             t_out,
-                            max_steps,
+                            options().max_steps,
                             s.last_step,
                             min_step_,
                             s.error_test_failures,
@@ -247,7 +231,7 @@ AdvanceResult IdaIntegrator::DoAdvance(double t_out, double* y) {
                             callbacks_.event(),
                             errors_.message()};
   AdvanceResult result = IdaFailureResult(context);
-  if (cpu_spent) result.message = CpuBudgetMessage("IDA", result.t, t_out);
+  if (solve.cpu_spent) result.message = CpuBudgetMessage("IDA", result.t, t_out);
   return result;
 }
 

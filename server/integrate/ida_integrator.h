@@ -66,7 +66,7 @@ class IdaCallbacks {
   char event_[320] = {};
 };
 
-class IdaIntegrator final : public IntegratorBase {
+class IdaIntegrator final : public IntegratorBase, private ChunkedSolver {
  public:
   // (t0, y0, yp0) must be consistent: F(t0, y0, yp0) = 0 (the caller computes it).
   IdaIntegrator(DaeSystem& system, double t0, const double* y0, const double* yp0,
@@ -82,6 +82,11 @@ class IdaIntegrator final : public IntegratorBase {
  private:
   AdvanceResult DoAdvance(double t_out, double* y) override;
   MethodKind method_kind() const override { return MethodKind::kImplicit; }
+  long NumSteps() const override;
+  double CurrentTime() const override;
+  void LimitSteps(long steps) override;
+  int Solve(double t_out, double* t_reached) override;
+  int TooMuchWorkFlag() const override;
   void CheckSetup(int flag, const char* call) const;
 
   mutable IdaCallbacks callbacks_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "common/check.h"
 #include "server/integrate/failure_messages.h"
@@ -20,6 +21,39 @@ IntegratorBase::IntegratorBase(int size, double t0, const double* y0,
 void IntegratorBase::ReplaceOptions(const IntegratorOptions& options) {
   options_ = options;
   cpu_deadline_ = CpuDeadline(options.cpu_deadline_s);
+}
+
+ChunkedSolve IntegratorBase::SolveInChunks(double t_out, double* y, ChunkedSolver& solver) {
+  const long max_steps = options_.max_steps;
+  const bool cpu_budget = std::isfinite(options_.cpu_deadline_s);
+  ChunkedSolve solve;
+  for (;;) {
+    const long remaining = max_steps - solver.NumSteps();
+    const bool beyond = t_out > solver.CurrentTime();  // steps are needed to reach t_out
+    solve.cpu_spent = cpu_budget && beyond && cpu_deadline_.Passed();
+    if ((remaining <= 0 && beyond) || solve.cpu_spent) {
+      // A budget is spent and t_out lies beyond the last internal step: stop at the last
+      // output (or where the last chunk stopped).
+      solve.flag = solver.TooMuchWorkFlag();
+      if (!solve.evolved) {
+        solve.t_reached = last_t_;
+        std::copy(last_y_.begin(), last_y_.end(), y);
+      }
+      return solve;
+    }
+    const long chunk = cpu_budget ? cpu_check_pacer_.Chunk(remaining) : remaining;
+    solver.LimitSteps(std::max(chunk, 1L));
+    const long steps_before = solver.NumSteps();
+    cpu_check_pacer_.Start();
+    std::fill(y, y + size_, std::numeric_limits<double>::quiet_NaN());
+    solve.t_reached = std::numeric_limits<double>::quiet_NaN();
+    solve.flag = solver.Solve(t_out, &solve.t_reached);
+    cpu_check_pacer_.Finish(solver.NumSteps() - steps_before);
+    if (solve.flag >= 0) return solve;
+    solve.evolved = true;
+    // Only the chunk ran out: go on.
+    if (solve.flag != solver.TooMuchWorkFlag() || chunk >= remaining) return solve;
+  }
 }
 
 AdvanceResult IntegratorBase::AdvanceTo(double t_out, double* y) {

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "server/integrate/chunked_solver.h"
 #include "server/integrate/cpu_check_pacer.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/integrator.h"
@@ -40,6 +41,12 @@ class IntegratorBase : public Integrator {
   bool CpuDeadlinePassed() { return cpu_deadline_.Passed(); }
   // Paces the checks of the CPU budget (how many steps between two).
   CpuCheckPacer& cpu_check_pacer() { return cpu_check_pacer_; }
+  // Runs `solver` from last_time() towards t_out under options()' step budget (over the
+  // whole run) and CPU deadline (chunked_solver.h). y is the solver's output: before each
+  // call it is poisoned with NaN (a call that fails before its first step writes nothing, and
+  // the base then falls back to the last output); stopped by a budget before any call, it
+  // holds the last output.
+  ChunkedSolve SolveInChunks(double t_out, double* y, ChunkedSolver& solver);
 
  private:
   int size_;

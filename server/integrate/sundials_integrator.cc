@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include <arkode/arkode.h>
@@ -82,63 +81,28 @@ bool SundialsIntegrator::Retune(const IntegratorOptions& next) {
   return true;
 }
 
+int SundialsIntegrator::TooMuchWorkFlag() const {
+  return family_ == Family::kCvode ? CV_TOO_MUCH_WORK : ARK_TOO_MUCH_WORK;
+}
+
 AdvanceResult SundialsIntegrator::DoAdvance(double t_out, double* y) {
   errors_.Clear();
   N_VSetArrayPointer(y, out_.get());
-
-  // max_steps is a budget over the whole run; the solvers count per call. With a CPU budget
-  // the solver is called in chunks of steps (CpuCheckPacer) and the thread's CPU clock is
-  // read between them (a solver stopped by its per-call step limit resumes where it was).
-  const long max_steps = options().max_steps;
-  const double cpu_deadline = options().cpu_deadline_s;
-  const bool cpu_budget = std::isfinite(cpu_deadline);
-  const int too_much_work = family_ == Family::kCvode ? CV_TOO_MUCH_WORK : ARK_TOO_MUCH_WORK;
-  int flag = 0;
-  double t_reached = CurrentTime();
-  bool evolved = false;  // y and t_reached hold the solver's state after a chunk
-  bool cpu_spent = false;
-  for (;;) {
-    const long remaining = max_steps - NumSteps();
-    const bool beyond = t_out > CurrentTime();  // steps are needed to reach t_out
-    cpu_spent = cpu_budget && beyond && CpuDeadlinePassed();
-    if ((remaining <= 0 && beyond) || cpu_spent) {
-      // A budget is spent and t_out lies beyond the last internal step: stop at the last
-      // output (or where the last chunk stopped).
-      flag = too_much_work;
-      if (!evolved) {
-        t_reached = last_time();
-        std::copy(last_state(), last_state() + state_size(), y);
-      }
-      break;
-    }
-    CpuCheckPacer& pacer = cpu_check_pacer();
-    const long chunk = cpu_budget ? pacer.Chunk(remaining) : remaining;
-    CheckSetup(SetMaxNumSteps(std::max(chunk, 1L)), "SetMaxNumSteps");
-    const long steps_before = NumSteps();
-    pacer.Start();
-    // A failure before the first step leaves y and t_reached unwritten: poison them so the
-    // base falls back to the last output.
-    std::fill(y, y + state_size(), std::numeric_limits<double>::quiet_NaN());
-    t_reached = std::numeric_limits<double>::quiet_NaN();
-    flag = Evolve(t_out, out_.get(), &t_reached);
-    pacer.Finish(NumSteps() - steps_before);
-    if (flag >= 0) return {IntegratorStatus::kOk, t_out, {}};
-    evolved = true;
-    if (flag == too_much_work && chunk < remaining) continue;  // only the chunk ran out
-    if (family_ == Family::kArkode && flag != ARK_TOO_MUCH_WORK) {
-      // When a step fails ARKODE 6.4 returns the last step's state with the time of the
-      // failed stage (tcur), not the step's: the pair is inconsistent. Use the last output.
-      // (The step budget runs out between steps, where the pair is consistent.)
-      t_reached = last_time();
-      std::copy(last_state(), last_state() + state_size(), y);
-    }
-    break;
+  const ChunkedSolve solve = SolveInChunks(t_out, y, *this);
+  if (solve.flag >= 0) return {IntegratorStatus::kOk, t_out, {}};
+  double t_reached = solve.t_reached;
+  if (solve.evolved && family_ == Family::kArkode && solve.flag != ARK_TOO_MUCH_WORK) {
+    // When a step fails ARKODE 6.4 returns the last step's state with the time of the
+    // failed stage (tcur), not the step's: the pair is inconsistent. Use the last output.
+    // (The step budget runs out between steps, where the pair is consistent.)
+    t_reached = last_time();
+    std::copy(last_state(), last_state() + state_size(), y);
   }
-
-  FailureContext context{family_,   flag,  name(),    implicit_, fixed_point_,
-                         t_reached, t_out, max_steps, &rhs_,     errors_.message()};
+  FailureContext context{family_,      solve.flag,       name(), implicit_,
+                         fixed_point_, t_reached,        t_out,  options().max_steps,
+                         &rhs_,        errors_.message()};
   AdvanceResult result = FailureResult(context);
-  if (cpu_spent) result.message = CpuBudgetMessage(name(), result.t, t_out);
+  if (solve.cpu_spent) result.message = CpuBudgetMessage(name(), result.t, t_out);
   return result;
 }
 

@@ -10,7 +10,7 @@
 
 namespace mbstream::sundials {
 
-class SundialsIntegrator : public IntegratorBase {
+class SundialsIntegrator : public IntegratorBase, protected ChunkedSolver {
  public:
   bool Retune(const IntegratorOptions& options) final;
 
@@ -19,9 +19,7 @@ class SundialsIntegrator : public IntegratorBase {
                      const IntegratorOptions& options, Family family, bool implicit,
                      bool fixed_point);
 
-  // The solver calls DoAdvance needs.
-  virtual long NumSteps() const = 0;
-  virtual double CurrentTime() const = 0;      // the solver's internal time
+  // The solver calls DoAdvance needs besides ChunkedSolver's NumSteps and CurrentTime.
   virtual int SetMaxNumSteps(long steps) = 0;  // per call of Evolve
   // CVode / ARKStepEvolve in normal mode (interpolating at t_out).
   virtual int Evolve(double t_out, N_Vector y, double* t_reached) = 0;
@@ -45,6 +43,9 @@ class SundialsIntegrator : public IntegratorBase {
 
  private:
   AdvanceResult DoAdvance(double t_out, double* y) final;
+  void LimitSteps(long steps) final { CheckSetup(SetMaxNumSteps(steps), "SetMaxNumSteps"); }
+  int Solve(double t_out, double* t_reached) final { return Evolve(t_out, out_.get(), t_reached); }
+  int TooMuchWorkFlag() const final;
   MethodKind method_kind() const final {
     return implicit_ ? MethodKind::kImplicit : MethodKind::kExplicit;
   }

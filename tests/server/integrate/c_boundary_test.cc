@@ -44,24 +44,16 @@ class ThrowingOscillator : public HarmonicOscillator {
 };
 
 // The oscillator as a DAE for IDA: F = [x' - v; v' + x], whose residual throws from t_fail.
-class ThrowingOscillatorDae : public DaeSystem {
+class ThrowingOscillatorDae : public testing::OscillatorDae {
  public:
   explicit ThrowingOscillatorDae(double t_fail) : t_fail_(t_fail) {}
-  int size() const override { return 2; }
   int Residual(double t, const double* y, const double* yp, double* r) override {
     if (t >= t_fail_) throw InternalError(kWhat);
-    r[0] = yp[0] - y[1];
-    r[1] = yp[1] + y[0];
-    return 0;
+    return OscillatorDae::Residual(t, y, yp, r);
   }
-  void DifferentialIds(double* id) const override { std::fill(id, id + 2, 1.0); }
-  const std::vector<int>& JacobianColumnStarts() const override { return starts_; }
-  const std::vector<int>& JacobianRowIndices() const override { return rows_; }
 
  private:
   double t_fail_;
-  std::vector<int> starts_{0, 2, 4};
-  std::vector<int> rows_{0, 1, 0, 1};
 };
 
 // Advances in outputs of 0.1 s up to 2 s until a failure; returns it.

@@ -1,10 +1,12 @@
 // Failures: each ends with a clear status and message, a finite last good state, and t at
 // the last good time.
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "server/integrate/ida_integrator.h"
 #include "server/integrate/integrator.h"
 #include "tests/server/integrate/test_systems.h"
 
@@ -16,6 +18,7 @@ using testing::FailingOscillator;
 using testing::HarmonicOscillator;
 using testing::NanOscillator;
 using testing::Options;
+using testing::OscillatorDae;
 
 constexpr Method kAllMethods[] = {Method::kBdf,  Method::kAdams, Method::kErk,
                                   Method::kDirk, Method::kRk4,   Method::kEuler};
@@ -145,6 +148,41 @@ TEST(FailureTest, MaxStepsIsATotalBudget) {
   double y[2];
   const AdvanceResult result = RunUntilFailure(*erk, 10.0, y);
   EXPECT_TRUE(Contains(result.message, "try method bdf or dirk")) << result.message;
+}
+
+// The step budget runs out only where a step is needed: an output within the last internal
+// step is interpolated, whatever the budget, by every adaptive method, IDA's included.
+TEST(FailureTest, AnOutputWithinTheLastStepNeedsNoStepBudget) {
+  HarmonicOscillator ode(1.0);
+  OscillatorDae dae;
+  const double y0[2] = {1.0, 0.0}, yp0[2] = {0.0, -1.0};
+  auto make = [&](Method method, long max_steps) -> std::unique_ptr<Integrator> {
+    IntegratorOptions options = Options(method, 2.0);
+    options.max_steps = max_steps;
+    if (method != Method::kIda) return MakeIntegrator(ode, 0.0, y0, options);
+    IdaOptions ida;
+    ida.base = options;
+    return MakeIdaIntegrator(dae, 0.0, y0, yp0, ida);
+  };
+  for (Method method : {Method::kBdf, Method::kAdams, Method::kErk, Method::kDirk, Method::kIda}) {
+    // How many steps reach t = 1 s, and an output past it that needs no further step.
+    auto free = make(method, 100'000);
+    double y_free[2], y[2];
+    ASSERT_EQ(free->AdvanceTo(1.0, y_free).status, IntegratorStatus::kOk) << free->name();
+    const long steps = free->stats().steps;
+    const double t2 = 1.0 + 1e-9;
+    ASSERT_EQ(free->AdvanceTo(t2, y_free).status, IntegratorStatus::kOk);
+    ASSERT_EQ(free->stats().steps, steps) << free->name() << ": t2 needed another step";
+
+    auto budgeted = make(method, steps);
+    EXPECT_EQ(budgeted->AdvanceTo(1.0, y).status, IntegratorStatus::kOk) << budgeted->name();
+    const AdvanceResult within = budgeted->AdvanceTo(t2, y);
+    EXPECT_EQ(within.status, IntegratorStatus::kOk) << budgeted->name() << ": " << within.message;
+    EXPECT_DOUBLE_EQ(y[0], y_free[0]) << budgeted->name();
+    const AdvanceResult beyond = budgeted->AdvanceTo(1.5, y);
+    EXPECT_EQ(beyond.status, IntegratorStatus::kTooMuchWork) << budgeted->name();
+    EXPECT_EQ(budgeted->stats().steps, steps) << budgeted->name();
+  }
 }
 
 TEST(FailureTest, SundialsStaysQuiet) {

@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
+#include "server/integrate/ida_system.h"
 #include "server/integrate/integrator.h"
 #include "server/integrate/ode_system.h"
 
@@ -110,6 +112,24 @@ class NanOscillator : public HarmonicOscillator {
 
  private:
   double t_fail_;
+};
+
+// The unit harmonic oscillator as a DAE for IDA: F = [x' - v; v' + x] (y = [x; v]).
+class OscillatorDae : public DaeSystem {
+ public:
+  int size() const override { return 2; }
+  int Residual(double, const double* y, const double* yp, double* r) override {
+    r[0] = yp[0] - y[1];
+    r[1] = yp[1] + y[0];
+    return 0;
+  }
+  void DifferentialIds(double* id) const override { std::fill(id, id + 2, 1.0); }
+  const std::vector<int>& JacobianColumnStarts() const override { return starts_; }
+  const std::vector<int>& JacobianRowIndices() const override { return rows_; }
+
+ private:
+  std::vector<int> starts_{0, 2, 4};
+  std::vector<int> rows_{0, 1, 0, 1};
 };
 
 // Options for `method` over [0, t_final].
