@@ -85,7 +85,8 @@ class JointSpaceSource : public FrameSource {
 
 // config.prefix's integration, taken over and retuned to `options`, when the prefix's frames
 // are all on the run's first output times (at least two: the first is the initial state) and
-// its integration, still there, is of this ODE; null otherwise (the run starts at t = 0).
+// its integration, still there, is of this ODE; null otherwise (the run starts at t = 0; an
+// integration that does not fit stays with the prefix for another run).
 std::shared_ptr<JointIntegration> TakeOverPrefix(const RunConfig& config,
                                                  const std::vector<double>& times, int n,
                                                  bool track_work, const IntegratorOptions& options,
@@ -99,11 +100,13 @@ std::shared_ptr<JointIntegration> TakeOverPrefix(const RunConfig& config,
       (track_work && prefix->work.size() != prefix->frames())) {
     return nullptr;
   }
-  std::shared_ptr<JointIntegration> live = prefix->TakeIntegration();
-  if (live == nullptr || live->track_work != track_work || live->ode.size() != 2 * n ||
-      static_cast<int>(live->drives.size()) != n || !live->integrator->Retune(options)) {
-    return nullptr;
-  }
+  std::shared_ptr<JointIntegration> live =
+      prefix->TakeIntegrationIf([&](JointIntegration& integration) {
+        return integration.track_work == track_work && integration.ode.size() == 2 * n &&
+               static_cast<int>(integration.drives.size()) == n &&
+               integration.integrator->Retune(options);  // changes nothing when it refuses
+      });
+  if (live == nullptr) return nullptr;
   live->before = live->integrator->stats();
   *prefix_frames = prefix->frames();
   return live;

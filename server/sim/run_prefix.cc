@@ -7,8 +7,10 @@
 
 namespace mbstream {
 
-std::shared_ptr<JointIntegration> RunPrefix::TakeIntegration() const {
+std::shared_ptr<JointIntegration> RunPrefix::TakeIntegrationIf(
+    const std::function<bool(JointIntegration&)>& fits) const {
   std::lock_guard<std::mutex> lock(mutex);
+  if (integration == nullptr || !fits(*integration)) return nullptr;
   return std::exchange(integration, nullptr);
 }
 

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -26,8 +27,12 @@ struct RunPrefix {
   const char* method = "";    // and the method ("bdf", ...)
 
   std::size_t frames() const { return t.size(); }
-  // The integration, at the last frame's time; null once a run has taken it (only one can).
-  std::shared_ptr<JointIntegration> TakeIntegration() const;
+  // The integration, at the last frame's time, when `fits` accepts it (called under the lock;
+  // it may retune the integration, and must leave it unchanged when it refuses); null
+  // otherwise, the integration then left for another run, or once a run has taken it (only
+  // one can).
+  std::shared_ptr<JointIntegration> TakeIntegrationIf(
+      const std::function<bool(JointIntegration&)>& fits) const;
   bool HasIntegration() const;
 
   mutable std::mutex mutex;

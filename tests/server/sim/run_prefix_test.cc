@@ -110,13 +110,16 @@ TEST(RunPrefixTest, APrefixThatIsNotTheRunsStartIsNotTaken) {
     EXPECT_DOUBLE_EQ(Simulate(Irb1600(), config).stats.continued_from_s, 0.0);
     EXPECT_TRUE(config.prefix->HasIntegration());
   }
-  {  // another method: the integration refuses
+  {  // another method: the integration refuses, and stays for a run it fits
     RunConfig config = At(scene, 2.0, 1e-6);
     config.method = Method::kDirk;
     config.prefix = Pilot(scene, 0.1, 1e-9);
     const RunResult result = Simulate(Irb1600(), config);
     EXPECT_EQ(result.stats.status, RunStatus::kFinished);
     EXPECT_DOUBLE_EQ(result.stats.continued_from_s, 0.0);
+    EXPECT_TRUE(config.prefix->HasIntegration());
+    config.method = Method::kBdf;
+    EXPECT_DOUBLE_EQ(Simulate(Irb1600(), config).stats.continued_from_s, 0.1);
   }
   {  // a pilot that was not kept has no integration
     RunResult result = Simulate(Irb1600(), At(scene, 0.1, 1e-9));
