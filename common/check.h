@@ -18,6 +18,14 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Thrown for input from outside that is well formed but larger than a limit the caller set
+// (links of a model, frames of a run): the service answers RESOURCE_EXHAUSTED, the CLI
+// exits 2 as for any InputError. The message names the limit and the flag that raises it.
+class LimitError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 // Thrown when an internal invariant fails: a bug in mbstream, not a user error.
 class InternalError : public std::logic_error {
  public:

@@ -2,8 +2,10 @@
 // holding anything else serializes with an error log and then cannot be parsed back).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <string_view>
 
 namespace mbstream {
@@ -43,6 +45,15 @@ inline std::optional<std::size_t> FirstInvalidUtf8(std::string_view text) {
     i += length;
   }
   return std::nullopt;
+}
+
+// For messages about the byte at `offset` of `text`: "line N: byte 0xHH is not UTF-8".
+inline std::string NotUtf8At(std::string_view text, std::size_t offset) {
+  const auto line = 1 + std::count(text.begin(), text.begin() + offset, '\n');
+  static const char kHex[] = "0123456789ABCDEF";
+  const auto byte = static_cast<unsigned char>(text[offset]);
+  return "line " + std::to_string(line) + ": byte 0x" + kHex[byte >> 4] + kHex[byte & 15] +
+         " is not UTF-8";
 }
 
 }  // namespace mbstream

@@ -1,6 +1,7 @@
-// Fuzzes the URDF import (server/parse), without and with repairs: any text either imports
-// or throws InputError with a message; nothing else (a crash, a sanitizer report, another
-// exception) is allowed.
+// Fuzzes the URDF import (server/parse), without and with repairs (and a link limit): any
+// text either imports or throws InputError (or LimitError) with a message; nothing else (a
+// crash, a sanitizer report, another exception) is allowed. Seeds with deep nesting and
+// attribute floods (fuzz/seeds/urdf) exercise the shape check before TinyXML.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -19,8 +20,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // defects).
   for (const bool repair : {false, true}) {
     try {
-      const mbstream::UrdfImport imported =
-          mbstream::ImportUrdf(text, "fuzz.urdf", kAssets, {.repair = repair});
+      const mbstream::UrdfImport imported = mbstream::ImportUrdf(
+          text, "fuzz.urdf", kAssets, {.repair = repair, .max_links = repair ? 64 : 0});
       if (imported.model.num_dofs() < 0) std::abort();
       for (const std::string& warning : imported.warnings) {
         if (warning.empty()) std::abort();

@@ -4,6 +4,8 @@
 
 #include <string_view>
 
+#include "urdf_reading/xml_shape.h"
+
 namespace mbstream::urdf_reading {
 
 namespace {
@@ -35,6 +37,10 @@ void NoteMaterial(const TiXmlElement& material, UrdfOutline* outline) {
 }  // namespace
 
 std::optional<UrdfOutline> ReadUrdfOutline(const std::string& text, std::string* error) {
+  if (const auto problem = CheckXmlShape(text, XmlShapeLimits{})) {
+    *error = "line " + std::to_string(problem->line) + ": " + problem->what;
+    return std::nullopt;
+  }
   TiXmlDocument document;
   document.Parse(text.c_str(), nullptr, TIXML_ENCODING_UTF8);
   if (document.Error()) {

@@ -24,8 +24,8 @@ struct UrdfOutline {
   std::vector<std::string> limitless_revolute_joints;  // the joints so rewritten
 };
 
-// Reads the outline of URDF XML `text`. Returns nullopt with `*error` set when the XML is
-// not well formed or has no <robot> element.
+// Reads the outline of URDF XML `text`. Returns nullopt with `*error` set when its shape is
+// beyond xml_shape.h's default limits, the XML is not well formed or has no <robot> element.
 std::optional<UrdfOutline> ReadUrdfOutline(const std::string& text, std::string* error);
 
 }  // namespace mbstream::urdf_reading

@@ -76,7 +76,7 @@ void Guarded(const std::string& source, Call call) {
 UrdfImport ImportUrdf(const std::string& text, const std::string& source,
                       const std::set<std::string>& assets, const UrdfImportOptions& options) {
   UrdfImport result;
-  const UrdfXmlFacts facts = ScanUrdfXml(text, source, &result.warnings);
+  const UrdfXmlFacts facts = ScanUrdfXml(text, source, &result.warnings, options.max_links);
   result.mesh_files = facts.mesh_files;
   const UrdfDiagnostics diagnostics(source, facts.link_lines, facts.joint_lines, &result.warnings,
                                     options.repair);
@@ -113,6 +113,12 @@ UrdfImport ImportUrdf(const std::string& text, const std::string& source,
   const std::string tcp = ChooseTcp(*urdf, joints, facts, diagnostics);
   if (!tcp.empty()) Guarded(source, [&] { builder.SetTcp(tcp); });
   result.model = builder.Build();
+  const int links = static_cast<int>(result.model.frames.size());
+  if (options.max_links > 0 && links > options.max_links) {
+    throw LimitError(source + ": the model has " + std::to_string(links) +
+                     " links and points, more than the limit of " +
+                     std::to_string(options.max_links) + " (--max-links); raise the limit");
+  }
   if (result.model.num_dofs() == 0) {
     diagnostics.Warn(source + ": the model has no moving joints; nothing will move");
   }
@@ -133,7 +139,7 @@ UrdfImport ImportUrdfFile(const std::string& path, const UrdfImportOptions& opti
   contents << in.rdbuf();
   const std::string text = contents.str();
   std::vector<std::string> ignored;  // ImportUrdf warns again
-  const UrdfXmlFacts facts = ScanUrdfXml(text, path, &ignored);
+  const UrdfXmlFacts facts = ScanUrdfXml(text, path, &ignored, options.max_links);
   const std::set<std::string> assets =
       ExistingMeshFiles(facts.mesh_files, std::filesystem::path(path).parent_path());
   return ImportUrdf(text, path, assets, options);

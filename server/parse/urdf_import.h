@@ -43,6 +43,10 @@ struct UrdfImportOptions {
   // unphysical inertia tensor, a negative velocity or effort limit, a moving link without
   // mass; each repair is a warning "FILE:LINE: link 'NAME': repaired: ...". Off: errors.
   bool repair = false;
+  // Most links and named points of the model (0: only the reader's own ceiling,
+  // urdf_reading/xml_shape.h): checked on the text before any parse and on the model
+  // built; over it, LimitError naming --max-links.
+  int max_links = 0;
 };
 
 // Imports URDF XML `text`. `source` names the file in messages. `assets` are the mesh

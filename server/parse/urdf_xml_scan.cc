@@ -2,12 +2,14 @@
 
 #include <tinyxml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string_view>
 #include <utility>
 
 #include "common/check.h"
 #include "server/parse/urdf_diagnostics.h"
+#include "urdf_reading/xml_shape.h"
 
 namespace mbstream {
 
@@ -26,7 +28,7 @@ class Scanner {
       : source_(source), warnings_(warnings) {}
 
   void ScanLink(const TiXmlElement& link) {
-    const std::string name = AttributeOf(link, "name");
+    const std::string name = NameOf(link, "link");
     if (!Record(name, link.Row(), "link", facts_.link_lines)) return;
     facts_.link_order.push_back(name);
     for (const char* part : {"visual", "collision"}) {
@@ -44,7 +46,7 @@ class Scanner {
 
   // Returns true if the joint was rewritten for urdfdom.
   bool ScanJoint(TiXmlElement& joint) {
-    const std::string name = AttributeOf(joint, "name");
+    const std::string name = NameOf(joint, "joint");
     const int line = joint.Row();
     if (!Record(name, line, "joint", facts_.joint_lines)) return false;
     facts_.joint_order.push_back(name);
@@ -91,6 +93,23 @@ class Scanner {
   UrdfXmlFacts& facts() { return facts_; }
 
  private:
+  // The element's name attribute ("" when absent: urdfdom reports that in its words). A name
+  // that is empty or holds a control character (TinyXML reads "&#0;" as an empty name) is refused:
+  // results and messages quote names, and urdfdom would take "" without a word.
+  std::string NameOf(const TiXmlElement& element, const char* kind) const {
+    const char* value = element.Attribute("name");
+    if (value == nullptr) return "";
+    const std::string name(value);
+    const bool control = std::any_of(name.begin(), name.end(),
+                                     [](char c) { return static_cast<unsigned char>(c) < 0x20; });
+    if (name.empty() || control) {
+      throw InputError(source_ + ":" + std::to_string(element.Row()) + ": " + kind + " name " +
+                       (name.empty() ? "is empty" : "holds a control character (e.g. &#0;)") +
+                       "; give every " + kind + " a unique printable name");
+    }
+    return name;
+  }
+
   // Records `name` at `line`; false when the name is missing (urdfdom reports that).
   bool Record(const std::string& name, int line, const char* kind,
               std::map<std::string, int>& lines) {
@@ -130,8 +149,15 @@ class Scanner {
 }  // namespace
 
 UrdfXmlFacts ScanUrdfXml(const std::string& text, const std::string& source,
-                         std::vector<std::string>* warnings) {
+                         std::vector<std::string>* warnings, int max_links) {
   MBSTREAM_CHECK(warnings != nullptr);
+  urdf_reading::XmlShapeLimits limits;
+  if (max_links > 0) limits.max_top_links = max_links;
+  if (const auto problem = urdf_reading::CheckXmlShape(text, limits)) {
+    const std::string message = source + ":" + std::to_string(problem->line) + ": " + problem->what;
+    if (problem->over_caller_limit) throw LimitError(message);
+    throw InputError(message);
+  }
   TiXmlDocument document;
   document.Parse(text.c_str(), nullptr, TIXML_ENCODING_UTF8);
   if (document.Error()) {

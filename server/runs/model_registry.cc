@@ -86,23 +86,14 @@ std::string SourceName(const v1::ModelBundle& bundle) {
   return bundle.urdf_file_name().empty() ? std::string("model.urdf") : bundle.urdf_file_name();
 }
 
-// Imports the bundle's URDF (assets by name; their data is not needed) and checks the link
-// limit.
+// Imports the bundle's URDF (assets by name; their data is not needed) within the link
+// limit (LimitError: RESOURCE_EXHAUSTED).
 UrdfImport ImportBundle(const v1::ModelBundle& bundle, const ServerLimits& limits) {
   std::set<std::string> assets;
   for (const v1::Asset& asset : bundle.assets()) assets.insert(asset.name());
   const std::string source = SourceName(bundle);
-  UrdfImport import =
-      ImportUrdf(bundle.urdf(), source, assets, UrdfImportOptions{.repair = bundle.repair()});
-  const int links = static_cast<int>(import.model.frames.size());
-  if (links > limits.max_links) {
-    throw RequestError(RequestErrorKind::kResourceExhausted,
-                       source + ": the model has " + std::to_string(links) +
-                           " links and points, more than this server's limit of " +
-                           std::to_string(limits.max_links) +
-                           "; ask the operator to raise --max-links");
-  }
-  return import;
+  return ImportUrdf(bundle.urdf(), source, assets,
+                    UrdfImportOptions{.repair = bundle.repair(), .max_links = limits.max_links});
 }
 
 std::shared_ptr<CompiledModel> MakeCompiled(UrdfImport import) {
@@ -217,6 +208,14 @@ v1::ModelInfo ModelRegistry::Submit(const v1::ModelBundle& bundle, bool builtin)
     auto found = by_id_.find(id);  // known without its spare assets, or submitted meanwhile
     if (found != by_id_.end()) return found->second.info;
     if (!builtin) CheckCapacityLocked(bytes);
+    for (const auto& [other_id, other] : by_id_) {  // a name now means the newest model
+      if (other.info.builtin() && other.info.name() == info.name() && !builtin) {
+        info.add_warnings("the name '" + info.name() + "' was the built-in model " + other_id +
+                          "'s; from now on it means this model, and the built-in stays " +
+                          "reachable by its id " + other_id +
+                          "; give another name (mbstream submit --name) to keep both");
+      }
+    }
     info.set_created_unix_ms(NowUnixMs());
     Entry& entry = by_id_[id];
     entry.info = info;

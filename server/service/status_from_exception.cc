@@ -10,6 +10,8 @@ namespace mbstream {
 grpc::Status StatusFromException(std::exception_ptr error) {
   try {
     std::rethrow_exception(error);
+  } catch (const LimitError& e) {
+    return grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED, e.what());
   } catch (const InputError& e) {
     return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, e.what());
   } catch (const RequestError& e) {
