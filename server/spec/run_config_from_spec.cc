@@ -1,4 +1,5 @@
 // RunSpec -> RunConfig: every field validated, defaults applied, drives matched to joints.
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -54,6 +55,11 @@ constexpr double kMaxDuration = 1e9;       // s, simulated
 constexpr double kMaxFrames = 1e9;         // duration_s / output_interval_s
 constexpr double kMinRealtime = 1e-3;      // simulated s per wall-clock s (0 = unpaced)
 constexpr double kMaxRealtime = 1e9;
+// s: a step below this is no step a mechanism needs, and SUNDIALS refuses steps near the
+// smallest double (CV_ILL_INPUT): max_step_s and fixed_step_s are refused below it.
+constexpr double kMinStep = 1e-10;
+constexpr double kMaxGravity = 1e4;  // m/s^2 per component (1,000 g), beyond any test rig
+constexpr int kMaxRetries = 100;     // attempts after the first
 
 // Builds the messages: "<source>: <field>: <problem>; <what to do>".
 class Checker {
@@ -89,11 +95,18 @@ class Checker {
     return value;
   }
 
-  // A name field: at most kMaxNameBytes bytes.
+  // A name field: at most kMaxNameBytes bytes, no control characters (a NUL would cut
+  // every message that quotes it).
   const std::string& Name(const std::string& value, const std::string& field) const {
     if (value.size() > kMaxNameBytes) {
       Fail(field, "is " + std::to_string(value.size()) + " bytes long, more than " +
-                      std::to_string(kMaxNameBytes) + "; give a name (" + Quote(value) + ")");
+                      std::to_string(kMaxNameBytes) + "; give a name (" +
+                      Quote(value.substr(0, 64)) + "...)");
+    }
+    if (std::any_of(value.begin(), value.end(),
+                    [](char c) { return static_cast<unsigned char>(c) < 0x20; })) {
+      Fail(field, "holds a control character (a byte below 0x20, e.g. a NUL); give the name " +
+                      std::string("as the model spells it"));
     }
     return value;
   }
@@ -302,6 +315,11 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& j
   if (spec.has_max_step_s()) {
     config.max_step = check.NonNegative(spec.max_step_s(), "max_step_s", "s",
                                         "give the largest internal step, or 0 for no limit");
+    if (config.max_step > 0.0 && config.max_step < kMinStep) {
+      check.Fail("max_step_s", "is " + Format(config.max_step) + " s, below the smallest " +
+                                   "step mbstream takes (" + Format(kMinStep) +
+                                   " s); give 0 for no limit or a step of at least that");
+    }
   }
   if (!spec.formulation().empty() && !ParseFormulation(spec.formulation(), &config.formulation)) {
     check.Fail("formulation",
@@ -328,11 +346,24 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& j
                                      MethodName(config.method) + ", got " +
                                      Format(config.fixed_step) + "; give the step, e.g. 0.001");
     }
+    if (config.fixed_step > 0.0 && config.fixed_step < kMinStep) {
+      check.Fail("fixed_step_s", "is " + Format(config.fixed_step) + " s, below the smallest " +
+                                     "step mbstream takes (" + Format(kMinStep) +
+                                     " s); give a larger step, e.g. 0.001");
+    }
   }
   if (spec.has_gravity()) {
     config.gravity = {check.Finite(spec.gravity().x(), "gravity.x", "m/s^2"),
                       check.Finite(spec.gravity().y(), "gravity.y", "m/s^2"),
                       check.Finite(spec.gravity().z(), "gravity.z", "m/s^2")};
+    for (int axis = 0; axis < 3; ++axis) {
+      if (std::abs(config.gravity[axis]) > kMaxGravity) {
+        check.Fail(std::string("gravity.") + "xyz"[axis],
+                   "is " + Format(config.gravity[axis]) + " m/s^2, beyond +-" +
+                       Format(kMaxGravity) + " m/s^2 (1,000 g); give the gravity in m/s^2, " +
+                       "e.g. z = -9.81");
+      }
+    }
   }
   config.q0 = JointVector(spec.initial_q(), joint_names, "initial_q", kJointUnit, check);
   config.qd0 = JointVector(spec.initial_qd(), joint_names, "initial_qd", "rad/s or m/s", check);
@@ -401,6 +432,10 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& j
                                "factor from " +
                                Format(kMinRealtime) + " to " + Format(kMaxRealtime) +
                                " (1 = real time)");
+  }
+  if (spec.retries() < 0 || spec.retries() > kMaxRetries) {
+    check.Fail("retries", "is " + std::to_string(spec.retries()) + "; give 0 (never run again) " +
+                              "to " + std::to_string(kMaxRetries) + " attempts after the first");
   }
   if (spec.max_output_frames() < 0) {
     check.Fail("max_output_frames", "must be >= 0, got " +

@@ -8,17 +8,21 @@
 #include <google/protobuf/util/json_util.h>
 
 #include "common/check.h"
+#include "server/spec/json_shape.h"
 
 namespace mbstream {
 
 v1::RunSpec ParseRunSpecJson(const std::string& json, const std::string& source) {
+  CheckJsonShape(json, source);
   google::protobuf::util::JsonParseOptions options;
   options.ignore_unknown_fields = false;
   v1::RunSpec spec;
   const auto status = google::protobuf::util::JsonStringToMessage(json, &spec, options);
   if (!status.ok()) {
-    throw InputError(source + ": invalid JSON/RunSpec: " + std::string(status.message()) +
-                     "; see models/irb1600/seed-run.json for an example");
+    // Cut: the message quotes an unknown key whole, and a key may be megabytes long.
+    throw InputError(
+        source + ": invalid JSON/RunSpec: " + CutForMessage(std::string(status.message()), 400) +
+        "; see models/irb1600/seed-run.json for an example");
   }
   return spec;
 }
