@@ -11,8 +11,9 @@
 #include "common/check.h"
 #include "server/choose/target_run.h"
 #include "server/parse/urdf_import.h"
-#include "server/results/results_files.h"
+#include "server/results/results_stream.h"
 #include "server/sim/input_sanity.h"
+#include "server/sim/run_size.h"
 #include "server/sim/run_validation.h"
 #include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
@@ -29,11 +30,28 @@ struct SimulateOptions {
   RunOverrides overrides;
   bool accept_untrusted = false;
   bool repair = false;
+  // The server's limits and defaults (mbstream-server's flags of the same names), so that
+  // simulate and the server agree on every input.
+  int max_links = 256;
+  RunSizeLimits size;
 };
+
+// Fields of a RunSpec that only the server acts on: said once, not silently dropped.
+void WarnServerOnlyFields(const v1::RunSpec& spec) {
+  if (spec.realtime() != 0.0) {
+    std::cerr << "mbstream simulate: warning: spec.realtime is ignored: simulate runs as fast "
+                 "as it can (pacing is for the server's live runs)\n";
+  }
+  if (spec.retries() != 0) {
+    std::cerr << "mbstream simulate: warning: spec.retries is ignored: simulate runs once "
+                 "(retries are for the server's interrupted runs)\n";
+  }
+}
 
 int RunSimulate(const SimulateOptions& options) {
   UrdfImport import =
-      ImportUrdfFile(options.model_path, UrdfImportOptions{.repair = options.repair});
+      ImportUrdfFile(options.model_path,
+                     UrdfImportOptions{.repair = options.repair, .max_links = options.max_links});
   for (const std::string& warning : import.warnings) spdlog::warn("{}", warning);
   v1::RunSpec spec;
   std::string source = "(command line)";
@@ -44,18 +62,22 @@ int RunSimulate(const SimulateOptions& options) {
   options.overrides.ApplyTo(spec);
   const RunConfig config = ToRunConfig(spec, JointNames(import.model), source);
   ValidateRun(import.model, config);  // the server's validation, before anything runs
+  CheckRunSize(config, spec.max_output_frames(), options.size);
+  WarnServerOnlyFields(spec);
   // Before any integration: legal but absurd inputs (Simulate finds them again for stats.json).
   for (const InputWarning& warning : CheckInputSanity(import.model, config)) {
     std::cerr << "mbstream simulate: warning: " << warning.message << "\n";
   }
 
-  const RunResult result = SimulateWithTarget(import.model, config);
+  // The CSVs are written as the frames come: memory does not grow with the run.
+  ResultsStreamWriter writer(options.out_dir);
+  const RunResult result = SimulateWithTarget(import.model, config, &writer);
   const RunProvenance provenance{import.model.name, options.model_path,
                                  RunSpecToJson(ToRunSpec(config)), "", ""};
-  WriteResultsDirectory(result, provenance, options.out_dir);
+  writer.Finish(result, provenance);
 
   const RunStats& s = result.stats;
-  std::cout << RunStatusName(s.status) << ": " << result.num_frames()
+  std::cout << RunStatusName(s.status) << ": " << writer.frames()
             << " frames to t = " << s.t_reached << " s, formulation " << s.formulation << " ("
             << s.equations << " equations), method " << s.method << ", " << s.solver.steps
             << " steps, cpu " << s.cpu_s * 1e3 << " ms";
@@ -86,6 +108,21 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   options->overrides.AddTo(*command);
   command->add_flag("--accept-untrusted", options->accept_untrusted,
                     "exit 0 even when the finished run's trust is low (else exit 4)");
+  command
+      ->add_option("--max-links", options->max_links,
+                   "most links and points of the model (as mbstream-server --max-links)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  command
+      ->add_option("--max-duration", options->size.max_duration_s,
+                   "longest simulated time of the run, s (as mbstream-server)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  command
+      ->add_option("--max-output-frames", options->size.max_output_frames,
+                   "most frames of the run (as mbstream-server)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   command->add_flag("--repair", options->repair,
                     "repair the defects published URDFs commonly carry (each one a warning)");
   command->callback([options, exit_code] {

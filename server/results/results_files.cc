@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "common/check.h"
+#include "server/results/results_csv.h"
 
 #ifndef MBSTREAM_VERSION
 #define MBSTREAM_VERSION "unknown"
@@ -19,77 +20,7 @@ namespace mbstream {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Appends x in the shortest form that reads back as the same double (std::to_chars): exact,
-// and several times faster than printf's "%.17g", which also writes digits beyond those that
-// identify the double (0.1 as 0.10000000000000001).
-void AppendNumber(std::string& out, double x) {
-  char buffer[32];
-  const std::to_chars_result written = std::to_chars(buffer, buffer + sizeof(buffer), x);
-  MBSTREAM_CHECK(written.ec == std::errc());
-  out.append(buffer, written.ptr);
-}
-
-std::string Number(double x) {
-  std::string text;
-  AppendNumber(text, x);
-  return text;
-}
-
-// Writes path atomically: to path.tmp, then rename.
-void WriteFile(const fs::path& path, const std::function<void(std::ostream&)>& write) {
-  const fs::path temporary = path.string() + ".tmp";
-  {
-    std::ofstream out(temporary);
-    if (!out) {
-      throw InputError("cannot write " + temporary.string() +
-                       ": check that the directory is writable");
-    }
-    write(out);
-    out.flush();
-    if (!out) throw InputError("writing " + temporary.string() + " failed: is the disk full?");
-  }
-  std::error_code error;
-  fs::rename(temporary, path, error);
-  if (error) throw InputError("cannot rename " + temporary.string() + ": " + error.message());
-}
-
-// A CSV with t and `width` columns per frame from a frame-major array.
-void WriteSeries(const fs::path& path, const std::string& header, const RunResult& result,
-                 const std::vector<double>& values, int width) {
-  WriteFile(path, [&](std::ostream& out) {
-    std::string text = header + '\n';
-    text.reserve(text.size() + static_cast<size_t>(result.num_frames()) * (width + 1) * 24);
-    for (int k = 0; k < result.num_frames(); ++k) {
-      AppendNumber(text, result.t[k]);
-      for (int j = 0; j < width; ++j) {
-        text += ',';
-        AppendNumber(text, values[k * width + j]);
-      }
-      text += '\n';
-    }
-    out << text;
-  });
-}
-
-// A CSV field (RFC 4180): quoted when it holds a comma, a quote or a line break.
-std::string CsvField(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
-
-// "t" and the joints' names in the model's joint order (the order of stats.json's
-// "joints"); `prefix` and the joint's number where a name is missing.
-std::string JointHeader(const std::vector<std::string>& names, const std::string& prefix, int n) {
-  std::string header = "t";
-  for (int i = 0; i < n; ++i) {
-    const bool named = i < static_cast<int>(names.size()) && !names[i].empty();
-    header += "," + (named ? CsvField(names[i]) : prefix + std::to_string(i + 1));
-  }
-  return header;
-}
+using results_csv::Number;
 
 nlohmann::json NumberOrNull(double value) {
   return value >= 0.0 ? nlohmann::json(value) : nlohmann::json(nullptr);
@@ -97,13 +28,13 @@ nlohmann::json NumberOrNull(double value) {
 
 }  // namespace
 
-std::string StatsJson(const RunResult& result, const RunProvenance& provenance) {
+std::string StatsJson(const RunResult& result, const RunProvenance& provenance, long frames) {
   const RunStats& s = result.stats;
   nlohmann::ordered_json j;
   j["status"] = RunStatusName(s.status);
   j["message"] = s.message;
   j["t_reached"] = s.t_reached;
-  j["frames"] = result.num_frames();
+  j["frames"] = frames >= 0 ? frames : result.num_frames();
   j["formulation"] = s.formulation;
   j["formulation_reason"] = s.formulation_reason;
   j["equations"] = s.equations;
@@ -161,38 +92,35 @@ void WriteResultsDirectory(const RunResult& result, const RunProvenance& provena
   if (error) {
     throw InputError("cannot create results directory " + directory + ": " + error.message());
   }
-  const int n = result.num_dofs;
-  WriteSeries(dir / "joints.csv", JointHeader(result.joint_names, "q", n), result, result.q, n);
-  WriteSeries(dir / "velocities.csv", JointHeader(result.joint_names, "qd", n), result, result.qd,
-              n);
-  WriteSeries(dir / "tcp.csv", "t,x,y,z", result, result.tcp, 3);
-  if (result.has_torques) {
-    WriteSeries(dir / "torques.csv", JointHeader(result.joint_names, "tau", n), result, result.tau,
-                n);
-  } else {
-    fs::remove(dir / "torques.csv", error);  // never leave a stale file from another run
+  for (const results_csv::Series& series : results_csv::SeriesOf(result)) {
+    results_csv::WriteFile(dir / series.file, [&](std::ostream& out) {
+      std::string text = series.header + '\n';
+      text.reserve(text.size() +
+                   static_cast<size_t>(result.num_frames()) * (series.width + 1) * 24);
+      std::vector<double> row(series.width);
+      for (int k = 0; k < result.num_frames(); ++k) {
+        series.values(result, k, row.data());
+        results_csv::AppendRow(text, result.t[k], row.data(), series.width);
+      }
+      out << text;
+    });
   }
-  if (result.has_energy) {
-    std::vector<double> energy;
-    energy.reserve(result.kinetic.size() * 2);
-    for (size_t k = 0; k < result.kinetic.size(); ++k) {
-      energy.push_back(result.kinetic[k]);
-      energy.push_back(result.potential[k]);
-    }
-    WriteSeries(dir / "energy.csv", "t,kinetic,potential", result, energy, 2);
-  }
+  if (!result.has_torques) fs::remove(dir / "torques.csv", error);  // never leave a stale file
+  if (!result.has_energy) fs::remove(dir / "energy.csv", error);
   if (!probes.empty()) {
-    WriteFile(dir / "probes.csv", [&](std::ostream& out) {
+    results_csv::WriteFile(dir / "probes.csv", [&](std::ostream& out) {
       out << "seq,t,name,x,y,z,latency_us\n";
       for (const ProbeRecord& p : probes) {
-        out << p.seq << ',' << Number(p.t) << ',' << CsvField(p.name) << ',' << Number(p.x) << ','
-            << Number(p.y) << ',' << Number(p.z) << ',' << p.latency_us << '\n';
+        out << p.seq << ',' << Number(p.t) << ',' << results_csv::CsvField(p.name) << ','
+            << Number(p.x) << ',' << Number(p.y) << ',' << Number(p.z) << ',' << p.latency_us
+            << '\n';
       }
     });
   } else {
     fs::remove(dir / "probes.csv", error);
   }
-  WriteFile(dir / "stats.json", [&](std::ostream& out) { out << StatsJson(result, provenance); });
+  results_csv::WriteFile(dir / "stats.json",
+                         [&](std::ostream& out) { out << StatsJson(result, provenance); });
 }
 
 }  // namespace mbstream

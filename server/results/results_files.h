@@ -36,7 +36,8 @@ void WriteResultsDirectory(const RunResult& result, const RunProvenance& provena
                            const std::string& directory,
                            const std::vector<ProbeRecord>& probes = {});
 
-// stats.json's text for a run.
-std::string StatsJson(const RunResult& result, const RunProvenance& provenance);
+// stats.json's text for a run; `frames` is its frame count when the result holds only the
+// latest frame (FrameSink::KeepsFrames), -1 = the result's own count.
+std::string StatsJson(const RunResult& result, const RunProvenance& provenance, long frames = -1);
 
 }  // namespace mbstream

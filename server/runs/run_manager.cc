@@ -17,6 +17,7 @@
 #include "server/runs/request_error.h"
 #include "server/runs/run_budget_caps.h"
 #include "server/runs/unix_time.h"
+#include "server/sim/run_size.h"
 #include "server/sim/run_validation.h"
 #include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
@@ -90,18 +91,10 @@ std::string RunManager::NewRunId() const {
 
 RunConfig RunManager::PrepareConfig(const CompiledModel& model, const v1::RunSpec& spec,
                                     std::vector<std::string>* warnings) const {
-  if (spec.retries() < 0 || spec.retries() > 100) {
-    throw InputError("spec.retries is " + std::to_string(spec.retries()) +
-                     "; give 0 (never run again) to 100 attempts after the first");
-  }
   RunConfig config = ToRunConfig(spec, model.joint_names, "spec");
   ValidateRun(model.model, config);  // the one validation; throws InputError
-  if (config.duration > limits_.max_duration_s) {
-    throw RequestError(RequestErrorKind::kResourceExhausted,
-                       "spec.duration_s " + std::to_string(config.duration) +
-                           " s exceeds this server's limit of " +
-                           std::to_string(limits_.max_duration_s) + " s; shorten the run");
-  }
+  CheckRunSize(config, spec.max_output_frames(),
+               RunSizeLimits{limits_.max_duration_s, limits_.max_output_frames});
   if (spec.realtime() > 0.0 && config.duration / spec.realtime() > limits_.max_duration_s) {
     throw RequestError(RequestErrorKind::kResourceExhausted,
                        "spec.realtime " + std::to_string(spec.realtime()) + " paces " +
@@ -110,19 +103,6 @@ RunConfig RunManager::PrepareConfig(const CompiledModel& model, const v1::RunSpe
                            " s of wall time, more than this server's limit of " +
                            std::to_string(limits_.max_duration_s) +
                            " s; raise realtime or give 0 (unpaced)");
-  }
-  const int64_t frames = OutputFrameCount(config.duration, config.output_interval);
-  if (spec.max_output_frames() > 0 && frames > spec.max_output_frames()) {
-    throw InputError("spec.max_output_frames is " + std::to_string(spec.max_output_frames()) +
-                     " but duration_s / output_interval_s gives " + std::to_string(frames) +
-                     " frames; raise max_output_frames or lengthen output_interval_s");
-  }
-  if (frames > limits_.max_output_frames) {
-    throw RequestError(RequestErrorKind::kResourceExhausted,
-                       "the run would produce " + std::to_string(frames) +
-                           " frames, more than this server's limit of " +
-                           std::to_string(limits_.max_output_frames) +
-                           "; lengthen spec.output_interval_s or shorten spec.duration_s");
   }
   for (std::string& warning : PrepareRunBudget(model.model, limits_, &config)) {
     warnings->push_back(std::move(warning));

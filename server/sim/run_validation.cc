@@ -78,6 +78,12 @@ FormulationChoice ValidateRun(const Model& model, const RunConfig& config, const
                      " has none (a fixed step): use method auto (or bdf, adams, erk, dirk)");
   }
   if (choice.formulation == Formulation::kKinematic) return choice;  // nothing integrated
+  if (model.num_dofs() == 0) {
+    throw InputError(std::string("formulation: ") + FormulationName(choice.formulation) +
+                     " integrates the motion of moving joints, and the model has none (every "
+                     "joint is fixed): there is nothing to integrate; leave formulation out "
+                     "(auto) or give kinematic");
+  }
   CheckMethodFor(config, choice);
   if (IsBodyFormulation(choice.formulation)) CheckBodyFormulationHandles(model);
   CheckIntegratorOptions(IntegratorOptionsFrom(config, config.duration));
