@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "common/check.h"
+#include "common/utf8.h"
 #include "server/parse/asset_references.h"
 #include "server/wire/mesh_file_search.h"
 #include "urdf_reading/mesh_lookup.h"
@@ -27,6 +28,19 @@ std::string ReadFile(const fs::path& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+// A text file of the bundle (URDF, scene script): protobuf's `string` fields hold UTF-8
+// only, so anything else is named here, by file and line, before it could be sent.
+std::string ReadTextFile(const fs::path& path) {
+  std::string text = ReadFile(path);
+  if (const auto bad = FirstInvalidUtf8(text)) {
+    const bool utf16 = text.find('\0') != std::string::npos;
+    throw InputError(path.string() + ": " +
+                     (utf16 ? "the file is UTF-16 or UTF-32, not UTF-8" : NotUtf8At(text, *bad)) +
+                     "; convert the file to UTF-8 (e.g. iconv -f latin1 -t utf-8)");
+  }
+  return text;
 }
 
 std::string Lower(std::string s) {
@@ -156,9 +170,9 @@ BundleRead ReadModelBundle(const BundleFiles& files) {
     if (scenes.size() == 1 && scene_path.empty()) scene_path = scenes[0];
   }
   if (IsXacro(urdf_path)) RefuseXacro(urdf_path);
-  bundle.set_urdf(ReadFile(urdf_path));
+  bundle.set_urdf(ReadTextFile(urdf_path));
   bundle.set_urdf_file_name(urdf_path.string());
-  if (!scene_path.empty()) bundle.set_scene_script(ReadFile(scene_path));
+  if (!scene_path.empty()) bundle.set_scene_script(ReadTextFile(scene_path));
 
   AssetSet assets(&bundle);
   std::string outline_error;

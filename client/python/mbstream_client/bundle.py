@@ -18,6 +18,20 @@ def _read(path: str) -> bytes:
         raise bad_request("cannot read %s: check the path and permissions" % path) from None
 
 
+def _text(path: str) -> str:
+    """A text file of the bundle as str: protobuf strings hold UTF-8 only, so anything else
+    is named here by file and line (as the C++ CLI does), not as a UnicodeDecodeError."""
+    data = _read(path)
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        line = data.count(b"\n", 0, error.start) + 1
+        what = ("the file is UTF-16 or UTF-32, not UTF-8" if b"\0" in data else
+                "byte 0x%02X is not UTF-8" % data[error.start])
+        raise bad_request("%s: line %d: %s; convert the file to UTF-8 (e.g. iconv -f latin1 "
+                          "-t utf-8)" % (path, line, what)) from None
+
+
 def _files_with_extension(directory: str, ext: str) -> list:
     return sorted(os.path.join(directory, n) for n in os.listdir(directory)
                   if n.lower().endswith(ext) and os.path.isfile(os.path.join(directory, n)))
@@ -48,16 +62,16 @@ def read_model_bundle(urdf_path_or_dir: PathLike, scene: Optional[PathLike] = No
         urdf_path = urdfs[0]
         scenes = _files_with_extension(path, ".scene")
         if len(scenes) == 1 and not scene:
-            bundle.scene_script = _read(scenes[0]).decode("utf-8")
+            bundle.scene_script = _text(scenes[0])
         stls = []
         for root, _, files in os.walk(path):
             stls += [os.path.join(root, f) for f in files if f.lower().endswith(".stl")]
         for stl in sorted(stls):
             _add_asset(bundle, os.path.relpath(stl, path).replace(os.sep, "/"), stl)
-    bundle.urdf = _read(urdf_path).decode("utf-8")
+    bundle.urdf = _text(urdf_path)
     bundle.urdf_file_name = urdf_path
     if scene:
-        bundle.scene_script = _read(os.fspath(scene)).decode("utf-8")
+        bundle.scene_script = _text(os.fspath(scene))
     for asset in assets:
         asset = os.fspath(asset)
         _add_asset(bundle, os.path.basename(asset), asset)

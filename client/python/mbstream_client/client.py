@@ -16,6 +16,15 @@ from .server_check import ServerCheck, check_server
 from .spec import SpecLike, load_spec
 
 
+def _check_model(model: Any) -> None:
+    """The model of a run is its id or name: a non-empty str (run(42) or run(None) would
+    otherwise reach protobuf and fail there in its own words)."""
+    if not isinstance(model, str):
+        raise TypeError("model must be a model id or name (str), not %s" % type(model).__name__)
+    if not model:
+        raise ValueError("model is empty; give a model id or name (Client.models() lists them)")
+
+
 class Client:
     """A connection to an mbstream server (see connect()). `stub` is the generated
     SimulationStub for calls the client does not wrap. Use as a context manager or call
@@ -103,6 +112,7 @@ class Client:
         (duration, output_interval, max_step, step), applied over the spec.
         watch=True opens the frame stream at once, so that `for frame in run:` sees the run
         from its first frames; iterate the returned handle to get them as they arrive."""
+        _check_model(model)
         request = service_pb2.StartRunRequest(model=model, spec=load_spec(spec, **overrides))
         with rpc_errors():
             info = self.stub.StartRun(request)
@@ -119,6 +129,7 @@ class Client:
         the server's queue takes raise RESOURCE_EXHAUSTED). Each spec as in run(); the
         overrides apply to every spec. Returns the Run handles in the specs' order; fetch
         their results with results()."""
+        _check_model(model)
         request = service_pb2.StartRunsRequest(
             model=model, specs=[load_spec(spec, **overrides) for spec in specs])
         with rpc_errors():

@@ -4,6 +4,7 @@ import os
 from typing import Any, Dict, Union
 
 from google.protobuf import json_format
+from google.protobuf.descriptor import FieldDescriptor
 
 from ._stubs import run_spec_pb2
 from .errors import bad_request
@@ -25,6 +26,31 @@ def _parse(value: Any, where: str) -> "run_spec_pb2.RunSpec":
         return json_format.ParseDict(value, run_spec_pb2.RunSpec())
     except json_format.ParseError as error:
         raise bad_request("%s: %s" % (where, error)) from None
+
+
+_NUMBER_TYPES = {
+    FieldDescriptor.CPPTYPE_DOUBLE, FieldDescriptor.CPPTYPE_FLOAT, FieldDescriptor.CPPTYPE_INT32,
+    FieldDescriptor.CPPTYPE_INT64, FieldDescriptor.CPPTYPE_UINT32, FieldDescriptor.CPPTYPE_UINT64,
+}
+
+
+def _check_scalar(field: FieldDescriptor, key: str, value: Any) -> None:
+    """An override of a number field must be a number, of a bool field a bool, of a string
+    field a str: protobuf's JSON mapping would read duration="5" as 5 without a word."""
+    if field.label == FieldDescriptor.LABEL_REPEATED:
+        return
+    if field.cpp_type in _NUMBER_TYPES:
+        ok = isinstance(value, (int, float)) and not isinstance(value, bool)
+        expected = "a number"
+    elif field.cpp_type == FieldDescriptor.CPPTYPE_BOOL:
+        ok, expected = isinstance(value, bool), "True or False"
+    elif field.cpp_type == FieldDescriptor.CPPTYPE_STRING:
+        ok, expected = isinstance(value, str), "a str"
+    else:
+        return
+    if not ok:
+        raise TypeError("override %s=%r: %s must be %s, not %s"
+                        % (key, value, field.name, expected, type(value).__name__))
 
 
 def load_spec(spec: SpecLike = None, **overrides: Any) -> "run_spec_pb2.RunSpec":
@@ -68,6 +94,7 @@ def load_spec(spec: SpecLike = None, **overrides: Any) -> "run_spec_pb2.RunSpec"
         if field not in fields:
             raise TypeError("unknown run spec override '%s'; use a RunSpec field (%s) or one of %s"
                             % (key, ", ".join(sorted(fields)), ", ".join(OVERRIDE_ALIASES)))
+        _check_scalar(fields[field], key, value)
         if hasattr(value, "DESCRIPTOR"):  # a message (Vector3, Baumgarte)
             value = json_format.MessageToDict(value, preserving_proto_field_name=True)
         elif isinstance(value, (list, tuple)):

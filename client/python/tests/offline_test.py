@@ -135,6 +135,36 @@ class ErrorTest(unittest.TestCase):
             mb.connect("192.0.2.1:50051", token="s3cret")
         self.assertIn("refusing to send a token in the clear", caught.exception.message)
 
+    def test_hostile_inputs_are_named_before_any_call(self):
+        # issue 36: a URDF that is not UTF-8 is named by file and line, not UnicodeDecodeError.
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "latin1.urdf")
+            with open(path, "wb") as f:
+                f.write(b'<robot name="r">\n<joint name="j\xff"/>\n</robot>\n')
+            with self.assertRaises(mb.BadRequest) as caught:
+                mb.read_model_bundle(path)
+            self.assertIn("latin1.urdf: line 2: byte 0xFF is not UTF-8", caught.exception.message)
+            utf16 = os.path.join(tmp, "utf16.urdf")
+            with open(utf16, "wb") as f:
+                f.write('<robot name="r"/>'.encode("utf-16"))
+            with self.assertRaises(mb.BadRequest) as caught:
+                mb.read_model_bundle(utf16)
+            self.assertIn("UTF-16", caught.exception.message)
+        # A number field's override must be a number: duration="5" is not read as 5.
+        with self.assertRaises(TypeError) as caught:
+            mb.load_spec(None, duration="5")
+        self.assertIn("duration_s must be a number, not str", str(caught.exception))
+        with self.assertRaises(TypeError):
+            mb.load_spec(None, want_torques=1)
+        self.assertEqual(mb.load_spec(None, duration=5).duration_s, 5.0)
+        # The model of a run is a str: run(42) and run(None) never reach protobuf.
+        client = mb.Client.__new__(mb.Client)
+        for model, error in ((42, TypeError), (None, TypeError), ("", ValueError)):
+            with self.subTest(model=model):
+                with self.assertRaises(error) as caught:
+                    client.run(model)
+                self.assertIn("model", str(caught.exception))
+
 
 class ConnectTest(unittest.TestCase):
     def test_nothing_listening_raises_unavailable_at_connect(self):
