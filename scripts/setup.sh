@@ -32,8 +32,21 @@ PACKAGES=(
   python3-setuptools python3-pip python3-venv python3-tqdm python3-pandas python3-mypy
   # deploy/: validates the docker-compose demo (docker-compose config; no engine needed)
   docker-compose
-  # deploy/multihost: network namespaces
+  # deploy/multihost: network namespaces (ip, ss)
   iproute2
+  # commands the tests and deploy scripts run (checked below): curl (deploy/cluster/netns.sh),
+  # ps/pkill (tests/e2e), runuser (PostgreSQL as a non-root user), timeout
+  curl procps util-linux coreutils
+)
+
+# Every command a script or test runs, with the package that provides it: after the install
+# each must be found, so a missing install step fails here, by name, and not in a test.
+COMMANDS=(
+  curl:curl ip:iproute2 ss:iproute2 ps:procps pkill:procps runuser:util-linux timeout:coreutils
+  psql:postgresql-client haproxy:haproxy Xvfb:xvfb xvfb-run:xvfb xauth:xauth
+  docker-compose:docker-compose openssl:openssl python3:python3 clang++:clang
+  clang-format:clang-format ccache:ccache cmake:cmake protoc:protobuf-compiler
+  grpc_cpp_plugin:protobuf-compiler-grpc
 )
 
 missing=()
@@ -51,6 +64,21 @@ if [ ${#missing[@]} -gt 0 ]; then
   $SUDO apt-get update -qq
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
   echo "setup: done"
+fi
+
+# PostgreSQL's server programs (initdb, pg_ctl) live outside PATH, in its versioned folder.
+pg_bin=$(ls -d /usr/lib/postgresql/*/bin 2>/dev/null | sort -V | tail -n 1)
+absent=()
+for entry in "${COMMANDS[@]}"; do
+  command -v "${entry%%:*}" >/dev/null 2>&1 || absent+=("${entry%%:*} (package ${entry#*:})")
+done
+for program in initdb pg_ctl; do
+  [ -n "$pg_bin" ] && [ -x "$pg_bin/$program" ] || absent+=("$program (package postgresql)")
+done
+if [ ${#absent[@]} -gt 0 ]; then
+  echo "setup: these commands are still missing after the install: ${absent[*]};" \
+    "install the packages named (apt-get install ...) and run setup.sh again" >&2
+  exit 1
 fi
 
 # SUNDIALS 6.4.1 with optimisation, from Debian's source package, into a per-user cache that

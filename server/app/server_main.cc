@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <csignal>
+#include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <iostream>
 #include <thread>
@@ -181,6 +183,19 @@ int main(int argc, char** argv) {
     sigwait(&signals, &signal);
     spdlog::info("signal {} received", signal == SIGINT ? "SIGINT" : "SIGTERM");
     if (signal == SIGTERM) host->Drain();
+    // A stop is at once: a handler that outlives gRPC's 2 s shutdown deadline (a request
+    // still being served) must not hold the process, and a second signal ends it now. The
+    // store stays consistent (SQLite's journal, PostgreSQL's transactions; runs are marked
+    // INTERRUPTED at the next start).
+    std::thread([&signals] {
+      const timespec deadline{5, 0};
+      siginfo_t info;
+      const bool again = sigtimedwait(&signals, &info, &deadline) > 0;
+      spdlog::warn("{}; exiting without waiting for the requests still being served",
+                   again ? "a second signal" : "the shutdown took over 5 s");
+      spdlog::default_logger()->flush();
+      std::_Exit(1);
+    }).detach();
     host->Shutdown();
   });
   host->Wait();
