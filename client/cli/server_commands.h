@@ -1,5 +1,5 @@
 // The commands that talk to a server: submit, models, runs, run, result, cancel, health
-// (design.md section 4). Each callback stores its exit code in *exit_code.
+// (README.md, "Server, viewer and CLI by hand"). Each callback stores its exit code in *exit_code.
 #pragma once
 
 #include <CLI/CLI.hpp>

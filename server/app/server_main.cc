@@ -1,4 +1,5 @@
-// mbstream-server: hosts models, integrates runs and streams them (design.md section 4).
+// mbstream-server: hosts models, integrates runs and streams them (flags: README.md,
+// "Server, viewer and CLI by hand"; threads: docs/architecture.md).
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 

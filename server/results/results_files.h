@@ -1,6 +1,7 @@
-// Writes a run's results directory (design.md section 4): joints.csv, velocities.csv,
-// tcp.csv, torques.csv (when dynamics ran), probes.csv (when a viewer answered), stats.json.
-// Numbers are printed with 17 significant digits, so the same run gives bit-identical files.
+// Writes a run's results directory (the files README.md lists): joints.csv, velocities.csv,
+// tcp.csv, torques.csv (when dynamics ran), energy.csv, probes.csv (when a viewer answered),
+// stats.json. Numbers are written in their shortest exact form (std::to_chars: each reads back
+// as the same double), so the same run gives bit-identical files.
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-// One subscriber's bounded queue of stream events (fan-out, design.md section 1).
+// One subscriber's bounded queue of stream events (fan-out: docs/architecture.md, step 3).
 //
 // The run's thread pushes; the subscriber's stream handler pops. Pushing never blocks: when
 // the queue holds `capacity` frames, the oldest frame is dropped and counted as missed, so a

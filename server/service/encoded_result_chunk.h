@@ -1,5 +1,5 @@
 // A GetResult message built from bytes already serialized: the stored frames are sent as the
-// store holds them, not parsed and serialized again (docs/performance.md, "fourth session").
+// store holds them, not parsed and serialized again (docs/performance.md, "Many runs at once").
 #pragma once
 
 #include <cstddef>

@@ -1,8 +1,8 @@
 // The SQLite store's frames, outside the database: one append-only file
 // (<data dir>/mbstream.frames) holding each chunk blob (frame_chunks.h) where its row in
 // frame_chunks points (offset, bytes, CRC-32C). A result's 84 KB then costs one write() instead
-// of some 50 WAL page writes and the checkpoint's copy of each (docs/performance.md, "eighth
-// session").
+// of some 50 WAL page writes and the checkpoint's copy of each (docs/performance.md, "Many
+// runs at once").
 //
 // Crash story: a chunk is appended before the transaction that stores its row commits, so a
 // committed row never points past what this process wrote; a process that dies between the

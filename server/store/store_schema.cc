@@ -91,7 +91,7 @@ CREATE INDEX runs_queue ON runs (state, created_unix_ms, ord);
 
 // Version 4: runs_by_state goes; runs_queue (state, created_unix_ms, ord) answers every
 // lookup by state, and every change of a run's state wrote both (one WAL page more for each
-// run queued and each run ended; docs/performance.md, "seventh session").
+// run queued and each run ended).
 constexpr const char* kSchemaV4 = R"sql(
 DROP INDEX IF EXISTS runs_by_state;
 )sql";

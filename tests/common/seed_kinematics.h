@@ -1,5 +1,6 @@
-// The seed's closed-form forward kinematics of the IRB 1600 (seed spec section 2),
-// written independently of the model code, as the reference of the tests.
+// The seed's closed-form forward kinematics of the IRB 1600 (the lengths of the Device block
+// of models/irb1600/irb1600.scene), written independently of the model code, as the
+// reference of the tests.
 #pragma once
 
 #include <Eigen/Geometry>

@@ -9,8 +9,8 @@
 
 namespace mbstream::testing {
 
-// The IRB 1600 kinematics of the seed (section 2) with plausible made-up inertias, a
-// named point "tcp" at (0.065, 0, 0) in link6; armature and damping zero.
+// The IRB 1600 kinematics of the seed (models/irb1600/irb1600.urdf) with plausible made-up
+// inertias, a named point "tcp" at (0.065, 0, 0) in link6; armature and damping zero.
 Model Irb1600Model();
 
 // A 7-joint arm (revolute z, y, z, y, z, y, x) of other proportions and masses than the

@@ -73,7 +73,7 @@ Eigen::MatrixXd FiniteDifferenceJacobian(const Model& model, int frame, const Ei
     ForwardKinematics(model, data, qm);
     const Pose Xm = data.frame_world[frame];
     const Matrix3d dR = (Xp.R - Xm.R) / (2 * h);
-    const Matrix3d W = dR * R0.transpose();  // [w]x = dR/dt R^T (seed section 1)
+    const Matrix3d W = dR * R0.transpose();  // [w]x = dR/dt R^T (w in the base frame)
     J.col(j) << W(2, 1), W(0, 2), W(1, 0), (Xp.p - Xm.p) / (2 * h);
   }
   return J;

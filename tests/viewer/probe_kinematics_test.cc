@@ -22,7 +22,8 @@ using scene_script::testing::SourcePath;
 
 constexpr double kPi = std::numbers::pi;
 
-// Seed spec section 2, written out independently: frames of joints 1..6 and the TCP.
+// The seed's IRB 1600 (the Device block of models/irb1600/irb1600.scene), written out
+// independently: frames of joints 1..6 and the TCP.
 std::vector<Isometry3d> SeedFrames(const std::vector<double>& q) {
   std::vector<Isometry3d> f(7);
   f[0] = Isometry3d::Identity();

@@ -50,7 +50,8 @@ inline void WriteTinyStl(const std::filesystem::path& path) {
   out.write(reinterpret_cast<const char*>(&attribute), 2);
 }
 
-// The seed's device block (spec section 4.4) with a probe on the TCP in the base frame.
+// The seed's device block (as the seed chapter printed it) with a probe on the TCP in the base
+// frame.
 inline const char* kSeedDevice = R"(Device IRB1600 (euler -90.0 -90.0 0.0 lbox 1200)
   Joint 1 revolute z
   Joint 2 (shift x 150 z 486.5) revolute y

@@ -1,4 +1,4 @@
-// The seed's printed script (spec section 4.4) gives exactly its real errors.
+// The seed chapter's script as printed (its OCR damage repaired) gives exactly its real errors.
 #include <gtest/gtest.h>
 
 #include <gmock/gmock.h>
