@@ -84,12 +84,12 @@ UrdfImport ImportUrdf(const std::string& text, const std::string& source,
       ParseWithUrdfdom(facts.urdfdom_text, diagnostics);
   const JointList joints = JointsParentFirst(*urdf, facts, diagnostics);
 
-  int missing_collision = 0;
-  CheckMeshes(*urdf->getRoot(), assets, diagnostics, &missing_collision);
+  MissingMeshes missing_meshes;
+  CheckMeshes(*urdf->getRoot(), assets, diagnostics, &missing_meshes);
   ModelBuilder builder(urdf->getName(), urdf->getRoot()->name);
   for (const auto& joint : joints) {
     const urdf::Link& child = *urdf->getLink(joint->child_link_name);
-    CheckMeshes(child, assets, diagnostics, &missing_collision);
+    CheckMeshes(child, assets, diagnostics, &missing_meshes);
     if (joint->type == urdf::Joint::FIXED) {
       const Pose X_PL = ToPose(joint->parent_to_joint_origin_transform);
       const RigidInertia inertia = ConvertInertia(child, "", diagnostics);
@@ -105,11 +105,7 @@ UrdfImport ImportUrdf(const std::string& text, const std::string& source,
       });
     }
   }
-  if (missing_collision > 0) {
-    diagnostics.Warn(source + ": " + std::to_string(missing_collision) +
-                     " collision mesh(es) not supplied; the engine does not need them "
-                     "(mbstream submit --with-collision attaches them)");
-  }
+  WarnMissingMeshes(missing_meshes, diagnostics);
   const std::string tcp = ChooseTcp(*urdf, joints, facts, diagnostics);
   if (!tcp.empty()) Guarded(source, [&] { builder.SetTcp(tcp); });
   result.model = builder.Build();

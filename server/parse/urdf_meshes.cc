@@ -23,19 +23,18 @@ bool MeshSupplied(const std::string& filename, const std::set<std::string>& asse
 }
 
 void CheckMeshes(const urdf::Link& link, const std::set<std::string>& assets,
-                 const UrdfDiagnostics& diagnostics, int* missing_collision) {
+                 const UrdfDiagnostics& diagnostics, MissingMeshes* missing) {
   const auto check = [&](const urdf::GeometrySharedPtr& geometry, const char* part) {
     const auto mesh = std::dynamic_pointer_cast<const urdf::Mesh>(geometry);
     if (mesh == nullptr) return;
     if (!MeshSupplied(mesh->filename, assets)) {
       if (std::string(part) == "collision") {
-        ++*missing_collision;
+        ++missing->collision;
         return;
       }
-      diagnostics.Warn(diagnostics.Link(link.name) + ": " + part + " mesh '" + mesh->filename +
-                       "' is not supplied; the physics does not need it and viewers draw a " +
-                       "placeholder box (mbstream submit attaches the meshes it finds; pass " +
-                       "--package-path DIR or --asset " + BaseName(mesh->filename) + ")");
+      if (missing->visual.empty()) missing->first_file = mesh->filename;
+      missing->visual.push_back(diagnostics.Link(link.name) + ": " + part + " mesh '" +
+                                mesh->filename + "'");
       return;
     }
     const urdf::Vector3& s = mesh->scale;
@@ -51,6 +50,31 @@ void CheckMeshes(const urdf::Link& link, const std::set<std::string>& assets,
   }
   for (const urdf::CollisionSharedPtr& collision : link.collision_array) {
     if (collision != nullptr) check(collision->geometry, "collision");
+  }
+}
+
+void WarnMissingMeshes(const MissingMeshes& missing, const UrdfDiagnostics& diagnostics) {
+  const bool one = missing.visual.size() == 1;
+  const std::string advice =
+      std::string(one ? "; the physics does not need it and viewers draw a placeholder box"
+                      : "; the physics does not need them and viewers draw placeholder boxes") +
+      " (mbstream submit attaches the meshes it finds; pass --package-path DIR or --asset " +
+      BaseName(missing.first_file) + ")";
+  if (one) {
+    diagnostics.Warn(missing.visual.front() + " is not supplied" + advice);
+  } else if (!missing.visual.empty()) {
+    std::string first;
+    for (size_t i = 0; i < missing.visual.size() && i < 3; ++i) {
+      first += (i == 0 ? "" : "; ") + missing.visual[i];
+    }
+    diagnostics.Warn(diagnostics.source() + ": " + std::to_string(missing.visual.size()) +
+                     " visual meshes are not supplied (" + first +
+                     (missing.visual.size() > 3 ? "; ..." : "") + ")" + advice);
+  }
+  if (missing.collision > 0) {
+    diagnostics.Warn(diagnostics.source() + ": " + std::to_string(missing.collision) +
+                     " collision mesh(es) not supplied; the engine does not need them "
+                     "(mbstream submit --with-collision attaches them)");
   }
 }
 

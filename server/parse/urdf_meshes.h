@@ -17,12 +17,22 @@ namespace mbstream {
 // viewer looks the mesh up by too).
 bool MeshSupplied(const std::string& filename, const std::set<std::string>& assets);
 
-// Warns, naming the link and the file, about a visual mesh of `link` that is not supplied
-// (the physics never reads a mesh; viewers draw a placeholder) and about scaled meshes;
-// counts the collision meshes that are not supplied in `*missing_collision` (the caller
-// warns once: they are only attached on request).
+// The meshes of a model that are not supplied: the physics never reads a mesh, so they are
+// said once per model (WarnMissingMeshes), not once per mesh (a humanoid has 90).
+struct MissingMeshes {
+  std::vector<std::string> visual;  // "link 'NAME' (line N): FILE" of each missing visual mesh
+  std::string first_file;           // the first missing visual mesh's file, for the advice
+  int collision = 0;                // collision meshes are only attached on request
+};
+
+// Warns, naming the link and the file, about scaled meshes of `link`; notes its meshes that
+// are not supplied in `*missing`.
 void CheckMeshes(const urdf::Link& link, const std::set<std::string>& assets,
-                 const UrdfDiagnostics& diagnostics, int* missing_collision);
+                 const UrdfDiagnostics& diagnostics, MissingMeshes* missing);
+
+// One warning for the missing visual meshes (each named when there is one, the count and the
+// first three otherwise) and one for the missing collision meshes.
+void WarnMissingMeshes(const MissingMeshes& missing, const UrdfDiagnostics& diagnostics);
 
 // The files among `mesh_files` (as written in the URDF) that exist relative to
 // `directory`, looked up as urdf_reading::FindMeshFile does (the viewer's lookup too).

@@ -2,6 +2,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 
 #include "server/parse/urdf_import.h"
@@ -21,6 +22,7 @@ using testing::JointXml;
 using testing::kAxisAndLimits;
 using testing::kInertial;
 using testing::LinkXml;
+using ::testing::Not;
 using testing::OneJoint;
 using testing::Robot;
 
@@ -92,6 +94,25 @@ TEST(UrdfImportWarningsTest, ScaledMesh) {
   EXPECT_THAT(ImportWarnings(WithTcp(kAxisAndLimits, kInertial + visual), {"m.stl"}),
               ElementsAre(AllOf(HasSubstr("odd.urdf:3: link 'link1'"),
                                 HasSubstr("mesh 'm.stl' is scaled by (0.001 0.001 0.001)"))));
+}
+
+TEST(UrdfImportWarningsTest, MissingVisualMeshesAreSaidOnceAsACount) {
+  std::string body;
+  for (int i = 1; i <= 5; ++i) {
+    const std::string link = "link" + std::to_string(i);
+    body += LinkXml(link, kInertial + "<visual><geometry><mesh filename=\"package://p/m" +
+                              std::to_string(i) + ".dae\"/></geometry></visual>") +
+            JointXml("j" + std::to_string(i), "revolute",
+                     i == 1 ? "base" : "link" + std::to_string(i - 1), link);
+  }
+  const std::vector<std::string> warnings = ImportWarnings(Robot(body));
+  const auto meshes = std::count_if(warnings.begin(), warnings.end(), [](const std::string& w) {
+    return w.find("mesh") != std::string::npos;
+  });
+  EXPECT_EQ(meshes, 1);
+  EXPECT_THAT(warnings, Contains(AllOf(HasSubstr("odd.urdf: 5 visual meshes are not supplied"),
+                                       HasSubstr("link 'link1'"), HasSubstr("m3.dae"),
+                                       Not(HasSubstr("m4.dae")), HasSubstr("--asset m1.dae"))));
 }
 
 TEST(UrdfImportWarningsTest, IgnoredJointFeatures) {
