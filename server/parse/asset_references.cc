@@ -2,22 +2,12 @@
 
 #include <cctype>
 
+#include "common/ascii.h"
 #include "urdf_reading/mesh_lookup.h"
 
 namespace mbstream {
 
 namespace {
-
-bool EqualsIgnoreCase(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i) {
-    if (std::tolower(static_cast<unsigned char>(a[i])) !=
-        std::tolower(static_cast<unsigned char>(b[i]))) {
-      return false;
-    }
-  }
-  return true;
-}
 
 // The scene lexer's rules (viewer/script/lexer.h): white space separates; ( ) ; , are tokens
 // of their own; ! starts a line comment and $ ... $ is a comment block.

@@ -7,17 +7,6 @@
 
 namespace mbstream::scene_script {
 
-bool EqualsIgnoreCase(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i) {
-    if (std::tolower(static_cast<unsigned char>(a[i])) !=
-        std::tolower(static_cast<unsigned char>(b[i]))) {
-      return false;
-    }
-  }
-  return true;
-}
-
 const Token& TokenStream::Peek(size_t ahead) const {
   const size_t i = std::min(index_ + ahead, tokens_.size() - 1);
   return tokens_[i];

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/ascii.h"
 #include "viewer/script/diagnostics.h"
 #include "viewer/script/token.h"
 
@@ -15,8 +16,7 @@ namespace mbstream::scene_script {
 // Thrown after an error was recorded: the current command cannot be read further.
 struct CommandAbort {};
 
-// ASCII case-insensitive equality.
-bool EqualsIgnoreCase(std::string_view a, std::string_view b);
+using ::mbstream::EqualsIgnoreCase;  // common/ascii.h
 
 class TokenStream {
  public:
