@@ -9,7 +9,9 @@ namespace mbstream::testing {
 namespace {
 
 using ::testing::AllOf;
+using ::testing::Contains;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 // Calls grpc.health.v1.Health/Check for the whole server (empty request) as a blocking call
 // on this thread (the generated stubs' own path), and returns the serialized response. Not
@@ -104,6 +106,24 @@ TEST_F(ModelsServiceTest, BuiltinModelsAreListedAndFoundByName) {
   ASSERT_TRUE(stub().GetModel(&get_context, request, &model).ok());
   EXPECT_EQ(model.info().name(), "irb1600");
   EXPECT_THAT(model.bundle().urdf(), HasSubstr("<robot"));
+}
+
+TEST_F(ModelsServiceTest, TakingABuiltinsNameIsWarned) {
+  v1::ModelBundle mine = IrbBundle();
+  mine.set_name("irb1600");
+  mine.set_urdf(mine.urdf() + "<!-- my own copy -->\n");  // other content: another model
+  v1::ModelInfo info;
+  ASSERT_TRUE(Submit(mine, &info).ok());
+  ASSERT_FALSE(info.builtin());
+  EXPECT_THAT(info.warnings(),
+              Contains(AllOf(HasSubstr("the name 'irb1600' was the built-in "
+                                       "model"),
+                             HasSubstr("stays reachable by its id"), HasSubstr("--name"))));
+  // A name of its own is not warned.
+  mine.set_name("my-irb");
+  mine.set_urdf(mine.urdf() + "<!-- renamed -->\n");
+  ASSERT_TRUE(Submit(mine, &info).ok());
+  EXPECT_THAT(info.warnings(), Not(Contains(HasSubstr("built-in"))));
 }
 
 TEST_F(ModelsServiceTest, UnknownModelIsNotFoundAndNamesTheKnownOnes) {
