@@ -280,106 +280,111 @@ std::vector<DriveConfig> ToDrives(const v1::RunSpec& spec,
   return drives;
 }
 
-}  // namespace
-
-RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& joint_names,
-                      const std::string& source) {
-  const Checker check(source);
-  RunConfig config;
-  if (const size_t bytes = spec.ByteSizeLong(); bytes > kMaxSpecBytes) {
-    check.Fail("(spec)", "is " + std::to_string(bytes) + " bytes encoded, more than " +
-                             std::to_string(kMaxSpecBytes) + "; give fewer or shorter fields");
-  }
+// duration_s, output_interval_s, max_step_s.
+void ReadTimes(const v1::RunSpec& spec, const Checker& check, RunConfig* config) {
   if (spec.has_duration_s()) {
-    config.duration = check.Positive(spec.duration_s(), "duration_s", "s",
-                                     "give the simulated time span, e.g. 20");
-    if (config.duration > kMaxDuration) {
-      check.Fail("duration_s", "is " + Format(config.duration) + " s, more than " +
+    config->duration = check.Positive(spec.duration_s(), "duration_s", "s",
+                                      "give the simulated time span, e.g. 20");
+    if (config->duration > kMaxDuration) {
+      check.Fail("duration_s", "is " + Format(config->duration) + " s, more than " +
                                    Format(kMaxDuration) + " s; give a shorter span");
     }
   }
   if (spec.has_output_interval_s()) {
-    config.output_interval = check.Positive(spec.output_interval_s(), "output_interval_s", "s",
-                                            "give the time between output frames, e.g. 0.05");
+    config->output_interval = check.Positive(spec.output_interval_s(), "output_interval_s", "s",
+                                             "give the time between output frames, e.g. 0.05");
   }
-  if (config.output_interval > config.duration) {
-    check.Fail("output_interval_s", Format(config.output_interval) +
-                                        " s is longer than duration_s (" + Format(config.duration) +
-                                        " s); give an interval no longer than the duration");
+  if (config->output_interval > config->duration) {
+    check.Fail("output_interval_s",
+               Format(config->output_interval) + " s is longer than duration_s (" +
+                   Format(config->duration) + " s); give an interval no longer than the duration");
   }
-  if (config.duration / config.output_interval > kMaxFrames) {
-    check.Fail("output_interval_s", Format(config.output_interval) + " s over duration_s " +
-                                        Format(config.duration) + " s gives more than " +
+  if (config->duration / config->output_interval > kMaxFrames) {
+    check.Fail("output_interval_s", Format(config->output_interval) + " s over duration_s " +
+                                        Format(config->duration) + " s gives more than " +
                                         Format(kMaxFrames) + " frames; give a longer interval");
   }
   if (spec.has_max_step_s()) {
-    config.max_step = check.NonNegative(spec.max_step_s(), "max_step_s", "s",
-                                        "give the largest internal step, or 0 for no limit");
-    if (config.max_step > 0.0 && config.max_step < kMinStep) {
-      check.Fail("max_step_s", "is " + Format(config.max_step) + " s, below the smallest " +
+    config->max_step = check.NonNegative(spec.max_step_s(), "max_step_s", "s",
+                                         "give the largest internal step, or 0 for no limit");
+    if (config->max_step > 0.0 && config->max_step < kMinStep) {
+      check.Fail("max_step_s", "is " + Format(config->max_step) + " s, below the smallest " +
                                    "step mbstream takes (" + Format(kMinStep) +
                                    " s); give 0 for no limit or a step of at least that");
     }
   }
-  if (!spec.formulation().empty() && !ParseFormulation(spec.formulation(), &config.formulation)) {
+}
+
+// formulation, method, erk_table, rtol, atol, fixed_step_s.
+void ReadSolver(const v1::RunSpec& spec, const Checker& check, RunConfig* config) {
+  if (!spec.formulation().empty() && !ParseFormulation(spec.formulation(), &config->formulation)) {
     check.Fail("formulation",
                "unknown name " + Quote(spec.formulation()) + "; give one of " + FormulationNames());
   }
   if (spec.method() == "auto") {
-    config.method_auto = true;
-  } else if (!spec.method().empty() && !ParseMethod(spec.method(), &config.method)) {
+    config->method_auto = true;
+  } else if (!spec.method().empty() && !ParseMethod(spec.method(), &config->method)) {
     check.Fail("method", "unknown name " + Quote(spec.method()) + "; give one of " + MethodNames() +
                              ", or auto with a target");
   }
-  config.erk_table = check.Name(spec.erk_table(), "erk_table");
+  config->erk_table = check.Name(spec.erk_table(), "erk_table");
   if (spec.has_rtol()) {
-    config.rtol = check.Tolerance(spec.rtol(), "rtol", "give a relative tolerance, e.g. 1e-6");
+    config->rtol = check.Tolerance(spec.rtol(), "rtol", "give a relative tolerance, e.g. 1e-6");
   }
   if (spec.has_atol()) {
-    config.atol = check.Tolerance(spec.atol(), "atol", "give an absolute tolerance, e.g. 1e-8");
+    config->atol = check.Tolerance(spec.atol(), "atol", "give an absolute tolerance, e.g. 1e-8");
   }
   if (spec.has_fixed_step_s()) {
-    config.fixed_step = check.Finite(spec.fixed_step_s(), "fixed_step_s", "s");
-    if ((config.method == Method::kRk4 || config.method == Method::kEuler) &&
-        !(config.fixed_step > 0.0)) {
+    config->fixed_step = check.Finite(spec.fixed_step_s(), "fixed_step_s", "s");
+    if ((config->method == Method::kRk4 || config->method == Method::kEuler) &&
+        !(config->fixed_step > 0.0)) {
       check.Fail("fixed_step_s", std::string("must be > 0 (s) for method ") +
-                                     MethodName(config.method) + ", got " +
-                                     Format(config.fixed_step) + "; give the step, e.g. 0.001");
+                                     MethodName(config->method) + ", got " +
+                                     Format(config->fixed_step) + "; give the step, e.g. 0.001");
     }
-    if (config.fixed_step > 0.0 && config.fixed_step < kMinStep) {
-      check.Fail("fixed_step_s", "is " + Format(config.fixed_step) + " s, below the smallest " +
+    if (config->fixed_step > 0.0 && config->fixed_step < kMinStep) {
+      check.Fail("fixed_step_s", "is " + Format(config->fixed_step) + " s, below the smallest " +
                                      "step mbstream takes (" + Format(kMinStep) +
                                      " s); give a larger step, e.g. 0.001");
     }
   }
+}
+
+// gravity, initial state, drives, torques, Baumgarte gains.
+void ReadPhysics(const v1::RunSpec& spec, const std::vector<std::string>& joint_names,
+                 const Checker& check, RunConfig* config) {
   if (spec.has_gravity()) {
-    config.gravity = {check.Finite(spec.gravity().x(), "gravity.x", "m/s^2"),
-                      check.Finite(spec.gravity().y(), "gravity.y", "m/s^2"),
-                      check.Finite(spec.gravity().z(), "gravity.z", "m/s^2")};
+    config->gravity = {check.Finite(spec.gravity().x(), "gravity.x", "m/s^2"),
+                       check.Finite(spec.gravity().y(), "gravity.y", "m/s^2"),
+                       check.Finite(spec.gravity().z(), "gravity.z", "m/s^2")};
     for (int axis = 0; axis < 3; ++axis) {
-      if (std::abs(config.gravity[axis]) > kMaxGravity) {
+      if (std::abs(config->gravity[axis]) > kMaxGravity) {
         check.Fail(std::string("gravity.") + "xyz"[axis],
-                   "is " + Format(config.gravity[axis]) + " m/s^2, beyond +-" +
+                   "is " + Format(config->gravity[axis]) + " m/s^2, beyond +-" +
                        Format(kMaxGravity) + " m/s^2 (1,000 g); give the gravity in m/s^2, " +
                        "e.g. z = -9.81");
       }
     }
   }
-  config.q0 = JointVector(spec.initial_q(), joint_names, "initial_q", kJointUnit, check);
-  config.qd0 = JointVector(spec.initial_qd(), joint_names, "initial_qd", "rad/s or m/s", check);
-  config.drives = ToDrives(spec, joint_names, check);
-  config.want_torques = spec.has_want_torques() ? spec.want_torques() : true;
+  config->q0 = JointVector(spec.initial_q(), joint_names, "initial_q", kJointUnit, check);
+  config->qd0 = JointVector(spec.initial_qd(), joint_names, "initial_qd", "rad/s or m/s", check);
+  config->drives = ToDrives(spec, joint_names, check);
+  config->want_torques = spec.has_want_torques() ? spec.want_torques() : true;
   if (spec.has_baumgarte()) {
     const v1::Baumgarte& baumgarte = spec.baumgarte();
     if (baumgarte.has_alpha()) {
-      config.baumgarte.alpha = check.NonNegative(baumgarte.alpha(), "baumgarte.alpha", "1/s",
-                                                 "give a non-negative feedback gain, e.g. 10");
+      config->baumgarte.alpha = check.NonNegative(baumgarte.alpha(), "baumgarte.alpha", "1/s",
+                                                  "give a non-negative feedback gain, e.g. 10");
     }
     if (baumgarte.has_beta()) {
-      config.baumgarte.beta = check.NonNegative(baumgarte.beta(), "baumgarte.beta", "1/s^2",
-                                                "give a non-negative feedback gain, e.g. 25");
+      config->baumgarte.beta = check.NonNegative(baumgarte.beta(), "baumgarte.beta", "1/s^2",
+                                                 "give a non-negative feedback gain, e.g. 25");
     }
   }
+}
+
+// max_internal_steps, max_cpu_s.
+void ReadBudget(const v1::RunSpec& spec, const Checker& check, RunConfig* config) {
   if (spec.has_max_internal_steps()) {
     if (spec.max_internal_steps() <= 0) {
       check.Fail("max_internal_steps", "must be > 0, got " +
@@ -387,42 +392,51 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& j
                                            "; give the most internal steps, e.g. 10000000, "
                                            "or leave it out for the default budget");
     }
-    config.max_steps = spec.max_internal_steps();
+    config->max_steps = spec.max_internal_steps();
   }
   if (spec.has_max_cpu_s()) {
-    config.max_cpu_s =
+    config->max_cpu_s =
         check.Positive(spec.max_cpu_s(), "max_cpu_s", "s of CPU",
                        "give the most CPU seconds the run may use, e.g. 60, or leave it out "
                        "for the default budget");
   }
+}
+
+// target, method auto, verify.
+void ReadTarget(const v1::RunSpec& spec, const Checker& check, RunConfig* config) {
   if (spec.has_target()) {
     const v1::Target& target = spec.target();
     const std::string advice =
         "give the largest error the run may have, e.g. 1e-5, or leave it out";
     if (target.has_tcp_error_m()) {
-      config.target.tcp_error_m =
+      config->target.tcp_error_m =
           check.Positive(target.tcp_error_m(), "target.tcp_error_m", "m", advice);
     }
     if (target.has_joint_error_rad()) {
-      config.target.joint_error_rad =
+      config->target.joint_error_rad =
           check.Positive(target.joint_error_rad(), "target.joint_error_rad", "rad", advice);
     }
     if (target.has_energy_error_rel()) {
-      config.target.energy_error_rel =
+      config->target.energy_error_rel =
           check.Positive(target.energy_error_rel(), "target.energy_error_rel", "relative", advice);
     }
-    if (!config.target.any()) {
+    if (!config->target.any()) {
       check.Fail("target", "is empty; give tcp_error_m, joint_error_rad or energy_error_rel");
     }
-    if (spec.method().empty()) config.method_auto = true;
+    if (spec.method().empty()) config->method_auto = true;
   }
-  if (config.method_auto && !config.target.any()) {
+  if (config->method_auto && !config->target.any()) {
     check.Fail("method",
                "auto chooses the method for an accuracy target, and the spec has none; "
                "give target.tcp_error_m (or joint_error_rad, energy_error_rel), or a "
                "method");
   }
-  config.verify = spec.has_verify() ? spec.verify() : true;
+  config->verify = spec.has_verify() ? spec.verify() : true;
+}
+
+// The fields only the server acts on (realtime, retries, max_output_frames): checked here so
+// that simulate refuses what the server refuses; not part of RunConfig.
+void CheckServerFields(const v1::RunSpec& spec, const Checker& check) {
   check.NonNegative(spec.realtime(), "realtime", "simulated s per wall-clock s",
                     "give 0 for as fast as possible or 1 for real time");
   if (spec.realtime() != 0.0 &&
@@ -442,6 +456,24 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& j
                                         std::to_string(spec.max_output_frames()) +
                                         "; give 0 for the server's limit");
   }
+}
+
+}  // namespace
+
+RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& joint_names,
+                      const std::string& source) {
+  const Checker check(source);
+  if (const size_t bytes = spec.ByteSizeLong(); bytes > kMaxSpecBytes) {
+    check.Fail("(spec)", "is " + std::to_string(bytes) + " bytes encoded, more than " +
+                             std::to_string(kMaxSpecBytes) + "; give fewer or shorter fields");
+  }
+  RunConfig config;
+  ReadTimes(spec, check, &config);
+  ReadSolver(spec, check, &config);
+  ReadPhysics(spec, joint_names, check, &config);
+  ReadBudget(spec, check, &config);
+  ReadTarget(spec, check, &config);
+  CheckServerFields(spec, check);
   return config;
 }
 
