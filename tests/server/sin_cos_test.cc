@@ -52,7 +52,7 @@ TEST(SinCosTest, WithinOneUlpNearMultiplesOfHalfPi) {
   }
 }
 
-TEST(SinCosTest, SpecialValues) {
+TEST(SinCosTest, SpecialValuesMatchTheLibrary) {
   double s, c;
   SinCos(0.0, &s, &c);
   EXPECT_EQ(s, 0.0);

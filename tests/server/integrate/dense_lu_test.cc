@@ -46,7 +46,7 @@ TEST(DenseLuTest, BlockedLuEqualsColumnByColumnBitForBit) {
   ExpectBlockedEqualsColumnByColumn<100>(130);  // a block inside a larger matrix
 }
 
-TEST(DenseLuTest, BlockedLuSolves) {
+TEST(DenseLuTest, BlockedLuFactorsSolveTheSystem) {
   const int n = 150;
   std::vector<double> a = RandomBlock(n, n, 9);
   const Eigen::MatrixXd m = Eigen::Map<Eigen::MatrixXd>(a.data(), n, n);

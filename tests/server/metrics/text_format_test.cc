@@ -42,7 +42,7 @@ TEST(TextFormatTest, FormatsValuesAsPrometheusReadsThem) {
   EXPECT_EQ(FormatValue(std::nan("")), "NaN");
 }
 
-TEST(TextFormatTest, ChecksNames) {
+TEST(TextFormatTest, MetricNamesAreChecked) {
   EXPECT_TRUE(IsMetricName("mbstream_frames_total"));
   EXPECT_TRUE(IsMetricName("job:rate5m"));
   EXPECT_FALSE(IsMetricName("1abc"));

@@ -11,7 +11,7 @@ namespace {
 
 using ::testing::ElementsAre;
 
-TEST(AssetReferencesTest, UrdfMeshNames) {
+TEST(AssetReferencesTest, UrdfMeshesAreLookedUpByEveryNameTheViewerUses) {
   EXPECT_THAT(UrdfMeshAssetNames("package://robot/meshes/base.stl"),
               ElementsAre("package://robot/meshes/base.stl", "robot/meshes/base.stl",
                           "meshes/base.stl", "base.stl"));

@@ -20,7 +20,7 @@ using testing::LinkXml;
 using testing::OneJoint;
 using testing::Robot;
 
-TEST(UrdfImportErrorsTest, MalformedXml) {
+TEST(UrdfImportErrorsTest, MalformedXmlNamesTheLine) {
   EXPECT_THAT(ImportError("<robot name=\"r\">\n<link name=\"base\">\n</robot>\n"),
               AllOf(HasSubstr("bad.urdf:3: "), HasSubstr("not well formed"),
                     HasSubstr("urdfdom cannot parse it")));
@@ -53,13 +53,13 @@ TEST(UrdfImportErrorsTest, UrdfdomErrorsItCarriesOnAfterAreFatal) {
                     HasSubstr("inertia")));
 }
 
-TEST(UrdfImportErrorsTest, NonFiniteAxis) {
+TEST(UrdfImportErrorsTest, NonFiniteAxisIsRefused) {
   EXPECT_THAT(ImportError(OneJoint(
                   R"(<axis xyz="nan 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>)")),
               AllOf(HasSubstr("bad.urdf:4: joint 'j1'"), HasSubstr("axis")));
 }
 
-TEST(UrdfImportErrorsTest, LinkWithTwoParents) {
+TEST(UrdfImportErrorsTest, LinkWithTwoParentsIsRefused) {
   const std::string text =
       Robot(LinkXml("a") + LinkXml("b") + LinkXml("c") + JointXml("ja", "revolute", "base", "a") +
             JointXml("jb", "revolute", "base", "b") + JointXml("jc1", "revolute", "a", "c") +
@@ -80,7 +80,7 @@ TEST(UrdfImportErrorsTest, ClosedLoopDetachedFromTheRoot) {
                     HasSubstr("closed loop"), HasSubstr("'j2'")));
 }
 
-TEST(UrdfImportErrorsTest, FloatingAndPlanarJoints) {
+TEST(UrdfImportErrorsTest, FloatingAndPlanarJointsAreRefused) {
   for (const std::string type : {"floating", "planar"}) {
     EXPECT_THAT(
         ImportError(OneJoint("", kInertial, type)),
@@ -89,7 +89,7 @@ TEST(UrdfImportErrorsTest, FloatingAndPlanarJoints) {
   }
 }
 
-TEST(UrdfImportErrorsTest, MovingLinkWithoutMass) {
+TEST(UrdfImportErrorsTest, MovingLinkWithoutMassIsRefused) {
   EXPECT_THAT(ImportError(OneJoint(kAxisAndLimits, "")),
               AllOf(HasSubstr("bad.urdf:3: link 'link1'"), HasSubstr("no <inertial>"),
                     HasSubstr("joint 'j1' moves it"), HasSubstr("<mass")));
@@ -108,7 +108,7 @@ TEST(UrdfImportErrorsTest, NegativeMassOnAFixedLink) {
                     HasSubstr("cannot be negative")));
 }
 
-TEST(UrdfImportErrorsTest, InertiaNotPositiveDefinite) {
+TEST(UrdfImportErrorsTest, InertiaNotPositiveDefiniteIsRefused) {
   EXPECT_THAT(ImportError(OneJoint(kAxisAndLimits, InertialXml("1", "1", "1", "1", "2"))),
               AllOf(HasSubstr("bad.urdf:3: link 'link1'"), HasSubstr("not positive definite")));
 }
@@ -118,21 +118,21 @@ TEST(UrdfImportErrorsTest, InertiaBreaksTheTriangleInequality) {
               AllOf(HasSubstr("bad.urdf:3: link 'link1'"), HasSubstr("triangle inequality")));
 }
 
-TEST(UrdfImportErrorsTest, ZeroAxis) {
+TEST(UrdfImportErrorsTest, ZeroAxisIsRefused) {
   EXPECT_THAT(ImportError(OneJoint(
                   R"(<axis xyz="0 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/>)")),
               AllOf(HasSubstr("bad.urdf:4: joint 'j1'"), HasSubstr("axis (0 0 0) is zero"),
                     HasSubstr("<axis xyz=")));
 }
 
-TEST(UrdfImportErrorsTest, DuplicateLinkName) {
+TEST(UrdfImportErrorsTest, DuplicateLinkNameIsRefusedWithBothLines) {
   const std::string text =
       Robot(LinkXml("a") + LinkXml("a") + JointXml("j1", "revolute", "base", "a"));
   EXPECT_THAT(ImportError(text), AllOf(HasSubstr("bad.urdf:4: link 'a'"), HasSubstr("used twice"),
                                        HasSubstr("first on line 3"), HasSubstr("unique")));
 }
 
-TEST(UrdfImportErrorsTest, DuplicateJointName) {
+TEST(UrdfImportErrorsTest, DuplicateJointNameIsRefusedWithBothLines) {
   const std::string text =
       Robot(LinkXml("a") + LinkXml("b") + JointXml("j", "revolute", "base", "a") +
             JointXml("j", "revolute", "a", "b"));
@@ -140,7 +140,7 @@ TEST(UrdfImportErrorsTest, DuplicateJointName) {
                                        HasSubstr("first on line 5")));
 }
 
-TEST(UrdfImportErrorsTest, LowerLimitAboveUpper) {
+TEST(UrdfImportErrorsTest, LowerLimitAboveUpperIsRefused) {
   EXPECT_THAT(ImportError(OneJoint(
                   R"(<axis xyz="0 0 1"/><limit lower="1" upper="-1" effort="1" velocity="1"/>)")),
               AllOf(HasSubstr("bad.urdf:4: joint 'j1'"),
@@ -160,7 +160,7 @@ TEST(UrdfImportErrorsTest, NegativeEffortVelocityOrDamping) {
       AllOf(HasSubstr("bad.urdf:4: joint 'j1'"), HasSubstr("damping -0.5 N*m*s/rad is negative")));
 }
 
-TEST(UrdfImportErrorsTest, BadRotorInertia) {
+TEST(UrdfImportErrorsTest, BadRotorInertiaIsRefused) {
   EXPECT_THAT(
       ImportError(OneJoint(kAxisAndLimits + R"(<mbstream:rotor_inertia value="-1"/>)")),
       AllOf(HasSubstr("bad.urdf:4: joint 'j1'"), HasSubstr("rotor inertia -1"), HasSubstr(">= 0")));

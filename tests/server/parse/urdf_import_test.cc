@@ -34,7 +34,7 @@ std::string ModelPath(const std::string& relative) {
 
 double Deg(double degrees) { return degrees * pi / 180.0; }
 
-TEST(UrdfImportTest, Irb1600Structure) {
+TEST(UrdfImportTest, Irb1600ImportsItsSixJointsAndTcp) {
   const UrdfImport imported = ImportUrdfFile(ModelPath("irb1600/irb1600.urdf"));
   EXPECT_THAT(imported.warnings, IsEmpty());
   const Model& model = imported.model;
@@ -115,7 +115,7 @@ TEST(UrdfImportTest, SinglePendulumFollowsItsClosedForm) {
   }
 }
 
-TEST(UrdfImportTest, DoublePendulum) {
+TEST(UrdfImportTest, DoublePendulumImportsTwoJointsInOrder) {
   const UrdfImport imported = ImportUrdfFile(ModelPath("pendulum/double_pendulum.urdf"));
   EXPECT_THAT(imported.warnings, IsEmpty());
   const Model& model = imported.model;

@@ -76,19 +76,19 @@ TEST(UrdfImportWarningsTest, ZeroEffortAndVelocityLimitsMeanNoLimit) {
   EXPECT_EQ(imported.model.bodies[0].joint.limits.upper, 1.0);
 }
 
-TEST(UrdfImportWarningsTest, EmptyPositionRange) {
+TEST(UrdfImportWarningsTest, EmptyPositionRangeIsWarned) {
   EXPECT_THAT(ImportWarnings(WithTcp(R"(<limit effort="1" velocity="1"/>)")),
               ElementsAre(AllOf(HasSubstr("odd.urdf:4: joint 'j1'"),
                                 HasSubstr("position range is empty"))));
 }
 
-TEST(UrdfImportWarningsTest, VerySmallMass) {
+TEST(UrdfImportWarningsTest, VerySmallMassIsWarned) {
   EXPECT_THAT(ImportWarnings(WithTcp(kAxisAndLimits, InertialXml("1e-7", "1e-9", "1e-9", "1e-9"))),
               ElementsAre(AllOf(HasSubstr("odd.urdf:3: link 'link1'"),
                                 HasSubstr("mass 1e-07 kg is below 1e-6 kg"))));
 }
 
-TEST(UrdfImportWarningsTest, ScaledMesh) {
+TEST(UrdfImportWarningsTest, ScaledMeshIsWarned) {
   const std::string visual =
       R"(<visual><geometry><mesh filename="m.stl" scale="0.001 0.001 0.001"/></geometry></visual>)";
   EXPECT_THAT(ImportWarnings(WithTcp(kAxisAndLimits, kInertial + visual), {"m.stl"}),
@@ -115,7 +115,7 @@ TEST(UrdfImportWarningsTest, MissingVisualMeshesAreSaidOnceAsACount) {
                                        Not(HasSubstr("m4.dae")), HasSubstr("--asset m1.dae"))));
 }
 
-TEST(UrdfImportWarningsTest, IgnoredJointFeatures) {
+TEST(UrdfImportWarningsTest, IgnoredJointFeaturesAreWarned) {
   EXPECT_THAT(ImportWarnings(WithTcp(R"(<limit lower="-1" upper="1" effort="1" velocity="1"/>)",
                                      kInertial, "continuous")),
               ElementsAre(HasSubstr("position limits of a continuous joint are ignored")));
@@ -141,7 +141,7 @@ TEST(UrdfImportWarningsTest, ExtensionsInTheWrongPlace) {
                                 HasSubstr("rotor_inertia> on a fixed joint is ignored"))));
 }
 
-TEST(UrdfImportWarningsTest, InertiaWithoutMass) {
+TEST(UrdfImportWarningsTest, InertiaWithoutMassIsWarned) {
   const std::string text = Robot(LinkXml("link1") + JointXml("j1", "revolute", "base", "link1") +
                                  LinkXml("tcp", InertialXml("0", "1", "1", "1")) +
                                  JointXml("t", "fixed", "link1", "tcp", ""));
