@@ -1,0 +1,196 @@
+#include "server/kinematics/loop_constraints.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/check.h"
+
+namespace mbstream {
+
+namespace {
+
+// Two unit vectors that make (n1, n2, axis) a right-handed orthonormal basis.
+void Perpendiculars(const Vector3d& axis, Vector3d* n1, Vector3d* n2) {
+  *n1 = axis.unitOrthogonal();
+  *n2 = axis.cross(*n1);
+}
+
+}  // namespace
+
+LoopConstraints::LoopConstraints(const Model& model, const std::vector<LoopClosure>& loops)
+    : model_(model), loops_(loops) {
+  const Vector3d ex = Vector3d::UnitX(), ey = Vector3d::UnitY(), ez = Vector3d::UnitZ();
+  for (size_t k = 0; k < loops.size(); ++k) {
+    const LoopClosure& loop = loops[k];
+    const int i = static_cast<int>(k);
+    auto gap = [&](const Vector3d& n) { rows_.push_back({i, true, n, Vector3d::Zero()}); };
+    auto align = [&](const Vector3d& e, const Vector3d& f) { rows_.push_back({i, false, e, f}); };
+    Vector3d n1, n2;
+    Perpendiculars(loop.axis, &n1, &n2);
+    switch (loop.type) {
+      case LoopJointType::kRevolute:
+        gap(ex), gap(ey), gap(ez);
+        align(loop.axis, n1), align(loop.axis, n2);
+        break;
+      case LoopJointType::kPrismatic:
+        gap(n1), gap(n2);
+        align(ey, ez), align(ez, ex), align(ex, ey);
+        break;
+      case LoopJointType::kBall:
+        gap(ex), gap(ey), gap(ez);
+        break;
+      case LoopJointType::kFixed:
+        gap(ex), gap(ey), gap(ez);
+        align(ey, ez), align(ez, ex), align(ex, ey);
+        break;
+    }
+  }
+  const size_t n = model.bodies.size();
+  w_.assign(n, Vector3d::Zero());
+  v_.assign(n, Vector3d::Zero());
+  alpha_.assign(n, Vector3d::Zero());
+  acc_.assign(n, Vector3d::Zero());
+}
+
+LoopConstraints::Side LoopConstraints::SideA(const Data& data, const LoopClosure& loop) const {
+  if (loop.body_a == kBase) return {loop.X_AJ.R, loop.X_AJ.p};
+  const Pose& X_W = data.X_world[loop.body_a];
+  return {X_W.R * loop.X_AJ.R, X_W.Apply(loop.X_AJ.p)};
+}
+
+LoopConstraints::Side LoopConstraints::SideB(const Data& data, const LoopClosure& loop) const {
+  if (loop.body_b == kBase) return {loop.X_BJ.R, loop.X_BJ.p};
+  const Pose& X_W = data.X_world[loop.body_b];
+  return {X_W.R * loop.X_BJ.R, X_W.Apply(loop.X_BJ.p)};
+}
+
+void LoopConstraints::Residual(const Data& data, Eigen::Ref<Eigen::VectorXd> phi) const {
+  MBSTREAM_CHECK(phi.size() == num_rows());
+  for (int r = 0; r < num_rows(); ++r) {
+    const LoopRow& row = rows_[r];
+    const LoopClosure& loop = loops_[row.loop];
+    const Side a = SideA(data, loop), b = SideB(data, loop);
+    phi(r) = row.gap ? (b.p - a.p).dot(a.R * row.e_J) : (a.R * row.e_J).dot(b.R * row.f_J);
+  }
+}
+
+void LoopConstraints::AddChain(const Data& data, int body, const Vector3d& p, const Vector3d& n,
+                               const Vector3d& m, double sign, Eigen::Ref<Eigen::MatrixXd> G,
+                               int r) const {
+  for (int j = body; j != kBase; j = model_.bodies[j].parent) {
+    const Joint& joint = model_.bodies[j].joint;
+    const Vector3d u = data.X_world[j].R * joint.axis;
+    if (joint.type == JointType::kRevolute) {
+      G(r, j) += sign * (n.dot(u.cross(p - data.X_world[j].p)) + m.dot(u));
+    } else {
+      G(r, j) += sign * n.dot(u);
+    }
+  }
+}
+
+void LoopConstraints::Jacobian(const Data& data, Eigen::Ref<Eigen::MatrixXd> G) {
+  MBSTREAM_CHECK(G.rows() == num_rows() && G.cols() == model_.num_dofs());
+  G.setZero();
+  const Vector3d zero = Vector3d::Zero();
+  for (int r = 0; r < num_rows(); ++r) {
+    const LoopRow& row = rows_[r];
+    const LoopClosure& loop = loops_[row.loop];
+    const Side a = SideA(data, loop), b = SideB(data, loop);
+    if (row.gap) {
+      // d/dt [(p_B - p_A) . n] = n . (v_B - v_A) + (n x d) . w_a.
+      const Vector3d n = a.R * row.e_J;
+      const Vector3d d = b.p - a.p;
+      AddChain(data, loop.body_b, b.p, n, zero, 1.0, G, r);
+      AddChain(data, loop.body_a, a.p, n, -n.cross(d), -1.0, G, r);
+    } else {
+      // d/dt [e . f] = (e x f) . (w_a - w_b).
+      const Vector3d exf = (a.R * row.e_J).cross(b.R * row.f_J);
+      AddChain(data, loop.body_a, zero, zero, exf, 1.0, G, r);
+      AddChain(data, loop.body_b, zero, zero, exf, -1.0, G, r);
+    }
+  }
+}
+
+void LoopConstraints::VelocityKinematics(const Data& data,
+                                         const Eigen::Ref<const Eigen::VectorXd>& qd) {
+  const Vector3d zero = Vector3d::Zero();
+  for (int i = 0; i < model_.num_dofs(); ++i) {
+    const Body& body = model_.bodies[i];
+    const int p = body.parent;
+    const Vector3d& wp = p == kBase ? zero : w_[p];
+    const Vector3d& vp = p == kBase ? zero : v_[p];
+    const Vector3d& alp = p == kBase ? zero : alpha_[p];
+    const Vector3d& ap = p == kBase ? zero : acc_[p];
+    const Vector3d& op = p == kBase ? zero : data.X_world[p].p;
+    const Vector3d r = data.X_world[i].p - op;
+    const Vector3d uq = data.X_world[i].R * body.joint.axis * qd(i);
+    acc_[i] = ap + alp.cross(r) + wp.cross(wp.cross(r));
+    v_[i] = vp + wp.cross(r);
+    if (body.joint.type == JointType::kRevolute) {
+      w_[i] = wp + uq;
+      alpha_[i] = alp + wp.cross(uq);
+    } else {
+      w_[i] = wp;
+      alpha_[i] = alp;
+      v_[i] += uq;
+      acc_[i] += 2.0 * wp.cross(uq);
+    }
+  }
+}
+
+void LoopConstraints::Bias(const Data& data, const Eigen::Ref<const Eigen::VectorXd>& qd,
+                           Eigen::Ref<Eigen::VectorXd> bias) {
+  MBSTREAM_CHECK(bias.size() == num_rows() && qd.size() == model_.num_dofs());
+  VelocityKinematics(data, qd);
+  const Vector3d zero = Vector3d::Zero();
+  // Angular velocity and velocity-product acceleration of body k, and of a point P in it.
+  auto w = [&](int k) -> const Vector3d& { return k == kBase ? zero : w_[k]; };
+  auto alpha = [&](int k) -> const Vector3d& { return k == kBase ? zero : alpha_[k]; };
+  auto point_v = [&](int k, const Vector3d& p) -> Vector3d {
+    return k == kBase ? zero : Vector3d(v_[k] + w_[k].cross(p - data.X_world[k].p));
+  };
+  auto point_a = [&](int k, const Vector3d& p) -> Vector3d {
+    if (k == kBase) return zero;
+    const Vector3d s = p - data.X_world[k].p;
+    return acc_[k] + alpha_[k].cross(s) + w_[k].cross(w_[k].cross(s));
+  };
+  // Second derivative (at qdd = 0) of a unit vector u fixed in body k.
+  auto vector_a = [&](int k, const Vector3d& u) -> Vector3d {
+    return alpha(k).cross(u) + w(k).cross(w(k).cross(u));
+  };
+  for (int r = 0; r < num_rows(); ++r) {
+    const LoopRow& row = rows_[r];
+    const LoopClosure& loop = loops_[row.loop];
+    const Side a = SideA(data, loop), b = SideB(data, loop);
+    const int ka = loop.body_a, kb = loop.body_b;
+    const Vector3d e = a.R * row.e_J;
+    if (row.gap) {
+      const Vector3d d = b.p - a.p;
+      const Vector3d d_dot = point_v(kb, b.p) - point_v(ka, a.p);
+      bias(r) = (point_a(kb, b.p) - point_a(ka, a.p)).dot(e) + 2.0 * d_dot.dot(w(ka).cross(e)) +
+                d.dot(vector_a(ka, e));
+    } else {
+      const Vector3d f = b.R * row.f_J;
+      bias(r) = vector_a(ka, e).dot(f) + 2.0 * w(ka).cross(e).dot(w(kb).cross(f)) +
+                e.dot(vector_a(kb, f));
+    }
+  }
+}
+
+double LoopConstraints::MaxGap(const Eigen::Ref<const Eigen::VectorXd>& values) const {
+  double m = 0.0;
+  for (int r = 0; r < num_rows(); ++r) {
+    if (rows_[r].gap) m = std::max(m, std::abs(values(r)));
+  }
+  return m;
+}
+
+double LoopConstraints::MaxAlignment(const Eigen::Ref<const Eigen::VectorXd>& values) const {
+  double m = 0.0;
+  for (int r = 0; r < num_rows(); ++r) {
+    if (!rows_[r].gap) m = std::max(m, std::abs(values(r)));
+  }
+  return m;
+}
+
+}  // namespace mbstream

@@ -1,0 +1,77 @@
+// Closed kinematic loops as constraints on a tree's joint coordinates: phi(q) = 0.
+//
+// Each cut joint (server/model/loop_closure.h) gives 6 less its freedoms equations, of two
+// kinds, with frame A (parent side) and frame B (child side) of the joint in the world:
+// - gap rows, (p_B - p_A) . n with n a unit vector fixed in A (m): the joint's origins meet,
+//   in every direction (revolute, ball, fixed) or across the axis (prismatic);
+// - alignment rows, e . f with e fixed in A and f fixed in B, perpendicular when the loop
+//   is closed (rad, for small errors): the axes line up (revolute), the frames keep their
+//   orientation (prismatic, fixed).
+// The Jacobian G = dphi/dq comes from the tree's kinematics (joint axes and origins in the
+// world); the velocity constraint is G qd = 0 and the acceleration constraint
+// G qdd + bias = 0 with bias = dG/dt qd, from the bodies' velocity-product accelerations.
+// Rows can be dependent (a planar loop described with spatial joints): see loop_rank.h.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "server/model/data.h"
+#include "server/model/loop_closure.h"
+#include "server/model/model.h"
+
+namespace mbstream {
+
+// One constraint equation of a cut joint.
+struct LoopRow {
+  int loop = 0;     // index into the loops
+  bool gap = true;  // gap row (m) or alignment row (rad)
+  Vector3d e_J;     // gap: n; alignment: e; in J, fixed in A
+  Vector3d f_J;     // alignment: f, in J, fixed in B
+};
+
+// The loops' equations and the per-run workspace to evaluate them: allocated once, every
+// evaluation allocates nothing. Keeps references to model and loops.
+class LoopConstraints {
+ public:
+  LoopConstraints(const Model& model, const std::vector<LoopClosure>& loops);
+
+  int num_rows() const { return static_cast<int>(rows_.size()); }
+  const std::vector<LoopRow>& rows() const { return rows_; }
+  const std::vector<LoopClosure>& loops() const { return loops_; }
+
+  // phi(q) (size num_rows) after BodyKinematics (or ForwardKinematics) at q.
+  void Residual(const Data& data, Eigen::Ref<Eigen::VectorXd> phi) const;
+  // G = dphi/dq (num_rows x num_dofs) after BodyKinematics at q.
+  void Jacobian(const Data& data, Eigen::Ref<Eigen::MatrixXd> G);
+  // bias = dG/dt qd (size num_rows) after BodyKinematics at q: G qdd + bias is phi's second
+  // time derivative.
+  void Bias(const Data& data, const Eigen::Ref<const Eigen::VectorXd>& qd,
+            Eigen::Ref<Eigen::VectorXd> bias);
+
+  // Largest |phi| over gap rows (m) and alignment rows (rad) of `values` (a residual, or a
+  // velocity residual G qd: m/s and rad/s).
+  double MaxGap(const Eigen::Ref<const Eigen::VectorXd>& values) const;
+  double MaxAlignment(const Eigen::Ref<const Eigen::VectorXd>& values) const;
+
+ private:
+  struct Side {  // frame A or B of a loop in the world
+    Matrix3d R;
+    Vector3d p;
+  };
+  Side SideA(const Data& data, const LoopClosure& loop) const;
+  Side SideB(const Data& data, const LoopClosure& loop) const;
+  // Adds sign * (n . Jv_P + m . Jw) over the chain of `body` to row `r` of G, for point P.
+  void AddChain(const Data& data, int body, const Vector3d& p, const Vector3d& n, const Vector3d& m,
+                double sign, Eigen::Ref<Eigen::MatrixXd> G, int r) const;
+  // World angular velocity, origin velocity and their velocity-product accelerations.
+  void VelocityKinematics(const Data& data, const Eigen::Ref<const Eigen::VectorXd>& qd);
+
+  const Model& model_;
+  const std::vector<LoopClosure>& loops_;
+  std::vector<LoopRow> rows_;
+  std::vector<Vector3d> w_, v_, alpha_, acc_;  // per body, world frame, at qdd = 0
+};
+
+}  // namespace mbstream

@@ -1,0 +1,55 @@
+#include "server/parse/model_file.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "common/check.h"
+#include "server/parse/sdf_import.h"
+
+namespace mbstream {
+
+ModelFormat DetectModelFormat(const std::string& text, const std::string& source) {
+  size_t at = 0;
+  while ((at = text.find('<', at)) != std::string::npos) {
+    if (text.compare(at, 2, "<?") == 0) {
+      at = text.find("?>", at);
+    } else if (text.compare(at, 4, "<!--") == 0) {
+      at = text.find("-->", at);
+    } else if (text.compare(at, 2, "<!") == 0) {
+      at = text.find('>', at);
+    } else {
+      const size_t end = text.find_first_of(" \t\r\n/>", at + 1);
+      const std::string name = text.substr(at + 1, end == std::string::npos ? end : end - at - 1);
+      if (name == "robot") return ModelFormat::kUrdf;
+      if (name == "sdf") return ModelFormat::kSdf;
+      throw InputError(source + ": the root element is <" + name +
+                       ">; give a URDF (<robot>) or an SDFormat file (<sdf>)");
+    }
+    if (at == std::string::npos) break;
+  }
+  throw InputError(source +
+                   ": no XML element found; give a URDF (<robot>) or an SDFormat file (<sdf>)");
+}
+
+ModelFileImport ImportModelFile(const std::string& path, const UrdfImportOptions& urdf_options) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot read the file; check the path");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  ModelFileImport result;
+  result.format = DetectModelFormat(text, path);
+  if (result.format == ModelFormat::kUrdf) {
+    UrdfImport urdf = ImportUrdfFile(path, urdf_options);
+    result.model = std::move(urdf.model);
+    result.warnings = std::move(urdf.warnings);
+  } else {
+    SdfImport sdf = ImportSdf(text, path);
+    result.model = std::move(sdf.model);
+    result.loops = std::move(sdf.loops);
+    result.warnings = std::move(sdf.warnings);
+  }
+  return result;
+}
+
+}  // namespace mbstream

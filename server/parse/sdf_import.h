@@ -1,0 +1,41 @@
+// Imports an SDFormat (1.6 and later) model into a Model and its loop closures.
+//
+// Read through libsdformat (sdf::Root), which resolves frames and poses relative to frames.
+// The model is the file's top-level <model>, or the one model of its one <world>. Links
+// carry <inertial>; joints are revolute, continuous (revolute without limits), prismatic,
+// fixed or ball, with <axis> (<xyz>, <limit>, <dynamics damping>).
+//
+// The spanning tree is chosen breadth-first from the world: starting at "world", each link
+// in turn (in the order reached) takes its joints in file order; a joint whose child has
+// no parent yet moves that child, and a joint whose child already has one closes a loop and
+// is cut: it becomes a LoopClosure (server/model/loop_closure.h), listed in file order.
+// The result is deterministic. A moving link's frame in the Model is its joint's frame (as
+// in URDF, where the link frame is the joint frame); links on fixed joints keep their own.
+//
+// Bad input throws InputError "FILE:LINE: what is wrong; what to do": SDFormat's own errors
+// (quoted), no model or several, two worlds, a nested model, a joint type mbstream does not
+// simulate (universal, screw, gearbox, revolute2), a ball joint inside the tree, a link not
+// reachable from the world through parent-to-child joints (a floating link).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "server/model/loop_closure.h"
+#include "server/model/model.h"
+
+namespace mbstream {
+
+struct SdfImport {
+  Model model;                        // the spanning tree
+  std::vector<LoopClosure> loops;     // the cut joints, in file order
+  std::vector<std::string> warnings;  // "FILE:LINE: ..." for input that is merely odd
+};
+
+// Imports SDFormat XML `text`; `source` names the file in messages.
+SdfImport ImportSdf(const std::string& text, const std::string& source);
+
+// Reads and imports the file at `path`.
+SdfImport ImportSdfFile(const std::string& path);
+
+}  // namespace mbstream

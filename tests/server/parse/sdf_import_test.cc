@@ -1,0 +1,129 @@
+// SDFormat import: the spanning tree chosen breadth-first from the world, the cut joints,
+// poses relative to frames, inertials; errors with FILE:LINE; URDF or SDFormat by content.
+#include "server/parse/sdf_import.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "common/check.h"
+#include "server/parse/model_file.h"
+
+namespace mbstream {
+namespace {
+
+const std::string kFourBar = std::string(MBSTREAM_SOURCE_DIR) + "/models/linkages/four_bar.sdf";
+const std::string kSliderCrank =
+    std::string(MBSTREAM_SOURCE_DIR) + "/models/linkages/slider_crank.sdf";
+
+std::vector<std::string> JointNamesOf(const Model& model) {
+  std::vector<std::string> names;
+  for (const Body& body : model.bodies) names.push_back(body.joint.name);
+  return names;
+}
+
+TEST(SdfImportTest, FourBarTreeIsBreadthFirstFromTheWorldAndItsLoopIsCut) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  const Model& model = sdf.model;
+  EXPECT_EQ(model.name, "four_bar");
+  EXPECT_EQ(JointNamesOf(model),
+            (std::vector<std::string>{"crank_joint", "rocker_joint", "coupler_joint"}));
+  ASSERT_EQ(sdf.loops.size(), 1u);
+  const LoopClosure& loop = sdf.loops[0];
+  EXPECT_EQ(loop.name, "loop_joint");
+  EXPECT_EQ(loop.type, LoopJointType::kRevolute);
+  EXPECT_EQ(loop.body_a, model.FindBody("coupler"));
+  EXPECT_EQ(loop.body_b, model.FindBody("rocker"));
+  EXPECT_NE(loop.where.find("four_bar.sdf:"), std::string::npos) << loop.where;
+  // Poses: the coupler's pin sits 0.1 m along the crank; the loop's pin 0.35 m along the
+  // coupler and 0.3 m along the rocker; each axis -y, the same in every link's frame.
+  const Body& coupler = model.bodies[model.FindBody("coupler")];
+  EXPECT_LT((coupler.joint.X_PJ.p - Vector3d(0.1, 0, 0)).norm(), 1e-15);
+  EXPECT_LT((coupler.joint.axis - Vector3d(0, -1, 0)).norm(), 1e-15);
+  EXPECT_LT((loop.X_AJ.p - Vector3d(0.35, 0, 0)).norm(), 1e-15);
+  EXPECT_LT((loop.X_BJ.p - Vector3d(0.3, 0, 0)).norm(), 1e-15);
+  EXPECT_LT((loop.axis - Vector3d(0, -1, 0)).norm(), 1e-15);
+  // Inertials: bars with their centre of mass half-way along.
+  const RigidInertia& crank = model.bodies[model.FindBody("crank")].inertia;
+  EXPECT_DOUBLE_EQ(crank.mass, 0.5);
+  EXPECT_LT((crank.com - Vector3d(0.05, 0, 0)).norm(), 1e-15);
+  EXPECT_NEAR(crank.inertia_com(1, 1), 0.5 * (0.01 + 0.0004) / 12, 1e-15);
+}
+
+TEST(SdfImportTest, SliderCrankHasAPrismaticJointInItsTree) {
+  const SdfImport sdf = ImportSdfFile(kSliderCrank);
+  EXPECT_EQ(JointNamesOf(sdf.model),
+            (std::vector<std::string>{"crank_joint", "slider_joint", "rod_joint"}));
+  const Joint& slider = sdf.model.bodies[1].joint;
+  EXPECT_EQ(slider.type, JointType::kPrismatic);
+  EXPECT_LT((slider.axis - Vector3d::UnitX()).norm(), 1e-15);
+  ASSERT_EQ(sdf.loops.size(), 1u);
+  EXPECT_EQ(sdf.loops[0].name, "pin_joint");
+}
+
+std::string Model(const std::string& body) {
+  return "<?xml version=\"1.0\"?>\n<sdf version=\"1.7\">\n  <model name=\"m\">\n" + body +
+         "  </model>\n</sdf>\n";
+}
+
+void ExpectImportError(const std::string& text, const std::string& words) {
+  try {
+    ImportSdf(text, "m.sdf");
+    ADD_FAILURE() << "imported; expected: " << words;
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find(words), std::string::npos) << error.what();
+  }
+}
+
+TEST(SdfImportTest, ErrorsNameTheFileAndLine) {
+  ExpectImportError(Model("    <link name=\"a\"/>\n"
+                          "    <link name=\"b\"/>\n"
+                          "    <joint name=\"j\" type=\"ball\"><parent>world</parent>"
+                          "<child>a</child></joint>\n"
+                          "    <joint name=\"k\" type=\"fixed\"><parent>world</parent>"
+                          "<child>b</child></joint>\n"),
+                    "m.sdf:6: joint 'j': a ball joint inside the tree is not supported yet");
+  ExpectImportError(Model("    <link name=\"a\"/>\n"
+                          "    <link name=\"b\"/>\n"
+                          "    <joint name=\"j\" type=\"fixed\"><parent>world</parent>"
+                          "<child>a</child></joint>\n"),
+                    "m.sdf:5: link 'b' is not reached from the world");
+  ExpectImportError(Model("    <link name=\"a\"/>\n"
+                          "    <joint name=\"j\" type=\"universal\"><parent>world</parent>"
+                          "<child>a</child></joint>\n"),
+                    "m.sdf:5: joint 'j': this joint type is not simulated by mbstream");
+  ExpectImportError(
+      "<?xml version=\"1.0\"?>\n<sdf version=\"1.7\">\n<world name=\"a\"/>\n"
+      "<world name=\"b\"/>\n</sdf>\n",
+      "m.sdf: the file has 2 worlds");
+  ExpectImportError(
+      "<?xml version=\"1.0\"?>\n<sdf version=\"1.7\">\n  <model name=\"m\">\n"
+      "    <link name=\"a\">\n  </model>\n</sdf>\n",
+      "m.sdf");
+}
+
+TEST(ModelFileTest, TellsUrdfFromSdformatByContent) {
+  EXPECT_EQ(DetectModelFormat("<?xml version=\"1.0\"?>\n<!-- <sdf> -->\n<robot name=\"r\"/>", "a"),
+            ModelFormat::kUrdf);
+  EXPECT_EQ(DetectModelFormat("<sdf version=\"1.7\"><model name=\"m\"/></sdf>", "a"),
+            ModelFormat::kSdf);
+  try {
+    DetectModelFormat("<mujoco/>", "arm.xml");
+    ADD_FAILURE();
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("arm.xml: the root element is <mujoco>"),
+              std::string::npos)
+        << error.what();
+  }
+  const ModelFileImport sdf = ImportModelFile(kFourBar);
+  EXPECT_EQ(sdf.format, ModelFormat::kSdf);
+  EXPECT_EQ(sdf.loops.size(), 1u);
+  const ModelFileImport urdf =
+      ImportModelFile(std::string(MBSTREAM_SOURCE_DIR) + "/models/irb1600/irb1600.urdf");
+  EXPECT_EQ(urdf.format, ModelFormat::kUrdf);
+  EXPECT_EQ(urdf.model.num_dofs(), 6);
+  EXPECT_TRUE(urdf.loops.empty());
+}
+
+}  // namespace
+}  // namespace mbstream
