@@ -10,9 +10,10 @@
 #include "client/cli/run_overrides.h"
 #include "common/check.h"
 #include "server/choose/target_run.h"
-#include "server/parse/urdf_import.h"
+#include "server/parse/model_file.h"
 #include "server/results/results_stream.h"
 #include "server/sim/input_sanity.h"
+#include "server/sim/loop_run.h"
 #include "server/sim/run_size.h"
 #include "server/sim/run_validation.h"
 #include "server/sim/simulate.h"
@@ -49,9 +50,10 @@ void WarnServerOnlyFields(const v1::RunSpec& spec) {
 }
 
 int RunSimulate(const SimulateOptions& options) {
-  UrdfImport import =
-      ImportUrdfFile(options.model_path,
-                     UrdfImportOptions{.repair = options.repair, .max_links = options.max_links});
+  // URDF or SDFormat by content; an SDFormat model may close loops (import.loops).
+  ModelFileImport import =
+      ImportModelFile(options.model_path,
+                      UrdfImportOptions{.repair = options.repair, .max_links = options.max_links});
   for (const std::string& warning : import.warnings) spdlog::warn("{}", warning);
   v1::RunSpec spec;
   std::string source = "(command line)";
@@ -61,7 +63,8 @@ int RunSimulate(const SimulateOptions& options) {
   }
   options.overrides.ApplyTo(spec);
   const RunConfig config = ToRunConfig(spec, JointNames(import.model), source);
-  ValidateRun(import.model, config);  // the server's validation, before anything runs
+  // The server's validation, before anything runs.
+  ValidateLoopRun(import.model, import.loops, config);
   CheckRunSize(config, spec.max_output_frames(), options.size);
   WarnServerOnlyFields(spec);
   // Before any integration: legal but absurd inputs (Simulate finds them again for stats.json).
@@ -71,7 +74,9 @@ int RunSimulate(const SimulateOptions& options) {
 
   // The CSVs are written as the frames come: memory does not grow with the run.
   ResultsStreamWriter writer(options.out_dir);
-  const RunResult result = SimulateWithTarget(import.model, config, &writer);
+  const RunResult result =
+      import.loops.empty() ? SimulateWithTarget(import.model, config, &writer)
+                           : SimulateLoops(import.model, import.loops, config, &writer);
   const RunProvenance provenance{import.model.name, options.model_path,
                                  RunSpecToJson(ToRunSpec(config)), "", ""};
   writer.Finish(result, provenance);
@@ -83,6 +88,10 @@ int RunSimulate(const SimulateOptions& options) {
             << " steps, cpu " << s.cpu_s * 1e3 << " ms";
   if (s.tcp_error_max >= 0) std::cout << ", TCP error " << s.tcp_error_max << " m";
   if (s.energy_error_max >= 0) std::cout << ", energy error " << s.energy_error_max;
+  if (!s.loops.cut_joints.empty()) {
+    std::cout << ", loop residual " << s.drift_position_max << " m, " << s.drift_orientation_max
+              << " rad, velocity " << s.drift_velocity_max;
+  }
   std::cout << "\nresults in " << options.out_dir << "\n";
   if (s.status != RunStatus::kFinished) {
     std::cerr << "mbstream simulate: run " << RunStatusName(s.status) << ": " << s.message << "\n";
@@ -99,7 +108,7 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<SimulateOptions>();
   CLI::App* command = app.add_subcommand(
       "simulate", "run the engine in-process (no server) and write the results files");
-  command->add_option("model", options->model_path, "the model's URDF file")
+  command->add_option("model", options->model_path, "the model's URDF or SDFormat file")
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("--spec", options->spec_path, "run spec (protobuf JSON of RunSpec)")

@@ -1,16 +1,37 @@
 #include "server/integrate/cvode_integrator.h"
 
 #include <cmath>
+#include <exception>
 
 #include <cvode/cvode.h>
 #include <cvode/cvode_ls.h>
+#include <cvode/cvode_proj.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include "server/integrate/fast_serial_ops.h"
+#include "server/integrate/manifold_projection.h"
 
 namespace mbstream::sundials {
+
+namespace {
+
+// CVProjFn: the system's correction for its own states, none for appended quadratures.
+int ProjectionCallback(sunrealtype t, N_Vector y, N_Vector correction, sunrealtype /*eps*/,
+                       N_Vector /*err*/, void* user_data) noexcept {
+  auto* data = static_cast<CallbackData*>(user_data);
+  OdeSystem& system = data->rhs->system();
+  double* c = N_VGetArrayPointer(correction);
+  for (sunindextype i = system.size(); i < N_VGetLength(correction); ++i) c[i] = 0.0;
+  try {
+    return dynamic_cast<ManifoldProjection&>(system).Project(t, N_VGetArrayPointer(y), c);
+  } catch (const std::exception& error) {
+    return data->rhs->RecordException(t, error.what());
+  }
+}
+
+}  // namespace
 
 CvodeIntegrator::CvodeIntegrator(Variant variant, OdeSystem& system, double t0, const double* y0,
                                  const IntegratorOptions& options)
@@ -43,6 +64,10 @@ CvodeIntegrator::CvodeIntegrator(Variant variant, OdeSystem& system, double t0, 
     CheckSetup(CVodeSetLinearSolver(cvode, linear_solver_.get(), matrix_.get()),
                "CVodeSetLinearSolver");
     CheckSetup(CVodeSetJacFn(cvode, DenseJacobianCallback), "CVodeSetJacFn");
+    if (dynamic_cast<ManifoldProjection*>(&system) != nullptr) {  // CVODE projects with BDF only
+      CheckSetup(CVodeSetProjFn(cvode, ProjectionCallback), "CVodeSetProjFn");
+      CheckSetup(CVodeSetProjErrEst(cvode, SUNFALSE), "CVodeSetProjErrEst");
+    }
   } else {
     nonlinear_solver_.reset(SUNNonlinSol_FixedPoint(initial_state(), 0, context()));
     CheckCreated(nonlinear_solver_.get(), "SUNNonlinSol_FixedPoint");

@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include <sdf/Console.hh>
 #include <sdf/Joint.hh>
 #include <sdf/JointAxis.hh>
 #include <sdf/Link.hh>
@@ -305,6 +306,8 @@ class SdfReader {
 }  // namespace
 
 SdfImport ImportSdf(const std::string& text, const std::string& source) {
+  // SDFormat's errors come back in `errors` and into our message: keep its console quiet.
+  sdf::Console::Instance()->SetQuiet(true);
   sdf::Root root;
   const sdf::Errors errors = root.LoadSdfString(text);
   if (!errors.empty()) ThrowSdfErrors(source, errors);

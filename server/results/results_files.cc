@@ -67,6 +67,18 @@ std::string StatsJson(const RunResult& result, const RunProvenance& provenance, 
       s.target_met ? nlohmann::ordered_json(*s.target_met) : nlohmann::ordered_json(nullptr);
   j["choice"] = s.choice_json.empty() ? nlohmann::ordered_json(nullptr)
                                       : nlohmann::ordered_json::parse(s.choice_json);
+  j["loops"] = nullptr;
+  if (!s.loops.cut_joints.empty()) {
+    j["loops"] = {{"cut_joints", s.loops.cut_joints},
+                  {"equations", s.loops.equations},
+                  {"independent", s.loops.independent},
+                  {"redundant", s.loops.equations - s.loops.independent},
+                  {"mobility", s.loops.mobility},
+                  {"assembly", s.loops.assembly},
+                  {"position_residual_max_m", NumberOrNull(s.drift_position_max)},
+                  {"orientation_residual_max_rad", NumberOrNull(s.drift_orientation_max)},
+                  {"velocity_residual_max", NumberOrNull(s.drift_velocity_max)}};
+  }
   j["warnings"] = s.warnings;
   j["budget"] = {{"max_steps", s.max_steps}, {"max_cpu_s", s.max_cpu_s}};
   j["joints"] = result.joint_names;

@@ -48,6 +48,16 @@ const char* RunStatusName(RunStatus status);
 // The run status of an integrator's failure (kOk -> kFinished).
 RunStatus ToRunStatus(IntegratorStatus status);
 
+// A mechanism with closed loops: how they were closed (RunStats::loops; no cut joints for a
+// tree). The constraint residuals are RunStats' drift figures.
+struct LoopStats {
+  std::vector<std::string> cut_joints;  // "NAME (TYPE)": the joints cut to leave the tree
+  int equations = 0;                    // the cut joints' constraint equations
+  int independent = 0;                  // their rank: the rest are redundant
+  int mobility = 0;                     // the mechanism's degrees of freedom
+  std::string assembly;                 // how the initial pose was assembled
+};
+
 struct RunStats {
   RunStatus status = RunStatus::kFinished;
   std::string message;     // on failure: what happened and what to try
@@ -82,6 +92,7 @@ struct RunStats {
   double drift_velocity_max = -1.0;         // m/s or rad/s, velocity-level constraints
   double quaternion_norm_error_max = -1.0;  // max | |e| - 1 | of the orientation quaternions
 
+  LoopStats loops;
   Trust trust = Trust::kNotAssessed;
   std::string trust_reason;           // kLow: which indicator, its value and its limit
   std::vector<std::string> warnings;  // the inputs' sanity warnings (input_sanity.h)

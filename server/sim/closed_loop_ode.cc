@@ -1,0 +1,147 @@
+#include "server/sim/closed_loop_ode.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/check.h"
+#include "server/dynamics/crba.h"
+#include "server/dynamics/rnea.h"
+#include "server/kinematics/forward_kinematics.h"
+
+namespace mbstream {
+
+namespace {
+
+std::vector<int> PrescribedJoints(const DriveSet& drives) {
+  std::vector<int> joints;
+  for (int i = 0; i < drives.size(); ++i) {
+    if (drives.prescribed(i)) joints.push_back(i);
+  }
+  return joints;
+}
+
+}  // namespace
+
+ClosedLoopOde::ClosedLoopOde(const Model& model, const std::vector<LoopClosure>& loops,
+                             const DriveSet& drives, const Eigen::VectorXd& q_assembled,
+                             const BaumgarteParameters& gains, double projection_tolerance)
+    : model_(model),
+      drives_(drives),
+      n_(model.num_dofs()),
+      gains_(gains),
+      projection_tolerance_(projection_tolerance),
+      data_(model),
+      constraints_(model, loops),
+      solver_(model, constraints_, PrescribedJoints(drives)),
+      prescribed_(PrescribedJoints(drives)),
+      q_(n_),
+      qd_(n_),
+      qdd_(n_),
+      effort_(n_),
+      force_(n_),
+      minv_force_(n_),
+      held_q_(Eigen::VectorXd::Zero(n_)),
+      held_qd_(Eigen::VectorXd::Zero(n_)),
+      held_qdd_(Eigen::VectorXd::Zero(n_)),
+      phi_(constraints_.num_rows()),
+      phi_dot_(constraints_.num_rows()),
+      bias_(constraints_.num_rows()),
+      G_(constraints_.num_rows(), n_),
+      mass_llt_(n_),
+      drive_workspace_(drives.MakeWorkspace()) {
+  bool independent = false;
+  rank_ = solver_.Analyse(data_, q_assembled, &independent);
+  MBSTREAM_CHECK_MSG(independent, "prescribed joints must be independent of the loops");
+  const int k = rank_.rank + static_cast<int>(prescribed_.size());
+  A_.resize(k, n_);
+  Y_.resize(n_, k);
+  S_.resize(k, k);
+  b_.resize(k);
+  mu_.resize(k);
+  s_llt_ = Eigen::LLT<Eigen::MatrixXd>(k);
+}
+
+void ClosedLoopOde::HeldValues(double t) {
+  for (int j : prescribed_) {
+    const TrajectoryPoint ref = drives_.Reference(j, t);
+    held_q_(j) = ref.q;
+    held_qd_(j) = ref.qd;
+    held_qdd_(j) = ref.qdd;
+  }
+}
+
+bool ClosedLoopOde::Evaluate(double t, const double* y) {
+  q_ = Eigen::Map<const Eigen::VectorXd>(y, n_);
+  qd_ = Eigen::Map<const Eigen::VectorXd>(y + n_, n_);
+  HeldValues(t);
+  // Applied forces less the velocity products and gravity.
+  drives_.ActuatorEfforts(t, q_.data(), qd_.data(), drive_workspace_, effort_.data());
+  force_ = effort_ - NonlinearEffects(model_, data_, q_, qd_);
+  for (int i = 0; i < n_; ++i) force_(i) -= drives_.damping(i) * qd_(i);
+  mass_llt_.compute(Crba(model_, data_, q_));
+  if (mass_llt_.info() != Eigen::Success) return false;
+  // The constraints and their Baumgarte-stabilised acceleration targets b.
+  BodyKinematics(model_, data_, q_);
+  constraints_.Residual(data_, phi_);
+  constraints_.Jacobian(data_, G_);
+  constraints_.Bias(data_, qd_, bias_);
+  phi_dot_.noalias() = G_ * qd_;
+  const int r = rank_.rank;
+  for (int i = 0; i < r; ++i) {
+    const int row = rank_.independent[i];
+    A_.row(i) = G_.row(row);
+    b_(i) = -bias_(row) - gains_.alpha * phi_dot_(row) - gains_.beta * phi_(row);
+  }
+  A_.bottomRows(static_cast<Eigen::Index>(prescribed_.size())).setZero();
+  for (size_t h = 0; h < prescribed_.size(); ++h) {
+    const int j = prescribed_[h];
+    const Eigen::Index row = r + static_cast<Eigen::Index>(h);
+    A_(row, j) = 1.0;
+    b_(row) =
+        held_qdd_(j) - gains_.alpha * (qd_(j) - held_qd_(j)) - gains_.beta * (q_(j) - held_q_(j));
+  }
+  // qdd = M^-1 (force + A^T mu) with A qdd = b: (A M^-1 A^T) mu = b - A M^-1 force.
+  minv_force_ = mass_llt_.solve(force_);
+  Y_ = mass_llt_.solve(A_.transpose());
+  S_.noalias() = A_ * Y_;
+  s_llt_.compute(S_);
+  if (s_llt_.info() != Eigen::Success) return false;
+  b_.noalias() -= A_ * minv_force_;
+  mu_ = s_llt_.solve(b_);
+  qdd_ = minv_force_;
+  qdd_.noalias() += Y_ * mu_;
+  for (size_t h = 0; h < prescribed_.size(); ++h) {
+    effort_(prescribed_[h]) = mu_(r + static_cast<Eigen::Index>(h));
+  }
+  return qdd_.allFinite() && mu_.allFinite();
+}
+
+int ClosedLoopOde::Rhs(double t, const double* y, double* ydot) {
+  if (!Evaluate(t, y)) return 1;  // singular: a smaller step may avoid the singular pose
+  for (int i = 0; i < n_; ++i) {
+    ydot[i] = qd_(i);
+    ydot[n_ + i] = qdd_(i);
+  }
+  return 0;
+}
+
+int ClosedLoopOde::Project(double t, const double* y, double* correction) {
+  q_ = Eigen::Map<const Eigen::VectorXd>(y, n_);
+  qd_ = Eigen::Map<const Eigen::VectorXd>(y + n_, n_);
+  HeldValues(t);
+  if (solver_.SolvePositions(data_, q_, held_q_, projection_tolerance_, 8) < 0) return 1;
+  solver_.SolveVelocities(data_, qd_, held_qd_);
+  for (int i = 0; i < n_; ++i) {
+    correction[i] = q_(i) - y[i];
+    correction[n_ + i] = qd_(i) - y[n_ + i];
+  }
+  return 0;
+}
+
+void ClosedLoopOde::Residuals(double* gap, double* alignment, double* velocity) const {
+  *gap = constraints_.MaxGap(phi_);
+  *alignment = constraints_.MaxAlignment(phi_);
+  *velocity = phi_dot_.size() > 0 ? phi_dot_.cwiseAbs().maxCoeff() : 0.0;
+}
+
+}  // namespace mbstream

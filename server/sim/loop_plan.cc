@@ -1,0 +1,141 @@
+#include "server/sim/loop_plan.h"
+
+#include <algorithm>
+
+#include "common/check.h"
+#include "common/format.h"
+#include "server/integrate/failure_messages.h"
+#include "server/sim/initial_state.h"
+
+namespace mbstream {
+
+namespace {
+
+std::vector<int> PrescribedJoints(const DriveSet& drives) {
+  std::vector<int> joints;
+  for (int i = 0; i < drives.size(); ++i) {
+    if (drives.prescribed(i)) joints.push_back(i);
+  }
+  return joints;
+}
+
+void CheckSupported(const RunConfig& config, const DriveSet& drives) {
+  for (int i = 0; i < drives.size(); ++i) {
+    if (drives.velocity_source(i)) {
+      throw InputError(
+          "a mechanism with closed loops takes prescribed joints by position, not as velocity "
+          "sources (yet): drop velocity_source from the drives");
+    }
+  }
+  if (config.target.any() || config.method_auto) {
+    throw InputError(
+        "accuracy targets (method auto) are not available for mechanisms with closed loops "
+        "yet: give a method (bdf) and tolerances");
+  }
+  switch (config.formulation) {
+    case Formulation::kAuto:
+    case Formulation::kKinematic:
+    case Formulation::kJoint:
+      break;
+    default:
+      throw InputError(std::string("formulation ") + FormulationName(config.formulation) +
+                       " does not close kinematic loops yet; use formulation joint (the loops as "
+                       "constraints with Baumgarte stabilisation and projection) or kinematic");
+  }
+}
+
+// The loop whose equations are worst violated in phi, for messages.
+const LoopClosure& WorstLoop(const std::vector<LoopClosure>& loops, const LoopConstraints& c,
+                             const Eigen::VectorXd& phi) {
+  Eigen::Index worst = 0;
+  phi.cwiseAbs().maxCoeff(&worst);
+  return loops[c.rows()[worst].loop];
+}
+
+}  // namespace
+
+LoopPlan PlanLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
+                     const RunConfig& config, const DriveSet& drives) {
+  MBSTREAM_CHECK(!loops.empty());
+  CheckSupported(config, drives);
+  const int n = model.num_dofs();
+  const std::vector<int> prescribed = PrescribedJoints(drives);
+  const Eigen::VectorXd y0 = InitialJointState(config, drives, n);
+  LoopPlan plan;
+  plan.q0 = y0.head(n);
+  plan.qd0 = y0.tail(n);
+  Data data(model);
+  LoopConstraints constraints(model, loops);
+  LoopSolver solver(model, constraints, prescribed);
+  bool independent = false;
+  solver.Analyse(data, plan.q0, &independent);
+  const Eigen::VectorXd given = plan.q0;  // the prescribed joints' values among them
+  const int iterations = solver.SolvePositions(data, plan.q0, given, kLoopAssemblyTolerance, 50);
+  if (iterations < 0) {
+    const Eigen::VectorXd& phi = solver.residual();
+    const LoopClosure& loop = WorstLoop(loops, constraints, phi);
+    throw InputError(FormatString(
+        "%s: joint '%s': the loop it closes cannot be assembled near the given pose (largest "
+        "residual %.3g m or rad after 50 Newton iterations); check the link lengths and joint "
+        "poses, or give initial_q nearer an assembled pose",
+        loop.where.c_str(), loop.name.c_str(), phi.cwiseAbs().maxCoeff()));
+  }
+  plan.assembly_iterations = iterations;
+  plan.assembly_change = n > 0 ? (plan.q0 - given).cwiseAbs().maxCoeff() : 0.0;
+  plan.rank = solver.Analyse(data, plan.q0, &independent);
+  if (!independent) {
+    throw InputError(FormatString(
+        "%d joint(s) are prescribed, but the loops already fix some of them (the mechanism has "
+        "%d degree(s) of freedom): prescribe only independent joints, e.g. the crank",
+        static_cast<int>(prescribed.size()), plan.rank.mobility));
+  }
+  solver.SolvePositions(data, plan.q0, given, kLoopAssemblyTolerance, 5);
+  const Eigen::VectorXd held_qd = plan.qd0;
+  solver.SolveVelocities(data, plan.qd0, held_qd);
+  plan.assembly = iterations == 0
+                      ? "the given pose closes every loop"
+                      : FormatString(
+                            "assembled by Newton near the given pose: %d iteration(s), joints "
+                            "moved by up to %.3g rad or m",
+                            iterations, plan.assembly_change);
+
+  const int free_dofs = plan.rank.mobility - static_cast<int>(prescribed.size());
+  const std::string mobility =
+      FormatString("%d loop equation(s), %d independent, mobility %d", plan.rank.equations,
+                   plan.rank.rank, plan.rank.mobility);
+  if (config.formulation == Formulation::kKinematic && free_dofs > 0) {
+    throw InputError(FormatString(
+        "formulation kinematic needs every degree of freedom prescribed, but the mechanism "
+        "has %d (%s) and %d joint(s) are prescribed; prescribe %d more (e.g. the crank) or use "
+        "formulation joint",
+        plan.rank.mobility, mobility.c_str(), static_cast<int>(prescribed.size()), free_dofs));
+  }
+  if (free_dofs == 0 && config.formulation != Formulation::kJoint) {
+    plan.choice = {
+        Formulation::kKinematic,
+        std::string(config.formulation == Formulation::kAuto ? "auto: " : "requested: ") +
+            "every degree of freedom is prescribed (" + mobility +
+            "), so the loops are solved by Newton at each frame and nothing is "
+            "integrated"};
+  } else {
+    const std::string how =
+        config.method == Method::kIda
+            ? "the joint-space index-2 stabilised DAE of Gear, Gupta and Leimkuhler with IDA "
+              "(positions and velocities constrained, no gains)"
+            : FormatString(
+                  "the joint-space ODE with the loops as constraints (Baumgarte alpha "
+                  "= %g 1/s, beta = %g 1/s^2%s)",
+                  config.baumgarte.alpha, config.baumgarte.beta,
+                  config.method == Method::kBdf ? ", projected onto the constraints after each step"
+                                                : "; projection needs method bdf");
+    plan.choice = {
+        Formulation::kJoint,
+        std::string(config.formulation == Formulation::kAuto ? "auto: " : "requested: ") +
+            FormatString("%d degree(s) of freedom move freely (%s): ", free_dofs,
+                         mobility.c_str()) +
+            how};
+  }
+  return plan;
+}
+
+}  // namespace mbstream

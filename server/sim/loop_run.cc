@@ -1,0 +1,316 @@
+#include "server/sim/loop_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <string>
+
+#include "common/format.h"
+#include "server/drives/drive_set.h"
+#include "server/dynamics/rnea.h"
+#include "server/integrate/ida_integrator.h"
+#include "server/integrate/thread_cpu_clock.h"
+#include "server/kinematics/forward_kinematics.h"
+#include "server/sim/advance_to_frame.h"
+#include "server/sim/closed_loop_dae.h"
+#include "server/sim/closed_loop_ode.h"
+#include "server/sim/frame_loop.h"
+#include "server/sim/frame_recorder.h"
+#include "server/sim/input_sanity.h"
+#include "server/sim/integrator_options_from.h"
+#include "server/sim/loop_plan.h"
+#include "server/sim/run_budget.h"
+#include "server/sim/run_trust.h"
+#include "server/sim/run_validation.h"
+#include "server/sim/simulate.h"
+
+namespace mbstream {
+
+namespace {
+
+// The largest constraint residuals over the frames, into RunStats' drift figures.
+void TrackResiduals(double gap, double alignment, double velocity, RunStats* stats) {
+  stats->drift_position_max = std::max(stats->drift_position_max, gap);
+  stats->drift_orientation_max = std::max(stats->drift_orientation_max, alignment);
+  stats->drift_velocity_max = std::max(stats->drift_velocity_max, velocity);
+}
+
+std::vector<int> PrescribedJoints(const DriveSet& drives) {
+  std::vector<int> joints;
+  for (int i = 0; i < drives.size(); ++i) {
+    if (drives.prescribed(i)) joints.push_back(i);
+  }
+  return joints;
+}
+
+// Every degree of freedom prescribed: the loops solved by Newton at each frame, from the
+// previous frame's pose; velocities and accelerations from the linear constraints; the
+// prescribed joints' efforts from inverse dynamics and the multipliers.
+class KinematicLoopSource : public FrameSource {
+ public:
+  KinematicLoopSource(const Model& model, const std::vector<LoopClosure>& loops,
+                      const DriveSet& drives, const LoopPlan& plan, bool want_torques,
+                      RunStats* stats)
+      : model_(model),
+        drives_(drives),
+        want_torques_(want_torques),
+        stats_(stats),
+        data_(model),
+        constraints_(model, loops),
+        prescribed_(PrescribedJoints(drives)),
+        solver_(model, constraints_, prescribed_),
+        q_(plan.q0),
+        qd_(Eigen::VectorXd::Zero(model.num_dofs())),
+        qdd_(Eigen::VectorXd::Zero(model.num_dofs())),
+        held_q_(Eigen::VectorXd::Zero(model.num_dofs())),
+        held_qd_(Eigen::VectorXd::Zero(model.num_dofs())),
+        held_qdd_(Eigen::VectorXd::Zero(model.num_dofs())),
+        force_(model.num_dofs()),
+        effort_(Eigen::VectorXd::Zero(model.num_dofs())) {
+    bool independent = false;
+    solver_.Analyse(data_, q_, &independent);
+    mu_.resize(solver_.num_rows());
+  }
+
+  bool Advance(const std::vector<double>& times, size_t k, RunStats* stats) override {
+    const double t = times[k];
+    for (int j : prescribed_) {
+      const TrajectoryPoint ref = drives_.Reference(j, t);
+      held_q_(j) = ref.q;
+      held_qd_(j) = ref.qd;
+      held_qdd_(j) = ref.qdd;
+    }
+    if (solver_.SolvePositions(data_, q_, held_q_, kLoopAssemblyTolerance, 50) < 0) {
+      stats->status = RunStatus::kConvergenceFailures;
+      stats->message = FormatString(
+          "the loops cannot be closed at t = %.6g s (Newton: largest residual %.3g m or rad): "
+          "the prescribed motion leaves the mechanism's reach or passes a singular pose; "
+          "check the drives' ranges",
+          t, solver_.residual().cwiseAbs().maxCoeff());
+      return false;
+    }
+    solver_.SolveVelocities(data_, qd_, held_qd_);
+    solver_.SolveAccelerations(data_, qd_, qdd_, held_qdd_);
+    return true;
+  }
+
+  bool Record(double t, FrameRecorder& recorder) override {
+    const LoopConstraints& c = constraints_;
+    TrackResiduals(c.MaxGap(solver_.residual()), c.MaxAlignment(solver_.residual()),
+                   solver_.velocity_residual().cwiseAbs().maxCoeff(), stats_);
+    if (want_torques_) {
+      force_ = Rnea(model_, data_, q_, qd_, qdd_);
+      for (int i = 0; i < model_.num_dofs(); ++i) force_(i) += drives_.damping(i) * qd_(i);
+      solver_.Multipliers(force_, mu_);
+      const Eigen::Index r = mu_.size() - static_cast<Eigen::Index>(prescribed_.size());
+      for (size_t h = 0; h < prescribed_.size(); ++h) {
+        effort_(prescribed_[h]) = mu_(r + static_cast<Eigen::Index>(h));
+      }
+    }
+    return recorder.Record(t, q_, qd_, want_torques_ ? &effort_ : nullptr);
+  }
+
+  std::string NonFiniteMessage(double t) const override {
+    return "a prescribed trajectory gave a non-finite value at t = " + std::to_string(t) +
+           " s; check the drives' parameters";
+  }
+
+ private:
+  const Model& model_;
+  const DriveSet& drives_;
+  const bool want_torques_;
+  RunStats* stats_;
+  Data data_;
+  LoopConstraints constraints_;
+  const std::vector<int> prescribed_;
+  LoopSolver solver_;
+  Eigen::VectorXd q_, qd_, qdd_, held_q_, held_qd_, held_qdd_, force_, effort_, mu_;
+};
+
+// The joint-space ODE with the loops as constraints, integrated frame to frame.
+class ClosedLoopSource : public FrameSource {
+ public:
+  ClosedLoopSource(ClosedLoopOde& ode, Integrator& integrator, Eigen::VectorXd& y,
+                   BudgetTracking* budget, RunStats* stats)
+      : ode_(ode), integrator_(integrator), y_(y), budget_(budget), stats_(stats) {}
+
+  bool Advance(const std::vector<double>& times, size_t k, RunStats* stats) override {
+    return AdvanceToFrame(integrator_, times, k, y_.data(), stats, "", &budget_->t_stop);
+  }
+
+  bool Record(double t, FrameRecorder& recorder) override {
+    if (!ode_.Evaluate(t, y_.data())) return false;
+    double gap = 0.0, alignment = 0.0, velocity = 0.0;
+    ode_.Residuals(&gap, &alignment, &velocity);
+    TrackResiduals(gap, alignment, velocity, stats_);
+    return recorder.Record(t, ode_.q(), ode_.qd(), &ode_.drive_effort());
+  }
+
+  std::string NonFiniteMessage(double t) const override {
+    return FormatString(
+        "the state became non-finite or the loop constraints singular at t = %.6g s; use a "
+        "smaller step or tolerance, or check that the mechanism does not pass a singular pose",
+        t);
+  }
+
+ private:
+  ClosedLoopOde& ode_;
+  Integrator& integrator_;
+  Eigen::VectorXd& y_;
+  BudgetTracking* budget_;
+  RunStats* stats_;
+};
+
+// The index-2 GGL DAE, integrated frame to frame by IDA.
+class ClosedLoopDaeSource : public FrameSource {
+ public:
+  ClosedLoopDaeSource(ClosedLoopDae& dae, Integrator& integrator, Eigen::VectorXd& y, int n,
+                      BudgetTracking* budget, RunStats* stats)
+      : dae_(dae),
+        integrator_(integrator),
+        y_(y),
+        budget_(budget),
+        stats_(stats),
+        q_(n),
+        qd_(n),
+        effort_(n) {}
+
+  bool Advance(const std::vector<double>& times, size_t k, RunStats* stats) override {
+    return AdvanceToFrame(integrator_, times, k, y_.data(), stats, "", &budget_->t_stop);
+  }
+
+  bool Record(double t, FrameRecorder& recorder) override {
+    const Eigen::Index n = q_.size();
+    q_ = y_.head(n);
+    qd_ = y_.segment(n, n);
+    double gap = 0.0, alignment = 0.0, velocity = 0.0;
+    dae_.Readout(t, y_.data(), &effort_, &gap, &alignment, &velocity);
+    TrackResiduals(gap, alignment, velocity, stats_);
+    return recorder.Record(t, q_, qd_, &effort_);
+  }
+
+  std::string NonFiniteMessage(double t) const override {
+    return FormatString("the state became non-finite at t = %.6g s; use a smaller tolerance", t);
+  }
+
+ private:
+  ClosedLoopDae& dae_;
+  Integrator& integrator_;
+  Eigen::VectorXd& y_;
+  BudgetTracking* budget_;
+  RunStats* stats_;
+  Eigen::VectorXd q_, qd_, effort_;
+};
+
+// Output times as Simulate takes them: k * interval, and the duration last.
+std::vector<double> LoopOutputTimes(double duration, double interval) {
+  std::vector<double> times;
+  const long count = OutputFrameCount(duration, interval);
+  times.reserve(static_cast<size_t>(count));
+  for (long k = 0; k < count; ++k) times.push_back(std::min(duration, k * interval));
+  times.back() = duration;
+  return times;
+}
+
+RunConfig TreeConfigOf(const RunConfig& config) {
+  RunConfig tree = config;  // the tree's checks, without the kinematic formulation's
+  if (tree.formulation == Formulation::kKinematic) tree.formulation = Formulation::kJoint;
+  if (tree.method == Method::kIda) tree.method = Method::kBdf;  // the GGL DAE's tolerances
+  return tree;
+}
+
+}  // namespace
+
+FormulationChoice ValidateLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
+                                  const RunConfig& config) {
+  if (loops.empty()) return ValidateRun(model, config);
+  const DriveSet drives(model, config.drives);
+  const LoopPlan plan = PlanLoopRun(model, loops, config, drives);
+  ValidateRun(model, TreeConfigOf(config), drives);
+  return plan.choice;
+}
+
+RunResult SimulateLoops(const Model& model_in, const std::vector<LoopClosure>& loops,
+                        const RunConfig& config_in, FrameSink* sink,
+                        const std::atomic<bool>* cancel) {
+  if (loops.empty()) return Simulate(model_in, config_in, sink, cancel);
+  const double cpu0 = ThreadCpuSeconds();
+  const auto wall0 = std::chrono::steady_clock::now();
+  Model model = model_in;
+  model.gravity = config_in.gravity;
+  RunConfig config = config_in;
+  ResolveBudget(model.num_dofs(), &config);
+  const DriveSet drives(model, config.drives);
+  const LoopPlan plan = PlanLoopRun(model, loops, config, drives);
+  ValidateRun(model, TreeConfigOf(config), drives);
+  const bool kinematic = plan.choice.formulation == Formulation::kKinematic;
+
+  RunResult result;
+  result.num_dofs = model.num_dofs();
+  for (const Body& body : model.bodies) result.joint_names.push_back(body.joint.name);
+  result.has_torques = config.want_torques;
+  result.has_energy = !kinematic;
+  RunStats& stats = result.stats;
+  stats.formulation = FormulationName(plan.choice.formulation);
+  stats.formulation_reason = plan.choice.reason;
+  stats.method = kinematic ? "none" : MethodName(config.method);
+  stats.integrator = kinematic ? "none (Newton on the loops at each frame)" : "";
+  stats.warnings = WarningMessages(CheckInputSanity(model, config));
+  stats.max_steps = config.max_steps;
+  stats.max_cpu_s = config.max_cpu_s;
+  stats.drift_position_max = stats.drift_orientation_max = stats.drift_velocity_max = 0.0;
+  for (const LoopClosure& loop : loops) {
+    stats.loops.cut_joints.push_back(loop.name + " (" + LoopJointTypeName(loop.type) + ")");
+  }
+  stats.loops.equations = plan.rank.equations;
+  stats.loops.independent = plan.rank.rank;
+  stats.loops.mobility = plan.rank.mobility;
+  stats.loops.assembly = plan.assembly;
+
+  const std::vector<double> times = LoopOutputTimes(config.duration, config.output_interval);
+  FrameRecorder recorder(model, drives, result, times.size(), /*track_tcp_error=*/false,
+                         /*latest_only=*/sink != nullptr && sink->KeepsFrames());
+  BudgetTracking budget;
+  budget.cpu_deadline_s = cpu0 + config.max_cpu_s;
+  if (kinematic) {
+    KinematicLoopSource source(model, loops, drives, plan, config.want_torques, &stats);
+    RunFrames(times, source, recorder, result, sink, cancel);
+  } else if (config.method == Method::kIda) {
+    ClosedLoopDae dae(model, loops, drives, plan.rank);
+    Eigen::VectorXd y, yp;
+    dae.ConsistentStart(0.0, plan.q0, plan.qd0, &y, &yp);
+    IdaOptions ida;
+    ida.base = IntegratorOptionsFrom(config, times.back(), budget.cpu_deadline_s);
+    ida.linear_solver = IdaOptions::LinearSolver::kDense;
+    ida.initial_step = 1e-3 * config.output_interval;
+    if (config.max_step > 0.0) ida.initial_step = std::min(ida.initial_step, config.max_step);
+    std::unique_ptr<Integrator> integrator = MakeIdaIntegrator(dae, 0.0, y.data(), yp.data(), ida);
+    stats.equations = dae.size();
+    stats.jacobian_nnz = dae.JacobianNonZeros();
+    stats.integrator = std::string(integrator->name()) + " (index-2 GGL)";
+    ClosedLoopDaeSource source(dae, *integrator, y, model.num_dofs(), &budget, &stats);
+    RunFrames(times, source, recorder, result, sink, cancel);
+    stats.solver = integrator->stats();
+  } else {
+    ClosedLoopOde ode(model, loops, drives, plan.q0, config.baumgarte,
+                      std::min(1e-10, 0.01 * config.atol));
+    Eigen::VectorXd y(2 * model.num_dofs());
+    y << plan.q0, plan.qd0;
+    const IntegratorOptions options =
+        IntegratorOptionsFrom(config, times.back(), budget.cpu_deadline_s);
+    std::unique_ptr<Integrator> integrator = MakeIntegrator(ode, 0.0, y.data(), options);
+    stats.equations = ode.size();
+    stats.jacobian_nnz = ode.size() * ode.size();
+    stats.integrator =
+        std::string(integrator->name()) + (config.method == Method::kBdf ? " with projection" : "");
+    ClosedLoopSource source(ode, *integrator, y, &budget, &stats);
+    RunFrames(times, source, recorder, result, sink, cancel);
+    stats.solver = integrator->stats();
+  }
+  stats.cpu_s = ThreadCpuSeconds() - cpu0;
+  stats.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  AssessTrust(&stats);
+  return result;
+}
+
+}  // namespace mbstream

@@ -1,0 +1,32 @@
+// Runs a mechanism with closed loops in-process: Simulate's counterpart for a Model and the
+// joints cut from it (server/model/loop_closure.h). Formulations: kinematic (every degree
+// of freedom prescribed: Newton on the loops at each frame, nothing integrated) and joint
+// (the loops as constraints with Baumgarte stabilisation, projected after each step of
+// CVODE BDF: closed_loop_ode.h). Every run reports the largest constraint residuals over
+// its frames (RunStats' drift figures: m, rad, m/s or rad/s) and how the loops were closed
+// (RunStats::loops).
+#pragma once
+
+#include <atomic>
+#include <vector>
+
+#include "server/model/loop_closure.h"
+#include "server/model/model.h"
+#include "server/sim/formulation_choice.h"
+#include "server/sim/run_config.h"
+#include "server/sim/run_result.h"
+
+namespace mbstream {
+
+// Validates the run (ValidateRun's checks of the tree and the run, then PlanLoopRun's) and
+// returns its formulation. Throws InputError saying what to change.
+FormulationChoice ValidateLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
+                                  const RunConfig& config);
+
+// As Simulate (simulate.h): numerical failure is a status, an InputError only for a run that
+// cannot start. With no loops it is Simulate.
+RunResult SimulateLoops(const Model& model, const std::vector<LoopClosure>& loops,
+                        const RunConfig& config, FrameSink* sink = nullptr,
+                        const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace mbstream

@@ -1,0 +1,329 @@
+// Runs of the shipped linkages against their closed-form position analysis, energy
+// conservation and each other (kinematic against joint formulation); the errors a closed
+// loop can raise; no allocation in the closed-loop ODE's steps.
+#include "server/sim/loop_run.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "common/check.h"
+#include "server/parse/sdf_import.h"
+#include "server/sim/closed_loop_ode.h"
+#include "tests/common/allocation_counter.h"
+
+namespace mbstream {
+namespace {
+
+const std::string kFourBar = std::string(MBSTREAM_SOURCE_DIR) + "/models/linkages/four_bar.sdf";
+const std::string kSliderCrank =
+    std::string(MBSTREAM_SOURCE_DIR) + "/models/linkages/slider_crank.sdf";
+
+// The linkages' dimensions (models/linkages/generate.py), m; joint order of the tree.
+constexpr double kA = 0.1, kB = 0.35, kC = 0.3,
+                 kD = 0.4;                          // four-bar: crank, coupler, rocker, ground
+constexpr double kR = 0.1, kL = 0.3;                // slider-crank: crank, rod
+constexpr int kCrank = 0, kSecond = 1, kThird = 2;  // crank; rocker or slider; coupler or rod
+
+double Wrap(double angle) { return std::remainder(angle, 2.0 * M_PI); }
+
+// Four-bar: the closed-form loop closure for crank angle theta2 (from +x towards +z): B on the
+// circles about A (radius b) and O4 (radius c), on the left of A -> O4 as drawn. Returns
+// (coupler angle theta3, rocker angle theta4), absolute.
+std::pair<double, double> FourBarAngles(double theta2) {
+  const double ax = kA * std::cos(theta2), az = kA * std::sin(theta2);
+  const double dx = kD - ax, dz = -az, d = std::hypot(dx, dz);
+  const double along = (kB * kB - kC * kC + d * d) / (2.0 * d);
+  const double h = std::sqrt(kB * kB - along * along);
+  const double bx = ax + along * dx / d - h * dz / d, bz = az + along * dz / d + h * dx / d;
+  return {std::atan2(bz - az, bx - ax), std::atan2(bz, bx - kD)};
+}
+
+// The four-bar's joint coordinates (crank, rocker, coupler) for crank coordinate q_crank.
+Eigen::Vector3d FourBarJoints(double q_crank) {
+  const double theta2_0 = M_PI / 2;
+  const auto [theta3_0, theta4_0] = FourBarAngles(theta2_0);
+  const double theta2 = theta2_0 + q_crank;
+  const auto [theta3, theta4] = FourBarAngles(theta2);
+  return {q_crank, Wrap(theta4 - theta4_0), Wrap((theta3 - theta2) - (theta3_0 - theta2_0))};
+}
+
+// Slider-crank: x = r cos(theta) + sqrt(l^2 - r^2 sin^2(theta)) and its rate.
+double SliderX(double theta) {
+  return kR * std::cos(theta) + std::sqrt(kL * kL - std::pow(kR * std::sin(theta), 2));
+}
+double SliderXRate(double theta, double theta_dot) {
+  const double s = std::sin(theta), c = std::cos(theta);
+  return -kR * s * theta_dot - kR * kR * s * c * theta_dot / std::sqrt(kL * kL - kR * kR * s * s);
+}
+
+DriveConfig CrankAtOneTurnPerSecond() {
+  DriveConfig drive;
+  drive.kind = DriveConfig::Kind::kPrescribed;
+  drive.trajectory.kind = Trajectory::Kind::kSpline;
+  // A two-point spline is a straight line; it is held constant outside its span (its rate
+  // 0 at the ends), so the span covers the runs' 2 s with room on both sides.
+  drive.trajectory.times = {-1.0, 3.0};
+  drive.trajectory.values = {-2.0 * M_PI, 6.0 * M_PI};
+  return drive;
+}
+
+RunConfig BaseConfig(int n) {
+  RunConfig config;
+  config.duration = 2.0;
+  config.output_interval = 0.01;
+  config.drives.assign(n, DriveConfig{});
+  config.rtol = 1e-10;
+  config.atol = 1e-12;
+  return config;
+}
+
+TEST(LoopRunTest, KinematicFourBarFollowsTheClosedFormLoopClosure) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  RunConfig config = BaseConfig(3);
+  config.drives[kCrank] = CrankAtOneTurnPerSecond();
+  const RunResult result = SimulateLoops(sdf.model, sdf.loops, config);
+  ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  EXPECT_EQ(result.stats.formulation, "kinematic");
+  EXPECT_EQ(result.stats.loops.cut_joints, std::vector<std::string>{"loop_joint (revolute)"});
+  EXPECT_EQ(result.stats.loops.equations, 5);
+  EXPECT_EQ(result.stats.loops.independent, 2);
+  EXPECT_EQ(result.stats.loops.mobility, 1);
+  ASSERT_EQ(result.num_frames(), 201);
+  double worst = 0.0, worst_rate = 0.0;
+  for (int k = 0; k < result.num_frames(); ++k) {
+    const double q_crank = result.q[3 * k + kCrank];
+    EXPECT_NEAR(q_crank, 2.0 * M_PI * result.t[k], 1e-12);
+    const Eigen::Vector3d expected = FourBarJoints(q_crank);
+    for (int j = 0; j < 3; ++j) {
+      worst = std::max(worst, std::abs(Wrap(result.q[3 * k + j] - expected(j))));
+    }
+    // The rocker's rate against central differences of the closed form.
+    const double h = 1e-6;
+    const double rate =
+        (FourBarJoints(q_crank + h)(kSecond) - FourBarJoints(q_crank - h)(kSecond)) / (2.0 * h) *
+        2.0 * M_PI;
+    worst_rate = std::max(worst_rate, std::abs(result.qd[3 * k + kSecond] - rate));
+  }
+  EXPECT_LT(worst, 1e-11);
+  EXPECT_LT(worst_rate, 1e-6);
+  EXPECT_LT(result.stats.drift_position_max, 1e-12);
+  EXPECT_LT(result.stats.drift_velocity_max, 1e-12);
+  EXPECT_EQ(result.stats.trust, Trust::kOk);
+}
+
+TEST(LoopRunTest, KinematicSliderCrankFollowsTheClosedForm) {
+  const SdfImport sdf = ImportSdfFile(kSliderCrank);
+  RunConfig config = BaseConfig(3);
+  config.drives[kCrank] = CrankAtOneTurnPerSecond();
+  const RunResult result = SimulateLoops(sdf.model, sdf.loops, config);
+  ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  EXPECT_EQ(result.stats.formulation, "kinematic");
+  const double x0 = SliderX(M_PI / 2);
+  double worst = 0.0, worst_rate = 0.0;
+  for (int k = 0; k < result.num_frames(); ++k) {
+    const double theta = M_PI / 2 + result.q[3 * k + kCrank];
+    worst = std::max(worst, std::abs(result.q[3 * k + kSecond] - (SliderX(theta) - x0)));
+    worst_rate =
+        std::max(worst_rate, std::abs(result.qd[3 * k + kSecond] - SliderXRate(theta, 2.0 * M_PI)));
+  }
+  EXPECT_LT(worst, 1e-12);
+  EXPECT_LT(worst_rate, 1e-11);
+  // The slider's stroke is 2 r.
+  double lo = 1e9, hi = -1e9;
+  for (int k = 0; k < result.num_frames(); ++k) {
+    lo = std::min(lo, result.q[3 * k + kSecond]);
+    hi = std::max(hi, result.q[3 * k + kSecond]);
+  }
+  EXPECT_NEAR(hi - lo, 2.0 * kR, 1e-4);
+}
+
+TEST(LoopRunTest, PassiveFourBarConservesEnergyAndStaysClosed) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  const RunConfig config = BaseConfig(3);  // every joint passive, released at rest as drawn
+  const RunResult result = SimulateLoops(sdf.model, sdf.loops, config);
+  ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  EXPECT_EQ(result.stats.formulation, "joint");
+  EXPECT_EQ(result.stats.integrator, "CVODE BDF with projection");
+  EXPECT_GE(result.stats.energy_error_max, 0.0);
+  EXPECT_LT(result.stats.energy_error_max, 1e-7);
+  EXPECT_LT(result.stats.drift_position_max, 1e-10);
+  EXPECT_LT(result.stats.drift_velocity_max, 1e-8);
+  // It moves, and its rocker and coupler stay where the crank's loop closure puts them.
+  double travel = 0.0, worst = 0.0;
+  for (int k = 0; k < result.num_frames(); ++k) {
+    travel = std::max(travel, std::abs(result.q[3 * k + kCrank]));
+    const Eigen::Vector3d expected = FourBarJoints(result.q[3 * k + kCrank]);
+    for (int j = 1; j < 3; ++j)
+      worst = std::max(worst, std::abs(Wrap(result.q[3 * k + j] - expected(j))));
+  }
+  EXPECT_GT(travel, 0.5);
+  EXPECT_LT(worst, 1e-9);
+}
+
+TEST(LoopRunTest, PassiveSliderCrankConservesEnergy) {
+  const SdfImport sdf = ImportSdfFile(kSliderCrank);
+  RunConfig config = BaseConfig(3);
+  config.qd0 = Eigen::Vector3d(6.0, 0.0, 0.0);  // a spin of the crank; the rest follows
+  const RunResult result = SimulateLoops(sdf.model, sdf.loops, config);
+  ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  EXPECT_LT(result.stats.energy_error_max, 1e-7);
+  const double x0 = SliderX(M_PI / 2);
+  double worst = 0.0;
+  for (int k = 0; k < result.num_frames(); ++k) {
+    const double theta = M_PI / 2 + result.q[3 * k + kCrank];
+    worst = std::max(worst, std::abs(result.q[3 * k + kSecond] - (SliderX(theta) - x0)));
+  }
+  EXPECT_LT(worst, 1e-10);
+}
+
+TEST(LoopRunTest, GglDaeWithIdaAgreesWithTheProjectedOde) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  const RunResult ode = SimulateLoops(sdf.model, sdf.loops, BaseConfig(3));
+  // IDA's Newton on the finite-difference iteration matrix stops converging below rtol 1e-7
+  // (docs: "Where the loop formulations fail"), so the DAE runs at 1e-7.
+  RunConfig config = BaseConfig(3);
+  config.method = Method::kIda;
+  config.rtol = 1e-7;
+  config.atol = 1e-9;
+  const RunResult dae = SimulateLoops(sdf.model, sdf.loops, config);
+  ASSERT_EQ(dae.stats.status, RunStatus::kFinished) << dae.stats.message;
+  EXPECT_EQ(dae.stats.integrator, "IDA (dense) (index-2 GGL)");
+  EXPECT_NE(dae.stats.formulation_reason.find("Gear, Gupta and Leimkuhler"), std::string::npos);
+  EXPECT_EQ(dae.stats.equations, 2 * 3 + 2 * 2);
+  EXPECT_LT(dae.stats.energy_error_max, 1e-5);
+  EXPECT_LT(dae.stats.drift_position_max, 1e-8);
+  EXPECT_LT(dae.stats.drift_velocity_max, 1e-6);
+  ASSERT_EQ(dae.num_frames(), ode.num_frames());
+  double worst = 0.0;
+  for (size_t i = 0; i < dae.q.size(); ++i) worst = std::max(worst, std::abs(dae.q[i] - ode.q[i]));
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_GT(worst, 0.0);
+}
+
+TEST(LoopRunTest, DrivenCrankByTheOdeMatchesTheKinematicRun) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  RunConfig config = BaseConfig(3);
+  config.drives[kCrank] = CrankAtOneTurnPerSecond();
+  const RunResult kinematic = SimulateLoops(sdf.model, sdf.loops, config);
+  config.formulation = Formulation::kJoint;
+  const RunResult ode = SimulateLoops(sdf.model, sdf.loops, config);
+  ASSERT_EQ(ode.stats.status, RunStatus::kFinished) << ode.stats.message;
+  EXPECT_EQ(ode.stats.formulation, "joint");
+  ASSERT_EQ(ode.num_frames(), kinematic.num_frames());
+  double worst_q = 0.0, worst_tau = 0.0, largest_tau = 0.0;
+  for (size_t i = 0; i < ode.q.size(); ++i) {
+    worst_q = std::max(worst_q, std::abs(ode.q[i] - kinematic.q[i]));
+    worst_tau = std::max(worst_tau, std::abs(ode.tau[i] - kinematic.tau[i]));
+    largest_tau = std::max(largest_tau, std::abs(kinematic.tau[i]));
+  }
+  EXPECT_LT(worst_q, 1e-8);
+  EXPECT_GT(largest_tau, 0.5);  // the crank's torque (gravity and inertia) is not trivial
+  EXPECT_LT(worst_tau, 1e-6 * largest_tau);
+}
+
+TEST(LoopRunTest, BaumgarteAloneHoldsTheLoopWithoutProjection) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  RunConfig config = BaseConfig(3);
+  config.method = Method::kAdams;
+  config.rtol = 1e-8;
+  config.atol = 1e-10;
+  const RunResult result = SimulateLoops(sdf.model, sdf.loops, config);
+  ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  EXPECT_EQ(result.stats.integrator, "CVODE Adams");
+  EXPECT_LT(result.stats.drift_position_max, 1e-6);
+  EXPECT_GT(result.stats.drift_position_max, 0.0);
+}
+
+TEST(LoopRunTest, AnUnassembledStartIsAssembledNearTheGivenPose) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  RunConfig config = BaseConfig(3);
+  config.duration = 0.1;
+  config.q0 = Eigen::Vector3d(0.2, 0.0, 0.0);
+  const RunResult result = SimulateLoops(sdf.model, sdf.loops, config);
+  ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  EXPECT_NE(result.stats.loops.assembly.find("assembled by Newton"), std::string::npos)
+      << result.stats.loops.assembly;
+  EXPECT_LT(result.stats.drift_position_max, 1e-10);
+  EXPECT_GT(std::abs(result.q[kSecond]), 0.01);  // the rocker moved to close the loop
+}
+
+void ExpectRefused(const SdfImport& sdf, const RunConfig& config, const std::string& words) {
+  try {
+    ValidateLoopRun(sdf.model, sdf.loops, config);
+    ADD_FAILURE() << "accepted; expected: " << words;
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find(words), std::string::npos) << error.what();
+  }
+}
+
+TEST(LoopRunTest, RefusesWhatTheLoopsCannotRun) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  RunConfig config = BaseConfig(3);
+  config.formulation = Formulation::kKinematic;
+  ExpectRefused(sdf, config, "the mechanism has 1 (5 loop equation(s), 2 independent, mobility 1)");
+  config = BaseConfig(3);
+  config.drives[kCrank] = CrankAtOneTurnPerSecond();
+  config.drives[kSecond] = CrankAtOneTurnPerSecond();
+  ExpectRefused(sdf, config, "the loops already fix some of them");
+  config = BaseConfig(3);
+  config.formulation = Formulation::kBodyIndex3;
+  config.method = Method::kIda;
+  ExpectRefused(sdf, config, "does not close kinematic loops yet");
+}
+
+TEST(LoopRunTest, ALoopThatCannotCloseNamesItsJointAndLine) {
+  // Crank 0.3 m, coupler 1.02 m, rocker 0.1 m, ground 1 m: with the crank held pointing
+  // away from the rocker (q = pi/2), its pin is 1.3 m from the rocker's pivot, beyond the
+  // coupler and rocker's reach (1.12 m).
+  const std::string text = R"(<?xml version="1.0"?>
+<sdf version="1.7">
+  <model name="broken">
+    <link name="crank"><pose>0 0 0 0 -1.5707963267948966 0</pose></link>
+    <link name="coupler"><pose>0 0 0.3 0 0 0</pose></link>
+    <link name="rocker"><pose>1 0 0 0 -1.5707963267948966 0</pose></link>
+    <joint name="crank_joint" type="revolute"><parent>world</parent><child>crank</child>
+      <axis><xyz>0 -1 0</xyz></axis></joint>
+    <joint name="rocker_joint" type="revolute"><parent>world</parent><child>rocker</child>
+      <axis><xyz>0 -1 0</xyz></axis></joint>
+    <joint name="coupler_joint" type="revolute"><parent>crank</parent><child>coupler</child>
+      <axis><xyz>0 -1 0</xyz></axis></joint>
+    <joint name="loop_joint" type="revolute"><parent>coupler</parent><child>rocker</child>
+      <pose>0.1 0 0 0 0 0</pose><axis><xyz>0 -1 0</xyz></axis></joint>
+  </model>
+</sdf>
+)";
+  const SdfImport sdf = ImportSdf(text, "broken.sdf");
+  RunConfig config = BaseConfig(3);
+  config.drives[kCrank].kind = DriveConfig::Kind::kPrescribed;
+  config.drives[kCrank].trajectory.offset = M_PI / 2;
+  ExpectRefused(sdf, config,
+                "broken.sdf:13: joint 'loop_joint': the loop it closes cannot be assembled");
+  config.drives[kCrank].trajectory.offset = 0.0;  // as drawn: it closes
+  EXPECT_EQ(ValidateLoopRun(sdf.model, sdf.loops, config).formulation, Formulation::kKinematic);
+}
+
+TEST(LoopRunTest, TheClosedLoopOdeStepsWithoutAllocating) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  RunConfig config = BaseConfig(3);
+  config.drives[kCrank] = CrankAtOneTurnPerSecond();
+  const DriveSet drives(sdf.model, config.drives);
+  ClosedLoopOde ode(sdf.model, sdf.loops, drives, Eigen::VectorXd::Zero(3), config.baumgarte,
+                    1e-12);
+  Eigen::VectorXd y(6), ydot(6), correction(6);
+  y << 0.1, 0.05, -0.02, 6.0, 1.0, -1.0;
+  const long before = testing::AllocationCount();
+  const int rhs = ode.Rhs(0.01, y.data(), ydot.data());
+  const int project = ode.Project(0.01, y.data(), correction.data());
+  EXPECT_EQ(testing::AllocationCount() - before, 0);
+  EXPECT_EQ(rhs, 0);
+  EXPECT_EQ(project, 0);
+  EXPECT_TRUE(ydot.allFinite());
+  // The projection puts the crank on its track (2 pi t) and closes the loop.
+  EXPECT_NEAR(y(0) + correction(0), 2.0 * M_PI * 0.01, 1e-12);
+  EXPECT_NEAR(y(3) + correction(3), 2.0 * M_PI, 1e-9);
+}
+
+}  // namespace
+}  // namespace mbstream
