@@ -57,10 +57,9 @@ def circle_intersection(p, r_p, q, r_q):
     return (mx - h * dz / d, mz + h * dx / d)
 
 
-def four_bar():
-    # Grashof crank-rocker: ground d, crank a (shortest), coupler b, rocker c; m.
-    a, b, c, d = 0.1, 0.35, 0.3, 0.4
-    theta2 = math.pi / 2
+def four_bar(name="four_bar", a=0.1, b=0.35, c=0.3, d=0.4, theta2=math.pi / 2):
+    # Ground d, crank a, coupler b, rocker c (m); the default is a Grashof crank-rocker
+    # (a the shortest), drawn with the crank at theta2.
     A = (a * math.cos(theta2), a * math.sin(theta2))
     B = circle_intersection(A, b, (d, 0.0), c)
     theta3 = math.atan2(B[1] - A[1], B[0] - A[0])
@@ -75,7 +74,7 @@ def four_bar():
         # closes the loop: its child, the rocker, already hangs from the world
         joint("loop_joint", "revolute", "coupler", "rocker", pose=f"{c:.17g} 0 0 0 0 0"),
     ])
-    return model("four_bar", body)
+    return model(name, body)
 
 
 def slider_crank():
@@ -115,6 +114,10 @@ def model(name, body):
 
 
 if __name__ == "__main__":
-    for name, text in (("four_bar.sdf", four_bar()), ("slider_crank.sdf", slider_crank())):
+    # A parallelogram: opposite bars equal (crank = rocker 0.2 m, coupler = ground 0.4 m),
+    # drawn with the crank at 60 degrees; the coupler stays parallel to the ground.
+    parallelogram = four_bar("parallelogram", a=0.2, b=0.4, c=0.2, d=0.4, theta2=math.pi / 3)
+    for name, text in (("four_bar.sdf", four_bar()), ("slider_crank.sdf", slider_crank()),
+                       ("parallelogram.sdf", parallelogram)):
         with open(name, "w") as f:
             f.write(text)
