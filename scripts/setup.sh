@@ -10,7 +10,7 @@ PACKAGES=(
   # core numerics
   libeigen3-dev libsundials-dev libsuitesparse-dev
   # model import, logging, command line, persistence
-  liburdfdom-dev libsdformat-dev libspdlog-dev libfmt-dev libcli11-dev libsqlite3-dev nlohmann-json3-dev
+  liburdfdom-dev libsdformat-dev libsimbody-dev libspdlog-dev libfmt-dev libcli11-dev libsqlite3-dev nlohmann-json3-dev
   # the shared store for several servers (--store postgresql://...); the tests start their own
   libpqxx-dev postgresql
   # the load balancer of the cluster test (deploy/cluster/netns.sh: HTTP/2 to the replicas)

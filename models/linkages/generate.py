@@ -47,21 +47,22 @@ def joint(name, kind, parent, child, pose="0 0 0 0 0 0", axis="0 -1 0"):
     </joint>"""
 
 
-def circle_intersection(p, r_p, q, r_q):
-    """The intersection of circles (p, r_p) and (q, r_q) left of p -> q (x-z plane)."""
+def circle_intersection(p, r_p, q, r_q, side=1):
+    """The intersection of circles (p, r_p) and (q, r_q) left of p -> q (x-z plane), or right
+    of it with side -1."""
     dx, dz = q[0] - p[0], q[1] - p[1]
     d = math.hypot(dx, dz)
     a = (r_p * r_p - r_q * r_q + d * d) / (2 * d)
     h = math.sqrt(r_p * r_p - a * a)
     mx, mz = p[0] + a * dx / d, p[1] + a * dz / d
-    return (mx - h * dz / d, mz + h * dx / d)
+    return (mx - side * h * dz / d, mz + side * h * dx / d)
 
 
-def four_bar(name="four_bar", a=0.1, b=0.35, c=0.3, d=0.4, theta2=math.pi / 2):
+def four_bar(name="four_bar", a=0.1, b=0.35, c=0.3, d=0.4, theta2=math.pi / 2, side=1):
     # Ground d, crank a, coupler b, rocker c (m); the default is a Grashof crank-rocker
-    # (a the shortest), drawn with the crank at theta2.
+    # (a the shortest), drawn with the crank at theta2 and the coupler's far pin on `side`.
     A = (a * math.cos(theta2), a * math.sin(theta2))
-    B = circle_intersection(A, b, (d, 0.0), c)
+    B = circle_intersection(A, b, (d, 0.0), c, side)
     theta3 = math.atan2(B[1] - A[1], B[0] - A[0])
     theta4 = math.atan2(B[1], B[0] - d)
     body = "\n".join([
@@ -115,8 +116,9 @@ def model(name, body):
 
 if __name__ == "__main__":
     # A parallelogram: opposite bars equal (crank = rocker 0.2 m, coupler = ground 0.4 m),
-    # drawn with the crank at 60 degrees; the coupler stays parallel to the ground.
-    parallelogram = four_bar("parallelogram", a=0.2, b=0.4, c=0.2, d=0.4, theta2=math.pi / 3)
+    # drawn hanging, the crank at -60 degrees; the coupler stays parallel to the ground.
+    parallelogram = four_bar("parallelogram", a=0.2, b=0.4, c=0.2, d=0.4, theta2=-math.pi / 3,
+                             side=-1)
     for name, text in (("four_bar.sdf", four_bar()), ("slider_crank.sdf", slider_crank()),
                        ("parallelogram.sdf", parallelogram)):
         with open(name, "w") as f:

@@ -292,6 +292,9 @@ RunResult SimulateLoops(const Model& model_in, const std::vector<LoopClosure>& l
     RunFrames(times, source, recorder, result, sink, cancel);
     stats.solver = integrator->stats();
   } else {
+    // The projection's Newton tolerance: well below the run's atol, or CVODE takes the
+    // leftover for a correction too large and shrinks the step. Below atol 1e-13 it is
+    // under round-off and the projection fails (docs/closed_loops.md).
     ClosedLoopOde ode(model, loops, drives, plan.q0, config.baumgarte,
                       std::min(1e-10, 0.01 * config.atol));
     Eigen::VectorXd y(2 * model.num_dofs());

@@ -146,7 +146,7 @@ TEST(LoopRunTest, KinematicSliderCrankFollowsTheClosedForm) {
 TEST(LoopRunTest, ParallelogramKeepsItsCouplerParallelToTheGround) {
   const SdfImport sdf = ImportSdfFile(kParallelogram);
   RunConfig config = BaseConfig(3);
-  // The crank swings 60 +- 40 degrees, clear of the change points at 0 and 180 degrees
+  // The crank swings -60 +- 40 degrees, clear of the change points at 0 and -180 degrees
   // where the bars line up and the loop's rank drops.
   config.drives[kCrank].kind = DriveConfig::Kind::kPrescribed;
   config.drives[kCrank].trajectory.amplitude = {0.7};
