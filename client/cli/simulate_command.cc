@@ -74,9 +74,9 @@ int RunSimulate(const SimulateOptions& options) {
 
   // The CSVs are written as the frames come: memory does not grow with the run.
   ResultsStreamWriter writer(options.out_dir);
-  const RunResult result =
-      import.loops.empty() ? SimulateWithTarget(import.model, config, &writer)
-                           : SimulateLoops(import.model, import.loops, config, &writer);
+  const RunResult result = import.loops.empty()
+                               ? SimulateWithTarget(import.model, config, &writer)
+                               : SimulateLoops(import.model, import.loops, config, &writer);
   const RunProvenance provenance{import.model.name, options.model_path,
                                  RunSpecToJson(ToRunSpec(config)), "", ""};
   writer.Finish(result, provenance);

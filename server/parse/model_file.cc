@@ -8,7 +8,7 @@
 
 namespace mbstream {
 
-ModelFormat DetectModelFormat(const std::string& text, const std::string& source) {
+ModelFormat DetectModelFormat(const std::string& text) {
   size_t at = 0;
   while ((at = text.find('<', at)) != std::string::npos) {
     if (text.compare(at, 2, "<?") == 0) {
@@ -19,16 +19,12 @@ ModelFormat DetectModelFormat(const std::string& text, const std::string& source
       at = text.find('>', at);
     } else {
       const size_t end = text.find_first_of(" \t\r\n/>", at + 1);
-      const std::string name = text.substr(at + 1, end == std::string::npos ? end : end - at - 1);
-      if (name == "robot") return ModelFormat::kUrdf;
-      if (name == "sdf") return ModelFormat::kSdf;
-      throw InputError(source + ": the root element is <" + name +
-                       ">; give a URDF (<robot>) or an SDFormat file (<sdf>)");
+      const size_t length = end == std::string::npos ? std::string::npos : end - at - 1;
+      return text.compare(at + 1, length, "sdf") == 0 ? ModelFormat::kSdf : ModelFormat::kUrdf;
     }
     if (at == std::string::npos) break;
   }
-  throw InputError(source +
-                   ": no XML element found; give a URDF (<robot>) or an SDFormat file (<sdf>)");
+  return ModelFormat::kUrdf;
 }
 
 ModelFileImport ImportModelFile(const std::string& path, const UrdfImportOptions& urdf_options) {
@@ -38,7 +34,7 @@ ModelFileImport ImportModelFile(const std::string& path, const UrdfImportOptions
   buffer << in.rdbuf();
   const std::string text = buffer.str();
   ModelFileImport result;
-  result.format = DetectModelFormat(text, path);
+  result.format = DetectModelFormat(text);
   if (result.format == ModelFormat::kUrdf) {
     UrdfImport urdf = ImportUrdfFile(path, urdf_options);
     result.model = std::move(urdf.model);

@@ -1,5 +1,5 @@
-// Which format a model file is in, told by its content (the root element: <robot> is URDF,
-// <sdf> is SDFormat), and one import for both.
+// Which format a model file is in, told by its content (the root element <sdf> is
+// SDFormat, anything else URDF), and one import for both.
 #pragma once
 
 #include <string>
@@ -13,9 +13,9 @@ namespace mbstream {
 
 enum class ModelFormat { kUrdf, kSdf };
 
-// The format of model file `text` by its first element; throws InputError naming `source`
-// when it is neither <robot> nor <sdf>.
-ModelFormat DetectModelFormat(const std::string& text, const std::string& source);
+// The format of model file `text` by its first element: SDFormat for <sdf>, URDF for
+// anything else (the URDF reader then says what is wrong with it, as it always has).
+ModelFormat DetectModelFormat(const std::string& text);
 
 struct ModelFileImport {
   ModelFormat format = ModelFormat::kUrdf;
