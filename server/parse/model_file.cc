@@ -3,7 +3,6 @@
 #include <fstream>
 #include <sstream>
 
-#include "common/check.h"
 #include "server/parse/sdf_import.h"
 
 namespace mbstream {
