@@ -9,6 +9,7 @@
 
 #include "tests/common/csv_rows.h"
 #include "tests/common/server_process.h"
+#include "tests/e2e/probe_checks.h"
 
 namespace mbstream::testing {
 namespace {
@@ -37,24 +38,6 @@ class ViewerLinkTest : public ::testing::Test {
   fs::path dir_;
   std::unique_ptr<ServerProcess> server_;
 };
-
-// Checks the run's results: every frame from `first_seq` to `last_seq` has a probe
-// report within 1e-6 m of the TCP at the same time.
-void ExpectProbesMatchTcp(const fs::path& results, int64_t first_seq, int64_t last_seq) {
-  const auto tcp = ReadCsv(results / "tcp.csv");
-  const auto probes = ReadCsv(results / "probes.csv");
-  ASSERT_EQ(static_cast<int64_t>(probes.size()), last_seq - first_seq + 1);
-  for (size_t i = 0; i < probes.size(); ++i) {
-    const auto& probe = probes[i];
-    ASSERT_EQ(std::stoll(probe[0]), first_seq + static_cast<int64_t>(i));
-    const auto& frame = tcp.at(std::stoul(probe[0]));
-    EXPECT_EQ(probe[1], frame[0]);  // same simulated time
-    for (int j = 0; j < 3; ++j) {
-      EXPECT_NEAR(std::stod(probe[3 + j]), std::stod(frame[1 + j]), 1e-6) << "seq " << probe[0];
-    }
-    EXPECT_GE(std::stoll(probe[6]), 0);
-  }
-}
 
 TEST_F(ViewerLinkTest, FollowingViewerAnswersEveryFrameWithTheTcp) {
   const fs::path log = dir_ / "viewer.log";

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <optional>
 #include <thread>
 
 #include "net/server_credentials.h"
@@ -18,6 +19,8 @@
 #include "viewer/link/render_loop.h"
 #include "viewer/link/subscriber_link.h"
 #include "viewer/link/viewer_control_service.h"
+#include "viewer/scene/scene_error.h"
+#include "viewer/scene/view_window.h"
 
 namespace mbstream::viewer {
 
@@ -97,6 +100,14 @@ int RunLink(const LinkCommandOptions& options) {
   if (!options.scene_file.empty()) {
     link_options.replay.scene_tag = std::filesystem::path(options.scene_file).filename().string();
   }
+  // One window on one X connection for the viewer's life (view_window.h), whatever the runs.
+  std::optional<ViewWindow> view;
+  try {
+    view.emplace(scene_options);
+  } catch (const SceneError& e) {
+    std::cerr << "mbstream-viewer: " << e.what() << "\n";
+    return 2;
+  }
   SceneSlot slot(scene_options);
   LinkStatus status;
 
@@ -141,7 +152,7 @@ int RunLink(const LinkCommandOptions& options) {
   if (!options.link.follow) {
     render.send_control = [&link](const v1::ReplayControl& c) { return link.SendControl(c); };
   }
-  RunRenderLoop(&slot, &status, render, stop);
+  RunRenderLoop(&*view, &slot, &status, render, stop);
   network.join();
   signals.Finish();  // before `link` goes
   if (control_server) control_server->Shutdown();

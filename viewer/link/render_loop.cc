@@ -52,8 +52,8 @@ std::string HudText(const v1::ViewerStatus& s) {
 
 }  // namespace
 
-void RunRenderLoop(SceneSlot* slot, LinkStatus* status, const RenderOptions& options,
-                   const std::atomic<bool>& stop) {
+void RunRenderLoop(ViewWindow* view, SceneSlot* slot, LinkStatus* status,
+                   const RenderOptions& options, const std::atomic<bool>& stop) {
   std::unique_ptr<VideoRecorder> recorder;
   if (!options.record_file.empty()) {
     recorder = std::make_unique<VideoRecorder>(options.record_file, static_cast<int>(options.fps));
@@ -68,35 +68,46 @@ void RunRenderLoop(SceneSlot* slot, LinkStatus* status, const RenderOptions& opt
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / options.fps));
   Clock::time_point next = Clock::now();
   Clock::time_point fps_window = next;
-  // Window mode: the interactor's pending mouse/keyboard events are handled every tick
-  // (ProcessEvents), so the user can turn the camera while frames keep coming.
+  // Window mode: one interactor on the one window, made with the first scene; its pending
+  // mouse/keyboard events are handled every tick (ProcessEvents), so the user can turn the
+  // camera while frames keep coming.
   vtkSmartPointer<vtkRenderWindowInteractor> interactor;
   vtkNew<vtkInteractorStyleTrackballCamera> style;
   std::unique_ptr<ReplayKeys> keys;
   int draws = 0, window_draws = 0, snapshots = 0;
   while (!stop) {
+    // Once the display is lost nothing draws: scenes are still built (without a window), so
+    // the link goes on posing them and answering probes.
+    const bool drawing = view->Check(/*discard_events=*/!options.interactive);
     bool changed = false;
-    Scene* scene = slot->Service(&changed);
+    Scene* scene = slot->Service(view->window(), &changed);
+    if (!drawing) scene = nullptr;
     if (scene && changed && options.hud) scene->renderer()->AddActor2D(hud);
     if (scene && changed && options.interactive) {
-      interactor = vtkSmartPointer<vtkRenderWindowInteractor>::New();
-      interactor->SetInteractorStyle(style);
-      interactor->SetRenderWindow(scene->render_window());
-      interactor->Initialize();
-      if (options.send_control) {
+      if (!interactor) {
+        interactor = vtkSmartPointer<vtkRenderWindowInteractor>::New();
+        interactor->SetInteractorStyle(style);
+        interactor->SetRenderWindow(view->window());
+        interactor->Initialize();
+      }
+      if (options.send_control) {  // the slider goes into the new scene's renderer
+        keys.reset();
         keys = std::make_unique<ReplayKeys>(options.send_control, status);
         keys->Install(interactor);
       }
     }
-    if (keys) keys->Update();
-    if (interactor) interactor->ProcessEvents();
+    if (keys && drawing) keys->Update();
+    if (interactor && drawing) interactor->ProcessEvents();
     if (scene) {
       if (options.hud) hud->SetInput(HudText(status->Get()).c_str());
       scene->Render();
+    }
+    if (scene && !view->lost()) {  // (a render may be what finds the display gone)
       ++draws;
       ++window_draws;
       if (recorder) recorder->AddFrame(scene->render_window());
-      if (!options.snapshots_dir.empty() && draws % options.snapshot_every == 1) {
+      // The first draw, then every snapshot_every-th (also when it is 1).
+      if (!options.snapshots_dir.empty() && (draws - 1) % options.snapshot_every == 0) {
         char name[64];
         std::snprintf(name, sizeof(name), "frame_%05d.png", ++snapshots);
         try {
@@ -118,6 +129,10 @@ void RunRenderLoop(SceneSlot* slot, LinkStatus* status, const RenderOptions& opt
   }
   slot->Shutdown();
   if (recorder) recorder->End();
+  if (view->lost()) {  // left alive: freeing them would talk to the lost X server
+    static_cast<void>(keys.release());
+    if (interactor) interactor->Register(nullptr);
+  }
   keys.reset();
   interactor = nullptr;
   slot->DestroyScene();

@@ -1,5 +1,6 @@
 // The viewer's render thread (the main thread): builds scenes on request, draws the newest
-// pose at a fixed display rate with a HUD, records video and PNG snapshots. Probes never
+// pose into the viewer's one window at a fixed display rate with a HUD, records video and
+// PNG snapshots. Probes never
 // wait for it: the network thread computes them from the scene's pose side.
 #pragma once
 
@@ -10,6 +11,7 @@
 #include "mbstream/v1/replay.pb.h"
 #include "viewer/link/link_status.h"
 #include "viewer/link/scene_slot.h"
+#include "viewer/scene/view_window.h"
 
 namespace mbstream::viewer {
 
@@ -24,8 +26,10 @@ struct RenderOptions {
   std::function<bool(const v1::ReplayControl&)> send_control;
 };
 
-// Runs until `stop` is set; returns after finishing the video. The scene is destroyed here.
-void RunRenderLoop(SceneSlot* slot, LinkStatus* status, const RenderOptions& options,
-                   const std::atomic<bool>& stop);
+// Runs until `stop` is set; returns after finishing the video. Every scene draws into
+// `view`'s one window; the scene is destroyed here (before `view`). Once `view`'s display is
+// lost nothing is drawn, recorded or snapshotted, and scenes are still built for the link.
+void RunRenderLoop(ViewWindow* view, SceneSlot* slot, LinkStatus* status,
+                   const RenderOptions& options, const std::atomic<bool>& stop);
 
 }  // namespace mbstream::viewer

@@ -22,8 +22,9 @@ void SceneSlot::RunOnRenderThread(std::function<void(Scene*)> task) {
   done_.wait(lock, [&] { return tasks_done_ >= ticket || shut_down_; });
 }
 
-Scene* SceneSlot::Service(bool* changed) {
+Scene* SceneSlot::Service(vtkRenderWindow* window, bool* changed) {
   *changed = false;
+  if (!window && scene_ && scene_->render_window()) scene_->ForgetWindow();
   std::optional<SceneDescription> request;
   std::deque<std::function<void(Scene*)>> tasks;
   int64_t ticket = 0;
@@ -36,7 +37,7 @@ Scene* SceneSlot::Service(bool* changed) {
   if (request) {
     std::string error;
     try {
-      auto scene = std::make_unique<Scene>(std::move(*request), options_);
+      auto scene = std::make_unique<Scene>(std::move(*request), options_, window);
       std::unique_ptr<Scene> old;
       {
         std::lock_guard<std::mutex> lock(scene_mutex_);

@@ -39,9 +39,11 @@ class SceneSlot {
   // waits for it.
   void RunOnRenderThread(std::function<void(Scene*)> task);
 
-  // Render thread: builds a requested scene and runs queued tasks; returns the current scene
-  // (or nullptr) and whether it changed since the last call.
-  Scene* Service(bool* changed);
+  // Render thread: builds a requested scene into `window` (the viewer's one window; null once
+  // its display is lost, and then the current scene forgets the window it had) and runs
+  // queued tasks; returns the current scene (or nullptr) and whether it changed since the
+  // last call.
+  Scene* Service(vtkRenderWindow* window, bool* changed);
 
   // Wakes and fails every waiter; later requests fail at once.
   void Shutdown();

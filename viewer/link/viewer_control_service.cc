@@ -4,6 +4,7 @@
 #include <random>
 
 #include "viewer/link/run_scene.h"
+#include "viewer/scene/scene_error.h"
 
 namespace mbstream::viewer {
 
@@ -16,7 +17,7 @@ grpc::Status ViewerControlService::GetStatus(grpc::ServerContext*, const v1::Vie
 grpc::Status ViewerControlService::Snapshot(grpc::ServerContext*, const v1::SnapshotRequest*,
                                             v1::SnapshotResponse* response) {
   bool shown = false;
-  std::string error;
+  std::string error, no_window;
   slot_->RunOnRenderThread([&](Scene* scene) {
     if (!scene) return;
     try {
@@ -25,10 +26,13 @@ grpc::Status ViewerControlService::Snapshot(grpc::ServerContext*, const v1::Snap
       response->set_width(size[0]);
       response->set_height(size[1]);
       shown = true;
+    } catch (const SceneError& e) {  // no window: the X display is lost
+      no_window = e.what();
     } catch (const std::exception& e) {
       error = e.what();
     }
   });
+  if (!no_window.empty()) return grpc::Status(grpc::StatusCode::FAILED_PRECONDITION, no_window);
   if (!error.empty()) return grpc::Status(grpc::StatusCode::INTERNAL, error);
   if (!shown) {
     return grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,

@@ -39,11 +39,28 @@ vtkSmartPointer<vtkActor> MakeProbeActor(double radius) {
 
 }  // namespace
 
+vtkSmartPointer<vtkRenderWindow> MakeRenderWindow(const SceneOptions& options) {
+  auto window = vtkSmartPointer<vtkRenderWindow>::New();
+  window->SetMultiSamples(0);  // 4x cheaper under Mesa's software rasteriser
+  window->SetOffScreenRendering(options.offscreen ? 1 : 0);
+  window->SetSize(options.width, options.height);
+  window->SetWindowName(options.window_title.c_str());
+  return window;
+}
+
 Scene::Scene(SceneDescription description, SceneOptions options)
+    : Scene(std::move(description), options, MakeRenderWindow(options), true) {}
+
+Scene::Scene(SceneDescription description, SceneOptions options, vtkRenderWindow* window)
+    : Scene(std::move(description), options, window, false) {}
+
+Scene::Scene(SceneDescription description, const SceneOptions& options,
+             vtkSmartPointer<vtkRenderWindow> window, bool owns_window)
     : description_(std::move(description)),
       solver_(description_.chain, description_.probes),
       pose_(solver_.MakePose()),
-      render_pose_(solver_.MakePose()) {
+      render_pose_(solver_.MakePose()),
+      owns_window_(owns_window) {
   if (!description_.initial_q.empty()) solver_.Solve(description_.initial_q, &pose_);
   version_ = 1;
 
@@ -51,12 +68,6 @@ Scene::Scene(SceneDescription description, SceneOptions options)
   renderer_->SetBackground(0.16, 0.18, 0.22);
   renderer_->SetBackground2(0.52, 0.57, 0.65);
   renderer_->GradientBackgroundOn();
-  window_ = vtkSmartPointer<vtkRenderWindow>::New();
-  window_->SetMultiSamples(0);  // 4x cheaper under Mesa's software rasteriser
-  window_->SetOffScreenRendering(options.offscreen ? 1 : 0);
-  window_->SetSize(options.width, options.height);
-  window_->SetWindowName(options.window_title.c_str());
-  window_->AddRenderer(renderer_);
 
   for (int k = 0; k < solver_.chain().frame_count(); ++k) {
     frame_matrices_.push_back(vtkSmartPointer<vtkMatrix4x4>::New());
@@ -99,9 +110,31 @@ Scene::Scene(SceneDescription description, SceneOptions options)
     FrameBox(renderer_, bounds, base, static_cast<double>(options.width) / options.height);
   }
   AddLights(renderer_);
+  // Last: nothing may throw once a shared window holds the renderer.
+  if (window) {
+    window_ = std::move(window);
+    window_->AddRenderer(renderer_);
+  }
 }
 
-Scene::~Scene() = default;
+Scene::~Scene() {
+  if (window_ && !owns_window_) window_->RemoveRenderer(renderer_);
+}
+
+void Scene::ForgetWindow() {
+  if (!window_) return;
+  renderer_->Register(nullptr);  // kept for good, with its actors and the window it names
+  window_->Register(nullptr);
+  window_ = nullptr;
+}
+
+void Scene::RequireWindow() const {
+  if (!window_) {
+    throw SceneError(
+        "the scene has no window to read (the X display is lost); the viewer "
+        "answers probes but draws nothing until it is restarted");
+  }
+}
 
 std::vector<long long> Scene::TriangleShares(long long budget) const {
   std::vector<long long> counts(description_.visuals.size(), 0);
@@ -215,25 +248,29 @@ void Scene::SyncActors() {
 
 void Scene::Render() {
   SyncActors();
-  window_->Render();
+  if (window_) window_->Render();
 }
 
 RgbImage Scene::Capture() {
+  RequireWindow();
   Render();
   return CaptureWindow(window_);
 }
 
 void Scene::SnapshotPng(const std::filesystem::path& path) {
+  RequireWindow();
   Render();
   WritePng(window_, path);
 }
 
 std::string Scene::SnapshotPngBytes() {
+  RequireWindow();
   Render();
   return PngBytes(window_);
 }
 
 void Scene::Interact() {
+  RequireWindow();
   vtkNew<vtkRenderWindowInteractor> interactor;
   vtkNew<vtkInteractorStyleTrackballCamera> style;
   interactor->SetInteractorStyle(style);

@@ -47,13 +47,23 @@ struct SceneOptions {
   double ghost_opacity = 0.0;
 };
 
+// A render window with the options' size, offscreen flag and title (no X request yet: the
+// window opens its X connection, unless given one, and appears at its first render).
+vtkSmartPointer<vtkRenderWindow> MakeRenderWindow(const SceneOptions& options);
+
 class Scene {
  public:
   // Builds every pipeline, the camera and the lights; poses the initial joint values.
   // A mesh file that cannot be read is drawn as the part's fallback (a URDF link's
   // placeholder box) with a logged warning; without one, throws SceneError. Textures are not
   // drawn (logged once per scene). Throws InputError (common/check.h) on a bad description.
+  // The scene makes its own window (which opens an X connection at its first render).
   Scene(SceneDescription description, SceneOptions options);
+  // The same, drawn into `window` (a ViewWindow's, which outlives the Scene; its size,
+  // offscreen flag and title are the window's own) by a renderer of the scene's, added here
+  // and removed by the destructor. `window` null: no window (the display is lost): the pose
+  // side works, Render does nothing, Capture and the snapshots throw SceneError.
+  Scene(SceneDescription description, SceneOptions options, vtkRenderWindow* window);
   ~Scene();
   Scene(const Scene&) = delete;
   Scene& operator=(const Scene&) = delete;
@@ -83,7 +93,13 @@ class Scene {
   std::string SnapshotPngBytes();  // renders, returns PNG bytes
   // Window mode: mouse interaction (trackball camera) until the window is closed.
   void Interact();
+  // The display went away: the scene stops drawing and lets go of its window without a word
+  // to it. Its renderer and actors are kept for good, since freeing their graphics resources
+  // would talk to the lost X server (one scene at most: later ones are built without a
+  // window).
+  void ForgetWindow();
 
+  // Null when the scene has no window (see the constructor).
   vtkRenderWindow* render_window() { return window_; }
   vtkRenderer* renderer() { return renderer_; }
   // Number of actors that show parts (probe markers excluded).
@@ -107,6 +123,7 @@ class Scene {
   Pose render_pose_;
   std::uint64_t applied_version_ = ~std::uint64_t{0};
   vtkSmartPointer<vtkRenderWindow> window_;
+  bool owns_window_ = false;  // made here (else a ViewWindow's, or none)
   vtkSmartPointer<vtkRenderer> renderer_;
   std::vector<vtkSmartPointer<vtkMatrix4x4>> frame_matrices_;  // one per frame
   std::vector<vtkSmartPointer<vtkActor>> part_actors_;
@@ -120,7 +137,11 @@ class Scene {
   long long triangle_count_ = 0;
   std::unique_ptr<GhostLayer> ghost_;
 
+  Scene(SceneDescription description, const SceneOptions& options,
+        vtkSmartPointer<vtkRenderWindow> window, bool owns_window);
   void AddPart(const VisualPart& part, long long max_triangles, bool* textured);
+  // Throws SceneError when there is no window to read pixels from.
+  void RequireWindow() const;
   // Per visual: the triangles its mesh file may keep (0 = all), from the budget.
   std::vector<long long> TriangleShares(long long budget) const;
 };
