@@ -10,6 +10,7 @@
 
 #include "tests/viewer/script_test_util.h"
 #include "tests/viewer/xvfb_display.h"
+#include "tests/viewer/xvfb_server.h"
 
 namespace mbstream::viewer {
 namespace {
@@ -22,8 +23,11 @@ struct ProcessResult {
   std::string out;  // stdout and stderr
 };
 
-ProcessResult RunViewer(const std::string& arguments) {
-  const std::string command = std::string(MBSTREAM_VIEWER_BIN) + " " + arguments + " 2>&1";
+// Runs mbstream-viewer with `arguments`, after the environment settings `env` ("" or
+// "NAME=VALUE ...").
+ProcessResult RunViewer(const std::string& arguments, const std::string& env = "") {
+  const std::string command =
+      "env " + env + " " + std::string(MBSTREAM_VIEWER_BIN) + " " + arguments + " 2>&1";
   ProcessResult run;
   FILE* pipe = popen(command.c_str(), "r");
   std::array<char, 4096> buffer;
@@ -117,6 +121,19 @@ TEST(ViewerCli, WithoutADisplayItSaysHowToRunOffscreen) {
                               " --scene models/irb1600/irb1600.scene --offscreen > /dev/null 2>&1";
   const int status = std::system(command.c_str());
   EXPECT_EQ(WEXITSTATUS(status), 2);
+}
+
+// A DISPLAY where no X server answers (a private Xvfb, stopped): said and exit 2, where VTK
+// used to abort ("bad X server connection ... Aborting", exit 134).
+TEST(ViewerCli, ADisplayWithNoServerIsSaidAndExitsWithTwo) {
+  testing::XvfbServer xvfb;
+  ASSERT_TRUE(xvfb.Start());
+  const std::string gone = xvfb.display();
+  xvfb.Stop();
+  const ProcessResult run = RunViewer(
+      "--scene models/irb1600/irb1600.scene --offscreen --snapshot /dev/null", "DISPLAY=" + gone);
+  EXPECT_EQ(run.exit_code, 2) << run.out;
+  EXPECT_THAT(run.out, HasSubstr("no X server answers at DISPLAY='" + gone + "'"));
 }
 
 TEST(ViewerCli, SnapshotsOfAScriptAndOfAUrdf) {

@@ -3,12 +3,14 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <optional>
 
 #include "common/check.h"
 #include "viewer/app/commands.h"
 #include "viewer/app/scene_loading.h"
 #include "viewer/scene/scene.h"
 #include "viewer/scene/scene_error.h"
+#include "viewer/scene/view_window.h"
 
 namespace mbstream::viewer {
 
@@ -41,14 +43,23 @@ int RunPose(const PoseOptions& options) {
                  "xvfb-run -a mbstream-viewer ... --offscreen --snapshot out.png\n";
     return 2;
   }
+  SceneOptions scene_options;
+  scene_options.width = options.width;
+  scene_options.height = options.height;
+  scene_options.offscreen = options.offscreen;
+  scene_options.triangle_budget = options.triangle_budget;
+  scene_options.window_title = "mbstream viewer: " + description->title;
+  // The window on the viewer's own X connection: a DISPLAY where no server answers is said
+  // here (exit 2), where VTK would abort.
+  std::optional<ViewWindow> view;
   try {
-    SceneOptions scene_options;
-    scene_options.width = options.width;
-    scene_options.height = options.height;
-    scene_options.offscreen = options.offscreen;
-    scene_options.triangle_budget = options.triangle_budget;
-    scene_options.window_title = "mbstream viewer: " + description->title;
-    Scene scene(std::move(*description), scene_options);
+    view.emplace(scene_options);
+  } catch (const SceneError& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
+  }
+  try {
+    Scene scene(std::move(*description), scene_options, view->window());
     scene.SetJointValues(q_si);
     for (const ProbeReport& probe : scene.ProbeReports()) {
       auto clean = [](double v) { return std::abs(v) < 1e-12 ? 0.0 : v; };

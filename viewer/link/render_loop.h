@@ -1,7 +1,7 @@
 // The viewer's render thread (the main thread): builds scenes on request, draws the newest
 // pose into the viewer's one window at a fixed display rate with a HUD, records video and
-// PNG snapshots. Probes never
-// wait for it: the network thread computes them from the scene's pose side.
+// PNG snapshots. Probes never wait for it: the network thread computes them from the scene's
+// pose side.
 #pragma once
 
 #include <atomic>
