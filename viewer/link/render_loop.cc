@@ -16,6 +16,7 @@
 
 #include "viewer/link/replay_keys.h"
 #include "viewer/link/video_recorder.h"
+#include "viewer/scene/kept_for_good.h"
 
 namespace mbstream::viewer {
 
@@ -130,8 +131,9 @@ void RunRenderLoop(ViewWindow* view, SceneSlot* slot, LinkStatus* status,
   slot->Shutdown();
   if (recorder) recorder->End();
   if (view->lost()) {  // left alive: freeing them would talk to the lost X server
-    static_cast<void>(keys.release());
+    KeepForGood(keys.release());
     if (interactor) interactor->Register(nullptr);
+    KeepForGood(interactor.Get());
   }
   keys.reset();
   interactor = nullptr;

@@ -13,6 +13,7 @@
 
 #include "viewer/scene/camera_rig.h"
 #include "viewer/scene/image_capture.h"
+#include "viewer/scene/kept_for_good.h"
 #include "viewer/scene/mesh_cache.h"
 #include "viewer/scene/scene_error.h"
 #include "viewer/scene/visual_pipeline.h"
@@ -124,7 +125,9 @@ Scene::~Scene() {
 void Scene::ForgetWindow() {
   if (!window_) return;
   renderer_->Register(nullptr);  // kept for good, with its actors and the window it names
+  KeepForGood(renderer_.Get());
   window_->Register(nullptr);
+  KeepForGood(window_.Get());
   window_ = nullptr;
 }
 

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "viewer/scene/kept_for_good.h"
 #include "viewer/scene/scene_error.h"
 
 // Last: Xlib's macros (None, Status, Bool...) would clash with the headers above.
@@ -79,7 +80,11 @@ XDisplay::~XDisplay() {
   XSetErrorHandler(reinterpret_cast<XErrorHandler>(previous_error_handler_));
   XSetIOErrorHandler(reinterpret_cast<XIOErrorHandler>(previous_io_handler_));
   // A lost connection is left alone: what lives on it may still point at it.
-  if (!lost()) XCloseDisplay(static_cast<Display*>(display_));
+  if (lost()) {
+    KeepForGood(display_);
+  } else {
+    XCloseDisplay(static_cast<Display*>(display_));
+  }
   current_display = nullptr;
 }
 
