@@ -10,8 +10,16 @@ inline constexpr int kExitRunFailed = 1;  // the run did not finish (its state s
 inline constexpr int kExitBadRequest = 2;
 inline constexpr int kExitUnreachable = 3;  // the server is unreachable (or internal error)
 // The run finished but its own error indicators say the result cannot be trusted
-// (trust: low); --accept-untrusted turns this into 0.
+// (trust: low), or it missed its accuracy target; --accept-untrusted turns this into 0.
 inline constexpr int kExitUntrusted = 4;
+
+// The line about a run that had an accuracy target and was verified: "target: met" or
+// "target: missed (MESSAGE)", MESSAGE naming the achieved error and what to change; empty
+// when there was no target or no check. A missed target exits kExitUntrusted, as low trust.
+inline std::string TargetLine(bool met, const std::string& message) {
+  if (met) return "target: met";
+  return "target: missed (" + (message.empty() ? std::string("see stats.json") : message) + ")";
+}
 
 // The CLI's last line about a finished run: "trust: ok" or "trust: low (REASON)";
 // "trust: n/a" when the run did not finish.

@@ -94,9 +94,14 @@ int RunOnServer(const ClientOptions& client, const RunOptions& options) {
     std::cerr << "mbstream run: run " << v1::RunState_Name(info.state()) << ": " << info.message()
               << "\n";
   }
+  const bool finished = info.state() == v1::FINISHED;
+  const bool missed = finished && s.has_target_met() && !s.target_met();
+  if (finished && s.has_target_met()) {
+    std::cerr << TargetLine(s.target_met(), info.message()) << "\n";
+  }
   std::cerr << TrustLine(s.trust(), s.trust_reason()) << std::endl;
-  if (info.state() != v1::FINISHED) return kExitRunFailed;
-  if (s.trust() == "low" && !options.accept_untrusted) return kExitUntrusted;
+  if (!finished) return kExitRunFailed;
+  if ((s.trust() == "low" || missed) && !options.accept_untrusted) return kExitUntrusted;
   return kExitOk;
 }
 
@@ -113,8 +118,8 @@ void AddRunCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client, i
                       "pacing: simulated s per wall s (1 = real time, 0 = as fast as possible)");
   command->add_flag("--watch", options->watch, "show progress and wait for the end");
   command->add_flag("--accept-untrusted", options->accept_untrusted,
-                    "with --watch/--out: exit 0 even when the finished run's trust is low "
-                    "(else exit 4)");
+                    "with --watch/--out: exit 0 even when the finished run's trust is low or "
+                    "it missed its accuracy target (else exit 4)");
   command->add_option("--out", options->out_dir, "write the results files here (implies waiting)");
   command->callback([client, options, exit_code] {
     try {

@@ -96,9 +96,14 @@ int RunSimulate(const SimulateOptions& options) {
   if (s.status != RunStatus::kFinished) {
     std::cerr << "mbstream simulate: run " << RunStatusName(s.status) << ": " << s.message << "\n";
   }
+  const bool missed =
+      s.status == RunStatus::kFinished && s.target_met.has_value() && !*s.target_met;
+  if (s.status == RunStatus::kFinished && s.target_met.has_value()) {
+    std::cout << TargetLine(*s.target_met, s.message) << "\n";
+  }
   std::cout << TrustLine(TrustName(s.trust), s.trust_reason) << std::endl;
   if (s.status != RunStatus::kFinished) return kExitRunFailed;
-  if (s.trust == Trust::kLow && !options.accept_untrusted) return kExitUntrusted;
+  if ((s.trust == Trust::kLow || missed) && !options.accept_untrusted) return kExitUntrusted;
   return kExitOk;
 }
 
@@ -116,7 +121,8 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   command->add_option("--out", options->out_dir, "results directory")->required();
   options->overrides.AddTo(*command);
   command->add_flag("--accept-untrusted", options->accept_untrusted,
-                    "exit 0 even when the finished run's trust is low (else exit 4)");
+                    "exit 0 even when the finished run's trust is low or it missed its accuracy "
+                    "target (else exit 4)");
   command
       ->add_option("--max-links", options->max_links,
                    "most links and points of the model (as mbstream-server --max-links)")

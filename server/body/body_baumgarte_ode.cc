@@ -5,8 +5,12 @@
 namespace mbstream {
 
 BodyBaumgarteOde::BodyBaumgarteOde(const BodyModel& body_model, const DriveSet& drives,
-                                   const BaumgarteParameters& parameters)
-    : bm_(body_model), parameters_(parameters), mechanics_(body_model, drives) {}
+                                   const BaumgarteParameters& parameters, bool track_work)
+    : bm_(body_model),
+      parameters_(parameters),
+      mechanics_(body_model, drives),
+      track_work_(track_work),
+      ydot_(Eigen::VectorXd::Zero(track_work ? body_model.ode_size() : 0)) {}
 
 int BodyBaumgarteOde::JacobianNonZeros() const {
   const int n = bm_.n;
@@ -29,6 +33,30 @@ int BodyBaumgarteOde::Rhs(double t, const double* y, double* ydot) {
   const Eigen::VectorXd& nu_dot = mech.nu_dot();
   for (int k = 0; k < 6 * n; ++k) ydot[7 * n + k] = nu_dot(k);
   return 0;
+}
+
+int BodyBaumgarteOde::Quadrature(double t, const double* y, double* qdot) {
+  return RhsAndQuadrature(t, y, ydot_.data(), qdot);
+}
+
+int BodyBaumgarteOde::RhsAndQuadrature(double t, const double* y, double* ydot, double* qdot) {
+  if (!track_work_) return -1;
+  if (const int code = Rhs(t, y, ydot); code != 0) return code;
+  qdot[0] = Power();
+  return 0;
+}
+
+double BodyBaumgarteOde::Power() const {
+  const BodyMechanics& mech = mechanics_;
+  double power = 0.0;
+  for (const BodyJoint& joint : bm_.joints) {
+    const int j = joint.child;
+    const double qd = mech.qd()(j);
+    const double effort =
+        joint.prescribed ? mech.lambda()(joint.row + 5) : mech.actuator_effort()(j);
+    power += (effort - joint.damping * qd) * qd;
+  }
+  return power;
 }
 
 }  // namespace mbstream

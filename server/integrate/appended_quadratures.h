@@ -1,9 +1,13 @@
 // Quadratures as appended states (CVODE has no quadratures, only CVODES has): the system
 // y' = f(t, y) with quadratures Q' = g(t, y) becomes z = [y; Q], z' = [f; g], advanced by the
-// run's method; the appended states get a zero error weight (IntegratorOptions::error_states),
-// so they never shorten a step. (The weighted RMS norm still divides by the full length, so
-// the tolerances act a few per cent looser than on y alone; y itself is not bit for bit that
-// of a run without quadratures, which is why a run asks for them only when it needs them.)
+// run's method. The appended states take no part in the error control: a zero error weight
+// (IntegratorOptions::error_states), an error norm over y alone (ErrorNorm,
+// fast_serial_ops.h), zero Jacobian rows and columns (also in the finite differences) and a
+// Newton matrix whose leading block is y's own (structured_dense_solver.h). So y takes the
+// steps, and has the values, of a run without quadratures, bit for bit, with every method:
+// the adaptive ones (their norms and Newton matrices), RK4 and semi-implicit Euler (Q is
+// advanced alongside y and never read). Q is the method's own quadrature of g: with the
+// implicit methods its Newton update lags y's by one iteration (its Jacobian row is zero).
 #pragma once
 
 #include <memory>

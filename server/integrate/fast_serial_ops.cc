@@ -141,9 +141,18 @@ double WSqrSum(N_Vector x, N_Vector w) {
   return n == 12 ? WSqrSumN<12>(n, Data(x), Data(w)) : WSqrSumN<0>(n, Data(x), Data(w));
 }
 
-double WrmsNorm(N_Vector x, N_Vector w) {
-  return std::sqrt(WSqrSum(x, w) / static_cast<double>(Length(x)));
+}  // namespace
+
+double ErrorNorm(N_Vector x, N_Vector w) {
+  const sunindextype n = ErrorControlledLength(Length(w), Data(w));
+  if (n == 0) return 0.0;
+  const double sum = n == 12 ? WSqrSumN<12>(n, Data(x), Data(w)) : WSqrSumN<0>(n, Data(x), Data(w));
+  return std::sqrt(sum / static_cast<double>(n));
 }
+
+namespace {
+
+double WrmsNorm(N_Vector x, N_Vector w) { return ErrorNorm(x, w); }
 
 double Min(N_Vector x) {
   const sunindextype n = Length(x);
@@ -352,6 +361,11 @@ void InstallFastSerialOps(N_Vector vector) {
   ops->nvscalevectorarray = ScaleVectorArray;
   ops->nvconstvectorarray = ConstVectorArray;
   ops->nvwrmsnormvectorarray = WrmsNormVectorArray;
+}
+
+void InstallErrorNorm(N_Vector vector) {
+  vector->ops->nvwrmsnorm = WrmsNorm;
+  vector->ops->nvwrmsnormvectorarray = WrmsNormVectorArray;
 }
 
 void InstallFastDenseMatrixOps(SUNMatrix matrix) {

@@ -25,6 +25,22 @@ namespace mbstream::sundials {
 // internal vectors are clones of the initial state) inherit the table.
 void InstallFastSerialOps(N_Vector vector);
 
+// The states under error control of a weight vector of length n: all but its trailing
+// zero weights, the appended quadratures' (appended_quadratures.h; a state under error
+// control always has a positive weight, sundials_callbacks.h).
+inline sunindextype ErrorControlledLength(sunindextype n, const double* weights) {
+  while (n > 0 && weights[n - 1] == 0.0) --n;
+  return n;
+}
+
+// The weighted RMS norm over the states under error control, sqrt(sum_i (x_i w_i)^2 / m) for
+// the first m = ErrorControlledLength states: a system with appended quadratures has the
+// norms, and so the steps, of the system alone, bit for bit (SUNDIALS' serial norm divides
+// by the whole length). InstallFastSerialOps installs it; ARKODE's vectors, which keep
+// SUNDIALS' other operations, get it alone from InstallErrorNorm.
+double ErrorNorm(N_Vector x, N_Vector w);
+void InstallErrorNorm(N_Vector vector);
+
 // A SUNDenseMatrix: zero, copy, scale-add-identity; clones inherit the replacements.
 void InstallFastDenseMatrixOps(SUNMatrix matrix);
 

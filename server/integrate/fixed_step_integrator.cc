@@ -12,7 +12,7 @@ namespace mbstream {
 FixedStepIntegrator::FixedStepIntegrator(OdeSystem& system, double t0, const double* y0,
                                          const IntegratorOptions& options, int order)
     : IntegratorBase(system.size(), t0, y0, options),
-      rhs_(system, options.divergence_limit),
+      rhs_(system, options.divergence_limit, options.error_states),
       t0_(t0),
       step_(options.fixed_step),
       order_(order),
@@ -61,7 +61,8 @@ AdvanceResult FixedStepIntegrator::DoAdvance(double t_out, double* y) {
     // The last grid point may lie a rounding error beyond t_final: never step past it.
     const double h = std::min(GridTime(k_ + 1), options().t_final) - t;
     const int code = Step(t, h, y_grid_.data(), y_next_.data());
-    if (code != 0 || !IsHealthyState(y_next_.data(), n, limit)) {
+    if (code != 0 ||
+        !IsHealthyState(y_next_.data(), n, LimitedStates(n, options().error_states), limit)) {
       return StepFailure(code, t, h, y);
     }
     std::swap(y_grid_, y_next_);

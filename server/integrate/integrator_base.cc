@@ -75,8 +75,9 @@ AdvanceResult IntegratorBase::AdvanceTo(double t_out, double* y) {
 
   AdvanceResult result = DoAdvance(t_out, y);
   const double limit = options_.divergence_limit;
+  const int limited = LimitedStates(size_, options_.error_states);
   if (result.status == IntegratorStatus::kOk) {
-    if (IsHealthyState(y, size_, limit)) {
+    if (IsHealthyState(y, size_, limited, limit)) {
       std::copy(y, y + size_, last_y_.begin());
       last_t_ = t_out;
       result.t = t_out;
@@ -87,7 +88,7 @@ AdvanceResult IntegratorBase::AdvanceTo(double t_out, double* y) {
   }
 
   // Failure: y must hold the last good state, at result.t.
-  if (!(result.t >= last_t_ && result.t <= t_out) || !IsHealthyState(y, size_, limit)) {
+  if (!(result.t >= last_t_ && result.t <= t_out) || !IsHealthyState(y, size_, limited, limit)) {
     std::copy(last_y_.begin(), last_y_.end(), y);
     result.t = last_t_;
   } else {

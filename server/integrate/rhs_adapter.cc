@@ -7,8 +7,11 @@
 
 namespace mbstream {
 
-RhsAdapter::RhsAdapter(OdeSystem& system, double divergence_limit)
-    : system_(system), size_(system.size()), divergence_limit_(divergence_limit) {}
+RhsAdapter::RhsAdapter(OdeSystem& system, double divergence_limit, int limited_states)
+    : system_(system),
+      size_(system.size()),
+      limited_states_(LimitedStates(system.size(), limited_states)),
+      divergence_limit_(divergence_limit) {}
 
 int RhsAdapter::Fail(Event event, double t, int code) noexcept {
   if (event_ == Event::kNone) {
@@ -30,7 +33,9 @@ int RhsAdapter::Evaluate(double t, const double* y, double* ydot) noexcept {
   // retries anyway (CVODE's fixed-point iteration treats every failure as recoverable)
   // stops at once instead of creeping towards the failure time with ever smaller steps.
   if (event_ != Event::kNone) return -1;
-  if (!IsHealthyState(y, size_, divergence_limit_)) return Fail(Event::kDiverged, t, -1);
+  if (!IsHealthyState(y, size_, limited_states_, divergence_limit_)) {
+    return Fail(Event::kDiverged, t, -1);
+  }
   const int code =
       sundials::AtCBoundary([&] { return system_.Rhs(t, y, ydot); },
                             [&](const char* what) { return RecordException(t, what); });

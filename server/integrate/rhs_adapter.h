@@ -20,7 +20,9 @@ class RhsAdapter {
     kThrew,                // OdeSystem::Rhs or Jacobian threw (what() in event_what())
   };
 
-  RhsAdapter(OdeSystem& system, double divergence_limit);
+  // The divergence limit applies to the first `limited_states` states of y (0 = all; the
+  // rest, appended quadratures, need only be finite).
+  RhsAdapter(OdeSystem& system, double divergence_limit, int limited_states = 0);
   RhsAdapter(const RhsAdapter&) = delete;
   RhsAdapter& operator=(const RhsAdapter&) = delete;
 
@@ -54,6 +56,7 @@ class RhsAdapter {
 
   OdeSystem& system_;
   int size_;
+  int limited_states_;  // the states under the divergence limit
   double divergence_limit_;
   long num_evals_ = 0;
   Event event_ = Event::kNone;

@@ -28,10 +28,15 @@ int FiniteDifferenceJacobian(const CallbackData& data, double t, N_Vector y, N_V
                                        : ARKStepGetErrWeights(data.solver, weights);
   if (flag != 0) return -1;
 
+  // The increments and the rows of the states under error control are those of the system
+  // without its appended quadratures (the first error_states); the quadratures' rows are
+  // zero, as in AppendedQuadratureOde's own Jacobian: Q feeds nothing back, and with zero
+  // rows the Newton matrix keeps the system's own (and its pivots) in its leading block.
   const int n = data.rhs->size();
+  const int controlled = data.error_states;
   const double uround = DBL_EPSILON;
   const double fnorm = N_VWrmsNorm(fy, weights);
-  const double min_inc = fnorm != 0.0 ? 1000.0 * std::abs(h) * uround * n * fnorm : 1.0;
+  const double min_inc = fnorm != 0.0 ? 1000.0 * std::abs(h) * uround * controlled * fnorm : 1.0;
   const double* ewt = N_VGetArrayPointer(weights);
   const double* f0 = N_VGetArrayPointer(fy);
   double* shifted = N_VGetArrayPointer(y_shifted);
@@ -49,7 +54,8 @@ int FiniteDifferenceJacobian(const CallbackData& data, double t, N_Vector y, N_V
     const int code = data.rhs->Evaluate(t, shifted, f1);
     shifted[j] = yj;
     if (code != 0) return code;
-    for (int i = 0; i < n; ++i) column[i] = (f1[i] - f0[i]) / inc;
+    for (int i = 0; i < controlled; ++i) column[i] = (f1[i] - f0[i]) / inc;
+    std::fill(column + controlled, column + n, 0.0);
   }
   return 0;
 }

@@ -30,7 +30,7 @@ SundialsIntegrator::SundialsIntegrator(OdeSystem& system, double t0, const doubl
                                        const IntegratorOptions& options, Family family,
                                        bool implicit, bool fixed_point)
     : IntegratorBase(system.size(), t0, y0, options),
-      rhs_(system, options.divergence_limit),
+      rhs_(system, options.divergence_limit, options.error_states),
       callback_data_{
           &rhs_,
           nullptr,
@@ -47,12 +47,21 @@ SundialsIntegrator::SundialsIntegrator(OdeSystem& system, double t0, const doubl
   y0_.reset(N_VNew_Serial(n, context()));
   CheckCreated(y0_.get(), "N_VNew_Serial");
   // CVODE only: its vectors are clones of y0_ and inherit the table. (ARKODE's ERK would
-  // take other, differently rounded paths through the fused operations: left as it was.)
-  if (family == Family::kCvode) InstallFastSerialOps(y0_.get());
+  // take other, differently rounded paths through the fused operations: left as it was,
+  // but for the error norm, which leaves appended quadratures out, fast_serial_ops.h.)
+  if (family == Family::kCvode) {
+    InstallFastSerialOps(y0_.get());
+  } else {
+    InstallErrorNorm(y0_.get());
+  }
   std::copy(y0, y0 + n, N_VGetArrayPointer(y0_.get()));
   out_.reset(N_VMake_Serial(n, nullptr, context()));
   CheckCreated(out_.get(), "N_VMake_Serial");
-  if (family == Family::kCvode) InstallFastSerialOps(out_.get());
+  if (family == Family::kCvode) {
+    InstallFastSerialOps(out_.get());
+  } else {
+    InstallErrorNorm(out_.get());
+  }
 }
 
 void SundialsIntegrator::CheckSetup(int flag, const char* call) const {

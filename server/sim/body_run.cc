@@ -68,6 +68,9 @@ class BodySource : public FrameSource {
   }
 
   bool Record(double t, FrameRecorder& recorder) override {
+    if (ode_ != nullptr && ode_->num_quadratures() > 0 && integrator_.Quadratures(&work_)) {
+      recorder.SetWork(work_);
+    }
     const bool finite = readout_.Read(t, y_.data(), need_effort_);
     extras_.tcp = readout_.tcp();
     extras_.kinetic = readout_.kinetic();
@@ -89,6 +92,7 @@ class BodySource : public FrameSource {
   const bool need_effort_;
   BudgetTracking* budget_;
   FrameExtras extras_;
+  double work_ = 0.0;  // J, the integrated work of drives and damping (body-baumgarte)
 };
 
 }  // namespace
@@ -112,8 +116,12 @@ void RunBody(const Model& model, const RunConfig& config, Formulation formulatio
   std::unique_ptr<BodyDae> dae;
   BodyInitialState init;
   bool consistent = false;
+  // body-baumgarte integrates the work of drives and damping with its ODE (a quadrature that
+  // leaves the motion bit for bit as it is); the DAE formulations take the trapezoid rule
+  // over the output frames (IDA has no quadratures: RunStats::energy_work says which).
+  const bool track_work = baumgarte && result.has_energy && drives.any_work();
   if (baumgarte) {
-    ode = std::make_unique<BodyBaumgarteOde>(bm, drives, config.baumgarte);
+    ode = std::make_unique<BodyBaumgarteOde>(bm, drives, config.baumgarte, track_work);
     consistent = ConsistentInitialState(model, bm, ode->mechanics(), times.front(), q0, qd0, &init);
     result.stats.equations = ode->size();
     result.stats.jacobian_nnz = ode->JacobianNonZeros();
@@ -151,6 +159,7 @@ void RunBody(const Model& model, const RunConfig& config, Formulation formulatio
     integrator = MakeIdaIntegrator(*dae, times.front(), y.data(), init.yp.data(), ida);
   }
   result.stats.integrator = integrator->name();
+  if (track_work) recorder.UseIntegratedWork();
 
   BodyReadout readout(bm, drives);
   readout.SetStart(q0);

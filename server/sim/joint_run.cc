@@ -118,13 +118,11 @@ void RunJointSpace(const Model& model, const RunConfig& config, const DriveSet& 
                    const std::vector<double>& times, FrameRecorder& recorder, RunResult& result,
                    FrameSink* sink, const std::atomic<bool>* cancel, BudgetTracking* budget) {
   const int n = model.num_dofs();
-  // The work as a state of the ODE where the scene dissipates: with damping the trapezoid
-  // rule over the frames would be most of the "energy error". Without damping the drives'
-  // work keeps the trapezoid (RunStats::energy_work says which), so that those runs take
-  // exactly the steps they always took (an appended state changes the error norm's length).
-  bool damped = false;
-  for (int i = 0; i < drives.size(); ++i) damped = damped || drives.damping(i) > 0.0;
-  const bool track_work = result.has_energy && damped;
+  // The work of drives and damping as a state of the ODE whenever there is any: a trapezoid
+  // rule over the output frames would measure the output interval, not the integrator. The
+  // appended state takes no part in the error control, so q and qd are those of the ODE
+  // alone, bit for bit (appended_quadratures.h).
+  const bool track_work = result.has_energy && drives.any_work();
   const IntegratorOptions options =
       IntegratorOptionsFrom(config, times.back(), budget->cpu_deadline_s);
   size_t prefix_frames = 0;

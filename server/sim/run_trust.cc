@@ -25,25 +25,45 @@ void AssessTrust(RunStats* s) {
     s->trust = Trust::kNotAssessed;
     return;
   }
+  // Two remedies: a failed indicator of the integration asks for tighter tolerances or a
+  // smaller step; an energy balance whose work is a trapezoid rule over the output frames
+  // carries that rule's error, which only a smaller output interval reduces.
   std::string reason;
-  const double energy_limit =
-      s->energy_work_approximate ? kTrustEnergyErrorApproximate : kTrustEnergyError;
-  Exceeds(s->energy_error_max, energy_limit, "energy balance error", &reason);
-  Exceeds(s->tcp_error_max, kTrustTcpError, "TCP error (m) against the closed form", &reason);
-  Exceeds(s->drift_position_max, kTrustDriftPosition, "constraint drift (m)", &reason);
-  Exceeds(s->drift_orientation_max, kTrustDriftOrientation, "constraint drift (rad)", &reason);
-  Exceeds(s->quaternion_norm_error_max, kTrustQuaternionNorm, "quaternion norm error", &reason);
+  bool integration = false;
+  const bool frame_work = s->energy_work_approximate;
+  const bool energy =
+      Exceeds(s->energy_error_max, frame_work ? kTrustEnergyErrorApproximate : kTrustEnergyError,
+              "energy balance error", &reason);
+  integration |= energy && !frame_work;
+  integration |=
+      Exceeds(s->tcp_error_max, kTrustTcpError, "TCP error (m) against the closed form", &reason);
+  integration |=
+      Exceeds(s->drift_position_max, kTrustDriftPosition, "constraint drift (m)", &reason);
+  integration |=
+      Exceeds(s->drift_orientation_max, kTrustDriftOrientation, "constraint drift (rad)", &reason);
+  integration |=
+      Exceeds(s->quaternion_norm_error_max, kTrustQuaternionNorm, "quaternion norm error", &reason);
   if (s->solver.steps > 0) {
     const double rejected =
         static_cast<double>(s->solver.error_test_failures) / static_cast<double>(s->solver.steps);
-    Exceeds(rejected, kTrustRejectedPerStep, "rejected steps per accepted step", &reason);
+    integration |=
+        Exceeds(rejected, kTrustRejectedPerStep, "rejected steps per accepted step", &reason);
   }
   s->trust = reason.empty() ? Trust::kOk : Trust::kLow;
-  if (!reason.empty()) {
-    s->trust_reason = reason +
-                      ": the result cannot be trusted; tighten rtol/atol or use a smaller step "
-                      "(--step) or an adaptive method";
+  if (reason.empty()) return;
+  std::string remedy;
+  if (energy && frame_work) {
+    remedy = FormatString(
+        "the work of drives and damping is the trapezoid rule over the output frames (formulation "
+        "%s), whose error the energy balance includes: use a smaller output_interval_s, or the "
+        "joint formulation, which integrates the work with the motion",
+        s->formulation.c_str());
   }
+  if (integration) {
+    if (!remedy.empty()) remedy += "; and ";
+    remedy += "tighten rtol/atol or use a smaller step (--step) or an adaptive method";
+  }
+  s->trust_reason = reason + ": the result cannot be trusted; " + remedy;
 }
 
 }  // namespace mbstream

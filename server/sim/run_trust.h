@@ -10,8 +10,9 @@ namespace mbstream {
 
 // Limits (relative, m, rad, counts): beyond them the result cannot be trusted.
 inline constexpr double kTrustEnergyError = 1e-2;  // relative energy balance, work exact
-// With drive or damping work integrated from the output frames (trapezoid rule) the balance
-// carries that quadrature's own error: a looser limit.
+// With drive or damping work integrated from the output frames (trapezoid rule: the body
+// formulations solved by IDA) the balance carries that quadrature's own error: a looser
+// limit, and the remedy named is a smaller output interval, not tighter tolerances.
 inline constexpr double kTrustEnergyErrorApproximate = 1e-1;
 inline constexpr double kTrustTcpError = 1e-3;          // m, TCP against the closed form
 inline constexpr double kTrustDriftPosition = 1e-3;     // m, joint points apart

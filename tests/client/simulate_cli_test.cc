@@ -158,4 +158,27 @@ TEST(SimulateCliTest, UntrustedRunExitsFourUnlessAccepted) {
   EXPECT_NE(accepted.stats.find(R"("trust": "low")"), std::string::npos) << accepted.stats;
 }
 
+// A missed accuracy target (issue 36: it printed `trust: ok` and exited 0, the miss only in
+// stats.json) is printed before the trust line and exits 4, or 0 with --accept-untrusted.
+TEST(SimulateCliTest, MissedTargetIsPrintedAndExitsFour) {
+  const fs::path out =
+      fs::temp_directory_path() / ("mbstream_cli_target-" + std::to_string(getpid()));
+  const std::string args =
+      "models/irb1600/irb1600.urdf --spec models/irb1600/seed-servo.json --duration 0.5 "
+      "--target-tcp 1e-12";
+  const Outcome outcome = Simulate(args, out);
+  const std::string log = Log(out);
+  EXPECT_EQ(outcome.exit_code, 4) << log;
+  EXPECT_NE(outcome.stats.find(R"("status": "FINISHED")"), std::string::npos) << outcome.stats;
+  EXPECT_NE(outcome.stats.find(R"("target_met": false)"), std::string::npos) << outcome.stats;
+  const size_t missed = log.find("\ntarget: missed (");
+  ASSERT_NE(missed, std::string::npos) << log;
+  EXPECT_LT(missed, log.rfind("\ntrust: ")) << log;  // the trust line stays the last
+  EXPECT_EQ(LastLine(log).rfind("trust: ", 0), 0u) << log;
+
+  const Outcome accepted = Simulate(args + " --accept-untrusted", out);
+  EXPECT_EQ(accepted.exit_code, 0) << Log(out);
+  EXPECT_NE(Log(out).find("\ntarget: missed ("), std::string::npos) << Log(out);
+}
+
 }  // namespace

@@ -1,6 +1,7 @@
 // The replacement serial-vector kernels (server/integrate/fast_serial_ops.h) give the plain
 // formulas' results bit for bit, for the specialised length (12) and another, on every fast
 // path and with the output aliasing an input.
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -132,7 +133,39 @@ TEST_P(FastSerialOpsTest, WrmsNormMatchesPlainFormulaBitForBit) {
   EXPECT_EQ(N_VWrmsNorm(x.get(), w.get()), std::sqrt(sum / n()));
 }
 
-INSTANTIATE_TEST_SUITE_P(Lengths, FastSerialOpsTest, ::testing::Values(12, 7),
+// Appended quadratures (trailing states with zero weight) take no part in the norm: it is
+// that of the leading states alone, bit for bit, the divisor included. InstallErrorNorm (the
+// ARKODE vectors, which keep SUNDIALS' other operations) gives the same.
+TEST_P(FastSerialOpsTest, WrmsNormLeavesOutTrailingZeroWeights) {
+  Vector x = NewVector(), w = NewVector();
+  const int controlled = n() - 2;
+  Data(w.get())[n() - 1] = Data(w.get())[n() - 2] = 0.0;
+  Data(x.get())[n() - 1] = 1e30;  // a quadrature's value: never seen
+  double sum = 0.0;
+  for (int i = 0; i < controlled; ++i) {
+    const double p = Data(x.get())[i] * Data(w.get())[i];
+    sum += p * p;
+  }
+  const double expected = std::sqrt(sum / controlled);
+  EXPECT_EQ(N_VWrmsNorm(x.get(), w.get()), expected);
+  EXPECT_EQ(ErrorControlledLength(n(), Data(w.get())), controlled);
+
+  Vector plain(N_VNew_Serial(n(), context_.get()));
+  Vector plain_w(N_VNew_Serial(n(), context_.get()));
+  std::copy(Data(x.get()), Data(x.get()) + n(), Data(plain.get()));
+  std::copy(Data(w.get()), Data(w.get()) + n(), Data(plain_w.get()));
+  EXPECT_NE(N_VWrmsNorm(plain.get(), plain_w.get()), expected);  // SUNDIALS' divides by n
+  InstallErrorNorm(plain.get());
+  EXPECT_EQ(N_VWrmsNorm(plain.get(), plain_w.get()), expected);
+  // and without zero weights, SUNDIALS' own norm, bit for bit
+  Vector leading(N_VNew_Serial(controlled, context_.get()));
+  Vector leading_w(N_VNew_Serial(controlled, context_.get()));
+  std::copy(Data(x.get()), Data(x.get()) + controlled, Data(leading.get()));
+  std::copy(Data(w.get()), Data(w.get()) + controlled, Data(leading_w.get()));
+  EXPECT_EQ(N_VWrmsNorm(leading.get(), leading_w.get()), expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(Lengths, FastSerialOpsTest, ::testing::Values(12, 7, 14),
                          [](const ::testing::TestParamInfo<int>& info) {
                            return "n" + std::to_string(info.param);
                          });

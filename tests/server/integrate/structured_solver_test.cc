@@ -199,6 +199,44 @@ TEST(StructuredSolverTest, SchurComplementNeedingRowInterchangesIsSolved) {
   }
 }
 
+// Appended quadratures add trailing identity rows and columns: the leading block is factored
+// and solved as without them, bit for bit, and their part of a solve is the right-hand side.
+TEST(StructuredSolverTest, TrailingIdentityRowsAndColumnsLeaveTheSolveBitForBit) {
+  for (int half : {6, 10}) {  // 6: the specialised 12 (+ 1 = 13) and generic sizes
+    for (int extra : {1, 2}) {
+      const int n = 2 * half + extra;
+      std::mt19937 rng(61 + n);
+      const Eigen::MatrixXd jacobian = SecondOrderJacobian(half, rng);
+      Eigen::MatrixXd appended = Eigen::MatrixXd::Zero(n, n);
+      appended.topLeftCorner(2 * half, 2 * half) = jacobian;  // Q' rows zero, as appended
+      DenseSolver alone(2 * half), with(n);
+      alone.SetNewtonMatrix(jacobian, 0.01);
+      with.SetNewtonMatrix(appended, 0.01);
+      ASSERT_EQ(alone.Setup(), SUNLS_SUCCESS);
+      ASSERT_EQ(with.Setup(), SUNLS_SUCCESS) << "n " << n;
+      EXPECT_TRUE(with.Structured()) << "n " << n;
+      for (bool in_place : {false, true}) {
+        const Eigen::VectorXd b = RandomVector(n, rng);
+        const Eigen::VectorXd x_alone = alone.Solve(b.head(2 * half), in_place);
+        const Eigen::VectorXd x = with.Solve(b, in_place);
+        for (int i = 0; i < 2 * half; ++i) ASSERT_EQ(x(i), x_alone(i)) << "n " << n << " i " << i;
+        for (int i = 2 * half; i < n; ++i) ASSERT_EQ(x(i), b(i)) << "n " << n << " i " << i;
+      }
+    }
+  }
+  // A trailing row that is not the identity's (a quadrature's Jacobian row kept): full LU.
+  std::mt19937 rng(62);
+  Eigen::MatrixXd m = Eigen::MatrixXd::Identity(13, 13);
+  m.topLeftCorner(12, 12) = StructuredMatrix(6, -0.01, rng);
+  m(12, 3) = 0.5;
+  DenseSolver solver(13);
+  solver.SetMatrix(m);
+  ASSERT_EQ(solver.Setup(), SUNLS_SUCCESS);
+  EXPECT_FALSE(solver.Structured());
+  const Eigen::VectorXd b = RandomVector(13, rng);
+  EXPECT_LT(RelativeError(solver.Solve(b), m.partialPivLu().solve(b)), 1e-12);
+}
+
 TEST(StructuredSolverTest, UnstructuredMatricesUseTheFullLu) {
   std::mt19937 rng(99);
   for (int n : {3, 7, 12, 20}) {

@@ -130,21 +130,28 @@ TEST(JointSpaceOdeTest, TimeStepsDoNotAllocate) {
   for (int k = 0; k < 10; ++k) ASSERT_EQ(ode.Rhs(0.01 * k, y.data(), ydot.data()), 0);
   EXPECT_EQ(testing::AllocationCount() - before, 0);
 
-  // Whole integrator steps: after the first output, advancing allocates nothing.
-  for (Method method : {Method::kBdf, Method::kErk, Method::kRk4}) {
-    RunConfig c = config;
-    c.method = method;
-    c.fixed_step = 1e-4;  // the wrist servo (kd / J ~ 2e4 1/s) needs it for RK4
-    std::unique_ptr<Integrator> integrator =
-        MakeIntegrator(ode, 0.0, y.data(), IntegratorOptionsFrom(c, 2.0));
-    std::vector<double> state = y;
-    ASSERT_EQ(integrator->AdvanceTo(0.05, state.data()).status, IntegratorStatus::kOk);
-    const long start = testing::AllocationCount();
-    for (int k = 2; k <= 20; ++k) {
-      ASSERT_EQ(integrator->AdvanceTo(0.05 * k, state.data()).status, IntegratorStatus::kOk);
+  // Whole integrator steps: after the first output, advancing allocates nothing, with the
+  // work appended as a quadrature too (as every driven run has it), reading it included.
+  JointSpaceOde tracked(model, drives, /*track_work=*/true);
+  for (JointSpaceOde* system : {&ode, &tracked}) {
+    for (Method method : {Method::kBdf, Method::kErk, Method::kDirk, Method::kRk4}) {
+      RunConfig c = config;
+      c.method = method;
+      c.fixed_step = 1e-4;  // the wrist servo (kd / J ~ 2e4 1/s) needs it for RK4
+      std::unique_ptr<Integrator> integrator =
+          MakeIntegrator(*system, 0.0, y.data(), IntegratorOptionsFrom(c, 2.0));
+      std::vector<double> state = y;
+      double work = 0.0;
+      ASSERT_EQ(integrator->AdvanceTo(0.05, state.data()).status, IntegratorStatus::kOk);
+      const long start = testing::AllocationCount();
+      for (int k = 2; k <= 20; ++k) {
+        ASSERT_EQ(integrator->AdvanceTo(0.05 * k, state.data()).status, IntegratorStatus::kOk);
+        EXPECT_EQ(integrator->Quadratures(&work), system == &tracked);
+      }
+      EXPECT_EQ(testing::AllocationCount() - start, 0)
+          << MethodName(method) << (system == &tracked ? " with the work" : "");
+      EXPECT_GT(integrator->stats().steps, 20);
     }
-    EXPECT_EQ(testing::AllocationCount() - start, 0) << MethodName(method);
-    EXPECT_GT(integrator->stats().steps, 20);
   }
 }
 

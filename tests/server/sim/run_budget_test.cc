@@ -34,6 +34,7 @@ using ::testing::AllOf;
 using ::testing::Contains;
 using ::testing::HasSubstr;
 using testing::Irb1600;
+using ::testing::Not;
 using testing::Scene;
 
 RunConfig TypoSpec() {
@@ -274,6 +275,33 @@ TEST(RunBudgetTest, TrustFollowsEachIndicator) {
   AssessTrust(&s);
   EXPECT_EQ(s.trust, Trust::kNotAssessed);
   EXPECT_TRUE(s.trust_reason.empty());
+}
+
+// Each failed indicator names its own remedy: an energy balance whose work is the trapezoid
+// rule over the output frames asks for a smaller output interval, never for tolerances;
+// an integrated balance, the TCP error, drift and rejections ask for tolerances or a step.
+TEST(RunBudgetTest, TrustNamesTheRemedyOfTheIndicatorThatFailed) {
+  RunStats s;
+  s.formulation = "body-index2";
+  s.solver.steps = 100;
+  s.energy_error_max = 0.131;
+  s.energy_work_approximate = true;
+  AssessTrust(&s);
+  EXPECT_EQ(s.trust, Trust::kLow);
+  EXPECT_THAT(s.trust_reason, HasSubstr("energy balance error 0.131 exceeds 0.1"));
+  EXPECT_THAT(s.trust_reason, HasSubstr("use a smaller output_interval_s"));
+  EXPECT_THAT(s.trust_reason, HasSubstr("formulation body-index2"));
+  EXPECT_THAT(s.trust_reason, Not(HasSubstr("rtol")));
+  s.drift_position_max = 2e-3;  // and an indicator of the integration: both remedies
+  AssessTrust(&s);
+  EXPECT_THAT(s.trust_reason, HasSubstr("use a smaller output_interval_s"));
+  EXPECT_THAT(s.trust_reason, HasSubstr("tighten rtol/atol"));
+  s.drift_position_max = -1.0;
+  s.energy_work_approximate = false;  // the work integrated with the motion
+  AssessTrust(&s);
+  EXPECT_EQ(s.trust, Trust::kLow);
+  EXPECT_THAT(s.trust_reason, HasSubstr("tighten rtol/atol"));
+  EXPECT_THAT(s.trust_reason, Not(HasSubstr("output_interval_s")));
 }
 
 TEST(RunBudgetTest, ServerCapsClampTheBudgetAndSayWhenTheSpecAskedForMore) {
