@@ -22,23 +22,28 @@ inline sunindextype Length(N_Vector v) { return NV_LENGTH_S(v); }
 inline double* Data(N_Vector v) { return NV_DATA_S(v); }
 
 // Runs body(n) with the vectors' length n: Fixed<12> when it is 12 (the joint-space ODE of a
-// 6-DoF arm; the loops unroll), else the runtime value.
+// 6-DoF arm; the loops unroll), Fixed<13> when 13 (the same with its work appended as a
+// quadrature, as every driven run has it), else the runtime value.
 template <typename Body>
 inline void WithLength(sunindextype n, Body body) {
   if (n == 12) {
     body(Fixed<12>());
+  } else if (n == 13) {
+    body(Fixed<13>());
   } else {
     body(n);
   }
 }
 
-// The 12-element kernels run on six Pairs (double_pair.h).
+// The 12-element kernels run on six Pairs (double_pair.h); the 13-element ones on six Pairs
+// and a double.
 
 // z = op(x, y) element by element (op takes doubles or Pairs); z may be x or y.
 template <typename Op>
 inline void Map(sunindextype n, const double* x, const double* y, double* z, Op op) {
-  if (n == 12) {
+  if (n == 12 || n == 13) {
     for (int i = 0; i < 12; i += 2) Store(z + i, op(Load(x + i), Load(y + i)));
+    if (n == 13) z[12] = op(x[12], y[12]);
   } else {
     for (sunindextype i = 0; i < n; ++i) z[i] = op(x[i], y[i]);
   }
@@ -138,7 +143,8 @@ inline double WSqrSumN(sunindextype runtime_n, const double* x, const double* w)
 
 double WSqrSum(N_Vector x, N_Vector w) {
   const sunindextype n = Length(x);
-  return n == 12 ? WSqrSumN<12>(n, Data(x), Data(w)) : WSqrSumN<0>(n, Data(x), Data(w));
+  if (n == 12) return WSqrSumN<12>(n, Data(x), Data(w));
+  return n == 13 ? WSqrSumN<13>(n, Data(x), Data(w)) : WSqrSumN<0>(n, Data(x), Data(w));
 }
 
 }  // namespace
@@ -188,7 +194,7 @@ sunbooleantype InvTest(N_Vector x, N_Vector z) {
 int LinearCombination(int nvec, double* c, N_Vector* X, N_Vector z) {
   const sunindextype n = Length(z);
   double* zd = Data(z);
-  if (n != 12) {
+  if (n != 12 && n != 13) {
     // Two elements at a time, every term summed in a register pair before the store (z may
     // be any X[k]); the vectors' data pointers read once.
     constexpr int kMaxTerms = 16;  // CVODE passes at most q_max + 1 = 6 (BDF), ARKODE 8
@@ -210,15 +216,19 @@ int LinearCombination(int nvec, double* c, N_Vector* X, N_Vector z) {
     }
     return 0;
   }
-  // Term by term into six pairs of sums (the same operations per element, in registers).
+  // Term by term into six pairs of sums (the same operations per element, in registers),
+  // and for 13 elements one more sum; every store after every load (z may be any X[k]).
   Pair sum[6];
   const double* x0 = Data(X[0]);
   for (int p = 0; p < 6; ++p) sum[p] = c[0] * Load(x0 + 2 * p);
+  double last = n == 13 ? c[0] * x0[12] : 0.0;
   for (int k = 1; k < nvec; ++k) {
     const double* xk = Data(X[k]);
     for (int p = 0; p < 6; ++p) sum[p] += c[k] * Load(xk + 2 * p);
+    if (n == 13) last += c[k] * xk[12];
   }
   for (int p = 0; p < 6; ++p) Store(zd + 2 * p, sum[p]);
+  if (n == 13) zd[12] = last;
   return 0;
 }
 

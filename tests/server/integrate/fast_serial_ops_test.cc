@@ -1,6 +1,6 @@
 // The replacement serial-vector kernels (server/integrate/fast_serial_ops.h) give the plain
-// formulas' results bit for bit, for the specialised length (12) and another, on every fast
-// path and with the output aliasing an input.
+// formulas' results bit for bit, for the specialised lengths (12, and 13: with the work appended)
+// and others, on every fast path and with the output aliasing an input.
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -165,7 +165,7 @@ TEST_P(FastSerialOpsTest, WrmsNormLeavesOutTrailingZeroWeights) {
   EXPECT_EQ(N_VWrmsNorm(leading.get(), leading_w.get()), expected);
 }
 
-INSTANTIATE_TEST_SUITE_P(Lengths, FastSerialOpsTest, ::testing::Values(12, 7, 14),
+INSTANTIATE_TEST_SUITE_P(Lengths, FastSerialOpsTest, ::testing::Values(12, 13, 7, 14),
                          [](const ::testing::TestParamInfo<int>& info) {
                            return "n" + std::to_string(info.param);
                          });
