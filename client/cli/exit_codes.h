@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 namespace mbstream::cli {
 
@@ -18,7 +19,12 @@ inline constexpr int kExitUntrusted = 4;
 // when there was no target or no check. A missed target exits kExitUntrusted, as low trust.
 inline std::string TargetLine(bool met, const std::string& message) {
   if (met) return "target: met";
-  return "target: missed (" + (message.empty() ? std::string("see stats.json") : message) + ")";
+  constexpr std::string_view kSaid = "target missed: ";  // the check's message says it again
+  const std::string_view text = std::string_view(message).starts_with(kSaid)
+                                    ? std::string_view(message).substr(kSaid.size())
+                                    : std::string_view(message);
+  return "target: missed (" + (text.empty() ? std::string("see stats.json") : std::string(text)) +
+         ")";
 }
 
 // The CLI's last line about a finished run: "trust: ok" or "trust: low (REASON)";

@@ -177,6 +177,21 @@ TEST_F(ServerCliTest, BudgetsWarningsAndTrustOnTheServer) {
   EXPECT_EQ(Cli(coarse + Out("accepted") + " --accept-untrusted").exit_code, 0);
 }
 
+// A missed accuracy target on the server is printed by `mbstream run --watch` as by
+// `simulate` (before the trust line) and exits 4, or 0 with --accept-untrusted (issue 36.7).
+TEST_F(ServerCliTest, MissedTargetIsPrintedAndExitsFour) {
+  StartServer();
+  const std::string run =
+      "run irb1600 --spec models/irb1600/seed-servo.json --duration 0.5 --target-tcp 1e-12 "
+      "--watch";
+  const CommandOutcome missed = Cli(run);
+  EXPECT_EQ(missed.exit_code, 4) << missed.output;
+  EXPECT_THAT(missed.output, HasSubstr("FINISHED"));
+  EXPECT_THAT(missed.output, HasSubstr("\ntarget: missed ("));
+  EXPECT_EQ(LastLine(missed.output).rfind("trust: ", 0), 0u) << missed.output;
+  EXPECT_EQ(Cli(run + " --accept-untrusted").exit_code, 0);
+}
+
 TEST_F(ServerCliTest, ErrorsAreNamedWithExitCodes) {
   StartServer();
   CommandOutcome outcome = Cli("run nosuch");
