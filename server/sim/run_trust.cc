@@ -53,11 +53,14 @@ void AssessTrust(RunStats* s) {
   if (reason.empty()) return;
   std::string remedy;
   if (energy && frame_work) {
+    // A tree run may switch to the joint formulation, which integrates the work; a run with
+    // closed loops (loop_run.h) has no such formulation.
+    const bool tree = s->loops.cut_joints.empty();
     remedy = FormatString(
         "the work of drives and damping is the trapezoid rule over the output frames (formulation "
-        "%s), whose error the energy balance includes: use a smaller output_interval_s, or the "
-        "joint formulation, which integrates the work with the motion",
-        s->formulation.c_str());
+        "%s), whose error the energy balance includes: use a smaller output_interval_s%s",
+        s->formulation.c_str(),
+        tree ? ", or the joint formulation, which integrates the work with the motion" : "");
   }
   if (integration) {
     if (!remedy.empty()) remedy += "; and ";

@@ -292,6 +292,12 @@ TEST(RunBudgetTest, TrustNamesTheRemedyOfTheIndicatorThatFailed) {
   EXPECT_THAT(s.trust_reason, HasSubstr("use a smaller output_interval_s"));
   EXPECT_THAT(s.trust_reason, HasSubstr("formulation body-index2"));
   EXPECT_THAT(s.trust_reason, Not(HasSubstr("rtol")));
+  EXPECT_THAT(s.trust_reason, HasSubstr("or the joint formulation"));
+  s.loops.cut_joints = {"j (revolute)"};  // closed loops: no joint formulation to switch to
+  AssessTrust(&s);
+  EXPECT_THAT(s.trust_reason, HasSubstr("use a smaller output_interval_s"));
+  EXPECT_THAT(s.trust_reason, Not(HasSubstr("joint formulation")));
+  s.loops.cut_joints.clear();
   s.drift_position_max = 2e-3;  // and an indicator of the integration: both remedies
   AssessTrust(&s);
   EXPECT_THAT(s.trust_reason, HasSubstr("use a smaller output_interval_s"));
