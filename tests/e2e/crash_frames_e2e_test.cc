@@ -81,7 +81,7 @@ TEST(CrashFramesE2eTest, AKilledServersRunKeepsTheFramesItStoredAfterARestart) {
     ASSERT_EQ(live.state(), v1::RUNNING) << live.message();
     ASSERT_GE(live.frames(), due_frames);
     ASSERT_LT(live.frames(), live.expected_frames());  // mid-run: 1 s of its 10 s
-    std::cout << "killed at " << live.frames() << " frames published, t = " << live.t_s() << " s\n";
+    std::cout << "killed at " << live.frames() << " frames published, t = " << live.t_s() << " s" << std::endl;
     server.Kill();
   }
 
@@ -103,7 +103,7 @@ TEST(CrashFramesE2eTest, AKilledServersRunKeepsTheFramesItStoredAfterARestart) {
     ASSERT_EQ(reference.exit_code, 0) << reference.output;
   }
   std::cout << "after the restart: " << after.frames() << " frames kept, t = " << after.t_s()
-            << " s\n";
+            << " s" << std::endl;
   EXPECT_EQ(after.state(), v1::INTERRUPTED);
   EXPECT_THAT(after.message(),
               HasSubstr("the " + std::to_string(after.frames()) + " frames stored up to t = "));
