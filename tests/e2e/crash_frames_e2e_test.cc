@@ -81,7 +81,8 @@ TEST(CrashFramesE2eTest, AKilledServersRunKeepsTheFramesItStoredAfterARestart) {
     ASSERT_EQ(live.state(), v1::RUNNING) << live.message();
     ASSERT_GE(live.frames(), due_frames);
     ASSERT_LT(live.frames(), live.expected_frames());  // mid-run: 1 s of its 10 s
-    std::cout << "killed at " << live.frames() << " frames published, t = " << live.t_s() << " s" << std::endl;
+    std::cout << "killed at " << live.frames() << " frames published, t = " << live.t_s() << " s"
+              << std::endl;
     server.Kill();
   }
 
