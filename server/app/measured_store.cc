@@ -106,10 +106,12 @@ std::vector<v1::RunInfo> MeasuredStore::ListRuns() const {
   return Timed(StoreOperation::kListRuns, [&] { return store_->ListRuns(); });
 }
 
-void MeasuredStore::PutFrameChunk(const std::string& run_id, int64_t index,
-                                  const EncodedFrameChunk& chunk) {
-  Timed(StoreOperation::kPutFrameChunk, [&] { store_->PutFrameChunk(run_id, index, chunk); });
-  metrics_.frames().Add(static_cast<double>(chunk.frame_count));
+bool MeasuredStore::PutFrameChunk(const std::string& run_id, int64_t index,
+                                  const EncodedFrameChunk& chunk, const std::string& holder) {
+  const bool written = Timed(StoreOperation::kPutFrameChunk,
+                             [&] { return store_->PutFrameChunk(run_id, index, chunk, holder); });
+  if (written) metrics_.frames().Add(static_cast<double>(chunk.frame_count));
+  return written;
 }
 
 bool MeasuredStore::FinishRun(const v1::RunInfo& info, int64_t index,

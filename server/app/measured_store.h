@@ -36,8 +36,8 @@ class MeasuredStore final : public Store {
   bool AddRuns(const std::vector<v1::RunInfo>& infos) override;
   std::optional<v1::RunInfo> GetRun(const std::string& run_id) const override;
   std::vector<v1::RunInfo> ListRuns() const override;
-  void PutFrameChunk(const std::string& run_id, int64_t index,
-                     const EncodedFrameChunk& chunk) override;
+  bool PutFrameChunk(const std::string& run_id, int64_t index, const EncodedFrameChunk& chunk,
+                     const std::string& holder) override;
   bool FinishRun(const v1::RunInfo& info, int64_t index, const EncodedFrameChunk& last_chunk,
                  const std::string& holder) override;
   void FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& frames) override;

@@ -106,6 +106,12 @@ int main(int argc, char** argv) {
                  "most CPU seconds of a run (caps the spec's max_cpu_s and the default budget)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--frame-flush-s", limits.frame_flush_s,
+                 "s of wall time after which a running run's new frames are stored even when "
+                 "their 4,096-frame chunk is not full: a crash (kill -9) loses at most this much "
+                 "of a run; 0 = only full chunks")
+      ->check(CLI::Range(0.0, 3600.0))
+      ->capture_default_str();
   app.add_option("--max-message-mb", max_message_mb, "largest gRPC message, MiB")
       ->check(CLI::Range(1.0, 2047.0))
       ->capture_default_str();

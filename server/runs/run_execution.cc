@@ -17,13 +17,21 @@ namespace mbstream {
 namespace {
 
 // Converts each frame to its wire form, paces it (realtime factor), hands it to the run's
-// spool (which stores it with the next chunk) and publishes it. A store failure stops the
-// run. One message is filled again for every frame (Run::Publish hands its storage back):
-// no allocation per frame while nobody subscribes.
+// spool (which stores it with the next chunk, full or due: `flush_s` of the run's clock
+// after the last, while `holder` holds the run's lease) and publishes it. A store failure
+// or a lost lease stops the run. One message is filled again for
+// every frame (Run::Publish hands its storage back): no allocation per frame while nobody
+// subscribes.
 class PublishingSink : public FrameSink {
  public:
-  PublishingSink(Run* run, Store* store, RunClock* clock)
-      : run_(run), store_(store), clock_(clock), start_(clock->Now()) {}
+  PublishingSink(Run* run, Store* store, RunClock* clock, double flush_s, std::string holder)
+      : run_(run), store_(store), clock_(clock), start_(clock->Now()) {
+    run_->spool().FlushEvery(*clock_,
+                             std::chrono::duration_cast<RunClock::TimePoint::duration>(
+                                 std::chrono::duration<double>(flush_s)),
+                             start_);
+    run_->spool().WriteAs(std::move(holder));
+  }
 
   bool KeepsFrames() const override { return true; }  // the spool stores them
 
@@ -39,6 +47,10 @@ class PublishingSink : public FrameSink {
     run_->spool().Add(message_, *store_);
     run_->Publish(&message_);
     if (!run_->spool().error().empty()) run_->cancel = true;
+    if (run_->spool().lease_lost()) {  // another replica has the run: it writes from now on
+      run_->lease_lost = true;
+      run_->cancel = true;
+    }
   }
 
  private:
@@ -82,7 +94,8 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
   // row is written again when it ends.
   spdlog::info("run {} started", run->id());
 
-  PublishingSink sink(run.get(), store_, clock_);
+  PublishingSink sink(run.get(), store_, clock_, limits_.frame_flush_s,
+                      replica_.private_store ? std::string() : LeaseHolder(run->Info()));
   const RunResult result =
       SimulateWithTarget(run->model().model, run->config(), &sink, &run->cancel);
   const RunStats& stats = result.stats;

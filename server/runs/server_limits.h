@@ -29,6 +29,10 @@ struct ServerLimits {
   // Bytes of ended runs' frames kept in memory for their GetResult (recent_results.h): a
   // sweep's window of 64 runs of 401 frames of a 6-joint arm is 5.4 MB.
   int64_t recent_results_bytes = int64_t{16} << 20;
+  // s of wall time after which a running run's frames not yet stored go to the store even if
+  // their chunk is not full (4,096 frames): a crash loses at most this much of a run. 0:
+  // only full chunks are stored while the run runs.
+  double frame_flush_s = 1.0;
 };
 
 }  // namespace mbstream

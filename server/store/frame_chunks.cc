@@ -51,6 +51,12 @@ EncodedFrameChunk FrameChunkBuilder::Take() {
   return chunk;
 }
 
+void FrameChunkBuilder::Clear() {
+  chunk_.first_seq = 0;
+  chunk_.frame_count = 0;
+  chunk_.data.clear();  // keeps the capacity
+}
+
 namespace {
 
 // Skips the fields of one serialized message up to the stream's limit (`coded` limited to

@@ -33,6 +33,10 @@ class FrameChunkBuilder {
   bool empty() const { return chunk_.frame_count == 0; }
   // The chunk built so far; the builder is empty afterwards.
   EncodedFrameChunk Take();
+  // The chunk built so far, to be stored, then Clear()ed: the builder keeps its buffer (a run
+  // that stores a chunk every second allocates it once, not every second).
+  const EncodedFrameChunk& chunk() const { return chunk_; }
+  void Clear();
 
  private:
   EncodedFrameChunk chunk_;

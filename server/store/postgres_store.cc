@@ -237,6 +237,7 @@ int PostgresStore::MarkUnfinishedRunsInterrupted(const std::string& message) {
     }
     for (v1::RunInfo& info : unfinished) {
       MarkInterrupted(info, message, now_ms);
+      ApplyKeptFrames(KeptFramesOf(tx, info.id()), info);
       UpsertRun(tx, info);
     }
     return static_cast<int>(unfinished.size());

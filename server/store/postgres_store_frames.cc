@@ -86,10 +86,33 @@ void UpsertChunk(pqxx::work& tx, const std::string& run_id, int64_t index,
 
 }  // namespace
 
-void PostgresStore::PutFrameChunk(const std::string& run_id, int64_t index,
-                                  const EncodedFrameChunk& chunk) {
-  impl_->Transact("insert frames of run " + run_id,
-                  [&](pqxx::work& tx) { UpsertChunk(tx, run_id, index, chunk); });
+bool PostgresStore::PutFrameChunk(const std::string& run_id, int64_t index,
+                                  const EncodedFrameChunk& chunk, const std::string& holder) {
+  return impl_->Transact("insert frames of run " + run_id, [&](pqxx::work& tx) {
+    if (!holder.empty() && !HoldsLease(tx, run_id, holder)) return false;
+    UpsertChunk(tx, run_id, index, chunk);
+    tx.exec_prepared("delete_frame_chunks_after", run_id, index);  // an earlier attempt's
+    return true;
+  });
+}
+
+KeptFrames KeptFramesOf(pqxx::transaction_base& tx, const std::string& run_id) {
+  KeptFrames kept;
+  pqxx::binarystring blob(nullptr, 0);
+  while (true) {
+    const pqxx::result counted = tx.exec_params(
+        "SELECT COUNT(*), COALESCE(SUM(frame_count), 0), MAX(chunk) FROM frame_chunks "
+        "WHERE run_id = $1",
+        run_id);
+    if (counted.empty() || counted[0][0].as<int64_t>() == 0) return kept;
+    const int64_t frames = counted[0][1].as<int64_t>();
+    const int64_t last = counted[0][2].as<int64_t>();
+    const pqxx::result chunk = tx.exec_params(
+        "SELECT data FROM frame_chunks WHERE run_id = $1 AND chunk = $2", run_id, last);
+    if (!chunk.empty() && ReadKeptFrames(frames, BlobOf(chunk[0][0], blob), kept)) return kept;
+    tx.exec_prepared("delete_frame_chunks_after", run_id, last - 1);
+    ++kept.dropped_chunks;
+  }
 }
 
 bool PostgresStore::FinishRun(const v1::RunInfo& info, int64_t index,

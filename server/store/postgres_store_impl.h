@@ -12,6 +12,7 @@
 
 #include <pqxx/pqxx>
 
+#include "server/store/kept_frames.h"
 #include "server/store/postgres_error.h"
 #include "server/store/postgres_store.h"
 #include "server/store/store_codec.h"
@@ -59,6 +60,10 @@ inline pqxx::binarystring BlobParam(const std::string& bytes) { return pqxx::bin
 
 // Writes the run row (insert, or update keeping its order and its frames).
 void UpsertRun(pqxx::transaction_base& transaction, const v1::RunInfo& info);
+
+// What the run's stored frames are (kept_frames.h); a corrupt last chunk is removed, then the
+// one before it is looked at. In the transaction that marks the run INTERRUPTED.
+KeptFrames KeptFramesOf(pqxx::transaction_base& transaction, const std::string& run_id);
 
 // Whether `holder` holds the lease of RUNNING run `run_id`; locks the row (FOR UPDATE).
 bool HoldsLease(pqxx::transaction_base& transaction, const std::string& run_id,

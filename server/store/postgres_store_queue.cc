@@ -80,7 +80,9 @@ std::vector<v1::RunInfo> PostgresStore::ReapExpiredLeases(int64_t now_unix_ms,
                              kRunning, now_unix_ms),
               "run with an expired lease", impl_->location);
     for (v1::RunInfo& info : expired) {
-      ApplyLeaseExpired(info, now_unix_ms, reaper);
+      if (ApplyLeaseExpired(info, now_unix_ms, reaper) == v1::INTERRUPTED) {
+        ApplyKeptFrames(KeptFramesOf(tx, info.id()), info);
+      }
       UpdateRun(tx, info, nullptr, 0);
     }
     return expired;

@@ -67,14 +67,20 @@ class Store {
   virtual std::vector<v1::RunInfo> ListRuns()
       const = 0;  // oldest first (created_unix_ms, then insertion)
 
-  // A run's frames are written while it runs, one chunk (frame_chunks.h) at a time, then
-  // the last chunk together with the final info. A crash mid-run leaves the chunks stored so
-  // far with the run's RUNNING row (INTERRUPTED at the next start).
+  // A run's frames are written while it runs, one chunk (frame_chunks.h) at a time (when
+  // 4,096 frames are at hand or --frame-flush-s has passed: FrameSpool), then the last chunk
+  // together with the final info. A crash mid-run leaves the chunks stored so far with the
+  // run's unfinished row; MarkUnfinishedRunsInterrupted (or ReapExpiredLeases) keeps them and
+  // writes their count and last time into the row (kept_frames.h).
   //
   // Stores chunk number `index` (0, 1, 2, ... in seq order) of a run whose row exists,
-  // replacing a chunk of that number. One transaction.
-  virtual void PutFrameChunk(const std::string& run_id, int64_t index,
-                             const EncodedFrameChunk& chunk) = 0;
+  // replacing a chunk of that number and removing any numbered after it (an earlier
+  // attempt's: the stored chunks are always one attempt's frames from seq 0 on). With a
+  // `holder` (LeaseHolder; empty: unconditionally), only while that holder still holds the
+  // run's lease: false, and nothing written, otherwise (a replica that lost its lease never
+  // overwrites the frames of the replica that took the run over). One transaction.
+  virtual bool PutFrameChunk(const std::string& run_id, int64_t index,
+                             const EncodedFrameChunk& chunk, const std::string& holder) = 0;
   // Stores the run's final info and its last chunk (number `index`, skipped when it holds no
   // frames) in ONE transaction, and removes any chunk numbered after it: after a crash either
   // the final state and every frame are there, or the run still shows its previous row.
@@ -125,7 +131,8 @@ class Store {
   virtual std::vector<v1::ProbeReport> GetProbeSetReports(const std::string& set_id) const = 0;
 
   // At server start: every run still QUEUED or RUNNING becomes INTERRUPTED with `message`
-  // and ended_unix_ms = now; returns how many.
+  // and ended_unix_ms = now, its stored frames kept and counted in its row (frames, t_s,
+  // stats.t_reached_s; the message names them); returns how many.
   virtual int MarkUnfinishedRunsInterrupted(const std::string& message) = 0;
 
   // The run queue (store_queue.cc, postgres_store_queue.cc; rules in run_lease.h). Any
@@ -149,7 +156,8 @@ class Store {
   virtual void NoteClaimed(const v1::RunInfo& info) { (void)info; }
   // Every RUNNING run whose lease expired before `now_unix_ms` (a run without a lease
   // counts as expired): queued again or INTERRUPTED (ApplyLeaseExpired, `reaper` named in
-  // the message), its frames kept. Returns the changed runs as stored.
+  // the message), its frames kept (counted in the row of an INTERRUPTED one, as by
+  // MarkUnfinishedRunsInterrupted). Returns the changed runs as stored.
   virtual std::vector<v1::RunInfo> ReapExpiredLeases(int64_t now_unix_ms,
                                                      const std::string& reaper) = 0;
   // Every RUNNING run, oldest claim first (ord): what the replicas integrate now (a follow

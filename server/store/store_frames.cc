@@ -28,12 +28,26 @@ void InsertChunkLocked(SqliteStore::Impl& impl, const std::string& run_id, int64
   insert.Run();
 }
 
+// Removes the run's chunks numbered after `index`. The caller holds the mutex.
+void DeleteChunksAfterLocked(SqliteStore::Impl& impl, const std::string& run_id, int64_t index) {
+  SqliteStatement& remove = impl.delete_frame_chunks_after;
+  ResetOnExit reset(remove);
+  remove.BindText(1, run_id);
+  remove.BindInt64(2, index);
+  remove.Run();
+}
+
 }  // namespace
 
-void SqliteStore::PutFrameChunk(const std::string& run_id, int64_t index,
-                                const EncodedFrameChunk& chunk) {
+bool SqliteStore::PutFrameChunk(const std::string& run_id, int64_t index,
+                                const EncodedFrameChunk& chunk, const std::string& holder) {
   std::lock_guard lock(impl_->mutex);
-  InsertChunkLocked(*impl_, run_id, index, chunk);  // one statement: its own transaction
+  SqliteTransaction transaction(impl_->db, "store frames of run " + run_id);
+  if (!holder.empty() && !HoldsLeaseLocked(*impl_, run_id, holder)) return false;
+  InsertChunkLocked(*impl_, run_id, index, chunk);
+  DeleteChunksAfterLocked(*impl_, run_id, index);  // an earlier attempt's
+  transaction.Commit();
+  return true;
 }
 
 bool SqliteStore::FinishRun(const v1::RunInfo& info, int64_t index,
@@ -43,13 +57,7 @@ bool SqliteStore::FinishRun(const v1::RunInfo& info, int64_t index,
   if (!holder.empty() && !HoldsLeaseLocked(*impl_, info.id(), holder)) return false;
   UpsertRunLocked(*impl_, info);
   if (last_chunk.frame_count > 0) InsertChunkLocked(*impl_, info.id(), index, last_chunk);
-  {
-    SqliteStatement& remove = impl_->delete_frame_chunks_after;
-    ResetOnExit reset(remove);
-    remove.BindText(1, info.id());
-    remove.BindInt64(2, last_chunk.frame_count > 0 ? index : index - 1);
-    remove.Run();
-  }
+  DeleteChunksAfterLocked(*impl_, info.id(), last_chunk.frame_count > 0 ? index : index - 1);
   transaction.Commit();
   return true;
 }
@@ -73,10 +81,12 @@ void SqliteStore::FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame
   transaction.Commit();
 }
 
-std::optional<int64_t> SqliteStore::GetFrameChunkData(const std::string& run_id, int64_t index,
-                                                      std::string& data) const {
-  std::lock_guard lock(impl_->mutex);
-  SqliteStatement& select = impl_->select_frame_chunk;
+namespace {
+
+// GetFrameChunkData's read; the caller holds the mutex.
+std::optional<int64_t> ReadChunkLocked(SqliteStore::Impl& impl, const std::string& run_id,
+                                       int64_t index, std::string& data) {
+  SqliteStatement& select = impl.select_frame_chunk;
   ResetOnExit reset(select);
   select.BindText(1, run_id);
   select.BindInt64(2, index);
@@ -88,16 +98,55 @@ std::optional<int64_t> SqliteStore::GetFrameChunkData(const std::string& run_id,
   }
   const FrameExtent extent{select.ColumnInt64(2), select.ColumnInt64(3),
                            static_cast<uint32_t>(select.ColumnInt64(4))};
-  if (!impl_->frames.Read(extent, data)) {
-    throw InternalError("store " + impl_->db.path() + ": the frames of run " + run_id + " (chunk " +
+  if (!impl.frames.Read(extent, data)) {
+    throw InternalError("store " + impl.db.path() + ": the frames of run " + run_id + " (chunk " +
                         std::to_string(chunk) + ", " + std::to_string(extent.bytes) +
                         " bytes at offset " + std::to_string(extent.offset) + " of " +
-                        impl_->frames.path() +
+                        impl.frames.path() +
                         ") are missing or damaged: the file is shorter or the bytes do not " +
                         "match their checksum (the machine may have stopped before they " +
                         "reached the disk); run the simulation again");
   }
   return chunk + 1;
+}
+
+}  // namespace
+
+std::optional<int64_t> SqliteStore::GetFrameChunkData(const std::string& run_id, int64_t index,
+                                                      std::string& data) const {
+  std::lock_guard lock(impl_->mutex);
+  return ReadChunkLocked(*impl_, run_id, index, data);
+}
+
+KeptFrames KeptFramesLocked(SqliteStore::Impl& impl, const std::string& run_id) {
+  SqliteStatement count(impl.db,
+                        "SELECT COUNT(*), COALESCE(SUM(frame_count), 0), MAX(chunk) FROM "
+                        "frame_chunks WHERE run_id = ?1",
+                        "count stored frames");
+  KeptFrames kept;
+  while (true) {
+    int64_t chunks = 0, frames = 0, last = 0;
+    {
+      ResetOnExit reset(count);
+      count.BindText(1, run_id);
+      if (count.Step()) {
+        chunks = count.ColumnInt64(0);
+        frames = count.ColumnInt64(1);
+        last = chunks > 0 ? count.ColumnInt64(2) : 0;
+      }
+    }
+    if (chunks == 0) return kept;
+    std::string data;
+    try {
+      if (ReadChunkLocked(impl, run_id, last, data) == last + 1 &&
+          ReadKeptFrames(frames, data, kept)) {
+        return kept;
+      }
+    } catch (const InternalError&) {  // its bytes are missing or damaged
+    }
+    DeleteChunksAfterLocked(impl, run_id, last - 1);
+    ++kept.dropped_chunks;
+  }
 }
 
 }  // namespace mbstream

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "server/store/frame_file.h"
+#include "server/store/kept_frames.h"
 #include "server/store/sqlite_checkpointer.h"
 #include "server/store/sqlite_connection.h"
 #include "server/store/sqlite_statement.h"
@@ -57,6 +58,11 @@ struct SqliteStore::Impl {
 // Writes the run row (insert, or update keeping the row's order and its frames). The caller
 // holds the mutex.
 void UpsertRunLocked(SqliteStore::Impl& impl, const v1::RunInfo& info);
+
+// What the run's stored frames are (kept_frames.h); a damaged last chunk (its bytes did not
+// reach the disk) is removed, then the one before it is looked at. The caller holds the mutex,
+// in the transaction that marks the run INTERRUPTED.
+KeptFrames KeptFramesLocked(SqliteStore::Impl& impl, const std::string& run_id);
 
 // Whether `holder` holds the lease of RUNNING run `run_id`. The caller holds the mutex.
 bool HoldsLeaseLocked(SqliteStore::Impl& impl, const std::string& run_id,

@@ -83,7 +83,9 @@ std::vector<v1::RunInfo> SqliteStore::ReapExpiredLeases(int64_t now_unix_ms,
         s.BindInt64(2, now_unix_ms);
       });
   for (v1::RunInfo& info : expired) {
-    ApplyLeaseExpired(info, now_unix_ms, reaper);
+    if (ApplyLeaseExpired(info, now_unix_ms, reaper) == v1::INTERRUPTED) {
+      ApplyKeptFrames(KeptFramesLocked(*impl_, info.id()), info);
+    }
     UpsertRunLocked(*impl_, info);
     SetLease(*impl_, info.id(), nullptr, 0);
   }

@@ -79,6 +79,7 @@ int SqliteStore::MarkUnfinishedRunsInterrupted(const std::string& message) {
   }
   for (v1::RunInfo& info : unfinished) {
     MarkInterrupted(info, message, now_ms);
+    ApplyKeptFrames(KeptFramesLocked(*impl_, info.id()), info);
     UpsertRunLocked(*impl_, info);
   }
   transaction.Commit();

@@ -129,6 +129,22 @@ TEST_F(RunManagerTest, ShutdownInterruptsAWaitingRunAndKeepsItsFrames) {
       << stored->message();
 }
 
+// A paced run's frames reach the store while it runs, once a second (limits_.frame_flush_s)
+// of its clock has passed, not when 4,096 of them are at hand: a crash then keeps them.
+TEST_F(RunManagerTest, APacedRunStoresItsFramesEverySecondOfWallTime) {
+  ASSERT_EQ(limits_.frame_flush_s, 1.0);
+  const v1::RunInfo started = runs_->Start("single_pendulum", Swing(20.0, 1.0));
+  for (int k = 1; k <= 10; ++k) {  // frame k waits for 0.1 k s; frames 0..k-1 are out
+    ASSERT_TRUE(clock_.WaitForWaiter().has_value()) << "frame " << k;
+    EXPECT_TRUE(store_->GetFrames(started.id()).empty()) << "frame " << k;
+    clock_.Advance(milliseconds(100));
+  }
+  ASSERT_TRUE(clock_.WaitForWaiter().has_value());  // frame 10 went out at 1 s, with a chunk
+  EXPECT_EQ(runs_->Get(started.id()).state(), v1::RUNNING);
+  EXPECT_EQ(store_->GetFrames(started.id()).size(), 11u);
+  runs_->Cancel(started.id());
+}
+
 // AwaitChange returns with the change of state that ends the wait, not after its deadline: the
 // run waits for the manual clock, which never reaches its end, and the cancel ends it.
 TEST_F(RunManagerTest, AwaitChangeReturnsWhenTheRunChangesState) {
@@ -213,7 +229,7 @@ TEST_F(RunManagerTest, AnEndedRunsResultAndInfoAreServedFromMemoryAsStored) {
     std::vector<v1::Frame> one(1);
     one[0].set_seq(0);
     other.data = EncodeFrameChunks(one).front().data;
-    store_->PutFrameChunk(info.id(), 0, other);
+    store_->PutFrameChunk(info.id(), 0, other, "");
     v1::RunInfo changed = info;  // and its row (an ended run's info never changes either)
     changed.set_message("changed in the store");
     store_->PutRun(changed);

@@ -137,7 +137,7 @@ TEST_P(StoreFramesTest, ChunksWrittenDuringTheRunThenFinished) {
   for (const v1::Frame& frame : frames) {
     builder.Add(frame);
     if (builder.frame_count() == static_cast<int64_t>(kFramesPerChunk)) {
-      store->PutFrameChunk("r-1", index++, builder.Take());
+      store->PutFrameChunk("r-1", index++, builder.Take(), "");
     }
   }
   EXPECT_EQ(store->GetRun("r-1")->state(), v1::RUNNING);
@@ -165,7 +165,7 @@ TEST_P(StoreFramesTest, FinishRunWithAnEmptyLastChunkDropsStaleChunks) {
   auto store = Open();
   store->PutRun(MakeRun("r-1", v1::RUNNING, 1000));
   const std::vector<EncodedFrameChunk> chunks = EncodeFrameChunks(MakeFrames(12, 2), 4);
-  for (int i = 0; i < 3; ++i) store->PutFrameChunk("r-1", i, chunks[i]);
+  for (int i = 0; i < 3; ++i) store->PutFrameChunk("r-1", i, chunks[i], "");
   // Finished after two chunks (e.g. a chunk 2 left by an earlier attempt): chunk 2 goes.
   EXPECT_TRUE(store->FinishRun(MakeRun("r-1", v1::CANCELLED, 1000), 2, EncodedFrameChunk(), ""));
   EXPECT_EQ(store->GetRun("r-1")->state(), v1::CANCELLED);

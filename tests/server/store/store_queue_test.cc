@@ -99,7 +99,7 @@ TEST_P(StoreQueueTest, RenewedLeaseDoesNotExpireAndAnExpiredOneIsInterruptedWith
   auto store = Open();
   store->PutRun(Queued("r-1", 1000));
   const v1::RunInfo claimed = *store->ClaimQueuedRun(Lease("a", 5000));  // until 15000
-  store->PutFrameChunk("r-1", 0, EncodeFrameChunks(MakeFrames(7, 2)).front());
+  store->PutFrameChunk("r-1", 0, EncodeFrameChunks(MakeFrames(7, 2)).front(), "");
   EXPECT_TRUE(store->ReapExpiredLeases(14999, "b").empty());
   EXPECT_TRUE(store->RenewLease("r-1", LeaseHolder(claimed), 25000));
   EXPECT_TRUE(store->ReapExpiredLeases(24999, "b").empty());
