@@ -122,7 +122,7 @@ function onFrame(message) {
     ghost_distance: message.compare ? message.tcp_distance : null,
     ghost_distance_max: message.compare ? message.tcp_distance_max : null,
   });
-  const latency = Date.now() - message.posed_ms;
+  const latency = performance.timeOrigin + performance.now() - message.posed_ms;
   state.latency_ms.push(latency);
   if (state.latency_ms.length > 1000) state.latency_ms.shift();
   // The probes from this page's scene graph: the point times its frame's world matrix, then

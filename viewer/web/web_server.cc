@@ -90,6 +90,8 @@ class WebServer::Impl::Page : public std::enable_shared_from_this<Page> {
         peer_(Endpoint(ws_.next_layer().socket())) {}
 
   void Open(http::request<http::string_body> request) {
+    beast::error_code ignored;  // frames are small: no Nagle delay behind a delayed ACK
+    ws_.next_layer().socket().set_option(tcp::no_delay(true), ignored);
     ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
     ws_.read_message_max(kMaxMessageBytes);
     ws_.async_accept(request, beast::bind_front_handler(&Page::OnOpen, shared_from_this()));
