@@ -24,6 +24,9 @@ PACKAGES=(
   # viewer and headless rendering
   libvtk9-dev xvfb xauth
   libassimp-dev  # viewer meshes: Collada, OBJ, STL, glTF, PLY
+  # mbstream-viewer --web: Boost.Beast (HTTP, WebSocket); node for `npm ci` in viewer/web
+  # (three.js, served to the pages; playwright-core for the test), chromium for the test
+  libboost-dev nodejs chromium
   # python client and charts (Debian's, for /usr/bin/python3); installing the package
   # (client/python: pip install --no-build-isolation --no-deps) needs setuptools, pip, venv;
   # tqdm (progress bars) and pandas (Result.to_pandas) are optional, here so tests cover them;
@@ -46,7 +49,7 @@ COMMANDS=(
   psql:postgresql-client haproxy:haproxy Xvfb:xvfb xvfb-run:xvfb xauth:xauth
   docker-compose:docker-compose openssl:openssl python3:python3 clang++:clang
   clang-format:clang-format ccache:ccache cmake:cmake protoc:protobuf-compiler
-  grpc_cpp_plugin:protobuf-compiler-grpc
+  grpc_cpp_plugin:protobuf-compiler-grpc node:nodejs chromium:chromium
 )
 
 missing=()
@@ -79,6 +82,22 @@ if [ ${#absent[@]} -gt 0 ]; then
   echo "setup: these commands are still missing after the install: ${absent[*]};" \
     "install the packages named (apt-get install ...) and run setup.sh again" >&2
   exit 1
+fi
+
+# The web page's JavaScript (viewer/web: three.js, and playwright-core for the test), pinned by
+# viewer/web/package-lock.json, from the npm registry into viewer/web/node_modules; again only
+# when the lock file changed. Debian's npm when node came without it (NodeSource's has one).
+web="$(dirname "${BASH_SOURCE[0]}")/../viewer/web"
+if [ ! -f "$web/node_modules/.mbstream-installed" ] ||
+   [ "$web/package-lock.json" -nt "$web/node_modules/.mbstream-installed" ]; then
+  if ! command -v npm >/dev/null 2>&1; then
+    SUDO=""
+    if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends npm >/dev/null
+  fi
+  echo "setup: npm ci in viewer/web (three.js for the web page, playwright-core for its test)"
+  (cd "$web" && npm ci --no-audit --no-fund --loglevel=error) >/dev/null
+  touch "$web/node_modules/.mbstream-installed"
 fi
 
 # SUNDIALS 6.4.1 with optimisation, from Debian's source package, into a per-user cache that

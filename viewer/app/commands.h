@@ -8,6 +8,7 @@
 #include "net/server_credentials.h"
 #include "viewer/link/render_loop.h"
 #include "viewer/link/subscriber_link.h"
+#include "viewer/web/web_server.h"
 
 namespace mbstream::viewer {
 
@@ -38,6 +39,7 @@ struct LinkCommandOptions {
   std::string scene_file;  // --scene: instead of the model's own scene
   std::vector<std::string> asset_dirs;
   std::string listen;         // the Viewer control service; empty = none
+  WebOptions web;             // --web HOST:PORT (address empty = none), --web-root, --web-max-pages
   net::ServerTls listen_tls;  // its TLS (--listen-tls-cert/--listen-tls-key)
   bool offscreen = false;
   int width = 960;

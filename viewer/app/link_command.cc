@@ -21,6 +21,7 @@
 #include "viewer/link/viewer_control_service.h"
 #include "viewer/scene/scene_error.h"
 #include "viewer/scene/view_window.h"
+#include "viewer/web/web_view.h"
 
 namespace mbstream::viewer {
 
@@ -140,6 +141,23 @@ int RunLink(const LinkCommandOptions& options) {
     std::cout << "control service listening on " << address << std::endl;
   }
 
+  std::unique_ptr<WebView> web;
+  if (!options.web.address.empty()) {
+    WebView::SendControl send;
+    if (!options.link.follow)
+      send = [&link](const v1::ReplayControl& c) { return link.SendControl(c); };
+    try {
+      web = std::make_unique<WebView>(options.web, &status, std::move(send));
+    } catch (const std::exception& e) {
+      std::cerr << "mbstream-viewer: " << e.what() << "\n";
+      return 1;
+    }
+    link.SetPosedListener(
+        [&web](Scene& scene, std::span<const ProbeReport> probes) { web->OnPosed(scene, probes); });
+    web->Start();
+    std::cout << "web on " << web->url() << std::endl;
+  }
+
   signals.Start([&link] { link.Stop(); });
   std::atomic<bool> stop{false};
   int exit_code = 0;
@@ -152,8 +170,13 @@ int RunLink(const LinkCommandOptions& options) {
   if (!options.link.follow) {
     render.send_control = [&link](const v1::ReplayControl& c) { return link.SendControl(c); };
   }
+  if (web) {
+    render.on_scene_changed = [&web](Scene* scene) { web->OnScene(scene); };
+    render.on_tick = [&web] { web->OnTick(); };
+  }
   RunRenderLoop(&*view, &slot, &status, render, stop);
   network.join();
+  if (web) web->Stop();
   signals.Finish();  // before `link` goes
   if (control_server) control_server->Shutdown();
   std::error_code ignored;

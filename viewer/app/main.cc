@@ -98,6 +98,20 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_option("--listen-tls-key", link.listen_tls.key_file, "TLS key of --listen")
       ->check(CLI::ExistingFile);
+  auto* web = app.add_option("--web", link.web.address,
+                             "Serve the scene to web browsers on HOST:PORT (port 0 = any free "
+                             "port; prints 'web on http://HOST:PORT/'), e.g. 127.0.0.1:8080");
+  link.web.root = MBSTREAM_WEB_ROOT;
+  app.add_option("--web-root", link.web.root,
+                 "The web page's folder (index.html, page.js, node_modules/three)")
+      ->check(CLI::ExistingDirectory)
+      ->needs(web);
+  app.add_option("--web-max-pages", link.web.max_pages,
+                 "Web pages open at once; more are refused (HTTP 503)")
+      ->default_val(32)
+      ->check(CLI::Range(1, 10000))
+      ->needs(web);
+  web->needs(server);
   run->needs(server)->excludes(follow);
   for (CLI::Option* replay_option : {speed, loop, from_seq, paused, compare}) {
     replay_option->needs(run);

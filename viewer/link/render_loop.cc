@@ -82,6 +82,7 @@ void RunRenderLoop(ViewWindow* view, SceneSlot* slot, LinkStatus* status,
     const bool drawing = view->Check(/*discard_events=*/!options.interactive);
     bool changed = false;
     Scene* scene = slot->Service(view->window(), &changed);
+    if (changed && options.on_scene_changed) options.on_scene_changed(scene);
     if (!drawing) scene = nullptr;
     if (scene && changed && options.hud) scene->renderer()->AddActor2D(hud);
     if (scene && changed && options.interactive) {
@@ -118,6 +119,7 @@ void RunRenderLoop(ViewWindow* view, SceneSlot* slot, LinkStatus* status,
         }
       }
     }
+    if (options.on_tick) options.on_tick();
     const Clock::time_point now = Clock::now();
     if (now - fps_window >= std::chrono::seconds(1)) {
       status->SetRenderFps(window_draws / std::chrono::duration<double>(now - fps_window).count());

@@ -24,6 +24,10 @@ struct RenderOptions {
   bool interactive = false;  // window mode: mouse interaction (trackball camera)
   // Window mode of a replay: its time controls (replay_keys.h) send through this.
   std::function<bool(const v1::ReplayControl&)> send_control;
+  // Called every tick on this thread: with the scene when it changed (null: none), and once
+  // per tick after drawing (--web: web_view.h).
+  std::function<void(Scene*)> on_scene_changed;
+  std::function<void()> on_tick;
 };
 
 // Runs until `stop` is set; returns after finishing the video. Every scene draws into

@@ -240,6 +240,7 @@ void SubscriberLink::OnFrames(const v1::FrameBatch& batch, StreamState* state) {
   if (!state->showing) return;
   const bool ghosts = batch.ghost_frames_size() == batch.frames_size();
   int sent = 0;
+  bool any_posed = false;
   const Clock::time_point begin = Clock::now();
   for (int i = 0; i < batch.frames_size() && !state->broken; ++i) {
     const v1::Frame& frame = batch.frames(i);
@@ -262,6 +263,7 @@ void SubscriberLink::OnFrames(const v1::FrameBatch& batch, StreamState* state) {
       break;
     }
     if (!posed) continue;
+    any_posed = true;
     for (const ProbeReport& probe : state->probes) {
       v1::ProbeReport* report = state->reply.mutable_probe();
       report->set_run_id(state->run_id);
@@ -290,6 +292,9 @@ void SubscriberLink::OnFrames(const v1::FrameBatch& batch, StreamState* state) {
     status_->SetSeq(batch.frames(batch.frames_size() - 1).seq());
     status_->AddFrames(batch.frames(batch.frames_size() - 1).t_s(), batch.frames_size(),
                        batch.missed(), sent, compute_ns);
+    if (posed_listener_ && any_posed) {
+      slot_->WithScene([&](Scene& scene) { posed_listener_(scene, state->probes); });
+    }
   } else if (batch.missed() > 0) {  // frames dropped just before the run's end
     status_->AddMissed(batch.missed());
   }

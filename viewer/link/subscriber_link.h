@@ -5,7 +5,9 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <mutex>
+#include <span>
 #include <string>
 
 #include "mbstream/v1/simulation_service.pb.h"
@@ -50,6 +52,10 @@ class SubscriberLink {
   // From another thread (the window's keys): sends a replay's time control on the open
   // stream; false when no stream is open.
   bool SendControl(const v1::ReplayControl& control);
+  // Before Run(): called on the link's thread after each batch of frames posed the scene
+  // (the status already updated), under the slot's lock, with the newest frame's probes.
+  using PosedListener = std::function<void(Scene&, std::span<const ProbeReport>)>;
+  void SetPosedListener(PosedListener listener) { posed_listener_ = std::move(listener); }
 
  private:
   enum class StreamEnd { kDone, kRetry, kFatal };
@@ -69,6 +75,7 @@ class SubscriberLink {
   bool Write(const v1::SubscribeRequest& request);
 
   LinkOptions options_;
+  PosedListener posed_listener_;
   RunSceneSource scenes_;
   SceneSlot* slot_;
   LinkStatus* status_;

@@ -170,6 +170,7 @@ void Scene::AddPart(const VisualPart& part, long long max_triangles, bool* textu
     if (part.frame != kWorldFrame) actor->SetUserMatrix(frame_matrices_.at(part.frame));
     renderer_->AddActor(actor);
     part_actors_.push_back(actor);
+    part_frames_.push_back(part.frame);
   }
   triangle_count_ += made.triangles;
   *textured = *textured || made.textured;
@@ -222,6 +223,12 @@ void Scene::ProbeReports(std::vector<ProbeReport>* out) const {
 
 std::uint64_t Scene::pose_version() const {
   const std::lock_guard<std::mutex> lock(mutex_);
+  return version_;
+}
+
+std::uint64_t Scene::Frames(std::vector<Eigen::Isometry3d>* out) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  out->assign(pose_.frames.begin(), pose_.frames.end());
   return version_;
 }
 

@@ -80,6 +80,9 @@ class Scene {
   void ProbeReports(std::vector<ProbeReport>* out) const;
   // Increases with every SetJointValues.
   std::uint64_t pose_version() const;
+  // Every frame of the newest pose, in World, into `out` (reusing its storage); returns the
+  // pose's version.
+  std::uint64_t Frames(std::vector<Eigen::Isometry3d>* out) const;
 
   // ---- render side: the thread that created the Scene.
   // Copies the newest pose into the actors' user matrices and the probe markers (no
@@ -102,6 +105,11 @@ class Scene {
   // Null when the scene has no window (see the constructor).
   vtkRenderWindow* render_window() { return window_; }
   vtkRenderer* renderer() { return renderer_; }
+  // The actors that show parts (probe markers and the ghost excluded), in the order built,
+  // and the frame each one follows (kWorldFrame: fixed in World). Their mappers' inputs are
+  // in that frame's axes; the actors' own transforms are the identity.
+  const std::vector<vtkSmartPointer<vtkActor>>& part_actors() const { return part_actors_; }
+  const std::vector<int>& part_frames() const { return part_frames_; }
   // Number of actors that show parts (probe markers excluded).
   int part_actor_count() const { return static_cast<int>(part_actors_.size()); }
   // Triangles drawn by the part actors.
@@ -127,6 +135,7 @@ class Scene {
   vtkSmartPointer<vtkRenderer> renderer_;
   std::vector<vtkSmartPointer<vtkMatrix4x4>> frame_matrices_;  // one per frame
   std::vector<vtkSmartPointer<vtkActor>> part_actors_;
+  std::vector<int> part_frames_;  // per part actor
   std::vector<vtkSmartPointer<vtkActor>> probe_actors_;
   struct Label {
     vtkSmartPointer<vtkBillboardTextActor3D> actor;

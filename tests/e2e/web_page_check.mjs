@@ -1,0 +1,99 @@
+// Drives Debian's chromium (headless, WebGL through SwiftShader) with playwright-core from
+// viewer/web/node_modules: opens an mbstream-viewer --web page, waits for frames (events,
+// never fixed sleeps), records what the page draws, opens a second page, takes a screenshot.
+// Usage: node web_page_check.mjs URL OUT_DIR WEB_ROOT [replay]
+// Prints one JSON object on stdout: the figures and the recorded frames.
+import { createRequire } from 'node:module';
+import { mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join, resolve } from 'node:path';
+
+const [url, outDir, webRoot, mode] = process.argv.slice(2);
+const require = createRequire(resolve(webRoot, 'package.json'));
+const { chromium } = require('playwright-core');
+
+const profile = mkdtempSync(join(tmpdir(), 'mbstream-chromium-'));
+const context = await chromium.launchPersistentContext(profile, {
+  executablePath: '/usr/bin/chromium',
+  headless: true,
+  viewport: { width: 800, height: 600 },
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+         '--disable-background-networking', '--disable-component-update', '--disable-sync',
+         '--use-gl=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
+});
+const result = {};
+const outside = [];  // requests to anywhere but the viewer
+try {
+  const page = context.pages()[0] || await context.newPage();
+  const origin = new URL(url).origin;
+  page.on('request', (request) => {
+    if (!request.url().startsWith(origin) && !request.url().startsWith('data:')) outside.push(request.url());
+  });
+  const errors = [];
+  page.on('pageerror', (error) => errors.push(String(error)));
+  const start = Date.now();
+  await page.goto(url, { waitUntil: 'load' });
+  result.load_ms = Date.now() - start;
+  await page.waitForFunction(() => window.mbstream && window.mbstream.frames >= 1 &&
+                             window.mbstream.rendered >= 1, null, { timeout: 60000 });
+  result.first_frame_ms = Date.now() - start;
+  result.page_bytes = await page.evaluate(() => performance.getEntriesByType('resource')
+    .concat(performance.getEntriesByType('navigation'))
+    .reduce((n, e) => n + (e.transferSize || e.encodedBodySize || 0), 0));
+  await page.evaluate(() => { window.mbstream.record = []; });
+  const frames = Number(mode === 'replay' ? 10 : 40);
+  await page.waitForFunction((n) => window.mbstream.record.length >= n, frames, { timeout: 60000 });
+
+  if (mode === 'replay') {
+    // Pause, step on twice, seek: the page's controls reach the viewer's replay.
+    await page.evaluate(() => window.mbstream.send({ pause: true }));
+    await page.waitForFunction(() => window.mbstream.paused === true, null, { timeout: 30000 });
+    const paused = await page.evaluate(() => window.mbstream.seq);
+    await page.keyboard.press('ArrowRight');
+    await page.waitForFunction((s) => window.mbstream.seq === s + 1, paused, { timeout: 30000 });
+    await page.evaluate(() => window.mbstream.send({ seek_seq: 100 }));
+    await page.waitForFunction(() => window.mbstream.seq === 100, null, { timeout: 30000 });
+    result.replay = { paused_at: paused, after_step: paused + 1,
+                      after_seek: await page.evaluate(() => window.mbstream.seq),
+                      compare: await page.evaluate(() => window.mbstream.compare),
+                      ghost_distance: await page.evaluate(() => window.mbstream.ghost_distance) };
+    await page.evaluate(() => window.mbstream.send({ resume: true }));
+  }
+
+  // A second page opened now shows the same run at once (the snapshot on connect).
+  const second = await context.newPage();
+  const joined = Date.now();
+  await second.goto(url, { waitUntil: 'load' });
+  await second.waitForFunction(() => window.mbstream && window.mbstream.frames >= 1 &&
+                               window.mbstream.rendered >= 1, null, { timeout: 60000 });
+  result.late_join_ms = Date.now() - joined;
+  result.second_run = await second.evaluate(() => window.mbstream.run);
+  await second.close();
+
+  await page.screenshot({ path: join(outDir, 'web_page.png') });
+  // The robot's pixels: the canvas is transparent where nothing is drawn.
+  result.drawn_fraction = await page.evaluate(() => {
+    const gl = document.querySelector('#view canvas');
+    const canvas = document.createElement('canvas');
+    canvas.width = gl.width; canvas.height = gl.height;
+    const context2d = canvas.getContext('2d');
+    context2d.drawImage(gl, 0, 0);
+    const data = context2d.getImageData(0, 0, canvas.width, canvas.height).data;
+    let drawn = 0;
+    for (let i = 3; i < data.length; i += 4) if (data[i] > 0) ++drawn;
+    return drawn / (canvas.width * canvas.height);
+  });
+  const state = await page.evaluate(() => ({
+    run: window.mbstream.run, state: window.mbstream.state, frames: window.mbstream.frames,
+    missed: window.mbstream.missed, scene_bytes: window.mbstream.scene_bytes,
+    frame_bytes: window.mbstream.frame_bytes, triangles: window.mbstream.triangles,
+    latency_ms: window.mbstream.latency_ms, record: window.mbstream.record,
+    hud: document.getElementById('hud').textContent }));
+  Object.assign(result, state);
+  result.errors = errors;
+  result.outside = outside;
+} finally {
+  await context.close();
+  rmSync(profile, { recursive: true, force: true });
+}
+process.stdout.write(JSON.stringify(result) + '\n');

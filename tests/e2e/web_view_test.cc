@@ -1,0 +1,154 @@
+// mbstream-viewer --web (issue 30) end to end: a real server, a real offscreen viewer under
+// a private Xvfb serving its scene on 127.0.0.1:0, and Debian's chromium (headless, WebGL
+// through SwiftShader) driven by playwright-core (web_page_check.mjs): the page draws the
+// run, its probes (from its own scene graph) are where the server put the TCP, a second
+// page shows the same run at once, and a replay's controls and compare ghost work.
+#include <gmock/gmock.h>
+#include <signal.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <random>
+
+#include "tests/common/csv_rows.h"
+#include "tests/common/server_process.h"
+#include "tests/viewer/xvfb_server.h"
+
+namespace mbstream::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+class WebViewTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("mbstream-web-" + std::to_string(std::random_device()()));
+    fs::create_directories(dir_);
+    server_ = std::make_unique<ServerProcess>(MBSTREAM_SERVER, (dir_ / "data").string());
+    ASSERT_TRUE(xvfb_.Start()) << "Xvfb does not start (Debian package xvfb)";
+  }
+  void TearDown() override {
+    const std::string group = ReadTextFile((dir_ / "viewer.pgid").string());
+    if (!group.empty()) kill(-std::stoi(group), SIGTERM);
+    server_.reset();
+    fs::remove_all(dir_);
+  }
+  CommandOutcome Cli(const std::string& args) {
+    return RunCommand(std::string(MBSTREAM_CLI) + " --server " + server_->address() + " " + args);
+  }
+  // Starts the viewer with --web 127.0.0.1:0 in a process group of its own; returns its URL.
+  std::string StartViewer(const std::string& args) {
+    const fs::path log = dir_ / "viewer.log";
+    const std::string command = "DISPLAY=" + xvfb_.display() + " " + MBSTREAM_VIEWER +
+                                " --server " + server_->address() +
+                                " --offscreen --size 320x240 --web 127.0.0.1:0 " + args;
+    EXPECT_EQ(
+        RunCommand("setsid sh -c 'echo $$ > " + (dir_ / "viewer.pgid").string() + "; (" + command +
+                   "; echo \"viewer exit $?\") > " + log.string() + " 2>&1' > /dev/null 2>&1 &")
+            .exit_code,
+        0);
+    const std::optional<std::string> url = WaitForLineIn(log.string(), "web on ", 60);
+    EXPECT_TRUE(url) << ReadTextFile(log.string());
+    return url.value_or("");
+  }
+  // Runs the browser on `url`; returns what it saw.
+  nlohmann::json Browse(const std::string& url, const std::string& mode = "") {
+    const CommandOutcome browsed = RunCommand(
+        "node " MBSTREAM_SOURCE_DIR "/tests/e2e/web_page_check.mjs " + url + " " + dir_.string() +
+        " " MBSTREAM_WEB_ROOT " " + mode + " 2>" + (dir_ / "browser.err").string());
+    EXPECT_EQ(browsed.exit_code, 0)
+        << browsed.output << ReadTextFile((dir_ / "browser.err").string())
+        << ReadTextFile((dir_ / "viewer.log").string());
+    nlohmann::json seen = nlohmann::json::parse(browsed.output, nullptr, false);
+    EXPECT_TRUE(seen.is_object()) << browsed.output;
+    return seen.is_object() ? seen : nlohmann::json::object();
+  }
+  // Every recorded frame's first probe against the run's TCP at the same seq.
+  void ExpectProbesAtTcp(const nlohmann::json& seen, const std::string& run_id) {
+    Cli("result " + run_id + " --out " + (dir_ / "out").string());  // 1 when cancelled
+    const auto tcp = ReadCsv(dir_ / "out" / "tcp.csv");
+    ASSERT_FALSE(tcp.empty());
+    ASSERT_GE(seen["record"].size(), 10u);
+    for (const auto& frame : seen["record"]) {
+      const int64_t seq = frame["seq"].get<int64_t>();
+      ASSERT_GE(seq, 0);
+      ASSERT_LT(seq, static_cast<int64_t>(tcp.size()));
+      ASSERT_FALSE(frame["probes"].empty());
+      const auto& probe = frame["probes"][0];
+      const auto& row = tcp[static_cast<size_t>(seq)];
+      EXPECT_NEAR(probe["x"].get<double>(), std::stod(row[1]), 1e-5) << "seq " << seq;
+      EXPECT_NEAR(probe["y"].get<double>(), std::stod(row[2]), 1e-5) << "seq " << seq;
+      EXPECT_NEAR(probe["z"].get<double>(), std::stod(row[3]), 1e-5) << "seq " << seq;
+    }
+  }
+  // Figures for docs/performance.md, in the test's log.
+  static void PrintFigures(const nlohmann::json& seen) {
+    std::vector<double> latency = seen.value("latency_ms", std::vector<double>{});
+    std::sort(latency.begin(), latency.end());
+    const auto at = [&](double q) {
+      return latency.empty() ? -1.0 : latency[static_cast<size_t>(q * (latency.size() - 1))];
+    };
+    std::printf(
+        "web figures: page load %d ms, first frame %d ms, late join %d ms, page bytes %lld, "
+        "scene bytes %lld, frame bytes %lld, triangles %lld, frames %lld missed %lld, latency "
+        "p50 %.1f ms p99 %.1f ms (%zu frames), drawn %.3f\n",
+        seen.value("load_ms", -1), seen.value("first_frame_ms", -1), seen.value("late_join_ms", -1),
+        seen.value("page_bytes", -1LL), seen.value("scene_bytes", -1LL),
+        seen.value("frame_bytes", -1LL), seen.value("triangles", -1LL), seen.value("frames", -1LL),
+        seen.value("missed", -1LL), at(0.5), at(0.99), latency.size(),
+        seen.value("drawn_fraction", -1.0));
+  }
+
+  fs::path dir_;
+  std::unique_ptr<ServerProcess> server_;
+  viewer::testing::XvfbServer xvfb_;
+};
+
+TEST_F(WebViewTest, PageDrawsTheLiveSeedRunWithTheTcpWhereTheServerPutsIt) {
+  const std::string url = StartViewer("--follow --exit-after-runs 1");
+  ASSERT_THAT(url, StartsWith("http://127.0.0.1:"));
+  const CommandOutcome started =
+      Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 1");
+  ASSERT_EQ(started.exit_code, 0) << started.output;
+  const std::string run = started.output.substr(0, started.output.find('\n'));
+  const nlohmann::json seen = Browse(url);
+  Cli("cancel " + run);
+  PrintFigures(seen);
+  EXPECT_EQ(seen.value("run", ""), run);
+  EXPECT_EQ(seen.value("second_run", ""), run);  // the late joiner: the same run at once
+  EXPECT_EQ(seen.value("state", ""), "running");
+  EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
+  EXPECT_TRUE(seen["outside"].empty()) << seen["outside"];  // nothing from another host
+  EXPECT_GT(seen.value("drawn_fraction", 0.0), 0.01) << "the screenshot shows no robot";
+  EXPECT_THAT(seen.value("hud", ""), HasSubstr("run " + run + "  running"));
+  EXPECT_TRUE(fs::file_size(dir_ / "web_page.png") > 1000);
+  ExpectProbesAtTcp(seen, run);
+  ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
+}
+
+TEST_F(WebViewTest, ReplayControlsAndTheCompareGhostWorkFromThePage) {
+  const std::string spec = " --spec models/irb1600/seed-run.json --realtime 50 --watch";
+  const CommandOutcome a = Cli("run irb1600" + spec);
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  const CommandOutcome b = Cli("run irb1600" + spec);
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  const std::string run_a = a.output.substr(0, a.output.find('\n'));
+  const std::string run_b = b.output.substr(0, b.output.find('\n'));
+  const std::string url = StartViewer("--run " + run_a + " --compare " + run_b + " --loop");
+  const nlohmann::json seen = Browse(url, "replay");
+  PrintFigures(seen);
+  ASSERT_TRUE(seen.contains("replay")) << seen.dump();
+  EXPECT_EQ(seen["replay"]["after_seek"], 100);
+  EXPECT_EQ(seen["replay"]["compare"], run_b);
+  EXPECT_NEAR(seen["replay"]["ghost_distance"].get<double>(), 0.0, 1e-9);  // the same motion
+  EXPECT_THAT(seen.value("hud", ""), HasSubstr("ghost " + run_b));
+  EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
+  EXPECT_GT(seen.value("drawn_fraction", 0.0), 0.01);
+  ExpectProbesAtTcp(seen, run_a);
+}
+
+}  // namespace
+}  // namespace mbstream::testing

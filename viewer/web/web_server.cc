@@ -1,0 +1,386 @@
+#include "viewer/web/web_server.h"
+
+#include <spdlog/spdlog.h>
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/strand.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+
+#include <atomic>
+#include <fstream>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+namespace mbstream::viewer {
+
+namespace asio = boost::asio;
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace websocket = beast::websocket;
+using tcp = asio::ip::tcp;
+
+namespace {
+
+constexpr std::size_t kMaxRequestBytes = 8 * 1024;
+constexpr std::size_t kMaxMessageBytes = 4 * 1024;
+constexpr auto kHttpTimeout = std::chrono::seconds(30);
+
+// URL path -> file under the root; empty when the path is not one of the page's files.
+std::filesystem::path FileFor(const std::filesystem::path& root, std::string_view target) {
+  const std::string_view path = target.substr(0, target.find_first_of("?#"));
+  if (path == "/" || path == "/index.html") return root / "index.html";
+  if (path.find("..") != std::string_view::npos || path.find('\\') != std::string_view::npos) {
+    return {};
+  }
+  if (path == "/page.js" || path == "/page.css") return root / path.substr(1);
+  constexpr std::string_view kThree = "/three/";  // three.js as npm installed it
+  if (path.rfind(kThree, 0) == 0) {
+    return root / "node_modules" / "three" / path.substr(kThree.size());
+  }
+  return {};
+}
+
+const char* MimeType(const std::filesystem::path& file) {
+  const std::string ext = file.extension().string();
+  if (ext == ".html") return "text/html; charset=utf-8";
+  if (ext == ".js") return "text/javascript; charset=utf-8";
+  if (ext == ".css") return "text/css; charset=utf-8";
+  return "application/octet-stream";
+}
+
+std::string Endpoint(const tcp::socket& socket) {
+  beast::error_code ec;
+  const tcp::endpoint remote = socket.remote_endpoint(ec);
+  if (ec) return "?";
+  return remote.address().to_string() + ":" + std::to_string(remote.port());
+}
+
+}  // namespace
+
+struct WebServer::Impl : std::enable_shared_from_this<WebServer::Impl> {
+  WebOptions options;
+  OnControl on_control;
+  asio::io_context ioc{1};
+  tcp::acceptor acceptor{ioc};
+  std::thread thread;
+  std::atomic<int> pages{0};
+
+  class Page;
+  std::mutex mutex;  // guards the fields below
+  std::set<std::shared_ptr<Page>> open;
+  std::shared_ptr<const std::string> scene, frame;
+
+  void Accept();
+  void Serve(tcp::socket socket);
+  void Publish(std::shared_ptr<const std::string> message, bool is_scene);
+};
+
+// One page's WebSocket: the scene, then the newest frame, never a queue.
+class WebServer::Impl::Page : public std::enable_shared_from_this<Page> {
+ public:
+  Page(std::shared_ptr<Impl> server, tcp::socket socket)
+      : server_(std::move(server)),
+        ws_(std::move(socket)),
+        peer_(Endpoint(ws_.next_layer().socket())) {}
+
+  void Open(http::request<http::string_body> request) {
+    beast::error_code ignored;  // frames are small: no Nagle delay behind a delayed ACK
+    ws_.next_layer().socket().set_option(tcp::no_delay(true), ignored);
+    ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+    ws_.read_message_max(kMaxMessageBytes);
+    ws_.async_accept(request, beast::bind_front_handler(&Page::OnOpen, shared_from_this()));
+  }
+
+  // On the page's strand: a message to send (the scene replaces everything waiting).
+  void Send(std::shared_ptr<const std::string> message, bool is_scene) {
+    asio::post(ws_.get_executor(), [self = shared_from_this(), message, is_scene] {
+      if (is_scene) {
+        self->scene_ = message;
+        self->frame_.reset();
+      } else {
+        self->frame_ = message;
+      }
+      self->Write();
+    });
+  }
+
+ private:
+  void OnOpen(beast::error_code ec) {
+    if (ec) {
+      spdlog::warn("web: page {}: WebSocket handshake failed: {}", peer_, ec.message());
+      return Closed();
+    }
+    std::shared_ptr<const std::string> scene, frame;
+    {
+      std::lock_guard<std::mutex> lock(server_->mutex);
+      server_->open.insert(shared_from_this());
+      scene = server_->scene;
+      frame = server_->frame;
+    }
+    spdlog::info("web: page {} opened ({} open)", peer_, server_->pages.load());
+    if (scene) scene_ = scene;  // the snapshot: what the other pages show now
+    if (frame) frame_ = frame;
+    Write();
+    Read();
+  }
+
+  void Write() {
+    if (writing_ || closed_) return;
+    std::shared_ptr<const std::string> next = scene_ ? scene_ : frame_;
+    if (!next) return;
+    (scene_ ? scene_ : frame_).reset();
+    writing_ = true;
+    sending_ = next;
+    ws_.text(true);
+    ws_.async_write(
+        asio::buffer(*sending_), [self = shared_from_this()](beast::error_code ec, std::size_t) {
+          self->writing_ = false;
+          self->sending_.reset();
+          if (ec) {
+            spdlog::info("web: page {} closed while sending: {}", self->peer_, ec.message());
+            return self->Closed();
+          }
+          self->Write();
+        });
+  }
+
+  void Read() {
+    ws_.async_read(buffer_, [self = shared_from_this()](beast::error_code ec, std::size_t) {
+      if (ec) {
+        if (ec == websocket::error::message_too_big) {
+          spdlog::warn("web: page {} sent a message over {} bytes: closed", self->peer_,
+                       kMaxMessageBytes);
+        } else if (ec != websocket::error::closed && ec != asio::error::operation_aborted) {
+          spdlog::info("web: page {} closed: {}", self->peer_, ec.message());
+        } else {
+          spdlog::info("web: page {} closed", self->peer_);
+        }
+        return self->Closed();
+      }
+      const std::string text = beast::buffers_to_string(self->buffer_.data());
+      self->buffer_.consume(self->buffer_.size());
+      if (!self->ws_.got_text() || !self->server_->on_control || !self->server_->on_control(text)) {
+        spdlog::warn("web: page {}: control '{}' not applied", self->peer_, text.substr(0, 200));
+      }
+      self->Read();
+    });
+  }
+
+  void Closed() {
+    if (closed_) return;
+    closed_ = true;
+    --server_->pages;
+    std::lock_guard<std::mutex> lock(server_->mutex);
+    server_->open.erase(shared_from_this());
+  }
+
+  std::shared_ptr<Impl> server_;
+  websocket::stream<beast::tcp_stream> ws_;
+  std::string peer_;
+  beast::flat_buffer buffer_;
+  std::shared_ptr<const std::string> scene_, frame_, sending_;
+  bool writing_ = false;
+  bool closed_ = false;
+};
+
+namespace {
+
+// One HTTP connection: files, or the upgrade to a page's WebSocket.
+class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
+ public:
+  HttpConnection(std::shared_ptr<WebServer::Impl> server, tcp::socket socket)
+      : server_(std::move(server)), stream_(std::move(socket)), peer_(Endpoint(stream_.socket())) {}
+
+  void Read() {
+    parser_.emplace();
+    parser_->header_limit(kMaxRequestBytes);
+    parser_->body_limit(kMaxRequestBytes);
+    stream_.expires_after(kHttpTimeout);
+    http::async_read(stream_, buffer_, *parser_,
+                     beast::bind_front_handler(&HttpConnection::OnRead, shared_from_this()));
+  }
+
+ private:
+  void OnRead(beast::error_code ec, std::size_t) {
+    if (ec == http::error::end_of_stream) return Shut();
+    if (ec) {
+      if (ec != beast::error::timeout && ec != asio::error::operation_aborted) {
+        spdlog::warn("web: {}: bad request: {}", peer_, ec.message());
+        return Reply(http::status::bad_request, "bad request: " + ec.message() + "\n", false);
+      }
+      spdlog::info("web: {}: {}", peer_, ec.message());
+      return Shut();
+    }
+    http::request<http::string_body> request = parser_->release();
+    if (websocket::is_upgrade(request)) {
+      if (request.target() != "/ws") {
+        return Reply(http::status::not_found, "the page's WebSocket is /ws\n", false);
+      }
+      if (server_->pages.fetch_add(1) >= server_->options.max_pages) {
+        --server_->pages;
+        spdlog::warn("web: {}: refused, {} pages open already (--web-max-pages)", peer_,
+                     server_->options.max_pages);
+        return Reply(http::status::service_unavailable,
+                     "too many pages open (" + std::to_string(server_->options.max_pages) +
+                         ", mbstream-viewer --web-max-pages)\n",
+                     false);
+      }
+      stream_.expires_never();
+      auto page = std::make_shared<WebServer::Impl::Page>(server_, stream_.release_socket());
+      page->Open(std::move(request));
+      return;
+    }
+    if (request.method() != http::verb::get && request.method() != http::verb::head) {
+      return Reply(http::status::method_not_allowed, "GET or HEAD only\n", request.keep_alive());
+    }
+    const std::string target(request.target());
+    const std::filesystem::path file = FileFor(server_->options.root, target);
+    std::ifstream in(file, std::ios::binary);
+    if (file.empty() || !in) {
+      return Reply(http::status::not_found, "not found: " + target.substr(0, 200) + "\n",
+                   request.keep_alive());
+    }
+    std::ostringstream body;
+    body << in.rdbuf();
+    auto response =
+        std::make_shared<http::response<http::string_body>>(http::status::ok, request.version());
+    response->set(http::field::content_type, MimeType(file));
+    response->set(http::field::cache_control, "no-cache");
+    response->keep_alive(request.keep_alive());
+    response->body() = request.method() == http::verb::head ? "" : body.str();
+    response->content_length(body.str().size());
+    Send(response);
+  }
+
+  void Reply(http::status status, std::string text, bool keep_alive) {
+    auto response = std::make_shared<http::response<http::string_body>>(status, 11);
+    response->set(http::field::content_type, "text/plain; charset=utf-8");
+    response->keep_alive(keep_alive);
+    response->body() = std::move(text);
+    response->prepare_payload();
+    Send(response);
+  }
+
+  void Send(std::shared_ptr<http::response<http::string_body>> response) {
+    stream_.expires_after(kHttpTimeout);
+    http::async_write(stream_, *response,
+                      [self = shared_from_this(), response](beast::error_code ec, std::size_t) {
+                        if (ec) return self->Shut();
+                        if (!response->keep_alive()) return self->Shut();
+                        self->Read();
+                      });
+  }
+
+  void Shut() {
+    beast::error_code ignored;
+    stream_.socket().shutdown(tcp::socket::shutdown_send, ignored);
+  }
+
+  std::shared_ptr<WebServer::Impl> server_;
+  beast::tcp_stream stream_;
+  std::string peer_;
+  beast::flat_buffer buffer_;
+  std::optional<http::request_parser<http::string_body>> parser_;
+};
+
+}  // namespace
+
+void WebServer::Impl::Accept() {
+  acceptor.async_accept(asio::make_strand(ioc),
+                        [self = shared_from_this()](beast::error_code ec, tcp::socket socket) {
+                          if (ec == asio::error::operation_aborted) return;
+                          if (ec) {
+                            spdlog::warn("web: accept: {}", ec.message());
+                          } else {
+                            std::make_shared<HttpConnection>(self, std::move(socket))->Read();
+                          }
+                          self->Accept();
+                        });
+}
+
+void WebServer::Impl::Publish(std::shared_ptr<const std::string> message, bool is_scene) {
+  std::set<std::shared_ptr<Page>> pages_now;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    (is_scene ? scene : frame) = message;
+    if (is_scene) frame.reset();
+    pages_now = open;
+  }
+  for (const auto& page : pages_now) page->Send(message, is_scene);
+}
+
+WebServer::WebServer(WebOptions options, OnControl on_control) : impl_(std::make_shared<Impl>()) {
+  impl_->options = std::move(options);
+  impl_->on_control = std::move(on_control);
+  if (!std::filesystem::exists(impl_->options.root / "index.html") ||
+      !std::filesystem::exists(impl_->options.root / "node_modules/three/build/three.module.js")) {
+    throw std::runtime_error("the web page's files are not in " + impl_->options.root.string() +
+                             " (index.html, and three.js from 'npm ci' there: run "
+                             "scripts/setup.sh, or give --web-root DIR)");
+  }
+  const std::string& address = impl_->options.address;
+  const std::size_t colon = address.rfind(':');
+  if (colon == std::string::npos || colon == 0) {
+    throw std::runtime_error("--web '" + address + "' is not HOST:PORT, e.g. 127.0.0.1:8080");
+  }
+  std::string host = address.substr(0, colon);
+  if (host.size() > 2 && host.front() == '[' && host.back() == ']') {
+    host = host.substr(1, host.size() - 2);
+  }
+  const std::string port = address.substr(colon + 1);
+  beast::error_code ec;
+  tcp::resolver resolver(impl_->ioc);
+  const auto endpoints = resolver.resolve(host, port, tcp::resolver::passive, ec);
+  if (ec || endpoints.empty()) {
+    throw std::runtime_error("--web " + address + ": cannot resolve: " + ec.message());
+  }
+  const tcp::endpoint endpoint = *endpoints.begin();
+  tcp::acceptor& acceptor = impl_->acceptor;
+  acceptor.open(endpoint.protocol(), ec);
+  if (!ec) acceptor.set_option(asio::socket_base::reuse_address(true), ec);
+  if (!ec) acceptor.bind(endpoint, ec);
+  if (!ec) acceptor.listen(asio::socket_base::max_listen_connections, ec);
+  if (ec) throw std::runtime_error("--web " + address + ": cannot listen: " + ec.message());
+}
+
+WebServer::~WebServer() { Stop(); }
+
+std::string WebServer::url() const {
+  const tcp::endpoint local = impl_->acceptor.local_endpoint();
+  std::string host = local.address().to_string();
+  if (local.address().is_v6()) host = "[" + host + "]";
+  return "http://" + host + ":" + std::to_string(local.port()) + "/";
+}
+
+void WebServer::Start() {
+  impl_->Accept();
+  impl_->thread = std::thread([impl = impl_] { impl->ioc.run(); });
+}
+
+void WebServer::Stop() {
+  if (!impl_->thread.joinable()) return;
+  impl_->ioc.stop();  // the pages' sockets close with the handlers the io_context drops
+  impl_->thread.join();
+  beast::error_code ignored;
+  impl_->acceptor.close(ignored);
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->open.clear();  // (each page holds the server)
+}
+
+void WebServer::SetScene(std::string json) {
+  impl_->Publish(std::make_shared<const std::string>(std::move(json)), true);
+}
+
+void WebServer::PublishFrame(std::string json) {
+  impl_->Publish(std::make_shared<const std::string>(std::move(json)), false);
+}
+
+int WebServer::pages() const { return impl_->pages.load(); }
+
+}  // namespace mbstream::viewer

@@ -1,0 +1,58 @@
+// mbstream-viewer --web HOST:PORT: an HTTP server (Boost.Beast) for the browser page and its
+// files, and a WebSocket per page that gets the scene once per model (scene_export.h), then
+// the latest pose (frame_message.h). A page never queues: while its socket is busy, a newer
+// frame replaces the one waiting, and the page counts the gap (each frame is numbered). The
+// page's replay controls come back on its socket as small JSON messages.
+//
+// Limits, each refused or closed with a logged reason: request headers and bodies over 8 KiB,
+// methods other than GET and HEAD, paths outside the page's files, more than `max_pages`
+// sockets (HTTP 503), WebSocket messages over 4 KiB or not JSON controls, idle or stalled
+// connections (Beast's server timeouts: 30 s for HTTP, pings for WebSockets).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace mbstream::viewer {
+
+struct WebOptions {
+  std::string address;         // HOST:PORT; port 0 = any free port
+  std::filesystem::path root;  // the page: index.html, page.js, node_modules/three/
+  int max_pages = 32;          // open WebSockets at once
+};
+
+class WebServer {
+ public:
+  // A control a page sent, as JSON text ({"pause":true}, {"seek_seq":N}, ...); returns false
+  // when it could not be passed on.
+  using OnControl = std::function<bool(const std::string& json)>;
+
+  // Binds and listens (no thread yet). Throws std::runtime_error naming the address and the
+  // reason when it cannot, or when the page's files are not in `root`.
+  WebServer(WebOptions options, OnControl on_control);
+  ~WebServer();  // Stop()
+  WebServer(const WebServer&) = delete;
+  WebServer& operator=(const WebServer&) = delete;
+
+  // http://HOST:PORT/ with the port bound.
+  std::string url() const;
+  // Serves on a thread of its own until Stop().
+  void Start();
+  void Stop();
+
+  // Any thread: a new scene (sent to every page, and to every page that opens later), and
+  // the newest frame (sent to every page, replacing one not yet sent).
+  void SetScene(std::string json);
+  void PublishFrame(std::string json);
+
+  int pages() const;
+  struct Impl;
+
+ private:
+  std::shared_ptr<Impl> impl_;
+};
+
+}  // namespace mbstream::viewer
