@@ -120,4 +120,12 @@ void DriveSet::ActuatorEfforts(double t, const double* q, const double* qd, Work
   for (int i = 0; i < size(); ++i) effort[i] = LawEffort(i, t, q[i], qd[i], shared);
 }
 
+std::vector<int> PrescribedJoints(const DriveSet& drives) {
+  std::vector<int> joints;
+  for (int i = 0; i < drives.size(); ++i) {
+    if (drives.prescribed(i)) joints.push_back(i);
+  }
+  return joints;
+}
+
 }  // namespace mbstream

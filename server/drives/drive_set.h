@@ -88,4 +88,7 @@ class DriveSet {
   bool any_work_ = false;
 };
 
+// The indices of the prescribed joints of `drives`, in joint order.
+std::vector<int> PrescribedJoints(const DriveSet& drives);
+
 }  // namespace mbstream

@@ -9,18 +9,6 @@
 
 namespace mbstream {
 
-namespace {
-
-std::vector<int> PrescribedJoints(const DriveSet& drives) {
-  std::vector<int> joints;
-  for (int i = 0; i < drives.size(); ++i) {
-    if (drives.prescribed(i)) joints.push_back(i);
-  }
-  return joints;
-}
-
-}  // namespace
-
 ClosedLoopDae::ClosedLoopDae(const Model& model, const std::vector<LoopClosure>& loops,
                              const DriveSet& drives, const LoopRank& rank)
     : model_(model),

@@ -11,14 +11,6 @@ namespace mbstream {
 
 namespace {
 
-std::vector<int> PrescribedJoints(const DriveSet& drives) {
-  std::vector<int> joints;
-  for (int i = 0; i < drives.size(); ++i) {
-    if (drives.prescribed(i)) joints.push_back(i);
-  }
-  return joints;
-}
-
 void CheckSupported(const RunConfig& config, const DriveSet& drives) {
   for (int i = 0; i < drives.size(); ++i) {
     if (drives.velocity_source(i)) {

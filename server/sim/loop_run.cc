@@ -35,14 +35,6 @@ void TrackResiduals(double gap, double alignment, double velocity, RunStats* sta
   stats->drift_velocity_max = std::max(stats->drift_velocity_max, velocity);
 }
 
-std::vector<int> PrescribedJoints(const DriveSet& drives) {
-  std::vector<int> joints;
-  for (int i = 0; i < drives.size(); ++i) {
-    if (drives.prescribed(i)) joints.push_back(i);
-  }
-  return joints;
-}
-
 // Every degree of freedom prescribed: the loops solved by Newton at each frame, from the
 // previous frame's pose; velocities and accelerations from the linear constraints; the
 // prescribed joints' efforts from inverse dynamics and the multipliers.
