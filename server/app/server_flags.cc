@@ -8,7 +8,8 @@ ServerFlags::ServerFlags(const ServerConfig& config)
     : max_model_mb(static_cast<double>(config.limits.max_model_bytes) / (1 << 20)),
       max_asset_mb(static_cast<double>(config.limits.max_asset_bytes) / (1 << 20)),
       max_models_mb(static_cast<double>(config.limits.max_total_model_bytes) / (1 << 20)),
-      max_message_mb(static_cast<double>(config.max_message_bytes) / (1 << 20)) {}
+      max_message_mb(static_cast<double>(config.max_message_bytes) / (1 << 20)),
+      min_free_mb(static_cast<double>(config.limits.min_free_bytes) / (1 << 20)) {}
 
 namespace {
 
@@ -100,6 +101,13 @@ void AddSizeFlags(CLI::App& app, ServerConfig* config, ServerFlags* flags) {
                  "of a run; 0 = only full chunks")
       ->check(CLI::Range(0.0, 3600.0))
       ->capture_default_str();
+  app.add_option("--min-free-mb", flags->min_free_mb,
+                 "MiB that must stay free on the disk of --data for a new run to start (below: "
+                 "refused with RESOURCE_EXHAUSTED): a margin for the runs already running, "
+                 "SQLite's journal and checkpoints, so that a full disk refuses runs instead of "
+                 "failing them; 0 = no check; not checked for a PostgreSQL --store")
+      ->check(CLI::Range(0.0, 1e9))
+      ->capture_default_str();
   app.add_option("--max-message-mb", flags->max_message_mb, "largest gRPC message, MiB")
       ->check(CLI::Range(1.0, 2047.0))
       ->capture_default_str();
@@ -164,6 +172,7 @@ void ServerFlags::Apply(ServerConfig* config) const {
   config->max_message_bytes =
       static_cast<int>(std::min(2047.0, std::max(max_message_mb, max_model_mb + 1.0)) * (1 << 20));
   limits->max_total_model_bytes = static_cast<int64_t>(std::min(max_models_mb, 1e12) * (1 << 20));
+  limits->min_free_bytes = static_cast<int64_t>(min_free_mb * (1 << 20));
 }
 
 }  // namespace mbstream

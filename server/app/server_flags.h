@@ -18,7 +18,7 @@ struct ServerFlags {
   // After the parse: the MiB flags into bytes, the message limit raised to hold a bundle.
   void Apply(ServerConfig* config) const;
 
-  double max_model_mb, max_asset_mb, max_models_mb, max_message_mb;
+  double max_model_mb, max_asset_mb, max_models_mb, max_message_mb, min_free_mb;
   std::string log_level = "info";
 };
 

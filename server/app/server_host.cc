@@ -16,6 +16,7 @@
 #include "common/check.h"
 #include "net/tls_files.h"
 #include "server/app/metrics_endpoint.h"
+#include "server/runs/free_space.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/run_manager.h"
 #include "server/service/authorizer.h"
@@ -115,6 +116,10 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   replica.private_store = location.kind != StoreLocation::Kind::kPostgresql;
   host->runs_ = std::make_unique<RunManager>(host->models_.get(), host->store_.get(), config.limits,
                                              nullptr, replica);
+  if (location.kind != StoreLocation::Kind::kPostgresql) {  // --min-free-mb: SQLite only
+    const std::string dir = location.target;
+    host->runs_->SetFreeSpaceSource([dir] { return FreeBytesAt(dir); }, dir);
+  }
   host->grace_s_ = config.grace_s;
   if (replica.private_store) {
     if (!config.peer_ca.empty()) {

@@ -154,6 +154,8 @@ std::vector<v1::RunInfo> RunManager::StartMany(
                            "batches of at most " +
                            std::to_string(limits_.max_queued_runs));
   }
+  // A disk nearly full refuses new runs before they fail on it (docs/reliability.md).
+  CheckFreeSpace(free_space_source_, limits_.min_free_bytes, data_dir_);
   // Every spec checked before anything is queued; a batch's errors name the spec.
   std::vector<v1::RunInfo> infos(count);
   std::vector<RunConfig> configs;

@@ -25,6 +25,7 @@
 #include "mbstream/v1/replay.pb.h"
 #include "mbstream/v1/run.pb.h"
 #include "mbstream/v1/run_spec.pb.h"
+#include "server/runs/free_space.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/recent_results.h"
 #include "server/runs/replay_cursor.h"
@@ -83,6 +84,13 @@ class RunManager {
   // force the collisions the store refuses. Call before the first Start.
   void SetRunIdSourceForTesting(std::function<std::string()> source) {
     run_id_source_ = std::move(source);
+  }
+  // Where Start and StartMany learn the free space of the disk of `data_dir` (the SQLite
+  // store's data directory), checked against limits().min_free_bytes before any run is
+  // queued (free_space.h). Unset (a PostgreSQL store): no check. Call before the first Start.
+  void SetFreeSpaceSource(FreeSpaceSource source, std::string data_dir) {
+    free_space_source_ = std::move(source);
+    data_dir_ = std::move(data_dir);
   }
   // Stops a queued or running run (state CANCELLED with the frames so far); an ended run is
   // returned unchanged. Throws RequestError(kNotFound).
@@ -291,6 +299,8 @@ class RunManager {
   std::string stop_reason_;
   int run_counter_ = 0;
   std::function<std::string()> run_id_source_;  // SetRunIdSourceForTesting; empty: NewRunId
+  FreeSpaceSource free_space_source_;  // SetFreeSpaceSource; empty: no free-space check
+  std::string data_dir_;               // named in the refusal
   std::vector<std::thread> workers_;
   static constexpr int kMaxBroadcasts = 4;  // ReplayToFollowers at the same time
   std::vector<std::thread> broadcasts_;     // ReplayToFollowers, joined by Shutdown

@@ -33,6 +33,10 @@ struct ServerLimits {
   // their chunk is not full (4,096 frames): a crash loses at most this much of a run. 0:
   // only full chunks are stored while the run runs.
   double frame_flush_s = 1.0;
+  // Bytes that must stay free on the disk of a SQLite store's data directory for a new run to
+  // start (--min-free-mb; free_space.h): below it StartRun(s) answer RESOURCE_EXHAUSTED. 0:
+  // no check. A margin for the runs already running, SQLite's journal and WAL checkpoints.
+  int64_t min_free_bytes = int64_t{64} << 20;
 };
 
 }  // namespace mbstream

@@ -13,6 +13,7 @@
 #endif
 
 #include "common/check.h"
+#include "server/store/disk_full_error.h"
 
 namespace mbstream {
 
@@ -84,6 +85,13 @@ FrameExtent FrameFile::Append(std::string_view data) {
     n = ::write(fd_, data.data(), data.size());
   } while (n < 0 && errno == EINTR);
   if (n != static_cast<ssize_t>(data.size())) {
+    if (n >= 0 || errno == ENOSPC || errno == EDQUOT) {  // a short write: out of space too
+      throw DiskFullError(
+          "cannot write frames to " + path_ + " (" +
+          (n < 0 ? SystemError()
+                 : std::to_string(n) + " of " + std::to_string(data.size()) + " bytes written") +
+          "); " + kDiskFullAdvice);
+    }
     throw InputError(
         "cannot write frames to " + path_ + " (" +
         (n < 0 ? SystemError()
@@ -120,6 +128,10 @@ bool FrameFile::Read(const FrameExtent& extent, std::string& out) const {
 
 void FrameFile::Sync() const {
   if (::fdatasync(fd_) != 0) {
+    if (errno == ENOSPC || errno == EDQUOT) {
+      throw DiskFullError("cannot make the frames in " + path_ + " durable (" + SystemError() +
+                          "); " + kDiskFullAdvice);
+    }
     throw InputError("cannot make the frames in " + path_ + " durable (" + SystemError() + ")");
   }
 }

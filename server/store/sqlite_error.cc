@@ -2,6 +2,8 @@
 
 #include <sqlite3.h>
 
+#include "server/store/disk_full_error.h"
+
 namespace mbstream {
 
 void ThrowSqliteError(sqlite3* db, int rc, const std::string& path, const std::string& operation) {
@@ -11,9 +13,8 @@ void ThrowSqliteError(sqlite3* db, int rc, const std::string& path, const std::s
   std::string message = "store " + path + ": " + operation + " failed: " + detail +
                         " (SQLite result code " + std::to_string(rc) + ")";
   switch (rc & 0xff) {
-    case SQLITE_FULL:
-      message += "; the disk holding the data directory is full: free space and retry";
-      break;
+    case SQLITE_FULL:  // an operating condition, not a bug: RESOURCE_EXHAUSTED
+      throw DiskFullError(message + "; " + kDiskFullAdvice);
     case SQLITE_READONLY:
     case SQLITE_PERM:
       message += "; the data directory or database file is not writable: fix its permissions";

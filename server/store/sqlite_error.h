@@ -23,6 +23,7 @@ class SqliteError : public InternalError {
 
 // Throws SqliteError for result code `rc` of `operation` (e.g. "insert run r-1") on the
 // database at `path`, with SQLite's own message from `db` (which may be null).
+// SQLITE_FULL throws DiskFullError (disk_full_error.h) instead.
 [[noreturn]] void ThrowSqliteError(sqlite3* db, int rc, const std::string& path,
                                    const std::string& operation);
 

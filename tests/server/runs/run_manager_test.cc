@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <memory>
@@ -360,6 +361,63 @@ TEST_F(RunIdCollisionTest, NoFreeIdRefusesTheBatchAndQueuesNothing) {
   v1::RunInfo info = runs_->Get(started.id());
   while (!IsFinalState(info.state())) info = runs_->AwaitChange(info.id(), info.state(), far);
   EXPECT_EQ(info.state(), v1::FINISHED) << info.message();
+}
+
+// --min-free-mb: with less free space than the limit on the data directory's disk, Start and
+// StartMany refuse new runs (RESOURCE_EXHAUSTED) with a message that says what to do, and
+// store nothing; once space is freed, runs start again. The free space is injected.
+TEST_F(RunManagerTest, TooLittleFreeSpaceRefusesNewRunsUntilSpaceIsFreed) {
+  std::atomic<int64_t> free_bytes{int64_t{3} << 20};
+  runs_->SetFreeSpaceSource([&] { return std::optional<int64_t>(free_bytes.load()); },
+                            "/srv/mbstream-data");
+  ASSERT_EQ(limits_.min_free_bytes, int64_t{64} << 20);  // the default
+  try {
+    runs_->Start("single_pendulum", Swing(0.5, 0.0));
+    FAIL() << "a run started with 3 MiB free";
+  } catch (const RequestError& error) {
+    EXPECT_EQ(error.kind(), RequestErrorKind::kResourceExhausted);
+    const std::string message = error.what();
+    for (const char* part : {"/srv/mbstream-data", "3.0 MiB free", "--min-free-mb (64.0 MiB)",
+                             "free space", "bigger one", "deleting runs is not possible yet"}) {
+      EXPECT_NE(message.find(part), std::string::npos) << part << " not in: " << message;
+    }
+  }
+  google::protobuf::RepeatedPtrField<v1::RunSpec> specs;
+  *specs.Add() = Swing(0.5, 0.0);
+  *specs.Add() = Swing(0.5, 0.0);
+  try {
+    runs_->StartMany("single_pendulum", specs);
+    FAIL() << "a sweep started with 3 MiB free";
+  } catch (const RequestError& error) {
+    EXPECT_EQ(error.kind(), RequestErrorKind::kResourceExhausted);
+  }
+  EXPECT_TRUE(runs_->List("", 0, 0, "").runs.empty());  // nothing stored
+
+  free_bytes = limits_.min_free_bytes;  // exactly the margin: enough
+  const v1::RunInfo started = runs_->Start("single_pendulum", Swing(0.5, 0.0));
+  EXPECT_EQ(started.state(), v1::QUEUED);
+  EXPECT_EQ(runs_->List("", 0, 0, "").runs.size(), 1u);
+}
+
+// Unknown free space (statvfs failed) does not stop the server from running.
+TEST_F(RunManagerTest, UnknownFreeSpaceLetsRunsStart) {
+  runs_->SetFreeSpaceSource([] { return std::optional<int64_t>(); }, dir_.string());
+  EXPECT_EQ(runs_->Start("single_pendulum", Swing(0.5, 0.0)).state(), v1::QUEUED);
+}
+
+TEST(FreeSpaceTest, ChecksTheSourceAgainstTheLimitAndZeroTurnsItOff) {
+  const FreeSpaceSource one_mib = [] { return std::optional<int64_t>(int64_t{1} << 20); };
+  EXPECT_THROW(CheckFreeSpace(one_mib, (int64_t{1} << 20) + 1, "d"), RequestError);
+  EXPECT_NO_THROW(CheckFreeSpace(one_mib, int64_t{1} << 20, "d"));
+  EXPECT_NO_THROW(CheckFreeSpace(one_mib, 0, "d"));                 // --min-free-mb 0
+  EXPECT_NO_THROW(CheckFreeSpace(FreeSpaceSource(), int64_t{1} << 40, "d"));  // no source
+}
+
+TEST(FreeSpaceTest, FreeBytesAtReadsTheFileSystem) {
+  const std::optional<int64_t> free_bytes = FreeBytesAt(fs::temp_directory_path().string());
+  ASSERT_TRUE(free_bytes.has_value());
+  EXPECT_GE(*free_bytes, 0);
+  EXPECT_FALSE(FreeBytesAt("/no/such/directory/mbstream").has_value());
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "common/check.h"
+#include "server/store/disk_full_error.h"
 #include "tests/server/store/store_test_util.h"
 
 namespace mbstream {
@@ -100,6 +101,22 @@ TEST(FrameFileTest, AFileThatCannotBeOpenedIsAnInputErrorNamingIt) {
     FAIL() << "opened " << path;
   } catch (const InputError& error) {
     EXPECT_NE(std::string(error.what()).find(path), std::string::npos) << error.what();
+  }
+}
+
+// /dev/full answers every write with ENOSPC, as a full disk does: the append is refused with
+// a DiskFullError (RESOURCE_EXHAUSTED on the wire) naming the file and the full disk.
+TEST(FrameFileTest, AWriteToAFullDiskIsADiskFullErrorNamingIt) {
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full on this system";
+  FrameFile file("/dev/full");
+  try {
+    file.Append("some frames");
+    FAIL() << "a write to /dev/full succeeded";
+  } catch (const DiskFullError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("/dev/full"), std::string::npos) << message;
+    EXPECT_NE(message.find("disk holding the data directory is full"), std::string::npos)
+        << message;
   }
 }
 

@@ -1,0 +1,115 @@
+// A full disk is an operating condition (issue 35): a real mbstream-server with --data on a
+// 3 MiB tmpfs, mounted in a mount namespace of this test's own (root, as in CI; skipped
+// otherwise). Filled, the server refuses new runs with RESOURCE_EXHAUSTED and a message that
+// says what to do, keeps the finished run readable, and runs again once space is freed.
+#include <gtest/gtest.h>
+#include <grpcpp/grpcpp.h>
+#include <sched.h>
+#include <sys/mount.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include "mbstream/v1/simulation_service.grpc.pb.h"
+#include "tests/common/server_process.h"
+
+namespace mbstream {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::ServerProcess;
+
+grpc::Status StartRun(v1::Simulation::Stub& stub, v1::RunInfo* info) {
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
+  v1::StartRunRequest request;
+  request.set_model("single_pendulum");
+  request.mutable_spec()->set_duration_s(1.0);
+  request.mutable_spec()->set_output_interval_s(0.01);
+  return stub.StartRun(&context, request, info);
+}
+
+// Reads the run's whole stored result, waiting for its end (GetResult with wait), and
+// returns its info then.
+v1::RunInfo AwaitEnd(v1::Simulation::Stub& stub, const std::string& run_id) {
+  {
+    grpc::ClientContext context;
+    context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
+    v1::GetResultRequest request;
+    request.set_run_id(run_id);
+    request.set_wait(true);
+    auto reader = stub.GetResult(&context, request);
+    v1::ResultChunk chunk;
+    int chunks = 0;
+    while (reader->Read(&chunk)) ++chunks;
+    const grpc::Status status = reader->Finish();
+    EXPECT_TRUE(status.ok()) << status.error_message();
+    EXPECT_GT(chunks, 0);
+  }
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
+  v1::GetRunRequest request;
+  request.set_run_id(run_id);
+  v1::RunInfo info;
+  const grpc::Status status = stub.GetRun(&context, request, &info);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  return info;
+}
+
+TEST(DiskFullE2eTest, AFullDataDiskRefusesRunsUntilSpaceIsFreed) {
+  if (::geteuid() != 0) GTEST_SKIP() << "needs root to mount a 3 MiB tmpfs (CI runs as root)";
+  // This thread's own mount namespace; the server forked from it inherits it.
+  if (::unshare(CLONE_NEWNS) != 0) {
+    GTEST_SKIP() << "cannot make a mount namespace (" << std::strerror(errno) << ")";
+  }
+  ASSERT_EQ(::mount("none", "/", nullptr, MS_REC | MS_PRIVATE, nullptr), 0) << std::strerror(errno);
+  const fs::path dir =
+      fs::temp_directory_path() / ("mbstream-disk-full-" + std::to_string(std::random_device()()));
+  const fs::path data = dir / "data";
+  fs::create_directories(data);
+  ASSERT_EQ(::mount("tmpfs", data.c_str(), "tmpfs", 0, "size=3m"), 0) << std::strerror(errno);
+  {
+    ServerProcess server(MBSTREAM_SERVER, data.string(),
+                         {"--models", std::string(MBSTREAM_SOURCE_DIR) + "/models",
+                          "--min-free-mb", "1"});
+    auto stub = v1::Simulation::NewStub(
+        grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials()));
+    v1::RunInfo first;
+    ASSERT_TRUE(StartRun(*stub, &first).ok());
+    ASSERT_EQ(AwaitEnd(*stub, first.id()).state(), v1::SUCCEEDED);
+
+    {  // fill the disk but for about 0.5 MiB: under --min-free-mb 1
+      std::ofstream filler(data / "filler", std::ios::binary);
+      const std::string block(64 << 10, 'x');
+      while (fs::space(data).available > (512u << 10) && filler.write(block.data(), block.size())) {
+      }
+      filler.flush();
+      ASSERT_TRUE(filler) << "could not fill the disk";
+    }
+    v1::RunInfo refused;
+    const grpc::Status status = StartRun(*stub, &refused);
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << status.error_message();
+    for (const char* part : {data.c_str(), "--min-free-mb", "free space", "bigger one"}) {
+      EXPECT_NE(status.error_message().find(part), std::string::npos)
+          << part << " not in: " << status.error_message();
+    }
+    EXPECT_EQ(AwaitEnd(*stub, first.id()).state(), v1::SUCCEEDED);  // still readable
+
+    fs::remove(data / "filler");  // space freed: runs work again
+    v1::RunInfo again;
+    const grpc::Status again_status = StartRun(*stub, &again);
+    ASSERT_TRUE(again_status.ok()) << again_status.error_message();
+    EXPECT_EQ(AwaitEnd(*stub, again.id()).state(), v1::SUCCEEDED);
+  }
+  ::umount(data.c_str());
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace mbstream
