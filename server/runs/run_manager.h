@@ -299,8 +299,8 @@ class RunManager {
   std::string stop_reason_;
   int run_counter_ = 0;
   std::function<std::string()> run_id_source_;  // SetRunIdSourceForTesting; empty: NewRunId
-  FreeSpaceSource free_space_source_;  // SetFreeSpaceSource; empty: no free-space check
-  std::string data_dir_;               // named in the refusal
+  FreeSpaceSource free_space_source_;           // SetFreeSpaceSource; empty: no free-space check
+  std::string data_dir_;                        // named in the refusal
   std::vector<std::thread> workers_;
   static constexpr int kMaxBroadcasts = 4;  // ReplayToFollowers at the same time
   std::vector<std::thread> broadcasts_;     // ReplayToFollowers, joined by Shutdown

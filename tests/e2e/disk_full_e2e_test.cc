@@ -2,17 +2,19 @@
 // 3 MiB tmpfs, mounted in a mount namespace of this test's own (root, as in CI; skipped
 // otherwise). Filled, the server refuses new runs with RESOURCE_EXHAUSTED and a message that
 // says what to do, keeps the finished run readable, and runs again once space is freed.
-#include <gtest/gtest.h>
 #include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
 #include <sched.h>
 #include <sys/mount.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -25,14 +27,23 @@ namespace {
 namespace fs = std::filesystem;
 using testing::ServerProcess;
 
-grpc::Status StartRun(v1::Simulation::Stub& stub, v1::RunInfo* info) {
+grpc::Status StartRun(v1::Simulation::Stub& stub, v1::RunInfo* info, double duration_s = 1.0) {
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
   v1::StartRunRequest request;
   request.set_model("single_pendulum");
-  request.mutable_spec()->set_duration_s(1.0);
+  request.mutable_spec()->set_duration_s(duration_s);
   request.mutable_spec()->set_output_interval_s(0.01);
   return stub.StartRun(&context, request, info);
+}
+
+// Fills the disk of `data` with the file `filler` until at most `left` bytes are free.
+void Fill(const fs::path& data, const fs::path& filler, std::uintmax_t left) {
+  std::ofstream out(filler, std::ios::binary | std::ios::app);
+  const std::string block(16 << 10, 'x');
+  while (fs::space(data).available > left && out.write(block.data(), block.size()).flush()) {
+  }
+  ASSERT_TRUE(out) << "could not fill " << data;
 }
 
 // Reads the run's whole stored result, waiting for its end (GetResult with wait), and
@@ -75,23 +86,34 @@ TEST(DiskFullE2eTest, AFullDataDiskRefusesRunsUntilSpaceIsFreed) {
   fs::create_directories(data);
   ASSERT_EQ(::mount("tmpfs", data.c_str(), "tmpfs", 0, "size=3m"), 0) << std::strerror(errno);
   {
-    ServerProcess server(MBSTREAM_SERVER, data.string(),
-                         {"--models", std::string(MBSTREAM_SOURCE_DIR) + "/models",
-                          "--min-free-mb", "1"});
+    ServerProcess server(
+        MBSTREAM_SERVER, data.string(),
+        {"--models", std::string(MBSTREAM_SOURCE_DIR) + "/models", "--min-free-mb", "1"});
     auto stub = v1::Simulation::NewStub(
         grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials()));
     v1::RunInfo first;
     ASSERT_TRUE(StartRun(*stub, &first).ok());
-    ASSERT_EQ(AwaitEnd(*stub, first.id()).state(), v1::SUCCEEDED);
+    ASSERT_EQ(AwaitEnd(*stub, first.id()).state(), v1::FINISHED);
 
-    {  // fill the disk but for about 0.5 MiB: under --min-free-mb 1
-      std::ofstream filler(data / "filler", std::ios::binary);
-      const std::string block(64 << 10, 'x');
-      while (fs::space(data).available > (512u << 10) && filler.write(block.data(), block.size())) {
-      }
-      filler.flush();
-      ASSERT_TRUE(filler) << "could not fill the disk";
-    }
+    // Above --min-free-mb, a run of far more frames than the disk holds starts, meets the
+    // full disk and ends FAILED with a message naming it; the first run stays readable.
+    Fill(data, data / "filler", (3u << 20) / 2);
+    ASSERT_GT(fs::space(data).available, 1u << 20);
+    v1::RunInfo big;
+    const grpc::Status big_status = StartRun(*stub, &big, 2000.0);  // 200,001 frames
+    ASSERT_TRUE(big_status.ok()) << big_status.error_message();
+    // Known gap (issue 35): when the disk is full the store cannot record the final state
+    // either, so GetRun still shows the stored QUEUED row until a restart marks it
+    // INTERRUPTED; the server's own end of the run is asserted, from its log.
+    const std::optional<std::string> ended =
+        testing::WaitForLineIn(server.log_path(), "run " + big.id() + " FAILED", 60.0);
+    ASSERT_TRUE(ended.has_value()) << testing::ReadTextFile(server.log_path());
+    EXPECT_NE(ended->find("disk holding the data directory is full"), std::string::npos) << *ended;
+    EXPECT_EQ(ended->find("internal error"), std::string::npos) << *ended;
+    EXPECT_EQ(AwaitEnd(*stub, first.id()).state(), v1::FINISHED);
+
+    // Below it: refused.
+    Fill(data, data / "filler", 512u << 10);
     v1::RunInfo refused;
     const grpc::Status status = StartRun(*stub, &refused);
     EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << status.error_message();
@@ -99,13 +121,13 @@ TEST(DiskFullE2eTest, AFullDataDiskRefusesRunsUntilSpaceIsFreed) {
       EXPECT_NE(status.error_message().find(part), std::string::npos)
           << part << " not in: " << status.error_message();
     }
-    EXPECT_EQ(AwaitEnd(*stub, first.id()).state(), v1::SUCCEEDED);  // still readable
+    EXPECT_EQ(AwaitEnd(*stub, first.id()).state(), v1::FINISHED);  // still readable
 
     fs::remove(data / "filler");  // space freed: runs work again
     v1::RunInfo again;
     const grpc::Status again_status = StartRun(*stub, &again);
     ASSERT_TRUE(again_status.ok()) << again_status.error_message();
-    EXPECT_EQ(AwaitEnd(*stub, again.id()).state(), v1::SUCCEEDED);
+    EXPECT_EQ(AwaitEnd(*stub, again.id()).state(), v1::FINISHED);
   }
   ::umount(data.c_str());
   fs::remove_all(dir);

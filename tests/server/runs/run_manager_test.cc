@@ -409,7 +409,7 @@ TEST(FreeSpaceTest, ChecksTheSourceAgainstTheLimitAndZeroTurnsItOff) {
   const FreeSpaceSource one_mib = [] { return std::optional<int64_t>(int64_t{1} << 20); };
   EXPECT_THROW(CheckFreeSpace(one_mib, (int64_t{1} << 20) + 1, "d"), RequestError);
   EXPECT_NO_THROW(CheckFreeSpace(one_mib, int64_t{1} << 20, "d"));
-  EXPECT_NO_THROW(CheckFreeSpace(one_mib, 0, "d"));                 // --min-free-mb 0
+  EXPECT_NO_THROW(CheckFreeSpace(one_mib, 0, "d"));                           // --min-free-mb 0
   EXPECT_NO_THROW(CheckFreeSpace(FreeSpaceSource(), int64_t{1} << 40, "d"));  // no source
 }
 
