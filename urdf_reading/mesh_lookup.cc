@@ -10,6 +10,7 @@ namespace {
 
 constexpr std::string_view kPackage = "package://";
 constexpr std::string_view kFile = "file://";
+constexpr std::string_view kModel = "model://";  // SDFormat's (Gazebo's) package://
 
 bool StartsWith(const std::string& s, std::string_view prefix) {
   return s.compare(0, prefix.size(), prefix) == 0;
@@ -22,8 +23,11 @@ std::string BaseName(const std::string& filename) {
 
 // REST of package://PKG/REST, or "".
 std::string PackageRest(const std::string& filename) {
-  if (!StartsWith(filename, kPackage)) return "";
-  const std::string path = filename.substr(kPackage.size());
+  const size_t scheme = StartsWith(filename, kPackage) ? kPackage.size()
+                        : StartsWith(filename, kModel) ? kModel.size()
+                                                       : 0;
+  if (scheme == 0) return "";
+  const std::string path = filename.substr(scheme);
   const size_t slash = path.find('/');
   return slash == std::string::npos ? "" : path.substr(slash + 1);
 }
@@ -39,6 +43,7 @@ void AddOnce(std::vector<std::string>* keys, const std::string& key) {
 std::string WithoutScheme(const std::string& filename) {
   if (StartsWith(filename, kPackage)) return filename.substr(kPackage.size());
   if (StartsWith(filename, kFile)) return filename.substr(kFile.size());
+  if (StartsWith(filename, kModel)) return filename.substr(kModel.size());
   return filename;
 }
 

@@ -9,7 +9,7 @@
 
 namespace mbstream::urdf_reading {
 
-// `filename` without its package:// or file:// prefix.
+// `filename` without its package://, model:// (SDFormat's) or file:// prefix.
 std::string WithoutScheme(const std::string& filename);
 
 // The name under which `mbstream submit` stores the file of `filename`: the path the URDF

@@ -145,7 +145,8 @@ class ShapeScan {
       return std::nullopt;
     }
     *next = k + 1;
-    if (depth_ == 1 && name == "link" && ++shape_.top_links > limits_.max_top_links) {
+    if ((depth_ == 1 || limits_.links_at_any_depth) && name == "link" &&
+        ++shape_.top_links > limits_.max_top_links) {
       XmlShapeProblem problem = At(at, "more than " + std::to_string(limits_.max_top_links) +
                                            " <link> elements, the limit (--max-links); split "
                                            "the model or raise the limit");
@@ -155,10 +156,9 @@ class ShapeScan {
     if (depth_ == 1 && name == "joint") ++shape_.top_joints;
     if (text_[k - 1] == '/') return std::nullopt;  // <empty/>
     if (++depth_ > limits_.max_depth) {
-      return At(
-          at, "elements nested more than " + std::to_string(limits_.max_depth) +
-                  " deep, the limit; a URDF nests 5 deep (robot, link, visual, geometry, mesh): " +
-                  "close the elements left open or remove the extra nesting");
+      return At(at, "elements nested more than " + std::to_string(limits_.max_depth) +
+                        " deep, the limit; " + std::string(limits_.nesting_note) +
+                        ": close the elements left open or remove the extra nesting");
     }
     shape_.depth = std::max(shape_.depth, depth_);
     return std::nullopt;

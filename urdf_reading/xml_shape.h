@@ -17,12 +17,17 @@ struct XmlShapeLimits {
   int max_attributes = 256;      // attributes of one element (a URDF element has at most 6)
   long max_elements = 200'000;   // elements in the document (a PR2 has about 6,000)
   long max_top_links = 100'000;  // <link> children of the root element (callers lower it)
+  // Count <link> elements at any depth against max_top_links (SDFormat: links sit in a
+  // <model>, itself perhaps in a <world>), not only the root's children (URDF).
+  bool links_at_any_depth = false;
+  // Said with a nesting over max_depth: how deep the format nests.
+  std::string_view nesting_note = "a URDF nests 5 deep (robot, link, visual, geometry, mesh)";
 };
 
 struct XmlShape {
   int depth = 0;        // the deepest nesting seen
   long elements = 0;    // elements seen
-  long top_links = 0;   // <link> elements directly under the root element
+  long top_links = 0;   // <link> elements directly under the root (any depth: see limits)
   long top_joints = 0;  // <joint> elements directly under the root element
 };
 

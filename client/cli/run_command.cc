@@ -84,6 +84,10 @@ int RunOnServer(const ClientOptions& client, const RunOptions& options) {
             << s.equations() << " equations), method " << s.method() << ", " << s.steps()
             << " steps, cpu " << s.cpu_s() * 1e3 << " ms";
   if (s.tcp_error_max_m() >= 0) std::cerr << ", TCP error " << s.tcp_error_max_m() << " m";
+  if (s.loops().cut_joints_size() > 0) {  // as simulate says it
+    std::cerr << ", loop residual " << s.drift_position_max_m() << " m, "
+              << s.drift_orientation_max_rad() << " rad, velocity " << s.drift_velocity_max();
+  }
   std::cerr << "\n";
   if (!options.out_dir.empty()) {
     const grpc::Status downloaded = DownloadResult(*stub, info.id(), options.out_dir, &info);

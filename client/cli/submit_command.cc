@@ -1,4 +1,5 @@
-// `mbstream submit MODEL.urdf|DIR [--scene FILE] [--asset FILE]... [--package-path DIR]...
+// `mbstream submit MODEL.urdf|MODEL.sdf|DIR [--scene FILE] [--asset FILE]... [--package-path
+// DIR]...
 //  [--with-collision] [--name NAME] [--repair]`
 #include <iostream>
 
@@ -42,23 +43,25 @@ void AddSubmitCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client
       app.add_subcommand("submit", "compile and store a model on the server; prints its id");
   command
       ->add_option("model", options->files.model_path,
-                   "URDF file, or a model directory (one .urdf, its .scene); the meshes they "
-                   "refer to are found and attached")
+                   "URDF or SDFormat file (told apart by content), or a model directory (one "
+                   ".urdf or .sdf, its .scene); the meshes they refer to are found and attached")
       ->required()
       ->check(CLI::ExistingPath);
   command->add_option("--scene", options->files.scene_path, "scene script for viewers")
       ->check(CLI::ExistingFile);
-  command->add_option("--asset", options->files.asset_paths, "a mesh file the URDF or scene uses")
+  command
+      ->add_option("--asset", options->files.asset_paths,
+                   "a mesh file the model file or scene uses")
       ->check(CLI::ExistingFile);
   command
       ->add_option("--package-path", options->files.package_paths,
-                   "a folder searched for the ROS packages of package:// meshes (before "
-                   "$MBSTREAM_PACKAGE_PATH, colon separated)")
+                   "a folder searched for the ROS packages of package:// meshes and the models "
+                   "of model:// meshes (before $MBSTREAM_PACKAGE_PATH, colon separated)")
       ->check(CLI::ExistingDirectory);
   command->add_flag("--with-collision", options->files.with_collision,
                     "attach the collision meshes too (the engine does not need them)");
   command->add_option("--name", options->files.name,
-                      "display name (default: the URDF's robot name)");
+                      "display name (default: the URDF's robot name, the SDFormat model's name)");
   command->add_flag("--repair", options->repair,
                     "repair the defects published URDFs commonly carry (each one a warning)");
   command->callback([client, options, exit_code] {

@@ -38,7 +38,7 @@ ModelFileImport ImportModelFile(const std::string& path, const UrdfImportOptions
     result.model = std::move(urdf.model);
     result.warnings = std::move(urdf.warnings);
   } else {
-    SdfImport sdf = ImportSdf(text, path);
+    SdfImport sdf = ImportSdf(text, path, SdfImportOptions{.max_links = urdf_options.max_links});
     result.model = std::move(sdf.model);
     result.loops = std::move(sdf.loops);
     result.warnings = std::move(sdf.warnings);

@@ -1,5 +1,6 @@
 #include "server/parse/sdf_import.h"
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <fstream>
@@ -7,16 +8,21 @@
 #include <map>
 #include <sstream>
 
+#include <sdf/Collision.hh>
 #include <sdf/Console.hh>
+#include <sdf/Geometry.hh>
 #include <sdf/Joint.hh>
 #include <sdf/JointAxis.hh>
 #include <sdf/Link.hh>
+#include <sdf/Mesh.hh>
 #include <sdf/Model.hh>
 #include <sdf/Root.hh>
+#include <sdf/Visual.hh>
 #include <sdf/World.hh>
 
 #include "common/check.h"
 #include "server/model/model_builder.h"
+#include "urdf_reading/xml_shape.h"
 
 namespace mbstream {
 
@@ -40,6 +46,29 @@ std::string Where(const std::string& source, const sdf::ElementPtr& element) {
     return source + ":" + std::to_string(*element->LineNumber());
   }
   return source;
+}
+
+void AddMesh(const sdf::Geometry* geometry, std::vector<std::string>* uris) {
+  if (geometry == nullptr || geometry->Type() != sdf::GeometryType::MESH) return;
+  const sdf::Mesh* mesh = geometry->MeshShape();
+  if (mesh == nullptr || mesh->Uri().empty()) return;
+  if (std::find(uris->begin(), uris->end(), mesh->Uri()) == uris->end()) {
+    uris->push_back(mesh->Uri());
+  }
+}
+
+SdfMeshes MeshesOf(const sdf::Model& model) {
+  SdfMeshes meshes;
+  for (uint64_t l = 0; l < model.LinkCount(); ++l) {
+    const sdf::Link& link = *model.LinkByIndex(l);
+    for (uint64_t v = 0; v < link.VisualCount(); ++v) {
+      AddMesh(link.VisualByIndex(v)->Geom(), &meshes.visual);
+    }
+    for (uint64_t c = 0; c < link.CollisionCount(); ++c) {
+      AddMesh(link.CollisionByIndex(c)->Geom(), &meshes.collision);
+    }
+  }
+  return meshes;
 }
 
 [[noreturn]] void ThrowSdfErrors(const std::string& source, const sdf::Errors& errors) {
@@ -305,7 +334,23 @@ class SdfReader {
 
 }  // namespace
 
-SdfImport ImportSdf(const std::string& text, const std::string& source) {
+SdfImport ImportSdf(const std::string& text, const std::string& source,
+                    const SdfImportOptions& options) {
+  // libsdformat parses with TinyXML2 9 (Debian's libtinyxml2-9): it stops at its own nesting
+  // limit (XML_ELEMENT_DEPTH_EXCEEDED) but counts neither attributes nor elements, and its
+  // messages for UTF-16 text or entities mislead. The URDF reader's shape check goes first,
+  // with the same limits (docs/reliability.md, "Limits").
+  urdf_reading::XmlShapeLimits limits;
+  limits.links_at_any_depth = true;
+  if (options.max_links > 0) limits.max_top_links = options.max_links;
+  limits.nesting_note =
+      "an SDFormat model nests about 8 deep (sdf, world, model, link, visual, geometry, mesh, "
+      "uri)";
+  if (const auto problem = urdf_reading::CheckXmlShape(text, limits)) {
+    const std::string message = source + ":" + std::to_string(problem->line) + ": " + problem->what;
+    if (problem->over_caller_limit) throw LimitError(message);
+    throw InputError(message);
+  }
   // SDFormat's errors come back in `errors` and into our message: keep its console quiet.
   sdf::Console::Instance()->SetQuiet(true);
   sdf::Root root;
@@ -328,15 +373,35 @@ SdfImport ImportSdf(const std::string& text, const std::string& source) {
   if (model == nullptr) {
     throw InputError(source + ": no <model> in the file; give a <model> with links and joints");
   }
-  return SdfReader(*model, source).Read();
+  SdfImport result = SdfReader(*model, source).Read();
+  SdfMeshes meshes = MeshesOf(*model);
+  result.mesh_files = std::move(meshes.visual);
+  for (std::string& uri : meshes.collision) {
+    if (std::find(result.mesh_files.begin(), result.mesh_files.end(), uri) ==
+        result.mesh_files.end()) {
+      result.mesh_files.push_back(std::move(uri));
+    }
+  }
+  return result;
 }
 
-SdfImport ImportSdfFile(const std::string& path) {
+SdfMeshes ReadSdfMeshes(const std::string& text) {
+  sdf::Console::Instance()->SetQuiet(true);
+  sdf::Root root;
+  if (!root.LoadSdfString(text).empty()) return {};
+  const sdf::Model* model = root.Model();
+  if (model == nullptr && root.WorldCount() == 1 && root.WorldByIndex(0)->ModelCount() == 1) {
+    model = root.WorldByIndex(0)->ModelByIndex(0);
+  }
+  return model == nullptr ? SdfMeshes{} : MeshesOf(*model);
+}
+
+SdfImport ImportSdfFile(const std::string& path, const SdfImportOptions& options) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot read the file; check the path");
   std::ostringstream text;
   text << in.rdbuf();
-  return ImportSdf(text.str(), path);
+  return ImportSdf(text.str(), path, options);
 }
 
 }  // namespace mbstream

@@ -12,10 +12,10 @@
 // The result is deterministic. A moving link's frame in the Model is its joint's frame (as
 // in URDF, where the link frame is the joint frame); links on fixed joints keep their own.
 //
-// Bad input throws InputError "FILE:LINE: what is wrong; what to do": SDFormat's own errors
-// (quoted), no model or several, two worlds, a nested model, a joint type mbstream does not
-// simulate (universal, screw, gearbox, revolute2), a ball joint inside the tree, a link not
-// reachable from the world through parent-to-child joints (a floating link).
+// Bad input (after the shape check, see ImportSdf) throws InputError "FILE:LINE: what is wrong;
+// what to do": SDFormat's own errors (quoted), no model or several, two worlds, a nested model, a
+// joint type mbstream does not simulate (universal, screw, gearbox, revolute2), a ball joint inside
+// the tree, a link not reachable from the world through parent-to-child joints (a floating link).
 #pragma once
 
 #include <string>
@@ -27,15 +27,32 @@
 namespace mbstream {
 
 struct SdfImport {
-  Model model;                        // the spanning tree
-  std::vector<LoopClosure> loops;     // the cut joints, in file order
-  std::vector<std::string> warnings;  // "FILE:LINE: ..." for input that is merely odd
+  Model model;                          // the spanning tree
+  std::vector<LoopClosure> loops;       // the cut joints, in file order
+  std::vector<std::string> warnings;    // "FILE:LINE: ..." for input that is merely odd
+  std::vector<std::string> mesh_files;  // every visual/collision <mesh><uri>, as written
 };
 
-// Imports SDFormat XML `text`; `source` names the file in messages.
-SdfImport ImportSdf(const std::string& text, const std::string& source);
+// The <mesh><uri> of the visuals (and the collisions) of every link of SDFormat `text`, in
+// file order, each once; empty when libsdformat cannot read the text (the import says why).
+struct SdfMeshes {
+  std::vector<std::string> visual, collision;
+};
+SdfMeshes ReadSdfMeshes(const std::string& text);
+
+struct SdfImportOptions {
+  // Most <link> elements (--max-links); 0: no limit. Over it: LimitError, before any parse.
+  int max_links = 0;
+};
+
+// Imports SDFormat XML `text`; `source` names the file in messages. Before libsdformat
+// parses it, the text's shape is checked as a URDF's is (urdf_reading/xml_shape.h: nesting,
+// attributes per element, element count, encodings, entities: InputError with the line),
+// and its links counted against options.max_links (LimitError).
+SdfImport ImportSdf(const std::string& text, const std::string& source,
+                    const SdfImportOptions& options = {});
 
 // Reads and imports the file at `path`.
-SdfImport ImportSdfFile(const std::string& path);
+SdfImport ImportSdfFile(const std::string& path, const SdfImportOptions& options = {});
 
 }  // namespace mbstream

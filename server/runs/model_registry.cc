@@ -9,7 +9,10 @@
 
 #include "common/check.h"
 #include "common/utf8.h"
+#include "server/kinematics/loop_coordinates.h"
 #include "server/parse/asset_references.h"
+#include "server/parse/model_file.h"
+#include "server/parse/sdf_import.h"
 #include "server/parse/urdf_import.h"
 #include "server/runs/model_id.h"
 #include "server/runs/request_error.h"
@@ -86,20 +89,49 @@ std::string SourceName(const v1::ModelBundle& bundle) {
   return bundle.urdf_file_name().empty() ? std::string("model.urdf") : bundle.urdf_file_name();
 }
 
-// Imports the bundle's URDF (assets by name; their data is not needed) within the link
-// limit (LimitError: RESOURCE_EXHAUSTED).
-UrdfImport ImportBundle(const v1::ModelBundle& bundle, const ServerLimits& limits) {
+// A bundle's model imported: URDF, or SDFormat (told apart by content, as `mbstream
+// simulate` does) with the joints that close its loops.
+struct BundleImport {
+  Model model;
+  std::vector<LoopClosure> loops;
+  std::vector<std::string> warnings;
+  std::vector<std::string> mesh_files;
+};
+
+// Imports the bundle's model file (assets by name; their data is not needed) within the
+// link limit (LimitError: RESOURCE_EXHAUSTED).
+BundleImport ImportBundle(const v1::ModelBundle& bundle, const ServerLimits& limits) {
+  const std::string source = SourceName(bundle);
+  BundleImport result;
+  if (DetectModelFormat(bundle.urdf()) == ModelFormat::kSdf) {
+    SdfImport sdf =
+        ImportSdf(bundle.urdf(), source, SdfImportOptions{.max_links = limits.max_links});
+    result.model = std::move(sdf.model);
+    result.loops = std::move(sdf.loops);
+    result.warnings = std::move(sdf.warnings);
+    result.mesh_files = std::move(sdf.mesh_files);
+    return result;
+  }
   std::set<std::string> assets;
   for (const v1::Asset& asset : bundle.assets()) assets.insert(asset.name());
-  const std::string source = SourceName(bundle);
-  return ImportUrdf(bundle.urdf(), source, assets,
-                    UrdfImportOptions{.repair = bundle.repair(), .max_links = limits.max_links});
+  UrdfImport urdf =
+      ImportUrdf(bundle.urdf(), source, assets,
+                 UrdfImportOptions{.repair = bundle.repair(), .max_links = limits.max_links});
+  result.model = std::move(urdf.model);
+  result.warnings = std::move(urdf.warnings);
+  result.mesh_files = std::move(urdf.mesh_files);
+  return result;
 }
 
-std::shared_ptr<CompiledModel> MakeCompiled(UrdfImport import) {
+std::shared_ptr<CompiledModel> MakeCompiled(BundleImport import) {
   auto compiled = std::make_shared<CompiledModel>();
   compiled->model = std::move(import.model);
+  compiled->loops = std::move(import.loops);
   compiled->joint_names = JointNames(compiled->model);
+  compiled->result_joint_names = compiled->joint_names;
+  for (std::string& name : LoopCoordinateNames(compiled->loops)) {
+    compiled->result_joint_names.push_back(std::move(name));
+  }
   return compiled;
 }
 
@@ -123,7 +155,7 @@ Prepared Prepare(const v1::ModelBundle& submitted, bool builtin, const ServerLim
   }
   ValidateText(submitted);
   ValidateAssets(submitted, limits);
-  UrdfImport import = ImportBundle(submitted, limits);
+  BundleImport import = ImportBundle(submitted, limits);
 
   // Assets nothing refers to are dropped (not stored, not sent to viewers), with a warning:
   // `mbstream submit FOLDER` sends every mesh of the folder, so spare files are ordinary.
@@ -141,7 +173,7 @@ Prepared Prepare(const v1::ModelBundle& submitted, bool builtin, const ServerLim
     }
     for (const std::string& name : unreferenced) {
       import.warnings.push_back("asset '" + name +
-                                "' is referenced by neither the URDF's meshes nor the scene "
+                                "' is referenced by neither the model's meshes nor the scene "
                                 "script's Part commands; it was not stored");
     }
   }

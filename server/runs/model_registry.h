@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "mbstream/v1/model.pb.h"
+#include "server/model/loop_closure.h"
 #include "server/model/model.h"
 #include "server/runs/server_limits.h"
 
@@ -21,11 +22,16 @@ namespace mbstream {
 class Store;
 
 // A model ready to run: its constant physics Model and its description. Its bundle is in
-// the store (ModelRegistry::Bundle).
+// the store (ModelRegistry::Bundle). An SDFormat model may close loops: `model` is then its
+// spanning tree and `loops` the joints cut from it (server/model/loop_closure.h).
 struct CompiledModel {
   v1::ModelInfo info;
   Model model;
-  std::vector<std::string> joint_names;  // the model's joint order
+  std::vector<LoopClosure> loops;        // empty for a tree (every URDF)
+  std::vector<std::string> joint_names;  // the tree's joint order (drives, overrides)
+  // The results' columns: the tree's joints, then the cut joints' coordinates
+  // (server/kinematics/loop_coordinates.h); joint_names for a tree.
+  std::vector<std::string> result_joint_names;
 };
 
 class ModelRegistry {
@@ -33,10 +39,10 @@ class ModelRegistry {
   // `store` (not owned, must outlive the registry) persists submitted models.
   ModelRegistry(Store* store, const ServerLimits& limits);
 
-  // Compiles (URDF import and validation) and stores `bundle` unless it is already known;
-  // returns its info (the existing one when the content id is known). Assets that neither
-  // the URDF nor the scene script refers to are dropped with a warning in the info. Throws
-  // InputError with the importer's messages, RequestError(kResourceExhausted) when the
+  // Compiles (URDF or SDFormat import, told apart by content, and validation) and stores `bundle`
+  // unless it is already known; returns its info (the existing one when the content id is known).
+  // Assets that neither the URDF nor the scene script refers to are dropped with a warning in the
+  // info. Throws InputError with the importer's messages, RequestError(kResourceExhausted) when the
   // bundle exceeds the size or link limits, or (not for built-in models) when storing it
   // would exceed the server's model count or total size limits.
   v1::ModelInfo Submit(const v1::ModelBundle& bundle, bool builtin);

@@ -17,6 +17,7 @@
 #include "server/runs/request_error.h"
 #include "server/runs/run_budget_caps.h"
 #include "server/runs/unix_time.h"
+#include "server/sim/loop_run.h"
 #include "server/sim/run_size.h"
 #include "server/sim/run_validation.h"
 #include "server/sim/simulate.h"
@@ -92,7 +93,7 @@ std::string RunManager::NewRunId() const {
 RunConfig RunManager::PrepareConfig(const CompiledModel& model, const v1::RunSpec& spec,
                                     std::vector<std::string>* warnings) const {
   RunConfig config = ToRunConfig(spec, model.joint_names, "spec");
-  ValidateRun(model.model, config);  // the one validation; throws InputError
+  ValidateLoopRun(model.model, model.loops, config);  // the one validation; throws InputError
   CheckRunSize(config, spec.max_output_frames(),
                RunSizeLimits{limits_.max_duration_s, limits_.max_output_frames});
   if (spec.realtime() > 0.0 && config.duration / spec.realtime() > limits_.max_duration_s) {
@@ -182,8 +183,9 @@ std::vector<v1::RunInfo> RunManager::StartMany(
     info.set_state(v1::QUEUED);
     info.set_expected_frames(OutputFrameCount(config.duration, config.output_interval));
     info.set_duration_s(config.duration);
-    info.set_num_dofs(model->model.num_dofs());
-    for (const std::string& name : model->joint_names) info.add_joint_names(name);
+    // Every joint of the model file: a closed loop's cut joints after the tree's.
+    info.set_num_dofs(static_cast<int>(model->result_joint_names.size()));
+    for (const std::string& name : model->result_joint_names) info.add_joint_names(name);
     info.set_created_unix_ms(NowUnixMs());
     info.set_mbstream_version(MBSTREAM_VERSION);
     info.set_owner(owner);

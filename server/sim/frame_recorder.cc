@@ -43,6 +43,19 @@ void FrameRecorder::UseIntegratedWork() {
   result_.stats.energy_work = kEnergyWorkIntegrated;
 }
 
+void FrameRecorder::AppendLoopCoordinates(LoopCoordinates* coordinates) {
+  loop_coordinates_ = coordinates;
+  const Eigen::Index m = coordinates->size();
+  loop_value_ = Eigen::VectorXd::Zero(m);
+  loop_rate_ = Eigen::VectorXd::Zero(m);
+  loop_effort_ = Eigen::VectorXd::Zero(m);
+  const size_t frames = result_.t.capacity();
+  const size_t width = static_cast<size_t>(model_.num_dofs() + m);
+  result_.q.reserve(frames * width);
+  result_.qd.reserve(frames * width);
+  if (result_.has_torques) result_.tau.reserve(frames * width);
+}
+
 bool FrameRecorder::Record(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                            const Eigen::VectorXd* effort, const FrameExtras* extras) {
   if (!q.allFinite() || !qd.allFinite() || (effort && !effort->allFinite())) return false;
@@ -64,6 +77,10 @@ bool FrameRecorder::Record(double t, const Eigen::VectorXd& q, const Eigen::Vect
       if (!std::isfinite(kinetic) || !std::isfinite(potential)) return false;
     }
   }
+  if (loop_coordinates_ != nullptr) {
+    loop_coordinates_->Compute(q, qd, &loop_value_, &loop_rate_);
+    if (!loop_value_.allFinite() || !loop_rate_.allFinite()) return false;
+  }
   if (latest_only_ && !result_.t.empty()) {  // drop the previous frame (capacity stays)
     ++result_.first_seq;
     result_.t.clear();
@@ -81,6 +98,14 @@ bool FrameRecorder::Record(double t, const Eigen::VectorXd& q, const Eigen::Vect
   result_.tcp.insert(result_.tcp.end(), tcp.data(), tcp.data() + 3);
   if (result_.has_torques) {
     result_.tau.insert(result_.tau.end(), effort->data(), effort->data() + effort->size());
+  }
+  if (loop_coordinates_ != nullptr) {
+    const Eigen::Index m = loop_value_.size();
+    result_.q.insert(result_.q.end(), loop_value_.data(), loop_value_.data() + m);
+    result_.qd.insert(result_.qd.end(), loop_rate_.data(), loop_rate_.data() + m);
+    if (result_.has_torques) {
+      result_.tau.insert(result_.tau.end(), loop_effort_.data(), loop_effort_.data() + m);
+    }
   }
   if (result_.has_energy) {
     result_.kinetic.push_back(kinetic);

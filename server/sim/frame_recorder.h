@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include "server/drives/drive_set.h"
+#include "server/kinematics/loop_coordinates.h"
 #include "server/model/data.h"
 #include "server/model/model.h"
 #include "server/sim/run_result.h"
@@ -39,6 +40,12 @@ class FrameRecorder {
   void UseIntegratedWork();
   void SetWork(double work) { work_ = work; }
 
+  // A mechanism with closed loops: each frame's q and qd gain the cut joints' coordinates
+  // and rates (loop_coordinates.h) after the tree's, its efforts as many zeros (a cut joint
+  // has no drive). `result.num_dofs` counts them. Call before the first frame; `coordinates`
+  // must outlive the recorder.
+  void AppendLoopCoordinates(LoopCoordinates* coordinates);
+
  private:
   void TrackEnergy(double t, double energy, const Eigen::VectorXd& qd,
                    const Eigen::VectorXd* effort);
@@ -52,6 +59,8 @@ class FrameRecorder {
   const bool track_tcp_error_;
   const bool latest_only_;
   bool integrated_work_ = false;
+  LoopCoordinates* loop_coordinates_ = nullptr;
+  Eigen::VectorXd loop_value_, loop_rate_, loop_effort_;
   double energy0_ = 0.0, work_ = 0.0, last_power_ = 0.0, last_t_ = 0.0, scale_ = 0.0;
 };
 

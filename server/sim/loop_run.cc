@@ -11,6 +11,7 @@
 #include "server/integrate/ida_integrator.h"
 #include "server/integrate/thread_cpu_clock.h"
 #include "server/kinematics/forward_kinematics.h"
+#include "server/kinematics/loop_coordinates.h"
 #include "server/sim/advance_to_frame.h"
 #include "server/sim/closed_loop_dae.h"
 #include "server/sim/closed_loop_ode.h"
@@ -238,8 +239,12 @@ RunResult SimulateLoops(const Model& model_in, const std::vector<LoopClosure>& l
   const bool kinematic = plan.choice.formulation == Formulation::kKinematic;
 
   RunResult result;
-  result.num_dofs = model.num_dofs();
+  // Every joint of the file: the tree's, then the cut joints' coordinates (computed from
+  // the tree's state, loop_coordinates.h).
+  LoopCoordinates cut_coordinates(model, loops);
+  result.num_dofs = model.num_dofs() + cut_coordinates.size();
   for (const Body& body : model.bodies) result.joint_names.push_back(body.joint.name);
+  for (std::string& name : LoopCoordinateNames(loops)) result.joint_names.push_back(name);
   result.has_torques = config.want_torques;
   result.has_energy = !kinematic;
   RunStats& stats = result.stats;
@@ -262,6 +267,7 @@ RunResult SimulateLoops(const Model& model_in, const std::vector<LoopClosure>& l
   const std::vector<double> times = LoopOutputTimes(config.duration, config.output_interval);
   FrameRecorder recorder(model, drives, result, times.size(), /*track_tcp_error=*/false,
                          /*latest_only=*/sink != nullptr && sink->KeepsFrames());
+  recorder.AppendLoopCoordinates(&cut_coordinates);
   BudgetTracking budget;
   budget.cpu_deadline_s = cpu0 + config.max_cpu_s;
   if (kinematic) {

@@ -16,6 +16,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::string_view kPackage = "package://";
+constexpr std::string_view kModel = "model://";  // SDFormat's: MODEL/REST, found as a package
 constexpr int kMaxPackageDepth = 6;  // subfolder levels searched below a package path entry
 
 bool IsFile(const fs::path& path) {
@@ -75,8 +76,11 @@ MeshSearch MeshFileSearch::Find(const std::string& filename) const {
     search.found = normal;
     return true;
   };
-  if (filename.compare(0, kPackage.size(), kPackage) == 0) {
-    const std::string path = filename.substr(kPackage.size());
+  const size_t scheme = filename.compare(0, kPackage.size(), kPackage) == 0 ? kPackage.size()
+                        : filename.compare(0, kModel.size(), kModel) == 0   ? kModel.size()
+                                                                            : 0;
+  if (scheme > 0) {
+    const std::string path = filename.substr(scheme);
     const size_t slash = path.find('/');
     const std::string package = path.substr(0, slash);
     const std::string rest = slash == std::string::npos ? "" : path.substr(slash + 1);

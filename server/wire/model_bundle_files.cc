@@ -10,6 +10,8 @@
 #include "common/check.h"
 #include "common/utf8.h"
 #include "server/parse/asset_references.h"
+#include "server/parse/model_file.h"
+#include "server/parse/sdf_import.h"
 #include "server/wire/mesh_file_search.h"
 #include "urdf_reading/mesh_lookup.h"
 #include "urdf_reading/urdf_outline.h"
@@ -100,11 +102,21 @@ std::string Joined(const std::vector<fs::path>& paths) {
   return text;
 }
 
-// The URDF of a model folder.
+// The model file of a model folder: its one URDF, else its one SDFormat file.
 fs::path UrdfOfFolder(const fs::path& dir) {
   std::vector<fs::path> urdfs = FilesWithExtension(dir, ".urdf");
   if (urdfs.empty()) urdfs = FilesBelow(dir, ".urdf");
   if (urdfs.size() == 1) return urdfs[0];
+  if (urdfs.empty()) {
+    std::vector<fs::path> sdfs = FilesWithExtension(dir, ".sdf");
+    if (sdfs.empty()) sdfs = FilesBelow(dir, ".sdf");
+    if (sdfs.size() == 1) return sdfs[0];
+    if (sdfs.size() > 1) {
+      throw InputError(dir.string() + ": a model directory needs exactly one .urdf or .sdf " +
+                       "file, found " + std::to_string(sdfs.size()) + " .sdf files (" +
+                       Joined(sdfs) + "); name the model file instead");
+    }
+  }
   if (urdfs.empty()) {
     const std::vector<fs::path> xacros = FilesBelow(dir, ".xacro");
     for (const fs::path& xacro : xacros) {
@@ -115,7 +127,7 @@ fs::path UrdfOfFolder(const fs::path& dir) {
   throw InputError(dir.string() + ": a model directory needs exactly one .urdf file, found " +
                    std::to_string(urdfs.size()) +
                    (urdfs.empty() ? std::string() : " (" + Joined(urdfs) + ")") +
-                   "; name the URDF file instead");
+                   "; name the URDF file instead (or give a folder with one .sdf file)");
 }
 
 // The assets of a bundle being read: one per name, each from one file.
@@ -146,7 +158,7 @@ std::string NotFound(const std::string& what, const std::string& filename,
                      const std::vector<fs::path>& tried, const std::string& note) {
   std::string message = what + " '" + filename + "' was not found; tried " + Joined(tried);
   if (!note.empty()) message += "; " + note;
-  if (filename.starts_with("package://")) {
+  if (filename.starts_with("package://") || filename.starts_with("model://")) {
     message +=
         "; add --package-path DIR (a folder holding the package) or set "
         "MBSTREAM_PACKAGE_PATH";
@@ -175,10 +187,19 @@ BundleRead ReadModelBundle(const BundleFiles& files) {
   if (!scene_path.empty()) bundle.set_scene_script(ReadTextFile(scene_path));
 
   AssetSet assets(&bundle);
-  std::string outline_error;
-  const std::optional<urdf_reading::UrdfOutline> outline =
-      urdf_reading::ReadUrdfOutline(bundle.urdf(), &outline_error);
-  if (outline) {  // else the server names the XML error
+  // The meshes the model refers to: SDFormat's <mesh><uri> or the URDF's <mesh filename>,
+  // found alike. A file the reader cannot read has none here: the server names its error.
+  std::optional<urdf_reading::UrdfOutline> outline;
+  if (DetectModelFormat(bundle.urdf()) == ModelFormat::kSdf) {
+    SdfMeshes sdf = ReadSdfMeshes(bundle.urdf());
+    outline.emplace();
+    outline->visual_meshes = std::move(sdf.visual);
+    outline->collision_meshes = std::move(sdf.collision);
+  } else {
+    std::string outline_error;
+    outline = urdf_reading::ReadUrdfOutline(bundle.urdf(), &outline_error);
+  }
+  if (outline) {
     const MeshFileSearch search(urdf_path.parent_path(), PackagePath(files.package_paths));
     std::set<std::string> seen;  // each reference looked up once
     const auto attach = [&](const std::vector<std::string>& meshes, const std::string& what) {

@@ -10,8 +10,9 @@
 namespace mbstream {
 
 struct BundleFiles {
-  // A URDF file, or a folder: its one *.urdf (directly in it, else the one found below it)
-  // and its one *.scene (directly in it), unless `scene_path` is given.
+  // A URDF or SDFormat file (told apart by content), or a folder: its one *.urdf (directly
+  // in it, else the one found below it), or without one its one *.sdf (likewise), and its
+  // one *.scene (directly in it), unless `scene_path` is given.
   std::string model_path;
   std::string scene_path;                // scene script (may be empty)
   std::vector<std::string> asset_paths;  // more files, each added under its file name
@@ -28,10 +29,11 @@ struct BundleRead {
   std::vector<std::string> warnings;
 };
 
-// Reads a bundle: the URDF, the scene, and every mesh the URDF's visuals (and collisions,
-// when asked) and the scene's Part commands refer to, found as MeshFileSearch does, each
-// stored once under urdf_reading::BundleAssetName of its reference (the path the URDF
-// writes, so visual/a.stl and collision/a.stl do not collide). Throws InputError naming
+// Reads a bundle: the model file (in `urdf`, whichever its format), the scene, and every
+// mesh the model's visuals (and collisions, when asked: URDF <mesh filename>, SDFormat
+// <mesh><uri>, model:// found as package://) and the scene's Part commands refer to, found
+// as MeshFileSearch does, each stored once under urdf_reading::BundleAssetName of its
+// reference (the path the model writes, so visual/a.stl and collision/a.stl do not collide). Throws InputError naming
 // the path when a file cannot be read, a folder is ambiguous, or the model is a .xacro.
 BundleRead ReadModelBundle(const BundleFiles& files);
 

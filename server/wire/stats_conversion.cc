@@ -69,6 +69,14 @@ v1::RunStats StatsToProto(const RunStats& s) {
   out.set_trust_reason(s.trust_reason);
   out.set_max_steps(s.max_steps);
   out.set_max_cpu_s(FiniteOr(s.max_cpu_s, 0.0));
+  if (!s.loops.cut_joints.empty()) {
+    v1::LoopStats& loops = *out.mutable_loops();
+    for (const std::string& joint : s.loops.cut_joints) loops.add_cut_joints(joint);
+    loops.set_equations(s.loops.equations);
+    loops.set_independent(s.loops.independent);
+    loops.set_mobility(s.loops.mobility);
+    loops.set_assembly(s.loops.assembly);
+  }
   return out;
 }
 
@@ -135,6 +143,13 @@ RunStats StatsFromProto(const v1::RunInfo& info) {
   s.trust_reason = in.trust_reason();
   s.max_steps = in.max_steps();
   s.max_cpu_s = in.max_cpu_s();
+  if (in.has_loops()) {
+    s.loops.cut_joints.assign(in.loops().cut_joints().begin(), in.loops().cut_joints().end());
+    s.loops.equations = in.loops().equations();
+    s.loops.independent = in.loops().independent();
+    s.loops.mobility = in.loops().mobility();
+    s.loops.assembly = in.loops().assembly();
+  }
   s.warnings.assign(info.warnings().begin(), info.warnings().end());
   return s;
 }

@@ -47,10 +47,23 @@ std::string FixedChain(int links) {
   return text + "</robot>\n";
 }
 
+// An SDFormat model of `links` links, each a fixed child of the one before (issue 31: the
+// SDFormat reader holds the URDF reader's limits).
+std::string SdfFixedChain(int links) {
+  std::string text = "<sdf version=\"1.7\">\n<model name=\"chain\">\n<link name=\"l0\"/>\n";
+  for (int i = 1; i <= links; ++i) {
+    text += "<link name=\"l" + std::to_string(i) + "\"/><joint name=\"f" + std::to_string(i) +
+            "\" type=\"fixed\"><parent>l" + std::to_string(i - 1) + "</parent><child>l" +
+            std::to_string(i) + "</child></joint>\n";
+  }
+  return text + "</model>\n</sdf>\n";
+}
+
 struct HostileModel {
   const char* name;
   std::function<std::string()> text;
-  std::string message;  // in both the CLI's and the server's answer
+  std::string message;              // in both the CLI's and the server's answer
+  const char* extension = ".urdf";  // the content decides the format; the name is a user's
 };
 
 const HostileModel kModels[] = {
@@ -79,6 +92,30 @@ const HostileModel kModels[] = {
     {"doctype_entities",
      [] { return "<!DOCTYPE robot [\n<!ENTITY e \"x\">\n]>\n" + OneJointNamed("j"); },
      ":2: the <!DOCTYPE> declares entities"},
+    // The same checks before libsdformat (TinyXML2) parses an SDFormat file.
+    {"sdf_nested",
+     [] {
+       return "<sdf version=\"1.7\"><model name=\"m\">" + Repeat("<foo>", 200000) +
+              Repeat("</foo>", 200000) + "</model></sdf>";
+     },
+     "elements nested more than 64 deep; an SDFormat model nests about 8 deep", ".sdf"},
+    {"sdf_attribute_flood",
+     [] {
+       std::string text = "<sdf version=\"1.7\"><model name=\"m\"><link name=\"a\"";
+       for (int i = 0; i < 100000; ++i) text += " a" + std::to_string(i) + "=\"1\"";
+       return text + "/></model></sdf>";
+     },
+     "has more than 256 attributes", ".sdf"},
+    {"sdf_chain_200k", [] { return SdfFixedChain(200000); }, "more than 256 <link> elements",
+     ".sdf"},
+    {"sdf_chain_300", [] { return SdfFixedChain(300); }, ":259: more than 256 <link> elements",
+     ".sdf"},
+    {"sdf_doctype_entities",
+     [] {
+       return "<!DOCTYPE sdf [\n<!ENTITY e \"x\">\n]>\n<sdf version=\"1.7\"><model "
+              "name=\"m\"><link name=\"a\"/></model></sdf>\n";
+     },
+     ":2: the <!DOCTYPE> declares entities", ".sdf"},
 };
 
 class HostileInputsTest : public ::testing::Test {
@@ -124,7 +161,7 @@ ServerProcess* HostileInputsTest::server_ = nullptr;
 TEST_F(HostileInputsTest, ModelsAreRefusedAlikeBySimulateAndTheServer) {
   for (const HostileModel& model : kModels) {
     SCOPED_TRACE(model.name);
-    const std::string path = Write(std::string(model.name) + ".urdf", model.text());
+    const std::string path = Write(std::string(model.name) + model.extension, model.text());
     // `| head` hides simulate's exit code: run it again for the code alone.
     const std::string simulate = "simulate " + path + " --out " + Out();
     const CommandOutcome local = RunCommand(std::string(MBSTREAM_CLI) + " " + simulate);

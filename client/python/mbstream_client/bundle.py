@@ -47,18 +47,22 @@ def _add_asset(bundle: "model_pb2.ModelBundle", name: str, path: str) -> None:
 def read_model_bundle(urdf_path_or_dir: PathLike, scene: Optional[PathLike] = None,
                       assets: Iterable[PathLike] = (),
                       name: Optional[str] = None) -> "model_pb2.ModelBundle":
-    """A ModelBundle from a URDF file, or from a directory holding exactly one .urdf (then its
-    one .scene, unless `scene` is given, and every .stl below it, named by their path
-    relative to the directory). `assets` are more files, named by their file name."""
+    """A ModelBundle from a URDF or SDFormat file (the server tells them apart by content),
+    or from a directory holding exactly one .urdf, or else exactly one .sdf (then its one
+    .scene, unless `scene` is given, and every .stl below it, named by their path relative
+    to the directory). `assets` are more files, named by their file name."""
     path = os.fspath(urdf_path_or_dir)
     bundle = model_pb2.ModelBundle(name=name or "")
     urdf_path = path
     if os.path.isdir(path):
         urdfs = _files_with_extension(path, ".urdf")
+        if not urdfs:
+            urdfs = _files_with_extension(path, ".sdf")
         if len(urdfs) != 1:
             raise bad_request(
-                "%s: a model directory needs exactly one .urdf file, found "
-                "%d; name the URDF file instead" % (path, len(urdfs)))
+                "%s: a model directory needs exactly one .urdf file (or, without one, "
+                "exactly one .sdf file), found %d; name the model file instead"
+                % (path, len(urdfs)))
         urdf_path = urdfs[0]
         scenes = _files_with_extension(path, ".scene")
         if len(scenes) == 1 and not scene:

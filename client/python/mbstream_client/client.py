@@ -62,8 +62,9 @@ class Client:
     def submit(self, urdf_path_or_dir: PathLike, scene: Optional[PathLike] = None,
                assets: Iterable[PathLike] = (), name: Optional[str] = None,
                repair: bool = False) -> model_pb2.ModelInfo:
-        """Submits a model: a URDF file, or a directory with one .urdf (and its .scene and
-        STL files; see read_model_bundle). Returns the server's ModelInfo (id "m-...": the
+        """Submits a model: a URDF or SDFormat file (an SDFormat mechanism may close loops),
+        or a directory with one .urdf or one .sdf (and its .scene and STL files; see
+        read_model_bundle). Returns the server's ModelInfo (id "m-...": the
         same bundle gives the same id). A bad model raises BadRequest (INVALID_ARGUMENT)
         with the importer's messages. With repair=True the server repairs the defects
         published URDFs commonly carry, each listed in the ModelInfo's warnings."""

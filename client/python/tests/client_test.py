@@ -323,6 +323,21 @@ class ClientTest(unittest.TestCase):
         self.assertTrue(lines, "no progress lines")
         self.assertTrue(lines[-1].startswith(run.id + ": 100.0% 1.00/1.00 s simulated"), lines)
 
+    def test_an_sdf_linkage_is_submitted_and_its_cut_joint_is_in_the_result(self):
+        info = self.client.submit("models/linkages/four_bar.sdf", name="four_bar_py")
+        self.assertEqual(info.dofs, 3)  # the spanning tree's joints
+        result = self.client.run("four_bar_py", "models/linkages/four_bar-passive.json",
+                                 duration=0.5).result(check=True)
+        self.assertEqual(result.joint_names,
+                         ["crank_joint", "rocker_joint", "coupler_joint", "loop_joint"])
+        self.assertEqual(result.q.shape[1], 4)
+        # Every axis is -y: crank + coupler + loop_joint - rocker stays 0 (the loop closes).
+        q = result.q
+        closure = q[:, 0] + q[:, 2] + q[:, 3] - q[:, 1]
+        self.assertLess(float(np.max(np.abs(closure))), 1e-8)
+        self.assertGreater(float(np.max(np.abs(q[:, 3]))), 0.01)  # the cut joint turned
+        self.assertEqual(list(result.info.stats.loops.cut_joints), ["loop_joint (revolute)"])
+
     def test_result_carries_the_models_joint_names(self):
         result = self.client.run("irb1600", SEED_SERVO, duration=1).result(check=True)
         model = self.client.model("irb1600")

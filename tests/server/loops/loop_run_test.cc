@@ -97,18 +97,18 @@ TEST(LoopRunTest, KinematicFourBarFollowsTheClosedFormLoopClosure) {
   ASSERT_EQ(result.num_frames(), 201);
   double worst = 0.0, worst_rate = 0.0;
   for (int k = 0; k < result.num_frames(); ++k) {
-    const double q_crank = result.q[3 * k + kCrank];
+    const double q_crank = result.q[result.num_dofs * k + kCrank];
     EXPECT_NEAR(q_crank, 2.0 * M_PI * result.t[k], 1e-12);
     const Eigen::Vector3d expected = FourBarJoints(q_crank);
     for (int j = 0; j < 3; ++j) {
-      worst = std::max(worst, std::abs(Wrap(result.q[3 * k + j] - expected(j))));
+      worst = std::max(worst, std::abs(Wrap(result.q[result.num_dofs * k + j] - expected(j))));
     }
     // The rocker's rate against central differences of the closed form.
     const double h = 1e-6;
     const double rate =
         (FourBarJoints(q_crank + h)(kSecond) - FourBarJoints(q_crank - h)(kSecond)) / (2.0 * h) *
         2.0 * M_PI;
-    worst_rate = std::max(worst_rate, std::abs(result.qd[3 * k + kSecond] - rate));
+    worst_rate = std::max(worst_rate, std::abs(result.qd[result.num_dofs * k + kSecond] - rate));
   }
   EXPECT_LT(worst, 1e-11);
   EXPECT_LT(worst_rate, 1e-6);
@@ -127,18 +127,19 @@ TEST(LoopRunTest, KinematicSliderCrankFollowsTheClosedForm) {
   const double x0 = SliderX(M_PI / 2);
   double worst = 0.0, worst_rate = 0.0;
   for (int k = 0; k < result.num_frames(); ++k) {
-    const double theta = M_PI / 2 + result.q[3 * k + kCrank];
-    worst = std::max(worst, std::abs(result.q[3 * k + kSecond] - (SliderX(theta) - x0)));
-    worst_rate =
-        std::max(worst_rate, std::abs(result.qd[3 * k + kSecond] - SliderXRate(theta, 2.0 * M_PI)));
+    const double theta = M_PI / 2 + result.q[result.num_dofs * k + kCrank];
+    worst =
+        std::max(worst, std::abs(result.q[result.num_dofs * k + kSecond] - (SliderX(theta) - x0)));
+    worst_rate = std::max(worst_rate, std::abs(result.qd[result.num_dofs * k + kSecond] -
+                                               SliderXRate(theta, 2.0 * M_PI)));
   }
   EXPECT_LT(worst, 1e-12);
   EXPECT_LT(worst_rate, 1e-11);
   // The slider's stroke is 2 r.
   double lo = 1e9, hi = -1e9;
   for (int k = 0; k < result.num_frames(); ++k) {
-    lo = std::min(lo, result.q[3 * k + kSecond]);
-    hi = std::max(hi, result.q[3 * k + kSecond]);
+    lo = std::min(lo, result.q[result.num_dofs * k + kSecond]);
+    hi = std::max(hi, result.q[result.num_dofs * k + kSecond]);
   }
   EXPECT_NEAR(hi - lo, 2.0 * kR, 1e-4);
 }
@@ -158,9 +159,11 @@ TEST(LoopRunTest, ParallelogramKeepsItsCouplerParallelToTheGround) {
   EXPECT_EQ(result.stats.loops.mobility, 1);
   double worst = 0.0;
   for (int k = 0; k < result.num_frames(); ++k) {
-    const double crank = result.q[3 * k + kCrank];
-    worst = std::max(worst, std::abs(result.q[3 * k + kSecond] - crank));  // rocker = crank
-    worst = std::max(worst, std::abs(result.q[3 * k + kThird] + crank));   // coupler level
+    const double crank = result.q[result.num_dofs * k + kCrank];
+    worst = std::max(worst,
+                     std::abs(result.q[result.num_dofs * k + kSecond] - crank));  // rocker = crank
+    worst =
+        std::max(worst, std::abs(result.q[result.num_dofs * k + kThird] + crank));  // coupler level
   }
   EXPECT_LT(worst, 1e-12);
   // Released from rest as drawn, it swings with its energy kept.
@@ -168,6 +171,50 @@ TEST(LoopRunTest, ParallelogramKeepsItsCouplerParallelToTheGround) {
   ASSERT_EQ(passive.stats.status, RunStatus::kFinished) << passive.stats.message;
   EXPECT_LT(passive.stats.energy_error_max, 1e-7);
   EXPECT_LT(passive.stats.drift_position_max, 1e-10);
+}
+
+TEST(LoopRunTest, TheCutJointsCoordinatesCloseThePlanarLoopsAngles) {
+  // Every axis of the four-bar is -y: the coupler's absolute angle is crank + coupler on one
+  // side of the loop and rocker - loop_joint on the other (loop_joint: coupler -> rocker),
+  // so crank + coupler + loop_joint - rocker stays 0, and so do its rates. Likewise the
+  // slider-crank's crank + rod + pin (the slider does not turn).
+  const SdfImport four_bar = ImportSdfFile(kFourBar);
+  const RunResult result = SimulateLoops(four_bar.model, four_bar.loops, BaseConfig(3));
+  ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  ASSERT_EQ(result.num_dofs, 4);
+  EXPECT_EQ(result.joint_names, (std::vector<std::string>{"crank_joint", "rocker_joint",
+                                                          "coupler_joint", "loop_joint"}));
+  double worst = 0.0, worst_rate = 0.0, travel = 0.0;
+  for (int k = 0; k < result.num_frames(); ++k) {
+    const double* q = &result.q[4 * k];
+    const double* qd = &result.qd[4 * k];
+    worst = std::max(worst, std::abs(q[kCrank] + q[kThird] + q[3] - q[kSecond]));
+    worst_rate = std::max(worst_rate, std::abs(qd[kCrank] + qd[kThird] + qd[3] - qd[kSecond]));
+    travel = std::max(travel, std::abs(q[3]));
+  }
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_LT(worst_rate, 1e-7);
+  EXPECT_GT(travel, 0.1);  // the cut joint turns
+
+  const SdfImport slider = ImportSdfFile(kSliderCrank);
+  RunConfig config = BaseConfig(3);
+  config.drives[kCrank] = CrankAtOneTurnPerSecond();
+  const RunResult driven = SimulateLoops(slider.model, slider.loops, config);
+  ASSERT_EQ(driven.stats.status, RunStatus::kFinished) << driven.stats.message;
+  ASSERT_EQ(driven.num_dofs, 4);
+  EXPECT_EQ(driven.joint_names.back(), "pin_joint");
+  ASSERT_EQ(driven.tau.size(), driven.q.size());  // the cut joint's effort column: 0
+  double slider_worst = 0.0, last = 0.0, largest_step = 0.0;
+  for (int k = 0; k < driven.num_frames(); ++k) {
+    const double* q = &driven.q[4 * k];
+    slider_worst = std::max(slider_worst, std::abs(q[kCrank] + q[kThird] + q[3]));
+    if (k > 0) largest_step = std::max(largest_step, std::abs(q[3] - last));
+    last = q[3];
+    EXPECT_EQ(driven.tau[4 * k + 3], 0.0);
+  }
+  // Two crank turns: the pin's angle comes back each turn, without jumps of 2 pi.
+  EXPECT_LT(slider_worst, 1e-9);
+  EXPECT_LT(largest_step, 0.1);
 }
 
 TEST(LoopRunTest, TheCrankTorqueDoesTheWorkTheFourBarGains) {
@@ -198,10 +245,10 @@ TEST(LoopRunTest, PassiveFourBarConservesEnergyAndStaysClosed) {
   // It moves, and its rocker and coupler stay where the crank's loop closure puts them.
   double travel = 0.0, worst = 0.0;
   for (int k = 0; k < result.num_frames(); ++k) {
-    travel = std::max(travel, std::abs(result.q[3 * k + kCrank]));
-    const Eigen::Vector3d expected = FourBarJoints(result.q[3 * k + kCrank]);
+    travel = std::max(travel, std::abs(result.q[result.num_dofs * k + kCrank]));
+    const Eigen::Vector3d expected = FourBarJoints(result.q[result.num_dofs * k + kCrank]);
     for (int j = 1; j < 3; ++j)
-      worst = std::max(worst, std::abs(Wrap(result.q[3 * k + j] - expected(j))));
+      worst = std::max(worst, std::abs(Wrap(result.q[result.num_dofs * k + j] - expected(j))));
   }
   EXPECT_GT(travel, 0.5);
   EXPECT_LT(worst, 1e-9);
@@ -217,8 +264,9 @@ TEST(LoopRunTest, PassiveSliderCrankConservesEnergy) {
   const double x0 = SliderX(M_PI / 2);
   double worst = 0.0;
   for (int k = 0; k < result.num_frames(); ++k) {
-    const double theta = M_PI / 2 + result.q[3 * k + kCrank];
-    worst = std::max(worst, std::abs(result.q[3 * k + kSecond] - (SliderX(theta) - x0)));
+    const double theta = M_PI / 2 + result.q[result.num_dofs * k + kCrank];
+    worst =
+        std::max(worst, std::abs(result.q[result.num_dofs * k + kSecond] - (SliderX(theta) - x0)));
   }
   EXPECT_LT(worst, 1e-10);
 }

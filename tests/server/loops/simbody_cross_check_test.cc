@@ -109,7 +109,7 @@ void ExpectSameTrajectories(const std::string& file, double crank_rate, Method m
   double worst = 0.0, travel = 0.0;
   for (int k = 0; k < ours.num_frames(); ++k) {
     for (int j = 0; j < n; ++j) {
-      worst = std::max(worst, std::abs(ours.q[k * n + j] - theirs[k][j]));
+      worst = std::max(worst, std::abs(ours.q[k * ours.num_dofs + j] - theirs[k][j]));
       travel = std::max(travel, std::abs(theirs[k][j]));
     }
   }

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "common/check.h"
@@ -100,6 +102,38 @@ TEST(SdfImportTest, ErrorsNameTheFileAndLine) {
       "<?xml version=\"1.0\"?>\n<sdf version=\"1.7\">\n  <model name=\"m\">\n"
       "    <link name=\"a\">\n  </model>\n</sdf>\n",
       "m.sdf");
+}
+
+// The URDF reader's shape check and link limit, before libsdformat parses anything.
+TEST(SdfImportTest, TheXmlShapeAndTheLinkLimitAreCheckedBeforeTheParse) {
+  const auto message = [](const std::string& text, const SdfImportOptions& options = {}) {
+    try {
+      ImportSdf(text, "m.sdf", options);
+    } catch (const LimitError& error) {
+      return std::string("limit: ") + error.what();
+    } catch (const InputError& error) {
+      return std::string(error.what());
+    }
+    return std::string("accepted");
+  };
+  std::string deep = "<sdf version=\"1.7\">\n<model name=\"m\">\n";
+  for (int i = 0; i < 70; ++i) deep += "<link name=\"x\">";
+  EXPECT_EQ(message(deep).rfind("m.sdf:3: elements nested more than 64 deep", 0), 0u)
+      << message(deep);
+  const std::string entities =
+      "<!DOCTYPE sdf [<!ENTITY e \"x\">]>\n<sdf version=\"1.7\"><model name=\"m\"/></sdf>";
+  EXPECT_NE(message(entities).find("m.sdf:1: the <!DOCTYPE> declares entities"), std::string::npos)
+      << message(entities);
+  const std::string utf16("\xff\xfe<\0s\0d\0f\0", 10);
+  EXPECT_NE(message(utf16).find("UTF-16"), std::string::npos) << message(utf16);
+  // The four-bar has 3 links: over a limit of 2 it is a LimitError naming --max-links, at 3
+  // it imports (links in a <model> count, not only the root's children as in URDF).
+  std::ifstream in(kFourBar);
+  const std::string four_bar((std::istreambuf_iterator<char>(in)), {});
+  const std::string over = message(four_bar, SdfImportOptions{.max_links = 2});
+  EXPECT_EQ(over.rfind("limit: m.sdf:", 0), 0u) << over;
+  EXPECT_NE(over.find("more than 2 <link> elements, the limit (--max-links)"), std::string::npos);
+  EXPECT_EQ(message(four_bar, SdfImportOptions{.max_links = 3}), "accepted");
 }
 
 TEST(ModelFileTest, TellsUrdfFromSdformatByContent) {

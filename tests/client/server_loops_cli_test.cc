@@ -1,0 +1,126 @@
+// SDFormat linkages with closed loops through a live mbstream-server (issue 31): submitted
+// like a URDF, run with the loops held, and the same files as `mbstream simulate`, bit for
+// bit, the cut joints' columns included.
+#include <gmock/gmock.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "tests/common/server_process.h"
+
+namespace mbstream::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+std::string ReadFile(const fs::path& path) { return ReadTextFile(path.string()); }
+
+std::string FirstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
+
+class ServerLoopsCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::random_device random;
+    dir_ = fs::temp_directory_path() / ("mbstream-loops-" + std::to_string(random()));
+    fs::create_directories(dir_);
+    server_ = std::make_unique<ServerProcess>(MBSTREAM_SERVER, (dir_ / "data").string(),
+                                              std::vector<std::string>{});
+  }
+  void TearDown() override {
+    server_.reset();
+    fs::remove_all(dir_);
+  }
+  CommandOutcome Cli(const std::string& args) {
+    return RunCommand(std::string(MBSTREAM_CLI) + " --server " + server_->address() + " " + args);
+  }
+  CommandOutcome Simulate(const std::string& args) {
+    return RunCommand(std::string(MBSTREAM_CLI) + " simulate " + args);
+  }
+  std::string Out(const std::string& name) { return (dir_ / name).string(); }
+
+  fs::path dir_;
+  std::unique_ptr<ServerProcess> server_;
+};
+
+// The server's files of a run against simulate's: every file the run writes.
+void ExpectSameFiles(const fs::path& served, const fs::path& local) {
+  for (const char* file :
+       {"joints.csv", "velocities.csv", "tcp.csv", "torques.csv", "energy.csv"}) {
+    ASSERT_EQ(fs::exists(served / file), fs::exists(local / file)) << file;
+    if (!fs::exists(local / file)) continue;
+    const std::string text = ReadFile(served / file);
+    EXPECT_FALSE(text.empty()) << file;
+    EXPECT_EQ(text, ReadFile(local / file)) << file << " differs";
+  }
+}
+
+TEST_F(ServerLoopsCliTest, SubmittedSdfRunsGiveTheSameFilesAsSimulate) {
+  const CommandOutcome submit = Cli("submit models/linkages/four_bar.sdf --name four_bar");
+  ASSERT_EQ(submit.exit_code, 0) << submit.output;
+  EXPECT_THAT(submit.output, HasSubstr("3 joints"));  // the tree's moving joints
+
+  // Passive (the projected ODE) and driven (kinematic): both the same as simulate.
+  for (const std::string spec : {"four_bar-passive", "four_bar-driven"}) {
+    const std::string spec_file = " --spec models/linkages/" + spec + ".json";
+    const CommandOutcome run = Cli("run four_bar" + spec_file + " --watch --out " + Out(spec));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_EQ(FirstLine(run.output).substr(0, 2), "r-");
+    EXPECT_THAT(run.output, HasSubstr("loop residual"));
+    const CommandOutcome local =
+        Simulate("models/linkages/four_bar.sdf" + spec_file + " --out " + Out(spec + "-local"));
+    ASSERT_EQ(local.exit_code, 0) << local.output;
+    ExpectSameFiles(dir_ / spec, dir_ / (spec + "-local"));
+    // Every joint of the file, the cut joint last; its loop on the wire into stats.json.
+    EXPECT_EQ(FirstLine(ReadFile(dir_ / spec / "velocities.csv")),
+              "t,crank_joint,rocker_joint,coupler_joint,loop_joint");
+    const std::string stats = ReadFile(dir_ / spec / "stats.json");
+    EXPECT_THAT(stats, HasSubstr("\"cut_joints\": [\n      \"loop_joint (revolute)\""));
+    EXPECT_THAT(stats, HasSubstr("\"mobility\": 1"));
+  }
+}
+
+TEST_F(ServerLoopsCliTest, AnSdfModelFolderAndItsModelMeshesAreSubmitted) {
+  // A folder with one .sdf whose visual refers to model://bars/meshes/bar.stl: found in
+  // the package path like a package:// mesh, and stored.
+  const fs::path model = dir_ / "models" / "bars";
+  fs::create_directories(model / "meshes");
+  std::ofstream(model / "meshes" / "bar.stl") << "solid bar\nendsolid bar\n";
+  std::string sdf = ReadFile("models/linkages/slider_crank.sdf");
+  const std::string link = "<link name=\"crank\">";
+  const size_t at = sdf.find(link);
+  ASSERT_NE(at, std::string::npos);
+  sdf.insert(at + link.size(),
+             "<visual name=\"bar\"><geometry><mesh><uri>model://bars/meshes/bar.stl</uri>"
+             "</mesh></geometry></visual>");
+  std::ofstream(model / "slider_crank.sdf") << sdf;
+  const CommandOutcome submit =
+      Cli("submit " + model.string() + " --package-path " + (dir_ / "models").string());
+  ASSERT_EQ(submit.exit_code, 0) << submit.output;
+  EXPECT_THAT(submit.output, HasSubstr("1 assets"));
+  EXPECT_THAT(submit.output, Not(HasSubstr("was not found")));
+
+  // Without the package path it is said, with every place tried, and the model still goes.
+  fs::rename(dir_ / "models", dir_ / "elsewhere");
+  fs::create_directories(model);
+  std::ofstream(model / "slider_crank.sdf") << sdf << "\n";  // another content id
+  const CommandOutcome missing = Cli("submit " + (model / "slider_crank.sdf").string());
+  ASSERT_EQ(missing.exit_code, 0) << missing.output;
+  EXPECT_THAT(missing.output, HasSubstr("'model://bars/meshes/bar.stl' was not found"));
+  EXPECT_THAT(missing.output, HasSubstr("--package-path"));
+}
+
+TEST_F(ServerLoopsCliTest, ABadSdfIsRefusedWithItsLine) {
+  std::ofstream(dir_ / "bad.sdf")
+      << "<?xml version=\"1.0\"?>\n<sdf version=\"1.7\">\n<model name=\"m\">\n"
+         "<link name=\"a\"/>\n<joint name=\"j\" type=\"screw\"><parent>world</parent>"
+         "<child>a</child></joint>\n</model>\n</sdf>\n";
+  const CommandOutcome submit = Cli("submit " + (dir_ / "bad.sdf").string());
+  EXPECT_EQ(submit.exit_code, 2) << submit.output;
+  EXPECT_THAT(submit.output, HasSubstr("bad.sdf:5"));
+}
+
+}  // namespace
+}  // namespace mbstream::testing
