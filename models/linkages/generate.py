@@ -103,6 +103,141 @@ def slider_crank():
     return model("slider_crank", body)
 
 
+# The Delta robot: three arms on motors about horizontal axes (tangents of the base circle),
+# each closed on the platform by a parallelogram of two rods. In the tree each rod hangs from
+# its arm by a universal joint (two revolutes through a small knuckle: its spin is not a
+# degree of freedom, as in the real machine the ball joints leave it idle) and the platform
+# hangs from rod 1a by three revolutes (a spherical wrist, far from its gimbal singularity in
+# the workspace); the other five rods close on the platform through ball joints, the cut
+# joints (parent the platform, so that the tree reaches the platform through the wrist).
+# z is up, the base at z = 0, every link frame aligned with the model frame as drawn.
+DELTA = dict(base_r=0.2, platform_r=0.05, arm=0.25, rod=0.5, half_width=0.03, z0=-0.45)
+
+
+def delta_ik(p, **dims):
+    """The motor angles (rad, arm below the horizontal positive) that put the platform's
+    centre at p = (x, y, z); the elbow-out branch."""
+    d = dict(DELTA, **dims)
+    angles = []
+    for i in range(3):
+        g = 2 * math.pi * i / 3
+        u = (math.cos(g), math.sin(g), 0.0)
+        t = (-math.sin(g), math.cos(g), 0.0)
+        dx = [p[k] + (d["platform_r"] - d["base_r"]) * u[k] for k in range(3)]
+        a = sum(dx[k] * u[k] for k in range(3))
+        b = sum(dx[k] * t[k] for k in range(3))
+        c = dx[2]
+        k_ = (a * a + b * b + c * c + d["arm"] ** 2 - d["rod"] ** 2) / (2 * d["arm"])
+        # a cos(theta) - c sin(theta) = k_
+        base = math.atan2(-c, a)
+        spread = math.acos(k_ / math.hypot(a, c))
+        angles.append(base - spread if math.cos(base - spread) > math.cos(base + spread)
+                      else base + spread)
+    return angles
+
+
+def v3(v):
+    return " ".join(f"{x:.17g}" for x in v)
+
+
+def add(*vs):
+    return tuple(sum(v[k] for v in vs) for k in range(3))
+
+
+def scale(s, v):
+    return tuple(s * x for x in v)
+
+
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def unit(v):
+    n = math.sqrt(sum(x * x for x in v))
+    return tuple(x / n for x in v)
+
+
+def rod_like(name, origin, vector, mass):
+    """A slender bar from `origin` along `vector`: its inertia about its centre in model axes."""
+    length = math.sqrt(sum(x * x for x in vector))
+    d = unit(vector)
+    i0 = mass * length * length / 12.0
+    small = mass * W * W / 6.0
+    inertia = [[(i0 * ((1.0 if r == c else 0.0) - d[r] * d[c]) + (small if r == c else 0.0))
+                for c in range(3)] for r in range(3)]
+    centre = scale(0.5, vector)
+    return f"""    <link name="{name}">
+      <pose>{v3(origin)} 0 0 0</pose>
+      <inertial>
+        <pose>{v3(centre)} 0 0 0</pose>
+        <mass>{mass}</mass>
+        <inertia><ixx>{inertia[0][0]:.17g}</ixx><iyy>{inertia[1][1]:.17g}</iyy><izz>{inertia[2][2]:.17g}</izz>
+          <ixy>{inertia[0][1]:.17g}</ixy><ixz>{inertia[0][2]:.17g}</ixz><iyz>{inertia[1][2]:.17g}</iyz></inertia>
+      </inertial>
+    </link>"""
+
+
+def small_link(name, origin, mass=0.005, inertia=1e-7):
+    return f"""    <link name="{name}">
+      <pose>{v3(origin)} 0 0 0</pose>
+      <inertial><mass>{mass}</mass>
+        <inertia><ixx>{inertia}</ixx><iyy>{inertia}</iyy><izz>{inertia}</izz>
+          <ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial>
+    </link>"""
+
+
+def delta():
+    d = DELTA
+    p = (0.0, 0.0, d["z0"])
+    thetas = delta_ik(p)
+    links, joints, balls = [], [], []
+    links.append(f"""    <link name="platform">
+      <pose>{v3(p)} 0 0 0</pose>
+      <inertial><mass>0.2</mass>
+        <inertia><ixx>1.5e-4</ixx><iyy>1.5e-4</iyy><izz>2.5e-4</izz>
+          <ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial>
+      <visual name="disc"><geometry><cylinder><radius>{d["platform_r"]}</radius><length>0.01</length></cylinder></geometry></visual>
+    </link>""")
+    for i in range(3):
+        g = 2 * math.pi * i / 3
+        u = (math.cos(g), math.sin(g), 0.0)
+        t = (-math.sin(g), math.cos(g), 0.0)
+        th = thetas[i]
+        b = scale(d["base_r"], u)
+        arm = add(scale(d["arm"] * math.cos(th), u), (0.0, 0.0, -d["arm"] * math.sin(th)))
+        e = add(b, arm)
+        n = i + 1
+        links.append(rod_like(f"arm{n}", b, arm, 0.3))
+        joints.append(joint(f"motor{n}", "revolute", "world", f"arm{n}", axis=v3(t)))
+        for s, side in ((1, "a"), (-1, "b")):
+            top = add(e, scale(s * d["half_width"], t))
+            bottom = add(p, scale(d["platform_r"], u), scale(s * d["half_width"], t))
+            r = add(bottom, scale(-1.0, top))
+            normal = unit(cross(r, t))
+            rod = f"rod{n}{side}"
+            links.append(small_link(f"knuckle{n}{side}", top))
+            links.append(rod_like(rod, top, r, 0.1))
+            joints.append(joint(f"elbow{n}{side}_1", "revolute", f"arm{n}", f"knuckle{n}{side}",
+                                axis=v3(t)))
+            joints.append(joint(f"elbow{n}{side}_2", "revolute", f"knuckle{n}{side}", rod,
+                                axis=v3(normal)))
+            if (n, side) == (1, "a"):  # the wrist: the tree's way to the platform
+                links.append(small_link("wrist1", bottom))
+                links.append(small_link("wrist2", bottom))
+                joints.append(joint("wrist_1", "revolute", rod, "wrist1", axis=v3(normal)))
+                joints.append(joint("wrist_2", "revolute", "wrist1", "wrist2", axis=v3(t)))
+                joints.append(joint("wrist_3", "revolute", "wrist2", "platform",
+                                    pose=f"{v3(add(bottom, scale(-1.0, p)))} 0 0 0",
+                                    axis=v3(unit(r))))
+            else:  # closes a loop: the rod already hangs from its arm
+                balls.append(f"""    <joint name="ball{n}{side}" type="ball">
+      <parent>platform</parent>
+      <child>{rod}</child>
+      <pose>{v3(r)} 0 0 0</pose>
+    </joint>""")
+    return model("delta", "\n".join(links + joints + balls))
+
+
 def model(name, body):
     return f"""<?xml version="1.0"?>
 <!-- Generated by generate.py: edit that, not this file. -->
@@ -120,6 +255,6 @@ if __name__ == "__main__":
     parallelogram = four_bar("parallelogram", a=0.2, b=0.4, c=0.2, d=0.4, theta2=-math.pi / 3,
                              side=-1)
     for name, text in (("four_bar.sdf", four_bar()), ("slider_crank.sdf", slider_crank()),
-                       ("parallelogram.sdf", parallelogram)):
+                       ("parallelogram.sdf", parallelogram), ("delta.sdf", delta())):
         with open(name, "w") as f:
             f.write(text)

@@ -93,7 +93,7 @@ TEST_F(ServerLoopsCliTest, AnSdfModelFolderAndItsModelMeshesAreSubmitted) {
   const size_t at = sdf.find(link);
   ASSERT_NE(at, std::string::npos);
   sdf.insert(at + link.size(),
-             "<visual name=\"bar\"><geometry><mesh><uri>model://bars/meshes/bar.stl</uri>"
+             "<visual name=\"mesh\"><geometry><mesh><uri>model://bars/meshes/bar.stl</uri>"
              "</mesh></geometry></visual>");
   std::ofstream(model / "slider_crank.sdf") << sdf;
   const CommandOutcome submit =
