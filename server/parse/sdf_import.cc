@@ -386,6 +386,10 @@ SdfImport ImportSdf(const std::string& text, const std::string& source,
 }
 
 SdfMeshes ReadSdfMeshes(const std::string& text) {
+  // Hostile text never reaches libsdformat (a flood of attributes takes it minutes).
+  urdf_reading::XmlShapeLimits limits;
+  limits.links_at_any_depth = true;
+  if (urdf_reading::CheckXmlShape(text, limits)) return {};
   sdf::Console::Instance()->SetQuiet(true);
   sdf::Root root;
   if (!root.LoadSdfString(text).empty()) return {};

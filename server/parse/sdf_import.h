@@ -34,7 +34,8 @@ struct SdfImport {
 };
 
 // The <mesh><uri> of the visuals (and the collisions) of every link of SDFormat `text`, in
-// file order, each once; empty when libsdformat cannot read the text (the import says why).
+// file order, each once; empty when the text fails the XML shape check or libsdformat cannot
+// read it (the import says why).
 struct SdfMeshes {
   std::vector<std::string> visual, collision;
 };

@@ -98,7 +98,7 @@ const HostileModel kModels[] = {
        return "<sdf version=\"1.7\"><model name=\"m\">" + Repeat("<foo>", 200000) +
               Repeat("</foo>", 200000) + "</model></sdf>";
      },
-     "elements nested more than 64 deep; an SDFormat model nests about 8 deep", ".sdf"},
+     "elements nested more than 64 deep, the limit; an SDFormat model nests about 8 deep", ".sdf"},
     {"sdf_attribute_flood",
      [] {
        std::string text = "<sdf version=\"1.7\"><model name=\"m\"><link name=\"a\"";
