@@ -33,8 +33,9 @@ struct BundleRead {
 // mesh the model's visuals (and collisions, when asked: URDF <mesh filename>, SDFormat
 // <mesh><uri>, model:// found as package://) and the scene's Part commands refer to, found
 // as MeshFileSearch does, each stored once under urdf_reading::BundleAssetName of its
-// reference (the path the model writes, so visual/a.stl and collision/a.stl do not collide). Throws InputError naming
-// the path when a file cannot be read, a folder is ambiguous, or the model is a .xacro.
+// reference (the path the model writes, so visual/a.stl and collision/a.stl do not collide). Throws
+// InputError naming the path when a file cannot be read, a folder is ambiguous, or the model is a
+// .xacro.
 BundleRead ReadModelBundle(const BundleFiles& files);
 
 // The same with no package path, visuals only, warnings dropped.
