@@ -307,6 +307,9 @@ int LuSetup(SUNLinearSolver S, SUNMatrix A) {
   sunindextype* pivots = content->pivots;
   sunindextype zero_pivot = FactorStructured(n, a, pivots);
   if (zero_pivot == kNotStructured) {
+    // A full LU that stops at a zero pivot leaves the later pivots unwritten: mark the last
+    // one as a full LU's first, so IsStructuredFactor never reads uninitialised memory.
+    if (n >= 1) pivots[n - 1] = 0;
     zero_pivot =
         n == 12 ? LuFactor(Fixed<12>(), Fixed<12>(), a, pivots) : LuFactor(n, n, a, pivots);
   }
