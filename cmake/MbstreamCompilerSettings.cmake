@@ -6,6 +6,14 @@ if(MBSTREAM_CCACHE)
   set(CMAKE_CXX_COMPILER_LAUNCHER ${MBSTREAM_CCACHE})
 endif()
 
+# LLVM's linker when installed (scripts/setup.sh installs it): it links a test program in a
+# fifth of GNU ld's CPU time (service_test under ASan: 0.5 s against 2.4 s), and CI links
+# about sixty programs per build.
+find_program(MBSTREAM_LLD ld.lld)
+if(MBSTREAM_LLD)
+  add_link_options(-fuse-ld=lld)
+endif()
+
 if(NOT CMAKE_BUILD_TYPE AND NOT CMAKE_CONFIGURATION_TYPES)
   set(CMAKE_BUILD_TYPE Release CACHE STRING "Build type" FORCE)
 endif()

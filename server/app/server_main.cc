@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::from_str(flags.log_level));
 
   const sigset_t signals = mbstream::BlockStopSignals();
+  mbstream::StopWatchdog watchdog;  // outlives the host: it bounds the host's shutdown
   std::unique_ptr<mbstream::ServerHost> host;
   try {
     host = mbstream::ServerHost::Start(config);
@@ -45,7 +46,7 @@ int main(int argc, char** argv) {
   spdlog::info("listening on {} (data in {})", host->address(),
                config.store.empty() ? config.data_dir : config.store);
   for (const std::string& warning : mbstream::ExposureWarnings(config)) spdlog::warn("{}", warning);
-  mbstream::ServeUntilSignalled(*host, signals);
+  mbstream::ServeUntilSignalled(*host, signals, watchdog);
   host.reset();
   spdlog::info("stopped");
   return 0;
