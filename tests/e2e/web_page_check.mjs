@@ -109,6 +109,7 @@ try {
     run: window.mbstream.run, state: window.mbstream.state, frames: window.mbstream.frames,
     missed: window.mbstream.missed, scene_bytes: window.mbstream.scene_bytes,
     frame_bytes: window.mbstream.frame_bytes, triangles: window.mbstream.triangles,
+    parts: window.mbstream.parts,
     latency_ms: window.mbstream.latency_ms, record: window.mbstream.record,
     hud: document.getElementById('hud').textContent }));
   Object.assign(result, state);

@@ -3,7 +3,7 @@
 // through SwiftShader) driven by playwright-core (web_page_check.mjs): the page draws the
 // run, its probes (from its own scene graph) are where the server put the TCP, a second
 // page shows the same run at once, a replay's controls and compare ghost work, and the page
-// over HTTPS (--web-tls) with the server's tokens.
+// over HTTPS (--web-tls) with the server's tokens, and a robot whose meshes are Collada.
 #include <gmock/gmock.h>
 #include <signal.h>
 #include <nlohmann/json.hpp>
@@ -15,6 +15,7 @@
 
 #include "tests/common/csv_rows.h"
 #include "tests/common/server_process.h"
+#include "tests/viewer/test_meshes.h"
 #include "tests/viewer/xvfb_server.h"
 
 namespace mbstream::testing {
@@ -201,6 +202,70 @@ TEST_F(WebViewTest, HttpsPageWithAViewTokenDrawsTheRunAndOthersAreRefused) {
   const std::string log = ReadTextFile((dir_ / "viewer.log").string());
   EXPECT_THAT(log, HasSubstr("refused (403)"));
   EXPECT_THAT(log, ::testing::Not(HasSubstr("view-token-0123456789")));  // never logged
+  ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
+}
+
+// A robot whose every visual is a Collada mesh, as published ROS descriptions ship them (the
+// meshes written by the test: no third-party files), submitted with its meshes and run: the
+// page draws the viewer's triangles of each mesh in its Collada material's colour.
+TEST_F(WebViewTest, AColladaMeshedRobotIsDrawnWithItsMaterialColours) {
+  const fs::path robot = dir_ / "colladabot";
+  fs::create_directories(robot / "meshes");
+  using Eigen::Vector3d;
+  const Vector3d blue(0.2, 0.4, 0.8), red(0.9, 0.1, 0.1), green(0.1, 0.8, 0.2);
+  viewer::testing::WriteColladaBox(robot / "meshes/base.dae", Vector3d(-150, -150, 0),
+                                   Vector3d(150, 150, 200), 0.001, "Z_UP", blue);  // mm
+  viewer::testing::WriteColladaBox(robot / "meshes/arm.dae", Vector3d(-0.05, -0.05, 0),
+                                   Vector3d(0.05, 0.05, 0.5), 1.0, "Z_UP", red);
+  viewer::testing::WriteColladaBox(robot / "meshes/tool.dae", Vector3d(-0.02, -0.02, 0),
+                                   Vector3d(0.02, 0.02, 0.1), 1.0, "Z_UP", green);
+  const auto link = [](const std::string& name, const std::string& mesh) {
+    return "<link name=\"" + name + "\"><inertial><mass value=\"1\"/><inertia ixx=\"0.01\" " +
+           "iyy=\"0.01\" izz=\"0.01\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial>" +
+           (mesh.empty() ? ""
+                         : "<visual><geometry><mesh filename=\"meshes/" + mesh +
+                               "\"/></geometry></visual>") +
+           "</link>\n";
+  };
+  const auto joint = [](const std::string& name, const std::string& type, const std::string& parent,
+                        const std::string& child, const std::string& xyz) {
+    return "<joint name=\"" + name + "\" type=\"" + type + "\"><parent link=\"" + parent +
+           "\"/><child link=\"" + child + "\"/><origin xyz=\"" + xyz +
+           "\"/><axis xyz=\"0 1 0\"/><limit lower=\"-3\" upper=\"3\" effort=\"100\" " +
+           "velocity=\"5\"/></joint>\n";
+  };
+  std::ofstream(robot / "colladabot.urdf")
+      << "<robot name=\"colladabot\">\n"
+      << link("base_link", "base.dae") << link("arm", "arm.dae") << link("tool", "tool.dae")
+      << link("tcp", "") << joint("j1", "revolute", "base_link", "arm", "0 0 0.2")
+      << joint("j2", "revolute", "arm", "tool", "0 0 0.5")
+      << joint("tool_tcp", "fixed", "tool", "tcp", "0 0 0.1") << "</robot>\n";
+  const CommandOutcome submitted = Cli("submit " + (robot / "colladabot.urdf").string());
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
+  const std::string url = StartViewer("--follow --exit-after-runs 1");
+  const CommandOutcome started =
+      Cli("run colladabot --duration 20 --output-interval 0.05 --realtime 1");
+  ASSERT_EQ(started.exit_code, 0) << started.output;
+  const std::string run = started.output.substr(0, started.output.find('\n'));
+  const nlohmann::json seen = Browse(url);
+  Cli("cancel " + run);
+  PrintFigures(seen);
+  ASSERT_TRUE(seen.contains("errors")) << "the browser saw nothing";
+  EXPECT_EQ(seen.value("run", ""), run);
+  EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
+  EXPECT_GT(seen.value("drawn_fraction", 0.0), 0.005) << "the screenshot shows no robot";
+  EXPECT_EQ(seen.value("triangles", 0), 36) << "three Collada boxes of 12 triangles";
+  ASSERT_TRUE(seen["parts"].is_array()) << seen.dump().substr(0, 2000);
+  std::vector<Vector3d> colours;
+  for (const auto& part : seen["parts"]) {
+    colours.emplace_back(part["color"][0].get<double>(), part["color"][1].get<double>(),
+                         part["color"][2].get<double>());
+  }
+  for (const Vector3d& expected : {blue, red, green}) {
+    EXPECT_TRUE(std::any_of(colours.begin(), colours.end(),
+                            [&](const Vector3d& c) { return (c - expected).norm() < 0.02; }))
+        << "no part in " << expected.transpose() << ": " << seen["parts"];
+  }
   ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
 }
 

@@ -96,6 +96,7 @@ function onScene(message) {
   state.scene = message.version;
   state.title = message.title;
   state.triangles = message.parts.reduce((n, p) => n + p.triangles, 0);
+  state.parts = message.parts.map((p) => ({ frame: p.frame, color: p.color, triangles: p.triangles }));
 }
 
 function setMatrices(groups, m) {
