@@ -504,6 +504,12 @@ WebServer::WebServer(WebOptions options, OnControl on_control) : impl_(std::make
   if (!ec) acceptor.bind(endpoint, ec);
   if (!ec) acceptor.listen(asio::socket_base::max_listen_connections, ec);
   if (ec) throw std::runtime_error("--web " + address + ": cannot listen: " + ec.message());
+  if (!impl_->tls && !endpoint.address().is_loopback()) {
+    spdlog::warn(
+        "web: serving {} without --web-tls: the pages' tokens and the run cross the network in "
+        "the clear; give --web-tls CERT,KEY (deploy/make-secrets.sh writes one)",
+        address);
+  }
 }
 
 WebServer::~WebServer() { Stop(); }
