@@ -8,7 +8,8 @@ No Docker engine runs on our machines, so this stands in for building the images
   every binary the build stage copies from /build/<dir>/ is an add_executable of
   <dir>/CMakeLists.txt; the stages the compose file asks for exist.
 - deploy/docker-compose.yml: each service's command starts with a program its image
-  installs; every /opt/mbstream path it names maps to a repo path through a COPY; every
+  installs; every /opt/mbstream path it names maps to a repo path through a COPY (or to
+  one a build stage made, COPY --from); every
   /run/secrets/NAME is a secret the service is given; every secret file is one that
   deploy/make-secrets.sh writes.
 - Commands stay identical to the multi-host test: for each program, the options the compose
@@ -118,6 +119,8 @@ for line in docker_lines:
                     check(dest.rstrip("/") == "/usr/local/bin",
                           f"Dockerfile: {src} is not copied to /usr/local/bin")
                     stage["programs"].add(os.path.basename(src))
+                elif dest.startswith("/opt/mbstream/"):
+                    stage["paths"][dest.rstrip("/")] = None  # made by that stage's RUN
                 continue
             check(os.path.exists(repo(src)), f"Dockerfile: COPY source {src} is not in the repo")
             if src == ".":
@@ -186,8 +189,8 @@ for service, spec in compose["services"].items():
             mapped = None
             for image_path, src in st["paths"].items():
                 if value == image_path or value.startswith(image_path + "/"):
-                    mapped = src + value[len(image_path):]
-            check(mapped is not None and os.path.exists(repo(mapped)),
+                    mapped = "" if src is None else src + value[len(image_path):]
+            check(mapped == "" or (mapped is not None and os.path.exists(repo(mapped))),
                   f"compose: {service}: {value} is not in image {target} (no COPY gives it)")
     compose_commands[program] = ({w for w in words if w.startswith("--")}, set(env))
 

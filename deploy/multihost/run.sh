@@ -99,7 +99,7 @@ netns_host "$ns_cli" p-cli "$cli_ip"
 log "hosts: server $srv_ip ($ns_srv), viewer $view_ip ($ns_view), client $cli_ip ($ns_cli)"
 
 # ---- secrets ------------------------------------------------------------------------------
-"$root/deploy/make-secrets.sh" "$secrets" --san "IP:$srv_ip" >/dev/null
+"$root/deploy/make-secrets.sh" "$secrets" --san "IP:$srv_ip" --web-san "IP:$view_ip" >/dev/null
 log "made a throwaway CA, a server certificate for IP:$srv_ip and tokens in $secrets"
 
 # ---- server -------------------------------------------------------------------------------
@@ -125,7 +125,8 @@ if [ "$viewer_mode" = run ]; then
   ip netns exec "$ns_view" xvfb-run -a "$viewer_bin" --server "$server_addr" --follow \
     --offscreen --ca "$secrets/ca.pem" --token-file "$secrets/viewer.token" \
     --exit-after-runs 1 --record "$out/robot.ogv" --snapshots "$out/snapshots" \
-    >"$tmp/viewer.out" 2>"$tmp/viewer.err" &
+    --web "$view_ip:8443" --web-tls "$secrets/web.pem,$secrets/web.key" \
+    --web-root "$root/viewer/web" >"$tmp/viewer.out" 2>"$tmp/viewer.err" &
   viewer_pid=$!
   # The viewer sees a run's every frame only when it follows before the run starts: wait
   # for its "subscribed to ADDR: follow" line (the server has registered the subscription).
@@ -140,6 +141,15 @@ if [ "$viewer_mode" = run ]; then
   done
   [ "$connected" -eq 1 ] || fail "the viewer did not subscribe to $server_addr within 20 s"
   log "viewer: following runs on $server_addr from $view_ip (offscreen under Xvfb)"
+  # Its web view over HTTPS from the client's host, the certificate checked against the CA.
+  web_url=$(sed -n 's/^web on //p' "$tmp/viewer.out" | head -n1)
+  [ "$web_url" = "https://$view_ip:8443/" ] || fail "the viewer printed 'web on ${web_url:-nothing}', not https://$view_ip:8443/"
+  ip netns exec "$ns_cli" /usr/bin/python3 -c '
+import ssl, sys, urllib.request
+page = urllib.request.urlopen(sys.argv[1], context=ssl.create_default_context(cafile=sys.argv[2]), timeout=10).read()
+sys.exit(0 if b"/page.js" in page else 1)' "$web_url" "$secrets/ca.pem" ||
+    fail "the client host could not fetch the viewer's web page $web_url over HTTPS"
+  log "viewer: web page served on $web_url (TLS, certificate for IP:$view_ip)"
 fi
 
 # ---- client -------------------------------------------------------------------------------

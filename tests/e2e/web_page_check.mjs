@@ -1,7 +1,9 @@
 // Drives Debian's chromium (headless, WebGL through SwiftShader) with playwright-core from
 // viewer/web/node_modules: opens an mbstream-viewer --web page, waits for frames (events,
 // never fixed sleeps), records what the page draws, opens a second page, takes a screenshot.
-// Usage: node web_page_check.mjs URL OUT_DIR WEB_ROOT [replay]
+// Usage: node web_page_check.mjs URL OUT_DIR WEB_ROOT [replay | denied]
+// (`denied`: pages with a token lacking the view role and with none are refused; an https URL
+// is opened with --ignore-certificate-errors, the test's certificate being self-signed)
 // Prints one JSON object on stdout: the figures and the recorded frames.
 import { createRequire } from 'node:module';
 import { mkdtempSync, rmSync } from 'node:fs';
@@ -19,7 +21,8 @@ const context = await chromium.launchPersistentContext(profile, {
   viewport: { width: 800, height: 600 },
   args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
          '--disable-background-networking', '--disable-component-update', '--disable-sync',
-         '--use-gl=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
+         '--use-gl=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
+         ...(url.startsWith('https:') ? ['--ignore-certificate-errors'] : [])],
 });
 const result = {};
 const outside = [];  // requests to anywhere but the viewer
@@ -70,6 +73,25 @@ try {
   result.second_run = await second.evaluate(() => window.mbstream.run);
   await second.close();
 
+  if (mode === 'denied') {
+    // The token left the address bar; pages without the view role, or without a token, get
+    // nothing but the refusal (and its form).
+    result.hash_after_load = await page.evaluate(() => location.hash);
+    result.protocol = await page.evaluate(() => location.protocol);
+    result.refused = [];
+    for (const fragment of ['#token=not-a-viewer-token', '']) {
+      const refused = await context.newPage();
+      await refused.goto(origin + '/' + fragment, { waitUntil: 'load' });
+      await refused.waitForFunction(() => window.mbstream && window.mbstream.denied, null,
+                                    { timeout: 30000 });
+      result.refused.push(await refused.evaluate(() => ({
+        status: window.mbstream.denied.status, message: window.mbstream.denied.message,
+        scene: window.mbstream.scene, frames: window.mbstream.frames,
+        form: !document.getElementById('login').hidden })));
+      await refused.close();
+    }
+  }
+
   await page.screenshot({ path: join(outDir, 'web_page.png') });
   // The robot's pixels: the canvas is transparent where nothing is drawn.
   result.drawn_fraction = await page.evaluate(() => {
@@ -87,6 +109,7 @@ try {
     run: window.mbstream.run, state: window.mbstream.state, frames: window.mbstream.frames,
     missed: window.mbstream.missed, scene_bytes: window.mbstream.scene_bytes,
     frame_bytes: window.mbstream.frame_bytes, triangles: window.mbstream.triangles,
+    parts: window.mbstream.parts,
     latency_ms: window.mbstream.latency_ms, record: window.mbstream.record,
     hud: document.getElementById('hud').textContent }));
   Object.assign(result, state);

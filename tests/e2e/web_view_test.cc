@@ -2,17 +2,20 @@
 // a private Xvfb serving its scene on 127.0.0.1:0, and Debian's chromium (headless, WebGL
 // through SwiftShader) driven by playwright-core (web_page_check.mjs): the page draws the
 // run, its probes (from its own scene graph) are where the server put the TCP, a second
-// page shows the same run at once, and a replay's controls and compare ghost work.
+// page shows the same run at once, a replay's controls and compare ghost work, and the page
+// over HTTPS (--web-tls) with the server's tokens, and a robot whose meshes are Collada.
 #include <gmock/gmock.h>
 #include <signal.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <random>
 
 #include "tests/common/csv_rows.h"
 #include "tests/common/server_process.h"
+#include "tests/viewer/test_meshes.h"
 #include "tests/viewer/xvfb_server.h"
 
 namespace mbstream::testing {
@@ -68,7 +71,11 @@ class WebViewTest : public ::testing::Test {
   }
   // Every recorded frame's first probe against the run's TCP at the same seq.
   void ExpectProbesAtTcp(const nlohmann::json& seen, const std::string& run_id) {
-    Cli("result " + run_id + " --out " + (dir_ / "out").string());  // 1 when cancelled
+    ExpectProbesAtTcpWith(seen, run_id, "");
+  }
+  void ExpectProbesAtTcpWith(const nlohmann::json& seen, const std::string& run_id,
+                             const std::string& cli_flags) {
+    Cli(cli_flags + "result " + run_id + " --out " + (dir_ / "out").string());  // 1: cancelled
     const auto tcp = ReadCsv(dir_ / "out" / "tcp.csv");
     ASSERT_FALSE(tcp.empty());
     ASSERT_GE(seen["record"].size(), 10u);
@@ -148,6 +155,118 @@ TEST_F(WebViewTest, ReplayControlsAndTheCompareGhostWorkFromThePage) {
   EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
   EXPECT_GT(seen.value("drawn_fraction", 0.0), 0.01);
   ExpectProbesAtTcp(seen, run_a);
+}
+
+// --web-tls and tokens: a server that requires tokens, the viewer's page over HTTPS (a
+// self-signed certificate made by openssl), a page with a view token in its URL fragment draws
+// the run; pages with a token lacking the view role, or none, get nothing but the refusal.
+TEST_F(WebViewTest, HttpsPageWithAViewTokenDrawsTheRunAndOthersAreRefused) {
+  const std::string d = dir_.string();
+  const CommandOutcome made = RunCommand(
+      "openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=127.0.0.1 -addext "
+      "subjectAltName=IP:127.0.0.1 -keyout " +
+      d + "/web.key -out " + d + "/web.pem 2>&1");
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  std::ofstream(dir_ / "tokens") << "admin-token-0123456789 admin\n"
+                                 << "view-token-0123456789 view\n"
+                                 << "not-a-viewer-token submit\n";
+  std::ofstream(dir_ / "admin.token") << "admin-token-0123456789\n";
+  std::ofstream(dir_ / "view.token") << "view-token-0123456789\n";
+  server_ = std::make_unique<ServerProcess>(
+      MBSTREAM_SERVER, d + "/data-tokens", std::vector<std::string>{"--token-file", d + "/tokens"});
+  const std::string url = StartViewer("--follow --exit-after-runs 1 --token-file " + d +
+                                      "/view.token --web-tls " + d + "/web.pem," + d + "/web.key");
+  ASSERT_THAT(url, StartsWith("https://127.0.0.1:"));
+  const std::string admin = " --token-file " + d + "/admin.token ";
+  const CommandOutcome started =
+      Cli(admin + "run irb1600 --spec models/irb1600/seed-run.json --realtime 1");
+  ASSERT_EQ(started.exit_code, 0) << started.output;
+  const std::string run = started.output.substr(0, started.output.find('\n'));
+  const nlohmann::json seen = Browse(url + "#token=view-token-0123456789", "denied");
+  Cli(admin + "cancel " + run);
+  PrintFigures(seen);
+  EXPECT_EQ(seen.value("run", ""), run);
+  EXPECT_EQ(seen.value("protocol", ""), "https:");
+  EXPECT_EQ(seen.value("hash_after_load", "?"), "");  // the token is off the address bar
+  EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
+  EXPECT_TRUE(seen["outside"].empty()) << seen["outside"];
+  ASSERT_EQ(seen["refused"].size(), 2u) << seen.dump();
+  EXPECT_EQ(seen["refused"][0]["status"], 403) << seen["refused"][0];  // no view role
+  EXPECT_EQ(seen["refused"][1]["status"], 401) << seen["refused"][1];  // no token
+  for (const auto& refused : seen["refused"]) {
+    EXPECT_EQ(refused["scene"], 0) << refused;  // nothing of the run reached it
+    EXPECT_EQ(refused["frames"], 0) << refused;
+    EXPECT_EQ(refused["form"], true) << refused;  // it asks for a token
+  }
+  ExpectProbesAtTcpWith(seen, run, admin);
+  const std::string log = ReadTextFile((dir_ / "viewer.log").string());
+  EXPECT_THAT(log, HasSubstr("refused (403)"));
+  EXPECT_THAT(log, ::testing::Not(HasSubstr("view-token-0123456789")));  // never logged
+  ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
+}
+
+// A robot whose every visual is a Collada mesh, as published ROS descriptions ship them (the
+// meshes written by the test: no third-party files), submitted with its meshes and run: the
+// page draws the viewer's triangles of each mesh in its Collada material's colour.
+TEST_F(WebViewTest, AColladaMeshedRobotIsDrawnWithItsMaterialColours) {
+  const fs::path robot = dir_ / "colladabot";
+  fs::create_directories(robot / "meshes");
+  using Eigen::Vector3d;
+  const Vector3d blue(0.2, 0.4, 0.8), red(0.9, 0.1, 0.1), green(0.1, 0.8, 0.2);
+  viewer::testing::WriteColladaBox(robot / "meshes/base.dae", Vector3d(-150, -150, 0),
+                                   Vector3d(150, 150, 200), 0.001, "Z_UP", blue);  // mm
+  viewer::testing::WriteColladaBox(robot / "meshes/arm.dae", Vector3d(-0.05, -0.05, 0),
+                                   Vector3d(0.05, 0.05, 0.5), 1.0, "Z_UP", red);
+  viewer::testing::WriteColladaBox(robot / "meshes/tool.dae", Vector3d(-0.02, -0.02, 0),
+                                   Vector3d(0.02, 0.02, 0.1), 1.0, "Z_UP", green);
+  const auto link = [](const std::string& name, const std::string& mesh) {
+    return "<link name=\"" + name + "\"><inertial><mass value=\"1\"/><inertia ixx=\"0.01\" " +
+           "iyy=\"0.01\" izz=\"0.01\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial>" +
+           (mesh.empty() ? ""
+                         : "<visual><geometry><mesh filename=\"meshes/" + mesh +
+                               "\"/></geometry></visual>") +
+           "</link>\n";
+  };
+  const auto joint = [](const std::string& name, const std::string& type, const std::string& parent,
+                        const std::string& child, const std::string& xyz) {
+    return "<joint name=\"" + name + "\" type=\"" + type + "\"><parent link=\"" + parent +
+           "\"/><child link=\"" + child + "\"/><origin xyz=\"" + xyz +
+           "\"/><axis xyz=\"0 1 0\"/><limit lower=\"-3\" upper=\"3\" effort=\"100\" " +
+           "velocity=\"5\"/></joint>\n";
+  };
+  std::ofstream(robot / "colladabot.urdf")
+      << "<robot name=\"colladabot\">\n"
+      << link("base_link", "base.dae") << link("arm", "arm.dae") << link("tool", "tool.dae")
+      << link("tcp", "") << joint("j1", "revolute", "base_link", "arm", "0 0 0.2")
+      << joint("j2", "revolute", "arm", "tool", "0 0 0.5")
+      << joint("tool_tcp", "fixed", "tool", "tcp", "0 0 0.1") << "</robot>\n";
+  const CommandOutcome submitted = Cli("submit " + (robot / "colladabot.urdf").string());
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
+  const std::string url = StartViewer("--follow --exit-after-runs 1");
+  const CommandOutcome started =
+      Cli("run colladabot --duration 20 --output-interval 0.05 --realtime 1");
+  ASSERT_EQ(started.exit_code, 0) << started.output;
+  const std::string run = started.output.substr(0, started.output.find('\n'));
+  const nlohmann::json seen = Browse(url);
+  Cli("cancel " + run);
+  PrintFigures(seen);
+  ASSERT_TRUE(seen.contains("errors")) << "the browser saw nothing";
+  EXPECT_EQ(seen.value("run", ""), run);
+  EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
+  EXPECT_GT(seen.value("drawn_fraction", 0.0), 0.005) << "the screenshot shows no robot";
+  EXPECT_EQ(seen.value("triangles", 0), 36) << "three Collada boxes of 12 triangles";
+  ASSERT_TRUE(seen["parts"].is_array()) << seen.dump().substr(0, 2000);
+  std::vector<Vector3d> colours;
+  for (const auto& part : seen["parts"]) {
+    colours.emplace_back(part["color"][0].get<double>(), part["color"][1].get<double>(),
+                         part["color"][2].get<double>());
+  }
+  for (const Vector3d& expected : {blue, red, green}) {
+    EXPECT_TRUE(std::any_of(colours.begin(), colours.end(),
+                            [&](const Vector3d& c) { return (c - expected).norm() < 0.02; }))
+        << "no part in " << expected.transpose() << ": " << seen["parts"];
+  }
+  ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
 }
 
 }  // namespace

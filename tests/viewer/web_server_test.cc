@@ -1,14 +1,24 @@
 // The --web server on its own (no viewer, no browser): the page's files and nothing else,
 // refusals of malformed and unexpected requests, the snapshot on connect, the page limit,
-// a stalled page that never slows another, and the page's replay controls.
+// a stalled page that never slows another, the page's replay controls, HTTPS/WSS with
+// --web-tls, and the token check before a page gets anything.
 #include <gmock/gmock.h>
 
 #include <boost/asio/connect.hpp>
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/ssl.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
+#include <boost/beast/ssl.hpp>
 #include <boost/beast/websocket.hpp>
+#include <boost/beast/websocket/ssl.hpp>
 
+#include <chrono>
+#include <condition_variable>
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+#include <random>
 #include <string>
 
 #include "viewer/web/web_server.h"
@@ -27,14 +37,9 @@ using ::testing::HasSubstr;
 class WebServerTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    server_ = std::make_unique<WebServer>(WebOptions{"127.0.0.1:0", MBSTREAM_WEB_ROOT, 2},
-                                          [this](const std::string& json) {
-                                            controls_.push_back(json);
-                                            return true;
-                                          });
-    server_->Start();
-    const std::string url = server_->url();
-    port_ = url.substr(url.rfind(':') + 1, url.size() - url.rfind(':') - 2);
+    WebOptions options;
+    options.max_pages = 2;
+    Restart(std::move(options));
   }
   tcp::socket Connect() {
     tcp::socket socket(ioc_);
@@ -63,9 +68,35 @@ class WebServerTest : public ::testing::Test {
     return beast::buffers_to_string(buffer.data());
   }
 
+  // Restarts the server with `options` (the root and the address as SetUp's).
+  void Restart(WebOptions options) {
+    server_.reset();
+    options.address = "127.0.0.1:0";
+    options.root = MBSTREAM_WEB_ROOT;
+    server_ = std::make_unique<WebServer>(std::move(options), [this](const std::string& json) {
+      std::lock_guard<std::mutex> lock(controls_mutex_);
+      controls_.push_back(json);
+      controls_changed_.notify_all();
+      return true;
+    });
+    server_->Start();
+    const std::string url = server_->url();
+    port_ = url.substr(url.rfind(':') + 1, url.size() - url.rfind(':') - 2);
+  }
+
+  // The controls the server passed on (its thread), once there are `count` (or 30 s passed).
+  std::vector<std::string> Controls(std::size_t count) {
+    std::unique_lock<std::mutex> lock(controls_mutex_);
+    controls_changed_.wait_for(lock, std::chrono::seconds(30),
+                               [&] { return controls_.size() >= count; });
+    return controls_;
+  }
+
   asio::io_context ioc_;
   std::unique_ptr<WebServer> server_;
   std::string port_;
+  std::mutex controls_mutex_;
+  std::condition_variable controls_changed_;
   std::vector<std::string> controls_;
 };
 
@@ -163,6 +194,137 @@ TEST(WebViewControls, ParsesThePagesControlsAndNothingElse) {
                           R"({"pause":true,"resume":true})", R"({"quit":1})", "not json"}) {
     EXPECT_FALSE(WebView::ParseControl(bad, &control)) << bad;
   }
+}
+
+// A self-signed certificate for 127.0.0.1, made by openssl (Debian's openssl) for this suite.
+class WebServerTlsTest : public WebServerTest {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ =
+        new std::filesystem::path(std::filesystem::temp_directory_path() /
+                                  ("mbstream-web-tls-" + std::to_string(std::random_device()())));
+    std::filesystem::create_directories(*dir_);
+    const std::string command =
+        "openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=127.0.0.1 "
+        "-addext subjectAltName=IP:127.0.0.1 -keyout " +
+        (*dir_ / "key.pem").string() + " -out " + (*dir_ / "cert.pem").string() +
+        " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << "openssl (Debian package openssl) failed";
+  }
+  static void TearDownTestSuite() {
+    std::filesystem::remove_all(*dir_);
+    delete dir_;
+  }
+  void SetUp() override {
+    WebOptions options;
+    options.max_pages = 2;
+    options.tls_cert_file = (*dir_ / "cert.pem").string();
+    options.tls_key_file = (*dir_ / "key.pem").string();
+    Restart(std::move(options));
+    client_.load_verify_file((*dir_ / "cert.pem").string());  // the only certificate trusted
+    client_.set_verify_mode(asio::ssl::verify_peer);
+  }
+  std::unique_ptr<beast::ssl_stream<tcp::socket>> Tls() {
+    auto stream = std::make_unique<beast::ssl_stream<tcp::socket>>(Connect(), client_);
+    stream->set_verify_callback(asio::ssl::host_name_verification("127.0.0.1"));
+    stream->handshake(asio::ssl::stream_base::client);
+    return stream;
+  }
+
+  static std::filesystem::path* dir_;
+  asio::ssl::context client_{asio::ssl::context::tls_client};
+};
+std::filesystem::path* WebServerTlsTest::dir_ = nullptr;
+
+TEST_F(WebServerTlsTest, ServesThePageOverHttpsAndTheSceneOverWss) {
+  EXPECT_EQ(server_->url().rfind("https://127.0.0.1:", 0), 0u) << server_->url();
+  auto https = Tls();  // verified against the certificate, for 127.0.0.1
+  http::request<http::string_body> request(http::verb::get, "/", 11);
+  request.set(http::field::host, "127.0.0.1");
+  http::write(*https, request);
+  beast::flat_buffer buffer;
+  http::response<http::string_body> page;
+  http::read(*https, buffer, page);
+  EXPECT_EQ(page.result(), http::status::ok);
+  EXPECT_THAT(page.body(), HasSubstr("/page.js"));
+
+  server_->SetScene(R"({"type":"scene","version":7})");
+  websocket::stream<beast::ssl_stream<tcp::socket>> wss(std::move(*Tls()));
+  wss.handshake("127.0.0.1", "/ws");
+  beast::flat_buffer message;
+  wss.read(message);
+  EXPECT_EQ(beast::buffers_to_string(message.data()), R"({"type":"scene","version":7})");
+}
+
+TEST_F(WebServerTlsTest, PlainHttpToTheTlsPortGetsNoPage) {
+  tcp::socket socket = Connect();
+  asio::write(socket, asio::buffer(std::string("GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")));
+  std::string answer(4096, '\0');
+  beast::error_code ec;
+  const std::size_t n = socket.read_some(asio::buffer(answer), ec);
+  EXPECT_EQ(answer.substr(0, n).find("HTTP/1.1 200"), std::string::npos);
+  auto https = Tls();  // and the server still answers
+  SUCCEED();
+}
+
+// Pages checked as the viewer checks them with the simulation server (here a fake check):
+// nothing before the token is admitted, a refused page is told why (401/403) and closed.
+class WebServerAccessTest : public WebServerTest {
+ protected:
+  void SetUp() override {
+    WebOptions options;
+    options.max_pages = 4;
+    options.check_access = [this](const std::string& token,
+                                  std::function<void(WebOptions::Access)> done) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        checked_.push_back(token);
+      }
+      if (token == "good") return done({});
+      if (token.empty()) return done({401, "the simulation server requires a token"});
+      return done({403, "this token may not watch runs"});
+    };
+    Restart(std::move(options));
+    server_->SetScene(R"({"type":"scene","version":3})");
+    server_->PublishFrame(R"({"type":"frame","n":1})");
+  }
+  std::vector<std::string> Checked() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return checked_;
+  }
+  std::mutex mutex_;  // the check runs on the server's thread
+  std::vector<std::string> checked_;
+};
+
+TEST_F(WebServerAccessTest, AGoodTokenGetsTheSceneAndTheFrame) {
+  auto page = Page();
+  page->write(asio::buffer(std::string(R"({"token":"good"})")));
+  EXPECT_EQ(Read(*page), R"({"type":"scene","version":3})");
+  EXPECT_EQ(Read(*page), R"({"type":"frame","n":1})");
+  page->write(asio::buffer(std::string(R"({"pause":true})")));  // controls pass after it
+  server_->PublishFrame(R"({"type":"frame","n":2})");
+  EXPECT_EQ(Read(*page), R"({"type":"frame","n":2})");
+  EXPECT_EQ(Checked(), std::vector<std::string>{"good"});
+  EXPECT_EQ(Controls(1), std::vector<std::string>{R"({"pause":true})"});
+}
+
+TEST_F(WebServerAccessTest, AWrongOrMissingTokenIsRefusedWithItsStatusAndClosed) {
+  for (const auto& [token, status] :
+       std::vector<std::pair<std::string, int>>{{"stolen", 403}, {"", 401}}) {
+    auto page = Page();
+    page->write(asio::buffer(std::string(R"({"pause":true})")));  // before the token: ignored
+    page->write(asio::buffer(R"({"token":")" + token + R"("})"));
+    const std::string denied = Read(*page);
+    EXPECT_THAT(denied, HasSubstr(R"("type":"denied")")) << token;
+    EXPECT_THAT(denied, HasSubstr(R"("status":)" + std::to_string(status))) << token;
+    EXPECT_THAT(denied, ::testing::Not(HasSubstr("scene")));
+    beast::flat_buffer buffer;
+    beast::error_code ec;
+    page->read(buffer, ec);  // the close the viewer sent
+    EXPECT_EQ(ec, websocket::error::closed) << token << ": " << ec.message();
+    EXPECT_EQ(page->reason().code, websocket::close_code::policy_error) << token;
+  }
+  EXPECT_TRUE(Controls(0).empty());  // (the refused pages' controls came before their tokens)
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "viewer/link/viewer_control_service.h"
 #include "viewer/scene/scene_error.h"
 #include "viewer/scene/view_window.h"
+#include "viewer/web/page_access.h"
 #include "viewer/web/web_view.h"
 
 namespace mbstream::viewer {
@@ -147,7 +148,12 @@ int RunLink(const LinkCommandOptions& options) {
     if (!options.link.follow)
       send = [&link](const v1::ReplayControl& c) { return link.SendControl(c); };
     try {
-      web = std::make_unique<WebView>(options.web, &status, std::move(send));
+      WebOptions web_options = options.web;  // pages need the server's view role
+      auto access = std::make_shared<PageAccess>(options.link.server, options.link.security);
+      web_options.check_access = [access](const std::string& token, auto done) {
+        access->Check(token, std::move(done));
+      };
+      web = std::make_unique<WebView>(std::move(web_options), &status, std::move(send));
     } catch (const std::exception& e) {
       std::cerr << "mbstream-viewer: " << e.what() << "\n";
       return 1;

@@ -5,6 +5,7 @@
 //                   [--speed X] [--loop] [--from-frame N] [--paused] [--compare RUN]
 //                   [--record FILE.ogv] [--snapshots DIR] [--listen ADDR] [--ca F]
 //                   [--token-file F] [--exit-after-runs N]
+//                   [--web HOST:PORT [--web-tls CERT,KEY] [--web-max-pages N]]
 // Without a server:
 //   mbstream-viewer --check FILE [--asset-dir DIR]...
 //   mbstream-viewer --scene FILE [--pose Q1,Q2,...] [--offscreen] [--snapshot OUT.png]
@@ -111,6 +112,13 @@ int main(int argc, char** argv) {
       ->default_val(32)
       ->check(CLI::Range(1, 10000))
       ->needs(web);
+  std::vector<std::string> web_tls;
+  app.add_option("--web-tls", web_tls,
+                 "Serve the pages over HTTPS/WSS with this PEM certificate and key: CERT,KEY")
+      ->delimiter(',')
+      ->expected(2)
+      ->check(CLI::ExistingFile)
+      ->needs(web);
   web->needs(server);
   run->needs(server)->excludes(follow);
   for (CLI::Option* replay_option : {speed, loop, from_seq, paused, compare}) {
@@ -141,6 +149,10 @@ int main(int argc, char** argv) {
   if (pose.pose && pose.scene_file.empty() && pose.urdf_file.empty()) {
     std::cerr << "mbstream-viewer: --pose needs --scene FILE or --urdf FILE\n";
     return 2;
+  }
+  if (web_tls.size() == 2) {
+    link.web.tls_cert_file = web_tls[0];
+    link.web.tls_key_file = web_tls[1];
   }
   if (!check_file.empty()) return mbstream::viewer::RunCheck(check_file, asset_dirs);
   if (!link.link.server.empty()) {

@@ -9,6 +9,7 @@ const state = window.mbstream = {
   frames: 0, missed: 0, viewer_frames: 0, viewer_missed: 0, probes: [], readout: [],
   ghost_distance: null, rendered: 0, latency_ms: [], scene_bytes: 0, frame_bytes: 0,
   record: null,  // a test sets [] to get {seq, t, probes} of every frame drawn from then on
+  denied: null,  // {status, message} when the viewer refused this page's token
 };
 
 const view = document.getElementById('view');
@@ -95,6 +96,7 @@ function onScene(message) {
   state.scene = message.version;
   state.title = message.title;
   state.triangles = message.parts.reduce((n, p) => n + p.triangles, 0);
+  state.parts = message.parts.map((p) => ({ frame: p.frame, color: p.color, triangles: p.triangles }));
 }
 
 function setMatrices(groups, m) {
@@ -158,7 +160,8 @@ function updateHud() {
     lines.push(`ghost ${state.compare}  |TCP - ghost| ${(1e3 * state.ghost_distance).toPrecision(3)} mm` +
                `  max ${(1e3 * state.ghost_distance_max).toPrecision(3)} mm`);
   }
-  if (!state.connected) lines.push('disconnected: reconnecting...');
+  if (state.denied) lines.push(`refused (${state.denied.status}): ${state.denied.message}`);
+  else if (!state.connected) lines.push('disconnected: reconnecting...');
   hud.textContent = lines.join('\n');
 }
 
@@ -190,23 +193,58 @@ window.addEventListener('keydown', (e) => {
 });
 state.send = send;
 
+// ---- Access: the viewer checks a token with the simulation server before it sends anything.
+// The token comes in the URL fragment (#token=..., never sent to a server, so never in a log)
+// or from the form; it is kept for this tab only and taken off the address bar.
+const TOKEN_KEY = 'mbstream-token';
+const fragment = new URLSearchParams(location.hash.slice(1));
+if (fragment.has('token')) {
+  sessionStorage.setItem(TOKEN_KEY, fragment.get('token'));
+  history.replaceState(null, '', location.pathname + location.search);
+}
+const login = document.getElementById('login');
+let denied = false;  // wait for the form rather than reconnect
+login.onsubmit = (event) => {
+  event.preventDefault();
+  sessionStorage.setItem(TOKEN_KEY, document.getElementById('token').value.trim());
+  login.hidden = true;
+  denied = false;
+  if (!socket || socket.readyState === WebSocket.CLOSED) connect();
+};
+function onDenied(message) {
+  state.denied = { status: message.status, message: message.message };
+  if (message.status === 503) return;  // the check failed, not the token: try again
+  denied = true;
+  document.getElementById('login-why').textContent = message.message;
+  login.hidden = false;
+  document.getElementById('token').focus();
+}
+
 // ---- The stream: the scene once per model, then the newest frame; reconnects.
 function connect() {
   socket = new WebSocket(`${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/ws`);
-  socket.onopen = () => { state.connected = true; lastNumber = 0; updateHud(); };
+  socket.onopen = () => {
+    socket.send(JSON.stringify({ token: sessionStorage.getItem(TOKEN_KEY) || '' }));
+    state.connected = true;
+    lastNumber = 0;
+    updateHud();
+  };
   socket.onclose = () => {
     state.connected = false;
     updateHud();
-    setTimeout(connect, 1000);
+    if (!denied) setTimeout(connect, 1000);
   };
   socket.onmessage = (event) => {
     const message = JSON.parse(event.data);
     if (message.type === 'scene') {
+      state.denied = null;
       state.scene_bytes = event.data.length;
       onScene(message);
     } else if (message.type === 'frame') {
       state.frame_bytes = event.data.length;
       onFrame(message);
+    } else if (message.type === 'denied') {
+      onDenied(message);
     }
   };
 }

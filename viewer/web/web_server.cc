@@ -3,10 +3,15 @@
 #include <spdlog/spdlog.h>
 
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/ssl.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <boost/asio/strand.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
+#include <boost/beast/ssl.hpp>
 #include <boost/beast/websocket.hpp>
+#include <boost/beast/websocket/ssl.hpp>
+#include <nlohmann/json.hpp>
 
 #include <atomic>
 #include <fstream>
@@ -16,6 +21,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 
 namespace mbstream::viewer {
 
@@ -30,6 +36,7 @@ namespace {
 constexpr std::size_t kMaxRequestBytes = 8 * 1024;
 constexpr std::size_t kMaxMessageBytes = 4 * 1024;
 constexpr auto kHttpTimeout = std::chrono::seconds(30);
+constexpr auto kTokenTimeout = std::chrono::seconds(10);  // from a page's open to its token
 
 // URL path -> file under the root; empty when the path is not one of the page's files.
 std::filesystem::path FileFor(const std::filesystem::path& root, std::string_view target) {
@@ -64,42 +71,68 @@ std::string Endpoint(const tcp::socket& socket) {
 }  // namespace
 
 struct WebServer::Impl : std::enable_shared_from_this<WebServer::Impl> {
+  // One page's WebSocket, plain or TLS (PageSession below).
+  class Page {
+   public:
+    virtual ~Page() = default;
+    // Any thread: a message to send (the scene replaces everything waiting).
+    virtual void Send(std::shared_ptr<const std::string> message, bool is_scene) = 0;
+  };
+
   WebOptions options;
   OnControl on_control;
   asio::io_context ioc{1};
+  std::optional<asio::ssl::context> tls;  // with --web-tls
   tcp::acceptor acceptor{ioc};
   std::thread thread;
   std::atomic<int> pages{0};
 
-  class Page;
   std::mutex mutex;  // guards the fields below
   std::set<std::shared_ptr<Page>> open;
   std::shared_ptr<const std::string> scene, frame;
 
   void Accept();
-  void Serve(tcp::socket socket);
   void Publish(std::shared_ptr<const std::string> message, bool is_scene);
 };
 
-// One page's WebSocket: the scene, then the newest frame, never a queue.
-class WebServer::Impl::Page : public std::enable_shared_from_this<Page> {
+namespace {
+
+using PlainStream = beast::tcp_stream;
+using TlsStream = beast::ssl_stream<beast::tcp_stream>;
+
+// The token message a page sends first when pages are checked: {"token":"..."}.
+std::optional<std::string> TokenIn(const std::string& text) {
+  const nlohmann::json message = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (!message.is_object() || message.size() != 1 || !message.contains("token") ||
+      !message["token"].is_string()) {
+    return std::nullopt;
+  }
+  return message["token"].get<std::string>();
+}
+
+// One page's WebSocket: (when pages are checked) its token, then the scene, then the newest
+// frame, never a queue.
+template <class Stream>
+class PageSession : public WebServer::Impl::Page,
+                    public std::enable_shared_from_this<PageSession<Stream>> {
  public:
-  Page(std::shared_ptr<Impl> server, tcp::socket socket)
+  PageSession(std::shared_ptr<WebServer::Impl> server, Stream stream, std::string peer)
       : server_(std::move(server)),
-        ws_(std::move(socket)),
-        peer_(Endpoint(ws_.next_layer().socket())) {}
+        ws_(std::move(stream)),
+        peer_(std::move(peer)),
+        token_timer_(ws_.get_executor()) {}
 
   void Open(http::request<http::string_body> request) {
     beast::error_code ignored;  // frames are small: no Nagle delay behind a delayed ACK
-    ws_.next_layer().socket().set_option(tcp::no_delay(true), ignored);
+    beast::get_lowest_layer(ws_).socket().set_option(tcp::no_delay(true), ignored);
+    beast::get_lowest_layer(ws_).expires_never();  // the WebSocket's own timeouts from here
     ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
     ws_.read_message_max(kMaxMessageBytes);
-    ws_.async_accept(request, beast::bind_front_handler(&Page::OnOpen, shared_from_this()));
+    ws_.async_accept(request, beast::bind_front_handler(&PageSession::OnOpen, Self()));
   }
 
-  // On the page's strand: a message to send (the scene replaces everything waiting).
-  void Send(std::shared_ptr<const std::string> message, bool is_scene) {
-    asio::post(ws_.get_executor(), [self = shared_from_this(), message, is_scene] {
+  void Send(std::shared_ptr<const std::string> message, bool is_scene) override {
+    asio::post(ws_.get_executor(), [self = Self(), message, is_scene] {
       if (is_scene) {
         self->scene_ = message;
         self->frame_.reset();
@@ -111,15 +144,33 @@ class WebServer::Impl::Page : public std::enable_shared_from_this<Page> {
   }
 
  private:
+  std::shared_ptr<PageSession> Self() { return this->shared_from_this(); }
+
   void OnOpen(beast::error_code ec) {
     if (ec) {
       spdlog::warn("web: page {}: WebSocket handshake failed: {}", peer_, ec.message());
       return Closed();
     }
+    if (!server_->options.check_access) {
+      Admit();
+    } else {
+      token_timer_.expires_after(kTokenTimeout);
+      token_timer_.async_wait([self = Self()](beast::error_code timer_ec) {
+        if (timer_ec || self->admitted_ || self->checking_ || self->closed_) return;
+        self->Deny({401, "no token message within " + std::to_string(kTokenTimeout.count()) +
+                             " s of opening"});
+      });
+    }
+    Read();
+  }
+
+  // The page may have what the other pages have: it joins them, with the snapshot.
+  void Admit() {
+    admitted_ = true;
     std::shared_ptr<const std::string> scene, frame;
     {
       std::lock_guard<std::mutex> lock(server_->mutex);
-      server_->open.insert(shared_from_this());
+      server_->open.insert(Self());
       scene = server_->scene;
       frame = server_->frame;
     }
@@ -127,31 +178,66 @@ class WebServer::Impl::Page : public std::enable_shared_from_this<Page> {
     if (scene) scene_ = scene;  // the snapshot: what the other pages show now
     if (frame) frame_ = frame;
     Write();
-    Read();
+  }
+
+  void OnToken(const std::string& token) {
+    checking_ = true;
+    token_timer_.cancel();
+    server_->options.check_access(token, [self = Self()](WebOptions::Access access) {
+      asio::post(self->ws_.get_executor(), [self, access] {
+        self->checking_ = false;
+        if (self->closed_) return;
+        if (access.status != 0) return self->Deny(access);
+        self->Admit();
+      });
+    });
+  }
+
+  // Tells the page why, then closes (1008: policy); the page asks for a token on 401/403.
+  void Deny(const WebOptions::Access& access) {
+    spdlog::warn("web: page {} refused ({}): {}", peer_, access.status, access.message);
+    denied_ = std::make_shared<const std::string>(nlohmann::json{
+        {"type", "denied"},
+        {"status", access.status},
+        {"message", access.message}}.dump());
+    scene_.reset();
+    frame_.reset();
+    if (!writing_) Write();
   }
 
   void Write() {
     if (writing_ || closed_) return;
+    if (denied_) {
+      writing_ = true;
+      ws_.text(true);
+      ws_.async_write(asio::buffer(*denied_), [self = Self()](beast::error_code ec, std::size_t) {
+        if (ec) return self->Closed();
+        self->ws_.async_close(
+            websocket::close_reason(websocket::close_code::policy_error, "access denied"),
+            [self](beast::error_code) { self->Closed(); });
+      });
+      return;
+    }
+    if (!admitted_) return;
     std::shared_ptr<const std::string> next = scene_ ? scene_ : frame_;
     if (!next) return;
     (scene_ ? scene_ : frame_).reset();
     writing_ = true;
     sending_ = next;
     ws_.text(true);
-    ws_.async_write(
-        asio::buffer(*sending_), [self = shared_from_this()](beast::error_code ec, std::size_t) {
-          self->writing_ = false;
-          self->sending_.reset();
-          if (ec) {
-            spdlog::info("web: page {} closed while sending: {}", self->peer_, ec.message());
-            return self->Closed();
-          }
-          self->Write();
-        });
+    ws_.async_write(asio::buffer(*sending_), [self = Self()](beast::error_code ec, std::size_t) {
+      self->writing_ = false;
+      self->sending_.reset();
+      if (ec) {
+        spdlog::info("web: page {} closed while sending: {}", self->peer_, ec.message());
+        return self->Closed();
+      }
+      self->Write();
+    });
   }
 
   void Read() {
-    ws_.async_read(buffer_, [self = shared_from_this()](beast::error_code ec, std::size_t) {
+    ws_.async_read(buffer_, [self = Self()](beast::error_code ec, std::size_t) {
       if (ec) {
         if (ec == websocket::error::message_too_big) {
           spdlog::warn("web: page {} sent a message over {} bytes: closed", self->peer_,
@@ -165,48 +251,85 @@ class WebServer::Impl::Page : public std::enable_shared_from_this<Page> {
       }
       const std::string text = beast::buffers_to_string(self->buffer_.data());
       self->buffer_.consume(self->buffer_.size());
-      if (!self->ws_.got_text() || !self->server_->on_control || !self->server_->on_control(text)) {
-        spdlog::warn("web: page {}: control '{}' not applied", self->peer_, text.substr(0, 200));
-      }
+      self->OnMessage(text);
       self->Read();
     });
+  }
+
+  void OnMessage(const std::string& text) {
+    const std::optional<std::string> token = ws_.got_text() ? TokenIn(text) : std::nullopt;
+    if (!server_->options.check_access) {
+      if (token) return;  // pages are not checked: the token is not needed
+    } else if (!admitted_) {
+      if (token && !checking_ && !denied_) return OnToken(*token);
+      spdlog::warn("web: page {}: a message before its token was checked: ignored", peer_);
+      return;
+    }
+    if (token) return;  // a page that sent its token again (reconnect logic): nothing to do
+    if (!ws_.got_text() || !server_->on_control || !server_->on_control(text)) {
+      spdlog::warn("web: page {}: control '{}' not applied", peer_, text.substr(0, 200));
+    }
   }
 
   void Closed() {
     if (closed_) return;
     closed_ = true;
+    token_timer_.cancel();
     --server_->pages;
     std::lock_guard<std::mutex> lock(server_->mutex);
-    server_->open.erase(shared_from_this());
+    server_->open.erase(Self());
   }
 
-  std::shared_ptr<Impl> server_;
-  websocket::stream<beast::tcp_stream> ws_;
+  std::shared_ptr<WebServer::Impl> server_;
+  websocket::stream<Stream> ws_;
   std::string peer_;
+  asio::steady_timer token_timer_;
   beast::flat_buffer buffer_;
-  std::shared_ptr<const std::string> scene_, frame_, sending_;
+  std::shared_ptr<const std::string> scene_, frame_, sending_, denied_;
+  bool admitted_ = false;  // may get the scene and frames
+  bool checking_ = false;  // its token is being checked
   bool writing_ = false;
   bool closed_ = false;
 };
 
-namespace {
-
-// One HTTP connection: files, or the upgrade to a page's WebSocket.
-class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
+// One HTTP connection (after the TLS handshake with --web-tls): files, or the upgrade to a
+// page's WebSocket.
+template <class Stream>
+class HttpConnection : public std::enable_shared_from_this<HttpConnection<Stream>> {
  public:
-  HttpConnection(std::shared_ptr<WebServer::Impl> server, tcp::socket socket)
-      : server_(std::move(server)), stream_(std::move(socket)), peer_(Endpoint(stream_.socket())) {}
+  static constexpr bool kTls = std::is_same_v<Stream, TlsStream>;
+
+  HttpConnection(std::shared_ptr<WebServer::Impl> server, Stream stream, std::string peer)
+      : server_(std::move(server)), stream_(std::move(stream)), peer_(std::move(peer)) {}
+
+  void Start() {
+    if constexpr (kTls) {
+      beast::get_lowest_layer(stream_).expires_after(kHttpTimeout);
+      stream_.async_handshake(
+          asio::ssl::stream_base::server, [self = Self()](beast::error_code ec) {
+            if (ec) {
+              spdlog::warn("web: {}: TLS handshake failed: {}", self->peer_, ec.message());
+              return;
+            }
+            self->Read();
+          });
+    } else {
+      Read();
+    }
+  }
+
+ private:
+  std::shared_ptr<HttpConnection> Self() { return this->shared_from_this(); }
 
   void Read() {
     parser_.emplace();
     parser_->header_limit(kMaxRequestBytes);
     parser_->body_limit(kMaxRequestBytes);
-    stream_.expires_after(kHttpTimeout);
+    beast::get_lowest_layer(stream_).expires_after(kHttpTimeout);
     http::async_read(stream_, buffer_, *parser_,
-                     beast::bind_front_handler(&HttpConnection::OnRead, shared_from_this()));
+                     beast::bind_front_handler(&HttpConnection::OnRead, Self()));
   }
 
- private:
   void OnRead(beast::error_code ec, std::size_t) {
     if (ec == http::error::end_of_stream) return Shut();
     if (ec) {
@@ -231,8 +354,7 @@ class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
                          ", mbstream-viewer --web-max-pages)\n",
                      false);
       }
-      stream_.expires_never();
-      auto page = std::make_shared<WebServer::Impl::Page>(server_, stream_.release_socket());
+      auto page = std::make_shared<PageSession<Stream>>(server_, std::move(stream_), peer_);
       page->Open(std::move(request));
       return;
     }
@@ -268,9 +390,9 @@ class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
   }
 
   void Send(std::shared_ptr<http::response<http::string_body>> response) {
-    stream_.expires_after(kHttpTimeout);
+    beast::get_lowest_layer(stream_).expires_after(kHttpTimeout);
     http::async_write(stream_, *response,
-                      [self = shared_from_this(), response](beast::error_code ec, std::size_t) {
+                      [self = Self(), response](beast::error_code ec, std::size_t) {
                         if (ec) return self->Shut();
                         if (!response->keep_alive()) return self->Shut();
                         self->Read();
@@ -278,12 +400,17 @@ class HttpConnection : public std::enable_shared_from_this<HttpConnection> {
   }
 
   void Shut() {
-    beast::error_code ignored;
-    stream_.socket().shutdown(tcp::socket::shutdown_send, ignored);
+    if constexpr (kTls) {
+      beast::get_lowest_layer(stream_).expires_after(kHttpTimeout);
+      stream_.async_shutdown([self = Self()](beast::error_code) {});
+    } else {
+      beast::error_code ignored;
+      stream_.socket().shutdown(tcp::socket::shutdown_send, ignored);
+    }
   }
 
   std::shared_ptr<WebServer::Impl> server_;
-  beast::tcp_stream stream_;
+  Stream stream_;
   std::string peer_;
   beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;
@@ -298,7 +425,16 @@ void WebServer::Impl::Accept() {
                           if (ec) {
                             spdlog::warn("web: accept: {}", ec.message());
                           } else {
-                            std::make_shared<HttpConnection>(self, std::move(socket))->Read();
+                            std::string peer = Endpoint(socket);
+                            if (self->tls) {
+                              std::make_shared<HttpConnection<TlsStream>>(
+                                  self, TlsStream(std::move(socket), *self->tls), std::move(peer))
+                                  ->Start();
+                            } else {
+                              std::make_shared<HttpConnection<PlainStream>>(
+                                  self, PlainStream(std::move(socket)), std::move(peer))
+                                  ->Start();
+                            }
                           }
                           self->Accept();
                         });
@@ -324,6 +460,27 @@ WebServer::WebServer(WebOptions options, OnControl on_control) : impl_(std::make
                              " (index.html, and three.js from 'npm ci' there: run "
                              "scripts/setup.sh, or give --web-root DIR)");
   }
+  const WebOptions& o = impl_->options;
+  if (!o.tls_cert_file.empty() || !o.tls_key_file.empty()) {
+    if (o.tls_cert_file.empty() || o.tls_key_file.empty()) {
+      throw std::runtime_error("--web-tls needs both files: CERT,KEY (PEM)");
+    }
+    asio::ssl::context& tls = impl_->tls.emplace(asio::ssl::context::tls_server);
+    tls.set_options(asio::ssl::context::default_workarounds | asio::ssl::context::no_sslv2 |
+                    asio::ssl::context::no_sslv3 | asio::ssl::context::no_tlsv1 |
+                    asio::ssl::context::no_tlsv1_1);
+    beast::error_code tls_ec;
+    tls.use_certificate_chain_file(o.tls_cert_file, tls_ec);
+    if (tls_ec) {
+      throw std::runtime_error("--web-tls: cannot use the certificate " + o.tls_cert_file + ": " +
+                               tls_ec.message() + " (a PEM certificate chain)");
+    }
+    tls.use_private_key_file(o.tls_key_file, asio::ssl::context::pem, tls_ec);
+    if (tls_ec) {
+      throw std::runtime_error("--web-tls: cannot use the key " + o.tls_key_file + ": " +
+                               tls_ec.message() + " (the certificate's PEM private key)");
+    }
+  }
   const std::string& address = impl_->options.address;
   const std::size_t colon = address.rfind(':');
   if (colon == std::string::npos || colon == 0) {
@@ -347,6 +504,12 @@ WebServer::WebServer(WebOptions options, OnControl on_control) : impl_(std::make
   if (!ec) acceptor.bind(endpoint, ec);
   if (!ec) acceptor.listen(asio::socket_base::max_listen_connections, ec);
   if (ec) throw std::runtime_error("--web " + address + ": cannot listen: " + ec.message());
+  if (!impl_->tls && !endpoint.address().is_loopback()) {
+    spdlog::warn(
+        "web: serving {} without --web-tls: the pages' tokens and the run cross the network in "
+        "the clear; give --web-tls CERT,KEY (deploy/make-secrets.sh writes one)",
+        address);
+  }
 }
 
 WebServer::~WebServer() { Stop(); }
@@ -355,7 +518,8 @@ std::string WebServer::url() const {
   const tcp::endpoint local = impl_->acceptor.local_endpoint();
   std::string host = local.address().to_string();
   if (local.address().is_v6()) host = "[" + host + "]";
-  return "http://" + host + ":" + std::to_string(local.port()) + "/";
+  return std::string(impl_->tls ? "https://" : "http://") + host + ":" +
+         std::to_string(local.port()) + "/";
 }
 
 void WebServer::Start() {

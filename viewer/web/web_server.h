@@ -8,6 +8,13 @@
 // methods other than GET and HEAD, paths outside the page's files, more than `max_pages`
 // sockets (HTTP 503), WebSocket messages over 4 KiB or not JSON controls, idle or stalled
 // connections (Beast's server timeouts: 30 s for HTTP, pings for WebSockets).
+//
+// With `tls_cert_file`/`tls_key_file` (mbstream-viewer --web-tls CERT,KEY) everything is HTTPS
+// and WSS (OpenSSL through Boost.Beast's ssl_stream); a plain-HTTP client fails the handshake.
+// With `check_access`, a page's first WebSocket message must be {"token":"..."} (the page
+// takes it from its URL fragment, which never reaches a server log, or asks for it); nothing
+// is sent to the page until the check admits it, and a refused page gets
+// {"type":"denied","status":401|403|503,"message":...} and a close (1008, policy).
 #pragma once
 
 #include <cstdint>
@@ -22,6 +29,18 @@ struct WebOptions {
   std::string address;         // HOST:PORT; port 0 = any free port
   std::filesystem::path root;  // the page: index.html, page.js, node_modules/three/
   int max_pages = 32;          // open WebSockets at once
+  std::string tls_cert_file;   // PEM certificate chain; empty = plain HTTP
+  std::string tls_key_file;    // its PEM private key
+
+  // A page's verdict: status 0 admits it; 401 (no or unknown token), 403 (not allowed) or
+  // 503 (could not check) refuse it with `message`.
+  struct Access {
+    int status = 0;
+    std::string message;
+  };
+  // Checks a page's token (maybe empty); calls `done` once, on any thread. Empty = every page
+  // is admitted without a token message.
+  std::function<void(const std::string& token, std::function<void(Access)> done)> check_access;
 };
 
 class WebServer {
@@ -37,7 +56,7 @@ class WebServer {
   WebServer(const WebServer&) = delete;
   WebServer& operator=(const WebServer&) = delete;
 
-  // http://HOST:PORT/ with the port bound.
+  // http://HOST:PORT/ (https:// with TLS) with the port bound.
   std::string url() const;
   // Serves on a thread of its own until Stop().
   void Start();
