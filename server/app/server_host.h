@@ -76,6 +76,7 @@ class ServerHost {
   // runs integrating here to end; then Shutdown(), which hands back (re-queues when the spec
   // has retries left, else INTERRUPTED) what still runs.
   void Drain();
+  double grace_s() const { return grace_s_; }  // the drain's limit (config.grace_s)
   // Blocks until Shutdown() has been called (by another thread).
   void Wait();
 

@@ -62,12 +62,18 @@ void ServeUntilSignalled(ServerHost& host, const sigset_t& signals, StopWatchdog
     int signal = 0;
     sigwait(&signals, &signal);
     spdlog::info("signal {} received", signal == SIGINT ? "SIGINT" : "SIGTERM");
-    if (signal == SIGTERM) host.Drain();
     // A stop is at once: a handler that outlives gRPC's 2 s shutdown deadline (a request
-    // still being served) must not hold the process, and a second signal ends it now. The
-    // store stays consistent (SQLite's journal, PostgreSQL's transactions; runs are marked
-    // INTERRUPTED at the next start).
-    watchdog.Arm(signals, std::chrono::seconds(5));
+    // still being served) must not hold the process, and a second signal ends it now, during
+    // a drain's grace period too. The store stays consistent (SQLite's journal, PostgreSQL's
+    // transactions; runs are marked INTERRUPTED at the next start).
+    constexpr std::chrono::milliseconds kShutdownLimit{5000};
+    if (signal == SIGTERM) {
+      watchdog.Arm(signals, kShutdownLimit + std::chrono::milliseconds(
+                                                 static_cast<int64_t>(1000.0 * host.grace_s())));
+      host.Drain();
+    } else {
+      watchdog.Arm(signals, kShutdownLimit);
+    }
     host.Shutdown();
   });
   host.Wait();

@@ -1,6 +1,7 @@
 // How mbstream-server stops: SIGTERM drains (its runs get --grace-s to end), SIGINT stops
-// at once (runs INTERRUPTED); a second signal, or 5 s after the shutdown began, exits
-// without waiting for requests still being served.
+// at once (runs INTERRUPTED); a second signal (during a drain too), or 5 s after the
+// shutdown began (after the drain's grace period), exits without waiting for requests still
+// being served.
 #pragma once
 
 #include <pthread.h>
@@ -38,7 +39,8 @@ class StopWatchdog {
   int wake_signal_ = 0;
 };
 
-// Serves until `signals` arrive, then arms `watchdog` (5 s) and drains or shuts `host` down;
+// Serves until `signals` arrive, then arms `watchdog` (5 s, plus the grace period for a
+// drain) and drains or shuts `host` down;
 // returns when it stopped. Keep `watchdog` alive until the host is destroyed.
 void ServeUntilSignalled(ServerHost& host, const sigset_t& signals, StopWatchdog& watchdog);
 

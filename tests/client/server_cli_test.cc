@@ -1,6 +1,9 @@
 // mbstream-server and the mbstream CLI as a user runs them: real processes on loopback,
 // real files, exit codes; a crash and a restart; reproducible results.
 #include <gmock/gmock.h>
+#include <sys/wait.h>
+
+#include <csignal>
 
 #include <filesystem>
 #include <fstream>
@@ -133,6 +136,27 @@ TEST_F(ServerCliTest, KilledServerRestartsWithEveryModelAndRunAndTheInterruptedO
   EXPECT_EQ(Cli("result " + slow_id + " --out " + Out("interrupted")).exit_code, 1);
   EXPECT_THAT(ReadFile(dir_ / "interrupted" / "stats.json"),
               HasSubstr("\"status\": \"INTERRUPTED\""));
+}
+
+// A second signal during a drain's grace period ends the server at once (status 1): the run
+// the drain waits for is cut short, and the next start marks it INTERRUPTED.
+TEST_F(ServerCliTest, ASecondSignalDuringADrainEndsTheServerAtOnce) {
+  StartServer({"--grace-s", "600"});
+  const CommandOutcome slow = Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 1");
+  ASSERT_EQ(slow.exit_code, 0) << slow.output;
+  const std::string slow_id = FirstLine(slow.output);
+  ASSERT_TRUE(WaitForLineIn(server_->log_path(), "run " + slow_id + " started"));
+  ASSERT_EQ(kill(server_->pid(), SIGTERM), 0);
+  ASSERT_TRUE(WaitForLineIn(server_->log_path(), "signal SIGTERM received"));
+  const int status = server_->Stop();  // SIGINT, the second signal
+  ASSERT_TRUE(WIFEXITED(status)) << status;
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_THAT(ReadFile(server_->log_path()), HasSubstr("a second signal; exiting"));
+
+  StartServer();
+  const CommandOutcome runs = Cli("runs");
+  ASSERT_EQ(runs.exit_code, 0) << runs.output;
+  EXPECT_THAT(runs.output, ::testing::ContainsRegex(slow_id + " +irb1600 +INTERRUPTED"));
 }
 
 std::string LastLine(const std::string& text) {
