@@ -28,6 +28,8 @@ PACKAGES=(
   # mbstream-viewer --web: Boost.Beast (HTTP, WebSocket); node for `npm ci` in viewer/web
   # (three.js, served to the pages; playwright-core for the test), chromium for the test
   libboost-dev nodejs chromium
+  # MCAP export (server/mcap): zstd and lz4 chunks, zlib for the CRCs
+  libzstd-dev liblz4-dev zlib1g-dev
   # python client and charts (Debian's, for /usr/bin/python3); installing the package
   # (client/python: pip install --no-build-isolation --no-deps) needs setuptools, pip, venv;
   # tqdm (progress bars) and pandas (Result.to_pandas) are optional, here so tests cover them;
