@@ -103,6 +103,16 @@ if [ ! -f "$web/node_modules/.mbstream-installed" ] ||
   touch "$web/node_modules/.mbstream-installed"
 fi
 
+# The MCAP export's independent reader (tests/server/mcap/reader: @mcap/core, Foxglove's zstd
+# and lz4 decompressors), pinned by its package-lock.json, as viewer/web's above.
+mcap_reader="$(dirname "${BASH_SOURCE[0]}")/../tests/server/mcap/reader"
+if [ ! -f "$mcap_reader/node_modules/.mbstream-installed" ] ||
+   [ "$mcap_reader/package-lock.json" -nt "$mcap_reader/node_modules/.mbstream-installed" ]; then
+  echo "setup: npm ci in tests/server/mcap/reader (@mcap/core for the MCAP export's tests)"
+  (cd "$mcap_reader" && npm ci --no-audit --no-fund --loglevel=error) >/dev/null
+  touch "$mcap_reader/node_modules/.mbstream-installed"
+fi
+
 # SUNDIALS 6.4.1 with optimisation, from Debian's source package, into a per-user cache that
 # CMake prefers (about a minute on 2 cores the first time; instant once cached). Debian's
 # libsundials-dev above stays the fallback when the source can't be fetched or built.

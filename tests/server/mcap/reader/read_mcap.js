@@ -1,0 +1,196 @@
+// An independent reader of mbstream's MCAP export (tests/server/mcap/mcap_export_test.cc):
+// @mcap/core reads FILE through its summary (schemas, channels, statistics, chunk indexes) and
+// streams it whole, checking every CRC (chunks, data section, summary); a small CDR decoder
+// reads /joint_states and /tf, and every joint value is compared, bit for bit, with the
+// results directory's CSV files.
+//   node read_mcap.js FILE.mcap RESULTS_DIR START_NS MODEL_FILE
+// Prints one JSON object (what was read) and exits 0, or prints the first difference and
+// exits 1.
+"use strict";
+const fs = require("fs");
+const path = require("path");
+const { McapIndexedReader, McapStreamReader } = require("@mcap/core");
+const { crc32 } = require("@foxglove/crc");
+const zstd = require("@foxglove/wasm-zstd");
+const lz4 = require("@foxglove/wasm-lz4");
+
+function fail(message) {
+  console.log(`MISMATCH: ${message}`);
+  process.exit(1);
+}
+
+// Plain CDR, little-endian, aligned from the end of the 4-byte encapsulation header.
+class CdrReader {
+  constructor(bytes) {
+    if (bytes[0] !== 0 || bytes[1] !== 1) fail(`encapsulation ${bytes[0]} ${bytes[1]}: not CDR_LE`);
+    this.view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+    this.bytes = bytes;
+    this.at = 4;
+  }
+  align(n) {
+    this.at += (n - ((this.at - 4) % n)) % n;
+  }
+  int32() { this.align(4); const v = this.view.getInt32(this.at, true); this.at += 4; return v; }
+  uint32() { this.align(4); const v = this.view.getUint32(this.at, true); this.at += 4; return v; }
+  float64() { this.align(8); const v = this.view.getFloat64(this.at, true); this.at += 8; return v; }
+  string() {
+    const length = this.uint32();
+    if (length === 0 || this.bytes[this.at + length - 1] !== 0) fail("a CDR string without its NUL");
+    const text = Buffer.from(this.bytes.subarray(this.at, this.at + length - 1)).toString("utf8");
+    this.at += length;
+    return text;
+  }
+  float64s() { const n = this.uint32(); const out = []; for (let i = 0; i < n; i++) out.push(this.float64()); return out; }
+  strings() { const n = this.uint32(); const out = []; for (let i = 0; i < n; i++) out.push(this.string()); return out; }
+  header() { return { sec: this.int32(), nanosec: this.uint32(), frame_id: this.string() }; }
+  end() { if (this.at !== this.bytes.length) fail(`CDR: ${this.bytes.length - this.at} bytes left over`); }
+}
+
+function readCsv(file) {
+  if (!fs.existsSync(file)) return null;
+  const lines = fs.readFileSync(file, "utf8").trim().split("\n");
+  return { header: lines[0].split(","), rows: lines.slice(1).map((l) => l.split(",").map(Number)) };
+}
+
+function same(a, b) {
+  return Object.is(a, b);  // bit for bit, -0 and NaN included
+}
+
+async function main() {
+  const [file, resultsDir, startText, modelFile] = process.argv.slice(2);
+  const startNs = BigInt(startText);
+  await zstd.isLoaded;
+  await lz4.isLoaded;
+  const decompressHandlers = {
+    zstd: (buffer, size) => zstd.decompress(buffer, Number(size)),
+    lz4: (buffer, size) => lz4(buffer, Number(size)),
+  };
+  const bytes = fs.readFileSync(file);
+
+  // 1. Streamed whole: chunk CRCs, the data section's CRC against DataEnd, every record.
+  const stream = new McapStreamReader({ decompressHandlers, validateCrcs: true, noMagicPrefix: false });
+  stream.append(bytes);
+  const counts = {};
+  let record;
+  let dataEndCrc = null;
+  let dataEndOffset = null;
+  while ((record = stream.nextRecord())) {
+    counts[record.type] = (counts[record.type] || 0) + 1;
+    if (record.type === "DataEnd") dataEndCrc = record.dataSectionCrc;
+  }
+  if (!stream.done()) fail("the stream reader did not reach the end of the file");
+  // DataEnd is 13 bytes; the summary starts right after it (the footer says where).
+  const summaryStart = Number(bytes.readBigUInt64LE(bytes.length - 8 - 29 + 9));
+  dataEndOffset = summaryStart - 13;
+  if (bytes[dataEndOffset] !== 0x0f) fail("no DataEnd record before the summary");
+  const dataCrc = crc32(bytes.subarray(0, dataEndOffset));
+  if (dataEndCrc !== dataCrc) fail(`data section CRC ${dataEndCrc}, recomputed ${dataCrc}`);
+
+  // 2. Through the summary: schemas, channels, statistics, chunk indexes (summary CRC checked).
+  const reader = await McapIndexedReader.Initialize({
+    readable: {
+      size: async () => BigInt(bytes.length),
+      read: async (offset, length) => bytes.subarray(Number(offset), Number(offset + length)),
+    },
+    decompressHandlers,
+  });
+  if (reader.header.profile !== "ros2") fail(`profile "${reader.header.profile}"`);
+  const topics = {};
+  for (const channel of reader.channelsById.values()) {
+    const schema = reader.schemasById.get(channel.schemaId);
+    topics[channel.topic] = { schema: schema.name, schemaEncoding: schema.encoding, messageEncoding: channel.messageEncoding };
+  }
+  if (reader.chunkIndexes.length === 0) fail("no chunk index");
+  for (const index of reader.chunkIndexes) {
+    if (index.compressedSize === 0n || index.messageIndexOffsets.size === 0) fail("an empty chunk index");
+  }
+
+  // 3. Every message in log-time order, CRCs validated, against the CSV files.
+  const joints = readCsv(path.join(resultsDir, "joints.csv"));
+  const velocities = readCsv(path.join(resultsDir, "velocities.csv"));
+  const torques = readCsv(path.join(resultsDir, "torques.csv"));
+  const names = joints.header.slice(1);
+  const topicOf = (id) => reader.channelsById.get(id).topic;
+  let frame = 0, tfFrame = 0, lastLogTime = -1n;
+  const seen = {};
+  let tfChildren = null, staticChildren = null, robotDescription = null, stats = null;
+  for await (const message of reader.readMessages({ validateCrcs: true })) {
+    const topic = topicOf(message.channelId);
+    seen[topic] = (seen[topic] || 0) + 1;
+    if (message.logTime < lastLogTime) fail("messages out of log-time order");
+    lastLogTime = message.logTime;
+    if (topic === "/joint_states") {
+      const cdr = new CdrReader(message.data);
+      const header = cdr.header();
+      const stampNs = BigInt(header.sec) * 1000000000n + BigInt(header.nanosec);
+      if (stampNs !== message.logTime) fail(`frame ${frame}: stamp ${stampNs} != log time ${message.logTime}`);
+      const row = joints.rows[frame];
+      if (!row) fail(`more JointState messages than rows of joints.csv (${joints.rows.length})`);
+      const expectedNs = startNs + BigInt(Math.round(row[0] * 1e9));
+      if (stampNs !== expectedNs) fail(`frame ${frame}: stamp ${stampNs}, t = ${row[0]} gives ${expectedNs}`);
+      if (header.frame_id !== "") fail(`frame_id "${header.frame_id}"`);
+      const msg = { name: cdr.strings(), position: cdr.float64s(), velocity: cdr.float64s(), effort: cdr.float64s() };
+      cdr.end();
+      if (msg.name.join(",") !== names.join(",")) fail(`names ${msg.name} != ${names}`);
+      for (let j = 0; j < names.length; j++) {
+        if (!same(msg.position[j], row[j + 1])) fail(`frame ${frame} position[${j}] ${msg.position[j]} != ${row[j + 1]}`);
+        if (!same(msg.velocity[j], velocities.rows[frame][j + 1])) fail(`frame ${frame} velocity[${j}]`);
+        if (torques) {
+          if (!same(msg.effort[j], torques.rows[frame][j + 1])) fail(`frame ${frame} effort[${j}] ${msg.effort[j]} != ${torques.rows[frame][j + 1]}`);
+        }
+      }
+      if (!torques && msg.effort.length !== 0) fail("effort without torques.csv");
+      if (torques && msg.effort.length !== names.length) fail("effort's length");
+      frame++;
+    } else if (topic === "/tf" || topic === "/tf_static") {
+      const cdr = new CdrReader(message.data);
+      const n = cdr.uint32();
+      const children = [];
+      for (let i = 0; i < n; i++) {
+        const header = cdr.header();
+        const child = cdr.string();
+        const t = [cdr.float64(), cdr.float64(), cdr.float64()];
+        const q = [cdr.float64(), cdr.float64(), cdr.float64(), cdr.float64()];
+        const norm = Math.hypot(...q);
+        if (Math.abs(norm - 1) > 1e-12) fail(`${topic}: ${child}'s quaternion has norm ${norm}`);
+        if (!t.every(Number.isFinite)) fail(`${topic}: ${child}'s translation`);
+        if (BigInt(header.sec) * 1000000000n + BigInt(header.nanosec) !== message.logTime) fail(`${topic} stamp`);
+        children.push(`${header.frame_id}->${child}`);
+      }
+      cdr.end();
+      if (topic === "/tf") { tfChildren = children; tfFrame++; } else staticChildren = children;
+    } else if (topic === "/robot_description") {
+      const cdr = new CdrReader(message.data);
+      robotDescription = cdr.string();
+      cdr.end();
+    } else if (topic === "/mbstream/stats") {
+      stats = JSON.parse(Buffer.from(message.data).toString("utf8"));
+    } else if (topic === "/mbstream/probes") {
+      JSON.parse(Buffer.from(message.data).toString("utf8"));
+    }
+  }
+  if (frame !== joints.rows.length) fail(`${frame} JointState messages, ${joints.rows.length} rows in joints.csv`);
+  if (tfFrame !== frame) fail(`${tfFrame} /tf messages for ${frame} frames`);
+  if (robotDescription !== fs.readFileSync(modelFile, "utf8")) fail("/robot_description differs from the model file");
+  const statsFile = JSON.parse(fs.readFileSync(path.join(resultsDir, "stats.json"), "utf8"));
+  if (JSON.stringify(stats) !== JSON.stringify(statsFile)) fail("/mbstream/stats differs from stats.json");
+  const statistics = reader.statistics;
+  console.log(JSON.stringify({
+    frames: frame,
+    topics,
+    messages: seen,
+    statistics_messages: Number(statistics.messageCount),
+    chunks: reader.chunkIndexes.length,
+    compression: reader.chunkIndexes[0].compression,
+    records: counts,
+    tf: tfChildren,
+    tf_static: staticChildren,
+    has_effort: torques !== null,
+    names,
+  }));
+}
+
+main().catch((error) => {
+  console.log(`ERROR: ${error.stack || error}`);
+  process.exit(1);
+});
