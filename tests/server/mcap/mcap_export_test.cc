@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <string>
 
@@ -130,6 +131,34 @@ TEST(McapExportTest, DrivenFourBarUncompressedNamesItsCutJoint) {
   // The JointState names are joints.csv's columns: the cut joint last.
   EXPECT_EQ(read["names"],
             nlohmann::json::array({"crank_joint", "rocker_joint", "coupler_joint", "loop_joint"}));
+}
+
+// A million frames of the single pendulum, with and without --mcap: the export's memory is its
+// chunk (1 MiB of records, its compressed copy, zstd's context), not the run's 47 MB file.
+// docs/performance.md, "MCAP export", quotes these figures.
+TEST(McapExportTest, MillionFramesExportInTheMemoryOfAChunk) {
+  const fs::path out = Scratch("million");
+  const std::string simulate = std::string(MBSTREAM_CLI) +
+                               " simulate models/pendulum/single_pendulum.urdf --duration 1000 "
+                               "--output-interval 0.001 --max-duration 1000 "
+                               "--max-output-frames 2000000 --out " +
+                               out.string();
+  fs::remove_all(out);
+  const Outcome plain = RunCommand(simulate + " > /dev/null 2>&1");
+  ASSERT_EQ(plain.exit_code, 0);
+  fs::remove_all(out);
+  const std::string mcap = out.string() + ".mcap";
+  const Outcome exported = RunCommand(simulate + " --mcap " + mcap + " > /dev/null 2>&1");
+  ASSERT_EQ(exported.exit_code, 0);
+  const auto mcap_bytes = fs::file_size(mcap);
+  fs::remove_all(out);
+  fs::remove(mcap);
+  const long extra_kb = exported.max_rss_kb - plain.max_rss_kb;
+  std::cout << "1000001 frames: peak RSS " << plain.max_rss_kb << " KB without --mcap, "
+            << exported.max_rss_kb << " KB with it (+" << extra_kb << " KB); MCAP file "
+            << mcap_bytes << " bytes\n";
+  EXPECT_GT(mcap_bytes, 20u << 20);  // the run really is large
+  EXPECT_LT(extra_kb, 12 * 1024);
 }
 
 TEST(McapExportTest, BadStartTimeIsNamedBeforeTheRun) {
