@@ -56,9 +56,11 @@ Outcome RunCommand(const std::string& command) {
   return outcome;
 }
 
-// simulate MODEL --spec SPEC ARGS --out DIR --mcap DIR.mcap; the reader's JSON line.
+// simulate MODEL --spec SPEC ARGS --out DIR --mcap DIR.mcap; the reader's JSON line (with
+// `tcp_frame`, the reader checks /tf against tcp.csv).
 nlohmann::json SimulateAndRead(const std::string& model, const std::string& spec,
-                               const std::string& args, const std::string& name) {
+                               const std::string& args, const std::string& name,
+                               const std::string& tcp_frame = "") {
   const fs::path out = Scratch(name);
   fs::remove_all(out);
   const std::string mcap = out.string() + ".mcap";
@@ -76,7 +78,7 @@ nlohmann::json SimulateAndRead(const std::string& model, const std::string& spec
   const std::string reader_out = out.string() + ".reader";
   const Outcome read =
       RunCommand("node tests/server/mcap/reader/read_mcap.js " + mcap + " " + out.string() + " " +
-                 kStartNs + " " + model + " > " + reader_out + " 2>&1");
+                 kStartNs + " " + model + " " + tcp_frame + " > " + reader_out + " 2>&1");
   const std::string text = Read(reader_out);
   EXPECT_EQ(read.exit_code, 0) << text;
   if (read.exit_code != 0) return {};
@@ -90,8 +92,10 @@ nlohmann::json SimulateAndRead(const std::string& model, const std::string& spec
 TEST(McapExportTest, SeedRunZstdReadsBackBitForBit) {
   const nlohmann::json read =
       SimulateAndRead("models/irb1600/irb1600.urdf", "models/irb1600/seed-run.json",
-                      "--duration 2 --mcap-compression zstd", "seed");
+                      "--duration 2 --mcap-compression zstd", "seed", "tcp");
   ASSERT_FALSE(read.is_null());
+  // /tf and /tf_static composed from base_link to tcp: tcp.csv's position.
+  EXPECT_LT(read["tcp_error_max_m"].get<double>(), 1e-12);
   EXPECT_EQ(read["frames"], 41);
   EXPECT_EQ(read["compression"], "zstd");
   EXPECT_EQ(read["topics"]["/joint_states"]["schema"], "sensor_msgs/msg/JointState");
@@ -115,8 +119,9 @@ TEST(McapExportTest, SeedRunZstdReadsBackBitForBit) {
 TEST(McapExportTest, PassiveSwingLz4ReadsBackBitForBit) {
   const nlohmann::json read =
       SimulateAndRead("models/irb1600/irb1600.urdf", "models/irb1600/passive-swing.json",
-                      "--duration 1 --mcap-compression lz4", "swing");
+                      "--duration 1 --mcap-compression lz4", "swing", "tcp");
   ASSERT_FALSE(read.is_null());
+  EXPECT_LT(read["tcp_error_max_m"].get<double>(), 1e-12);
   EXPECT_EQ(read["compression"], "lz4");
   EXPECT_GT(read["frames"].get<int>(), 10);
 }

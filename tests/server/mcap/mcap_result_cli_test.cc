@@ -54,13 +54,14 @@ TEST_F(McapResultCliTest, StoredServoRunExportsWithEffortsBitForBit) {
 
   const CommandOutcome read =
       RunCommand("node tests/server/mcap/reader/read_mcap.js " + Out("run.mcap") + " " +
-                 Out("results") + " 1795694400250000000 models/irb1600/irb1600.urdf");
+                 Out("results") + " 1795694400250000000 models/irb1600/irb1600.urdf tcp");
   ASSERT_EQ(read.exit_code, 0) << read.output;
   const nlohmann::json summary = nlohmann::json::parse(read.output);
   EXPECT_EQ(summary["frames"], 41);
   EXPECT_EQ(summary["compression"], "lz4");
   EXPECT_TRUE(summary["has_effort"].get<bool>());
   EXPECT_EQ(summary["tf"].size(), 6u);
+  EXPECT_LT(summary["tcp_error_max_m"].get<double>(), 1e-12);
 }
 
 TEST_F(McapResultCliTest, NothingToWriteIsSaidBeforeAnyCall) {

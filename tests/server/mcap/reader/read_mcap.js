@@ -3,7 +3,9 @@
 // streams it whole, checking every CRC (chunks, data section, summary); a small CDR decoder
 // reads /joint_states and /tf, and every joint value is compared, bit for bit, with the
 // results directory's CSV files.
-//   node read_mcap.js FILE.mcap RESULTS_DIR START_NS MODEL_FILE
+// With TCP_FRAME, each frame's /tf and /tf_static composed from the base to that frame must
+// put it where tcp.csv says (to 1e-9 m): the transforms' direction and parents are right.
+//   node read_mcap.js FILE.mcap RESULTS_DIR START_NS MODEL_FILE [TCP_FRAME]
 // Prints one JSON object (what was read) and exits 0, or prints the first difference and
 // exits 1.
 "use strict";
@@ -46,6 +48,16 @@ class CdrReader {
   end() { if (this.at !== this.bytes.length) fail(`CDR: ${this.bytes.length - this.at} bytes left over`); }
 }
 
+// The vector v rotated by the unit quaternion q = [x, y, z, w].
+function rotate(q, v) {
+  const [x, y, z, w] = q;
+  const u = [x, y, z];
+  const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+  const t = cross(u, v).map((c) => 2 * c);
+  const ut = cross(u, t);
+  return [0, 1, 2].map((i) => v[i] + w * t[i] + ut[i]);
+}
+
 function readCsv(file) {
   if (!fs.existsSync(file)) return null;
   const lines = fs.readFileSync(file, "utf8").trim().split("\n");
@@ -57,7 +69,7 @@ function same(a, b) {
 }
 
 async function main() {
-  const [file, resultsDir, startText, modelFile] = process.argv.slice(2);
+  const [file, resultsDir, startText, modelFile, tcpFrame] = process.argv.slice(2);
   const startNs = BigInt(startText);
   await zstd.isLoaded;
   await lz4.isLoaded;
@@ -109,6 +121,9 @@ async function main() {
   const joints = readCsv(path.join(resultsDir, "joints.csv"));
   const velocities = readCsv(path.join(resultsDir, "velocities.csv"));
   const torques = readCsv(path.join(resultsDir, "torques.csv"));
+  const tcp = readCsv(path.join(resultsDir, "tcp.csv"));
+  const poses = new Map();  // child -> {parent, t, q}, /tf_static's and the latest /tf's
+  let tcpErrorMax = tcpFrame ? 0 : null;
   const names = joints.header.slice(1);
   const topicOf = (id) => reader.channelsById.get(id).topic;
   let frame = 0, tfFrame = 0, lastLogTime = -1n;
@@ -156,9 +171,26 @@ async function main() {
         if (!t.every(Number.isFinite)) fail(`${topic}: ${child}'s translation`);
         if (BigInt(header.sec) * 1000000000n + BigInt(header.nanosec) !== message.logTime) fail(`${topic} stamp`);
         children.push(`${header.frame_id}->${child}`);
+        poses.set(child, { parent: header.frame_id, t, q });
       }
       cdr.end();
-      if (topic === "/tf") { tfChildren = children; tfFrame++; } else staticChildren = children;
+      if (topic === "/tf") {
+        if (tcpFrame) {
+          // p_parent = R(q) p_child + t, from the TCP frame up to the root.
+          let p = [0, 0, 0];
+          for (let node = tcpFrame, hops = 0; poses.has(node); node = poses.get(node).parent, hops++) {
+            if (hops > 1000) fail("a cycle in /tf");
+            const { t, q } = poses.get(node);
+            p = rotate(q, p).map((v, i) => v + t[i]);
+          }
+          const row = tcp.rows[tfFrame];
+          const error = Math.hypot(p[0] - row[1], p[1] - row[2], p[2] - row[3]);
+          tcpErrorMax = Math.max(tcpErrorMax, error);
+          if (!(error < 1e-9)) fail(`frame ${tfFrame}: /tf puts ${tcpFrame} at ${p}, tcp.csv at ${row.slice(1)}`);
+        }
+        tfChildren = children;
+        tfFrame++;
+      } else staticChildren = children;
     } else if (topic === "/robot_description") {
       const cdr = new CdrReader(message.data);
       robotDescription = cdr.string();
@@ -186,6 +218,7 @@ async function main() {
     tf: tfChildren,
     tf_static: staticChildren,
     has_effort: torques !== null,
+    tcp_error_max_m: tcpErrorMax,
     names,
   }));
 }
