@@ -39,6 +39,9 @@ constexpr char kStatsSchema[] = R"json({
   "type": "object"
 })json";
 
+// builtin_interfaces/Time's int32 seconds end in January 2038.
+constexpr double kLastStampSeconds = 2147483647.0;
+
 void SetPose(Transform& transform, const Pose& X) {
   const Eigen::Quaterniond rotation(X.R);
   for (int i = 0; i < 3; ++i) transform.translation[i] = X.p[i];
@@ -62,7 +65,7 @@ std::uint64_t ParseStartTime(const std::string& text, const std::string& flag) {
   const auto bad = [&] {
     return InputError(FormatString(
         "%s \"%s\": give a UTC time as 2026-11-26T12:00:00Z (fractions of a second allowed) "
-        "or seconds since the Unix epoch",
+        "or seconds since the Unix epoch (1970 to 2038, ROS 2's int32 stamps)",
         flag.c_str(), text.c_str()));
   };
   if (std::sscanf(text.c_str(), "%d-%d-%dT%d:%d:%lf%c%n", &year, &month, &day, &hour, &minute,
@@ -72,20 +75,23 @@ std::uint64_t ParseStartTime(const std::string& text, const std::string& flag) {
         year < 1970) {
       throw bad();
     }
-    const std::chrono::sys_days days{std::chrono::year{year} / std::chrono::month(month) /
-                                     std::chrono::day(day)};
+    const std::chrono::year_month_day date{std::chrono::year{year}, std::chrono::month(month),
+                                           std::chrono::day(day)};
+    if (!date.ok()) throw bad();  // 2026-02-30
+    const std::chrono::sys_days days{date};
     const double whole = std::floor(second);
     const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
                         days.time_since_epoch() + std::chrono::hours(hour) +
                         std::chrono::minutes(minute) + std::chrono::seconds(long(whole)))
                         .count() +
                     std::llround((second - whole) * 1e9);
+    if (ns < 0 || ns >= static_cast<long long>(kLastStampSeconds) * 1000000000) throw bad();
     return static_cast<std::uint64_t>(ns);
   }
   char* end = nullptr;
   const double seconds = std::strtod(text.c_str(), &end);
   if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(seconds) || seconds < 0 ||
-      seconds > 4e9) {
+      seconds >= kLastStampSeconds) {
     throw bad();
   }
   const double whole = std::floor(seconds);

@@ -19,15 +19,17 @@ TEST(RunMcapTest, StartTimeAsUtcOrEpochSeconds) {
   EXPECT_EQ(ParseStartTime("2026-11-26T12:00:00.25Z", "--mcap-start"), 1795694400250000000ull);
   EXPECT_EQ(ParseStartTime("1795694400.25", "--mcap-start"), 1795694400250000000ull);
   EXPECT_EQ(ParseStartTime("1970-01-01T00:00:00Z", "--mcap-start"), 0ull);
-  for (const char* bad : {"2026-11-26T12:00:00", "2026-13-01T00:00:00Z", "-1", "", "now"}) {
+  for (const char* bad : {"2026-11-26T12:00:00", "2026-13-01T00:00:00Z", "2026-02-30T00:00:00Z",
+                          "2040-01-01T00:00:00Z", "3e9", "-1", "", "now"}) {
     try {
       ParseStartTime(bad, "--mcap-start");
       ADD_FAILURE() << bad << ": no error";
     } catch (const InputError& error) {
-      EXPECT_EQ(std::string(error.what()),
-                "--mcap-start \"" + std::string(bad) +
-                    "\": give a UTC time as 2026-11-26T12:00:00Z (fractions of a second "
-                    "allowed) or seconds since the Unix epoch");
+      EXPECT_EQ(
+          std::string(error.what()),
+          "--mcap-start \"" + std::string(bad) +
+              "\": give a UTC time as 2026-11-26T12:00:00Z (fractions of a second "
+              "allowed) or seconds since the Unix epoch (1970 to 2038, ROS 2's int32 stamps)");
     }
   }
 }
