@@ -103,7 +103,8 @@ if [ ! -f "$web/node_modules/.mbstream-installed" ] ||
   touch "$web/node_modules/.mbstream-installed"
 fi
 
-# The MCAP export's independent reader (tests/server/mcap/reader: @mcap/core, Foxglove's zstd
+# The MCAP export's independent reader (tests/server/mcap/reader: @mcap/core, Foxglove's ROS 2
+# message decoder, zstd
 # and lz4 decompressors), pinned by its package-lock.json, as viewer/web's above.
 mcap_reader="$(dirname "${BASH_SOURCE[0]}")/../tests/server/mcap/reader"
 if [ ! -f "$mcap_reader/node_modules/.mbstream-installed" ] ||

@@ -96,6 +96,8 @@ TEST(McapExportTest, SeedRunZstdReadsBackBitForBit) {
   ASSERT_FALSE(read.is_null());
   // /tf and /tf_static composed from base_link to tcp: tcp.csv's position.
   EXPECT_LT(read["tcp_error_max_m"].get<double>(), 1e-12);
+  // Foxglove's decoder, built from the three ros2msg schemas' text, read every message alike.
+  EXPECT_EQ(read["foxglove_decoders"], 3);
   EXPECT_EQ(read["frames"], 41);
   EXPECT_EQ(read["compression"], "zstd");
   EXPECT_EQ(read["topics"]["/joint_states"]["schema"], "sensor_msgs/msg/JointState");

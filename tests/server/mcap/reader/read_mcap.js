@@ -1,7 +1,9 @@
 // An independent reader of mbstream's MCAP export (tests/server/mcap/mcap_export_test.cc):
 // @mcap/core reads FILE through its summary (schemas, channels, statistics, chunk indexes) and
 // streams it whole, checking every CRC (chunks, data section, summary); a small CDR decoder
-// reads /joint_states and /tf, and every joint value is compared, bit for bit, with the
+// reads /joint_states and /tf, and Foxglove's own decoder (@foxglove/rosmsg parsing each
+// schema's ros2msg text, @foxglove/rosmsg2-serialization) must read every CDR message the
+// same, and every joint value is compared, bit for bit, with the
 // results directory's CSV files.
 // With TCP_FRAME, each frame's /tf and /tf_static composed from the base to that frame must
 // put it where tcp.csv says (to 1e-9 m): the transforms' direction and parents are right.
@@ -15,6 +17,8 @@ const { McapIndexedReader, McapStreamReader } = require("@mcap/core");
 const { crc32 } = require("@foxglove/crc");
 const zstd = require("@foxglove/wasm-zstd");
 const lz4 = require("@foxglove/wasm-lz4");
+const { parse: parseMessageDefinition } = require("@foxglove/rosmsg");
+const { MessageReader } = require("@foxglove/rosmsg2-serialization");
 
 function fail(message) {
   console.log(`MISMATCH: ${message}`);
@@ -113,6 +117,16 @@ async function main() {
     topics[channel.topic] = { schema: schema.name, schemaEncoding: schema.encoding, messageEncoding: channel.messageEncoding };
   }
   if (reader.chunkIndexes.length === 0) fail("no chunk index");
+  // Foxglove's decoders, built from the schemas' own text: a schema it cannot parse fails.
+  const foxglove = new Map();
+  for (const schema of reader.schemasById.values()) {
+    if (schema.encoding !== "ros2msg") continue;
+    const text = Buffer.from(schema.data).toString("utf8");
+    foxglove.set(schema.id, new MessageReader(parseMessageDefinition(text, { ros2: true })));
+  }
+  const decodeAsFoxglove = (message) =>
+    foxglove.get(reader.channelsById.get(message.channelId).schemaId).readMessage(message.data);
+  const sameArray = (a, b) => a.length === b.length && Array.from(a).every((v, i) => same(v, b[i]));
   for (const index of reader.chunkIndexes) {
     if (index.compressedSize === 0n || index.messageIndexOffsets.size === 0) fail("an empty chunk index");
   }
@@ -146,6 +160,13 @@ async function main() {
       if (header.frame_id !== "") fail(`frame_id "${header.frame_id}"`);
       const msg = { name: cdr.strings(), position: cdr.float64s(), velocity: cdr.float64s(), effort: cdr.float64s() };
       cdr.end();
+      const theirs = decodeAsFoxglove(message);
+      if (theirs.header.stamp.sec !== header.sec || theirs.header.stamp.nanosec !== header.nanosec ||
+          theirs.header.frame_id !== header.frame_id || !sameArray(theirs.name, msg.name) ||
+          !sameArray(theirs.position, msg.position) || !sameArray(theirs.velocity, msg.velocity) ||
+          !sameArray(theirs.effort, msg.effort)) {
+        fail(`frame ${frame}: Foxglove's decoder reads the JointState otherwise: ${JSON.stringify(theirs)}`);
+      }
       if (msg.name.join(",") !== names.join(",")) fail(`names ${msg.name} != ${names}`);
       for (let j = 0; j < names.length; j++) {
         if (!same(msg.position[j], row[j + 1])) fail(`frame ${frame} position[${j}] ${msg.position[j]} != ${row[j + 1]}`);
@@ -161,6 +182,8 @@ async function main() {
       const cdr = new CdrReader(message.data);
       const n = cdr.uint32();
       const children = [];
+      const theirs = decodeAsFoxglove(message).transforms;
+      if (theirs.length !== n) fail(`${topic}: Foxglove's decoder reads ${theirs.length} transforms`);
       for (let i = 0; i < n; i++) {
         const header = cdr.header();
         const child = cdr.string();
@@ -170,6 +193,12 @@ async function main() {
         if (Math.abs(norm - 1) > 1e-12) fail(`${topic}: ${child}'s quaternion has norm ${norm}`);
         if (!t.every(Number.isFinite)) fail(`${topic}: ${child}'s translation`);
         if (BigInt(header.sec) * 1000000000n + BigInt(header.nanosec) !== message.logTime) fail(`${topic} stamp`);
+        const other = theirs[i];
+        if (other.child_frame_id !== child || other.header.frame_id !== header.frame_id ||
+            !sameArray([other.transform.translation.x, other.transform.translation.y, other.transform.translation.z], t) ||
+            !sameArray([other.transform.rotation.x, other.transform.rotation.y, other.transform.rotation.z, other.transform.rotation.w], q)) {
+          fail(`${topic}: Foxglove's decoder reads transform ${i} otherwise`);
+        }
         children.push(`${header.frame_id}->${child}`);
         poses.set(child, { parent: header.frame_id, t, q });
       }
@@ -195,6 +224,7 @@ async function main() {
       const cdr = new CdrReader(message.data);
       robotDescription = cdr.string();
       cdr.end();
+      if (decodeAsFoxglove(message).data !== robotDescription) fail("/robot_description as Foxglove reads it");
     } else if (topic === "/mbstream/stats") {
       stats = JSON.parse(Buffer.from(message.data).toString("utf8"));
     } else if (topic === "/mbstream/probes") {
@@ -219,6 +249,7 @@ async function main() {
     tf_static: staticChildren,
     has_effort: torques !== null,
     tcp_error_max_m: tcpErrorMax,
+    foxglove_decoders: foxglove.size,
     names,
   }));
 }
