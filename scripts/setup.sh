@@ -104,8 +104,8 @@ if [ ! -f "$web/node_modules/.mbstream-installed" ] ||
 fi
 
 # The MCAP export's independent reader (tests/server/mcap/reader: @mcap/core, Foxglove's ROS 2
-# message decoder, zstd
-# and lz4 decompressors), pinned by its package-lock.json, as viewer/web's above.
+# message decoder, zstd and lz4 decompressors), pinned by its package-lock.json, as viewer/web's
+# above.
 mcap_reader="$(dirname "${BASH_SOURCE[0]}")/../tests/server/mcap/reader"
 if [ ! -f "$mcap_reader/node_modules/.mbstream-installed" ] ||
    [ "$mcap_reader/package-lock.json" -nt "$mcap_reader/node_modules/.mbstream-installed" ]; then
