@@ -28,6 +28,8 @@ PACKAGES=(
   # mbstream-viewer --web: Boost.Beast (HTTP, WebSocket); node for `npm ci` in viewer/web
   # (three.js, served to the pages; playwright-core for the test), chromium for the test
   libboost-dev nodejs chromium
+  # MCAP export (server/mcap): zstd and lz4 chunks, zlib for the CRCs
+  libzstd-dev liblz4-dev zlib1g-dev
   # python client and charts (Debian's, for /usr/bin/python3); installing the package
   # (client/python: pip install --no-build-isolation --no-deps) needs setuptools, pip, venv;
   # tqdm (progress bars) and pandas (Result.to_pandas) are optional, here so tests cover them;
@@ -99,6 +101,17 @@ if [ ! -f "$web/node_modules/.mbstream-installed" ] ||
   echo "setup: npm ci in viewer/web (three.js for the web page, playwright-core for its test)"
   (cd "$web" && npm ci --no-audit --no-fund --loglevel=error) >/dev/null
   touch "$web/node_modules/.mbstream-installed"
+fi
+
+# The MCAP export's independent reader (tests/server/mcap/reader: @mcap/core, Foxglove's ROS 2
+# message decoder, zstd and lz4 decompressors), pinned by its package-lock.json, as viewer/web's
+# above.
+mcap_reader="$(dirname "${BASH_SOURCE[0]}")/../tests/server/mcap/reader"
+if [ ! -f "$mcap_reader/node_modules/.mbstream-installed" ] ||
+   [ "$mcap_reader/package-lock.json" -nt "$mcap_reader/node_modules/.mbstream-installed" ]; then
+  echo "setup: npm ci in tests/server/mcap/reader (@mcap/core for the MCAP export's tests)"
+  (cd "$mcap_reader" && npm ci --no-audit --no-fund --loglevel=error) >/dev/null
+  touch "$mcap_reader/node_modules/.mbstream-installed"
 fi
 
 # SUNDIALS 6.4.1 with optimisation, from Debian's source package, into a per-user cache that

@@ -10,14 +10,20 @@ namespace mbstream::cli {
 namespace {
 
 int Result(const ClientOptions& client, const std::string& run_id, const std::string& out_dir,
-           const std::string& probe_set) {
+           const std::string& probe_set, const ResultMcapOptions& mcap) {
+  if (out_dir.empty() && mcap.path.empty()) {
+    throw InputError("nothing to write: give --out DIR (the results files), --mcap FILE, or both");
+  }
+  CheckResultMcapOptions(mcap);
   v1::RunInfo info;
   const grpc::Status status =
-      DownloadResult(*ConnectSimulation(client), run_id, out_dir, &info, probe_set);
+      DownloadResult(*ConnectSimulation(client), run_id, out_dir, &info, probe_set, &mcap);
   if (!status.ok()) return ReportRpcError("result", client, status);
   std::cerr << run_id << " " << v1::RunState_Name(info.state()) << ": " << info.frames()
-            << " frames, " << info.probe_reports() << " probe reports; results in " << out_dir
-            << "\n";
+            << " frames, " << info.probe_reports() << " probe reports";
+  if (!out_dir.empty()) std::cerr << "; results in " << out_dir;
+  if (!mcap.path.empty()) std::cerr << "; MCAP in " << mcap.path;
+  std::cerr << "\n";
   return info.state() == v1::FINISHED ? 0 : 1;
 }
 
@@ -39,14 +45,25 @@ void AddResultCommands(CLI::App& app, std::shared_ptr<const ClientOptions> clien
   auto out_dir = std::make_shared<std::string>();
   CLI::App* result = app.add_subcommand("result", "fetch an ended run's results files");
   result->add_option("run", *run_id, "run id")->required();
-  result->add_option("--out", *out_dir, "results directory")->required();
+  result->add_option("--out", *out_dir, "results directory");
+  auto mcap = std::make_shared<ResultMcapOptions>();
+  result->add_option("--mcap", mcap->path,
+                     "write the run as one MCAP file (ROS 2 topics /joint_states, /tf, "
+                     "/robot_description; docs/mcap.md)");
+  result
+      ->add_option("--mcap-compression", mcap->compression,
+                   "the MCAP file's chunk compression: zstd, lz4 or none")
+      ->capture_default_str();
+  result->add_option("--mcap-start", mcap->start,
+                     "the MCAP stamps' time of t = 0, UTC: 2026-11-26T12:00:00Z or seconds "
+                     "since the Unix epoch (default: the run's start)");
   auto probe_set = std::make_shared<std::string>();
   result->add_option("--probe-set", *probe_set,
                      "probes.csv from this replay's probe set (`mbstream probe-sets RUN`) "
                      "instead of the live run's");
-  result->callback([client, run_id, out_dir, probe_set, exit_code] {
+  result->callback([client, run_id, out_dir, probe_set, mcap, exit_code] {
     try {
-      *exit_code = Result(*client, *run_id, *out_dir, *probe_set);
+      *exit_code = Result(*client, *run_id, *out_dir, *probe_set, *mcap);
     } catch (const InputError& error) {
       std::cerr << "mbstream result: " << error.what() << "\n";
       *exit_code = 2;

@@ -10,7 +10,7 @@ namespace mbstream::cli {
 
 grpc::Status DownloadResult(v1::Simulation::Stub& stub, const std::string& run_id,
                             const std::string& directory, v1::RunInfo* info,
-                            const std::string& probe_set) {
+                            const std::string& probe_set, const ResultMcapOptions* mcap) {
   grpc::ClientContext context;
   v1::GetResultRequest request;
   request.set_run_id(run_id);
@@ -39,7 +39,10 @@ grpc::Status DownloadResult(v1::Simulation::Stub& stub, const std::string& run_i
   }
   const RunProvenance provenance{info->model_name(), "model " + info->model_id(), spec_json,
                                  info->model_id(), info->id()};
-  WriteResultsDirectory(result, provenance, directory, probes);
+  if (!directory.empty()) WriteResultsDirectory(result, provenance, directory, probes);
+  if (mcap != nullptr && !mcap->path.empty()) {
+    return WriteResultMcap(stub, *info, result, probes, StatsJson(result, provenance), *mcap);
+  }
   return grpc::Status::OK;
 }
 

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "client/cli/result_mcap.h"
 #include "client/cli/server_connection.h"
 #include "mbstream/v1/run.pb.h"
 
@@ -13,8 +14,11 @@ namespace mbstream::cli {
 // `mbstream simulate` writes for the same model and spec). Fills *info. Returns the RPC's
 // status; throws InputError when the directory cannot be written. probes.csv holds the live
 // run's probe reports, or those of the replay probe set `probe_set` when one is given.
+// An empty `directory` writes no files; `mcap` (when given, with a path) writes the run as
+// MCAP too (result_mcap.h).
 grpc::Status DownloadResult(v1::Simulation::Stub& stub, const std::string& run_id,
                             const std::string& directory, v1::RunInfo* info,
-                            const std::string& probe_set = "");
+                            const std::string& probe_set = "",
+                            const ResultMcapOptions* mcap = nullptr);
 
 }  // namespace mbstream::cli

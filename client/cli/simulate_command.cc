@@ -2,14 +2,18 @@
 
 #include <spdlog/spdlog.h>
 
+#include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <sstream>
 #include <string>
 
 #include "client/cli/exit_codes.h"
 #include "client/cli/run_overrides.h"
 #include "common/check.h"
 #include "server/choose/target_run.h"
+#include "server/mcap/run_mcap.h"
 #include "server/parse/model_file.h"
 #include "server/results/results_stream.h"
 #include "server/sim/input_sanity.h"
@@ -29,6 +33,9 @@ struct SimulateOptions {
   std::string spec_path;
   std::string out_dir;
   RunOverrides overrides;
+  std::string mcap_path;  // also write the run as MCAP (server/mcap/run_mcap.h)
+  std::string mcap_compression = "zstd";
+  std::string mcap_start;  // the time of t = 0 (default: now, UTC)
   bool accept_untrusted = false;
   bool repair = false;
   // The server's limits and defaults (mbstream-server's flags of the same names), so that
@@ -47,6 +54,26 @@ void WarnServerOnlyFields(const v1::RunSpec& spec) {
     std::cerr << "mbstream simulate: warning: spec.retries is ignored: simulate runs once "
                  "(retries are for the server's interrupted runs)\n";
   }
+}
+
+// Hands each frame to every sink (the CSV files and the MCAP file); each keeps its own frames.
+class FrameSinks : public FrameSink {
+ public:
+  void Add(FrameSink* sink) { sinks_.push_back(sink); }
+  void OnFrame(const RunResult& result, int frame) override {
+    for (FrameSink* sink : sinks_) sink->OnFrame(result, frame);
+  }
+  bool KeepsFrames() const override { return true; }
+
+ private:
+  std::vector<FrameSink*> sinks_;
+};
+
+std::string ReadModelText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 int RunSimulate(const SimulateOptions& options) {
@@ -74,12 +101,28 @@ int RunSimulate(const SimulateOptions& options) {
 
   // The CSVs are written as the frames come: memory does not grow with the run.
   ResultsStreamWriter writer(options.out_dir);
+  FrameSinks sinks;
+  sinks.Add(&writer);
+  std::optional<mcap::RunMcapWriter> mcap_writer;
+  if (!options.mcap_path.empty()) {
+    mcap::RunMcapOptions mcap_options;
+    mcap_options.compression = mcap::ParseCompression(options.mcap_compression);
+    mcap_options.start_time_ns = options.mcap_start.empty()
+                                     ? mcap::NowNanoseconds()
+                                     : mcap::ParseStartTime(options.mcap_start, "--mcap-start");
+    mcap_writer.emplace(options.mcap_path, import.model, ReadModelText(options.model_path),
+                        mcap_options);
+    sinks.Add(&*mcap_writer);
+  }
   const RunResult result = import.loops.empty()
-                               ? SimulateWithTarget(import.model, config, &writer)
-                               : SimulateLoops(import.model, import.loops, config, &writer);
+                               ? SimulateWithTarget(import.model, config, &sinks)
+                               : SimulateLoops(import.model, import.loops, config, &sinks);
   const RunProvenance provenance{import.model.name, options.model_path,
                                  RunSpecToJson(ToRunSpec(config)), "", ""};
   writer.Finish(result, provenance);
+  if (mcap_writer) {
+    mcap_writer->Finish({}, StatsJson(result, provenance, writer.frames()), result.stats.t_reached);
+  }
 
   const RunStats& s = result.stats;
   std::cout << RunStatusName(s.status) << ": " << writer.frames()
@@ -93,6 +136,10 @@ int RunSimulate(const SimulateOptions& options) {
               << " rad, velocity " << s.drift_velocity_max;
   }
   std::cout << "\nresults in " << options.out_dir << "\n";
+  if (mcap_writer) {
+    std::cout << "MCAP in " << options.mcap_path << " (" << mcap_writer->bytes_written()
+              << " bytes)\n";
+  }
   if (s.status != RunStatus::kFinished) {
     std::cerr << "mbstream simulate: run " << RunStatusName(s.status) << ": " << s.message << "\n";
   }
@@ -120,6 +167,16 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::ExistingFile);
   command->add_option("--out", options->out_dir, "results directory")->required();
   options->overrides.AddTo(*command);
+  command->add_option("--mcap", options->mcap_path,
+                      "also write the run as one MCAP file (ROS 2 topics /joint_states, /tf, "
+                      "/robot_description; docs/mcap.md)");
+  command
+      ->add_option("--mcap-compression", options->mcap_compression,
+                   "the MCAP file's chunk compression: zstd, lz4 or none")
+      ->capture_default_str();
+  command->add_option("--mcap-start", options->mcap_start,
+                      "the MCAP stamps' time of t = 0, UTC: 2026-11-26T12:00:00Z or seconds "
+                      "since the Unix epoch (default: the run's start)");
   command->add_flag("--accept-untrusted", options->accept_untrusted,
                     "exit 0 even when the finished run's trust is low or it missed its accuracy "
                     "target (else exit 4)");
