@@ -9,14 +9,13 @@
 #include "client/cli/exit_codes.h"
 #include "client/cli/run_overrides.h"
 #include "common/check.h"
-#include "server/choose/target_run.h"
+#include "server/engine/engine.h"
 #include "server/parse/model_file.h"
 #include "server/results/results_stream.h"
 #include "server/sim/input_sanity.h"
 #include "server/sim/loop_run.h"
 #include "server/sim/run_size.h"
 #include "server/sim/run_validation.h"
-#include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
 #include "server/wire/model_info.h"
 
@@ -74,9 +73,7 @@ int RunSimulate(const SimulateOptions& options) {
 
   // The CSVs are written as the frames come: memory does not grow with the run.
   ResultsStreamWriter writer(options.out_dir);
-  const RunResult result = import.loops.empty()
-                               ? SimulateWithTarget(import.model, config, &writer)
-                               : SimulateLoops(import.model, import.loops, config, &writer);
+  const RunResult result = Simulate(import.model, import.loops, config, &writer);
   const RunProvenance provenance{import.model.name, options.model_path,
                                  RunSpecToJson(ToRunSpec(config)), "", ""};
   writer.Finish(result, provenance);
