@@ -27,6 +27,7 @@ class MeasuredStore final : public Store {
   MeasuredStore(std::unique_ptr<Store> store, ServerMetrics& metrics);
 
   MBSTREAM_STORE_OVERRIDES  // store_methods.h: every method of Store
+  void NoteClaimed(const v1::RunInfo& info) override;
 
  private:
   // Calls `operation` and records its time under `which` (also when it throws).
