@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "server/engine/engine.h"
 #include "server/parse/urdf_import.h"
-#include "server/sim/simulate.h"
 
 namespace mbstream {
 namespace {

@@ -23,11 +23,11 @@
 #include "server/body/body_dae.h"
 #include "server/body/consistent_init.h"
 #include "server/drives/drive_set.h"
+#include "server/engine/engine.h"
 #include "server/parse/urdf_import.h"
 #include "server/results/results_files.h"
 #include "server/sim/joint_space_ode.h"
 #include "server/sim/run_config.h"
-#include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
 
 namespace mbstream {

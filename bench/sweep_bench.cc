@@ -41,9 +41,9 @@
 #include <vector>
 
 #include "mbstream/v1/simulation_service.grpc.pb.h"
+#include "server/engine/engine.h"
 #include "server/parse/urdf_import.h"
 #include "server/results/results_files.h"
-#include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
 #include "server/wire/frame_conversion.h"
 #include "tests/common/server_process.h"

@@ -1,5 +1,5 @@
 // The accuracy-target study (issue 18): for the four reference scenes and TCP targets 1e-3,
-// 1e-5, 1e-7, 1e-9 m, runs SimulateWithTarget (choice + run + verification) and reports
+// 1e-5, 1e-7, 1e-9 m, runs Simulate (choice + run + verification) and reports
 //   - the choice (method, rtol) and whether its own check found the target met;
 //   - the achieved TCP error against the work-precision study's reference solution (not only
 //     the choice's own check): ERK Fehlberg 13-7-8 at rtol 1e-14 (stiff-servo: CVODE BDF at
@@ -30,9 +30,8 @@
 
 #include "common/check.h"
 #include "server/choose/frame_track.h"
-#include "server/choose/target_run.h"
+#include "server/engine/engine.h"
 #include "server/parse/urdf_import.h"
-#include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
 
 namespace mbstream {
@@ -231,7 +230,7 @@ int Main(int argc, char** argv) {
       std::array<double, kRepetitions> totals{};
       RunResult result;
       for (double& total : totals) {
-        result = SimulateWithTarget(model, asked);
+        result = Simulate(model, asked);
         total = nlohmann::json::parse(result.stats.choice_json)["cpu_s"]["total"].get<double>();
       }
       const nlohmann::json choice = nlohmann::json::parse(result.stats.choice_json);

@@ -42,10 +42,10 @@
 #include <Eigen/Core>
 
 #include "common/check.h"
+#include "server/engine/engine.h"
 #include "server/parse/urdf_import.h"
 #include "server/sim/run_config.h"
 #include "server/sim/run_result.h"
-#include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
 
 namespace mbstream {

@@ -12,7 +12,7 @@
 #include "client/cli/exit_codes.h"
 #include "client/cli/run_overrides.h"
 #include "common/check.h"
-#include "server/choose/target_run.h"
+#include "server/engine/engine.h"
 #include "server/mcap/run_mcap.h"
 #include "server/parse/model_file.h"
 #include "server/results/results_stream.h"
@@ -20,7 +20,6 @@
 #include "server/sim/loop_run.h"
 #include "server/sim/run_size.h"
 #include "server/sim/run_validation.h"
-#include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
 #include "server/wire/model_info.h"
 
@@ -114,9 +113,7 @@ int RunSimulate(const SimulateOptions& options) {
                         mcap_options);
     sinks.Add(&*mcap_writer);
   }
-  const RunResult result = import.loops.empty()
-                               ? SimulateWithTarget(import.model, config, &sinks)
-                               : SimulateLoops(import.model, import.loops, config, &sinks);
+  const RunResult result = Simulate(import.model, import.loops, config, &sinks);
   const RunProvenance provenance{import.model.name, options.model_path,
                                  RunSpecToJson(ToRunSpec(config)), "", ""};
   writer.Finish(result, provenance);

@@ -66,6 +66,10 @@ void MeasuredStore::ForgetIfTakenElsewhere(const v1::RunInfo& stored) const {
   unfinished_.erase(known);
 }
 
+const std::string& MeasuredStore::path() const { return store_->path(); }
+
+void MeasuredStore::ReleaseMemory() { store_->ReleaseMemory(); }
+
 bool MeasuredStore::PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle) {
   return Timed(StoreOperation::kPutModel, [&] { return store_->PutModel(info, bundle); });
 }

@@ -18,6 +18,7 @@
 
 #include "server/app/server_metrics.h"
 #include "server/store/store.h"
+#include "server/store/store_methods.h"
 
 namespace mbstream {
 
@@ -25,44 +26,8 @@ class MeasuredStore final : public Store {
  public:
   MeasuredStore(std::unique_ptr<Store> store, ServerMetrics& metrics);
 
-  const std::string& path() const override { return store_->path(); }
-  void ReleaseMemory() override { store_->ReleaseMemory(); }
-  bool PutModel(const v1::ModelInfo& info, const v1::ModelBundle& bundle) override;
-  std::vector<v1::ModelInfo> ListModels() const override;
-  std::optional<v1::ModelBundle> GetModelBundle(const std::string& model_id,
-                                                bool asset_data) const override;
-  std::map<std::string, int64_t> ModelBytes() const override;
-  void PutRun(const v1::RunInfo& info) override;
-  bool AddRuns(const std::vector<v1::RunInfo>& infos) override;
-  std::optional<v1::RunInfo> GetRun(const std::string& run_id) const override;
-  std::vector<v1::RunInfo> ListRuns() const override;
-  bool PutFrameChunk(const std::string& run_id, int64_t index, const EncodedFrameChunk& chunk,
-                     const std::string& holder) override;
-  bool FinishRun(const v1::RunInfo& info, int64_t index, const EncodedFrameChunk& last_chunk,
-                 const std::string& holder) override;
-  void FinishRun(const v1::RunInfo& info, const std::vector<v1::Frame>& frames) override;
-  std::optional<int64_t> GetFrameChunkData(const std::string& run_id, int64_t index,
-                                           std::string& data) const override;
-  void AddProbes(const std::vector<v1::ProbeReport>& reports) override;
-  std::vector<v1::ProbeReport> GetProbes(const std::string& run_id) const override;
-  std::optional<int64_t> FrameChunkHolding(const std::string& run_id, int64_t seq) const override;
-  void CreateProbeSet(const v1::ProbeSet& set) override;
-  void AddProbeSetReports(const std::string& set_id,
-                          const std::vector<v1::ProbeReport>& reports) override;
-  std::vector<v1::ProbeSet> ListProbeSets(const std::string& run_id) const override;
-  std::optional<v1::ProbeSet> GetProbeSet(const std::string& set_id) const override;
-  std::vector<v1::ProbeReport> GetProbeSetReports(const std::string& set_id) const override;
-  int MarkUnfinishedRunsInterrupted(const std::string& message) override;
-  std::optional<v1::RunInfo> ClaimQueuedRun(const RunLease& lease) override;
+  MBSTREAM_STORE_OVERRIDES  // store_methods.h: every method of Store
   void NoteClaimed(const v1::RunInfo& info) override;
-  bool RenewLease(const std::string& run_id, const std::string& holder,
-                  int64_t expires_unix_ms) override;
-  std::vector<v1::RunInfo> ReapExpiredLeases(int64_t now_unix_ms,
-                                             const std::string& reaper) override;
-  std::vector<v1::RunInfo> ListRunningRuns() const override;
-  bool PutRunIfHeld(const v1::RunInfo& info, const std::string& holder) override;
-  std::optional<v1::RunInfo> EndQueuedRun(const std::string& run_id, v1::RunState state,
-                                          const std::string& message, int64_t now_unix_ms) override;
 
  private:
   // Calls `operation` and records its time under `which` (also when it throws).

@@ -86,6 +86,49 @@ StoreLocation StoreLocationOf(const ServerConfig& config) {
   return location;
 }
 
+// How this replica calls the others on a shared store: TLS as its own listener, their CA
+// (--peer-ca, else the client CA), and its own certificate where peers require one.
+PeerSecurity PeerSecurityOf(const ServerConfig& config) {
+  PeerSecurity peer;
+  peer.tls = config.tls.enabled();
+  peer.ca_file = config.peer_ca.empty() ? config.tls.client_ca_file : config.peer_ca;
+  peer.tls_name = config.peer_tls_name;
+  if (!config.tls.client_ca_file.empty()) {  // peers require a client certificate
+    peer.cert_file = config.tls.cert_file;
+    peer.key_file = config.tls.key_file;
+  }
+  return peer;
+}
+
+// gRPC's limits for this server: its handler threads (`quota`), peers' pings, message sizes.
+void ApplyGrpcLimits(const ServerConfig& config, grpc::ResourceQuota& quota,
+                     grpc::ServerBuilder& builder) {
+  // gRPC's handler threads: one per open stream (each also counted against
+  // max_subscribers, with a reader thread of its own for Subscribe) plus room for unary
+  // calls; past this, gRPC refuses new calls with RESOURCE_EXHAUSTED instead of growing.
+  quota.SetMaxThreads(config.limits.max_subscribers + kUnaryThreads);
+  builder.SetResourceQuota(quota);
+  // Other replicas proxying streams here ping idle connections every 20 s (peer_channels.cc).
+  builder.AddChannelArgument(GRPC_ARG_HTTP2_MIN_RECV_PING_INTERVAL_WITHOUT_DATA_MS, 10000);
+  // A bundle travels in one SubmitModel message (and one GetModel reply): the message limit
+  // holds the largest bundle allowed, plus 1 MiB for the other fields and framing.
+  const int message_bytes = static_cast<int>(std::min<int64_t>(
+      std::numeric_limits<int>::max(),
+      std::max<int64_t>(config.max_message_bytes, config.limits.max_model_bytes + (1 << 20))));
+  builder.SetMaxReceiveMessageSize(message_bytes);
+  builder.SetMaxSendMessageSize(message_bytes);
+}
+
+// The address other replicas and followers reach this one at: a wildcard address is no
+// address to reach, so this host's name instead (a container's).
+std::string AdvertisedAddress(const std::string& name, int port, const std::string& address) {
+  char hostname[256] = {};
+  const bool wildcard = name == "0.0.0.0" || name == "[::]" || name == "::";
+  return wildcard && gethostname(hostname, sizeof(hostname) - 1) == 0
+             ? std::string(hostname) + ":" + std::to_string(port)
+             : address;
+}
+
 }  // namespace
 
 std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
@@ -126,16 +169,9 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
       throw InputError("--peer-ca is for replicas sharing a PostgreSQL --store; this one has none");
     }
   } else {
-    PeerSecurity peer;
-    peer.tls = config.tls.enabled();
-    peer.ca_file = config.peer_ca.empty() ? config.tls.client_ca_file : config.peer_ca;
-    peer.tls_name = config.peer_tls_name;
-    if (!config.tls.client_ca_file.empty()) {  // peers require a client certificate
-      peer.cert_file = config.tls.cert_file;
-      peer.key_file = config.tls.key_file;
-    }
     try {
-      host->peers_ = std::make_unique<PeerChannels>(peer, host->runs_->replica_id());
+      host->peers_ =
+          std::make_unique<PeerChannels>(PeerSecurityOf(config), host->runs_->replica_id());
     } catch (const net::SecurityConfigError& error) {
       throw InputError(error.what());
     }
@@ -149,21 +185,8 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   int port = 0;
   builder.AddListeningPort(config.listen, credentials, &port);
   builder.RegisterService(host->service_.get());
-  // gRPC's handler threads: one per open stream (each also counted against
-  // max_subscribers, with a reader thread of its own for Subscribe) plus room for unary
-  // calls; past this, gRPC refuses new calls with RESOURCE_EXHAUSTED instead of growing.
   grpc::ResourceQuota quota("mbstream-server");
-  quota.SetMaxThreads(config.limits.max_subscribers + kUnaryThreads);
-  builder.SetResourceQuota(quota);
-  // Other replicas proxying streams here ping idle connections every 20 s (peer_channels.cc).
-  builder.AddChannelArgument(GRPC_ARG_HTTP2_MIN_RECV_PING_INTERVAL_WITHOUT_DATA_MS, 10000);
-  // A bundle travels in one SubmitModel message (and one GetModel reply): the message limit
-  // holds the largest bundle allowed, plus 1 MiB for the other fields and framing.
-  const int message_bytes = static_cast<int>(std::min<int64_t>(
-      std::numeric_limits<int>::max(),
-      std::max<int64_t>(config.max_message_bytes, config.limits.max_model_bytes + (1 << 20))));
-  builder.SetMaxReceiveMessageSize(message_bytes);
-  builder.SetMaxSendMessageSize(message_bytes);
+  ApplyGrpcLimits(config, quota, builder);
   // A unix socket is created owner-only (the umask applies while gRPC binds it).
   const bool unix_socket = config.listen.rfind("unix:", 0) == 0;
   const mode_t previous_mask = unix_socket ? umask(0077) : 0;
@@ -178,12 +201,7 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   }
   host->address_ = has_port ? name + ":" + std::to_string(port) : config.listen;
   if (config.advertise.empty()) {
-    // A wildcard address is no address to reach: this host's name instead (a container's).
-    char hostname[256] = {};
-    const bool wildcard = name == "0.0.0.0" || name == "[::]" || name == "::";
-    host->runs_->SetAdvertisedAddress(wildcard && gethostname(hostname, sizeof(hostname) - 1) == 0
-                                          ? std::string(hostname) + ":" + std::to_string(port)
-                                          : host->address_);
+    host->runs_->SetAdvertisedAddress(AdvertisedAddress(name, port, host->address_));
   }
   // grpc.health.v1: SERVING while the store answers and the replica is not draining.
   grpc::HealthCheckServiceInterface* health = host->server_->GetHealthCheckService();

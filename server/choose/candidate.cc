@@ -39,15 +39,18 @@ RunConfig WithCandidate(RunConfig config, const Candidate& candidate, double rto
   config.atol = rtol / 100.0;
   config.method_auto = false;
   config.target = AccuracyTarget{};
-  config.prefix = nullptr;
-  config.keep_integration = false;
+  return config;
+}
+
+std::shared_ptr<const RunPrefix> PilotToContinue(const Candidate& candidate, double rtol) {
+  std::shared_ptr<const RunPrefix> chosen;
   for (const std::shared_ptr<const RunPrefix>& pilot : candidate.pilots) {
     if (pilot != nullptr && pilot->rtol <= rtol && pilot->HasIntegration() &&
-        (config.prefix == nullptr || pilot->rtol > config.prefix->rtol)) {
-      config.prefix = pilot;
+        (chosen == nullptr || pilot->rtol > chosen->rtol)) {
+      chosen = pilot;
     }
   }
-  return config;
+  return chosen;
 }
 
 }  // namespace mbstream

@@ -49,7 +49,7 @@ struct Candidate {
   double cpu_per_step_s = 0.0;
   // The pilots' frames, each with its integration still alive at the span's end: the run or
   // check of this candidate at a tolerance no tighter than a pilot's takes the tighter such
-  // pilot over (RunConfig::prefix) instead of integrating the span again.
+  // pilot over (PilotLink::prefix, run_prefix.h) instead of integrating the span again.
   std::shared_ptr<const RunPrefix> pilots[2];
 
   // Predictions for the run (rtol_for) and its check (check_rtol), at their tolerances.
@@ -63,9 +63,13 @@ struct Candidate {
 Candidate MakeCandidate(Method method, const std::string& table = "");
 
 // The run's configuration with this candidate's method and tolerance (atol = rtol / 100),
-// continuing the loosest of the candidate's pilots that is at least as tight as `rtol` and
-// whose integration no run has taken yet (from the start when there is none): the run takes
-// the looser pilot where it can, which leaves the tighter one to its check.
+// with no target.
 RunConfig WithCandidate(RunConfig config, const Candidate& candidate, double rtol);
+
+// The pilot a run of this candidate at `rtol` goes on from: the loosest of the candidate's
+// pilots that is at least as tight as `rtol` and whose integration no run has taken yet (null
+// when there is none: the run starts at t = 0). The run takes the looser pilot where it can,
+// which leaves the tighter one to its check.
+std::shared_ptr<const RunPrefix> PilotToContinue(const Candidate& candidate, double rtol);
 
 }  // namespace mbstream

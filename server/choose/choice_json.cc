@@ -39,7 +39,7 @@ Json CandidateJson(const Candidate& c) {
   return j;
 }
 
-// Where a run took its first frames from a pilot (RunConfig::prefix) and integrated on.
+// Where a run took its first frames from a pilot (PilotLink::prefix) and integrated on.
 Json Continuation(const RunPrefix& prefix, double from_s) {
   return {{"from_s", from_s},
           {"method", prefix.method},
@@ -91,7 +91,7 @@ std::string ChoiceJson(const RunConfig& asked, const MethodChoice& choice,
                  {"atol", choice.run.atol},
                  {"resolvable", choice.resolvable}};
     if (run.continued_from_s > 0.0)
-      j["pick"]["continues_pilot"] = Continuation(*choice.run.prefix, run.continued_from_s);
+      j["pick"]["continues_pilot"] = Continuation(*choice.continues, run.continued_from_s);
   }
   j["reason"] = choice.reason;
   j["verification"] = {{"how", verification.how},

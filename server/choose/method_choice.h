@@ -7,6 +7,7 @@
 #pragma once
 
 #include <atomic>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,7 +20,9 @@
 namespace mbstream {
 
 struct MethodChoice {
-  RunConfig run;            // what runs: formulation, method, table, tolerances; no target
+  RunConfig run;  // what runs: formulation, method, table, tolerances; no target
+  // The pilot the run goes on from (null: from t = 0), beside `run` (run_prefix.h).
+  std::shared_ptr<const RunPrefix> continues;
   std::string formulation;  // "kinematic" or "joint"
   std::string formulation_reason;
   bool closed_form = false;  // kinematic: exact, nothing chosen beyond it
@@ -38,7 +41,7 @@ struct MethodChoice {
 };
 
 // Chooses for `config` (config.target set; method_auto, or a method whose tolerance alone is
-// chosen). Throws InputError as ValidateRun does.
+// chosen), a config ValidateRun accepted (a CHECK fails otherwise).
 MethodChoice ChooseMethod(const Model& model, const RunConfig& config,
                           const std::atomic<bool>* cancel = nullptr);
 

@@ -15,12 +15,6 @@ namespace {
 constexpr double kPilotFraction = 0.05;
 constexpr double kTinyError = 1e-15;  // below this the pilots agree to round-off
 
-// The pilot's configuration, its integration kept for the run or check that continues it.
-RunConfig KeepingIntegration(RunConfig config) {
-  config.keep_integration = true;
-  return config;
-}
-
 // Growth of an error from the pilot span to the whole run: linear in time, as local errors
 // accumulate into the global one, or exponential at `rate` (1/s) where nearby solutions
 // separate (the Jacobian's largest real part, stiffness_probe.h), whichever is larger. (A
@@ -59,9 +53,11 @@ RunResult RunPilot(const Model& model, const RunConfig& config, const PilotSpan&
   RunResult results[2];
   for (int k = 0; k < 2; ++k) {
     candidate->rtol[k] = std::max(kMinRtol, rtol / (k == 0 ? 1.0 : 100.0));
-    results[k] =
-        Simulate(model, KeepingIntegration(WithCandidate(pilot, *candidate, candidate->rtol[k])),
-                 nullptr, cancel);
+    // The pilot's integration is kept for the run or check that continues it.
+    const PilotLink link{PilotToContinue(*candidate, candidate->rtol[k]),
+                         /*keep_integration=*/true};
+    results[k] = SimulateTree(model, WithCandidate(pilot, *candidate, candidate->rtol[k]), nullptr,
+                              cancel, link);
     candidate->steps[k] = results[k].stats.solver.steps;
     candidate->rhs_evals[k] = results[k].stats.solver.rhs_evals;
     candidate->cpu_s[k] = results[k].stats.cpu_s;

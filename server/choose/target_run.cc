@@ -1,5 +1,6 @@
 #include "server/choose/target_run.h"
 
+#include "common/check.h"
 #include "server/choose/choice_json.h"
 #include "server/choose/frame_track.h"
 #include "server/choose/method_choice.h"
@@ -8,12 +9,13 @@
 
 namespace mbstream {
 
-RunResult SimulateWithTarget(const Model& model, const RunConfig& config, FrameSink* sink,
-                             const std::atomic<bool>* cancel) {
-  if (!config.target.any()) return Simulate(model, config, sink, cancel);
+RunResult RunWithTarget(const Model& model, const RunConfig& config, FrameSink* sink,
+                        const std::atomic<bool>* cancel) {
+  MBSTREAM_CHECK_MSG(config.target.any(), "a run without a target runs with SimulateTree");
   const MethodChoice choice = ChooseMethod(model, config, cancel);
   TrackingSink tracking(sink);
-  RunResult result = Simulate(model, choice.run, &tracking, cancel);
+  RunResult result =
+      SimulateTree(model, choice.run, &tracking, cancel, PilotLink{choice.continues});
   const Verification verification =
       VerifyTarget(model, config, choice, result, tracking.track(), cancel);
   RunStats& stats = result.stats;

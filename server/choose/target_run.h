@@ -12,8 +12,9 @@
 
 namespace mbstream {
 
-// Simulate (simulate.h) when config.target is empty; otherwise choose, run and verify.
-RunResult SimulateWithTarget(const Model& model, const RunConfig& config, FrameSink* sink = nullptr,
-                             const std::atomic<bool>* cancel = nullptr);
+// Chooses, runs and verifies `config` (config.target set, ValidateRun accepted it). The
+// engine's entry (server/engine/engine.h) comes here for a run with a target.
+RunResult RunWithTarget(const Model& model, const RunConfig& config, FrameSink* sink = nullptr,
+                        const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace mbstream

@@ -68,6 +68,7 @@ Verification VerifyTarget(const Model& model, const RunConfig& asked, const Meth
   v.rtol = check.check_rtol;
   v.budget_cpu_s = std::max(1.0, 10.0 * check.check_cpu_s);
   RunConfig config = WithCandidate(choice.run, check, v.rtol);
+  const PilotLink pilot{PilotToContinue(check, v.rtol)};
   config.want_torques = false;
   config.max_cpu_s = v.budget_cpu_s;
   config.max_steps = 0;
@@ -75,11 +76,11 @@ Verification VerifyTarget(const Model& model, const RunConfig& asked, const Meth
       "%s at rtol %.3g (predicted error %.3g x the target), compared on the %d "
       "output frames",
       check.name.c_str(), v.rtol, kCheckSafety, track.frames());
-  const RunResult reference = Simulate(model, config, nullptr, cancel);
+  const RunResult reference = SimulateTree(model, config, nullptr, cancel, pilot);
   v.ran = true;
   v.cpu_s = reference.stats.cpu_s;
   v.continued_from_s = reference.stats.continued_from_s;
-  v.prefix = config.prefix;
+  v.prefix = pilot.prefix;
   if (reference.stats.status != RunStatus::kFinished) {
     v.message = FormatString(
         "not verified: the check (%s) ended %s at t = %.4g s after %.3g s of CPU (budget %.3g "

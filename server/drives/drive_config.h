@@ -15,6 +15,7 @@ struct Trajectory {
   double offset = 0.0;
   std::vector<double> amplitude, omega, phase;  // rad or m, rad/s, rad
   std::vector<double> times, values;            // s, rad or m (strictly increasing times)
+  bool operator==(const Trajectory&) const = default;
 };
 
 // What drives one joint.
@@ -36,6 +37,7 @@ struct DriveConfig {
   double amplitude = 0.0;  // kTorque
   double omega = 0.0;      // kTorque, rad/s
   double phase = 0.0;      // kTorque, rad
+  bool operator==(const DriveConfig&) const = default;
 };
 
 }  // namespace mbstream

@@ -4,10 +4,9 @@
 #include <chrono>
 
 #include "common/check.h"
-#include "server/choose/target_run.h"
+#include "server/engine/engine.h"
 #include "server/runs/run_manager.h"
 #include "server/runs/unix_time.h"
-#include "server/sim/loop_run.h"
 #include "server/store/frame_chunks.h"
 #include "server/store/store.h"
 #include "server/wire/frame_conversion.h"
@@ -98,10 +97,7 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
   PublishingSink sink(run.get(), store_, clock_, limits_.frame_flush_s,
                       replica_.private_store ? std::string() : LeaseHolder(run->Info()));
   const CompiledModel& model = run->model();
-  const RunResult result =
-      model.loops.empty()
-          ? SimulateWithTarget(model.model, run->config(), &sink, &run->cancel)
-          : SimulateLoops(model.model, model.loops, run->config(), &sink, &run->cancel);
+  const RunResult result = Simulate(model.model, model.loops, run->config(), &sink, &run->cancel);
   const RunStats& stats = result.stats;
   outcome.state = RunStateFromStatus(stats.status);
   outcome.message = stats.message;

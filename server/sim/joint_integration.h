@@ -1,7 +1,7 @@
 // A joint-space integration that can outlive its run: the model (with the run's gravity), the
-// drives, the ODE, its state and the integrator. A run made with RunConfig::keep_integration
+// drives, the ODE, its state and the integrator. A run made with PilotLink::keep_integration
 // hands it on (RunResult::integration); a later run of the same scene that continues those
-// frames (RunConfig::prefix, run_prefix.h) takes it over and goes on from where it stopped,
+// frames (PilotLink::prefix, run_prefix.h) takes it over and goes on from where it stopped,
 // with its own tolerances, keeping the integrator's step size and order.
 #pragma once
 

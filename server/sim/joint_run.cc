@@ -83,15 +83,14 @@ class JointSpaceSource : public FrameSource {
   double work_ = 0.0;  // J, the integrated work of drives and damping since t = 0 (when tracked)
 };
 
-// config.prefix's integration, taken over and retuned to `options`, when the prefix's frames
+// `prefix`'s integration, taken over and retuned to `options`, when the prefix's frames
 // are all on the run's first output times (at least two: the first is the initial state) and
 // its integration, still there, is of this ODE; null otherwise (the run starts at t = 0; an
 // integration that does not fit stays with the prefix for another run).
-std::shared_ptr<JointIntegration> TakeOverPrefix(const RunConfig& config,
+std::shared_ptr<JointIntegration> TakeOverPrefix(const RunPrefix* prefix,
                                                  const std::vector<double>& times, int n,
                                                  bool track_work, const IntegratorOptions& options,
                                                  size_t* prefix_frames) {
-  const RunPrefix* prefix = config.prefix.get();
   *prefix_frames = 0;
   if (prefix == nullptr || prefix->num_dofs != n || prefix->frames() < 2 ||
       MatchingFrames(*prefix, times) != prefix->frames() ||
@@ -114,9 +113,10 @@ std::shared_ptr<JointIntegration> TakeOverPrefix(const RunConfig& config,
 
 }  // namespace
 
-void RunJointSpace(const Model& model, const RunConfig& config, const DriveSet& drives,
-                   const std::vector<double>& times, FrameRecorder& recorder, RunResult& result,
-                   FrameSink* sink, const std::atomic<bool>* cancel, BudgetTracking* budget) {
+void RunJointSpace(const Model& model, const RunConfig& config, const PilotLink& pilot,
+                   const DriveSet& drives, const std::vector<double>& times,
+                   FrameRecorder& recorder, RunResult& result, FrameSink* sink,
+                   const std::atomic<bool>* cancel, BudgetTracking* budget) {
   const int n = model.num_dofs();
   // The work of drives and damping as a state of the ODE whenever there is any: a trapezoid
   // rule over the output frames would measure the output interval, not the integrator. The
@@ -127,7 +127,7 @@ void RunJointSpace(const Model& model, const RunConfig& config, const DriveSet& 
       IntegratorOptionsFrom(config, times.back(), budget->cpu_deadline_s);
   size_t prefix_frames = 0;
   std::shared_ptr<JointIntegration> live =
-      TakeOverPrefix(config, times, n, track_work, options, &prefix_frames);
+      TakeOverPrefix(pilot.prefix.get(), times, n, track_work, options, &prefix_frames);
   if (live == nullptr)
     live = std::make_shared<JointIntegration>(model, config, track_work, options);
   if (track_work) recorder.UseIntegratedWork();
@@ -136,10 +136,10 @@ void RunJointSpace(const Model& model, const RunConfig& config, const DriveSet& 
   result.stats.integrator = live->integrator->name();
   result.stats.continued_from_s = prefix_frames > 0 ? times[prefix_frames - 1] : 0.0;
   JointSpaceSource source(*live, result.has_torques || result.has_energy, budget,
-                          config.prefix.get(), prefix_frames);
+                          pilot.prefix.get(), prefix_frames);
   RunFrames(times, source, recorder, result, sink, cancel);
   result.stats.solver = StatsSince(live->integrator->stats(), live->before);
-  if (config.keep_integration && result.stats.status == RunStatus::kFinished) {
+  if (pilot.keep_integration && result.stats.status == RunStatus::kFinished) {
     result.integration = std::move(live);
   }
 }

@@ -195,7 +195,7 @@ class ClosedLoopDaeSource : public FrameSource {
   Eigen::VectorXd q_, qd_, effort_;
 };
 
-// Output times as Simulate takes them: k * interval, and the duration last.
+// Output times as SimulateTree takes them: k * interval, and the duration last.
 std::vector<double> LoopOutputTimes(double duration, double interval) {
   std::vector<double> times;
   const long count = OutputFrameCount(duration, interval);
@@ -212,36 +212,14 @@ RunConfig TreeConfigOf(const RunConfig& config) {
   return tree;
 }
 
-}  // namespace
-
-FormulationChoice ValidateLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
-                                  const RunConfig& config) {
-  if (loops.empty()) return ValidateRun(model, config);
-  const DriveSet drives(model, config.drives);
-  const LoopPlan plan = PlanLoopRun(model, loops, config, drives);
-  ValidateRun(model, TreeConfigOf(config), drives);
-  return plan.choice;
-}
-
-RunResult SimulateLoops(const Model& model_in, const std::vector<LoopClosure>& loops,
-                        const RunConfig& config_in, FrameSink* sink,
-                        const std::atomic<bool>* cancel) {
-  if (loops.empty()) return Simulate(model_in, config_in, sink, cancel);
-  const double cpu0 = ThreadCpuSeconds();
-  const auto wall0 = std::chrono::steady_clock::now();
-  Model model = model_in;
-  model.gravity = config_in.gravity;
-  RunConfig config = config_in;
-  ResolveBudget(model.num_dofs(), &config);
-  const DriveSet drives(model, config.drives);
-  const LoopPlan plan = PlanLoopRun(model, loops, config, drives);
-  ValidateRun(model, TreeConfigOf(config), drives);
+// The result before any frame: every joint of the file (the tree's, then the cut joints'
+// coordinates, computed from the tree's state: loop_coordinates.h), the formulation and how
+// the loops close.
+RunResult StartLoopResult(const Model& model, const std::vector<LoopClosure>& loops,
+                          const RunConfig& config, const LoopPlan& plan,
+                          const LoopCoordinates& cut_coordinates) {
   const bool kinematic = plan.choice.formulation == Formulation::kKinematic;
-
   RunResult result;
-  // Every joint of the file: the tree's, then the cut joints' coordinates (computed from
-  // the tree's state, loop_coordinates.h).
-  LoopCoordinates cut_coordinates(model, loops);
   result.num_dofs = model.num_dofs() + cut_coordinates.size();
   for (const Body& body : model.bodies) result.joint_names.push_back(body.joint.name);
   for (std::string& name : LoopCoordinateNames(loops)) result.joint_names.push_back(name);
@@ -263,50 +241,105 @@ RunResult SimulateLoops(const Model& model_in, const std::vector<LoopClosure>& l
   stats.loops.independent = plan.rank.rank;
   stats.loops.mobility = plan.rank.mobility;
   stats.loops.assembly = plan.assembly;
+  return result;
+}
 
+// Everything a loop run's frame loop needs besides the formulation's source.
+struct LoopFrames {
+  const std::vector<double>& times;
+  FrameRecorder& recorder;
+  RunResult& result;
+  FrameSink* sink;
+  const std::atomic<bool>* cancel;
+  BudgetTracking* budget;
+};
+
+// Method ida: the index-2 GGL DAE (closed_loop_dae.h).
+void RunLoopDae(const Model& model, const std::vector<LoopClosure>& loops, const RunConfig& config,
+                const DriveSet& drives, const LoopPlan& plan, const LoopFrames& frames) {
+  RunStats& stats = frames.result.stats;
+  ClosedLoopDae dae(model, loops, drives, plan.rank);
+  Eigen::VectorXd y, yp;
+  dae.ConsistentStart(0.0, plan.q0, plan.qd0, &y, &yp);
+  IdaOptions ida;
+  ida.base = IntegratorOptionsFrom(config, frames.times.back(), frames.budget->cpu_deadline_s);
+  ida.linear_solver = IdaOptions::LinearSolver::kDense;
+  ida.initial_step = 1e-3 * config.output_interval;
+  if (config.max_step > 0.0) ida.initial_step = std::min(ida.initial_step, config.max_step);
+  std::unique_ptr<Integrator> integrator = MakeIdaIntegrator(dae, 0.0, y.data(), yp.data(), ida);
+  stats.equations = dae.size();
+  stats.jacobian_nnz = dae.JacobianNonZeros();
+  stats.integrator = std::string(integrator->name()) + " (index-2 GGL)";
+  ClosedLoopDaeSource source(dae, *integrator, y, model.num_dofs(), frames.budget, &stats);
+  RunFrames(frames.times, source, frames.recorder, frames.result, frames.sink, frames.cancel);
+  stats.solver = integrator->stats();
+}
+
+// An ODE method: the Baumgarte ODE, projected after each step of BDF (closed_loop_ode.h).
+void RunLoopOde(const Model& model, const std::vector<LoopClosure>& loops, const RunConfig& config,
+                const DriveSet& drives, const LoopPlan& plan, const LoopFrames& frames) {
+  RunStats& stats = frames.result.stats;
+  // The projection's Newton tolerance: well below the run's atol, or CVODE takes the
+  // leftover for a correction too large and shrinks the step. Below atol 1e-13 it is
+  // under round-off and the projection fails (docs/closed_loops.md).
+  ClosedLoopOde ode(model, loops, drives, plan.q0, config.baumgarte,
+                    std::min(1e-10, 0.01 * config.atol));
+  Eigen::VectorXd y(2 * model.num_dofs());
+  y << plan.q0, plan.qd0;
+  const IntegratorOptions options =
+      IntegratorOptionsFrom(config, frames.times.back(), frames.budget->cpu_deadline_s);
+  std::unique_ptr<Integrator> integrator = MakeIntegrator(ode, 0.0, y.data(), options);
+  stats.equations = ode.size();
+  stats.jacobian_nnz = ode.size() * ode.size();
+  stats.integrator =
+      std::string(integrator->name()) + (config.method == Method::kBdf ? " with projection" : "");
+  ClosedLoopSource source(ode, *integrator, y, frames.budget, &stats);
+  RunFrames(frames.times, source, frames.recorder, frames.result, frames.sink, frames.cancel);
+  stats.solver = integrator->stats();
+}
+
+}  // namespace
+
+FormulationChoice ValidateLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
+                                  const RunConfig& config) {
+  if (loops.empty()) return ValidateRun(model, config);
+  const DriveSet drives(model, config.drives);
+  const LoopPlan plan = PlanLoopRun(model, loops, config, drives);
+  ValidateRun(model, TreeConfigOf(config), drives);
+  return plan.choice;
+}
+
+RunResult SimulateLoops(const Model& model_in, const std::vector<LoopClosure>& loops,
+                        const RunConfig& config_in, FrameSink* sink,
+                        const std::atomic<bool>* cancel) {
+  if (loops.empty()) return SimulateTree(model_in, config_in, sink, cancel);
+  const double cpu0 = ThreadCpuSeconds();
+  const auto wall0 = std::chrono::steady_clock::now();
+  Model model = model_in;
+  model.gravity = config_in.gravity;
+  RunConfig config = config_in;
+  ResolveBudget(model.num_dofs(), &config);
+  const DriveSet drives(model, config.drives);  // CHECKs one per joint
+  CheckValidatedShape(model, config);           // ValidateLoopRun at the door did the rest
+  const LoopPlan plan = PlanLoopRun(model, loops, config, drives);
+
+  LoopCoordinates cut_coordinates(model, loops);
+  RunResult result = StartLoopResult(model, loops, config, plan, cut_coordinates);
+  RunStats& stats = result.stats;
   const std::vector<double> times = LoopOutputTimes(config.duration, config.output_interval);
   FrameRecorder recorder(model, drives, result, times.size(), /*track_tcp_error=*/false,
                          /*latest_only=*/sink != nullptr && sink->KeepsFrames());
   recorder.AppendLoopCoordinates(&cut_coordinates);
   BudgetTracking budget;
   budget.cpu_deadline_s = cpu0 + config.max_cpu_s;
-  if (kinematic) {
+  const LoopFrames frames{times, recorder, result, sink, cancel, &budget};
+  if (plan.choice.formulation == Formulation::kKinematic) {
     KinematicLoopSource source(model, loops, drives, plan, config.want_torques, &stats);
     RunFrames(times, source, recorder, result, sink, cancel);
   } else if (config.method == Method::kIda) {
-    ClosedLoopDae dae(model, loops, drives, plan.rank);
-    Eigen::VectorXd y, yp;
-    dae.ConsistentStart(0.0, plan.q0, plan.qd0, &y, &yp);
-    IdaOptions ida;
-    ida.base = IntegratorOptionsFrom(config, times.back(), budget.cpu_deadline_s);
-    ida.linear_solver = IdaOptions::LinearSolver::kDense;
-    ida.initial_step = 1e-3 * config.output_interval;
-    if (config.max_step > 0.0) ida.initial_step = std::min(ida.initial_step, config.max_step);
-    std::unique_ptr<Integrator> integrator = MakeIdaIntegrator(dae, 0.0, y.data(), yp.data(), ida);
-    stats.equations = dae.size();
-    stats.jacobian_nnz = dae.JacobianNonZeros();
-    stats.integrator = std::string(integrator->name()) + " (index-2 GGL)";
-    ClosedLoopDaeSource source(dae, *integrator, y, model.num_dofs(), &budget, &stats);
-    RunFrames(times, source, recorder, result, sink, cancel);
-    stats.solver = integrator->stats();
+    RunLoopDae(model, loops, config, drives, plan, frames);
   } else {
-    // The projection's Newton tolerance: well below the run's atol, or CVODE takes the
-    // leftover for a correction too large and shrinks the step. Below atol 1e-13 it is
-    // under round-off and the projection fails (docs/closed_loops.md).
-    ClosedLoopOde ode(model, loops, drives, plan.q0, config.baumgarte,
-                      std::min(1e-10, 0.01 * config.atol));
-    Eigen::VectorXd y(2 * model.num_dofs());
-    y << plan.q0, plan.qd0;
-    const IntegratorOptions options =
-        IntegratorOptionsFrom(config, times.back(), budget.cpu_deadline_s);
-    std::unique_ptr<Integrator> integrator = MakeIntegrator(ode, 0.0, y.data(), options);
-    stats.equations = ode.size();
-    stats.jacobian_nnz = ode.size() * ode.size();
-    stats.integrator =
-        std::string(integrator->name()) + (config.method == Method::kBdf ? " with projection" : "");
-    ClosedLoopSource source(ode, *integrator, y, &budget, &stats);
-    RunFrames(times, source, recorder, result, sink, cancel);
-    stats.solver = integrator->stats();
+    RunLoopOde(model, loops, config, drives, plan, frames);
   }
   stats.cpu_s = ThreadCpuSeconds() - cpu0;
   stats.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

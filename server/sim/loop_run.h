@@ -1,4 +1,4 @@
-// Runs a mechanism with closed loops in-process: Simulate's counterpart for a Model and the
+// Runs a mechanism with closed loops in-process: SimulateTree's counterpart for a Model and the
 // joints cut from it (server/model/loop_closure.h). Formulations: kinematic (every degree
 // of freedom prescribed: Newton on the loops at each frame, nothing integrated) and joint
 // (the loops as constraints with Baumgarte stabilisation, projected after each step of
@@ -23,8 +23,9 @@ namespace mbstream {
 FormulationChoice ValidateLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
                                   const RunConfig& config);
 
-// As Simulate (simulate.h): numerical failure is a status, an InputError only for a run that
-// cannot start. With no loops it is Simulate.
+// As SimulateTree (simulate.h), for a config ValidateLoopRun accepted (the engine's entry,
+// server/engine/engine.h, comes here for a model with loops): numerical failure is a status.
+// With no loops it is SimulateTree.
 RunResult SimulateLoops(const Model& model, const std::vector<LoopClosure>& loops,
                         const RunConfig& config, FrameSink* sink = nullptr,
                         const std::atomic<bool>* cancel = nullptr);

@@ -1,9 +1,9 @@
-// What a run asks for, as the physics core sees it: a plain struct, with no generated
-// (protobuf) code. The service and the CLI convert the wire/JSON RunSpec into this at their
-// edge (server/spec/), validating it there.
+// What a run asks for, as the physics core sees it: a plain value (copyable, comparable),
+// with no generated (protobuf) code and no live state (a pilot's state travels beside it:
+// PilotLink, run_prefix.h). The service and the CLI convert the wire/JSON RunSpec into this at
+// their edge (server/spec/) and validate it there, once (ValidateRun, run_validation.h).
 #pragma once
 
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,8 +14,6 @@
 #include "server/integrate/method.h"
 
 namespace mbstream {
-
-struct RunPrefix;  // run_prefix.h
 
 // How the mechanism is modelled ("model no more than a scene needs").
 enum class Formulation {
@@ -35,6 +33,7 @@ struct AccuracyTarget {
   double energy_error_rel = 0.0;  // relative energy-balance error (RunStats::energy_error_max)
 
   bool any() const { return tcp_error_m > 0.0 || joint_error_rad > 0.0 || energy_error_rel > 0.0; }
+  bool operator==(const AccuracyTarget&) const = default;
 };
 
 struct RunConfig {
@@ -63,14 +62,10 @@ struct RunConfig {
   AccuracyTarget target;
   bool method_auto = false;  // method "auto": chosen for the target (needs one)
   bool verify = true;        // check the achieved error after a target run
-  // Internal, never from a spec (server/choose/ sets them). `prefix`: the run's first frames,
-  // computed already by a pilot of the same scene with the same method (run_prefix.h); a
-  // joint-space run whose first output times they all are takes them and the pilot's
-  // integration over and goes on from there. Otherwise (another formulation, other times,
-  // the integration taken already) it starts at t = 0 as usual. `keep_integration`: a
-  // finished joint-space run hands its integration on in RunResult::integration.
-  std::shared_ptr<const RunPrefix> prefix;
-  bool keep_integration = false;
+
+  // Field by field, exactly (doubles bit for bit but for -0 == 0; q0 and qd0 of another
+  // size differ).
+  bool operator==(const RunConfig& other) const;
 };
 
 const char* FormulationName(Formulation formulation);  // "auto", "kinematic", "joint", ...

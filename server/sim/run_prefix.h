@@ -39,7 +39,19 @@ struct RunPrefix {
   mutable std::shared_ptr<JointIntegration> integration;
 };
 
-// The frames of a finished joint-space result made with RunConfig::keep_integration, and
+// A run's link to pilots, beside its RunConfig and never inside it (the config is a plain
+// value of what was asked; this is live state, which only server/choose/ sets): `prefix`, the
+// run's first frames computed already by a pilot of the same scene with the same method; a
+// joint-space run whose first output times they all are takes them and the pilot's
+// integration over and goes on from there, otherwise (another formulation, other times, the
+// integration taken already) it starts at t = 0 as usual. `keep_integration`: a finished
+// joint-space run hands its integration on in RunResult::integration (for MakePrefix).
+struct PilotLink {
+  std::shared_ptr<const RunPrefix> prefix;  // null: start at t = 0
+  bool keep_integration = false;
+};
+
+// The frames of a finished joint-space result made with PilotLink::keep_integration, and
 // its integration (moved out of `result`).
 std::shared_ptr<RunPrefix> MakePrefix(RunResult& result, double rtol, const char* method);
 

@@ -71,7 +71,7 @@ struct RunStats {
   std::string integrator;  // e.g. "CVODE BDF"
   SolverStats solver;
   double cpu_s = 0.0;  // CPU time of the run's thread
-  // s: the run took its frames up to this time from a pilot's (RunConfig::prefix) and went
+  // s: the run took its frames up to this time from a pilot's (PilotLink::prefix) and went
   // on with the pilot's integration from there; `solver` counts its own steps only. 0: it
   // integrated from t = 0.
   double continued_from_s = 0.0;
@@ -124,7 +124,7 @@ struct RunResult {
   // frames itself (FrameSink::KeepsFrames) and the arrays hold just the latest frame.
   long first_seq = 0;
   RunStats stats;
-  // A finished joint-space run made with RunConfig::keep_integration: its integration, at
+  // A finished joint-space run made with PilotLink::keep_integration: its integration, at
   // the last frame (run_prefix.h); null otherwise.
   std::shared_ptr<JointIntegration> integration;
 

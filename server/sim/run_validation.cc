@@ -16,7 +16,7 @@ namespace mbstream {
 namespace {
 
 // The RunConfig's own ranges (server/spec checks the spec's fields; this guards the other
-// callers of Simulate).
+// callers of ValidateRun).
 void CheckShape(const Model& model, const RunConfig& config) {
   if (static_cast<int>(config.drives.size()) != model.num_dofs()) {
     throw InputError(
@@ -55,6 +55,21 @@ void CheckMethodFor(const RunConfig& config, const FormulationChoice& choice) {
 }
 
 }  // namespace
+
+void CheckValidatedShape(const Model& model, const RunConfig& config) {
+  MBSTREAM_CHECK_MSG(static_cast<int>(config.drives.size()) == model.num_dofs(),
+                     "one drive per joint: ValidateRun first");
+  MBSTREAM_CHECK_MSG(config.duration > 0.0 && std::isfinite(config.duration),
+                     "a positive finite duration: ValidateRun first");
+  MBSTREAM_CHECK_MSG(config.output_interval > 0.0 && std::isfinite(config.output_interval),
+                     "a positive finite output interval: ValidateRun first");
+}
+
+FormulationChoice ValidatedFormulation(const Model& model, const RunConfig& config,
+                                       const DriveSet& drives) {
+  CheckValidatedShape(model, config);
+  return ChooseFormulation(config, drives);
+}
 
 FormulationChoice ValidateRun(const Model& model, const RunConfig& config) {
   CheckShape(model, config);

@@ -1,8 +1,10 @@
 // The one validation of a run request against its model: everything that would make the run
 // fail for a reason knowable before it starts (formulation, method, Butcher table, options,
-// body formulations' requirements). The service calls it before queueing a run, the CLI's
-// `simulate` before simulating, and Simulate itself, so a request it accepts does not fail
-// with an InputError inside a worker.
+// body formulations' requirements). It runs once per request, at the door: the service before
+// queueing a run, the CLI's `simulate` after reading the spec (for a model with closed loops
+// through ValidateLoopRun, loop_run.h). The layers inside (the engine, the choice of method)
+// rely on it and only CHECK what they need (ValidatedFormulation), so a request it accepts does
+// not fail with an InputError inside a worker.
 #pragma once
 
 #include "server/drives/drive_set.h"
@@ -17,7 +19,16 @@ namespace mbstream {
 // instead.
 FormulationChoice ValidateRun(const Model& model, const RunConfig& config);
 
-// The same with the run's drives already built (Simulate's path: no second DriveSet).
+// The same with the run's drives already built (ValidateLoopRun's path: no second DriveSet).
 FormulationChoice ValidateRun(const Model& model, const RunConfig& config, const DriveSet& drives);
+
+// For a config ValidateRun accepted: the formulation it runs with. CHECKs the shape the
+// engine indexes by (one drive per joint, a positive finite duration and output interval); a
+// failure is a caller that skipped ValidateRun, a bug (InternalError), not a user's error.
+FormulationChoice ValidatedFormulation(const Model& model, const RunConfig& config,
+                                       const DriveSet& drives);
+
+// ValidatedFormulation's CHECKs alone.
+void CheckValidatedShape(const Model& model, const RunConfig& config);
 
 }  // namespace mbstream

@@ -79,8 +79,8 @@ long OutputFrameCount(double duration, double interval) {
   return regular + (duration - last > 1e-12 * duration ? 1 : 0);
 }
 
-RunResult Simulate(const Model& model_in, const RunConfig& config_in, FrameSink* sink,
-                   const std::atomic<bool>* cancel) {
+RunResult SimulateTree(const Model& model_in, const RunConfig& config_in, FrameSink* sink,
+                       const std::atomic<bool>* cancel, const PilotLink& pilot) {
   const double cpu0 = ThreadCpuSeconds();
   const auto wall0 = std::chrono::steady_clock::now();
   Model model = model_in;  // the run's own copy, with the run's gravity
@@ -88,7 +88,7 @@ RunResult Simulate(const Model& model_in, const RunConfig& config_in, FrameSink*
   RunConfig config = config_in;
   ResolveBudget(model.num_dofs(), &config);
   const DriveSet drives(model, config.drives);
-  const FormulationChoice choice = ValidateRun(model, config, drives);
+  const FormulationChoice choice = ValidatedFormulation(model, config, drives);
   const std::vector<InputWarning> warnings = CheckInputSanity(model, config);
 
   RunResult result;
@@ -116,7 +116,7 @@ RunResult Simulate(const Model& model_in, const RunConfig& config_in, FrameSink*
     RunBody(model, config, choice.formulation, drives, times, recorder, result, sink, cancel,
             &budget);
   } else {
-    RunJointSpace(model, config, drives, times, recorder, result, sink, cancel, &budget);
+    RunJointSpace(model, config, pilot, drives, times, recorder, result, sink, cancel, &budget);
   }
   result.stats.cpu_s = ThreadCpuSeconds() - cpu0;
   result.stats.wall_s =

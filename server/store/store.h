@@ -5,7 +5,8 @@
 // and restarted finds every model and finished run again; runs it left unfinished are marked
 // INTERRUPTED at start.
 //
-// Every method is thread-safe. Runtime database failures throw an InternalError (SqliteError,
+// Every method is thread-safe. The implementations declare their overrides from one list
+// (store_methods.h). Runtime database failures throw an InternalError (SqliteError,
 // PostgresError) naming the operation and the database's message.
 #pragma once
 
@@ -31,6 +32,9 @@ class Store {
   static constexpr const char* kFileName = "mbstream.sqlite3";
   static constexpr const char* kFramesFileName = "mbstream.frames";  // frame_file.h
 
+  // Bytes by model id (ModelBytes).
+  using ModelSizes = std::map<std::string, int64_t>;
+
   // The SQLite store in `directory` (as --data; see SqliteStore::Open).
   static std::unique_ptr<Store> Open(const std::string& directory);
 
@@ -54,7 +58,7 @@ class Store {
   virtual std::optional<v1::ModelBundle> GetModelBundle(const std::string& model_id,
                                                         bool asset_data = true) const = 0;
   // Each stored model's size in bytes (its bundle row and its assets' data), by id.
-  virtual std::map<std::string, int64_t> ModelBytes() const = 0;
+  virtual ModelSizes ModelBytes() const = 0;
 
   // Runs. PutRun inserts or replaces the run's row (its RunInfo, state, timestamps); the
   // run's frames and probes stay.

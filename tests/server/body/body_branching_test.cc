@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "server/sim/simulate.h"
+#include "server/engine/engine.h"
 #include "tests/common/test_models.h"
 #include "tests/server/body/body_test_util.h"
 

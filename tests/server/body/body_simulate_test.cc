@@ -7,7 +7,8 @@
 #include <cstdio>
 
 #include "common/check.h"
-#include "server/sim/simulate.h"
+#include "server/engine/engine.h"
+#include "server/sim/run_validation.h"
 #include "server/spec/run_spec_json.h"
 #include "tests/server/body/body_test_util.h"
 
@@ -198,10 +199,10 @@ TEST(BodySimulateTest, RefusesMethodsOfTheWrongKind) {
   RunConfig config = testing::Scene("seed-run");
   config.formulation = Formulation::kBodyIndex2;
   config.method = Method::kBdf;
-  EXPECT_THROW(Simulate(testing::Irb1600(), config), InputError);
+  EXPECT_THROW(ValidateRun(testing::Irb1600(), config), InputError);
   config.formulation = Formulation::kBodyBaumgarte;
   config.method = Method::kIda;
-  EXPECT_THROW(Simulate(testing::Irb1600(), config), InputError);
+  EXPECT_THROW(ValidateRun(testing::Irb1600(), config), InputError);
 }
 
 }  // namespace

@@ -2,7 +2,6 @@
 // verification, on the shipped scenes and on a model the choice was not developed on; the
 // achieved errors are checked against independent tight reference runs, not only the choice's
 // own check.
-#include "server/choose/target_run.h"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +10,7 @@
 #include <string>
 
 #include "server/choose/frame_track.h"
+#include "server/engine/engine.h"
 #include "server/sim/simulate.h"
 #include "tests/common/test_models.h"
 #include "tests/server/sim/scene_fixture.h"
@@ -49,14 +49,17 @@ nlohmann::json Choice(const RunResult& result) {
 
 TEST(ChooseTest, NoTargetIsAPlainRun) {
   RunConfig config = Scene("stiff-servo");
-  const RunResult plain = SimulateWithTarget(Irb1600(), config);
+  const RunResult plain = Simulate(Irb1600(), config);
   EXPECT_TRUE(plain.stats.choice_json.empty());
   EXPECT_FALSE(plain.stats.target_met.has_value());
-  EXPECT_EQ(plain.t, Simulate(Irb1600(), config).t);
+  // The engine's entry took the inner run's path: the same frames, bit for bit.
+  const RunResult inner = SimulateTree(Irb1600(), config);
+  EXPECT_EQ(plain.t, inner.t);
+  EXPECT_EQ(plain.q, inner.q);
 }
 
 TEST(ChooseTest, EveryJointPrescribedIsTheClosedForm) {
-  const RunResult result = SimulateWithTarget(Irb1600(), WithTcpTarget(Scene("seed-run"), 1e-9));
+  const RunResult result = Simulate(Irb1600(), WithTcpTarget(Scene("seed-run"), 1e-9));
   ASSERT_EQ(result.stats.status, RunStatus::kFinished);
   EXPECT_EQ(result.stats.formulation, "kinematic");
   ASSERT_TRUE(result.stats.target_met.has_value());
@@ -68,7 +71,7 @@ TEST(ChooseTest, EveryJointPrescribedIsTheClosedForm) {
 TEST(ChooseTest, StiffServoPicksBdfAndMeetsItsTargets) {
   for (double target : {1e-5, 1e-8}) {
     const RunConfig config = WithTcpTarget(Scene("stiff-servo"), target);
-    const RunResult result = SimulateWithTarget(Irb1600(), config);
+    const RunResult result = Simulate(Irb1600(), config);
     ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
     EXPECT_EQ(result.stats.method, "bdf");
     const nlohmann::json choice = Choice(result);
@@ -117,7 +120,7 @@ TEST(ChooseTest, UnseenSevenJointArmWithStiffServoMeetsItsTargets) {
   config.q0 = Eigen::VectorXd::Zero(7);
   for (double target : {1e-4, 1e-7}) {
     const RunConfig asked = WithTcpTarget(config, target);
-    const RunResult result = SimulateWithTarget(model, asked);
+    const RunResult result = Simulate(model, asked);
     ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
     ASSERT_TRUE(result.stats.target_met.has_value()) << result.stats.message;
     EXPECT_TRUE(*result.stats.target_met) << result.stats.message;
@@ -129,7 +132,7 @@ TEST(ChooseTest, UnseenSevenJointArmWithStiffServoMeetsItsTargets) {
 // Whenever a target run reports its target met, an independent tight reference agrees; a
 // miss is reported with its message, never accepted. Returns whether it was met.
 bool ExpectNeverAcceptsAMiss(const Model& model, const RunConfig& asked) {
-  const RunResult result = SimulateWithTarget(model, asked);
+  const RunResult result = Simulate(model, asked);
   EXPECT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
   EXPECT_TRUE(result.stats.target_met.has_value()) << result.stats.message;
   if (!result.stats.target_met.has_value()) return false;
@@ -183,7 +186,7 @@ TEST(ChooseTest, UnseenPassiveTreeNeverAcceptsAMiss) {
 TEST(ChooseTest, VerifyFalseSkipsTheCheck) {
   RunConfig config = WithTcpTarget(Scene("stiff-servo"), 1e-6);
   config.verify = false;
-  const RunResult result = SimulateWithTarget(Irb1600(), config);
+  const RunResult result = Simulate(Irb1600(), config);
   ASSERT_EQ(result.stats.status, RunStatus::kFinished);
   EXPECT_FALSE(result.stats.target_met.has_value());
   EXPECT_FALSE(Choice(result)["verification"]["ran"].get<bool>());
@@ -193,8 +196,7 @@ TEST(ChooseTest, VerifyFalseSkipsTheCheck) {
 // A chaotic scene over 20 s: no double-precision run resolves a 1e-6 m TCP track; the run
 // still FINISHES, with target_met false and a message naming the horizon.
 TEST(ChooseTest, ChaoticTargetIsReportedMissedWithItsHorizon) {
-  const RunResult result =
-      SimulateWithTarget(Irb1600(), WithTcpTarget(Scene("passive-swing"), 1e-6));
+  const RunResult result = Simulate(Irb1600(), WithTcpTarget(Scene("passive-swing"), 1e-6));
   ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
   ASSERT_TRUE(result.stats.target_met.has_value());
   EXPECT_FALSE(*result.stats.target_met);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "common/check.h"
+#include "server/engine/engine.h"
 #include "server/parse/sdf_import.h"
 #include "server/sim/closed_loop_dae.h"
 #include "server/sim/closed_loop_ode.h"
@@ -432,6 +433,22 @@ TEST(LoopRunTest, TheGglResidualAllocatesNothing) {
   EXPECT_EQ(testing::AllocationCount() - before, 0);
   EXPECT_EQ(code, 0);
   EXPECT_LT(r.cwiseAbs().maxCoeff(), 1e-12);  // the start is consistent
+}
+
+// The engine's one entry (server/engine/engine.h) takes a model with loops to SimulateLoops:
+// the same frames, bit for bit.
+TEST(LoopRunTest, TheEngineEntryRunsAModelWithLoopsAsSimulateLoopsDoes) {
+  const SdfImport sdf = ImportSdfFile(kSliderCrank);
+  RunConfig config = BaseConfig(sdf.model.num_dofs());
+  config.duration = 0.2;
+  ASSERT_EQ(ValidateLoopRun(sdf.model, sdf.loops, config).formulation, Formulation::kJoint);
+  const RunResult direct = SimulateLoops(sdf.model, sdf.loops, config);
+  const RunResult entry = Simulate(sdf.model, sdf.loops, config);
+  ASSERT_EQ(direct.stats.status, RunStatus::kFinished) << direct.stats.message;
+  EXPECT_EQ(entry.stats.formulation, direct.stats.formulation);
+  EXPECT_EQ(entry.t, direct.t);
+  EXPECT_EQ(entry.q, direct.q);
+  EXPECT_EQ(entry.qd, direct.qd);
 }
 
 }  // namespace

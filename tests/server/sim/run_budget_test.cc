@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "server/drives/drive_set.h"
+#include "server/engine/engine.h"
 #include "server/integrate/cpu_check_pacer.h"
 #include "server/integrate/integrator.h"
 #include "server/integrate/thread_cpu_clock.h"
@@ -21,7 +22,6 @@
 #include "server/sim/integrator_options_from.h"
 #include "server/sim/joint_space_ode.h"
 #include "server/sim/run_trust.h"
-#include "server/sim/simulate.h"
 #include "server/spec/run_spec_json.h"
 #include "tests/common/allocation_counter.h"
 #include "tests/common/sanitized_build.h"

@@ -1,5 +1,5 @@
-// A run that continues a pilot (RunConfig::prefix, run_prefix.h): it takes the pilot's frames
-// as its own and the pilot's integration over, going on at its own tolerance.
+// A run that continues a pilot (PilotLink, beside its RunConfig: run_prefix.h): it takes the
+// pilot's frames as its own and the pilot's integration over, going on at its own tolerance.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -26,9 +26,8 @@ RunConfig At(RunConfig config, double duration, double rtol) {
 
 // A pilot of `scene` over [0, span] at `rtol`, kept for continuing.
 std::shared_ptr<RunPrefix> Pilot(const RunConfig& scene, double span, double rtol) {
-  RunConfig pilot = At(scene, span, rtol);
-  pilot.keep_integration = true;
-  RunResult result = Simulate(Irb1600(), pilot);
+  RunResult result = SimulateTree(Irb1600(), At(scene, span, rtol), nullptr, nullptr,
+                                  PilotLink{nullptr, /*keep_integration=*/true});
   EXPECT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
   EXPECT_NE(result.integration, nullptr);
   return MakePrefix(result, rtol, "bdf");
@@ -44,9 +43,8 @@ TEST(RunPrefixTest, ARunTakesThePilotsFramesAndGoesOnFromItsIntegration) {
   const RunConfig scene = Scene("stiff-servo");  // 2 s, frames every 0.01 s
   std::shared_ptr<RunPrefix> pilot = Pilot(scene, 0.1, 1e-9);
   ASSERT_EQ(pilot->frames(), 11u);
-  RunConfig config = At(scene, 2.0, 1e-6);
-  config.prefix = pilot;
-  const RunResult continued = Simulate(Irb1600(), config);
+  const RunConfig config = At(scene, 2.0, 1e-6);
+  const RunResult continued = SimulateTree(Irb1600(), config, nullptr, nullptr, {pilot});
   ASSERT_EQ(continued.stats.status, RunStatus::kFinished) << continued.stats.message;
   EXPECT_DOUBLE_EQ(continued.stats.continued_from_s, 0.1);
   EXPECT_FALSE(pilot->HasIntegration());  // taken: no other run can go on from it
@@ -58,8 +56,8 @@ TEST(RunPrefixTest, ARunTakesThePilotsFramesAndGoesOnFromItsIntegration) {
   }
   // The rest at the run's own tolerance: as close to a tight run as a run from t = 0 at that
   // tolerance is, and cheaper (no second start at order 1 with tiny steps).
-  const RunResult fresh = Simulate(Irb1600(), At(scene, 2.0, 1e-6));
-  const RunResult reference = Simulate(Irb1600(), At(scene, 2.0, 1e-11));
+  const RunResult fresh = SimulateTree(Irb1600(), At(scene, 2.0, 1e-6));
+  const RunResult reference = SimulateTree(Irb1600(), At(scene, 2.0, 1e-11));
   const double fresh_error = LargestJointDistance(fresh, reference);
   EXPECT_LT(LargestJointDistance(continued, reference), 3.0 * fresh_error + 1e-12);
   EXPECT_LT(continued.stats.solver.steps, fresh.stats.solver.steps)
@@ -69,7 +67,7 @@ TEST(RunPrefixTest, ARunTakesThePilotsFramesAndGoesOnFromItsIntegration) {
   EXPECT_LT(continued.stats.energy_error_max, 10.0 * fresh.stats.energy_error_max + 1e-9);
 
   // The integration is gone: a second run with the same prefix starts at t = 0.
-  const RunResult again = Simulate(Irb1600(), config);
+  const RunResult again = SimulateTree(Irb1600(), config, nullptr, nullptr, {pilot});
   EXPECT_DOUBLE_EQ(again.stats.continued_from_s, 0.0);
   EXPECT_EQ(again.stats.solver.steps, fresh.stats.solver.steps);
 }
@@ -79,15 +77,13 @@ TEST(RunPrefixTest, IntegratedWorkGoesOnAcrossTheJoin) {
   Model damped = Irb1600();
   for (Body& body : damped.bodies) body.joint.damping = 5.0;
   RunConfig scene = At(Scene("seed-servo"), 4.0, 1e-8);
-  RunConfig pilot_config = At(scene, 1.0, 1e-10);
-  pilot_config.keep_integration = true;
-  RunResult pilot_result = Simulate(damped, pilot_config);
+  RunResult pilot_result = SimulateTree(damped, At(scene, 1.0, 1e-10), nullptr, nullptr,
+                                        PilotLink{nullptr, /*keep_integration=*/true});
   ASSERT_EQ(pilot_result.stats.status, RunStatus::kFinished);
   ASSERT_EQ(pilot_result.work.size(), pilot_result.t.size());
-  RunConfig config = scene;
-  config.prefix = MakePrefix(pilot_result, 1e-10, "bdf");
-  const RunResult continued = Simulate(damped, config);
-  const RunResult fresh = Simulate(damped, scene);
+  const PilotLink pilot{MakePrefix(pilot_result, 1e-10, "bdf")};
+  const RunResult continued = SimulateTree(damped, scene, nullptr, nullptr, pilot);
+  const RunResult fresh = SimulateTree(damped, scene);
   ASSERT_EQ(continued.stats.status, RunStatus::kFinished);
   EXPECT_DOUBLE_EQ(continued.stats.continued_from_s, 1.0);
   EXPECT_EQ(continued.stats.energy_work, fresh.stats.energy_work);
@@ -103,30 +99,33 @@ TEST(RunPrefixTest, APrefixThatIsNotTheRunsStartIsNotTaken) {
   {  // other output times: a pilot with frames every 0.005 s
     RunConfig pilot = At(scene, 0.1, 1e-9);
     pilot.output_interval = 0.005;
-    pilot.keep_integration = true;
-    RunResult result = Simulate(Irb1600(), pilot);
-    RunConfig config = At(scene, 2.0, 1e-6);
-    config.prefix = MakePrefix(result, 1e-9, "bdf");
-    EXPECT_DOUBLE_EQ(Simulate(Irb1600(), config).stats.continued_from_s, 0.0);
-    EXPECT_TRUE(config.prefix->HasIntegration());
+    RunResult result = SimulateTree(Irb1600(), pilot, nullptr, nullptr,
+                                    PilotLink{nullptr, /*keep_integration=*/true});
+    const RunConfig config = At(scene, 2.0, 1e-6);
+    const PilotLink link{MakePrefix(result, 1e-9, "bdf")};
+    EXPECT_DOUBLE_EQ(SimulateTree(Irb1600(), config, nullptr, nullptr, link).stats.continued_from_s,
+                     0.0);
+    EXPECT_TRUE(link.prefix->HasIntegration());
   }
   {  // another method: the integration refuses, and stays for a run it fits
     RunConfig config = At(scene, 2.0, 1e-6);
     config.method = Method::kDirk;
-    config.prefix = Pilot(scene, 0.1, 1e-9);
-    const RunResult result = Simulate(Irb1600(), config);
+    const PilotLink link{Pilot(scene, 0.1, 1e-9)};
+    const RunResult result = SimulateTree(Irb1600(), config, nullptr, nullptr, link);
     EXPECT_EQ(result.stats.status, RunStatus::kFinished);
     EXPECT_DOUBLE_EQ(result.stats.continued_from_s, 0.0);
-    EXPECT_TRUE(config.prefix->HasIntegration());
+    EXPECT_TRUE(link.prefix->HasIntegration());
     config.method = Method::kBdf;
-    EXPECT_DOUBLE_EQ(Simulate(Irb1600(), config).stats.continued_from_s, 0.1);
+    EXPECT_DOUBLE_EQ(SimulateTree(Irb1600(), config, nullptr, nullptr, link).stats.continued_from_s,
+                     0.1);
   }
   {  // a pilot that was not kept has no integration
-    RunResult result = Simulate(Irb1600(), At(scene, 0.1, 1e-9));
+    RunResult result = SimulateTree(Irb1600(), At(scene, 0.1, 1e-9));
     EXPECT_EQ(result.integration, nullptr);
-    RunConfig config = At(scene, 2.0, 1e-6);
-    config.prefix = MakePrefix(result, 1e-9, "bdf");
-    EXPECT_DOUBLE_EQ(Simulate(Irb1600(), config).stats.continued_from_s, 0.0);
+    const PilotLink link{MakePrefix(result, 1e-9, "bdf")};
+    EXPECT_DOUBLE_EQ(SimulateTree(Irb1600(), At(scene, 2.0, 1e-6), nullptr, nullptr, link)
+                         .stats.continued_from_s,
+                     0.0);
   }
 }
 

@@ -1,6 +1,6 @@
 // The engine on the reference scenes: accuracy against closed forms, energy, and failure
 // as data.
-#include "server/sim/simulate.h"
+#include "server/engine/engine.h"
 
 #include <gtest/gtest.h>
 
@@ -8,6 +8,7 @@
 
 #include "common/check.h"
 #include "server/dynamics/rnea.h"
+#include "server/sim/run_validation.h"
 #include "tests/common/seed_kinematics.h"
 #include "tests/server/sim/scene_fixture.h"
 
@@ -187,11 +188,37 @@ TEST(SimulateTest, KinematicRefusesFreeJoints) {
   RunConfig config = Scene("seed-servo");
   config.formulation = Formulation::kKinematic;
   try {
-    Simulate(Irb1600(), config);
+    ValidateRun(Irb1600(), config);
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("use formulation joint"), std::string::npos);
   }
+}
+
+// Validation happens once, at the door (ValidateRun); the engine CHECKs what it relies on, and
+// a config that skipped the door is a caller's bug, not a user's error.
+TEST(SimulateTest, AConfigThatSkippedValidationFailsACheck) {
+  RunConfig config = Scene("seed-servo");
+  config.drives.pop_back();
+  EXPECT_THROW(ValidateRun(Irb1600(), config), InputError);
+  EXPECT_THROW(Simulate(Irb1600(), config), InternalError);
+  config = Scene("seed-servo");
+  config.output_interval = 0.0;
+  EXPECT_THROW(Simulate(Irb1600(), config), InternalError);
+}
+
+TEST(RunConfigTest, IsAPlainValueComparedFieldByField) {
+  const RunConfig scene = Scene("seed-servo");
+  RunConfig copy = scene;
+  EXPECT_EQ(copy, scene);
+  copy.drives[2].kp *= 2.0;
+  EXPECT_NE(copy, scene);
+  copy = scene;
+  copy.q0 = Eigen::VectorXd::Zero(scene.q0.size() + 1);  // another size: never read past one
+  EXPECT_NE(copy, scene);
+  copy = scene;
+  copy.target.tcp_error_m = 1e-6;
+  EXPECT_NE(copy, scene);
 }
 
 }  // namespace

@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "server/engine/engine.h"
 #include "server/integrate/integrator.h"
 #include "server/sim/initial_state.h"
 #include "server/sim/integrator_options_from.h"
 #include "server/sim/joint_space_ode.h"
-#include "server/sim/simulate.h"
 #include "tests/server/sim/scene_fixture.h"
 
 namespace mbstream {
