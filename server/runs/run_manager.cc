@@ -133,7 +133,7 @@ void RunManager::ReserveNewRuns(std::vector<v1::RunInfo>& infos,
     }
     if (static_cast<int>(ids.size()) < count) continue;  // an id taken meanwhile: new ids
     for (int i = 0; i < count; ++i) {
-      runs[i] = std::make_shared<Run>(infos[i], configs[i], model);
+      runs[i] = std::make_shared<Run>(infos[i], configs[i], model, *clock_, ProbeOptions());
       active_[infos[i].id()] = runs[i];
       queue_.push_back(runs[i]);
       unstored_.insert(runs[i].get());
@@ -565,7 +565,7 @@ int RunManager::subscriber_count() const {
 
 bool RunManager::AddProbes(const std::string& run_id, const std::vector<v1::ProbeReport>& reports) {
   std::shared_ptr<Run> run = FindActive(run_id);
-  return run && run->AddProbes(reports, limits_.max_probe_reports);
+  return run && run->probes().Add(reports);
 }
 
 void RunManager::Shutdown(const std::string& reason) {

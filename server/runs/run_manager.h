@@ -27,6 +27,7 @@
 #include "mbstream/v1/run_spec.pb.h"
 #include "server/runs/free_space.h"
 #include "server/runs/model_registry.h"
+#include "server/runs/probe_recorder.h"
 #include "server/runs/recent_results.h"
 #include "server/runs/replay_cursor.h"
 #include "server/runs/run.h"
@@ -130,8 +131,9 @@ class RunManager {
   bool IsActive(const std::string& run_id) const;
   std::unique_ptr<ReplayCursor> OpenReplay(const v1::RunInfo& info) const;
   std::string NewProbeSetId() const;
-  void CreateProbeSet(const v1::ProbeSet& set);
-  void AddProbeSetReports(const std::string& set_id, const std::vector<v1::ProbeReport>& reports);
+  // A recorder of a replay's probe reports, opened: probe set `set` is created in the store
+  // with its first batch, the reports added in batches as they come (probe_recorder.h).
+  std::unique_ptr<ProbeRecorder> RecordProbeSet(const v1::ProbeSet& set) const;
   std::vector<v1::ProbeSet> ListProbeSets(const std::string& run_id) const;
   std::vector<v1::ProbeReport> ResultProbeSet(const std::string& run_id,
                                               const std::string& set_id) const;
@@ -159,9 +161,10 @@ class RunManager {
   void Unsubscribe(const std::shared_ptr<Subscription>& subscriber);
   int subscriber_count() const;
 
-  // A viewer's checked probe report (latency already measured), kept with its run until the
-  // run is stored. False (nothing kept) when the run is not integrating or waiting for its
-  // last probes any more, or already holds limits.max_probe_reports reports.
+  // A viewer's checked probe reports (latency already measured), for its run's probe recorder
+  // (stored in batches while the run integrates, the last batch when it ends). False
+  // (nothing kept) when the run is not integrating or waiting for its last probes any more,
+  // or already holds limits.max_probe_reports reports.
   bool AddProbes(const std::string& run_id, const std::vector<v1::ProbeReport>& reports);
 
   // Stops accepting runs, interrupts queued and running ones (state INTERRUPTED, frames so
@@ -253,6 +256,9 @@ class RunManager {
   void CheckAccepting(int runs = 1) const;
   // A new run id: the time and 32 random bits (free in the store only once AddRuns took it).
   std::string NewRunId() const;
+  // How runs and replays batch their probe reports: limits_.max_probe_reports, a batch at
+  // least every limits_.frame_flush_s (as frames).
+  ProbeRecorder::Options ProbeOptions() const;
   // New ids for `infos` reserved in active_ and queue_ as `runs` (not yet stored), once the
   // queue has room for them all; throws as CheckAccepting. Call without mutex_.
   void ReserveNewRuns(std::vector<v1::RunInfo>& infos, const std::vector<RunConfig>& configs,

@@ -1,6 +1,7 @@
 // RunManager: what replays of stored runs need (replay.proto): cursors and probe sets.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -28,11 +29,27 @@ std::string RunManager::NewProbeSetId() const {
   }
 }
 
-void RunManager::CreateProbeSet(const v1::ProbeSet& set) { store_->CreateProbeSet(set); }
+ProbeRecorder::Options RunManager::ProbeOptions() const {
+  ProbeRecorder::Options options;
+  options.max_reports = limits_.max_probe_reports;
+  options.interval = std::chrono::duration_cast<RunClock::TimePoint::duration>(
+      std::chrono::duration<double>(std::max(limits_.frame_flush_s, 0.0)));
+  return options;
+}
 
-void RunManager::AddProbeSetReports(const std::string& set_id,
-                                    const std::vector<v1::ProbeReport>& reports) {
-  store_->AddProbeSetReports(set_id, reports);
+std::unique_ptr<ProbeRecorder> RunManager::RecordProbeSet(const v1::ProbeSet& set) const {
+  auto recorder = std::make_unique<ProbeRecorder>(
+      "probe set " + set.id() + " of run " + set.run_id(), *clock_, ProbeOptions());
+  recorder->Open(
+      [store = store_, set, created = false](const std::vector<v1::ProbeReport>& batch) mutable {
+        if (!created) {
+          store->CreateProbeSet(set);
+          created = true;
+        }
+        store->AddProbeSetReports(set.id(), batch);
+        return true;
+      });
+  return recorder;
 }
 
 std::vector<v1::ProbeSet> RunManager::ListProbeSets(const std::string& run_id) const {
