@@ -86,13 +86,9 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
     return outcome;
   }
   {
-    // One step under mutex_ with AttachFollow: each follower gets this run exactly once.
-    std::lock_guard<std::mutex> lock(mutex_);
-    run->UpdateInfo([&](v1::RunInfo& info) { info.set_state(v1::RUNNING); });
-    followers_.erase(std::remove_if(followers_.begin(), followers_.end(),
-                                    [](const auto& f) { return f->cancelled(); }),
-                     followers_.end());
-    for (const auto& follower : followers_) run->Attach(follower, true);
+    // One step with AttachFollow (FanOut): each follower gets this run exactly once.
+    fan_out_.AnnounceStart(
+        *run, [&] { run->UpdateInfo([](v1::RunInfo& info) { info.set_state(v1::RUNNING); }); });
   }
   NoteStateChange();
   // Stored RUNNING already by the claim (ClaimNext; still QUEUED with a private store): the

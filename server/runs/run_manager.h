@@ -25,6 +25,8 @@
 #include "mbstream/v1/replay.pb.h"
 #include "mbstream/v1/run.pb.h"
 #include "mbstream/v1/run_spec.pb.h"
+#include "server/runs/fan_out.h"
+#include "server/runs/follower_replays.h"
 #include "server/runs/free_space.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/probe_recorder.h"
@@ -249,8 +251,6 @@ class RunManager {
   std::shared_ptr<Run> AwaitClaimedHere(v1::RunInfo stored);
   // False when no run of this replica is running (the follower waits for the next).
   bool AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber);
-  // Counts one more subscriber (mutex_ held), or throws RESOURCE_EXHAUSTED at the limit.
-  void CountSubscriber();
   // Throws UNAVAILABLE when stopping, RESOURCE_EXHAUSTED when the queue cannot take `runs`
   // more (mutex_ held).
   void CheckAccepting(int runs = 1) const;
@@ -271,7 +271,9 @@ class RunManager {
   RunClock* clock_;
 
   ReplicaOptions replica_;
-  RecentResults recent_results_;  // frames of ended runs for their GetResult
+  RecentResults recent_results_;      // frames of ended runs for their GetResult
+  FanOut fan_out_;                    // subscriptions and follow streams
+  FollowerReplays follower_replays_;  // ReplayToFollowers; stopped by Shutdown
 
   mutable std::mutex mutex_;
   std::condition_variable work_;
@@ -299,8 +301,6 @@ class RunManager {
   bool keeper_stop_ = false;
   std::condition_variable keeper_wake_;
   std::thread keeper_;
-  std::vector<std::shared_ptr<Subscription>> followers_;
-  int subscribers_ = 0;
   bool stopping_ = false;
   std::string stop_reason_;
   int run_counter_ = 0;
@@ -308,15 +308,8 @@ class RunManager {
   FreeSpaceSource free_space_source_;           // SetFreeSpaceSource; empty: no free-space check
   std::string data_dir_;                        // named in the refusal
   std::vector<std::thread> workers_;
-  static constexpr int kMaxBroadcasts = 4;  // ReplayToFollowers at the same time
-  std::vector<std::thread> broadcasts_;     // ReplayToFollowers, joined by Shutdown
-  int broadcasting_ = 0;                    // of them still streaming
-  std::condition_variable broadcast_wake_;  // Shutdown wakes pacing broadcasts
   // Follow streams of a shared store also get the runs other replicas claim (kRemoteRun).
   std::unique_ptr<ClusterFollow> cluster_follow_;
-  void AnnounceRemote(const v1::RunInfo& info);
-  void Broadcast(const v1::RunInfo& info, double speed_x,
-                 std::vector<std::shared_ptr<Subscription>> followers);
 };
 
 }  // namespace mbstream
