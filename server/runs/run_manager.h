@@ -1,5 +1,8 @@
-// Runs on the server: a bounded queue, a fixed pool of worker threads, cancellation,
-// subscriptions (fan-out), probe reports and shutdown. gRPC-free: the service calls it.
+// Runs on the server: a bounded queue, a fixed pool of worker threads, cancellation and
+// shutdown, and a facade over parts that own their state and are tested alone: FanOut
+// (subscriptions, followers, announcements), FollowerReplays (stored runs replayed to the
+// followers) and each run's ProbeRecorder (probe reports stored in batches as they come; a
+// replay's from RecordProbeSet). gRPC-free: the service calls it.
 //
 // The queue is in the store (Store::ClaimQueuedRun): Start writes a run QUEUED, and an idle
 // worker of any replica on the same store claims the oldest queued run under a lease, which a
