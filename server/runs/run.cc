@@ -7,13 +7,15 @@
 namespace mbstream {
 
 Run::Run(const v1::RunInfo& info, const RunConfig& config,
-         std::shared_ptr<const CompiledModel> model)
+         std::shared_ptr<const CompiledModel> model, const RunClock& clock,
+         ProbeRecorder::Options probe_options)
     : id_(info.id()),
       model_(std::move(model)),
       config_(config),
       realtime_(info.spec().realtime()),
       info_(info),
-      spool_(info.id(), info.expected_frames()) {
+      spool_(info.id(), info.expected_frames()),
+      probes_("run " + info.id(), clock, probe_options) {
   MBSTREAM_CHECK(model_ != nullptr);
 }
 
@@ -21,7 +23,7 @@ v1::RunInfo Run::Info() const {
   std::lock_guard<std::mutex> lock(mutex_);
   v1::RunInfo info = info_;
   info.set_subscribers(static_cast<int>(subscribers_.size()));
-  info.set_probe_reports(probe_count_);
+  info.set_probe_reports(probes_.accepted());
   return info;
 }
 
@@ -91,33 +93,12 @@ int Run::subscriber_count() const {
   return static_cast<int>(subscribers_.size());
 }
 
-bool Run::AddProbes(const std::vector<v1::ProbeReport>& reports, int64_t max_reports) {
+void Run::WaitForProbes(int64_t seq, std::chrono::duration<double> timeout) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (ended_ || probes_taken_ ||
-        probe_count_ + static_cast<int64_t>(reports.size()) > max_reports) {
-      return false;
-    }
-    for (const v1::ProbeReport& report : reports) {
-      probes_.push_back(report);
-      last_probe_seq_ = std::max(last_probe_seq_, report.seq());
-    }
-    probe_count_ += static_cast<int64_t>(reports.size());
+    if (viewers_ == 0 && probes_.accepted() == 0) return;
   }
-  probes_arrived_.notify_all();
-  return true;
-}
-
-std::vector<v1::ProbeReport> Run::TakeProbes() {
-  std::lock_guard<std::mutex> lock(mutex_);
-  probes_taken_ = true;
-  return std::move(probes_);
-}
-
-void Run::WaitForProbes(int64_t seq, std::chrono::duration<double> timeout) {
-  std::unique_lock<std::mutex> lock(mutex_);
-  if (probe_count_ == 0 && viewers_ == 0) return;
-  probes_arrived_.wait_for(lock, timeout, [&] { return last_probe_seq_ >= seq; });
+  probes_.WaitFor(seq, timeout);
 }
 
 }  // namespace mbstream

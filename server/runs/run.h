@@ -3,7 +3,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -13,6 +12,8 @@
 #include "mbstream/v1/run.pb.h"
 #include "server/runs/frame_spool.h"
 #include "server/runs/model_registry.h"
+#include "server/runs/probe_recorder.h"
+#include "server/runs/run_clock.h"
 #include "server/runs/subscription.h"
 #include "server/sim/run_config.h"
 
@@ -20,7 +21,9 @@ namespace mbstream {
 
 class Run {
  public:
-  Run(const v1::RunInfo& info, const RunConfig& config, std::shared_ptr<const CompiledModel> model);
+  // `clock` (which must outlive the run) times the probe recorder's batches.
+  Run(const v1::RunInfo& info, const RunConfig& config, std::shared_ptr<const CompiledModel> model,
+      const RunClock& clock = SteadyRunClock(), ProbeRecorder::Options probe_options = {});
 
   const std::string& id() const { return id_; }
   const CompiledModel& model() const { return *model_; }
@@ -56,10 +59,10 @@ class Run {
   // The frames on their way to the store; the run's worker thread only.
   FrameSpool& spool() { return spool_; }
 
-  // Probe reports of viewers, kept until the run is stored: false (none kept) once the run
-  // has ended or when `max_reports` would be exceeded.
-  bool AddProbes(const std::vector<v1::ProbeReport>& reports, int64_t max_reports);
-  std::vector<v1::ProbeReport> TakeProbes();  // later reports are refused
+  // The viewers' probe reports on their way to the store (probe_recorder.h): the run's
+  // worker opens it with the run's store writer and stores a batch when one is due; Finish
+  // closes it and stores the last batch.
+  ProbeRecorder& probes() { return probes_; }
   // Waits up to `timeout` until a probe report for frame `seq` or later arrived, when a
   // viewer (a Subscribe stream) has attached to this run. Returns at once otherwise.
   void WaitForProbes(int64_t seq, std::chrono::duration<double> timeout);
@@ -77,18 +80,14 @@ class Run {
   const double realtime_;
 
   mutable std::mutex mutex_;
-  std::condition_variable probes_arrived_;
   v1::RunInfo info_;
   v1::Frame latest_frame_;  // what a late subscriber gets first (when published_ > 0)
   int64_t published_ = 0;   // frames published
   FrameSpool spool_;        // the run's thread only, no lock
+  ProbeRecorder probes_;    // thread-safe itself
   std::vector<std::shared_ptr<Subscription>> subscribers_;
-  std::vector<v1::ProbeReport> probes_;
-  int64_t probe_count_ = 0;
-  int64_t last_probe_seq_ = -1;
   int viewers_ = 0;  // Subscribe streams ever attached
   bool ended_ = false;
-  bool probes_taken_ = false;
 };
 
 }  // namespace mbstream

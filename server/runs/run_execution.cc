@@ -18,8 +18,9 @@ namespace {
 
 // Converts each frame to its wire form, paces it (realtime factor), hands it to the run's
 // spool (which stores it with the next chunk, full or due: `flush_s` of the run's clock
-// after the last, while `holder` holds the run's lease) and publishes it. A store failure
-// or a lost lease stops the run. One message is filled again for
+// after the last, while `holder` holds the run's lease) and publishes it; then stores the
+// viewers' probe reports when a batch of them is due (the run's ProbeRecorder). A store
+// failure or a lost lease stops the run. One message is filled again for
 // every frame (Run::Publish hands its storage back): no allocation per frame while nobody
 // subscribes.
 class PublishingSink : public FrameSink {
@@ -46,8 +47,11 @@ class PublishingSink : public FrameSink {
     Pace(result.t[frame]);
     run_->spool().Add(message_, *store_);
     run_->Publish(&message_);
-    if (!run_->spool().error().empty()) run_->cancel = true;
-    if (run_->spool().lease_lost()) {  // another replica has the run: it writes from now on
+    ProbeRecorder& probes = run_->probes();
+    probes.FlushIfDue();
+    if (!run_->spool().error().empty() || !probes.error().empty()) run_->cancel = true;
+    if (run_->spool().lease_lost() ||
+        probes.lease_lost()) {  // another replica has the run: it writes from now on
       run_->lease_lost = true;
       run_->cancel = true;
     }
@@ -81,21 +85,24 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
     return outcome;
   }
   {
-    // One step under mutex_ with AttachFollow: each follower gets this run exactly once.
-    std::lock_guard<std::mutex> lock(mutex_);
-    run->UpdateInfo([&](v1::RunInfo& info) { info.set_state(v1::RUNNING); });
-    followers_.erase(std::remove_if(followers_.begin(), followers_.end(),
-                                    [](const auto& f) { return f->cancelled(); }),
-                     followers_.end());
-    for (const auto& follower : followers_) run->Attach(follower, true);
+    // One step with AttachFollow (FanOut): each follower gets this run exactly once.
+    fan_out_.AnnounceStart(
+        *run, [&] { run->UpdateInfo([](v1::RunInfo& info) { info.set_state(v1::RUNNING); }); });
   }
   NoteStateChange();
   // Stored RUNNING already by the claim (ClaimNext; still QUEUED with a private store): the
   // row is written again when it ends.
   spdlog::info("run {} started", run->id());
 
-  PublishingSink sink(run.get(), store_, clock_, limits_.frame_flush_s,
-                      replica_.private_store ? std::string() : LeaseHolder(run->Info()));
+  const std::string holder = replica_.private_store ? std::string() : LeaseHolder(run->Info());
+  // Probe reports are stored as they come, each batch while `holder` still holds the lease
+  // (checked by a renewal in its own transaction, before the batch's).
+  run->probes().Open([this, id = run->id(), holder](const std::vector<v1::ProbeReport>& batch) {
+    if (!holder.empty() && !store_->RenewLease(id, holder, NowUnixMs() + LeaseMs())) return false;
+    store_->AddProbes(batch);
+    return true;
+  });
+  PublishingSink sink(run.get(), store_, clock_, limits_.frame_flush_s, holder);
   const CompiledModel& model = run->model();
   const RunResult result = Simulate(model.model, model.loops, run->config(), &sink, &run->cancel);
   const RunStats& stats = result.stats;
@@ -118,7 +125,8 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
   }
   // Store first, then show the final state: whoever sees a run ended can fetch its result.
   // The frames are in the store already but for the spool's last chunk, written together
-  // with the final info. Nothing is stored once another replica took the run over.
+  // with the final info; the probe reports but for the recorder's last batch, stored just
+  // before. Nothing is stored once another replica took the run over.
   // A private store's runs hold no lease (ClaimPrivate): stored unconditionally.
   const std::string holder = replica_.private_store ? std::string() : LeaseHolder(run->Info());
   v1::RunInfo info = run->Info();
@@ -126,26 +134,30 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
   info.set_message(outcome.message);
   *info.mutable_stats() = outcome.stats;
   info.set_ended_unix_ms(NowUnixMs());
+  run->probes().Close();  // later reports are refused
   if (const std::string& error = run->spool().error(); !error.empty()) {
     info.set_state(v1::FAILED);
     info.set_message("the frames could not be stored (" + error +
                      "); the run was stopped, the frames stored before are kept");
+  } else if (const std::string probe_error = run->probes().error(); !probe_error.empty()) {
+    info.set_state(v1::FAILED);
+    info.set_message("the probe reports could not be stored (" + probe_error +
+                     "); the run was stopped, the frames and reports stored before are kept");
   }
   if (run->interrupted && !replica_.private_store) {  // drained or stopped: hand it back
     ApplyHandBack(info, info.ended_unix_ms(), outcome.message);
   }
   try {
-    // The lease is checked in the transaction that stores the result (one transaction per
-    // run, not two); probe reports, stored before it, need a renewal of their own first.
-    std::vector<v1::ProbeReport> probes = run->TakeProbes();
-    if (run->lease_lost || (!probes.empty() && !holder.empty() &&
-                            !store_->RenewLease(run->id(), holder, NowUnixMs() + LeaseMs()))) {
+    // The lease is checked in the transaction that stores the result; the probe recorder's
+    // last batch, stored before it, checks it with a renewal of its own (Execute).
+    if (run->lease_lost || run->probes().lease_lost()) {
       run->lease_lost = true;
-    } else if (info.state() == v1::QUEUED) {
+    } else if (info.state() == v1::QUEUED) {  // its reports not stored yet are dropped
       if (!store_->PutRunIfHeld(info, holder)) run->lease_lost = true;
       spdlog::info("run {} handed back to the queue: {}", run->id(), info.message());
+    } else if (!run->probes().Flush()) {
+      run->lease_lost = true;
     } else {
-      if (!probes.empty()) store_->AddProbes(probes);
       if (!run->spool().Finish(info, *store_, holder)) {
         run->lease_lost = true;
       } else if (std::string whole = run->spool().TakeWholeResult();

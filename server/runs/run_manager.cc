@@ -48,8 +48,9 @@ RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& 
       limits_(limits),
       clock_(clock != nullptr ? clock : &SteadyRunClock()),
       replica_(std::move(replica)),
-      recent_results_(
-          static_cast<std::size_t>(std::max<int64_t>(limits_.recent_results_bytes, 0))) {
+      recent_results_(static_cast<std::size_t>(std::max<int64_t>(limits_.recent_results_bytes, 0))),
+      fan_out_(limits_.max_subscribers, limits_.subscriber_queue_frames),
+      follower_replays_(store_, clock_) {
   MBSTREAM_CHECK(models_ != nullptr && store_ != nullptr && limits_.workers > 0);
   MBSTREAM_CHECK(replica_.lease_timeout_s > 0.0 && replica_.claim_poll_s > 0.0);
   if (replica_.id.empty()) replica_.id = NewReplicaId();
@@ -66,11 +67,8 @@ RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& 
   if (!replica_.private_store) {
     cluster_follow_ = std::make_unique<ClusterFollow>(
         store_, replica_.id, std::chrono::duration<double>(replica_.claim_poll_s),
-        [this] {
-          std::lock_guard<std::mutex> lock(mutex_);
-          return !followers_.empty();
-        },
-        [this](const v1::RunInfo& info) { AnnounceRemote(info); });
+        [this] { return fan_out_.has_followers(); },
+        [this](const v1::RunInfo& info) { fan_out_.AnnounceRemote(info.id()); });
   }
 }
 
@@ -133,7 +131,7 @@ void RunManager::ReserveNewRuns(std::vector<v1::RunInfo>& infos,
     }
     if (static_cast<int>(ids.size()) < count) continue;  // an id taken meanwhile: new ids
     for (int i = 0; i < count; ++i) {
-      runs[i] = std::make_shared<Run>(infos[i], configs[i], model);
+      runs[i] = std::make_shared<Run>(infos[i], configs[i], model, *clock_, ProbeOptions());
       active_[infos[i].id()] = runs[i];
       queue_.push_back(runs[i]);
       unstored_.insert(runs[i].get());
@@ -449,20 +447,7 @@ void RunManager::CheckAccepting(int runs) const {
   }
 }
 
-void RunManager::CountSubscriber() {
-  if (subscribers_ >= limits_.max_subscribers) {
-    throw RequestError(RequestErrorKind::kResourceExhausted,
-                       "this server already has " + std::to_string(subscribers_) +
-                           " subscribers, its limit; close a viewer or watcher and retry");
-  }
-  ++subscribers_;
-}
-
-std::shared_ptr<Subscription> RunManager::NewSubscription() {
-  std::lock_guard<std::mutex> lock(mutex_);
-  CountSubscriber();
-  return std::make_shared<Subscription>(limits_.subscriber_queue_frames);
-}
+std::shared_ptr<Subscription> RunManager::NewSubscription() { return fan_out_.NewSubscription(); }
 
 void RunManager::AttachRun(const std::shared_ptr<Subscription>& subscriber,
                            const std::string& run_id, bool send_started) {
@@ -511,21 +496,21 @@ std::shared_ptr<Run> RunManager::AwaitClaimedHere(v1::RunInfo stored) {
 }
 
 bool RunManager::AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber) {
-  // Under mutex_, as the worker marks a run RUNNING and attaches the followers: the follower
-  // sees each run exactly once, either here or from the worker.
-  std::lock_guard<std::mutex> lock(mutex_);
-  followers_.push_back(subscriber);
-  std::shared_ptr<Run> running;
-  int64_t running_since = 0;
-  for (const auto& [id, run] : active_) {
-    const v1::RunInfo info = run->Info();
-    if (info.state() == v1::RUNNING && (!running || info.started_unix_ms() > running_since)) {
-      running = run;
-      running_since = info.started_unix_ms();
+  // In one step with the worker's marking a run RUNNING and attaching the followers
+  // (FanOut::AnnounceStart): the follower sees each run exactly once, here or from the worker.
+  return fan_out_.Follow(subscriber, [this] {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::shared_ptr<Run> running;
+    int64_t running_since = 0;
+    for (const auto& [id, run] : active_) {
+      const v1::RunInfo info = run->Info();
+      if (info.state() == v1::RUNNING && (!running || info.started_unix_ms() > running_since)) {
+        running = run;
+        running_since = info.started_unix_ms();
+      }
     }
-  }
-  if (running) running->Attach(subscriber, true);
-  return running != nullptr;
+    return running;
+  });
 }
 
 void RunManager::AttachFollow(const std::shared_ptr<Subscription>& subscriber) {
@@ -552,20 +537,14 @@ std::shared_ptr<Subscription> RunManager::SubscribeRun(const std::string& run_id
 }
 
 void RunManager::Unsubscribe(const std::shared_ptr<Subscription>& subscriber) {
-  subscriber->Cancel();
-  std::lock_guard<std::mutex> lock(mutex_);
-  followers_.erase(std::remove(followers_.begin(), followers_.end(), subscriber), followers_.end());
-  --subscribers_;
+  fan_out_.Unsubscribe(subscriber);
 }
 
-int RunManager::subscriber_count() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return subscribers_;
-}
+int RunManager::subscriber_count() const { return fan_out_.subscriber_count(); }
 
 bool RunManager::AddProbes(const std::string& run_id, const std::vector<v1::ProbeReport>& reports) {
   std::shared_ptr<Run> run = FindActive(run_id);
-  return run && run->AddProbes(reports, limits_.max_probe_reports);
+  return run && run->probes().Add(reports);
 }
 
 void RunManager::Shutdown(const std::string& reason) {
@@ -574,7 +553,7 @@ void RunManager::Shutdown(const std::string& reason) {
   std::map<std::string, std::shared_ptr<Run>> elsewhere;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (stopping_ && workers_.empty() && broadcasts_.empty() && !keeper_.joinable()) return;
+    if (stopping_ && workers_.empty() && !keeper_.joinable()) return;
     stopping_ = true;
     stop_reason_ = reason;
     queued.swap(queue_);
@@ -584,10 +563,10 @@ void RunManager::Shutdown(const std::string& reason) {
       run->interrupted = true;
       run->cancel = true;
     }
-    followers = followers_;
   }
+  followers = fan_out_.followers();
+  follower_replays_.Stop();
   work_.notify_all();
-  broadcast_wake_.notify_all();
   claimed_.notify_all();
   state_changed_.notify_all();
   for (std::thread& worker : workers_) worker.join();
@@ -614,12 +593,6 @@ void RunManager::Shutdown(const std::string& reason) {
   }
   keeper_wake_.notify_all();
   if (keeper_.joinable()) keeper_.join();
-  std::vector<std::thread> broadcasts;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    broadcasts.swap(broadcasts_);
-  }
-  for (std::thread& broadcast : broadcasts) broadcast.join();
   for (const auto& follower : followers) follower->Close();
   UpdateServing();
 }

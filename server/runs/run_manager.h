@@ -1,5 +1,8 @@
-// Runs on the server: a bounded queue, a fixed pool of worker threads, cancellation,
-// subscriptions (fan-out), probe reports and shutdown. gRPC-free: the service calls it.
+// Runs on the server: a bounded queue, a fixed pool of worker threads, cancellation and
+// shutdown, and a facade over parts that own their state and are tested alone: FanOut
+// (subscriptions, followers, announcements), FollowerReplays (stored runs replayed to the
+// followers) and each run's ProbeRecorder (probe reports stored in batches as they come; a
+// replay's from RecordProbeSet). gRPC-free: the service calls it.
 //
 // The queue is in the store (Store::ClaimQueuedRun): Start writes a run QUEUED, and an idle
 // worker of any replica on the same store claims the oldest queued run under a lease, which a
@@ -25,8 +28,11 @@
 #include "mbstream/v1/replay.pb.h"
 #include "mbstream/v1/run.pb.h"
 #include "mbstream/v1/run_spec.pb.h"
+#include "server/runs/fan_out.h"
+#include "server/runs/follower_replays.h"
 #include "server/runs/free_space.h"
 #include "server/runs/model_registry.h"
+#include "server/runs/probe_recorder.h"
 #include "server/runs/recent_results.h"
 #include "server/runs/replay_cursor.h"
 #include "server/runs/run.h"
@@ -130,8 +136,9 @@ class RunManager {
   bool IsActive(const std::string& run_id) const;
   std::unique_ptr<ReplayCursor> OpenReplay(const v1::RunInfo& info) const;
   std::string NewProbeSetId() const;
-  void CreateProbeSet(const v1::ProbeSet& set);
-  void AddProbeSetReports(const std::string& set_id, const std::vector<v1::ProbeReport>& reports);
+  // A recorder of a replay's probe reports, opened: probe set `set` is created in the store
+  // with its first batch, the reports added in batches as they come (probe_recorder.h).
+  std::unique_ptr<ProbeRecorder> RecordProbeSet(const v1::ProbeSet& set) const;
   std::vector<v1::ProbeSet> ListProbeSets(const std::string& run_id) const;
   std::vector<v1::ProbeReport> ResultProbeSet(const std::string& run_id,
                                               const std::string& set_id) const;
@@ -159,9 +166,10 @@ class RunManager {
   void Unsubscribe(const std::shared_ptr<Subscription>& subscriber);
   int subscriber_count() const;
 
-  // A viewer's checked probe report (latency already measured), kept with its run until the
-  // run is stored. False (nothing kept) when the run is not integrating or waiting for its
-  // last probes any more, or already holds limits.max_probe_reports reports.
+  // A viewer's checked probe reports (latency already measured), for its run's probe recorder
+  // (stored in batches while the run integrates, the last batch when it ends). False
+  // (nothing kept) when the run is not integrating or waiting for its last probes any more,
+  // or already holds limits.max_probe_reports reports.
   bool AddProbes(const std::string& run_id, const std::vector<v1::ProbeReport>& reports);
 
   // Stops accepting runs, interrupts queued and running ones (state INTERRUPTED, frames so
@@ -246,13 +254,14 @@ class RunManager {
   std::shared_ptr<Run> AwaitClaimedHere(v1::RunInfo stored);
   // False when no run of this replica is running (the follower waits for the next).
   bool AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber);
-  // Counts one more subscriber (mutex_ held), or throws RESOURCE_EXHAUSTED at the limit.
-  void CountSubscriber();
   // Throws UNAVAILABLE when stopping, RESOURCE_EXHAUSTED when the queue cannot take `runs`
   // more (mutex_ held).
   void CheckAccepting(int runs = 1) const;
   // A new run id: the time and 32 random bits (free in the store only once AddRuns took it).
   std::string NewRunId() const;
+  // How runs and replays batch their probe reports: limits_.max_probe_reports, a batch at
+  // least every limits_.frame_flush_s (as frames).
+  ProbeRecorder::Options ProbeOptions() const;
   // New ids for `infos` reserved in active_ and queue_ as `runs` (not yet stored), once the
   // queue has room for them all; throws as CheckAccepting. Call without mutex_.
   void ReserveNewRuns(std::vector<v1::RunInfo>& infos, const std::vector<RunConfig>& configs,
@@ -265,7 +274,9 @@ class RunManager {
   RunClock* clock_;
 
   ReplicaOptions replica_;
-  RecentResults recent_results_;  // frames of ended runs for their GetResult
+  RecentResults recent_results_;      // frames of ended runs for their GetResult
+  FanOut fan_out_;                    // subscriptions and follow streams
+  FollowerReplays follower_replays_;  // ReplayToFollowers; stopped by Shutdown
 
   mutable std::mutex mutex_;
   std::condition_variable work_;
@@ -293,8 +304,6 @@ class RunManager {
   bool keeper_stop_ = false;
   std::condition_variable keeper_wake_;
   std::thread keeper_;
-  std::vector<std::shared_ptr<Subscription>> followers_;
-  int subscribers_ = 0;
   bool stopping_ = false;
   std::string stop_reason_;
   int run_counter_ = 0;
@@ -302,15 +311,8 @@ class RunManager {
   FreeSpaceSource free_space_source_;           // SetFreeSpaceSource; empty: no free-space check
   std::string data_dir_;                        // named in the refusal
   std::vector<std::thread> workers_;
-  static constexpr int kMaxBroadcasts = 4;  // ReplayToFollowers at the same time
-  std::vector<std::thread> broadcasts_;     // ReplayToFollowers, joined by Shutdown
-  int broadcasting_ = 0;                    // of them still streaming
-  std::condition_variable broadcast_wake_;  // Shutdown wakes pacing broadcasts
   // Follow streams of a shared store also get the runs other replicas claim (kRemoteRun).
   std::unique_ptr<ClusterFollow> cluster_follow_;
-  void AnnounceRemote(const v1::RunInfo& info);
-  void Broadcast(const v1::RunInfo& info, double speed_x,
-                 std::vector<std::shared_ptr<Subscription>> followers);
 };
 
 }  // namespace mbstream

@@ -53,11 +53,4 @@ v1::ModelInfo RunManager::ModelInfo(const std::string& id_or_name) const {
   return models_->Info(id_or_name);
 }
 
-void RunManager::AnnounceRemote(const v1::RunInfo& info) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  for (const auto& follower : followers_) {
-    follower->Push({StreamEvent::Kind::kRemoteRun, info.id(), nullptr});
-  }
-}
-
 }  // namespace mbstream

@@ -63,7 +63,7 @@ std::shared_ptr<Run> RunManager::RunOf(const v1::RunInfo& info) {
   std::shared_ptr<const CompiledModel> model = FindModel(info.model_id());
   std::vector<std::string> warnings;
   const RunConfig config = PrepareConfig(*model, info.spec(), &warnings);
-  return std::make_shared<Run>(info, config, std::move(model));
+  return std::make_shared<Run>(info, config, std::move(model), *clock_, ProbeOptions());
 }
 
 std::shared_ptr<Run> RunManager::ClaimPrivate() {

@@ -1,6 +1,7 @@
 // RunManager: what replays of stored runs need (replay.proto): cursors and probe sets.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -28,11 +29,27 @@ std::string RunManager::NewProbeSetId() const {
   }
 }
 
-void RunManager::CreateProbeSet(const v1::ProbeSet& set) { store_->CreateProbeSet(set); }
+ProbeRecorder::Options RunManager::ProbeOptions() const {
+  ProbeRecorder::Options options;
+  options.max_reports = limits_.max_probe_reports;
+  options.interval = std::chrono::duration_cast<RunClock::TimePoint::duration>(
+      std::chrono::duration<double>(std::max(limits_.frame_flush_s, 0.0)));
+  return options;
+}
 
-void RunManager::AddProbeSetReports(const std::string& set_id,
-                                    const std::vector<v1::ProbeReport>& reports) {
-  store_->AddProbeSetReports(set_id, reports);
+std::unique_ptr<ProbeRecorder> RunManager::RecordProbeSet(const v1::ProbeSet& set) const {
+  auto recorder = std::make_unique<ProbeRecorder>(
+      "probe set " + set.id() + " of run " + set.run_id(), *clock_, ProbeOptions());
+  recorder->Open(
+      [store = store_, set, created = false](const std::vector<v1::ProbeReport>& batch) mutable {
+        if (!created) {
+          store->CreateProbeSet(set);
+          created = true;
+        }
+        store->AddProbeSetReports(set.id(), batch);
+        return true;
+      });
+  return recorder;
 }
 
 std::vector<v1::ProbeSet> RunManager::ListProbeSets(const std::string& run_id) const {
@@ -61,52 +78,16 @@ v1::RunInfo RunManager::ReplayToFollowers(const std::string& run_id, double spee
     throw RequestError(RequestErrorKind::kFailedPrecondition,
                        "run " + run_id + " has no stored frames: there is nothing to replay");
   }
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (stopping_) {
-    throw RequestError(RequestErrorKind::kUnavailable, "the server is shutting down");
-  }
-  if (broadcasting_ >= kMaxBroadcasts) {
-    throw RequestError(RequestErrorKind::kResourceExhausted,
-                       "this server already replays " + std::to_string(broadcasting_) +
-                           " runs to its followers, its limit; wait for one to end");
-  }
-  ++broadcasting_;
-  broadcasts_.emplace_back([this, info, speed_x, followers = followers_] {
-    try {
-      Broadcast(info, speed_x, followers);
-    } catch (const std::exception& e) {
-      spdlog::error("replay of run {} to the followers: {}", info.id(), e.what());
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (stopping_) {
+      throw RequestError(RequestErrorKind::kUnavailable, "the server is shutting down");
     }
-    std::lock_guard<std::mutex> done(mutex_);
-    --broadcasting_;
-  });
-  spdlog::info("run {} replayed to {} followers at {}x", run_id, followers_.size(), speed_x);
+  }
+  const std::vector<std::shared_ptr<Subscription>> followers = fan_out_.followers();
+  follower_replays_.Start(info, speed_x, followers);
+  spdlog::info("run {} replayed to {} followers at {}x", run_id, followers.size(), speed_x);
   return info;
-}
-
-void RunManager::Broadcast(const v1::RunInfo& info, double speed_x,
-                           std::vector<std::shared_ptr<Subscription>> followers) {
-  using Clock = std::chrono::steady_clock;
-  auto push = [&](StreamEvent event) {
-    for (const auto& follower : followers) {
-      if (!follower->cancelled()) follower->Push(event);
-    }
-  };
-  push({StreamEvent::Kind::kRunStarted, info.id(), nullptr});
-  ReplayCursor frames(store_, info.id(), info.frames());
-  const Clock::time_point start = Clock::now();
-  const double t0 = frames.At(0).t_s();
-  for (int64_t seq = 0; seq < info.frames(); ++seq) {
-    auto frame = std::make_shared<const v1::Frame>(frames.At(seq));
-    const auto due = start + std::chrono::duration_cast<Clock::duration>(
-                                 std::chrono::duration<double>((frame->t_s() - t0) / speed_x));
-    {
-      std::unique_lock<std::mutex> lock(mutex_);
-      if (broadcast_wake_.wait_until(lock, due, [&] { return stopping_; })) return;
-    }
-    push({StreamEvent::Kind::kFrame, info.id(), std::move(frame)});
-  }
-  push({StreamEvent::Kind::kRunEnded, info.id(), nullptr});
 }
 
 }  // namespace mbstream

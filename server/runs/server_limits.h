@@ -31,7 +31,8 @@ struct ServerLimits {
   int64_t recent_results_bytes = int64_t{16} << 20;
   // s of wall time after which a running run's frames not yet stored go to the store even if
   // their chunk is not full (4,096 frames): a crash loses at most this much of a run. 0:
-  // only full chunks are stored while the run runs.
+  // only full chunks are stored while the run runs. The viewers' probe reports are stored
+  // in batches on the same interval (ProbeRecorder; 512 reports make a batch sooner).
   double frame_flush_s = 1.0;
   // Bytes that must stay free on the disk of a SQLite store's data directory for a new run to
   // start (--min-free-mb; free_space.h): below it StartRun(s) answer RESOURCE_EXHAUSTED. 0:

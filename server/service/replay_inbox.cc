@@ -4,15 +4,16 @@
 
 namespace mbstream {
 
-ReplayInbox::ReplayInbox(RunManager* runs, v1::ProbeSet set, int64_t max_reports)
-    : runs_(runs), set_(std::move(set)), max_reports_(max_reports) {}
+ReplayInbox::ReplayInbox(RunManager* runs, v1::ProbeSet set)
+    : set_(std::move(set)), recorder_(runs->RecordProbeSet(set_)), one_(1) {}
 
 ReplayInbox::~ReplayInbox() {
+  recorder_->Close();
   try {
-    Flush();
+    recorder_->Flush();
   } catch (const std::exception& e) {
-    spdlog::error("probe set {} of run {}: {} reports not stored: {}", set_.id(), set_.run_id(),
-                  buffered_.size(), e.what());
+    spdlog::error("probe set {} of run {}: its last probe reports not stored: {}", set_.id(),
+                  set_.run_id(), e.what());
   }
 }
 
@@ -43,22 +44,11 @@ bool ReplayInbox::NextControl(Clock::time_point deadline, v1::ReplayControl* con
 }
 
 bool ReplayInbox::AddProbe(const v1::ProbeReport& report) {
-  if (reports_ >= max_reports_) return false;
-  ++reports_;
-  buffered_.push_back(report);
+  one_[0] = report;
+  if (!recorder_->Add(one_)) return false;
   if (answered_seq_.exchange(report.seq()) != report.seq()) arrived_.notify_all();
-  if (buffered_.size() >= kFlushReports) Flush();
+  recorder_->FlushIfDue();
   return true;
-}
-
-void ReplayInbox::Flush() {
-  if (buffered_.empty()) return;
-  if (!created_) {
-    runs_->CreateProbeSet(set_);
-    created_ = true;
-  }
-  runs_->AddProbeSetReports(set_.id(), buffered_);
-  buffered_.clear();
 }
 
 }  // namespace mbstream

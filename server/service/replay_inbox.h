@@ -1,6 +1,7 @@
 // What a replay's Subscribe stream receives, handed from its reader thread to its writer:
-// time controls (a short bounded queue) and probe reports (stored as the replay's probe set,
-// in batches, the set created with its first batch). Thread-safe.
+// time controls (a short bounded queue) and probe reports (stored as the replay's probe set by
+// the run manager's ProbeRecorder, as a live run's reports are: in batches as they come, the
+// set created with its first batch). Thread-safe.
 #pragma once
 
 #include <atomic>
@@ -8,11 +9,13 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <mutex>
 #include <vector>
 
 #include "mbstream/v1/frame.pb.h"
 #include "mbstream/v1/replay.pb.h"
+#include "server/runs/probe_recorder.h"
 #include "server/runs/run_manager.h"
 
 namespace mbstream {
@@ -20,12 +23,11 @@ namespace mbstream {
 class ReplayInbox {
  public:
   using Clock = std::chrono::steady_clock;
-  static constexpr std::size_t kMaxControls = 64;    // queued controls; more are dropped
-  static constexpr std::size_t kFlushReports = 512;  // probe reports per store transaction
+  static constexpr std::size_t kMaxControls = 64;  // queued controls; more are dropped
 
-  // `set` names the probe set (id, run, viewer, scene); `max_reports` bounds it.
-  ReplayInbox(RunManager* runs, v1::ProbeSet set, int64_t max_reports);
-  ~ReplayInbox();  // stores the reports still buffered (errors are logged)
+  // `set` names the probe set (id, run, viewer, scene); limits().max_probe_reports bounds it.
+  ReplayInbox(RunManager* runs, v1::ProbeSet set);
+  ~ReplayInbox();  // stores the last batch (errors are logged)
   ReplayInbox(const ReplayInbox&) = delete;
   ReplayInbox& operator=(const ReplayInbox&) = delete;
 
@@ -33,11 +35,15 @@ class ReplayInbox {
 
   // Reader thread.
   void PushControl(const v1::ReplayControl& control);
-  // A checked report (SentFrames::Accept): false when the set is full.
+  // A checked report (SentFrames::Accept): false when the set is full or could not be
+  // stored. Stores a batch when one is due.
   bool AddProbe(const v1::ProbeReport& report);
   // The reader has stopped: wakes the writer.
   void Wake();
 
+  // Writer thread: stores the reports at hand when the recorder's interval has passed (a
+  // viewer that stopped answering still has its last reports stored).
+  void FlushIfDue() { recorder_->FlushIfDue(); }
   // Writer thread: the next control, waiting until `deadline` for one (or a probe report);
   // false when none came.
   bool NextControl(Clock::time_point deadline, v1::ReplayControl* control);
@@ -45,20 +51,14 @@ class ReplayInbox {
   int64_t answered_seq() const { return answered_seq_; }
 
  private:
-  void Flush();  // reader thread or destructor
-
-  RunManager* const runs_;
   const v1::ProbeSet set_;
-  const int64_t max_reports_;
+  const std::unique_ptr<ProbeRecorder> recorder_;
   std::mutex mutex_;
   std::condition_variable arrived_;
   std::deque<v1::ReplayControl> controls_;
   bool woken_ = false;
   std::atomic<int64_t> answered_seq_{-1};
-  // Reader side only.
-  std::vector<v1::ProbeReport> buffered_;
-  int64_t reports_ = 0;
-  bool created_ = false;
+  std::vector<v1::ProbeReport> one_;  // reader side only: the report being added
 };
 
 }  // namespace mbstream

@@ -255,6 +255,7 @@ grpc::Status SendReplay(const ReplayStreamContext& io, ReplayPlan& plan) {
   };
   for (;;) {
     if (io.context->IsCancelled()) return gone;
+    io.inbox->FlushIfDue();  // the viewer's reports, when their interval has passed
     if (*io.stopping) {
       const std::string reason = "the server is shutting down; reconnect later";
       event.set_closing(reason);

@@ -290,7 +290,7 @@ grpc::Status SimulationService::Subscribe(grpc::ServerContext* context, Stream* 
         set.set_run_id(plan->run.id());
         set.set_viewer(start.replay().viewer());
         set.set_scene(start.replay().scene());
-        inbox.emplace(runs_, set, runs_->limits().max_probe_reports);
+        inbox.emplace(runs_, set);
         reader.Go(&*inbox);
         v1::SubscribeEvent event;
         event.set_subscribed("replay " + plan->run.id());

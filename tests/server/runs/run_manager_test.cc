@@ -146,6 +146,38 @@ TEST_F(RunManagerTest, APacedRunStoresItsFramesEverySecondOfWallTime) {
   runs_->Cancel(started.id());
 }
 
+// A viewer's probe reports reach the store while the run runs, with the first frame due a
+// second (limits_.frame_flush_s) of its clock after the run started: a crash then keeps them.
+TEST_F(RunManagerTest, APacedRunStoresItsViewersProbesEverySecondOfWallTime) {
+  const v1::RunInfo started = runs_->Start("single_pendulum", Swing(20.0, 1.0));
+  const auto viewer = runs_->SubscribeRun(started.id(), true);
+  ASSERT_TRUE(clock_.WaitForWaiter().has_value());  // frame 0 is out
+  std::vector<v1::ProbeReport> report(1);
+  report[0].set_run_id(started.id());
+  report[0].set_seq(0);
+  report[0].set_probe("tcp");
+  ASSERT_TRUE(runs_->AddProbes(started.id(), report));
+  for (int k = 1; k <= 10; ++k) {
+    EXPECT_TRUE(store_->GetProbes(started.id()).empty()) << "frame " << k;
+    clock_.Advance(milliseconds(100));
+    ASSERT_TRUE(clock_.WaitForWaiter().has_value()) << "frame " << k;
+  }
+  // Frame 10 went out at 1 s, and the report's batch with it.
+  EXPECT_EQ(runs_->Get(started.id()).state(), v1::RUNNING);
+  EXPECT_EQ(runs_->Get(started.id()).probe_reports(), 1);
+  ASSERT_EQ(store_->GetProbes(started.id()).size(), 1u);
+  // For frame 11, computed and waiting for its time: kept as the run ends, its report ends
+  // the end's wait for the viewer's last reports at once.
+  report[0].set_seq(11);
+  ASSERT_TRUE(runs_->AddProbes(started.id(), report));
+  runs_->Cancel(started.id());
+  const v1::RunInfo ended = WaitForEnd(viewer, started.id());
+  EXPECT_EQ(ended.state(), v1::CANCELLED);
+  EXPECT_EQ(store_->GetProbes(started.id()).size(), 2u);  // the last batch, at the end
+  EXPECT_FALSE(runs_->AddProbes(started.id(), report));   // ended: refused
+  runs_->Unsubscribe(viewer);
+}
+
 // AwaitChange returns with the change of state that ends the wait, not after its deadline: the
 // run waits for the manual clock, which never reaches its end, and the cancel ends it.
 TEST_F(RunManagerTest, AwaitChangeReturnsWhenTheRunChangesState) {
