@@ -256,6 +256,17 @@ def delta():
       <child>{rod}</child>
       <pose>{v3(r)} 0 0 0</pose>
     </joint>""")
+    # The tool point: the platform's centre, a massless link on a fixed joint (the server's TCP
+    # and the viewer's probe "tcp").
+    links.append(f"""    <link name="tcp">
+      <pose>{v3(p)} 0 0 0</pose>
+      <inertial><mass>0</mass>
+        <inertia><ixx>0</ixx><iyy>0</iyy><izz>0</izz><ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial>
+    </link>""")
+    balls.append("""    <joint name="tcp_joint" type="fixed">
+      <parent>platform</parent>
+      <child>tcp</child>
+    </joint>""")
     return model("delta", "\n".join(links + joints + balls))
 
 
