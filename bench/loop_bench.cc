@@ -64,15 +64,20 @@ RunConfig TreeAlongLoopRun() {
   return config;
 }
 
+double ThreadCpuMs() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) * 1e3 + static_cast<double>(now.tv_nsec) * 1e-6;
+}
+
 template <typename Run>
 void TimeRuns(benchmark::State& state, double duration_s, Run run) {
   RunStats stats;
-  double wall_ms = 0.0;
+  double cpu_ms = 0.0;
   for (auto _ : state) {
-    const auto start = std::chrono::steady_clock::now();
+    const double start = ThreadCpuMs();
     RunResult result = run();
-    wall_ms +=
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    cpu_ms += ThreadCpuMs() - start;
     benchmark::DoNotOptimize(result.q.data());
     stats = result.stats;
   }
