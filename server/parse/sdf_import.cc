@@ -69,10 +69,6 @@ class SdfReader {
   }
 
  private:
-  std::string Where(const std::string&, const sdf::ElementPtr& element) const {
-    return file_.Where(element);
-  }
-
   Pose ModelPoseOf(const sdf::SemanticPose& pose, const std::string& what,
                    const std::string& where) const {
     ignition::math::Pose3d resolved;
@@ -110,8 +106,8 @@ class SdfReader {
 
   RigidInertia InertiaIn(const sdf::Link& link, const Pose& F_L) const {
     const ignition::math::Inertiald& inertial = link.Inertial();
-    const Pose X_ML = ModelPoseOf(link.SemanticPose(), "link '" + link.Name() + "'",
-                                  Where(source_, link.Element()));
+    const Pose X_ML =
+        ModelPoseOf(link.SemanticPose(), "link '" + link.Name() + "'", file_.Where(link.Element()));
     const Pose X_FI = F_L.Inverse() * X_ML * ToPose(inertial.Pose());
     const ignition::math::Matrix3d moi = inertial.MassMatrix().Moi();
     Matrix3d I;
@@ -134,7 +130,7 @@ class SdfReader {
     try {
       if (info.joint->Type() == sdf::JointType::FIXED) {
         const Pose F_L = ModelPoseOf(link.SemanticPose(), "link '" + link.Name() + "'",
-                                     Where(source_, link.Element()));
+                                     file_.Where(link.Element()));
         frame_of_[info.child] = F_L;
         builder.AddFixedLink(info.child, info.parent, F_P.Inverse() * F_L, InertiaIn(link, F_L));
         return;
