@@ -10,6 +10,16 @@ import math
 
 W = 0.02  # m, bar section
 
+# Colours of the links as drawn (the viewer reads <material>: diffuse, else ambient).
+COLOURS = dict(crank=(0.8, 0.2, 0.2), coupler=(0.2, 0.5, 0.9), rocker=(0.2, 0.7, 0.3),
+               rod=(0.2, 0.5, 0.9), slider=(0.9, 0.7, 0.1), arm=(0.8, 0.3, 0.1),
+               delta_rod=(0.6, 0.6, 0.65), platform=(0.2, 0.4, 0.8))
+
+
+def material(colour):
+    rgb = " ".join(f"{c:g}" for c in colour)
+    return f"<material><ambient>{rgb} 1</ambient><diffuse>{rgb} 1</diffuse></material>"
+
 
 def bar_inertial(mass, length):
     i_axial = mass * (W * W + W * W) / 12.0
@@ -22,19 +32,20 @@ def bar_inertial(mass, length):
       </inertial>"""
 
 
-def bar_visual(length):
+def bar_visual(length, colour):
     return f"""      <visual name="bar">
         <pose>{length / 2:.17g} 0 0 0 0 0</pose>
         <geometry><box><size>{length:.17g} {W} {W}</size></box></geometry>
+        {material(colour)}
       </visual>"""
 
 
-def link(name, x, z, angle, mass, length):
+def link(name, x, z, angle, mass, length, colour=None):
     # pitch -angle turns the link's x axis to (cos angle, 0, sin angle)
     return f"""    <link name="{name}">
       <pose>{x:.17g} 0 {z:.17g} 0 {-angle:.17g} 0</pose>
 {bar_inertial(mass, length)}
-{bar_visual(length)}
+{bar_visual(length, colour or COLOURS[name])}
     </link>"""
 
 
@@ -92,7 +103,8 @@ def slider_crank():
       <inertial><mass>2</mass>
         <inertia><ixx>0.001</ixx><iyy>0.001</iyy><izz>0.001</izz>
           <ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial>
-      <visual name="block"><geometry><box><size>0.08 0.05 0.05</size></box></geometry></visual>
+      <visual name="block"><geometry><box><size>0.08 0.05 0.05</size></box></geometry>
+        {material(COLOURS["slider"])}</visual>
     </link>""",
         joint("crank_joint", "revolute", "world", "crank"),
         joint("slider_joint", "prismatic", "world", "slider", axis="1 0 0"),
@@ -157,7 +169,7 @@ def unit(v):
     return tuple(x / n for x in v)
 
 
-def rod_like(name, origin, vector, mass):
+def rod_like(name, origin, vector, mass, radius, colour):
     """A slender bar from `origin` along `vector`: its inertia about its centre in model axes."""
     length = math.sqrt(sum(x * x for x in vector))
     d = unit(vector)
@@ -166,6 +178,9 @@ def rod_like(name, origin, vector, mass):
     inertia = [[(i0 * ((1.0 if r == c else 0.0) - d[r] * d[c]) + (small if r == c else 0.0))
                 for c in range(3)] for r in range(3)]
     centre = scale(0.5, vector)
+    # the cylinder's z along the bar: pitch from z towards it, then yaw about z
+    pitch = math.atan2(math.hypot(d[0], d[1]), d[2])
+    yaw = math.atan2(d[1], d[0])
     return f"""    <link name="{name}">
       <pose>{v3(origin)} 0 0 0</pose>
       <inertial>
@@ -174,6 +189,11 @@ def rod_like(name, origin, vector, mass):
         <inertia><ixx>{inertia[0][0]:.17g}</ixx><iyy>{inertia[1][1]:.17g}</iyy><izz>{inertia[2][2]:.17g}</izz>
           <ixy>{inertia[0][1]:.17g}</ixy><ixz>{inertia[0][2]:.17g}</ixz><iyz>{inertia[1][2]:.17g}</iyz></inertia>
       </inertial>
+      <visual name="bar">
+        <pose>{v3(centre)} 0 {pitch:.17g} {yaw:.17g}</pose>
+        <geometry><cylinder><radius>{radius}</radius><length>{length:.17g}</length></cylinder></geometry>
+        {material(colour)}
+      </visual>
     </link>"""
 
 
@@ -196,7 +216,8 @@ def delta():
       <inertial><mass>0.2</mass>
         <inertia><ixx>1.5e-4</ixx><iyy>1.5e-4</iyy><izz>2.5e-4</izz>
           <ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial>
-      <visual name="disc"><geometry><cylinder><radius>{d["platform_r"]}</radius><length>0.01</length></cylinder></geometry></visual>
+      <visual name="disc"><geometry><cylinder><radius>{d["platform_r"]}</radius><length>0.01</length></cylinder></geometry>
+        {material(COLOURS["platform"])}</visual>
     </link>""")
     for i in range(3):
         g = 2 * math.pi * i / 3
@@ -207,7 +228,7 @@ def delta():
         arm = add(scale(d["arm"] * math.cos(th), u), (0.0, 0.0, -d["arm"] * math.sin(th)))
         e = add(b, arm)
         n = i + 1
-        links.append(rod_like(f"arm{n}", b, arm, 0.3))
+        links.append(rod_like(f"arm{n}", b, arm, 0.3, 0.012, COLOURS["arm"]))
         joints.append(joint(f"motor{n}", "revolute", "world", f"arm{n}", axis=v3(t)))
         for s, side in ((1, "a"), (-1, "b")):
             top = add(e, scale(s * d["half_width"], t))
@@ -216,7 +237,7 @@ def delta():
             normal = unit(cross(r, t))
             rod = f"rod{n}{side}"
             links.append(small_link(f"knuckle{n}{side}", top))
-            links.append(rod_like(rod, top, r, 0.1))
+            links.append(rod_like(rod, top, r, 0.1, 0.006, COLOURS["delta_rod"]))
             joints.append(joint(f"elbow{n}{side}_1", "revolute", f"arm{n}", f"knuckle{n}{side}",
                                 axis=v3(t)))
             joints.append(joint(f"elbow{n}{side}_2", "revolute", f"knuckle{n}{side}", rod,
@@ -234,6 +255,17 @@ def delta():
       <parent>platform</parent>
       <child>{rod}</child>
       <pose>{v3(r)} 0 0 0</pose>
+    </joint>""")
+    # The tool point: the platform's centre, a massless link on a fixed joint (the server's TCP
+    # and the viewer's probe "tcp").
+    links.append(f"""    <link name="tcp">
+      <pose>{v3(p)} 0 0 0</pose>
+      <inertial><mass>0</mass>
+        <inertia><ixx>0</ixx><iyy>0</iyy><izz>0</izz><ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial>
+    </link>""")
+    balls.append("""    <joint name="tcp_joint" type="fixed">
+      <parent>platform</parent>
+      <child>tcp</child>
     </joint>""")
     return model("delta", "\n".join(links + joints + balls))
 

@@ -8,14 +8,13 @@
 #include "server/model/loop_closure.h"
 #include "server/model/model.h"
 #include "server/parse/urdf_import.h"
+#include "urdf_reading/model_format.h"
 
 namespace mbstream {
 
-enum class ModelFormat { kUrdf, kSdf };
-
-// The format of model file `text` by its first element: SDFormat for <sdf>, URDF for
-// anything else (the URDF reader then says what is wrong with it, as it always has).
-ModelFormat DetectModelFormat(const std::string& text);
+// The format by content is urdf_reading's (the viewer's local mode asks there too).
+using urdf_reading::DetectModelFormat;
+using urdf_reading::ModelFormat;
 
 struct ModelFileImport {
   ModelFormat format = ModelFormat::kUrdf;

@@ -2,14 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
 
 #include <sdf/Collision.hh>
-#include <sdf/Console.hh>
 #include <sdf/Geometry.hh>
 #include <sdf/Joint.hh>
 #include <sdf/JointAxis.hh>
@@ -22,13 +20,14 @@
 
 #include "common/check.h"
 #include "server/model/model_builder.h"
-#include "urdf_reading/xml_shape.h"
+#include "urdf_reading/sdf_reading.h"
 
 namespace mbstream {
 
 namespace {
 
-constexpr char kWorld[] = "world";
+constexpr const char* kWorld = urdf_reading::kSdfWorld;
+using urdf_reading::MeshesOf;
 
 Pose ToPose(const ignition::math::Pose3d& pose) {
   const ignition::math::Matrix3d r(pose.Rot());
@@ -38,37 +37,6 @@ Pose ToPose(const ignition::math::Pose3d& pose) {
   }
   X.p = Vector3d(pose.Pos().X(), pose.Pos().Y(), pose.Pos().Z());
   return X;
-}
-
-// "FILE:LINE" of an element (FILE alone when the line is unknown).
-std::string Where(const std::string& source, const sdf::ElementPtr& element) {
-  if (element != nullptr && element->LineNumber().has_value()) {
-    return source + ":" + std::to_string(*element->LineNumber());
-  }
-  return source;
-}
-
-void AddMesh(const sdf::Geometry* geometry, std::vector<std::string>* uris) {
-  if (geometry == nullptr || geometry->Type() != sdf::GeometryType::MESH) return;
-  const sdf::Mesh* mesh = geometry->MeshShape();
-  if (mesh == nullptr || mesh->Uri().empty()) return;
-  if (std::find(uris->begin(), uris->end(), mesh->Uri()) == uris->end()) {
-    uris->push_back(mesh->Uri());
-  }
-}
-
-SdfMeshes MeshesOf(const sdf::Model& model) {
-  SdfMeshes meshes;
-  for (uint64_t l = 0; l < model.LinkCount(); ++l) {
-    const sdf::Link& link = *model.LinkByIndex(l);
-    for (uint64_t v = 0; v < link.VisualCount(); ++v) {
-      AddMesh(link.VisualByIndex(v)->Geom(), &meshes.visual);
-    }
-    for (uint64_t c = 0; c < link.CollisionCount(); ++c) {
-      AddMesh(link.CollisionByIndex(c)->Geom(), &meshes.collision);
-    }
-  }
-  return meshes;
 }
 
 [[noreturn]] void ThrowSdfErrors(const std::string& source, const sdf::Errors& errors) {
@@ -82,109 +50,25 @@ SdfMeshes MeshesOf(const sdf::Model& model) {
   throw InputError(message + "\nfix the model file (SDFormat 1.6 or later, one model)");
 }
 
-// What the tree needs of one joint of the file.
-struct JointInfo {
-  const sdf::Joint* joint;
-  std::string parent, child;  // link names, "world" for the world
-  std::string where;
-};
+using JointInfo = urdf_reading::SdfJointOutline;
 
 class SdfReader {
  public:
-  SdfReader(const sdf::Model& model, std::string source)
-      : sdf_(model), source_(std::move(source)) {}
+  explicit SdfReader(const urdf_reading::SdfFile& file)
+      : file_(file), sdf_(file.model()), source_(file.source()) {}
 
   SdfImport Read() {
-    if (sdf_.ModelCount() > 0) {
-      throw InputError(Where(source_, sdf_.ModelByIndex(0)->Element()) + ": model '" +
-                       sdf_.ModelByIndex(0)->Name() +
-                       "': nested models are not supported yet; flatten the model into one "
-                       "<model> of links and joints");
-    }
-    ReadJoints();
-    ChooseTree();
+    const urdf_reading::SdfTree tree = urdf_reading::ChooseSdfTree(file_);
     ModelBuilder builder(sdf_.Name(), kWorld);
     frame_of_[kWorld] = Pose::Identity();
-    for (const JointInfo* info : tree_) AddTreeJoint(builder, *info);
+    for (const size_t j : tree.tree) AddTreeJoint(builder, tree.joints[j]);
     SetTcpIfNamed(builder);
     result_.model = builder.Build();
-    for (const JointInfo& info : joints_) {
-      if (cut_.count(info.joint->Name()) != 0) result_.loops.push_back(LoopOf(info));
-    }
+    for (const size_t j : tree.cut) result_.loops.push_back(LoopOf(tree.joints[j]));
     return std::move(result_);
   }
 
  private:
-  void ReadJoints() {
-    for (uint64_t k = 0; k < sdf_.JointCount(); ++k) {
-      const sdf::Joint* joint = sdf_.JointByIndex(k);
-      JointInfo info{joint, joint->ParentLinkName(), joint->ChildLinkName(),
-                     Where(source_, joint->Element())};
-      for (const std::string* link : {&info.parent, &info.child}) {
-        if (*link != kWorld && sdf_.LinkByName(*link) == nullptr) {
-          throw InputError(info.where + ": joint '" + joint->Name() + "': link '" + *link +
-                           "' is not a link of model '" + sdf_.Name() +
-                           "'; name a link of this model (or world)");
-        }
-      }
-      switch (joint->Type()) {
-        case sdf::JointType::REVOLUTE:
-        case sdf::JointType::CONTINUOUS:
-        case sdf::JointType::PRISMATIC:
-        case sdf::JointType::FIXED:
-        case sdf::JointType::BALL:
-          break;
-        default:
-          throw InputError(info.where + ": joint '" + joint->Name() +
-                           "': this joint type is not simulated by mbstream; use revolute, "
-                           "continuous, prismatic, fixed or ball joints");
-      }
-      joints_.push_back(info);
-    }
-  }
-
-  // Breadth-first from the world, each link's joints in file order.
-  void ChooseTree() {
-    std::map<std::string, bool> reached{{kWorld, true}};
-    std::deque<std::string> queue{kWorld};
-    while (!queue.empty()) {
-      const std::string link = queue.front();
-      queue.pop_front();
-      for (const JointInfo& info : joints_) {
-        if (info.parent != link) continue;
-        if (reached[info.child]) {
-          cut_[info.joint->Name()] = true;
-          continue;
-        }
-        if (info.joint->Type() == sdf::JointType::BALL) {
-          throw InputError(info.where + ": joint '" + info.joint->Name() +
-                           "': a ball joint inside the tree is not supported yet (only as the "
-                           "joint that closes a loop); reorder the joints so that another "
-                           "joint reaches link '" +
-                           info.child + "' first, or use revolute joints");
-        }
-        reached[info.child] = true;
-        tree_.push_back(&info);
-        queue.push_back(info.child);
-      }
-    }
-    for (uint64_t k = 0; k < sdf_.LinkCount(); ++k) {
-      const sdf::Link* link = sdf_.LinkByIndex(k);
-      if (!reached[link->Name()]) {
-        throw InputError(Where(source_, link->Element()) + ": link '" + link->Name() +
-                         "' is not reached from the world through parent-to-child joints (a "
-                         "floating link); attach it, e.g. with a fixed joint whose parent is "
-                         "world");
-      }
-    }
-    for (const JointInfo& info : joints_) {
-      if (!reached[info.parent]) {
-        throw InputError(info.where + ": joint '" + info.joint->Name() + "': its parent link '" +
-                         info.parent + "' is not reached from the world; attach it");
-      }
-    }
-  }
-
   Pose ModelPoseOf(const sdf::SemanticPose& pose, const std::string& what,
                    const std::string& where) const {
     ignition::math::Pose3d resolved;
@@ -222,8 +106,8 @@ class SdfReader {
 
   RigidInertia InertiaIn(const sdf::Link& link, const Pose& F_L) const {
     const ignition::math::Inertiald& inertial = link.Inertial();
-    const Pose X_ML = ModelPoseOf(link.SemanticPose(), "link '" + link.Name() + "'",
-                                  Where(source_, link.Element()));
+    const Pose X_ML =
+        ModelPoseOf(link.SemanticPose(), "link '" + link.Name() + "'", file_.Where(link.Element()));
     const Pose X_FI = F_L.Inverse() * X_ML * ToPose(inertial.Pose());
     const ignition::math::Matrix3d moi = inertial.MassMatrix().Moi();
     Matrix3d I;
@@ -246,7 +130,7 @@ class SdfReader {
     try {
       if (info.joint->Type() == sdf::JointType::FIXED) {
         const Pose F_L = ModelPoseOf(link.SemanticPose(), "link '" + link.Name() + "'",
-                                     Where(source_, link.Element()));
+                                     file_.Where(link.Element()));
         frame_of_[info.child] = F_L;
         builder.AddFixedLink(info.child, info.parent, F_P.Inverse() * F_L, InertiaIn(link, F_L));
         return;
@@ -323,11 +207,9 @@ class SdfReader {
     return loop;
   }
 
+  const urdf_reading::SdfFile& file_;
   const sdf::Model& sdf_;
   const std::string source_;
-  std::vector<JointInfo> joints_;
-  std::vector<const JointInfo*> tree_;
-  std::map<std::string, bool> cut_;
   std::map<std::string, Pose> frame_of_;  // F_L: each link's frame in the Model, in the model frame
   SdfImport result_;
 };
@@ -336,45 +218,9 @@ class SdfReader {
 
 SdfImport ImportSdf(const std::string& text, const std::string& source,
                     const SdfImportOptions& options) {
-  // libsdformat parses with TinyXML2 9 (Debian's libtinyxml2-9): it stops at its own nesting
-  // limit (XML_ELEMENT_DEPTH_EXCEEDED) but counts neither attributes nor elements, and its
-  // messages for UTF-16 text or entities mislead. The URDF reader's shape check goes first,
-  // with the same limits (docs/reliability.md, "Limits").
-  urdf_reading::XmlShapeLimits limits;
-  limits.links_at_any_depth = true;
-  if (options.max_links > 0) limits.max_top_links = options.max_links;
-  limits.nesting_note =
-      "an SDFormat model nests about 8 deep (sdf, world, model, link, visual, geometry, mesh, "
-      "uri)";
-  if (const auto problem = urdf_reading::CheckXmlShape(text, limits)) {
-    const std::string message = source + ":" + std::to_string(problem->line) + ": " + problem->what;
-    if (problem->over_caller_limit) throw LimitError(message);
-    throw InputError(message);
-  }
-  // SDFormat's errors come back in `errors` and into our message: keep its console quiet.
-  sdf::Console::Instance()->SetQuiet(true);
-  sdf::Root root;
-  const sdf::Errors errors = root.LoadSdfString(text);
-  if (!errors.empty()) ThrowSdfErrors(source, errors);
-  if (root.WorldCount() > 1) {
-    throw InputError(source + ": the file has " + std::to_string(root.WorldCount()) +
-                     " worlds; give one world (or a top-level <model>)");
-  }
-  const sdf::Model* model = root.Model();
-  if (model == nullptr && root.WorldCount() == 1) {
-    const sdf::World& world = *root.WorldByIndex(0);
-    if (world.ModelCount() != 1) {
-      throw InputError(Where(source, world.Element()) + ": world '" + world.Name() + "' has " +
-                       std::to_string(world.ModelCount()) +
-                       " models; mbstream simulates one mechanism: give the world one model");
-    }
-    model = world.ModelByIndex(0);
-  }
-  if (model == nullptr) {
-    throw InputError(source + ": no <model> in the file; give a <model> with links and joints");
-  }
-  SdfImport result = SdfReader(*model, source).Read();
-  SdfMeshes meshes = MeshesOf(*model);
+  const urdf_reading::SdfFile file(text, source, {.max_links = options.max_links});
+  SdfImport result = SdfReader(file).Read();
+  SdfMeshes meshes = MeshesOf(file.model());
   result.mesh_files = std::move(meshes.visual);
   for (std::string& uri : meshes.collision) {
     if (std::find(result.mesh_files.begin(), result.mesh_files.end(), uri) ==
@@ -383,21 +229,6 @@ SdfImport ImportSdf(const std::string& text, const std::string& source,
     }
   }
   return result;
-}
-
-SdfMeshes ReadSdfMeshes(const std::string& text) {
-  // Hostile text never reaches libsdformat (a flood of attributes takes it minutes).
-  urdf_reading::XmlShapeLimits limits;
-  limits.links_at_any_depth = true;
-  if (urdf_reading::CheckXmlShape(text, limits)) return {};
-  sdf::Console::Instance()->SetQuiet(true);
-  sdf::Root root;
-  if (!root.LoadSdfString(text).empty()) return {};
-  const sdf::Model* model = root.Model();
-  if (model == nullptr && root.WorldCount() == 1 && root.WorldByIndex(0)->ModelCount() == 1) {
-    model = root.WorldByIndex(0)->ModelByIndex(0);
-  }
-  return model == nullptr ? SdfMeshes{} : MeshesOf(*model);
 }
 
 SdfImport ImportSdfFile(const std::string& path, const SdfImportOptions& options) {

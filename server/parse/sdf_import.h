@@ -1,6 +1,7 @@
 // Imports an SDFormat (1.6 and later) model into a Model and its loop closures.
 //
-// Read through libsdformat (sdf::Root), which resolves frames and poses relative to frames.
+// Read through urdf_reading/sdf_reading.h (libsdformat's sdf::Root, which resolves frames and
+// poses relative to frames; the reading the viewer shares).
 // The model is the file's top-level <model>, or the one model of its one <world>. Links
 // carry <inertial>; joints are revolute, continuous (revolute without limits), prismatic,
 // fixed or ball, with <axis> (<xyz>, <limit>, <dynamics damping>).
@@ -23,6 +24,7 @@
 
 #include "server/model/loop_closure.h"
 #include "server/model/model.h"
+#include "urdf_reading/sdf_reading.h"
 
 namespace mbstream {
 
@@ -35,11 +37,9 @@ struct SdfImport {
 
 // The <mesh><uri> of the visuals (and the collisions) of every link of SDFormat `text`, in
 // file order, each once; empty when the text fails the XML shape check or libsdformat cannot
-// read it (the import says why).
-struct SdfMeshes {
-  std::vector<std::string> visual, collision;
-};
-SdfMeshes ReadSdfMeshes(const std::string& text);
+// read it (the import says why). The reading is urdf_reading's, which the viewer shares.
+using urdf_reading::ReadSdfMeshes;
+using urdf_reading::SdfMeshes;
 
 struct SdfImportOptions {
   // Most <link> elements (--max-links); 0: no limit. Over it: LimitError, before any parse.

@@ -5,7 +5,7 @@
 
 #include "common/check.h"
 #include "server/parse/asset_references.h"
-#include "urdf_reading/mesh_lookup.h"
+#include "urdf_reading/mesh_file_search.h"
 
 namespace mbstream {
 
@@ -80,9 +80,10 @@ void WarnMissingMeshes(const MissingMeshes& missing, const UrdfDiagnostics& diag
 
 std::set<std::string> ExistingMeshFiles(const std::vector<std::string>& mesh_files,
                                         const std::filesystem::path& directory) {
+  const urdf_reading::MeshFileSearch search(directory, urdf_reading::PackagePath({}));
   std::set<std::string> found;
   for (const std::string& filename : mesh_files) {
-    if (!urdf_reading::FindMeshFile(filename, directory).empty()) found.insert(filename);
+    if (!search.Find(filename).found.empty()) found.insert(filename);
   }
   return found;
 }

@@ -34,8 +34,9 @@ void CheckMeshes(const urdf::Link& link, const std::set<std::string>& assets,
 // first three otherwise) and one for the missing collision meshes.
 void WarnMissingMeshes(const MissingMeshes& missing, const UrdfDiagnostics& diagnostics);
 
-// The files among `mesh_files` (as written in the URDF) that exist relative to
-// `directory`, looked up as urdf_reading::FindMeshFile does (the viewer's lookup too).
+// The files among `mesh_files` (as written in the URDF) that exist for a URDF in
+// `directory`, looked up as `mbstream submit` and the viewer's --model look them up
+// (urdf_reading::MeshFileSearch, with $MBSTREAM_PACKAGE_PATH).
 std::set<std::string> ExistingMeshFiles(const std::vector<std::string>& mesh_files,
                                         const std::filesystem::path& directory);
 

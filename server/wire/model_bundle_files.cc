@@ -12,7 +12,7 @@
 #include "server/parse/asset_references.h"
 #include "server/parse/model_file.h"
 #include "server/parse/sdf_import.h"
-#include "server/wire/mesh_file_search.h"
+#include "urdf_reading/mesh_file_search.h"
 #include "urdf_reading/mesh_lookup.h"
 #include "urdf_reading/urdf_outline.h"
 
@@ -200,13 +200,14 @@ BundleRead ReadModelBundle(const BundleFiles& files) {
     outline = urdf_reading::ReadUrdfOutline(bundle.urdf(), &outline_error);
   }
   if (outline) {
-    const MeshFileSearch search(urdf_path.parent_path(), PackagePath(files.package_paths));
+    const urdf_reading::MeshFileSearch search(urdf_path.parent_path(),
+                                              urdf_reading::PackagePath(files.package_paths));
     std::set<std::string> seen;  // each reference looked up once
     const auto attach = [&](const std::vector<std::string>& meshes, const std::string& what) {
       for (const std::string& filename : meshes) {
         const std::string name = urdf_reading::BundleAssetName(filename);
         if (name.empty() || !seen.insert(filename).second) continue;
-        const MeshSearch found = search.Find(filename);
+        const urdf_reading::MeshSearch found = search.Find(filename);
         if (found.found.empty()) {
           read.warnings.push_back(urdf_path.string() + ": " +
                                   NotFound(what, filename, found.tried, found.note));

@@ -55,6 +55,33 @@ TEST_F(ViewerLinkTest, FollowingViewerAnswersEveryFrameWithTheTcp) {
   ExpectProbesMatchTcp(dir_ / "out", 0, 400);
 }
 
+// A mechanism with closed loops (issue 31): the Delta robot, submitted as SDFormat, runs
+// kinematically on the server (Newton on its five cut ball joints at each frame); the viewer
+// draws it from the same SDFormat reading, poses its 18 tree joints from each frame (whose
+// cut joints' columns follow the tree's) and answers with its platform's centre, which
+// equals the server's TCP at every frame.
+TEST_F(ViewerLinkTest, FollowingViewerShowsALiveLoopRunOfTheDeltaAndAnswersWithItsTcp) {
+  const CommandOutcome submit = Cli("submit models/linkages/delta.sdf --name delta");
+  ASSERT_EQ(submit.exit_code, 0) << submit.output;
+  const fs::path log = dir_ / "viewer.log";
+  ASSERT_EQ(
+      RunCommand(Viewer("--follow --exit-after-runs 1 > " + log.string() + " 2>&1 &")).exit_code,
+      0);
+  ASSERT_TRUE(WaitForLineIn(log.string(), "subscribed to")) << ReadTextFile(log.string());
+  const CommandOutcome run =
+      Cli("run delta --spec models/linkages/delta-driven.json --realtime 5 --watch");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string run_id = run.output.substr(0, run.output.find('\n'));
+  ASSERT_TRUE(WaitForLineIn(log.string(), "viewer done")) << ReadTextFile(log.string());
+  const std::string viewer_log = ReadTextFile(log.string());
+  EXPECT_THAT(viewer_log, HasSubstr("showing scene 'delta'"));
+  EXPECT_THAT(viewer_log, ::testing::Not(HasSubstr("[error]")));
+  SCOPED_TRACE(viewer_log);
+  const CommandOutcome result = Cli("result " + run_id + " --out " + (dir_ / "out").string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  ExpectProbesMatchTcp(dir_ / "out", 0, 200);
+}
+
 TEST_F(ViewerLinkTest, RunModeJoinsARunningRunAndAnswersFromThenOn) {
   const CommandOutcome started =
       Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 1");

@@ -14,6 +14,7 @@
 #include "server/parse/urdf_meshes.h"
 #include "server/parse/urdf_xml_scan.h"
 #include "urdf_reading/joint_order.h"
+#include "urdf_reading/mesh_file_search.h"
 #include "urdf_reading/mesh_lookup.h"
 #include "viewer/model/urdf_scene.h"
 
@@ -78,16 +79,18 @@ TEST(UrdfAgreement, JointOrderTcpAndMeshesOfEveryUrdf) {
         scene.probes.empty() ? "" : scene.frame_names.at(scene.probes[0].frame);
     EXPECT_EQ(viewer_tcp, server_tcp);
 
-    // Mesh files beside the URDF: the server's "exists" is the viewer's "drawn from a file".
+    // Mesh files on disk: the server's "exists" is the viewer's "drawn from a file", both
+    // found as `mbstream submit` finds them.
     const std::set<std::string> server_found =
         ExistingMeshFiles(facts.mesh_files, path.parent_path());
     for (const viewer::VisualPart& part : scene.visuals) {
       if (part.mesh_filename.empty()) continue;
       const bool drawn = std::holds_alternative<viewer::MeshFile>(part.geometry);
       EXPECT_EQ(drawn, server_found.count(part.mesh_filename) == 1) << part.mesh_filename;
-      if (drawn) {
-        EXPECT_EQ(std::get<viewer::MeshFile>(part.geometry).path,
-                  urdf_reading::FindMeshFile(part.mesh_filename, path.parent_path()));
+      if (drawn) {  // the file `mbstream submit` attaches
+        EXPECT_EQ(
+            std::get<viewer::MeshFile>(part.geometry).path,
+            urdf_reading::MeshFileSearch(path.parent_path(), {}).Find(part.mesh_filename).found);
       }
     }
   }

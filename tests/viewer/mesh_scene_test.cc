@@ -18,6 +18,8 @@
 #include "bench/viewer/large_model.h"
 #include "tests/viewer/test_meshes.h"
 #include "tests/viewer/xvfb_display.h"
+#include "urdf_reading/mesh_file_search.h"
+#include "urdf_reading/mesh_lookup.h"
 #include "viewer/model/urdf_scene.h"
 #include "viewer/scene/mesh_cache.h"
 #include "viewer/scene/scene.h"
@@ -343,6 +345,65 @@ TEST(MeshDecimation, ATriangleBudgetKeepsTheSilhouette) {
   EXPECT_GT(double(both) / double(either), 0.97)
       << "silhouettes overlap " << both << " / " << either;
   fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace mbstream::viewer
+
+namespace mbstream::viewer {
+namespace {
+
+// Issue 32: a published robot's URDF names package://val_description/model/meshes/..., and
+// its folders were renamed, so the mesh is only found under one of the URDF's ancestors, as
+// `mbstream submit` looks (urdf_reading::MeshFileSearch). The viewer's local mode finds it
+// the same way and draws the mesh, not a placeholder box.
+TEST(LocalMeshLookup, MeshesFoundOnlyUnderTheUrdfsAncestorsAreDrawnAsSubmitFindsThem) {
+  ASSERT_EQ(unsetenv("MBSTREAM_PACKAGE_PATH"), 0);
+  const fs::path root =
+      fs::temp_directory_path() / ("mbstream_ancestor_meshes_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  const fs::path urdf_dir = root / "robots" / "valkyrie" / "urdf";
+  fs::create_directories(urdf_dir);
+  const std::vector<std::string> parts = {"pelvis", "torso"};
+  std::string links, joints;
+  for (const std::string& part : parts) {
+    const fs::path mesh = root / "robots" / "model" / "meshes" / part / (part + ".stl");
+    fs::create_directories(mesh.parent_path());
+    testing::WriteStlBox(mesh, Vector3d(-0.1, -0.1, 0), Vector3d(0.1, 0.1, 0.3));
+    links += "<link name=\"" + part + "\">" + std::string(kInertial) +
+             MeshVisual("package://val_description/model/meshes/" + part + "/" + part + ".stl") +
+             "</visual></link>\n";
+  }
+  joints = Revolute("j1", "pelvis", "torso", "0 0 0.3", "0 0 1");
+  const fs::path urdf = urdf_dir / "valkyrie.urdf";
+  std::ofstream(urdf) << "<robot name=\"valkyrie\">\n" + links + joints + "</robot>\n";
+
+  const urdf_reading::MeshFileSearch submit_search(urdf_dir, {});
+  const SceneDescription scene = SceneFromUrdfFile(urdf);
+  EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
+  ASSERT_EQ(scene.visuals.size(), parts.size());
+  for (const VisualPart& part : scene.visuals) {
+    const auto* file = std::get_if<MeshFile>(&part.geometry);
+    ASSERT_NE(file, nullptr) << part.name << " is a placeholder";
+    const fs::path expected =
+        root / "robots" / "model" / "meshes" / part.name / (part.name + ".stl");
+    EXPECT_EQ(fs::weakly_canonical(file->path), fs::weakly_canonical(expected));
+    // The file submit attaches, and one the lookup inside a bundle (beside the URDF, or in
+    // its parent) does not find.
+    EXPECT_EQ(file->path, submit_search.Find(part.mesh_filename).found);
+    EXPECT_TRUE(urdf_reading::FindMeshFile(part.mesh_filename, urdf_dir).empty());
+    // The STL's box, not the inertia's (an edge of 0.245 m).
+    EXPECT_TRUE(Near(Bounds(part), Vector3d(-0.1, -0.1, 0), Vector3d(0.1, 0.1, 0.3)));
+  }
+  ASSERT_TRUE(testing::EnsureDisplay()) << "no X display and Xvfb could not be started";
+  SceneOptions options;
+  options.width = 320;
+  options.height = 240;
+  options.offscreen = true;
+  Scene drawn(scene, options);
+  EXPECT_TRUE(drawn.labels().empty());  // no "mesh missing" box
+  EXPECT_EQ(drawn.part_actor_count(), 2);
+  fs::remove_all(root);
 }
 
 }  // namespace

@@ -157,5 +157,27 @@ TEST(ViewerCli, SnapshotsOfAScriptAndOfAUrdf) {
   std::filesystem::remove(png);
 }
 
+TEST(ViewerCli, ModelTakesAnSdformatFileAndAUrdfAlike) {
+  ASSERT_TRUE(testing::EnsureDisplay());
+  const std::filesystem::path png = std::filesystem::temp_directory_path() /
+                                    ("mbstream_cli_sdf-" + std::to_string(getpid()) + ".png");
+  std::filesystem::remove(png);
+  ProcessResult run = RunViewer(
+      "--model models/linkages/delta.sdf --offscreen --size 320x240 "
+      "--snapshot " +
+      png.string());
+  EXPECT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_GT(std::filesystem::file_size(png), 1000u);
+  std::filesystem::remove(png);
+  // 18 tree joints in degrees: the cut ball joints are no values of --pose.
+  run = RunViewer("--model models/linkages/delta.sdf --pose 1,2 --offscreen --snapshot " +
+                  png.string());
+  EXPECT_EQ(run.exit_code, 1) << run.out;
+  run = RunViewer("--model models/irb1600/irb1600.urdf --offscreen --snapshot " + png.string());
+  EXPECT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_THAT(run.out, HasSubstr("probe tcp: (0.815, 0, 0.9615) m in base_link"));
+  std::filesystem::remove(png);
+}
+
 }  // namespace
 }  // namespace mbstream::viewer

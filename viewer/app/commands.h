@@ -18,7 +18,8 @@ int RunCheck(const std::string& file, const std::vector<std::string>& asset_dirs
 
 struct PoseOptions {
   std::string scene_file;  // a scene script, or empty
-  std::string urdf_file;   // a URDF, or empty
+  std::string model_file;  // a URDF or SDFormat file (--model, alias --urdf), or empty
+  std::vector<std::string> package_paths;  // --package-path: where package:// meshes are
   std::vector<std::string> asset_dirs;
   std::optional<std::string> pose;  // "Q1,Q2,...", degrees or mm
   bool offscreen = false;
@@ -28,7 +29,7 @@ struct PoseOptions {
   long long triangle_budget = SceneOptions::kDefaultTriangleBudget;  // --triangle-budget
 };
 
-// --scene FILE | --urdf FILE [--pose ...] [--offscreen] [--snapshot OUT.png]: poses the
+// --scene FILE | --model FILE [--pose ...] [--offscreen] [--snapshot OUT.png]: poses the
 // scene, prints the probes, then snapshots, or shows the window until it is closed.
 // Returns 0, 1 (bad input) or 2 (no display).
 int RunPose(const PoseOptions& options);

@@ -9,7 +9,8 @@
 // Without a server:
 //   mbstream-viewer --check FILE [--asset-dir DIR]...
 //   mbstream-viewer --scene FILE [--pose Q1,Q2,...] [--offscreen] [--snapshot OUT.png]
-//   mbstream-viewer --urdf FILE  [--pose Q1,Q2,...] [--offscreen] [--snapshot OUT.png]
+//   mbstream-viewer --model FILE [--package-path DIR]... [--pose Q1,Q2,...] [--offscreen]
+//                   [--snapshot OUT.png]      (FILE a URDF or an SDFormat file; --urdf: alias)
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
@@ -19,8 +20,8 @@
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "mbstream-viewer: shows a mechanism from a scene script or URDF and answers "
-      "probes"};
+      "mbstream-viewer: shows a mechanism from a scene script, a URDF or an SDFormat file and "
+      "answers probes"};
   app.set_version_flag("--version", "mbstream-viewer 0.1.0");
 
   std::string check_file;
@@ -37,10 +38,17 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingDirectory);
   auto* scene =
       app.add_option("--scene", pose.scene_file, "Scene script to show")->check(CLI::ExistingFile);
-  auto* urdf = app.add_option("--urdf", pose.urdf_file,
-                              "URDF whose visuals (box, cylinder, sphere, mesh files: Collada, "
-                              "OBJ, STL, glTF/GLB, PLY) make the scene")
+  auto* urdf = app.add_option("--model,--urdf", pose.model_file,
+                              "URDF or SDFormat file (told apart by content) whose visuals (box, "
+                              "cylinder, sphere, mesh files: Collada, OBJ, STL, glTF/GLB, PLY) "
+                              "make the scene; meshes are found as mbstream submit finds them")
                    ->check(CLI::ExistingFile);
+  app.add_option("--package-path", pose.package_paths,
+                 "With --model: a folder searched for the ROS packages of package:// and "
+                 "model:// meshes (repeatable; then $MBSTREAM_PACKAGE_PATH, then the model "
+                 "file's ancestors)")
+      ->check(CLI::ExistingDirectory)
+      ->needs(urdf);
   auto* pose_option = app.add_option("--pose", pose.pose,
                                      "Joint values Q1,Q2,... in degrees (revolute) or mm "
                                      "(prismatic), like the script's Initial");
@@ -146,8 +154,8 @@ int main(int argc, char** argv) {
     std::cerr << "mbstream-viewer: --size '" << size << "' is not WIDTHxHEIGHT, e.g. 640x480\n";
     return 2;
   }
-  if (pose.pose && pose.scene_file.empty() && pose.urdf_file.empty()) {
-    std::cerr << "mbstream-viewer: --pose needs --scene FILE or --urdf FILE\n";
+  if (pose.pose && pose.scene_file.empty() && pose.model_file.empty()) {
+    std::cerr << "mbstream-viewer: --pose needs --scene FILE or --model FILE\n";
     return 2;
   }
   if (web_tls.size() == 2) {
@@ -168,11 +176,11 @@ int main(int argc, char** argv) {
     link.triangle_budget = pose.triangle_budget;
     return mbstream::viewer::RunLink(link);
   }
-  if (!pose.scene_file.empty() || !pose.urdf_file.empty()) {
+  if (!pose.scene_file.empty() || !pose.model_file.empty()) {
     pose.asset_dirs = asset_dirs;
     return mbstream::viewer::RunPose(pose);
   }
-  std::cerr << "mbstream-viewer: nothing to do: give --check FILE, --scene FILE or --urdf FILE "
+  std::cerr << "mbstream-viewer: nothing to do: give --check FILE, --scene FILE or --model FILE "
                "or --server ADDR --follow; see mbstream-viewer --help\n";
   return 2;
 }

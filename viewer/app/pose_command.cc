@@ -25,7 +25,7 @@ bool HasDisplay() {
 
 int RunPose(const PoseOptions& options) {
   std::optional<SceneDescription> description =
-      LoadScene(options.scene_file, options.urdf_file, options.asset_dirs);
+      LoadScene(options.scene_file, options.model_file, options.asset_dirs, options.package_paths);
   if (!description) return 1;
   std::vector<double> q_si = description->initial_q;
   if (options.pose) {

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <iostream>
 
+#include "viewer/model/model_scene.h"
 #include "viewer/model/script_scene.h"
-#include "viewer/model/urdf_scene.h"
 #include "viewer/script/lexer.h"
 
 namespace mbstream::viewer {
@@ -31,8 +31,9 @@ ss::Translation TranslateForCommandLine(const std::string& file,
 }
 
 std::optional<SceneDescription> LoadScene(const std::string& scene_file,
-                                          const std::string& urdf_file,
-                                          const std::vector<std::string>& asset_dirs) {
+                                          const std::string& model_file,
+                                          const std::vector<std::string>& asset_dirs,
+                                          const std::vector<std::string>& package_path) {
   if (!scene_file.empty()) {
     const ss::Translation translation = TranslateForCommandLine(scene_file, asset_dirs);
     if (!translation.ok()) {
@@ -43,7 +44,7 @@ std::optional<SceneDescription> LoadScene(const std::string& scene_file,
     return SceneFromScript(translation.script);
   }
   try {
-    SceneDescription scene = SceneFromUrdfFile(urdf_file);
+    SceneDescription scene = SceneFromModelFile(model_file, package_path);
     for (const std::string& warning : scene.warnings) spdlog::warn("{}", warning);
     return scene;
   } catch (const std::exception& e) {

@@ -1,5 +1,5 @@
 // Loading a scene description for the command line: a scene script (translated, errors
-// printed as FILE:LINE:COL: message) or a URDF's visuals.
+// printed as FILE:LINE:COL: message) or a model file's visuals (URDF or SDFormat).
 #pragma once
 
 #include <optional>
@@ -16,10 +16,12 @@ namespace mbstream::viewer {
 scene_script::Translation TranslateForCommandLine(const std::string& file,
                                                   const std::vector<std::string>& asset_dirs);
 
-// The scene of a script or URDF file, or nullopt after printing what is wrong.
+// The scene of a script or model file (URDF or SDFormat, by content; its meshes found as
+// `mbstream submit` finds them, with `package_path`), or nullopt after printing what is wrong.
 std::optional<SceneDescription> LoadScene(const std::string& scene_file,
-                                          const std::string& urdf_file,
-                                          const std::vector<std::string>& asset_dirs);
+                                          const std::string& model_file,
+                                          const std::vector<std::string>& asset_dirs,
+                                          const std::vector<std::string>& package_path = {});
 
 // "0,30,-45.5" -> values; nullopt after printing what is wrong.
 std::optional<std::vector<double>> ParsePose(const std::string& text);

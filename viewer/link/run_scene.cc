@@ -4,8 +4,9 @@
 #include <stdexcept>
 
 #include "common/check.h"
+#include "urdf_reading/model_format.h"
+#include "viewer/model/model_scene.h"
 #include "viewer/model/script_scene.h"
-#include "viewer/model/urdf_scene.h"
 #include "viewer/script/asset_locator.h"
 #include "viewer/script/diagnostics.h"
 #include "viewer/script/translator.h"
@@ -63,7 +64,10 @@ SceneDescription SceneFromBundle(const v1::ModelInfo& model, const v1::ModelBund
       }
       scene = SceneFromScript(translation.script);
     } else {
-      scene = SceneFromUrdf(bundle.urdf(), model.name() + ".urdf", dir);
+      const bool sdf =
+          urdf_reading::DetectModelFormat(bundle.urdf()) == urdf_reading::ModelFormat::kSdf;
+      scene = SceneFromModelText(bundle.urdf(), model.name() + (sdf ? ".sdf" : ".urdf"),
+                                 BundleMeshFinder(dir));
     }
   }
   return scene;

@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -104,6 +105,10 @@ struct SubscriberLink::StreamState {
   v1::SubscribeRequest reply;  // reused for every probe report
   std::vector<ProbeReport> probes;
   std::vector<double> q, ghost_q;
+  // The model's joints: a frame's values beyond them are the columns of the joints cut to
+  // close loops (the server's results order: the tree's joints, then the cut joints'), which
+  // pose nothing.
+  int model_dofs = 0;
   bool probes_logged = false;  // "first probe reports" said for this run
 };
 
@@ -219,6 +224,7 @@ std::string SubscriberLink::ShowRun(const v1::SubscribeEvent::RunStarted& starte
 void SubscriberLink::OnRunStarted(const v1::SubscribeEvent::RunStarted& started,
                                   StreamState* state) {
   state->run_id = started.run().id();
+  state->model_dofs = started.model().dofs();
   state->probes_logged = false;
   const std::string error = ShowRun(started);
   state->showing = error.empty();
@@ -244,7 +250,10 @@ void SubscriberLink::OnFrames(const v1::FrameBatch& batch, StreamState* state) {
   const Clock::time_point begin = Clock::now();
   for (int i = 0; i < batch.frames_size() && !state->broken; ++i) {
     const v1::Frame& frame = batch.frames(i);
-    state->q.assign(frame.q().begin(), frame.q().end());
+    const int tree_values = frame.q_size() > state->model_dofs && state->model_dofs > 0
+                                ? state->model_dofs
+                                : frame.q_size();
+    state->q.assign(frame.q().begin(), frame.q().begin() + tree_values);
     bool posed = false;
     try {
       posed = slot_->WithScene([&](Scene& scene) {
@@ -252,7 +261,8 @@ void SubscriberLink::OnFrames(const v1::FrameBatch& batch, StreamState* state) {
         scene.ProbeReports(&state->probes);
         if (ghosts && scene.ghost()) {
           const v1::Frame& ghost = batch.ghost_frames(i);
-          state->ghost_q.assign(ghost.q().begin(), ghost.q().end());
+          state->ghost_q.assign(ghost.q().begin(),
+                                ghost.q().begin() + std::min(ghost.q_size(), tree_values));
           scene.ghost()->SetJointValues(state->ghost_q);
           status_->AddGhost(frame.t_s(), Distance(frame.tcp_m(), ghost.tcp_m()));
         }

@@ -9,7 +9,6 @@
 
 #include "common/check.h"
 #include "urdf_reading/joint_order.h"
-#include "urdf_reading/mesh_lookup.h"
 #include "urdf_reading/tcp_choice.h"
 #include "urdf_reading/urdf_outline.h"
 #include "viewer/model/inertia_box.h"
@@ -45,8 +44,8 @@ VisualPart BoxPart(const std::string& name, int frame, const Eigen::Vector3d& si
 
 class UrdfSceneBuilder {
  public:
-  UrdfSceneBuilder(const std::string& source, std::filesystem::path dir)
-      : source_(source), dir_(std::move(dir)) {}
+  UrdfSceneBuilder(const std::string& source, MeshFinder find_mesh)
+      : source_(source), find_mesh_(std::move(find_mesh)) {}
 
   SceneDescription Build(const std::string& text) {
     std::string error;
@@ -184,7 +183,7 @@ class UrdfSceneBuilder {
       }
       case urdf::Geometry::MESH: {
         const auto& mesh = static_cast<const urdf::Mesh&>(geometry);
-        const std::filesystem::path path = urdf_reading::FindMeshFile(mesh.filename, dir_);
+        const std::filesystem::path path = find_mesh_(mesh.filename);
         if (path.empty()) {
           scene->warnings.push_back(source_ + ": link '" + link.name + "': mesh '" + mesh.filename +
                                     "' is not in the model's files; drawn as a box of the "
@@ -207,7 +206,7 @@ class UrdfSceneBuilder {
   }
 
   std::string source_;
-  std::filesystem::path dir_;
+  MeshFinder find_mesh_;
   const urdf_reading::UrdfOutline* outline_ = nullptr;
   std::map<std::string, int> frame_of_link_;
 };
@@ -216,10 +215,16 @@ class UrdfSceneBuilder {
 
 SceneDescription SceneFromUrdf(const std::string& text, const std::string& source,
                                const std::filesystem::path& asset_directory) {
-  return UrdfSceneBuilder(source, asset_directory).Build(text);
+  return SceneFromUrdf(text, source, BundleMeshFinder(asset_directory));
 }
 
-SceneDescription SceneFromUrdfFile(const std::filesystem::path& path) {
+SceneDescription SceneFromUrdf(const std::string& text, const std::string& source,
+                               const MeshFinder& find_mesh) {
+  return UrdfSceneBuilder(source, find_mesh).Build(text);
+}
+
+SceneDescription SceneFromUrdfFile(const std::filesystem::path& path,
+                                   const std::vector<std::string>& package_path) {
   std::ifstream in(path, std::ios::binary);
   std::error_code error;
   if (!in || !std::filesystem::is_regular_file(path, error)) {
@@ -227,7 +232,7 @@ SceneDescription SceneFromUrdfFile(const std::filesystem::path& path) {
   }
   std::ostringstream text;
   text << in.rdbuf();
-  return SceneFromUrdf(text.str(), path.string(), path.parent_path());
+  return SceneFromUrdf(text.str(), path.string(), DiskMeshFinder(path.parent_path(), package_path));
 }
 
 }  // namespace mbstream::viewer

@@ -6,21 +6,28 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
+#include "viewer/model/mesh_finder.h"
 #include "viewer/model/scene_description.h"
 
 namespace mbstream::viewer {
 
 // Throws InputError "FILE: what is wrong; what to do" on bad input: unreadable
 // file, XML/URDF urdfdom rejects, floating/planar joints, a zero axis, joints that form a
-// loop. A mesh is looked up as urdf_reading::FindMeshFile does, relative to
-// `asset_directory`; a mesh that is not found becomes a labelled placeholder box of the
-// link's inertia size (with a warning in SceneDescription::warnings).
+// loop. A mesh is looked up by `find_mesh` (mesh_finder.h): a file on disk as `mbstream
+// submit` finds it (SceneFromUrdfFile, with the --package-path folders `package_path`), a
+// bundle's file below `asset_directory` as the server stored it; a mesh that is not found
+// becomes a labelled placeholder box of the link's inertia size (with a warning in
+// SceneDescription::warnings).
 // Colours: a URDF <material> colour (inline or by name) wins; else the mesh file's own
 // material colours; else grey. The TCP link (urdf_reading::ChooseTcpLink) gets a probe
 // "tcp" reported in the base link's frame.
-SceneDescription SceneFromUrdfFile(const std::filesystem::path& path);
+SceneDescription SceneFromUrdfFile(const std::filesystem::path& path,
+                                   const std::vector<std::string>& package_path = {});
 SceneDescription SceneFromUrdf(const std::string& text, const std::string& source,
                                const std::filesystem::path& asset_directory);
+SceneDescription SceneFromUrdf(const std::string& text, const std::string& source,
+                               const MeshFinder& find_mesh);
 
 }  // namespace mbstream::viewer

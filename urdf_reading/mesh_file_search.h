@@ -1,4 +1,5 @@
-// Where `mbstream submit` finds the file of a URDF <mesh filename> on the user's disk, the
+// Where `mbstream submit` and the viewer's local mode (`mbstream-viewer --model FILE`) find
+// the file of a URDF <mesh filename> (or an SDFormat <mesh><uri>) on the user's disk, the
 // way ROS users expect: relative paths from the URDF's folder; package://PKG/REST in the
 // package path (folders whose package.xml names PKG, or named PKG), then REST relative to
 // each of the URDF's ancestors (robot folders are often renamed); file:// as a file.
@@ -8,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace mbstream {
+namespace mbstream::urdf_reading {
 
 struct MeshSearch {
   std::filesystem::path found;               // empty when not found
@@ -36,4 +37,4 @@ class MeshFileSearch {
 // separated, empty entries skipped).
 std::vector<std::filesystem::path> PackagePath(const std::vector<std::string>& flags);
 
-}  // namespace mbstream
+}  // namespace mbstream::urdf_reading

@@ -1,4 +1,4 @@
-#include "server/wire/mesh_file_search.h"
+#include "urdf_reading/mesh_file_search.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -9,7 +9,7 @@
 
 #include "urdf_reading/mesh_lookup.h"
 
-namespace mbstream {
+namespace mbstream::urdf_reading {
 
 namespace {
 
@@ -104,7 +104,7 @@ MeshSearch MeshFileSearch::Find(const std::string& filename) const {
     }
     return search;
   }
-  const fs::path bare(urdf_reading::WithoutScheme(filename));
+  const fs::path bare(WithoutScheme(filename));
   attempt(bare.is_absolute() ? bare : urdf_dir_ / bare);
   return search;
 }
@@ -120,4 +120,4 @@ std::vector<fs::path> PackagePath(const std::vector<std::string>& flags) {
   return path;
 }
 
-}  // namespace mbstream
+}  // namespace mbstream::urdf_reading

@@ -1,0 +1,26 @@
+// A scene from an SDFormat model's visuals (box, cylinder, sphere, mesh files) with their
+// materials and poses, for `mbstream-viewer --model FILE.sdf` and for a run of an SDFormat
+// model the server sends. Read through urdf_reading/sdf_reading.h, the reading the server's
+// importer shares: the same spanning tree (its joints are the chain's, in the server's
+// order; the cut joints close loops the server solves and are not drawn as joints), the
+// same link frames, the same mesh lookup. The viewer links no server code.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "viewer/model/mesh_finder.h"
+#include "viewer/model/scene_description.h"
+
+namespace mbstream::viewer {
+
+// Throws InputError "FILE[:LINE]: what is wrong; what to do" for input the server's importer
+// refuses too (urdf_reading::SdfFile, ChooseSdfTree). Colours: the <material>'s diffuse,
+// else its ambient, else the mesh file's own, else grey. A mesh `find_mesh` does not find is
+// drawn as a labelled placeholder cube (with a warning). A link named tcp or tool0 (any
+// case) gets a probe "tcp" reported in the world frame, as the server's TCP.
+SceneDescription SceneFromSdf(const std::string& text, const std::string& source,
+                              const MeshFinder& find_mesh);
+
+}  // namespace mbstream::viewer
