@@ -6,12 +6,12 @@
 // BM_DeltaLoop/driven: SimulateLoops with models/linkages/delta-driven.json (the motors
 //   prescribed, kinematic: Newton on the loops at each of 201 frames over 2 s, inverse
 //   dynamics and multipliers for the motor torques).
-// BM_DeltaTree/driven: Simulate of the same 18-joint tree with no loops, every joint
+// BM_DeltaTree/driven: SimulateTree of the same 18-joint tree with no loops, every joint
 //   prescribed along the loop run's own motion (natural cubic splines through its frames):
 //   the same motion and torques asked for, closed form (forward kinematics, RNEA).
 // BM_DeltaLoop/passive: SimulateLoops with delta-passive.json (released at rest; joint space,
 //   Baumgarte and CVODE BDF with projection, rtol 1e-9, 0.15 s).
-// BM_DeltaTree/passive: Simulate of the tree with no loops released at rest, the same spec
+// BM_DeltaTree/passive: SimulateTree of the tree with no loops released at rest, the same spec
 //   (joint space, CVODE BDF, rtol 1e-9): an 18-joint chain that falls apart freely.
 // Counters: ms_per_sim_s (CPU ms of the benchmark's thread for one run, per simulated
 // second: the machine is shared, its wall time is not the run's), steps (internal steps).
@@ -97,12 +97,12 @@ void BM_DeltaLoop(benchmark::State& state, const char* spec) {
 
 void BM_DeltaTreeDriven(benchmark::State& state) {
   const RunConfig config = TreeAlongLoopRun();
-  TimeRuns(state, config.duration, [&] { return Simulate(Delta().model, config); });
+  TimeRuns(state, config.duration, [&] { return SimulateTree(Delta().model, config); });
 }
 
 void BM_DeltaTreePassive(benchmark::State& state) {
   const RunConfig config = DeltaConfig("delta-passive.json");
-  TimeRuns(state, config.duration, [&] { return Simulate(Delta().model, config); });
+  TimeRuns(state, config.duration, [&] { return SimulateTree(Delta().model, config); });
 }
 
 BENCHMARK_CAPTURE(BM_DeltaLoop, driven, "delta-driven.json")->Unit(benchmark::kMillisecond);

@@ -32,17 +32,6 @@ Eigen::Isometry3d ToIsometry(const ignition::math::Pose3d& pose) {
   return X;
 }
 
-[[noreturn]] void ThrowSdfErrors(const std::string& source, const sdf::Errors& errors) {
-  std::string message;
-  for (const sdf::Error& error : errors) {
-    if (!message.empty()) message += "\n";
-    message += source;
-    if (error.LineNumber().has_value()) message += ":" + std::to_string(*error.LineNumber());
-    message += ": SDFormat: \"" + error.Message() + "\"";
-  }
-  throw InputError(message + "\nfix the model file (SDFormat 1.6 or later, one model)");
-}
-
 void AddMesh(const sdf::Geometry* geometry, std::vector<std::string>* uris) {
   if (geometry == nullptr || geometry->Type() != sdf::GeometryType::MESH) return;
   const sdf::Mesh* mesh = geometry->MeshShape();
@@ -309,6 +298,17 @@ SdfMeshes ReadSdfMeshes(const std::string& text) {
     model = root.WorldByIndex(0)->ModelByIndex(0);
   }
   return model == nullptr ? SdfMeshes{} : MeshesOf(*model);
+}
+
+[[noreturn]] void ThrowSdfErrors(const std::string& source, const sdf::Errors& errors) {
+  std::string message;
+  for (const sdf::Error& error : errors) {
+    if (!message.empty()) message += "\n";
+    message += source;
+    if (error.LineNumber().has_value()) message += ":" + std::to_string(*error.LineNumber());
+    message += ": SDFormat: \"" + error.Message() + "\"";
+  }
+  throw InputError(message + "\nfix the model file (SDFormat 1.6 or later, one model)");
 }
 
 }  // namespace mbstream::urdf_reading

@@ -124,4 +124,7 @@ SdfMeshes MeshesOf(const sdf::Model& model);
 // libsdformat cannot read it (hostile text never reaches libsdformat).
 SdfMeshes ReadSdfMeshes(const std::string& text);
 
+// Throws an InputError listing libsdformat's `errors`, each as source:line: message.
+[[noreturn]] void ThrowSdfErrors(const std::string& source, const sdf::Errors& errors);
+
 }  // namespace mbstream::urdf_reading

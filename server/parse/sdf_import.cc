@@ -28,6 +28,7 @@ namespace {
 
 constexpr const char* kWorld = urdf_reading::kSdfWorld;
 using urdf_reading::MeshesOf;
+using urdf_reading::ThrowSdfErrors;
 
 Pose ToPose(const ignition::math::Pose3d& pose) {
   const ignition::math::Matrix3d r(pose.Rot());
@@ -37,17 +38,6 @@ Pose ToPose(const ignition::math::Pose3d& pose) {
   }
   X.p = Vector3d(pose.Pos().X(), pose.Pos().Y(), pose.Pos().Z());
   return X;
-}
-
-[[noreturn]] void ThrowSdfErrors(const std::string& source, const sdf::Errors& errors) {
-  std::string message;
-  for (const sdf::Error& error : errors) {
-    if (!message.empty()) message += "\n";
-    message += source;
-    if (error.LineNumber().has_value()) message += ":" + std::to_string(*error.LineNumber());
-    message += ": SDFormat: \"" + error.Message() + "\"";
-  }
-  throw InputError(message + "\nfix the model file (SDFormat 1.6 or later, one model)");
 }
 
 using JointInfo = urdf_reading::SdfJointOutline;
