@@ -12,6 +12,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 
 #include "server/body/baumgarte_parameters.h"
 #include "server/drives/drive_set.h"
@@ -45,6 +46,12 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
   // The constraint residuals at the last Evaluate: largest |phi| over gap rows (m) and
   // alignment rows (rad), and of G qd (m/s or rad/s).
   void Residuals(double* gap, double* alignment, double* velocity) const;
+  // After Evaluate: how far the constraint rows A (the independent rows of G, then the
+  // prescribed joints' rows), each scaled to unit length, are from singular: their smallest
+  // singular value over their largest (1: orthogonal rows; 0: a singular configuration of
+  // the mechanism, or of the tree's coordinates, where the multipliers are undefined and
+  // the ODE has no solution through it). Allocates nothing.
+  double ConstraintConditioning();
 
   const LoopRank& rank() const { return rank_; }
   const Eigen::VectorXd& q() const { return q_; }
@@ -71,6 +78,8 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
   Eigen::VectorXd phi_, phi_dot_, bias_, b_, mu_;
   Eigen::MatrixXd G_, A_, Y_, S_;
   Eigen::LLT<Eigen::MatrixXd> mass_llt_, s_llt_;
+  Eigen::MatrixXd unit_rows_, gram_;                           // ConstraintConditioning
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> gram_eigen_;  // its workspace
   DriveSet::Workspace drive_workspace_;
 };
 

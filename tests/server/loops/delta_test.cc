@@ -111,9 +111,9 @@ TEST(DeltaTest, TheKinematicRunMatchesTheClosedFormInverseKinematicsAndKeepsTheP
 TEST(DeltaTest, ThePassiveDeltaFallsWithItsEnergyKeptAndItsPlatformLevel) {
   const SdfImport sdf = ImportSdfFile(kDelta);
   RunConfig config = DeltaConfig(sdf.model);
-  // Released at rest, every joint passive, it falls from the drawn pose. Near t = 0.29 s
-  // CVODE BDF takes more than 80,000 steps (the fall nears the workspace's edge; not yet
-  // analysed: docs/closed_loops.md), so 0.15 s of it.
+  // Released at rest, every joint passive, it falls from the drawn pose. At t = 0.2923 s
+  // its rods are all parallel, a singular pose of the mechanism where the run stops
+  // (delta_singularity_test.cc, docs/closed_loops.md), so 0.15 s of it.
   config.duration = 0.15;
   config.output_interval = 0.005;
   const RunResult result = SimulateLoops(sdf.model, sdf.loops, config);

@@ -410,10 +410,14 @@ TEST(LoopRunTest, TheClosedLoopOdeStepsWithoutAllocating) {
   const long before = testing::AllocationCount();
   const int rhs = ode.Rhs(0.01, y.data(), ydot.data());
   const int project = ode.Project(0.01, y.data(), correction.data());
+  ASSERT_TRUE(ode.Evaluate(0.01, y.data()));
+  const double conditioning = ode.ConstraintConditioning();  // checked at every frame
   EXPECT_EQ(testing::AllocationCount() - before, 0);
   EXPECT_EQ(rhs, 0);
   EXPECT_EQ(project, 0);
   EXPECT_TRUE(ydot.allFinite());
+  EXPECT_GT(conditioning, 0.01);  // a four-bar far from its singular poses
+  EXPECT_LE(conditioning, 1.0);
   // The projection puts the crank on its track (2 pi t) and closes the loop.
   EXPECT_NEAR(y(0) + correction(0), 2.0 * M_PI * 0.01, 1e-12);
   EXPECT_NEAR(y(3) + correction(3), 2.0 * M_PI, 1e-9);
