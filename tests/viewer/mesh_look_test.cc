@@ -1,6 +1,7 @@
 // How meshes look (issue 30, "Looking like itself"): a link whose mesh is missing is a
 // tinted box named on one HUD line, not a text label per link; a mesh whose colour comes from
-// a texture (an OBJ .mtl with map_Kd and a black Kd) is drawn with it. Under Xvfb.
+// a texture (an OBJ .mtl with map_Kd and a black Kd, a Collada <texture>) is drawn with it.
+// Under Xvfb; the page's scene export is checked to carry the same.
 #include <gtest/gtest.h>
 
 #include <vtkActor.h>
@@ -23,6 +24,7 @@
 #include "tests/viewer/xvfb_display.h"
 #include "viewer/model/urdf_scene.h"
 #include "viewer/scene/scene.h"
+#include "viewer/scene/visual_pipeline.h"
 #include "viewer/web/scene_export.h"
 
 namespace mbstream::viewer {
@@ -168,39 +170,120 @@ void WritePng(const fs::path& path, unsigned char r, unsigned char g, unsigned c
   writer->Write();
 }
 
-TEST(MeshLook, AnObjWhoseColourIsATextureIsDrawnWithIt) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("mbstream_mesh_look_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  WritePng(dir / "skin.png", 200, 60, 40);
-  WriteTexturedObjCube(dir / "cube.obj", "skin.png");
+// The same cube as Collada: a <lambert> whose <diffuse> is a <texture> of `image`.
+void WriteTexturedColladaCube(const fs::path& dae, const std::string& image) {
+  std::string positions;
+  for (int i = 0; i < 8; ++i) {
+    for (int axis : {1, 2, 4}) positions += std::string((i & axis) ? "0.1 " : "-0.1 ");
+  }
+  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  std::string p;  // vertex, texture coordinate; two triangles per face
+  for (const auto& face : faces) {
+    for (int k : {0, 1, 2, 0, 2, 3}) p += std::to_string(face[k]) + " " + std::to_string(k) + " ";
+  }
+  std::ofstream(dae) << R"(<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit name="meter" meter="1"/><up_axis>Z_UP</up_axis></asset>
+  <library_images><image id="skin-image"><init_from>)"
+                     << image << R"(</init_from></image></library_images>
+  <library_effects><effect id="skin-effect"><profile_COMMON>
+    <newparam sid="skin-surface"><surface type="2D"><init_from>skin-image</init_from></surface></newparam>
+    <newparam sid="skin-sampler"><sampler2D><source>skin-surface</source></sampler2D></newparam>
+    <technique sid="common"><lambert>
+      <diffuse><texture texture="skin-sampler" texcoord="UVMap"/></diffuse>
+    </lambert></technique></profile_COMMON></effect></library_effects>
+  <library_materials><material id="skin" name="skin">
+    <instance_effect url="#skin-effect"/></material></library_materials>
+  <library_geometries><geometry id="cube" name="cube"><mesh>
+    <source id="cube-positions"><float_array id="cube-positions-array" count="24">)"
+                     << positions << R"(</float_array>
+      <technique_common><accessor source="#cube-positions-array" count="8" stride="3">
+        <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+      </accessor></technique_common></source>
+    <source id="cube-uv"><float_array id="cube-uv-array" count="8">0 0 1 0 1 1 0 1</float_array>
+      <technique_common><accessor source="#cube-uv-array" count="4" stride="2">
+        <param name="S" type="float"/><param name="T" type="float"/>
+      </accessor></technique_common></source>
+    <vertices id="cube-vertices"><input semantic="POSITION" source="#cube-positions"/></vertices>
+    <triangles material="skin-material" count="12">
+      <input semantic="VERTEX" source="#cube-vertices" offset="0"/>
+      <input semantic="TEXCOORD" source="#cube-uv" offset="1" set="0"/><p>)"
+                     << p << R"(</p></triangles>
+  </mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="scene"><node id="cube-node" name="cube">
+    <instance_geometry url="#cube"><bind_material><technique_common>
+      <instance_material symbol="skin-material" target="#skin">
+        <bind_vertex_input semantic="UVMap" input_semantic="TEXCOORD" input_set="0"/>
+      </instance_material>
+    </technique_common></bind_material></instance_geometry>
+  </node></visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#scene"/></scene>
+</COLLADA>
+)";
+}
 
-  SceneDescription description;
-  description.title = "textured";
+class TexturedMeshTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("mbstream_mesh_look_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    WritePng(dir_ / "skin.png", 200, 60, 40);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Draws `mesh` alone under Xvfb and checks the pixel at its centre has the texture's
+  // colour, lit: red well above green and blue, in the texture's proportions (a black
+  // material would draw a black silhouette); the page gets the image and the coordinates.
+  void ExpectDrawnWithTheTexture(const fs::path& mesh) {
+    SceneDescription description;
+    description.title = "textured";
+    VisualPart part;
+    part.name = "cube";
+    part.geometry = MeshFile{mesh, true};
+    description.visuals.push_back(part);
+    ASSERT_TRUE(testing::EnsureDisplay()) << "no X display and Xvfb could not be started";
+    Scene scene(description, SmallOffscreen());
+
+    ASSERT_EQ(scene.part_actor_count(), 1);
+    EXPECT_NE(scene.part_actors()[0]->GetTexture(), nullptr);
+    const RgbImage image = scene.Capture();
+    const std::uint8_t* centre = image.At(image.width / 2, image.height / 2);
+    const int r = centre[0], g = centre[1], b = centre[2];
+    RecordProperty("centre_rgb",
+                   std::to_string(r) + " " + std::to_string(g) + " " + std::to_string(b));
+    EXPECT_GT(r, 80) << r << " " << g << " " << b;
+    EXPECT_GT(r, 2 * g) << r << " " << g << " " << b;
+    EXPECT_GT(r, 2 * b) << r << " " << g << " " << b;
+    EXPECT_NEAR(static_cast<double>(g) / r, 60.0 / 200.0, 0.12) << r << " " << g << " " << b;
+
+    const std::string json = ExportSceneJson(scene, 1);
+    EXPECT_NE(json.find(R"("texture_png":"iVBORw0KGgo)"), std::string::npos);  // PNG signature
+    EXPECT_NE(json.find(R"("uvs":")"), std::string::npos);
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(TexturedMeshTest, AnObjWhoseColourIsATextureIsDrawnWithIt) {
+  WriteTexturedObjCube(dir_ / "cube.obj", "skin.png");
+  ExpectDrawnWithTheTexture(dir_ / "cube.obj");
+}
+
+TEST_F(TexturedMeshTest, AColladaTextureIsDrawnWithIt) {
+  WriteTexturedColladaCube(dir_ / "cube.dae", "skin.png");
+  ExpectDrawnWithTheTexture(dir_ / "cube.dae");
+}
+
+TEST_F(TexturedMeshTest, AMissingImageLeavesTheMaterialColour) {
+  WriteTexturedObjCube(dir_ / "cube.obj", "not_there.png");
   VisualPart part;
-  part.name = "cube";
-  part.geometry = MeshFile{dir / "cube.obj", true};
-  description.visuals.push_back(part);
-  ASSERT_TRUE(testing::EnsureDisplay()) << "no X display and Xvfb could not be started";
-  Scene scene(description, SmallOffscreen());
-
-  ASSERT_EQ(scene.part_actor_count(), 1);
-  EXPECT_NE(scene.part_actors()[0]->GetTexture(), nullptr);
-  const RgbImage image = scene.Capture();
-  const std::uint8_t* centre = image.At(image.width / 2, image.height / 2);
-  const int r = centre[0], g = centre[1], b = centre[2];
-  // The texture's colour, lit: red well above green and blue, in the texture's proportions
-  // (a black material would draw a black silhouette).
-  EXPECT_GT(r, 80) << r << " " << g << " " << b;
-  EXPECT_GT(r, 2 * g) << r << " " << g << " " << b;
-  EXPECT_GT(r, 2 * b) << r << " " << g << " " << b;
-  EXPECT_NEAR(static_cast<double>(g) / r, 60.0 / 200.0, 0.12) << r << " " << g << " " << b;
-  // The page gets the image and the texture coordinates with the part.
-  const std::string json = ExportSceneJson(scene, 1);
-  EXPECT_NE(json.find(R"("texture_png":"iVBORw0KGgo)"), std::string::npos);  // PNG signature
-  EXPECT_NE(json.find(R"("uvs":")"), std::string::npos);
-  fs::remove_all(dir);
+  part.geometry = MeshFile{dir_ / "cube.obj", true};
+  const VisualActors made = MakeVisualActors(part);
+  ASSERT_EQ(made.actors.size(), 1u);
+  EXPECT_EQ(made.actors[0]->GetTexture(), nullptr);
+  EXPECT_TRUE(made.textured);  // logged once per scene as not drawn
 }
 
 }  // namespace
