@@ -226,7 +226,11 @@ void WriteTexturedColladaCube(const fs::path& dae, const std::string& image) {
 class TexturedMeshTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mbstream_mesh_look_" + std::to_string(::getpid()));
+    // A folder per test: the mesh cache keys an OBJ by its bytes and folder (mesh_cache.h).
+    dir_ = fs::temp_directory_path() /
+           ("mbstream_mesh_look_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+            std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     WritePng(dir_ / "skin.png", 200, 60, 40);
