@@ -103,8 +103,14 @@ try {
     const data = context2d.getImageData(0, 0, canvas.width, canvas.height).data;
     let drawn = 0;
     for (let i = 3; i < data.length; i += 4) if (data[i] > 0) ++drawn;
-    return drawn / (canvas.width * canvas.height);
+    let red = 0;  // strongly red pixels (a test's red texture; no default colour is)
+    for (let i = 0; i < data.length; i += 4) {
+      if (data[i + 3] > 0 && data[i] > 60 && data[i] > 2 * data[i + 1] && data[i] > 2 * data[i + 2]) ++red;
+    }
+    return { drawn: drawn / (canvas.width * canvas.height), red: red / (canvas.width * canvas.height) };
   });
+  result.red_fraction = result.drawn_fraction.red;
+  result.drawn_fraction = result.drawn_fraction.drawn;
   const state = await page.evaluate(() => ({
     run: window.mbstream.run, state: window.mbstream.state, frames: window.mbstream.frames,
     missed: window.mbstream.missed, scene_bytes: window.mbstream.scene_bytes,

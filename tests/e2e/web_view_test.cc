@@ -3,7 +3,8 @@
 // through SwiftShader) driven by playwright-core (web_page_check.mjs): the page draws the
 // run, its probes (from its own scene graph) are where the server put the TCP, a second
 // page shows the same run at once, a replay's controls and compare ghost work, and the page
-// over HTTPS (--web-tls) with the server's tokens, and a robot whose meshes are Collada.
+// over HTTPS (--web-tls) with the server's tokens, a robot whose meshes are Collada, and one
+// with a textured OBJ and a missing mesh.
 #include <gmock/gmock.h>
 #include <signal.h>
 #include <nlohmann/json.hpp>
@@ -266,6 +267,102 @@ TEST_F(WebViewTest, AColladaMeshedRobotIsDrawnWithItsMaterialColours) {
                             [&](const Vector3d& c) { return (c - expected).norm() < 0.02; }))
         << "no part in " << expected.transpose() << ": " << seen["parts"];
   }
+  ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
+}
+
+// A robot as published humanoids ship them: an OBJ whose colour is a texture (a black Kd and
+// map_Kd) and a link whose mesh is missing.
+// The page draws the texture (the viewer sends its image and coordinates) and the missing
+// mesh's tinted box, and names the missing mesh on one HUD line.
+TEST_F(WebViewTest, ATexturedMeshAndAMissingOneLookInThePageAsInTheWindow) {
+  const fs::path robot = dir_ / "skinbot";
+  fs::create_directories(robot);
+  {  // a 16 x 16 BMP (24-bit, rows bottom up) of one colour
+    std::ofstream bmp(robot / "skin.bmp", std::ios::binary);
+    const auto u32 = [&](std::uint32_t v) {
+      for (int k = 0; k < 4; ++k) bmp.put(static_cast<char>((v >> (8 * k)) & 0xff));
+    };
+    const auto u16 = [&](std::uint16_t v) {
+      bmp.put(static_cast<char>(v & 0xff));
+      bmp.put(static_cast<char>(v >> 8));
+    };
+    bmp << "BM";
+    u32(54 + 16 * 16 * 3);
+    u32(0);
+    u32(54);
+    u32(40);
+    u32(16);
+    u32(16);
+    u16(1);
+    u16(24);
+    u32(0);
+    u32(16 * 16 * 3);
+    u32(2835);
+    u32(2835);
+    u32(0);
+    u32(0);
+    for (int i = 0; i < 16 * 16; ++i) bmp << '\x28' << '\x3c' << '\xc8';  // B G R: 200, 60, 40
+  }
+  std::ofstream(robot / "cube.mtl") << "newmtl skin\nKd 0 0 0\nmap_Kd skin.bmp\n";
+  {
+    std::ofstream obj(robot / "cube.obj");
+    obj << "mtllib cube.mtl\nusemtl skin\n";
+    for (int i = 0; i < 8; ++i) {
+      obj << "v " << ((i & 1) ? 0.1 : -0.1) << ' ' << ((i & 2) ? 0.1 : -0.1) << ' '
+          << ((i & 4) ? 0.2 : 0.0) << "\n";
+    }
+    obj << "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
+    const int faces[6][4] = {{1, 3, 4, 2}, {5, 6, 8, 7}, {1, 2, 6, 5},
+                             {3, 7, 8, 4}, {1, 5, 7, 3}, {2, 4, 8, 6}};
+    for (const auto& face : faces) {
+      obj << "f";
+      for (int k = 0; k < 4; ++k) obj << ' ' << face[k] << '/' << (k + 1);
+      obj << "\n";
+    }
+  }
+  const std::string inertial =
+      "<inertial><mass value=\"1\"/><inertia ixx=\"0.01\" iyy=\"0.01\" izz=\"0.01\" ixy=\"0\" "
+      "ixz=\"0\" iyz=\"0\"/></inertial>";
+  std::ofstream(robot / "skinbot.urdf")
+      << "<robot name=\"skinbot\">\n<link name=\"base_link\">" << inertial
+      << "<visual><geometry><mesh filename=\"cube.obj\"/></geometry></visual></link>\n"
+      << "<link name=\"arm\">" << inertial
+      << "<visual><geometry><mesh filename=\"meshes/gone.dae\"/></geometry></visual></link>\n"
+      << "<link name=\"tcp\"/>\n"
+      << "<joint name=\"j1\" type=\"revolute\"><parent link=\"base_link\"/><child link=\"arm\"/>"
+      << "<origin xyz=\"0 0 0.2\"/><axis xyz=\"0 1 0\"/><limit lower=\"-3\" upper=\"3\" "
+      << "effort=\"100\" velocity=\"5\"/></joint>\n"
+      << "<joint name=\"arm_tcp\" type=\"fixed\"><parent link=\"arm\"/><child link=\"tcp\"/>"
+      << "<origin xyz=\"0 0 0.3\"/></joint>\n</robot>\n";
+  const CommandOutcome submitted = Cli("submit " + (robot / "skinbot.urdf").string());
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
+  // The server keeps only the meshes a model names (not an OBJ's .mtl or its image): the
+  // viewer draws the model from its files on disk.
+  const std::string url =
+      StartViewer("--follow --exit-after-runs 1 --model " + (robot / "skinbot.urdf").string());
+  const CommandOutcome started =
+      Cli("run skinbot --duration 20 --output-interval 0.05 --realtime 1");
+  ASSERT_EQ(started.exit_code, 0) << started.output;
+  const std::string run = started.output.substr(0, started.output.find('\n'));
+  const nlohmann::json seen = Browse(url);
+  Cli("cancel " + run);
+  ASSERT_TRUE(seen.contains("errors")) << "the browser saw nothing";
+  EXPECT_EQ(seen.value("run", ""), run);
+  EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
+  EXPECT_GT(seen.value("drawn_fraction", 0.0), 0.005) << "the screenshot shows no robot";
+  EXPECT_THAT(seen.value("hud", ""), HasSubstr("1 mesh missing: gone.dae"));
+  std::printf("web look: drawn %.4f, red %.4f of the page\n", seen.value("drawn_fraction", 0.0),
+              seen.value("red_fraction", 0.0));
+  // The cube's red texture on the screen (the placeholder's orange is not that red).
+  EXPECT_GT(seen.value("red_fraction", 0.0), 0.002) << "the page draws no texture";
+  ASSERT_TRUE(seen["parts"].is_array()) << seen.dump().substr(0, 2000);
+  int textured = 0, tinted = 0;
+  for (const auto& part : seen["parts"]) {
+    textured += part.value("textured", false) ? 1 : 0;
+    tinted += part.value("opacity", 1.0) < 1.0 ? 1 : 0;
+  }
+  EXPECT_EQ(textured, 1) << seen["parts"] << ReadTextFile((dir_ / "viewer.log").string());
+  EXPECT_EQ(tinted, 1) << seen["parts"];
   ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
 }
 

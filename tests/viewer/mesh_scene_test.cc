@@ -171,7 +171,8 @@ TEST_F(MeshSceneTest, ChainTcpAndMissingMesh) {
             std::string::npos)
       << scene_.warnings[0];
   const VisualPart& camera = Visual("camera");
-  EXPECT_EQ(camera.label, "camera: mesh missing");
+  EXPECT_TRUE(camera.placeholder);
+  EXPECT_EQ(camera.mesh_filename, "package://meshbot/meshes/visual/camera.dae");
   // 2 kg, 0.003 kg*m^2 about each axis: a cube of edge sqrt(6 * 0.003 / 2) = 0.0949 m
   // around the centre of mass.
   const double edge = std::sqrt(6 * 0.003 / 2);
@@ -240,9 +241,7 @@ TEST_F(MeshSceneTest, AnUnreadableMeshIsDrawnAsItsPlaceholder) {
   options.height = 240;
   options.offscreen = true;
   Scene built(scene, options);
-  std::vector<std::string> labels = built.labels();
-  std::sort(labels.begin(), labels.end());
-  EXPECT_EQ(labels, (std::vector<std::string>{"camera: mesh missing", "wrist: mesh unreadable"}));
+  EXPECT_EQ(built.missing_meshes_line(), "2 meshes missing: wrist.gltf (unreadable), camera.dae");
 }
 
 TEST_F(MeshSceneTest, SnapshotShowsTheWholeRobotFramed) {
@@ -401,7 +400,7 @@ TEST(LocalMeshLookup, MeshesFoundOnlyUnderTheUrdfsAncestorsAreDrawnAsSubmitFinds
   options.height = 240;
   options.offscreen = true;
   Scene drawn(scene, options);
-  EXPECT_TRUE(drawn.labels().empty());  // no "mesh missing" box
+  EXPECT_TRUE(drawn.missing_meshes().empty());  // no placeholder box
   EXPECT_EQ(drawn.part_actor_count(), 2);
   fs::remove_all(root);
 }

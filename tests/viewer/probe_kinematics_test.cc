@@ -197,7 +197,8 @@ TEST(UrdfScene, VisualsFramesAndErrors) {
       </link></robot>)",
                                                  "r.urdf", "/nonexistent");
   ASSERT_EQ(missing.visuals.size(), 1u);
-  EXPECT_EQ(missing.visuals[0].label, "a: mesh missing");
+  EXPECT_TRUE(missing.visuals[0].placeholder);
+  EXPECT_EQ(missing.visuals[0].mesh_filename, "package://r/meshes/a.dae");
   ASSERT_EQ(missing.warnings.size(), 1u);
   EXPECT_EQ(missing.warnings[0],
             "r.urdf: link 'a': mesh 'package://r/meshes/a.dae' is not in the model's files; "

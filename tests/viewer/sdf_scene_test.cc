@@ -167,7 +167,8 @@ TEST(SdfScene, AMissingMeshIsAPlaceholderAndAFoundOneIsDrawnFromItsFile) {
   EXPECT_EQ(file->path, "/found/a.stl");
   EXPECT_TRUE(file->file_colours);  // no <material>: the file's own colours
   EXPECT_EQ(scene.visuals[0].scale, Vector3d(2, 2, 2));
-  EXPECT_EQ(scene.visuals[1].label, "a: mesh missing");
+  EXPECT_TRUE(scene.visuals[1].placeholder);
+  EXPECT_EQ(scene.visuals[1].mesh_filename, "meshes/missing.stl");
   ASSERT_EQ(scene.warnings.size(), 1u);
   EXPECT_EQ(scene.warnings[0].rfind("m.sdf:3: link 'a': mesh 'meshes/missing.stl' is not found", 0),
             0u)

@@ -38,6 +38,10 @@ struct LinkCommandOptions {
   LinkOptions link;        // --server, --run | --follow, security, --exit-after-runs
   RenderOptions render;    // --fps, --record, --snapshots, --snapshot-every
   std::string scene_file;  // --scene: instead of the model's own scene
+  // --model: the model file on disk (its meshes found as submit finds them, with their
+  // .mtl files and textures, which a bundle does not carry) instead of the run's bundle.
+  std::string model_file;
+  std::vector<std::string> package_paths;
   std::vector<std::string> asset_dirs;
   std::string listen;         // the Viewer control service; empty = none
   WebOptions web;             // --web HOST:PORT (address empty = none), --web-root, --web-max-pages

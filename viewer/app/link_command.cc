@@ -87,8 +87,9 @@ int RunLink(const LinkCommandOptions& options) {
   RunSceneSource scenes;
   scenes.asset_root =
       std::filesystem::temp_directory_path() / ("mbstream-viewer-" + std::to_string(getpid()));
-  if (!options.scene_file.empty()) {
-    scenes.override_scene = LoadScene(options.scene_file, "", options.asset_dirs);
+  if (!options.scene_file.empty() || !options.model_file.empty()) {
+    scenes.override_scene = LoadScene(options.scene_file, options.model_file, options.asset_dirs,
+                                      options.package_paths);
     if (!scenes.override_scene) return 1;
   }
   SceneOptions scene_options;

@@ -38,11 +38,14 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingDirectory);
   auto* scene =
       app.add_option("--scene", pose.scene_file, "Scene script to show")->check(CLI::ExistingFile);
-  auto* urdf = app.add_option("--model,--urdf", pose.model_file,
-                              "URDF or SDFormat file (told apart by content) whose visuals (box, "
-                              "cylinder, sphere, mesh files: Collada, OBJ, STL, glTF/GLB, PLY) "
-                              "make the scene; meshes are found as mbstream submit finds them")
-                   ->check(CLI::ExistingFile);
+  auto* urdf =
+      app.add_option("--model,--urdf", pose.model_file,
+                     "URDF or SDFormat file (told apart by content) whose visuals (box, "
+                     "cylinder, sphere, mesh files: Collada, OBJ, STL, glTF/GLB, PLY) "
+                     "make the scene; meshes are found as mbstream submit finds them (with "
+                     "--server: drawn for every run instead of the run's bundle, e.g. "
+                     "for textures a bundle does not carry)")
+          ->check(CLI::ExistingFile);
   app.add_option("--package-path", pose.package_paths,
                  "With --model: a folder searched for the ROS packages of package:// and "
                  "model:// meshes (repeatable; then $MBSTREAM_PACKAGE_PATH, then the model "
@@ -169,6 +172,8 @@ int main(int argc, char** argv) {
       return 2;
     }
     link.scene_file = pose.scene_file;
+    link.model_file = pose.model_file;
+    link.package_paths = pose.package_paths;
     link.asset_dirs = asset_dirs;
     link.offscreen = pose.offscreen;
     link.width = pose.width;

@@ -35,11 +35,18 @@ struct VisualPart {
   Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();
   int frame = kWorldFrame;  // frame number, or kWorldFrame for a static part
   Eigen::Vector3d color = Eigen::Vector3d::Constant(0.7);
+  double opacity = 1.0;
   std::string mesh_filename;  // a URDF mesh's filename as written (also for its placeholder)
-  std::string label;          // text drawn at the part (a placeholder says what it stands for)
+  // A box standing for a mesh that is missing or unreadable (mesh_filename names it): drawn
+  // tinted (kPlaceholderColour, kPlaceholderOpacity) and counted on one HUD line.
+  bool placeholder = false;
   // Drawn instead when the mesh file cannot be read (a URDF link's placeholder box).
   std::shared_ptr<const VisualPart> fallback;
 };
+
+// How a placeholder looks: a muted orange, see-through, so that the robot stays readable.
+inline const Eigen::Vector3d kPlaceholderColour(0.85, 0.55, 0.3);
+inline constexpr double kPlaceholderOpacity = 0.55;
 
 struct SceneDescription {
   std::string title;  // the device or robot name

@@ -16,7 +16,6 @@ namespace ur = urdf_reading;
 
 constexpr int kResolution = 32;
 constexpr double kPlaceholderEdge = 0.05;  // m
-const Eigen::Vector3d kPlaceholderColour(0.95, 0.55, 0.15);
 
 ChainJointKind KindOf(const sdf::Joint& joint) {
   switch (joint.Type()) {
@@ -59,17 +58,17 @@ VisualPart PartOf(const ur::SdfVisual& visual, int frame, const Eigen::Isometry3
     placeholder.geometry = CubeMesh({edge});
     placeholder.placement = X_LV * Eigen::Translation3d(-edge / 2);
     placeholder.color = kPlaceholderColour;
+    placeholder.opacity = kPlaceholderOpacity;
+    placeholder.placeholder = true;
     const std::filesystem::path path = find_mesh(mesh.uri);
     if (path.empty()) {
       warnings->push_back(visual.where + ": link '" + visual.link + "': mesh '" + mesh.uri +
                           "' is not found; drawn as a placeholder cube (give --package-path "
                           "DIR, or submit the model with its meshes)");
-      placeholder.label = visual.link + ": mesh missing";
       return placeholder;
     }
     part.geometry = MeshFile{path, !colour};
     part.scale = mesh.scale;
-    placeholder.label = visual.link + ": mesh unreadable";
     part.fallback = std::make_shared<const VisualPart>(std::move(placeholder));
   }
   return part;

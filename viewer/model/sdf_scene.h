@@ -18,7 +18,7 @@ namespace mbstream::viewer {
 // Throws InputError "FILE[:LINE]: what is wrong; what to do" for input the server's importer
 // refuses too (urdf_reading::SdfFile, ChooseSdfTree). Colours: the <material>'s diffuse,
 // else its ambient, else the mesh file's own, else grey. A mesh `find_mesh` does not find is
-// drawn as a labelled placeholder cube (with a warning). A link named tcp or tool0 (any
+// drawn as a tinted placeholder cube (with a warning). A link named tcp or tool0 (any
 // case) gets a probe "tcp" reported in the world frame, as the server's TCP.
 SceneDescription SceneFromSdf(const std::string& text, const std::string& source,
                               const MeshFinder& find_mesh);

@@ -19,7 +19,6 @@ namespace mbstream::viewer {
 namespace {
 
 constexpr int kResolution = 32;
-const Eigen::Vector3d kPlaceholderColour(0.95, 0.55, 0.15);
 
 Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
@@ -133,8 +132,8 @@ class UrdfSceneBuilder {
     return chain_joint;
   }
 
-  // The labelled box that stands for a link's missing mesh: the box of its inertia.
-  VisualPart Placeholder(const urdf::Link& link, int frame, const std::string& why) const {
+  // The tinted box that stands for a link's missing mesh `filename`: the box of its inertia.
+  VisualPart Placeholder(const urdf::Link& link, int frame, const std::string& filename) const {
     InertiaBox box;
     if (link.inertial) {
       const urdf::Inertial& i = *link.inertial;
@@ -144,7 +143,9 @@ class UrdfSceneBuilder {
     }
     VisualPart part = BoxPart(link.name, frame, box.size, box.pose);
     part.color = kPlaceholderColour;
-    part.label = link.name + ": " + why;
+    part.opacity = kPlaceholderOpacity;
+    part.placeholder = true;
+    part.mesh_filename = filename;
     return part;
   }
 
@@ -188,15 +189,13 @@ class UrdfSceneBuilder {
           scene->warnings.push_back(source_ + ": link '" + link.name + "': mesh '" + mesh.filename +
                                     "' is not in the model's files; drawn as a box of the "
                                     "link's inertia (submit the model with its meshes)");
-          scene->visuals.push_back(Placeholder(link, frame, "mesh missing"));
-          scene->visuals.back().mesh_filename = mesh.filename;
+          scene->visuals.push_back(Placeholder(link, frame, mesh.filename));
           return;
         }
         part.geometry = MeshFile{path, !urdf_colour};
         part.mesh_filename = mesh.filename;
         part.scale = Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z);
-        part.fallback =
-            std::make_shared<const VisualPart>(Placeholder(link, frame, "mesh unreadable"));
+        part.fallback = std::make_shared<const VisualPart>(Placeholder(link, frame, mesh.filename));
         break;
       }
       default:

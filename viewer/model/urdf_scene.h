@@ -18,7 +18,7 @@ namespace mbstream::viewer {
 // loop. A mesh is looked up by `find_mesh` (mesh_finder.h): a file on disk as `mbstream
 // submit` finds it (SceneFromUrdfFile, with the --package-path folders `package_path`), a
 // bundle's file below `asset_directory` as the server stored it; a mesh that is not found
-// becomes a labelled placeholder box of the link's inertia size (with a warning in
+// becomes a tinted placeholder box of the link's inertia size (with a warning in
 // SceneDescription::warnings).
 // Colours: a URDF <material> colour (inline or by name) wins; else the mesh file's own
 // material colours; else grey. The TCP link (urdf_reading::ChooseTcpLink) gets a probe

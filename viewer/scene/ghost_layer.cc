@@ -38,6 +38,7 @@ GhostLayer::GhostLayer(const SceneDescription& description, vtkRenderer* rendere
       actor->GetProperty()->SetColor(0.5 * (color[0] + kTint[0]), 0.5 * (color[1] + kTint[1]),
                                      0.5 * (color[2] + kTint[2]));
       actor->GetProperty()->SetOpacity(opacity_);
+      actor->SetTexture(nullptr);  // a ghost is one tint, textured meshes too
       renderer->AddActor(actor);
       actors_.push_back(actor);
     }

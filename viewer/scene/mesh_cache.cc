@@ -68,7 +68,9 @@ std::shared_ptr<const MeshFileContents> CachedMeshFile(const std::filesystem::pa
   if (!in) throw SceneError(path.string() + ": cannot open the mesh file; check the path");
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string extension = LowerExtension(path);
-  const bool side_files = extension == ".obj" || extension == ".gltf";
+  // Side files (OBJ's .mtl, glTF's .bin, texture images of OBJ and Collada) are read from
+  // the folder: the same bytes in another folder may draw differently.
+  const bool side_files = extension == ".obj" || extension == ".gltf" || extension == ".dae";
   const Key key{Hash(bytes), bytes.size(), extension,
                 side_files ? path.parent_path().lexically_normal().string() : std::string(), 0};
   Cache& cache = TheCache();

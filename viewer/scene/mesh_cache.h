@@ -10,9 +10,9 @@
 namespace mbstream::viewer {
 
 // The contents of `path`, decimated to at most about `max_triangles` (0 = as read), unless
-// a file with the same bytes (and, for formats that read side files such as OBJ's .mtl or
-// glTF's .bin, in the same folder) was read (and decimated to the same size) before.
-// Throws SceneError as ReadMeshFile.
+// a file with the same bytes (and, for formats that read side files such as OBJ's .mtl,
+// glTF's .bin or a Collada's texture images, in the same folder) was read (and decimated to the
+// same size) before. Throws SceneError as ReadMeshFile.
 std::shared_ptr<const MeshFileContents> CachedMeshFile(const std::filesystem::path& path,
                                                        long long max_triangles = 0);
 

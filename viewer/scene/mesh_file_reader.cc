@@ -7,6 +7,7 @@
 
 #include <vtkCellArray.h>
 #include <vtkFloatArray.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkQuadricClustering.h>
 #include <assimp/Importer.hpp>
@@ -49,6 +50,30 @@ bool Textured(const aiMaterial& material) {
     if (material.GetTextureCount(type) > 0) return true;
   }
   return false;
+}
+
+// The image file of `material`'s diffuse (or base colour) texture, found beside the mesh
+// file `mesh`; empty when it has none, or it is embedded ("*0") or not there.
+std::filesystem::path TextureFile(const aiMaterial& material, const std::filesystem::path& mesh) {
+  for (const aiTextureType type : {aiTextureType_DIFFUSE, aiTextureType_BASE_COLOR}) {
+    aiString file;
+    if (material.GetTextureCount(type) == 0 || material.GetTexture(type, 0, &file) != AI_SUCCESS) {
+      continue;
+    }
+    std::string name = file.C_Str();
+    if (name.empty() || name[0] == '*') return {};  // embedded
+    if (name.rfind("file://", 0) == 0) name = name.substr(7);
+    std::replace(name.begin(), name.end(), '\\', '/');
+    std::filesystem::path path(name);
+    if (path.is_relative()) path = mesh.parent_path() / path;
+    std::error_code error;
+    if (std::filesystem::is_regular_file(path, error)) return path;
+    // Exported files often name a folder of the author's machine: try the name alone.
+    path = mesh.parent_path() / std::filesystem::path(name).filename();
+    if (std::filesystem::is_regular_file(path, error)) return path;
+    return {};
+  }
+  return {};
 }
 
 // About `target` triangles of `input` by quadric clustering: vertices are merged per
@@ -108,22 +133,42 @@ MeshFileContents ReadMeshFile(const std::filesystem::path& path) {
                      "); give a Collada, OBJ, STL, glTF/GLB or PLY file");
   }
   // After PreTransformVertices every mesh is in the scene's frame, one per material.
-  std::map<unsigned, std::pair<vtkSmartPointer<vtkPoints>, vtkSmartPointer<vtkCellArray>>>
-      by_material;
+  struct Gathered {
+    vtkSmartPointer<vtkPoints> points;
+    vtkSmartPointer<vtkCellArray> triangles;
+    std::filesystem::path texture;
+    vtkSmartPointer<vtkFloatArray> uv;  // with a texture
+  };
+  std::map<unsigned, Gathered> by_material;
   MeshFileContents contents;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh& mesh = *scene->mMeshes[m];
     if ((mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0) continue;
-    auto& [points, triangles] = by_material[mesh.mMaterialIndex];
-    if (!points) {
-      points = vtkSmartPointer<vtkPoints>::New();
-      points->SetDataTypeToFloat();
-      triangles = vtkSmartPointer<vtkCellArray>::New();
+    Gathered& gathered = by_material[mesh.mMaterialIndex];
+    if (!gathered.points) {
+      gathered.points = vtkSmartPointer<vtkPoints>::New();
+      gathered.points->SetDataTypeToFloat();
+      gathered.triangles = vtkSmartPointer<vtkCellArray>::New();
+      if (mesh.mMaterialIndex < scene->mNumMaterials && HasMaterials(path)) {
+        gathered.texture = TextureFile(*scene->mMaterials[mesh.mMaterialIndex], path);
+      }
+      if (!gathered.texture.empty()) {
+        gathered.uv = vtkSmartPointer<vtkFloatArray>::New();
+        gathered.uv->SetName("TCoords");
+        gathered.uv->SetNumberOfComponents(2);
+      }
     }
+    vtkPoints* points = gathered.points;
+    vtkCellArray* triangles = gathered.triangles;
     const vtkIdType offset = points->GetNumberOfPoints();
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
       const aiVector3D& p = mesh.mVertices[v];
       points->InsertNextPoint(p.x, p.y, p.z);
+      if (gathered.uv) {
+        const aiVector3D uv = mesh.HasTextureCoords(0) ? mesh.mTextureCoords[0][v] : aiVector3D();
+        const float tuple[2] = {uv.x, uv.y};
+        gathered.uv->InsertNextTypedTuple(tuple);
+      }
     }
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
       const aiFace& face = mesh.mFaces[f];
@@ -140,13 +185,18 @@ MeshFileContents ReadMeshFile(const std::filesystem::path& path) {
   }
   for (auto& [material, data] : by_material) {
     auto polydata = vtkSmartPointer<vtkPolyData>::New();
-    polydata->SetPoints(data.first);
-    polydata->SetPolys(data.second);
+    polydata->SetPoints(data.points);
+    polydata->SetPolys(data.triangles);
     MeshSurface surface;
     surface.triangles = polydata;
+    if (data.uv) {
+      polydata->GetPointData()->SetTCoords(data.uv);
+      surface.texture = data.texture;
+    }
     if (material < scene->mNumMaterials) {
       if (HasMaterials(path)) surface.colour = DiffuseOf(*scene->mMaterials[material]);
-      contents.textured = contents.textured || Textured(*scene->mMaterials[material]);
+      contents.textured =
+          contents.textured || (surface.texture.empty() && Textured(*scene->mMaterials[material]));
     }
     contents.triangle_count += polydata->GetNumberOfCells();
     contents.surfaces.push_back(std::move(surface));
@@ -161,6 +211,10 @@ MeshFileContents Decimate(const MeshFileContents& contents, long long max_triang
   MeshFileContents result = contents;
   result.triangle_count = 0;
   for (MeshSurface& surface : result.surfaces) {
+    if (!surface.texture.empty()) {
+      result.triangle_count += surface.triangles->GetNumberOfCells();
+      continue;
+    }
     const auto target = std::max<long long>(
         12,
         static_cast<long long>(keep * static_cast<double>(surface.triangles->GetNumberOfCells())));

@@ -18,15 +18,22 @@
 namespace mbstream::viewer {
 
 struct MeshSurface {
-  vtkSmartPointer<vtkPolyData> triangles;  // points and triangles only (no normals)
-  std::optional<Eigen::Vector3d> colour;   // the material's diffuse colour, if it has one
+  // Points and triangles (no normals); with `texture`, texture coordinates too.
+  vtkSmartPointer<vtkPolyData> triangles;
+  std::optional<Eigen::Vector3d> colour;  // the material's diffuse colour, if it has one
+  // The material's diffuse texture (an image file: PNG, JPEG, ...), when it has one beside
+  // the mesh and the surface has texture coordinates: drawn with it (its colour, not
+  // `colour`, which such files often leave black). Empty otherwise.
+  std::filesystem::path texture;
 };
 
 struct MeshFileContents {
   std::vector<MeshSurface> surfaces;  // one per material that has triangles
   long long triangle_count = 0;       // after decimation
   long long file_triangle_count = 0;  // as read
-  bool textured = false;              // a material has a texture (not drawn)
+  // A material has a texture that cannot be drawn (embedded in the file, not found, or no
+  // texture coordinates): its surface shows its colour.
+  bool textured = false;
 };
 
 // Throws SceneError naming the file and Assimp's message when it cannot be read or holds
@@ -35,7 +42,8 @@ MeshFileContents ReadMeshFile(const std::filesystem::path& path);
 
 // `contents` with its surfaces decimated to about `max_triangles` in all (quadric
 // clustering: the outline stays within a grid cell of about extent / sqrt(triangles));
-// unchanged when it has no more.
+// unchanged when it has no more. Textured surfaces are kept as they are (their texture
+// coordinates would not survive clustering).
 MeshFileContents Decimate(const MeshFileContents& contents, long long max_triangles);
 
 }  // namespace mbstream::viewer

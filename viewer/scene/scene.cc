@@ -1,6 +1,7 @@
 #include "viewer/scene/scene.h"
 
 #include <spdlog/spdlog.h>
+#include <vtkCoordinate.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
@@ -10,6 +11,8 @@
 #include <vtkSphereSource.h>
 #include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
+
+#include <algorithm>
 
 #include "viewer/scene/camera_rig.h"
 #include "viewer/scene/image_capture.h"
@@ -84,12 +87,17 @@ Scene::Scene(SceneDescription description, const SceneOptions& options,
       spdlog::warn("scene '{}': {}; drawing a placeholder for '{}'", description_.title, e.what(),
                    part.name);
       AddPart(*part.fallback, 0, &textured);
+      missing_meshes_.push_back({part.fallback->mesh_filename, true});
+      continue;
     }
+    if (part.placeholder) missing_meshes_.push_back({part.mesh_filename, false});
   }
+  AddMissingMeshesLine();
   if (textured) {
     spdlog::info(
-        "scene '{}': its meshes have textures, which the viewer does not draw yet; "
-        "they are shown in their materials' colours",
+        "scene '{}': some of its meshes' textures cannot be drawn (embedded in the file, "
+        "not found beside it, or without texture coordinates); those surfaces are shown in "
+        "their materials' colours",
         description_.title);
   }
   const double marker = description_.scene_box_m ? 0.012 * *description_.scene_box_m : 0.015;
@@ -174,27 +182,45 @@ void Scene::AddPart(const VisualPart& part, long long max_triangles, bool* textu
   }
   triangle_count_ += made.triangles;
   *textured = *textured || made.textured;
-  if (!part.label.empty() && !made.actors.empty()) {
-    double bounds[6];
-    made.actors.front()->GetMapper()->GetBounds(bounds);
-    Label label;
-    label.actor = vtkSmartPointer<vtkBillboardTextActor3D>::New();
-    label.actor->SetInput(part.label.c_str());
-    label.actor->GetTextProperty()->SetFontSize(14);
-    label.actor->GetTextProperty()->SetColor(1.0, 0.9, 0.6);
-    label.actor->GetTextProperty()->SetJustificationToCentered();
-    label.frame = part.frame;
-    label.point = Eigen::Vector3d((bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
-                                  bounds[5]);  // above the part's middle
-    renderer_->AddActor(label.actor);
-    labels_.push_back(std::move(label));
-  }
 }
 
-std::vector<std::string> Scene::labels() const {
-  std::vector<std::string> texts;
-  for (const Label& label : labels_) texts.emplace_back(label.actor->GetInput());
-  return texts;
+void Scene::AddMissingMeshesLine() {
+  const std::string line = missing_meshes_line();
+  if (line.empty()) return;
+  missing_meshes_actor_ = vtkSmartPointer<vtkTextActor>::New();
+  missing_meshes_actor_->SetInput(line.c_str());
+  vtkTextProperty* text = missing_meshes_actor_->GetTextProperty();
+  text->SetFontSize(14);
+  text->SetColor(kPlaceholderColour.x(), kPlaceholderColour.y(), kPlaceholderColour.z());
+  text->SetVerticalJustificationToTop();
+  // Top left, clear of the run's HUD (bottom left): follows the window's size.
+  missing_meshes_actor_->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+  missing_meshes_actor_->SetPosition(0.01, 0.98);
+  renderer_->AddActor2D(missing_meshes_actor_);
+}
+
+std::string MissingMeshesLine(const std::vector<MissingMesh>& missing, int shown) {
+  std::vector<std::string> names;
+  for (const MissingMesh& mesh : missing) {
+    std::string name = mesh.filename;
+    const std::size_t slash = name.find_last_of("/\\");
+    if (slash != std::string::npos) name = name.substr(slash + 1);
+    if (name.empty()) name = "(no file name)";
+    if (mesh.unreadable) name += " (unreadable)";
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }
+  if (names.empty()) return "";
+  std::string line =
+      std::to_string(names.size()) + (names.size() == 1 ? " mesh" : " meshes") + " missing: ";
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (static_cast<int>(i) == shown) {
+      line += " and " + std::to_string(names.size() - i) + " more";
+      break;
+    }
+    if (i > 0) line += ", ";
+    line += names[i];
+  }
+  return line;
 }
 
 void Scene::SetJointValues(std::span<const double> q_si) {
@@ -246,13 +272,6 @@ void Scene::SyncActors() {
   }
   for (size_t i = 0; i < probe_actors_.size(); ++i) {
     probe_actors_[i]->SetPosition(render_pose_.probes_world[i].data());
-  }
-  for (const Label& label : labels_) {
-    const Eigen::Vector3d at =
-        label.frame == kWorldFrame
-            ? label.point
-            : Eigen::Vector3d(render_pose_.frames[label.frame] * label.point);
-    label.actor->SetPosition(at.x(), at.y(), at.z());
   }
 }
 

@@ -17,11 +17,11 @@
 #include <vector>
 
 #include <vtkActor.h>
-#include <vtkBillboardTextActor3D.h>
 #include <vtkMatrix4x4.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
+#include <vtkTextActor.h>
 
 #include "viewer/kinematics/pose_solver.h"
 #include "viewer/model/scene_description.h"
@@ -51,12 +51,24 @@ struct SceneOptions {
 // window opens its X connection, unless given one, and appears at its first render).
 vtkSmartPointer<vtkRenderWindow> MakeRenderWindow(const SceneOptions& options);
 
+// The one HUD line that names the meshes drawn as placeholder boxes: "3 meshes missing:
+// a.dae, b.dae, c.dae", at most `shown` names then "and N more"; each name is the file's own
+// name (no folders), once, "(unreadable)" after a file that is there but cannot be read.
+// Empty when nothing is missing.
+struct MissingMesh {
+  std::string filename;  // as the model wrote it
+  bool unreadable = false;
+};
+std::string MissingMeshesLine(const std::vector<MissingMesh>& missing, int shown = 4);
+
 class Scene {
  public:
   // Builds every pipeline, the camera and the lights; poses the initial joint values.
   // A mesh file that cannot be read is drawn as the part's fallback (a URDF link's
-  // placeholder box) with a logged warning; without one, throws SceneError. Textures are not
-  // drawn (logged once per scene). Throws InputError (common/check.h) on a bad description.
+  // placeholder box) with a logged warning, and named on one HUD line (missing_meshes_line)
+  // with the placeholders of missing files; without one, throws SceneError. Textures are
+  // drawn where the mesh file's image is beside it (those that cannot be are logged once per
+  // scene). Throws InputError (common/check.h) on a bad description.
   // The scene makes its own window (which opens an X connection at its first render).
   Scene(SceneDescription description, SceneOptions options);
   // The same, drawn into `window` (a ViewWindow's, which outlives the Scene; its size,
@@ -114,8 +126,11 @@ class Scene {
   int part_actor_count() const { return static_cast<int>(part_actors_.size()); }
   // Triangles drawn by the part actors.
   long long triangle_count() const { return triangle_count_; }
-  // Texts drawn at parts (placeholders' labels), in the order of the visuals.
-  std::vector<std::string> labels() const;
+  // The meshes drawn as placeholder boxes (missing, or unreadable), in the order of the
+  // visuals, and the one HUD line that names them (MissingMeshesLine; empty: none, and no
+  // text actor).
+  const std::vector<MissingMesh>& missing_meshes() const { return missing_meshes_; }
+  std::string missing_meshes_line() const { return MissingMeshesLine(missing_meshes_); }
   // The ghost (SceneOptions::ghost_opacity > 0), or nullptr. Its pose side is thread-safe.
   GhostLayer* ghost() { return ghost_.get(); }
 
@@ -137,18 +152,15 @@ class Scene {
   std::vector<vtkSmartPointer<vtkActor>> part_actors_;
   std::vector<int> part_frames_;  // per part actor
   std::vector<vtkSmartPointer<vtkActor>> probe_actors_;
-  struct Label {
-    vtkSmartPointer<vtkBillboardTextActor3D> actor;
-    int frame;
-    Eigen::Vector3d point;  // in the frame
-  };
-  std::vector<Label> labels_;
+  std::vector<MissingMesh> missing_meshes_;
+  vtkSmartPointer<vtkTextActor> missing_meshes_actor_;  // top left; null when none is missing
   long long triangle_count_ = 0;
   std::unique_ptr<GhostLayer> ghost_;
 
   Scene(SceneDescription description, const SceneOptions& options,
         vtkSmartPointer<vtkRenderWindow> window, bool owns_window);
   void AddPart(const VisualPart& part, long long max_triangles, bool* textured);
+  void AddMissingMeshesLine();
   // Throws SceneError when there is no window to read pixels from.
   void RequireWindow() const;
   // Per visual: the triangles its mesh file may keep (0 = all), from the budget.

@@ -1,11 +1,16 @@
 #include "viewer/scene/visual_pipeline.h"
 
+#include <spdlog/spdlog.h>
 #include <vtkAppendPolyData.h>
 #include <vtkCellArray.h>
+#include <vtkImageData.h>
+#include <vtkImageReader2.h>
+#include <vtkImageReader2Factory.h>
 #include <vtkPoints.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkPolyDataNormals.h>
 #include <vtkProperty.h>
+#include <vtkTexture.h>
 #include <vtkTransform.h>
 #include <vtkTransformPolyDataFilter.h>
 #include <vtkTriangleFilter.h>
@@ -27,7 +32,28 @@ namespace {
 struct Surface {
   vtkSmartPointer<vtkPolyDataNormals> output;
   Eigen::Vector3d colour;
+  std::filesystem::path texture;  // drawn with it (and white), when not empty
 };
+
+// The image file `path` as a texture (repeated, as OBJ and Collada texture coordinates
+// may leave [0, 1]); null, with a warning, when no VTK reader takes it.
+vtkSmartPointer<vtkTexture> ReadTexture(const std::filesystem::path& path) {
+  vtkSmartPointer<vtkImageReader2> reader;
+  reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(path.string().c_str()));
+  if (!reader) {
+    spdlog::warn("{}: no image reader for this texture; its surface is drawn in its colour",
+                 path.string());
+    return nullptr;
+  }
+  reader->SetFileName(path.string().c_str());
+  reader->Update();
+  auto texture = vtkSmartPointer<vtkTexture>::New();
+  texture->SetInputData(reader->GetOutput());
+  texture->InterpolateOn();
+  texture->RepeatOn();
+  texture->MipmapOn();
+  return texture;
+}
 
 vtkSmartPointer<vtkTransform> PlacementTransform(const VisualPart& part) {
   auto transform = vtkSmartPointer<vtkTransform>::New();
@@ -71,8 +97,8 @@ std::vector<Surface> Surfaces(const VisualPart& part, long long max_triangles,
         CachedMeshFile(file->path, max_triangles);
     for (const MeshSurface& surface : contents->surfaces) {
       const bool own = file->file_colours && surface.colour.has_value();
-      surfaces.push_back(
-          {Place(part, surface.triangles, false), own ? *surface.colour : part.color});
+      surfaces.push_back({Place(part, surface.triangles, false), own ? *surface.colour : part.color,
+                          surface.texture});
     }
     if (stats) {
       stats->triangles += contents->triangle_count;
@@ -80,7 +106,7 @@ std::vector<Surface> Surfaces(const VisualPart& part, long long max_triangles,
     }
   } else {
     vtkSmartPointer<vtkPolyData> mesh = PolyDataFromMesh(std::get<Mesh>(part.geometry));
-    surfaces.push_back({Place(part, mesh, true), part.color});
+    surfaces.push_back({Place(part, mesh, true), part.color, {}});
     if (stats) stats->triangles += surfaces.back().output->GetOutput()->GetNumberOfPolys();
   }
   return surfaces;
@@ -124,10 +150,20 @@ VisualActors MakeVisualActors(const VisualPart& part, long long max_triangles) {
     actor->SetMapper(mapper);
     vtkProperty* property = actor->GetProperty();
     property->SetColor(surface.colour.x(), surface.colour.y(), surface.colour.z());
+    property->SetOpacity(part.opacity);
     property->SetAmbient(0.15);
     property->SetDiffuse(0.8);
     property->SetSpecular(0.25);
     property->SetSpecularPower(30);
+    if (!surface.texture.empty()) {
+      if (vtkSmartPointer<vtkTexture> texture = ReadTexture(surface.texture)) {
+        actor->SetTexture(texture);
+        property->SetColor(1.0, 1.0, 1.0);  // the texture's colours, lit
+        property->SetSpecular(0.1);
+      } else {
+        result.textured = true;
+      }
+    }
     result.actors.push_back(actor);
   }
   return result;

@@ -26,12 +26,13 @@ void CopyToVtk(const Eigen::Isometry3d& t, vtkMatrix4x4* m);
 struct VisualActors {
   std::vector<vtkSmartPointer<vtkActor>> actors;  // one per surface
   long long triangles = 0;
-  bool textured = false;  // the mesh file has textures, which are not drawn
+  bool textured = false;  // the mesh file has textures that cannot be drawn (mesh_file_reader.h)
 };
 
 // Throws SceneError naming the file when a mesh file cannot be read or gives no triangles.
 // Colours: a mesh file's own material colour per surface when part.file_colours and the
-// material has one, else part.color.
+// material has one, else part.color; a surface with a texture (MeshSurface::texture) is
+// drawn with it (a vtkTexture on its actor, the colour white), whatever the colours say.
 // A mesh file is decimated to about `max_triangles` (0 = as read).
 VisualActors MakeVisualActors(const VisualPart& part, long long max_triangles = 0);
 

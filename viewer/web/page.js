@@ -28,6 +28,8 @@ let controls = null;
 let model = null;  // { frames: [Object3D], ghost: [Object3D] | null, probes, root }
 let lastNumber = 0;
 
+const textureLoader = new THREE.TextureLoader();
+
 function decode(base64, Type) {
   const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
   return new Type(bytes.buffer);
@@ -55,6 +57,12 @@ function buildParts(parts, groups, root, opacity, tint) {
     const alpha = opacity * part.opacity;
     const material = new THREE.MeshPhongMaterial({
       color, transparent: alpha < 1, opacity: alpha, depthWrite: alpha >= 1, side: THREE.DoubleSide });
+    if (part.uvs && part.texture_png && !tint) {  // the VTK window's image (a ghost is one tint)
+      geometry.setAttribute('uv', new THREE.BufferAttribute(decode(part.uvs, Float32Array), 2));
+      material.map = textureLoader.load(`data:image/png;base64,${part.texture_png}`);
+      material.map.colorSpace = THREE.SRGBColorSpace;
+      material.map.wrapS = material.map.wrapT = THREE.RepeatWrapping;
+    }
     const mesh = new THREE.Mesh(geometry, material);
     (part.frame >= 0 ? groups[part.frame] : root).add(mesh);
   }
@@ -95,8 +103,10 @@ function onScene(message) {
   controls.update();
   state.scene = message.version;
   state.title = message.title;
+  state.missing_meshes = message.missing_meshes || '';
   state.triangles = message.parts.reduce((n, p) => n + p.triangles, 0);
-  state.parts = message.parts.map((p) => ({ frame: p.frame, color: p.color, triangles: p.triangles }));
+  state.parts = message.parts.map((p) => ({ frame: p.frame, color: p.color, opacity: p.opacity,
+                                          triangles: p.triangles, textured: !!p.texture_png }));
 }
 
 function setMatrices(groups, m) {
@@ -160,6 +170,7 @@ function updateHud() {
     lines.push(`ghost ${state.compare}  |TCP - ghost| ${(1e3 * state.ghost_distance).toPrecision(3)} mm` +
                `  max ${(1e3 * state.ghost_distance_max).toPrecision(3)} mm`);
   }
+  if (state.missing_meshes) lines.push(state.missing_meshes);
   if (state.denied) lines.push(`refused (${state.denied.status}): ${state.denied.message}`);
   else if (!state.connected) lines.push('disconnected: reconnecting...');
   hud.textContent = lines.join('\n');

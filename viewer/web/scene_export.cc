@@ -2,20 +2,46 @@
 
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
+#include <vtkTexture.h>
 #include <vtkTriangleFilter.h>
+#include <vtkUnsignedCharArray.h>
 #include <nlohmann/json.hpp>
 
+#include <string>
 #include <vector>
 
 namespace mbstream::viewer {
 
 namespace {
 
-// The triangles of a part actor's mapper input (polygons and strips triangulated).
+// The image of a textured actor as PNG bytes (empty when it has none).
+std::string TexturePng(vtkActor* actor) {
+  vtkTexture* texture = actor->GetTexture();
+  if (!texture) return {};
+  texture->Update();
+  auto* image = vtkImageData::SafeDownCast(texture->GetInputDataObject(0, 0));
+  if (!image) image = texture->GetInput();
+  if (!image) return {};
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputData(image);
+  writer->WriteToMemoryOn();
+  writer->Write();
+  vtkUnsignedCharArray* bytes = writer->GetResult();
+  if (!bytes) return {};
+  return std::string(reinterpret_cast<const char*>(bytes->GetPointer(0)),
+                     static_cast<std::size_t>(bytes->GetNumberOfValues()));
+}
+
+// The triangles of a part actor's mapper input (polygons and strips triangulated); with a
+// texture, its image (PNG, base64) and the texture coordinates per point.
 nlohmann::json PartJson(vtkActor* actor, int frame) {
   nlohmann::json part;
   part["frame"] = frame;
@@ -24,7 +50,9 @@ nlohmann::json PartJson(vtkActor* actor, int frame) {
   part["color"] = {colour[0], colour[1], colour[2]};
   part["opacity"] = actor->GetProperty()->GetOpacity();
   std::vector<float> positions;
+  std::vector<float> uvs;
   std::vector<std::uint32_t> indices;
+  const std::string png = TexturePng(actor);
   vtkMapper* mapper = actor->GetMapper();
   if (mapper) {
     mapper->Update();
@@ -42,6 +70,14 @@ nlohmann::json PartJson(vtkActor* actor, int frame) {
         mesh->GetPoint(i, p);
         for (double c : p) positions.push_back(static_cast<float>(c));
       }
+      vtkDataArray* tcoords = mesh->GetPointData()->GetTCoords();
+      if (!png.empty() && tcoords && tcoords->GetNumberOfComponents() >= 2) {
+        uvs.reserve(2 * static_cast<std::size_t>(mesh->GetNumberOfPoints()));
+        for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i) {
+          uvs.push_back(static_cast<float>(tcoords->GetComponent(i, 0)));
+          uvs.push_back(static_cast<float>(tcoords->GetComponent(i, 1)));
+        }
+      }
       vtkCellArray* polys = mesh->GetPolys();
       vtkIdType count = 0;
       const vtkIdType* ids = nullptr;
@@ -54,6 +90,10 @@ nlohmann::json PartJson(vtkActor* actor, int frame) {
   part["positions"] = Base64(positions.data(), positions.size() * sizeof(float));
   part["indices"] = Base64(indices.data(), indices.size() * sizeof(std::uint32_t));
   part["triangles"] = indices.size() / 3;
+  if (!uvs.empty()) {  // VTK's texture coordinates: (0, 0) at the image's bottom left
+    part["uvs"] = Base64(uvs.data(), uvs.size() * sizeof(float));
+    part["texture_png"] = Base64(png.data(), png.size());
+  }
   return part;
 }
 
@@ -90,6 +130,7 @@ std::string ExportSceneJson(Scene& scene, std::uint64_t version) {
   out["type"] = "scene";
   out["version"] = version;
   out["title"] = scene.description().title;
+  out["missing_meshes"] = scene.missing_meshes_line();  // one HUD line, "" when none
   std::vector<Eigen::Isometry3d> frames;
   scene.Frames(&frames);
   out["frames"] = frames.size();

@@ -13,7 +13,9 @@
 namespace mbstream::viewer {
 
 // Render thread (reads the scene's VTK pipelines). `version` numbers the scene; frame
-// messages name it. Meshes are little-endian float32 positions and uint32 indices, base64.
+// messages name it. Meshes are little-endian float32 positions and uint32 indices, base64;
+// a textured part adds float32 "uvs" (two per position) and its image as "texture_png".
+// "missing_meshes" is the scene's HUD line naming meshes drawn as placeholders ("" if none).
 std::string ExportSceneJson(Scene& scene, std::uint64_t version);
 
 // Standard base64 (RFC 4648, with padding) of `size` bytes.
