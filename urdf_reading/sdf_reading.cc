@@ -63,6 +63,10 @@ SdfFile::SdfFile(const std::string& text, std::string source, const SdfLoadOptio
   limits.nesting_note =
       "an SDFormat model nests about 8 deep (sdf, world, model, link, visual, geometry, mesh, "
       "uri)";
+  limits.refused_element = "include";
+  limits.refused_note =
+      "it would read another file (a model:// path, a URL, a file of the machine that reads "
+      "this one); copy the included model's links and joints into this file";
   if (const auto problem = CheckXmlShape(text, limits)) {
     const std::string message =
         source_ + ":" + std::to_string(problem->line) + ": " + problem->what;
@@ -289,6 +293,7 @@ SdfMeshes ReadSdfMeshes(const std::string& text) {
   // Hostile text never reaches libsdformat (a flood of attributes takes it minutes).
   XmlShapeLimits limits;
   limits.links_at_any_depth = true;
+  limits.refused_element = "include";
   if (CheckXmlShape(text, limits)) return {};
   sdf::Console::Instance()->SetQuiet(true);
   sdf::Root root;

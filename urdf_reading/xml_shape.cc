@@ -145,6 +145,10 @@ class ShapeScan {
       return std::nullopt;
     }
     *next = k + 1;
+    if (!limits_.refused_element.empty() && name == limits_.refused_element) {
+      return At(at, "<" + std::string(name) +
+                        "> is not read by mbstream: " + std::string(limits_.refused_note));
+    }
     if ((depth_ == 1 || limits_.links_at_any_depth) && name == "link" &&
         ++shape_.top_links > limits_.max_top_links) {
       XmlShapeProblem problem = At(at, "more than " + std::to_string(limits_.max_top_links) +

@@ -22,6 +22,10 @@ struct XmlShapeLimits {
   bool links_at_any_depth = false;
   // Said with a nesting over max_depth: how deep the format nests.
   std::string_view nesting_note = "a URDF nests 5 deep (robot, link, visual, geometry, mesh)";
+  // An element refused wherever it stands (empty: none), and what to do instead. SDFormat's
+  // <include> makes the parser read another file: on the server, a file of the server's.
+  std::string_view refused_element;
+  std::string_view refused_note;
 };
 
 struct XmlShape {

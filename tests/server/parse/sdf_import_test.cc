@@ -124,6 +124,14 @@ TEST(SdfImportTest, TheXmlShapeAndTheLinkLimitAreCheckedBeforeTheParse) {
       "<!DOCTYPE sdf [<!ENTITY e \"x\">]>\n<sdf version=\"1.7\"><model name=\"m\"/></sdf>";
   EXPECT_NE(message(entities).find("m.sdf:1: the <!DOCTYPE> declares entities"), std::string::npos)
       << message(entities);
+  // <include> would make libsdformat read a file of the reading machine (or a URL).
+  for (const char* uri : {"file:///etc/passwd", "model://m", "https://example.invalid/m"}) {
+    const std::string include = "<sdf version=\"1.7\">\n<model name=\"m\"><link name=\"a\"/>\n" +
+                                std::string("<include><uri>") + uri + "</uri></include>\n" +
+                                "</model></sdf>\n";
+    EXPECT_EQ(message(include).rfind("m.sdf:3: <include> is not read by mbstream", 0), 0u)
+        << message(include);
+  }
   const std::string utf16("\xff\xfe<\0s\0d\0f\0", 10);
   EXPECT_NE(message(utf16).find("UTF-16"), std::string::npos) << message(utf16);
   // The four-bar has 3 links: over a limit of 2 it is a LimitError naming --max-links, at 3
