@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   mbstream::cli::AddSubmitCommand(app, client, &exit_code);
   mbstream::cli::AddListCommands(app, client, &exit_code);
   mbstream::cli::AddRunCommand(app, client, &exit_code);
+  mbstream::cli::AddSweepCommand(app, client, &exit_code);
   mbstream::cli::AddResultCommands(app, client, &exit_code);
   mbstream::cli::AddReplayCommands(app, client, &exit_code);
   mbstream::cli::AddHealthCommand(app, client, &exit_code);

@@ -10,11 +10,13 @@ namespace mbstream::cli {
 
 grpc::Status DownloadResult(v1::Simulation::Stub& stub, const std::string& run_id,
                             const std::string& directory, v1::RunInfo* info,
-                            const std::string& probe_set, const ResultMcapOptions* mcap) {
+                            const std::string& probe_set, const ResultMcapOptions* mcap,
+                            bool wait) {
   grpc::ClientContext context;
   v1::GetResultRequest request;
   request.set_run_id(run_id);
   request.set_probe_set(probe_set);
+  request.set_wait(wait);
   std::unique_ptr<grpc::ClientReader<v1::ResultChunk>> reader = stub.GetResult(&context, request);
   v1::ResultChunk chunk;
   std::vector<v1::Frame> frames;

@@ -15,10 +15,11 @@ namespace mbstream::cli {
 // status; throws InputError when the directory cannot be written. probes.csv holds the live
 // run's probe reports, or those of the replay probe set `probe_set` when one is given.
 // An empty `directory` writes no files; `mcap` (when given, with a path) writes the run as
-// MCAP too (result_mcap.h).
+// MCAP too (result_mcap.h). `wait`: a run not ended yet is waited for (else
+// FAILED_PRECONDITION).
 grpc::Status DownloadResult(v1::Simulation::Stub& stub, const std::string& run_id,
                             const std::string& directory, v1::RunInfo* info,
                             const std::string& probe_set = "",
-                            const ResultMcapOptions* mcap = nullptr);
+                            const ResultMcapOptions* mcap = nullptr, bool wait = false);
 
 }  // namespace mbstream::cli

@@ -79,8 +79,14 @@ int RunOnServer(const ClientOptions& client, const RunOptions& options) {
   // A copy: DownloadResult below assigns a new RunInfo to `info`, which deletes the stats
   // message a reference would point at (found by UBSan's vptr check under --asan).
   const v1::RunStats s = info.stats();
-  std::cerr << v1::RunState_Name(info.state()) << ": " << info.frames()
-            << " frames to t = " << s.t_reached_s() << " s, formulation " << s.formulation() << " ("
+  std::cerr << v1::RunState_Name(info.state()) << ": " << info.frames();
+  if (s.summary().keep() != "all" && !s.summary().keep().empty()) {
+    std::cerr << " of " << s.summary().frames_computed() << " frames kept (keep "
+              << s.summary().keep() << ")";
+  } else {
+    std::cerr << " frames";
+  }
+  std::cerr << " to t = " << s.t_reached_s() << " s, formulation " << s.formulation() << " ("
             << s.equations() << " equations), method " << s.method() << ", " << s.steps()
             << " steps, cpu " << s.cpu_s() * 1e3 << " ms";
   if (s.tcp_error_max_m() >= 0) std::cerr << ", TCP error " << s.tcp_error_max_m() << " m";

@@ -22,6 +22,9 @@ void RunOverrides::AddTo(CLI::App& command) {
                      "accuracy target: largest relative energy-balance error, like --target-tcp");
   command.add_option("--verify", verify,
                      "check the achieved error after a target run (true, the default, or false)");
+  command.add_option("--keep", keep,
+                     "the frames kept: all (the default), every:N (every Nth and the last), final "
+                     "or summary (none: stats.json's summary only)");
 }
 
 void RunOverrides::ApplyTo(v1::RunSpec& spec) const {
@@ -39,6 +42,7 @@ void RunOverrides::ApplyTo(v1::RunSpec& spec) const {
   if (target_energy) spec.mutable_target()->set_energy_error_rel(*target_energy);
   if ((target_tcp || target_joint || target_energy) && !method) spec.set_method("auto");
   if (verify) spec.set_verify(*verify);
+  if (keep) spec.set_keep(*keep);
 }
 
 }  // namespace mbstream::cli

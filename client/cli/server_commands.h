@@ -14,6 +14,8 @@ void AddSubmitCommand(CLI::App& app, std::shared_ptr<const ClientOptions> option
 void AddListCommands(CLI::App& app, std::shared_ptr<const ClientOptions> options,
                      int* exit_code);  // models, runs
 void AddRunCommand(CLI::App& app, std::shared_ptr<const ClientOptions> options, int* exit_code);
+void AddSweepCommand(CLI::App& app, std::shared_ptr<const ClientOptions> options,
+                     int* exit_code);  // sweep (sweep_command.cc)
 void AddResultCommands(CLI::App& app, std::shared_ptr<const ClientOptions> options,
                        int* exit_code);  // result, cancel
 void AddReplayCommands(CLI::App& app, std::shared_ptr<const ClientOptions> options,

@@ -122,8 +122,14 @@ int RunSimulate(const SimulateOptions& options) {
   }
 
   const RunStats& s = result.stats;
-  std::cout << RunStatusName(s.status) << ": " << writer.frames()
-            << " frames to t = " << s.t_reached << " s, formulation " << s.formulation << " ("
+  std::cout << RunStatusName(s.status) << ": " << writer.frames();
+  if (config.keep.mode != FrameKeep::Mode::kAll) {
+    std::cout << " of " << s.summary.frames_computed << " frames kept (keep " << s.summary.keep
+              << ")";
+  } else {
+    std::cout << " frames";
+  }
+  std::cout << " to t = " << s.t_reached << " s, formulation " << s.formulation << " ("
             << s.equations << " equations), method " << s.method << ", " << s.solver.steps
             << " steps, cpu " << s.cpu_s * 1e3 << " ms";
   if (s.tcp_error_max >= 0) std::cout << ", TCP error " << s.tcp_error_max << " m";

@@ -1,22 +1,35 @@
 #include "server/engine/engine.h"
 
 #include "server/choose/target_run.h"
+#include "server/engine/summary_sink.h"
 #include "server/sim/loop_run.h"
 #include "server/sim/simulate.h"
 
 namespace mbstream {
 
-RunResult Simulate(const Model& model, const std::vector<LoopClosure>& loops,
+namespace {
+
+RunResult Dispatch(const Model& model, const std::vector<LoopClosure>& loops,
                    const RunConfig& config, FrameSink* sink, const std::atomic<bool>* cancel) {
   // ValidateLoopRun refuses a target for a model with loops (PlanLoopRun).
   if (!loops.empty()) return SimulateLoops(model, loops, config, sink, cancel);
-  return Simulate(model, config, sink, cancel);
+  if (config.target.any()) return RunWithTarget(model, config, sink, cancel);
+  return SimulateTree(model, config, sink, cancel);
+}
+
+}  // namespace
+
+RunResult Simulate(const Model& model, const std::vector<LoopClosure>& loops,
+                   const RunConfig& config, FrameSink* sink, const std::atomic<bool>* cancel) {
+  SummarySink summary(config, sink);
+  RunResult result = Dispatch(model, loops, config, &summary, cancel);
+  summary.Finish(&result);
+  return result;
 }
 
 RunResult Simulate(const Model& model, const RunConfig& config, FrameSink* sink,
                    const std::atomic<bool>* cancel) {
-  if (config.target.any()) return RunWithTarget(model, config, sink, cancel);
-  return SimulateTree(model, config, sink, cancel);
+  return Simulate(model, {}, config, sink, cancel);
 }
 
 }  // namespace mbstream

@@ -26,6 +26,26 @@ nlohmann::json NumberOrNull(double value) {
   return value >= 0.0 ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
+// Over every frame the run computed: which it kept, which it dropped, the final state and
+// each joint's effort and tracking figures (null where the run has none).
+nlohmann::ordered_json SummaryJson(const RunSummary& s, const std::vector<std::string>& names) {
+  nlohmann::ordered_json joints = nlohmann::ordered_json::array();
+  for (size_t j = 0; j < s.joints.size(); ++j) {
+    joints.push_back({{"joint", j < names.size() ? names[j] : std::to_string(j)},
+                      {"effort_peak", NumberOrNull(s.joints[j].effort_peak)},
+                      {"effort_rms", NumberOrNull(s.joints[j].effort_rms)},
+                      {"tracking_error_max", NumberOrNull(s.joints[j].tracking_error_max)}});
+  }
+  return {{"keep", s.keep},
+          {"frames_computed", s.frames_computed},
+          {"frames_kept", s.frames_kept},
+          {"frames_dropped", s.frames_computed - s.frames_kept},
+          {"t_final", s.t_final},
+          {"q_final", s.q_final},
+          {"qd_final", s.qd_final},
+          {"joints", joints}};
+}
+
 }  // namespace
 
 std::string StatsJson(const RunResult& result, const RunProvenance& provenance, long frames) {
@@ -79,6 +99,7 @@ std::string StatsJson(const RunResult& result, const RunProvenance& provenance, 
                   {"orientation_residual_max_rad", NumberOrNull(s.drift_orientation_max)},
                   {"velocity_residual_max", NumberOrNull(s.drift_velocity_max)}};
   }
+  j["summary"] = SummaryJson(s.summary, result.joint_names);
   j["warnings"] = s.warnings;
   j["budget"] = {{"max_steps", s.max_steps}, {"max_cpu_s", s.max_cpu_s}};
   j["joints"] = result.joint_names;

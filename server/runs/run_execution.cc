@@ -37,13 +37,14 @@ class PublishingSink : public FrameSink {
   bool KeepsFrames() const override { return true; }  // the spool stores them
 
   void OnFrame(const RunResult& result, int frame) override {
-    if (result.first_seq + frame == 0) {
+    if (seq_ == 0) {
       run_->UpdateInfo([&](v1::RunInfo& info) {
         info.set_has_torques(result.has_torques);
         info.set_has_energy(result.has_energy);
       });
     }
     FrameToProto(result, frame, &message_);
+    message_.set_seq(seq_++);  // the kept frames' count (RunConfig::keep): consecutive
     Pace(result.t[frame]);
     run_->spool().Add(message_, *store_);
     run_->Publish(&message_);
@@ -71,6 +72,7 @@ class PublishingSink : public FrameSink {
   Store* store_;
   RunClock* clock_;
   RunClock::TimePoint start_;
+  int64_t seq_ = 0;    // frames handed on so far
   v1::Frame message_;  // the frame being converted; the previous one's storage, after the first
 };
 

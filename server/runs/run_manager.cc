@@ -16,6 +16,7 @@
 #include "server/runs/replica_id.h"
 #include "server/runs/request_error.h"
 #include "server/runs/run_budget_caps.h"
+#include "server/runs/timed_id.h"
 #include "server/runs/unix_time.h"
 #include "server/sim/loop_run.h"
 #include "server/sim/run_size.h"
@@ -75,17 +76,8 @@ RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& 
 RunManager::~RunManager() { Shutdown("the server stopped"); }
 
 std::string RunManager::NewRunId() const {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char stamp[32];
-  std::strftime(stamp, sizeof(stamp), "%Y%m%d-%H%M%S", &utc);
-  // 32 random bits: at thousands of runs a second, ids of one second collide about once in
-  // a million seconds; StartMany then draws again (the store refuses a taken id, AddRuns).
-  static thread_local std::mt19937_64 random(std::random_device{}());
-  char suffix[16];
-  std::snprintf(suffix, sizeof(suffix), "%08x", static_cast<unsigned>(random() & 0xffffffffu));
-  return std::string("r-") + stamp + "-" + suffix;
+  // StartMany draws again on a collision (the store refuses a taken id, AddRuns).
+  return NewTimedId("r-");
 }
 
 RunConfig RunManager::PrepareConfig(const CompiledModel& model, const v1::RunSpec& spec,
@@ -142,7 +134,7 @@ void RunManager::ReserveNewRuns(std::vector<v1::RunInfo>& infos,
 
 std::vector<v1::RunInfo> RunManager::StartMany(
     const std::string& model_ref, const google::protobuf::RepeatedPtrField<v1::RunSpec>& specs,
-    const std::string& owner) {
+    const std::string& owner, const std::string& sweep_id) {
   std::shared_ptr<const CompiledModel> model = FindModel(model_ref);
   const int count = specs.size();
   if (count == 0) throw InputError("specs is empty; give at least one run spec");
@@ -179,7 +171,8 @@ std::vector<v1::RunInfo> RunManager::StartMany(
     *info.mutable_spec() = spec;
     info.mutable_spec()->DiscardUnknownFields();  // kept in every RunInfo: only what we read
     info.set_state(v1::QUEUED);
-    info.set_expected_frames(OutputFrameCount(config.duration, config.output_interval));
+    info.set_expected_frames(
+        KeptFrameCount(config.keep, OutputFrameCount(config.duration, config.output_interval)));
     info.set_duration_s(config.duration);
     // Every joint of the model file: a closed loop's cut joints after the tree's.
     info.set_num_dofs(static_cast<int>(model->result_joint_names.size()));
@@ -187,6 +180,7 @@ std::vector<v1::RunInfo> RunManager::StartMany(
     info.set_created_unix_ms(NowUnixMs());
     info.set_mbstream_version(MBSTREAM_VERSION);
     info.set_owner(owner);
+    info.set_sweep_id(sweep_id);
     for (const std::string& warning : warnings) info.add_warnings(warning);
   }
 

@@ -82,10 +82,11 @@ class RunManager {
   // Start for several runs of one model at once (a sweep): every spec is validated first
   // (errors name it: "specs[3]: ..."), then either all are queued, stored in one store
   // transaction, or none is (queue too small, store failure, shutting down). Infos in the
-  // specs' order.
+  // specs' order. `sweep_id`, if given, is recorded in each (RunInfo.sweep_id).
   std::vector<v1::RunInfo> StartMany(const std::string& model,
                                      const google::protobuf::RepeatedPtrField<v1::RunSpec>& specs,
-                                     const std::string& owner = "");
+                                     const std::string& owner = "",
+                                     const std::string& sweep_id = "");
   // Tests only: where new run ids come from (the time and 32 random bits by default), to
   // force the collisions the store refuses. Call before the first Start.
   void SetRunIdSourceForTesting(std::function<std::string()> source) {

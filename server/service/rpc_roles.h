@@ -19,6 +19,7 @@ inline constexpr RpcRole kRpcRoles[] = {
     {"GetModel", Role::kView},       //
     {"StartRun", Role::kRun},        // occupies a worker
     {"StartRuns", Role::kRun},       // occupies workers
+    {"StartSweep", Role::kRun},      // occupies workers
     {"CancelRun", Role::kRun},       // the run's own token, or admin (checked in the handler)
     {"GetRun", Role::kView},         //
     {"ListRuns", Role::kView},       //

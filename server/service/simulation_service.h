@@ -31,6 +31,8 @@ class SimulationService final : public v1::Simulation::Service {
                         v1::RunInfo* response) override;
   grpc::Status StartRuns(grpc::ServerContext* context, const v1::StartRunsRequest* request,
                          v1::StartRunsResponse* response) override;
+  grpc::Status StartSweep(grpc::ServerContext* context, const v1::StartSweepRequest* request,
+                          v1::StartSweepResponse* response) override;  // start_sweep.cc
   grpc::Status CancelRun(grpc::ServerContext* context, const v1::CancelRunRequest* request,
                          v1::RunInfo* response) override;
   grpc::Status GetRun(grpc::ServerContext* context, const v1::GetRunRequest* request,

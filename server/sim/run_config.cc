@@ -29,7 +29,7 @@ bool RunConfig::operator==(const RunConfig& other) const {
          SameVector(qd0, other.qd0) && drives == other.drives &&
          want_torques == other.want_torques && baumgarte == other.baumgarte &&
          max_steps == other.max_steps && max_cpu_s == other.max_cpu_s && target == other.target &&
-         method_auto == other.method_auto && verify == other.verify;
+         method_auto == other.method_auto && verify == other.verify && keep == other.keep;
 }
 
 const char* FormulationName(Formulation formulation) { return NameOf(kFormulations, formulation); }

@@ -12,6 +12,7 @@
 #include "server/body/baumgarte_parameters.h"
 #include "server/drives/drive_config.h"
 #include "server/integrate/method.h"
+#include "server/sim/frame_keep.h"
 
 namespace mbstream {
 
@@ -62,6 +63,7 @@ struct RunConfig {
   AccuracyTarget target;
   bool method_auto = false;  // method "auto": chosen for the target (needs one)
   bool verify = true;        // check the achieved error after a target run
+  FrameKeep keep;            // which output frames the run keeps (the engine drops the rest)
 
   // Field by field, exactly (doubles bit for bit but for -0 == 0; q0 and qd0 of another
   // size differ).

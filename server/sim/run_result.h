@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "server/integrate/integrator.h"
+#include "server/sim/run_summary.h"
 
 namespace mbstream {
 
@@ -93,6 +94,7 @@ struct RunStats {
   double quaternion_norm_error_max = -1.0;  // max | |e| - 1 | of the orientation quaternions
 
   LoopStats loops;
+  RunSummary summary;  // over every frame computed, kept or not (the engine fills it)
   Trust trust = Trust::kNotAssessed;
   std::string trust_reason;           // kLow: which indicator, its value and its limit
   std::vector<std::string> warnings;  // the inputs' sanity warnings (input_sanity.h)

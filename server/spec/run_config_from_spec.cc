@@ -434,6 +434,14 @@ void ReadTarget(const v1::RunSpec& spec, const Checker& check, RunConfig* config
   config->verify = spec.has_verify() ? spec.verify() : true;
 }
 
+// keep.
+void ReadKeep(const v1::RunSpec& spec, const Checker& check, RunConfig* config) {
+  std::string why;
+  if (!ParseFrameKeep(spec.keep(), &config->keep, &why)) {
+    check.Fail("keep", "is \"" + spec.keep().substr(0, 64) + "\"; " + why);
+  }
+}
+
 // The fields only the server acts on (realtime, retries, max_output_frames): checked here so
 // that simulate refuses what the server refuses; not part of RunConfig.
 void CheckServerFields(const v1::RunSpec& spec, const Checker& check) {
@@ -473,6 +481,7 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& j
   ReadPhysics(spec, joint_names, check, &config);
   ReadBudget(spec, check, &config);
   ReadTarget(spec, check, &config);
+  ReadKeep(spec, check, &config);
   CheckServerFields(spec, check);
   return config;
 }

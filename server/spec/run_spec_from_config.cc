@@ -80,6 +80,7 @@ v1::RunSpec ToRunSpec(const RunConfig& config) {
     }
   }
   spec.set_verify(config.verify);
+  if (config.keep.mode != FrameKeep::Mode::kAll) spec.set_keep(FrameKeepName(config.keep));
   spec.set_erk_table(config.erk_table);
   spec.set_rtol(config.rtol);
   spec.set_atol(config.atol);

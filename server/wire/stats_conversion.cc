@@ -36,6 +36,36 @@ bool IsFinalState(v1::RunState state) {
   return state != v1::RUN_STATE_UNSPECIFIED && state != v1::QUEUED && state != v1::RUNNING;
 }
 
+void SummaryToProto(const RunSummary& s, v1::RunSummary* out) {
+  out->set_keep(s.keep);
+  out->set_frames_computed(s.frames_computed);
+  out->set_frames_kept(s.frames_kept);
+  out->set_t_final_s(FiniteOr(s.t_final, 0.0));
+  for (const double q : s.q_final) out->add_q_final(FiniteOr(q, 0.0));
+  for (const double qd : s.qd_final) out->add_qd_final(FiniteOr(qd, 0.0));
+  for (const JointSummary& joint : s.joints) {
+    v1::JointSummary& j = *out->add_joints();
+    // An effort too large to square has no finite RMS: its peak is the figure that matters.
+    j.set_effort_peak(FiniteOr(joint.effort_peak, -1.0));
+    j.set_effort_rms(FiniteOr(joint.effort_rms, joint.effort_peak < 0.0 ? -1.0 : j.effort_peak()));
+    j.set_tracking_error_max(FiniteOr(joint.tracking_error_max, -1.0));
+  }
+}
+
+RunSummary SummaryFromProto(const v1::RunSummary& in) {
+  RunSummary s;
+  s.keep = in.keep();
+  s.frames_computed = in.frames_computed();
+  s.frames_kept = in.frames_kept();
+  s.t_final = in.t_final_s();
+  s.q_final.assign(in.q_final().begin(), in.q_final().end());
+  s.qd_final.assign(in.qd_final().begin(), in.qd_final().end());
+  for (const v1::JointSummary& j : in.joints()) {
+    s.joints.push_back({j.effort_peak(), j.effort_rms(), j.tracking_error_max()});
+  }
+  return s;
+}
+
 v1::RunStats StatsToProto(const RunStats& s) {
   v1::RunStats out;
   out.set_formulation(s.formulation);
@@ -77,6 +107,7 @@ v1::RunStats StatsToProto(const RunStats& s) {
     loops.set_mobility(s.loops.mobility);
     loops.set_assembly(s.loops.assembly);
   }
+  SummaryToProto(s.summary, out.mutable_summary());
   return out;
 }
 
@@ -150,6 +181,7 @@ RunStats StatsFromProto(const v1::RunInfo& info) {
     s.loops.mobility = in.loops().mobility();
     s.loops.assembly = in.loops().assembly();
   }
+  if (in.has_summary()) s.summary = SummaryFromProto(in.summary());
   s.warnings.assign(info.warnings().begin(), info.warnings().end());
   return s;
 }

@@ -14,6 +14,10 @@ bool IsFinalState(v1::RunState state);
 // The statistics as a message. Non-finite numbers become -1 ("unknown") or 0, never NaN.
 v1::RunStats StatsToProto(const RunStats& stats);
 
+// A run's summary (RunStats::summary) and back; non-finite numbers as in StatsToProto.
+void SummaryToProto(const RunSummary& summary, v1::RunSummary* out);
+RunSummary SummaryFromProto(const v1::RunSummary& in);
+
 // The core's view of a finished run's info: statistics, status (QUEUED/RUNNING -> kFailed)
 // and message.
 RunStats StatsFromProto(const v1::RunInfo& info);

@@ -5,6 +5,8 @@
 
 #include <csignal>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -18,6 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 std::string ReadFile(const fs::path& path) { return ReadTextFile(path.string()); }
 
@@ -229,6 +232,71 @@ TEST_F(ServerCliTest, ErrorsAreNamedWithExitCodes) {
   outcome = RunCommand(std::string(MBSTREAM_CLI) + " --server unix:" + Out("nosocket") + " models");
   EXPECT_EQ(outcome.exit_code, 3);
   EXPECT_THAT(outcome.output, HasSubstr("is mbstream-server running"));
+}
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// A sweep of servo gains as one request: a row per point in DIR/sweep.csv (grid order, the
+// swept values as columns, then the summary), started in slices of a small window; a stiffer
+// servo tracks better; kept frames go under runs/; a bad path is named before any run.
+TEST_F(ServerCliTest, ASweepOfServoGainsWritesOneRowPerPoint) {
+  StartServer();
+  const std::string base = "sweep irb1600 --spec models/irb1600/seed-servo.json --duration 0.5 ";
+  CommandOutcome sweep = Cli(base +
+                             "--grid 'drives[1].pd_servo.kp=100,400,1600' "
+                             "--grid rtol=1e-6:1e-8:2:log --window 2 --out " +
+                             Out("sweep"));
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.output;
+  EXPECT_THAT(sweep.output, HasSubstr("6 of 6 runs finished"));
+  const std::vector<std::string> rows = Lines(ReadFile(dir_ / "sweep" / "sweep.csv"));
+  ASSERT_EQ(rows.size(), 7u) << ReadFile(dir_ / "sweep" / "sweep.csv");
+  EXPECT_EQ(rows[0].rfind("run_id,drives[1].pd_servo.kp,rtol,state,trust,", 0), 0u) << rows[0];
+  EXPECT_THAT(rows[0], HasSubstr(",tracking_error_max:joint2,effort_peak:joint2,"));
+  const auto cells = [](const std::string& row) {
+    std::vector<std::string> out;
+    std::istringstream in(row);
+    for (std::string cell; std::getline(in, cell, ',');) out.push_back(cell);
+    return out;
+  };
+  const std::vector<std::string> header = cells(rows[0]);
+  const size_t tracking = static_cast<size_t>(
+      std::find(header.begin(), header.end(), "tracking_error_max:joint2") - header.begin());
+  ASSERT_LT(tracking, header.size());
+  std::vector<double> error_by_kp;
+  for (size_t r = 1; r < rows.size(); ++r) {
+    const std::vector<std::string> row = cells(rows[r]);
+    EXPECT_EQ(row[0].substr(0, 2), "r-");
+    EXPECT_EQ(row[1],
+              std::vector<std::string>({"100", "100", "400", "400", "1600", "1600"})[r - 1]);
+    EXPECT_EQ(row[3], "FINISHED") << rows[r];
+    if (r % 2 == 1) error_by_kp.push_back(std::stod(row[tracking]));
+  }
+  ASSERT_EQ(error_by_kp.size(), 3u);
+  EXPECT_GT(error_by_kp[0], error_by_kp[1]);
+  EXPECT_GT(error_by_kp[1], error_by_kp[2]);
+  EXPECT_FALSE(fs::exists(dir_ / "sweep" / "runs")) << "a sweep keeps the summary by default";
+
+  sweep = Cli(base + "--grid 'drives[0].pd_servo.kd=20,40' --keep every:5 --out " + Out("kept"));
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.output;
+  int run_dirs = 0;
+  for (const fs::directory_entry& run : fs::directory_iterator(dir_ / "kept" / "runs")) {
+    ++run_dirs;
+    EXPECT_EQ(Lines(ReadFile(run.path() / "joints.csv")).size(), 1u + 3u);  // 0, 5, 10 of 11
+  }
+  EXPECT_EQ(run_dirs, 2);
+
+  sweep = Cli(base + "--grid 'drives[joint=joint2].pd_servo.kp=1' --out " + Out("bad"));
+  EXPECT_EQ(sweep.exit_code, 2);
+  EXPECT_THAT(sweep.output, HasSubstr("no element of the base spec's drives has joint = joint2"));
+  sweep = Cli(base + "--grid rtol=-1,1e-6 --out " + Out("bad"));
+  EXPECT_EQ(sweep.exit_code, 2);
+  EXPECT_THAT(sweep.output, HasSubstr("rtol"));
+  EXPECT_THAT(Cli("runs").output, Not(HasSubstr("FAILED")));
 }
 
 }  // namespace

@@ -58,6 +58,42 @@ TEST(SimulateCliTest, SeedRunWritesTheResultsFiles) {
   EXPECT_NE(outcome.stats.find(R"("rtol": 1e-08)"), std::string::npos) << outcome.stats;
 }
 
+// --keep: the results files hold the kept frames, stats.json says what was dropped; a
+// diverged run keeping only its final frame keeps its last good one.
+TEST(SimulateCliTest, KeptFramesAreWrittenAndTheDroppedOnesCounted) {
+  const fs::path out =
+      fs::temp_directory_path() / ("mbstream_cli_keep-" + std::to_string(getpid()));
+  const std::string seed = "models/irb1600/irb1600.urdf --spec models/irb1600/seed-servo.json ";
+  Outcome outcome = Simulate(seed + "--duration 2 --keep every:10", out);
+  EXPECT_EQ(outcome.exit_code, 0) << outcome.stats;
+  EXPECT_EQ(Lines(out / "joints.csv"), 1 + 5);  // frames 0, 10, 20, 30, 40
+  EXPECT_EQ(Lines(out / "torques.csv"), 1 + 5);
+  EXPECT_NE(outcome.stats.find(R"("frames": 5)"), std::string::npos) << outcome.stats;
+  EXPECT_NE(outcome.stats.find(R"("keep": "every:10")"), std::string::npos) << outcome.stats;
+  EXPECT_NE(outcome.stats.find(R"("frames_computed": 41)"), std::string::npos);
+  EXPECT_NE(outcome.stats.find(R"("frames_dropped": 36)"), std::string::npos);
+  EXPECT_NE(outcome.stats.find(R"("tracking_error_max": )"), std::string::npos);
+
+  outcome = Simulate(seed + "--duration 2 --keep summary", out);
+  EXPECT_EQ(outcome.exit_code, 0);
+  EXPECT_EQ(Lines(out / "joints.csv"), 1);  // the header only
+  EXPECT_NE(outcome.stats.find(R"("frames_kept": 0)"), std::string::npos) << outcome.stats;
+
+  outcome = Simulate(
+      "models/irb1600/irb1600.urdf --spec models/irb1600/stiff-servo.json --method rk4 "
+      "--step 1e-3 --keep final",
+      out);
+  EXPECT_EQ(outcome.exit_code, 1);
+  EXPECT_EQ(Lines(out / "joints.csv"), 2) << "the last good frame of a diverged run";
+
+  outcome = Simulate(seed + "--keep every:0", out);
+  EXPECT_EQ(outcome.exit_code, 2);
+  std::ifstream log(out.string() + ".log");
+  std::stringstream text;
+  text << log.rdbuf();
+  EXPECT_NE(text.str().find("keep: is \"every:0\""), std::string::npos) << text.str();
+}
+
 TEST(SimulateCliTest, DivergedRunExitsNonZeroAndKeepsGoodFrames) {
   const fs::path out =
       fs::temp_directory_path() / ("mbstream_cli_diverged-" + std::to_string(getpid()));

@@ -1,6 +1,6 @@
 """The client: one channel to a server and the calls of service mbstream.v1.Simulation."""
 from types import TracebackType
-from typing import Any, Iterable, List, Optional, Type, Union
+from typing import Any, Iterable, List, Mapping, Optional, Sequence, Type, Union
 
 from ._stubs import model_pb2, replay_pb2, run_pb2
 from ._stubs import simulation_service_pb2 as service_pb2
@@ -14,6 +14,7 @@ from .result import Result, result_from_chunks
 from .run import Run
 from .server_check import ServerCheck, check_server
 from .spec import SpecLike, load_spec
+from .sweep import run_sweep, sweep_request
 
 
 def _check_model(model: Any) -> None:
@@ -136,6 +137,30 @@ class Client:
         with rpc_errors():
             response = self.stub.StartRuns(request)
         return [Run(self, info) for info in response.runs]
+
+    def sweep(self, model: str, spec: SpecLike = None,
+              grid: Optional[Mapping[str, Iterable[Any]]] = None,
+              points: Optional[Sequence[Mapping[str, Any]]] = None, keep: str = "summary",
+              window: int = 32, progress: bool = False, **overrides: Any) -> Any:
+        """A parameter sweep as one job, its table as a pandas DataFrame (a row per run, in
+        point order: run_id, the swept values, state, trust, cost, accuracy and, per joint,
+        tracking_error_max:JOINT, effort_peak:JOINT, effort_rms:JOINT, q_final:JOINT; the
+        columns of `mbstream sweep`'s sweep.csv).
+
+        grid: {path: values} (every combination, the first path varying slowest) or points:
+        [{path: value, ...}, ...]; a path names a RunSpec field as in its JSON, e.g. "rtol",
+        "drives[1].pd_servo.kp", "drives[joint=joint2].pd_servo.kd", "initial_q[0]".
+        keep: what each run keeps ("summary": no frames, the default; "final", "every:N",
+        "all": fetch them with result(run_id)). The server queues at most `window` runs at a
+        time. spec and overrides as in run(). Needs pandas."""
+        _check_model(model)
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("Client.sweep needs pandas (Debian: apt-get install "
+                              "python3-pandas)") from None
+        request = sweep_request(model, load_spec(spec, keep=keep, **overrides), grid, points)
+        return pd.DataFrame(run_sweep(self, request, window, progress))
 
     def results(self, runs: Iterable[Union[Run, str]], wait: bool = True) -> List["Result"]:
         """The results of several runs (Run handles or ids) in ONE call, in the order given;

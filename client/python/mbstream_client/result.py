@@ -20,6 +20,10 @@ def stats_dict(info: "run_pb2.RunInfo") -> Dict[str, Any]:
     for key in ("steps", "rhs_evals", "jac_evals", "nonlinear_iterations",
                 "error_test_failures", "convergence_failures", "max_steps"):
         stats[key] = int(stats.get(key, 0))  # the JSON mapping writes int64 as strings
+    summary = stats.get("summary") or {}
+    for key in ("frames_computed", "frames_kept"):
+        if key in summary:
+            summary[key] = int(summary[key])
     stats["state"] = run_pb2.RunState.Name(info.state)
     stats["message"] = info.message
     return stats

@@ -246,6 +246,49 @@ class ClientTest(unittest.TestCase):
         self.assertIn(run.id, [r.id for r in self.client.runs()])
         self.assertEqual(self.client.runs(limit=1)[0].id, kinematic.run_id)
 
+    def test_keep_stores_every_nth_frame_and_the_summary_covers_them_all(self):
+        full = self.client.run("irb1600", SEED_SERVO, duration=1).result(check=True)
+        kept = self.client.run("irb1600", SEED_SERVO, duration=1, keep="every:4").result()
+        self.assertTrue(kept.finished, kept.message)
+        self.assertEqual(kept.seq.tolist(), list(range(6)))  # consecutive: replays need it
+        indices = [0, 4, 8, 12, 16, 20]  # 20, the last, is a multiple of 4 already
+        self.assertEqual(kept.t.tolist(), full.t[indices].tolist())
+        np.testing.assert_array_equal(kept.q, full.q[indices])
+        summary = kept.stats["summary"]
+        self.assertEqual(summary["keep"], "every:4")
+        self.assertEqual((summary["frames_computed"], summary["frames_kept"]), (21, 6))
+        np.testing.assert_array_equal(summary["q_final"], full.q[-1])
+        self.assertEqual([j["effort_peak"] for j in summary["joints"]],
+                         np.abs(full.tau).max(axis=0).tolist())
+        nothing = self.client.run("irb1600", SEED_SERVO, duration=1, keep="summary").result()
+        self.assertEqual(nothing.t.shape, (0,))
+        self.assertEqual(nothing.stats["summary"]["frames_computed"], 21)
+        with self.assertRaises(mb.BadRequest) as caught:
+            self.client.run("irb1600", SEED_SERVO, keep="every:0")
+        self.assertIn("keep", str(caught.exception))
+
+    def test_a_sweep_of_servo_gains_is_one_table_in_point_order(self):
+        table = self.client.sweep("irb1600", SEED_SERVO, duration=0.5, window=2,
+                                  grid={"drives[1].pd_servo.kp": [100, 400, 1600],
+                                        "rtol": [1e-6, 1e-8]})
+        self.assertEqual(len(table), 6)
+        self.assertEqual(table["drives[1].pd_servo.kp"].tolist(), [100, 100, 400, 400, 1600, 1600])
+        self.assertEqual(table["rtol"].tolist(), [1e-6, 1e-8] * 3)
+        self.assertEqual(set(table["state"]), {"FINISHED"})
+        self.assertEqual(table["frames_kept"].tolist(), [0] * 6)  # the summary only
+        errors = table["tracking_error_max:joint2"].tolist()[::2]
+        self.assertGreater(errors[0], errors[1])  # a stiffer servo tracks better
+        self.assertGreater(errors[1], errors[2])
+        rows = self.client.sweep("irb1600", SEED_SERVO, duration=0.5, keep="final",
+                                 points=[{"drives[0].pd_servo.kd": 20.0}])
+        self.assertEqual(rows["frames_kept"].tolist(), [1])
+        self.assertEqual(len(self.client.result(rows["run_id"][0]).t), 1)
+        with self.assertRaises(mb.BadRequest) as caught:
+            self.client.sweep("irb1600", SEED_SERVO, grid={"drives[9].pd_servo.kp": [1]})
+        self.assertIn("drives[9]", str(caught.exception))
+        with self.assertRaises(ValueError):
+            self.client.sweep("irb1600", SEED_SERVO)
+
     def test_run_many_and_results_in_one_call_each(self):
         durations = [0.5, 1.0, 0.25]
         runs = self.client.run_many(

@@ -87,7 +87,7 @@ class PackageTest(unittest.TestCase):
         self.assertEqual(mb.run_spec_pb2.RunSpec.__module__, "mbstream_client.run_spec_pb2")
 
     def test_public_api_has_type_hints_and_docstrings(self):
-        for function in (mb.connect, mb.Client.run, mb.Client.submit, mb.Run.watch,
+        for function in (mb.connect, mb.Client.run, mb.Client.sweep, mb.Client.submit, mb.Run.watch,
                          mb.Run.result, mb.Result.to_pandas, mb.Result.plot_tcp,
                          mb.Result.plot_joints, mb.load_spec, mb.read_model_bundle):
             self.assertIn("return", function.__annotations__, function.__qualname__)

@@ -82,6 +82,16 @@ class RpcGateTest : public ServerTest {
            v1::StartRunsResponse response;
            return stub().StartRuns(&context, request, &response);
          }},
+        {"StartSweep",
+         [&] {
+           v1::StartSweepRequest request;
+           request.set_model("single_pendulum");
+           v1::SweepAxis& axis = *request.add_grid();
+           axis.set_path("duration_s");
+           axis.add_values("0.1");
+           v1::StartSweepResponse response;
+           return stub().StartSweep(&context, request, &response);
+         }},
         {"CancelRun",
          [&] {
            v1::CancelRunRequest request;
