@@ -336,10 +336,10 @@ TEST_F(WebViewTest, ATexturedMeshAndAMissingOneLookInThePageAsInTheWindow) {
       << "<origin xyz=\"0 0 0.3\"/></joint>\n</robot>\n";
   const CommandOutcome submitted = Cli("submit " + (robot / "skinbot.urdf").string());
   ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
-  // The server keeps only the meshes a model names (not an OBJ's .mtl or its image): the
-  // viewer draws the model from its files on disk.
-  const std::string url =
-      StartViewer("--follow --exit-after-runs 1 --model " + (robot / "skinbot.urdf").string());
+  // The bundle carries the OBJ's .mtl and its image (mbstream submit attaches them, the
+  // server keeps them): the viewer draws the texture from the server's bundle alone.
+  EXPECT_THAT(submitted.output, HasSubstr(", 3 assets"));
+  const std::string url = StartViewer("--follow --exit-after-runs 1");
   const CommandOutcome started =
       Cli("run skinbot --duration 20 --output-interval 0.05 --realtime 1");
   ASSERT_EQ(started.exit_code, 0) << started.output;
