@@ -206,6 +206,40 @@ TEST_F(WebViewTest, HttpsPageWithAViewTokenDrawsTheRunAndOthersAreRefused) {
   ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
 }
 
+// A replay is one for the viewer's window and every page: a page whose token has only the view
+// role watches it (its controls disabled, a control it sends anyway refused by the viewer), a
+// page whose token has the run role (as ReplayRun needs) pauses it for every page.
+TEST_F(WebViewTest, AViewOnlyPageCannotSteerTheSharedReplayARunTokenCan) {
+  const std::string d = dir_.string();
+  std::ofstream(dir_ / "tokens") << "admin-token-0123456789 admin\n"
+                                 << "view-token-0123456789 view\n"
+                                 << "steer-token-0123456789 view,run\n";
+  std::ofstream(dir_ / "admin.token") << "admin-token-0123456789\n";
+  std::ofstream(dir_ / "view.token") << "view-token-0123456789\n";
+  server_ = std::make_unique<ServerProcess>(
+      MBSTREAM_SERVER, d + "/data-tokens", std::vector<std::string>{"--token-file", d + "/tokens"});
+  const std::string admin = " --token-file " + d + "/admin.token ";
+  const CommandOutcome a =
+      Cli(admin + "run irb1600 --spec models/irb1600/seed-run.json --realtime 50 --watch");
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  const std::string run = a.output.substr(0, a.output.find('\n'));
+  // The viewer's own token has the view role only: it does not lend pages more.
+  const std::string url = StartViewer("--run " + run + " --loop --token-file " + d + "/view.token");
+  const nlohmann::json seen =
+      Browse(url + "#token=view-token-0123456789", "watch-only:steer-token-0123456789");
+  ASSERT_TRUE(seen.contains("watch_only")) << seen.dump().substr(0, 2000);
+  const nlohmann::json& watch = seen["watch_only"];
+  EXPECT_EQ(watch["controls"], false) << watch;
+  EXPECT_EQ(watch["disabled"], true) << watch;
+  EXPECT_EQ(watch["paused_after"], false) << watch;  // its pause did nothing
+  EXPECT_THAT(watch.value("message", ""), HasSubstr("run role"));
+  EXPECT_EQ(watch["steer_controls"], true) << watch;
+  EXPECT_EQ(watch["paused_for_both"], true) << watch;
+  EXPECT_THAT(seen.value("hud", ""), HasSubstr("watching only"));
+  EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
+  EXPECT_THAT(ReadTextFile((dir_ / "viewer.log").string()), HasSubstr("control refused"));
+}
+
 // A robot whose every visual is a Collada mesh, as published ROS descriptions ship them (the
 // meshes written by the test: no third-party files), submitted with its meshes and run: the
 // page draws the viewer's triangles of each mesh in its Collada material's colour.
