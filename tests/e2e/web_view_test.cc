@@ -58,6 +58,18 @@ class WebViewTest : public ::testing::Test {
     EXPECT_TRUE(url) << ReadTextFile(log.string());
     return url.value_or("");
   }
+  // Restarts the server requiring tokens: an admin and a view token (in admin.token and
+  // view.token of the test's folder) and the lines of `more_tokens`.
+  void RestartServerWithTokens(const std::string& more_tokens) {
+    std::ofstream(dir_ / "tokens") << "admin-token-0123456789 admin\n"
+                                   << "view-token-0123456789 view\n"
+                                   << more_tokens;
+    std::ofstream(dir_ / "admin.token") << "admin-token-0123456789\n";
+    std::ofstream(dir_ / "view.token") << "view-token-0123456789\n";
+    server_ = std::make_unique<ServerProcess>(
+        MBSTREAM_SERVER, (dir_ / "data-tokens").string(),
+        std::vector<std::string>{"--token-file", (dir_ / "tokens").string()});
+  }
   // Runs the browser on `url`; returns what it saw.
   nlohmann::json Browse(const std::string& url, const std::string& mode = "") {
     const CommandOutcome browsed = RunCommand(
@@ -168,13 +180,7 @@ TEST_F(WebViewTest, HttpsPageWithAViewTokenDrawsTheRunAndOthersAreRefused) {
       "subjectAltName=IP:127.0.0.1 -keyout " +
       d + "/web.key -out " + d + "/web.pem 2>&1");
   ASSERT_EQ(made.exit_code, 0) << made.output;
-  std::ofstream(dir_ / "tokens") << "admin-token-0123456789 admin\n"
-                                 << "view-token-0123456789 view\n"
-                                 << "not-a-viewer-token submit\n";
-  std::ofstream(dir_ / "admin.token") << "admin-token-0123456789\n";
-  std::ofstream(dir_ / "view.token") << "view-token-0123456789\n";
-  server_ = std::make_unique<ServerProcess>(
-      MBSTREAM_SERVER, d + "/data-tokens", std::vector<std::string>{"--token-file", d + "/tokens"});
+  RestartServerWithTokens("not-a-viewer-token submit\n");
   const std::string url = StartViewer("--follow --exit-after-runs 1 --token-file " + d +
                                       "/view.token --web-tls " + d + "/web.pem," + d + "/web.key");
   ASSERT_THAT(url, StartsWith("https://127.0.0.1:"));
@@ -211,13 +217,7 @@ TEST_F(WebViewTest, HttpsPageWithAViewTokenDrawsTheRunAndOthersAreRefused) {
 // page whose token has the run role (as ReplayRun needs) pauses it for every page.
 TEST_F(WebViewTest, AViewOnlyPageCannotSteerTheSharedReplayARunTokenCan) {
   const std::string d = dir_.string();
-  std::ofstream(dir_ / "tokens") << "admin-token-0123456789 admin\n"
-                                 << "view-token-0123456789 view\n"
-                                 << "steer-token-0123456789 view,run\n";
-  std::ofstream(dir_ / "admin.token") << "admin-token-0123456789\n";
-  std::ofstream(dir_ / "view.token") << "view-token-0123456789\n";
-  server_ = std::make_unique<ServerProcess>(
-      MBSTREAM_SERVER, d + "/data-tokens", std::vector<std::string>{"--token-file", d + "/tokens"});
+  RestartServerWithTokens("steer-token-0123456789 view,run\n");
   const std::string admin = " --token-file " + d + "/admin.token ";
   const CommandOutcome a =
       Cli(admin + "run irb1600 --spec models/irb1600/seed-run.json --realtime 50 --watch");
