@@ -6,7 +6,10 @@
 # draws per second (as its frames report them), the probe round trip (probes.csv latency_us,
 # median and p90) and the pages' posed -> read latency.
 #
-#   bench/web_pages_viewer.sh [N ...]     (default: 1 10; 0 = no page, no draw rate)
+#   bench/web_pages_viewer.sh [N ...]     (default: 1 10; 0 = no page for 14 s, then one page
+#                                          for 1 s reads the draw rate the viewer measured
+#                                          over the second before it; interleave counts,
+#                                          e.g. 0 10 0 10 0 10, for repetitions)
 #
 # Uses the binaries in $MBSTREAM_BUILD_DIR (default build/).
 set -euo pipefail
@@ -43,6 +46,9 @@ for n in "${counts[@]}"; do
   sleep 2  # the run's scene is built: the pages then see its frames only
   if [ "$n" -gt 0 ]; then
     "$build/bench/viewer/web_latency_bench" --connect "$web" --pages "$n" --seconds 15
+  else  # no page for 14 s; then one for 1 s reads the draw rate of the seconds before it
+    sleep 14
+    "$build/bench/viewer/web_latency_bench" --connect "$web" --pages 1 --seconds 1
   fi
   wait "$client"
   sleep 1  # late probe reports

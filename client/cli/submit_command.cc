@@ -44,7 +44,8 @@ void AddSubmitCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client
   command
       ->add_option("model", options->files.model_path,
                    "URDF or SDFormat file (told apart by content), or a model directory (one "
-                   ".urdf or .sdf, its .scene); the meshes they refer to are found and attached")
+                   ".urdf or .sdf, its .scene); the meshes they refer to are found and attached, "
+                   "with the files those name (an OBJ's .mtl and images, a Collada's images)")
       ->required()
       ->check(CLI::ExistingPath);
   command->add_option("--scene", options->files.scene_path, "scene script for viewers")

@@ -1,8 +1,10 @@
 #include "server/parse/asset_references.h"
 
+#include <algorithm>
 #include <cctype>
 
 #include "common/ascii.h"
+#include "server/parse/mesh_dependencies.h"
 #include "urdf_reading/mesh_lookup.h"
 
 namespace mbstream {
@@ -83,9 +85,16 @@ std::vector<std::string> UnreferencedAssets(const std::vector<std::string>& asse
   for (const std::string& part : ScenePartNames(scene_script)) {
     for (std::string& name : ScenePartAssetNames(part)) referenced.insert(std::move(name));
   }
+  // A mesh that may name files (OBJ, Collada, glTF) keeps the bundle's materials, images and
+  // buffers: the server reads names only here, not the mesh's bytes.
+  const bool companions =
+      std::any_of(urdf_mesh_files.begin(), urdf_mesh_files.end(),
+                  [](const std::string& file) { return MayReferenceFiles(file); });
   std::vector<std::string> unreferenced;
   for (const std::string& name : asset_names) {
-    if (referenced.count(name) == 0) unreferenced.push_back(name);
+    if (referenced.count(name) == 0 && !(companions && IsMeshCompanionName(name))) {
+      unreferenced.push_back(name);
+    }
   }
   return unreferenced;
 }

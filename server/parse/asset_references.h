@@ -29,7 +29,11 @@ std::vector<std::string> ScenePartNames(std::string_view scene_script);
 bool AnySupplied(const std::vector<std::string>& names, const std::set<std::string>& assets);
 
 // The names among `asset_names` that no mesh of `urdf_mesh_files` and no Part of
-// `scene_script` refers to, in the order given.
+// `scene_script` refers to, in the order given. When a mesh of `urdf_mesh_files` is of a
+// format that names other files (an OBJ its .mtl and their images, a Collada or glTF its
+// images and buffers: mesh_dependencies.h), the materials, images and buffers of the bundle
+// count as referenced: `mbstream submit` attaches the ones its meshes name (the check is by
+// name, the server does not read the meshes here), so an unrelated file is still dropped.
 std::vector<std::string> UnreferencedAssets(const std::vector<std::string>& asset_names,
                                             const std::vector<std::string>& urdf_mesh_files,
                                             std::string_view scene_script);

@@ -10,6 +10,7 @@
 #include "common/check.h"
 #include "common/utf8.h"
 #include "server/parse/asset_references.h"
+#include "server/parse/mesh_dependencies.h"
 #include "server/parse/model_file.h"
 #include "server/parse/sdf_import.h"
 #include "urdf_reading/mesh_file_search.h"
@@ -135,11 +136,13 @@ class AssetSet {
  public:
   explicit AssetSet(v1::ModelBundle* bundle) : bundle_(bundle) {}
 
-  void Add(const std::string& name, const fs::path& path, const std::string& reference) {
+  // The data of the file, or nullptr when it was added before.
+  const std::string* Add(const std::string& name, const fs::path& path,
+                         const std::string& reference) {
     const fs::path file = fs::weakly_canonical(path);
     const auto [it, inserted] = files_.emplace(name, std::make_pair(file, reference));
     if (!inserted) {
-      if (it->second.first == file) return;  // the same file referenced again: stored once
+      if (it->second.first == file) return nullptr;  // the same file again: stored once
       throw InputError("asset '" + name + "' would hold two files: " + it->second.first.string() +
                        " (for '" + it->second.second + "') and " + file.string() + " (for '" +
                        reference + "'); rename one of the files");
@@ -147,12 +150,47 @@ class AssetSet {
     v1::Asset* asset = bundle_->add_assets();
     asset->set_name(name);
     asset->set_data(ReadFile(path));
+    return &asset->data();
   }
 
  private:
   v1::ModelBundle* bundle_;
   std::map<std::string, std::pair<fs::path, std::string>> files_;
 };
+
+// The files the mesh (or material library) at `path`, stored as `name` with the bytes `data`,
+// names (mesh_dependencies.h), attached beside it, an OBJ's .mtl with its images in turn: as
+// written relative to the mesh, else by their file name alone beside it (exported files often
+// name a folder of the author's machine; the viewer looks there too). A reference that leaves
+// the bundle or is nowhere is a warning, and the mesh is drawn in its material colour.
+void AttachReferencedFiles(AssetSet* assets, const std::string& name, const fs::path& path,
+                           const std::string& data, std::vector<std::string>* warnings) {
+  for (const std::string& reference : MeshFileReferences(name, data)) {
+    const fs::path folder = path.parent_path();
+    const std::string base = fs::path(reference).filename().string();
+    std::vector<std::pair<std::string, fs::path>> candidates;  // asset name, file
+    if (std::string as = CompanionAssetName(name, reference); !as.empty()) {
+      candidates.emplace_back(std::move(as), folder / reference);
+    }
+    if (std::string as = CompanionAssetName(name, base); !as.empty() && base != reference) {
+      candidates.emplace_back(std::move(as), folder / base);
+    }
+    std::error_code error;
+    const auto found = std::find_if(candidates.begin(), candidates.end(), [&](const auto& c) {
+      return fs::is_regular_file(c.second, error);
+    });
+    if (found == candidates.end()) {
+      warnings->push_back(path.string() + " names '" + reference + "', which is not in " +
+                          folder.string() +
+                          " (the model is sent without it; a texture shows its material colour)");
+      continue;
+    }
+    const std::string* added = assets->Add(found->first, found->second, path.string());
+    if (added != nullptr && MayReferenceFiles(found->first)) {
+      AttachReferencedFiles(assets, found->first, found->second, *added, warnings);
+    }
+  }
+}
 
 std::string NotFound(const std::string& what, const std::string& filename,
                      const std::vector<fs::path>& tried, const std::string& note) {
@@ -211,8 +249,8 @@ BundleRead ReadModelBundle(const BundleFiles& files) {
         if (found.found.empty()) {
           read.warnings.push_back(urdf_path.string() + ": " +
                                   NotFound(what, filename, found.tried, found.note));
-        } else {
-          assets.Add(name, found.found, filename);
+        } else if (const std::string* data = assets.Add(name, found.found, filename)) {
+          AttachReferencedFiles(&assets, name, found.found, *data, &read.warnings);
         }
       }
     };

@@ -1,16 +1,19 @@
 // Drives Debian's chromium (headless, WebGL through SwiftShader) with playwright-core from
 // viewer/web/node_modules: opens an mbstream-viewer --web page, waits for frames (events,
 // never fixed sleeps), records what the page draws, opens a second page, takes a screenshot.
-// Usage: node web_page_check.mjs URL OUT_DIR WEB_ROOT [replay | denied]
+// Usage: node web_page_check.mjs URL OUT_DIR WEB_ROOT [replay | denied | watch-only:TOKEN]
 // (`denied`: pages with a token lacking the view role and with none are refused; an https URL
-// is opened with --ignore-certificate-errors, the test's certificate being self-signed)
+// is opened with --ignore-certificate-errors, the test's certificate being self-signed;
+// `watch-only:TOKEN`: URL's page (a view token) cannot steer the replay, a page with TOKEN
+// (the run role) pauses it for both)
 // Prints one JSON object on stdout: the figures and the recorded frames.
 import { createRequire } from 'node:module';
 import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 
-const [url, outDir, webRoot, mode] = process.argv.slice(2);
+const [url, outDir, webRoot, modeArg] = process.argv.slice(2);
+const [mode, steerToken] = (modeArg || '').split(':');
 const require = createRequire(resolve(webRoot, 'package.json'));
 const { chromium } = require('playwright-core');
 
@@ -61,6 +64,30 @@ try {
                       compare: await page.evaluate(() => window.mbstream.compare),
                       ghost_distance: await page.evaluate(() => window.mbstream.ghost_distance) };
     await page.evaluate(() => window.mbstream.send({ resume: true }));
+  }
+
+  if (mode === 'watch-only') {
+    // Its control is refused (the viewer says so) and the replay plays on.
+    result.watch_only = { controls: await page.evaluate(() => window.mbstream.controls),
+                          disabled: await page.evaluate(() => document.getElementById('play').disabled) };
+    await page.evaluate(() => window.mbstream.send({ pause: true }));
+    await page.waitForFunction(() => window.mbstream.control_refused >= 1, null, { timeout: 30000 });
+    const at = await page.evaluate(() => window.mbstream.seq);
+    await page.waitForFunction((s) => window.mbstream.seq !== s, at, { timeout: 30000 });
+    result.watch_only.paused_after = await page.evaluate(() => window.mbstream.paused);
+    result.watch_only.message = await page.evaluate(() => window.mbstream.controls_message);
+    // A page with the run role pauses the replay: for every page.
+    const steering = await context.newPage();
+    await steering.goto(new URL(url).origin + '/#token=' + steerToken, { waitUntil: 'load' });
+    await steering.waitForFunction(() => window.mbstream && window.mbstream.frames >= 1, null,
+                                   { timeout: 60000 });
+    result.watch_only.steer_controls = await steering.evaluate(() => window.mbstream.controls);
+    await steering.evaluate(() => window.mbstream.send({ pause: true }));
+    await steering.waitForFunction(() => window.mbstream.paused === true, null, { timeout: 30000 });
+    await page.waitForFunction(() => window.mbstream.paused === true, null, { timeout: 30000 });
+    result.watch_only.paused_for_both = true;
+    await steering.evaluate(() => window.mbstream.send({ resume: true }));
+    await steering.close();
   }
 
   // A second page opened now shows the same run at once (the snapshot on connect).

@@ -58,6 +58,18 @@ class WebViewTest : public ::testing::Test {
     EXPECT_TRUE(url) << ReadTextFile(log.string());
     return url.value_or("");
   }
+  // Restarts the server requiring tokens: an admin and a view token (in admin.token and
+  // view.token of the test's folder) and the lines of `more_tokens`.
+  void RestartServerWithTokens(const std::string& more_tokens) {
+    std::ofstream(dir_ / "tokens") << "admin-token-0123456789 admin\n"
+                                   << "view-token-0123456789 view\n"
+                                   << more_tokens;
+    std::ofstream(dir_ / "admin.token") << "admin-token-0123456789\n";
+    std::ofstream(dir_ / "view.token") << "view-token-0123456789\n";
+    server_ = std::make_unique<ServerProcess>(
+        MBSTREAM_SERVER, (dir_ / "data-tokens").string(),
+        std::vector<std::string>{"--token-file", (dir_ / "tokens").string()});
+  }
   // Runs the browser on `url`; returns what it saw.
   nlohmann::json Browse(const std::string& url, const std::string& mode = "") {
     const CommandOutcome browsed = RunCommand(
@@ -168,13 +180,7 @@ TEST_F(WebViewTest, HttpsPageWithAViewTokenDrawsTheRunAndOthersAreRefused) {
       "subjectAltName=IP:127.0.0.1 -keyout " +
       d + "/web.key -out " + d + "/web.pem 2>&1");
   ASSERT_EQ(made.exit_code, 0) << made.output;
-  std::ofstream(dir_ / "tokens") << "admin-token-0123456789 admin\n"
-                                 << "view-token-0123456789 view\n"
-                                 << "not-a-viewer-token submit\n";
-  std::ofstream(dir_ / "admin.token") << "admin-token-0123456789\n";
-  std::ofstream(dir_ / "view.token") << "view-token-0123456789\n";
-  server_ = std::make_unique<ServerProcess>(
-      MBSTREAM_SERVER, d + "/data-tokens", std::vector<std::string>{"--token-file", d + "/tokens"});
+  RestartServerWithTokens("not-a-viewer-token submit\n");
   const std::string url = StartViewer("--follow --exit-after-runs 1 --token-file " + d +
                                       "/view.token --web-tls " + d + "/web.pem," + d + "/web.key");
   ASSERT_THAT(url, StartsWith("https://127.0.0.1:"));
@@ -204,6 +210,34 @@ TEST_F(WebViewTest, HttpsPageWithAViewTokenDrawsTheRunAndOthersAreRefused) {
   EXPECT_THAT(log, HasSubstr("refused (403)"));
   EXPECT_THAT(log, ::testing::Not(HasSubstr("view-token-0123456789")));  // never logged
   ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
+}
+
+// A replay is one for the viewer's window and every page: a page whose token has only the view
+// role watches it (its controls disabled, a control it sends anyway refused by the viewer), a
+// page whose token has the run role (as ReplayRun needs) pauses it for every page.
+TEST_F(WebViewTest, AViewOnlyPageCannotSteerTheSharedReplayARunTokenCan) {
+  const std::string d = dir_.string();
+  RestartServerWithTokens("steer-token-0123456789 view,run\n");
+  const std::string admin = " --token-file " + d + "/admin.token ";
+  const CommandOutcome a =
+      Cli(admin + "run irb1600 --spec models/irb1600/seed-run.json --realtime 50 --watch");
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  const std::string run = a.output.substr(0, a.output.find('\n'));
+  // The viewer's own token has the view role only: it does not lend pages more.
+  const std::string url = StartViewer("--run " + run + " --loop --token-file " + d + "/view.token");
+  const nlohmann::json seen =
+      Browse(url + "#token=view-token-0123456789", "watch-only:steer-token-0123456789");
+  ASSERT_TRUE(seen.contains("watch_only")) << seen.dump().substr(0, 2000);
+  const nlohmann::json& watch = seen["watch_only"];
+  EXPECT_EQ(watch["controls"], false) << watch;
+  EXPECT_EQ(watch["disabled"], true) << watch;
+  EXPECT_EQ(watch["paused_after"], false) << watch;  // its pause did nothing
+  EXPECT_THAT(watch.value("message", ""), HasSubstr("run role"));
+  EXPECT_EQ(watch["steer_controls"], true) << watch;
+  EXPECT_EQ(watch["paused_for_both"], true) << watch;
+  EXPECT_THAT(seen.value("hud", ""), HasSubstr("watching only"));
+  EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
+  EXPECT_THAT(ReadTextFile((dir_ / "viewer.log").string()), HasSubstr("control refused"));
 }
 
 // A robot whose every visual is a Collada mesh, as published ROS descriptions ship them (the
@@ -336,10 +370,10 @@ TEST_F(WebViewTest, ATexturedMeshAndAMissingOneLookInThePageAsInTheWindow) {
       << "<origin xyz=\"0 0 0.3\"/></joint>\n</robot>\n";
   const CommandOutcome submitted = Cli("submit " + (robot / "skinbot.urdf").string());
   ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
-  // The server keeps only the meshes a model names (not an OBJ's .mtl or its image): the
-  // viewer draws the model from its files on disk.
-  const std::string url =
-      StartViewer("--follow --exit-after-runs 1 --model " + (robot / "skinbot.urdf").string());
+  // The bundle carries the OBJ's .mtl and its image (mbstream submit attaches them, the
+  // server keeps them): the viewer draws the texture from the server's bundle alone.
+  EXPECT_THAT(submitted.output, HasSubstr(", 3 assets"));
+  const std::string url = StartViewer("--follow --exit-after-runs 1");
   const CommandOutcome started =
       Cli("run skinbot --duration 20 --output-interval 0.05 --realtime 1");
   ASSERT_EQ(started.exit_code, 0) << started.output;

@@ -281,6 +281,7 @@ class WebServerAccessTest : public WebServerTest {
         checked_.push_back(token);
       }
       if (token == "good") return done({});
+      if (token == "watch") return done({0, "it needs the run role", false});
       if (token.empty()) return done({401, "the simulation server requires a token"});
       return done({403, "this token may not watch runs"});
     };
@@ -299,6 +300,7 @@ class WebServerAccessTest : public WebServerTest {
 TEST_F(WebServerAccessTest, AGoodTokenGetsTheSceneAndTheFrame) {
   auto page = Page();
   page->write(asio::buffer(std::string(R"({"token":"good"})")));
+  EXPECT_EQ(Read(*page), R"({"controls":true,"message":"","type":"access"})");
   EXPECT_EQ(Read(*page), R"({"type":"scene","version":3})");
   EXPECT_EQ(Read(*page), R"({"type":"frame","n":1})");
   page->write(asio::buffer(std::string(R"({"pause":true})")));  // controls pass after it
@@ -306,6 +308,25 @@ TEST_F(WebServerAccessTest, AGoodTokenGetsTheSceneAndTheFrame) {
   EXPECT_EQ(Read(*page), R"({"type":"frame","n":2})");
   EXPECT_EQ(Checked(), std::vector<std::string>{"good"});
   EXPECT_EQ(Controls(1), std::vector<std::string>{R"({"pause":true})"});
+}
+
+// A page admitted to watch only: told so first; its controls are refused to it alone, never
+// passed on, and it keeps getting frames.
+TEST_F(WebServerAccessTest, AWatchOnlyPagesControlsAreRefusedAndItWatchesOn) {
+  auto page = Page();
+  page->write(asio::buffer(std::string(R"({"token":"watch"})")));
+  EXPECT_EQ(Read(*page), R"({"controls":false,"message":"it needs the run role","type":"access"})");
+  EXPECT_EQ(Read(*page), R"({"type":"scene","version":3})");
+  EXPECT_EQ(Read(*page), R"({"type":"frame","n":1})");
+  page->write(asio::buffer(std::string(R"({"seek_seq":5})")));
+  EXPECT_EQ(Read(*page), R"({"message":"it needs the run role","type":"control_refused"})");
+  auto good = Page();  // a page that may steer: its control is the first passed on
+  good->write(asio::buffer(std::string(R"({"token":"good"})")));
+  EXPECT_THAT(Read(*good), HasSubstr(R"("controls":true)"));
+  good->write(asio::buffer(std::string(R"({"pause":true})")));
+  EXPECT_EQ(Controls(1), std::vector<std::string>{R"({"pause":true})"});
+  server_->PublishFrame(R"({"type":"frame","n":2})");
+  EXPECT_EQ(Read(*page), R"({"type":"frame","n":2})");
 }
 
 TEST_F(WebServerAccessTest, AWrongOrMissingTokenIsRefusedWithItsStatusAndClosed) {

@@ -149,8 +149,11 @@ int RunLink(const LinkCommandOptions& options) {
     if (!options.link.follow)
       send = [&link](const v1::ReplayControl& c) { return link.SendControl(c); };
     try {
-      WebOptions web_options = options.web;  // pages need the server's view role
-      auto access = std::make_shared<PageAccess>(options.link.server, options.link.security);
+      // Pages need the server's view role; steering a replay (every page's and the window's)
+      // needs its run role.
+      WebOptions web_options = options.web;
+      auto access = std::make_shared<PageAccess>(options.link.server, options.link.security,
+                                                 !options.link.follow);
       web_options.check_access = [access](const std::string& token, auto done) {
         access->Check(token, std::move(done));
       };

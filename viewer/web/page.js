@@ -10,6 +10,9 @@ const state = window.mbstream = {
   ghost_distance: null, rendered: 0, latency_ms: [], scene_bytes: 0, frame_bytes: 0,
   record: null,  // a test sets [] to get {seq, t, probes} of every frame drawn from then on
   denied: null,  // {status, message} when the viewer refused this page's token
+  // False when this page's token may watch but not steer the replay (every page's and the
+  // viewer window's: the server's run role); `controls_message` says why.
+  controls: true, controls_message: '', control_refused: 0,
 };
 
 const view = document.getElementById('view');
@@ -171,6 +174,7 @@ function updateHud() {
                `  max ${(1e3 * state.ghost_distance_max).toPrecision(3)} mm`);
   }
   if (state.missing_meshes) lines.push(state.missing_meshes);
+  if (state.mode === 'replay' && !state.controls) lines.push(`watching only: ${state.controls_message}`);
   if (state.denied) lines.push(`refused (${state.denied.status}): ${state.denied.message}`);
   else if (!state.connected) lines.push('disconnected: reconnecting...');
   hud.textContent = lines.join('\n');
@@ -184,6 +188,7 @@ let seeking = false;
 function send(control) { if (socket && socket.readyState === WebSocket.OPEN) socket.send(JSON.stringify(control)); }
 function updateReplay(message) {
   replay.hidden = message.mode !== 'replay';
+  for (const input of replay.querySelectorAll('button, input, select')) input.disabled = !state.controls;
   seek.max = Math.max(0, message.run_frames - 1);
   if (!seeking) seek.value = Math.max(0, message.seq);
   document.getElementById('speed').value = String(message.speed);
@@ -195,7 +200,7 @@ document.getElementById('speed').onchange = (e) => send({ speed: Number(e.target
 seek.oninput = () => { seeking = true; };
 seek.onchange = () => { seeking = false; send({ seek_seq: Number(seek.value) }); };
 window.addEventListener('keydown', (e) => {
-  if (state.mode !== 'replay') return;
+  if (state.mode !== 'replay' || !state.controls) return;
   if (e.code === 'Space') send(state.paused ? { resume: true } : { pause: true });
   else if (e.code === 'ArrowLeft') send({ step: -1 });
   else if (e.code === 'ArrowRight') send({ step: 1 });
@@ -256,6 +261,13 @@ function connect() {
       onFrame(message);
     } else if (message.type === 'denied') {
       onDenied(message);
+    } else if (message.type === 'access') {
+      state.controls = message.controls;
+      state.controls_message = message.message;
+    } else if (message.type === 'control_refused') {
+      state.control_refused += 1;
+      state.controls_message = message.message;
+      updateHud();
     }
   };
 }

@@ -152,7 +152,7 @@ class PageSession : public WebServer::Impl::Page,
       return Closed();
     }
     if (!server_->options.check_access) {
-      Admit();
+      Admit({});
     } else {
       token_timer_.expires_after(kTokenTimeout);
       token_timer_.async_wait([self = Self()](beast::error_code timer_ec) {
@@ -165,8 +165,16 @@ class PageSession : public WebServer::Impl::Page,
   }
 
   // The page may have what the other pages have: it joins them, with the snapshot.
-  void Admit() {
+  void Admit(const WebOptions::Access& access) {
     admitted_ = true;
+    controls_ = access.controls;
+    controls_message_ = access.message;
+    if (server_->options.check_access) {  // what the page may do, before the scene
+      notice_ = std::make_shared<const std::string>(nlohmann::json{
+          {"type", "access"},
+          {"controls", access.controls},
+          {"message", access.message}}.dump());
+    }
     std::shared_ptr<const std::string> scene, frame;
     {
       std::lock_guard<std::mutex> lock(server_->mutex);
@@ -188,7 +196,7 @@ class PageSession : public WebServer::Impl::Page,
         self->checking_ = false;
         if (self->closed_) return;
         if (access.status != 0) return self->Deny(access);
-        self->Admit();
+        self->Admit(access);
       });
     });
   }
@@ -202,6 +210,7 @@ class PageSession : public WebServer::Impl::Page,
         {"message", access.message}}.dump());
     scene_.reset();
     frame_.reset();
+    notice_.reset();
     if (!writing_) Write();
   }
 
@@ -219,9 +228,9 @@ class PageSession : public WebServer::Impl::Page,
       return;
     }
     if (!admitted_) return;
-    std::shared_ptr<const std::string> next = scene_ ? scene_ : frame_;
+    std::shared_ptr<const std::string>& slot = notice_ ? notice_ : scene_ ? scene_ : frame_;
+    std::shared_ptr<const std::string> next = std::move(slot);
     if (!next) return;
-    (scene_ ? scene_ : frame_).reset();
     writing_ = true;
     sending_ = next;
     ws_.text(true);
@@ -266,6 +275,12 @@ class PageSession : public WebServer::Impl::Page,
       return;
     }
     if (token) return;  // a page that sent its token again (reconnect logic): nothing to do
+    if (!controls_) {   // it watches only: the replay is every page's and the window's
+      spdlog::warn("web: page {}: control refused: {}", peer_, controls_message_);
+      notice_ = std::make_shared<const std::string>(
+          nlohmann::json{{"type", "control_refused"}, {"message", controls_message_}}.dump());
+      return Write();
+    }
     if (!ws_.got_text() || !server_->on_control || !server_->on_control(text)) {
       spdlog::warn("web: page {}: control '{}' not applied", peer_, text.substr(0, 200));
     }
@@ -286,7 +301,10 @@ class PageSession : public WebServer::Impl::Page,
   asio::steady_timer token_timer_;
   beast::flat_buffer buffer_;
   std::shared_ptr<const std::string> scene_, frame_, sending_, denied_;
-  bool admitted_ = false;  // may get the scene and frames
+  std::shared_ptr<const std::string> notice_;  // to this page alone, before the scene
+  bool admitted_ = false;                      // may get the scene and frames
+  bool controls_ = true;                       // may steer the replay
+  std::string controls_message_;
   bool checking_ = false;  // its token is being checked
   bool writing_ = false;
   bool closed_ = false;

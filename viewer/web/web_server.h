@@ -33,10 +33,14 @@ struct WebOptions {
   std::string tls_key_file;    // its PEM private key
 
   // A page's verdict: status 0 admits it; 401 (no or unknown token), 403 (not allowed) or
-  // 503 (could not check) refuse it with `message`.
+  // 503 (could not check) refuse it with `message`. An admitted page with `controls` false
+  // watches only: its replay controls are refused (logged, and the page told
+  // {"type":"control_refused","message":...}), `message` saying why; the page learns it on
+  // admission from {"type":"access","controls":BOOL,"message":...}.
   struct Access {
     int status = 0;
     std::string message;
+    bool controls = true;
   };
   // Checks a page's token (maybe empty); calls `done` once, on any thread. Empty = every page
   // is admitted without a token message.

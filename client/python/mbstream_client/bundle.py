@@ -1,6 +1,9 @@
 """Model bundles from files, like the C++ CLI's ReadModelBundle
 (server/wire/model_bundle_files.cc)."""
 import os
+import posixpath
+import re
+import urllib.parse
 from typing import Iterable, Optional, Union
 
 from ._stubs import model_pb2
@@ -44,13 +47,74 @@ def _add_asset(bundle: "model_pb2.ModelBundle", name: str, path: str) -> None:
     bundle.assets.add(name=name, data=_read(path))
 
 
+_MESHES = (".stl", ".obj", ".dae", ".gltf", ".glb")
+
+
+def _references(name: str, data: bytes) -> list:
+    """The files a mesh or material file names, as the C++ MeshFileReferences
+    (server/parse/mesh_dependencies.cc): an OBJ's mtllib, an MTL's map_*/bump/disp/decal/refl/
+    norm images (the last word), a Collada's <library_images> <init_from>, a glTF's "uri"s;
+    embedded data and URLs are not references."""
+    text = data.decode("utf-8", "replace")
+    lower = name.lower()
+    found = []
+    if lower.endswith(".obj"):
+        found = [line.split(None, 1)[1] for line in text.splitlines()
+                 if line.strip().startswith("mtllib") and len(line.split(None, 1)) == 2
+                 and line.split(None, 1)[0] == "mtllib"]
+    elif lower.endswith(".mtl"):
+        for line in text.splitlines():
+            words = line.split()
+            key = words[0].lower() if words else ""
+            if len(words) > 1 and ((key.startswith("map_") and len(key) > 4) or
+                                   key in ("bump", "disp", "decal", "refl", "norm")):
+                found.append(words[-1])
+    elif lower.endswith(".dae"):
+        for images in re.findall(r"<library_images.*?(?:</library_images|$)", text, re.S):
+            found += [re.sub(r"^<ref>(.*)</ref>$", r"\1", v.strip())
+                      for v in re.findall(r"<init_from>(.*?)</init_from>", images, re.S)]
+    elif lower.endswith(".gltf"):
+        found = [u.replace("\\/", "/") for u in re.findall(r'"uri"\s*:\s*"([^"]*)"', text)]
+    names = []
+    for ref in found:
+        ref = ref.strip()
+        if ref.startswith("file://"):
+            ref = ref[7:]
+        if not ref or ref.startswith("data:") or "://" in ref:
+            continue
+        ref = urllib.parse.unquote(ref).replace("\\", "/")
+        if ref not in names:
+            names.append(ref)
+    return names
+
+
+def _add_referenced(bundle: "model_pb2.ModelBundle", name: str, path: str) -> None:
+    """Attaches the files the mesh `path` (asset `name`) names beside it, as the C++ CLI does:
+    relative to the mesh, else by file name beside it; never outside the bundle."""
+    for ref in _references(name, _read(path)):
+        folder = posixpath.dirname(name)
+        for candidate in (ref, posixpath.basename(ref)):
+            if candidate.startswith("/") or re.match(r"^[A-Za-z]:", candidate):
+                continue
+            asset = posixpath.normpath(posixpath.join(folder, candidate))
+            file = os.path.join(os.path.dirname(path), candidate)
+            if asset.startswith("..") or not os.path.isfile(file):
+                continue
+            if not any(a.name == asset for a in bundle.assets):
+                _add_asset(bundle, asset, file)
+                _add_referenced(bundle, asset, file)
+            break
+
+
 def read_model_bundle(urdf_path_or_dir: PathLike, scene: Optional[PathLike] = None,
                       assets: Iterable[PathLike] = (),
                       name: Optional[str] = None) -> "model_pb2.ModelBundle":
     """A ModelBundle from a URDF or SDFormat file (the server tells them apart by content),
     or from a directory holding exactly one .urdf, or else exactly one .sdf (then its one
-    .scene, unless `scene` is given, and every .stl below it, named by their path relative
-    to the directory). `assets` are more files, named by their file name."""
+    .scene, unless `scene` is given, and every mesh file below it (.stl, .obj, .dae, .gltf,
+    .glb), named by their path relative to the directory, with the files those name beside
+    them: an OBJ's .mtl and its images, a Collada's or glTF's images and buffers, as
+    `mbstream submit` attaches them). `assets` are more files, named by their file name."""
     path = os.fspath(urdf_path_or_dir)
     bundle = model_pb2.ModelBundle(name=name or "")
     urdf_path = path
@@ -67,11 +131,14 @@ def read_model_bundle(urdf_path_or_dir: PathLike, scene: Optional[PathLike] = No
         scenes = _files_with_extension(path, ".scene")
         if len(scenes) == 1 and not scene:
             bundle.scene_script = _text(scenes[0])
-        stls = []
+        meshes = []
         for root, _, files in os.walk(path):
-            stls += [os.path.join(root, f) for f in files if f.lower().endswith(".stl")]
-        for stl in sorted(stls):
-            _add_asset(bundle, os.path.relpath(stl, path).replace(os.sep, "/"), stl)
+            meshes += [os.path.join(root, f) for f in files if f.lower().endswith(_MESHES)]
+        for mesh in sorted(meshes):
+            name_in_bundle = os.path.relpath(mesh, path).replace(os.sep, "/")
+            if not any(a.name == name_in_bundle for a in bundle.assets):
+                _add_asset(bundle, name_in_bundle, mesh)
+                _add_referenced(bundle, name_in_bundle, mesh)
     bundle.urdf = _text(urdf_path)
     bundle.urdf_file_name = urdf_path
     if scene:

@@ -135,6 +135,21 @@ class ErrorTest(unittest.TestCase):
             mb.connect("192.0.2.1:50051", token="s3cret")
         self.assertIn("refusing to send a token in the clear", caught.exception.message)
 
+    def test_a_folder_bundle_carries_a_meshs_material_and_texture(self):
+        # issue 30: a textured OBJ keeps its .mtl and image (named beside the mesh); files no
+        # mesh names stay home.
+        with tempfile.TemporaryDirectory() as tmp:
+            files = {"r.urdf": '<robot name="r"/>', "meshes/cube.obj": "mtllib cube.mtl\n",
+                     "meshes/cube.mtl": "newmtl a\nmap_Kd -s 1 1 1 ../textures/skin.png\n",
+                     "textures/skin.png": "skin", "notes.png": "not named"}
+            for name, text in files.items():
+                os.makedirs(os.path.dirname(os.path.join(tmp, name)), exist_ok=True)
+                with open(os.path.join(tmp, name), "w") as f:
+                    f.write(text)
+            bundle = mb.read_model_bundle(tmp)
+            self.assertEqual([a.name for a in bundle.assets],
+                             ["meshes/cube.obj", "meshes/cube.mtl", "textures/skin.png"])
+
     def test_hostile_inputs_are_named_before_any_call(self):
         # issue 36: a URDF that is not UTF-8 is named by file and line, not UnicodeDecodeError.
         with tempfile.TemporaryDirectory() as tmp:

@@ -42,5 +42,15 @@ TEST(AssetReferencesTest, UnreferencedAssetsInTheOrderGiven) {
               ElementsAre("spare.stl", "notes.txt"));
 }
 
+TEST(AssetReferencesTest, AnObjKeepsItsMaterialAndImageAndAnUnrelatedFileIsStillDropped) {
+  const std::vector<std::string> assets = {"meshes/cube.obj", "meshes/cube.mtl",
+                                           "textures/skin.png", "notes.txt", "spare.stl"};
+  EXPECT_THAT(UnreferencedAssets(assets, {"package://r/meshes/cube.obj"}, ""),
+              ElementsAre("notes.txt", "spare.stl"));
+  // Meshes that name no files (STL) keep no images.
+  EXPECT_THAT(UnreferencedAssets({"base.stl", "skin.png", "base.mtl"}, {"base.stl"}, ""),
+              ElementsAre("skin.png", "base.mtl"));
+}
+
 }  // namespace
 }  // namespace mbstream

@@ -188,5 +188,36 @@ TEST_F(ModelBundleFilesTest, XacroIsRefusedWithTheCommandThatExpandsIt) {
   }
 }
 
+TEST_F(ModelBundleFilesTest, AMeshCarriesItsMaterialsAndImagesBesideIt) {
+  Write("r/meshes/cube.obj", "mtllib cube.mtl\nusemtl skin\nv 0 0 0\n");
+  Write("r/meshes/cube.mtl",
+        "newmtl skin\nmap_Kd ../textures/skin.png\nmap_Ks C:\\Users\\me\\shine.png\n"
+        "map_bump gone.png\nmap_d ../../../outside.png\n");
+  Write("r/textures/skin.png", "skin");
+  Write("r/meshes/shine.png", "shine");  // named by a path of the author's machine
+  Write("outside.png", "outside");       // would leave the bundle
+  Write("r/meshes/part.dae",
+        "<COLLADA><library_images><image><init_from>../textures/skin.png</init_from></image>"
+        "</library_images></COLLADA>");
+  Write("r/spare.png", "not named by any mesh");
+  const fs::path urdf = Write("r/robot.urdf", R"(<robot name="r"><link name="a">
+    <visual><geometry><mesh filename="meshes/cube.obj"/></geometry></visual>
+    <visual><geometry><mesh filename="package://r/meshes/part.dae"/></geometry></visual>
+  </link></robot>)");
+  BundleFiles files;
+  files.model_path = urdf.string();
+  const BundleRead read = ReadModelBundle(files);
+  EXPECT_THAT(
+      Assets(read.bundle),
+      UnorderedElementsAre(Pair("meshes/cube.obj", HasSubstr("mtllib")),
+                           Pair("meshes/cube.mtl", HasSubstr("newmtl")),
+                           Pair("textures/skin.png", "skin"), Pair("meshes/shine.png", "shine"),
+                           Pair("r/meshes/part.dae", HasSubstr("COLLADA")),
+                           Pair("r/textures/skin.png", "skin")));
+  EXPECT_THAT(read.warnings,
+              ElementsAre(HasSubstr("names 'gone.png', which is not in"),
+                          HasSubstr("names '../../../outside.png', which is not in")));
+}
+
 }  // namespace
 }  // namespace mbstream
