@@ -1,5 +1,6 @@
 #include "server/engine/engine.h"
 
+#include "server/choose/loop_target_run.h"
 #include "server/choose/target_run.h"
 #include "server/sim/loop_run.h"
 #include "server/sim/simulate.h"
@@ -8,8 +9,10 @@ namespace mbstream {
 
 RunResult Simulate(const Model& model, const std::vector<LoopClosure>& loops,
                    const RunConfig& config, FrameSink* sink, const std::atomic<bool>* cancel) {
-  // ValidateLoopRun refuses a target for a model with loops (PlanLoopRun).
-  if (!loops.empty()) return SimulateLoops(model, loops, config, sink, cancel);
+  if (!loops.empty()) {
+    if (config.target.any()) return RunLoopsWithTarget(model, loops, config, sink, cancel);
+    return SimulateLoops(model, loops, config, sink, cancel);
+  }
   return Simulate(model, config, sink, cancel);
 }
 
