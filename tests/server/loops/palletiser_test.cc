@@ -43,6 +43,26 @@ ToolPose Tool(const Model& model, Data& data, const double* q) {
   return pose;
 }
 
+// The tool's worst over a run's frames: its largest rotation and tilt from the drawn pose, and
+// how far its point moved from it (travel) and dropped below it.
+struct ToolWorst {
+  double rotation = 0.0, tilt = 0.0, travel = 0.0, drop = 0.0;
+};
+
+ToolWorst WorstOf(const Model& model, const RunResult& result) {
+  Data data(model);
+  const ToolPose drawn = Tool(model, data, Eigen::VectorXd::Zero(model.num_dofs()).eval().data());
+  ToolWorst worst;
+  for (int k = 0; k < result.num_frames(); ++k) {
+    const ToolPose pose = Tool(model, data, &result.q[static_cast<size_t>(k) * result.num_dofs]);
+    worst.rotation = std::max(worst.rotation, pose.rotation);
+    worst.tilt = std::max(worst.tilt, pose.tilt);
+    worst.travel = std::max(worst.travel, (pose.tcp - drawn.tcp).norm());
+    worst.drop = std::max(worst.drop, drawn.tcp.z() - pose.tcp.z());
+  }
+  return worst;
+}
+
 void Sine(DriveConfig& drive, double amplitude, double omega, double phase) {
   drive.kind = DriveConfig::Kind::kPrescribed;
   drive.trajectory.amplitude = {amplitude};
@@ -77,17 +97,9 @@ TEST(PalletiserTest, DrivenItsParallelogramsKeepTheToolsOrientation) {
   EXPECT_EQ(result.stats.loops.equations, 10);
   EXPECT_EQ(result.stats.loops.independent, 4);
   EXPECT_EQ(result.stats.loops.mobility, 4);
-  Data data(sdf.model);
-  const ToolPose drawn = Tool(sdf.model, data, Eigen::VectorXd::Zero(8).eval().data());
-  double worst = 0.0, travel = 0.0;
-  for (int k = 0; k < result.num_frames(); ++k) {
-    const ToolPose pose =
-        Tool(sdf.model, data, &result.q[static_cast<size_t>(k) * result.num_dofs]);
-    worst = std::max(worst, pose.rotation);
-    travel = std::max(travel, (pose.tcp - drawn.tcp).norm());
-  }
-  EXPECT_GT(travel, 0.5);  // the tool moves
-  EXPECT_LT(worst, 1e-10);
+  const ToolWorst worst = WorstOf(sdf.model, result);
+  EXPECT_GT(worst.travel, 0.5);  // the tool moves
+  EXPECT_LT(worst.rotation, 1e-10);
   EXPECT_LT(result.stats.drift_position_max, 1e-11);
 }
 
@@ -106,17 +118,9 @@ TEST(PalletiserTest, PassiveItKeepsItsEnergyAndItsFlangeLevel) {
   EXPECT_EQ(result.stats.loops.mobility, 4);
   EXPECT_LT(result.stats.energy_error_max, 1e-7);
   EXPECT_LT(result.stats.drift_position_max, 1e-10);
-  Data data(sdf.model);
-  const ToolPose drawn = Tool(sdf.model, data, Eigen::VectorXd::Zero(8).eval().data());
-  double worst_tilt = 0.0, drop = 0.0;
-  for (int k = 0; k < result.num_frames(); ++k) {
-    const ToolPose pose =
-        Tool(sdf.model, data, &result.q[static_cast<size_t>(k) * result.num_dofs]);
-    worst_tilt = std::max(worst_tilt, pose.tilt);
-    drop = std::max(drop, drawn.tcp.z() - pose.tcp.z());
-  }
-  EXPECT_GT(drop, 0.05);  // it falls
-  EXPECT_LT(worst_tilt, 1e-8);
+  const ToolWorst worst = WorstOf(sdf.model, result);
+  EXPECT_GT(worst.drop, 0.05);  // it falls
+  EXPECT_LT(worst.tilt, 1e-8);
 }
 
 }  // namespace
