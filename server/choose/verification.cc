@@ -62,7 +62,8 @@ Verification VerifyTarget(const Model& model, const RunConfig& asked, const Meth
     v.how = asked.verify ? "skipped: no independent check (no other candidate, and no tighter "
                            "tolerance for the run's method)"
                          : "skipped: verify is false";
-    v.message = "not verified (" + v.how.substr(9) + "); the choice predicted the target met";
+    v.message = "not verified (" + v.how.substr(9) + "); the choice predicted the target " +
+                (choice.resolvable ? "met" : "out of reach (see the choice's reason)");
     return v;
   }
   const Candidate& check = choice.candidates[static_cast<size_t>(choice.check)];

@@ -1,6 +1,7 @@
 // Accuracy targets on mechanisms with closed loops (server/choose/loop_target_run.h): the
 // four-bar's passive run meets a target, verified by a tighter run of the mechanism; a driven
 // run is the closed form; a method without a tolerance of its own is refused.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -47,6 +48,20 @@ TEST(LoopTargetTest, TheFourBarsPassiveRunMeetsItsTargetVerified) {
   // The loops held as the chosen tolerance promises.
   EXPECT_LT(result.stats.drift_position_max, 1e-8);
   EXPECT_EQ(result.stats.loops.mobility, 1);
+}
+
+TEST(LoopTargetTest, ATargetBeyondTheLoopsSmallestToleranceRunsThereUnverifiedAndSaysSo) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  RunConfig config = PassiveWithTarget(sdf.model);
+  config.target.joint_error_rad = 1e-9;  // the four-bar reaches 3e-5 rad at rtol 1e-10
+  const RunResult result = Simulate(sdf.model, sdf.loops, config);
+  ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  EXPECT_FALSE(result.stats.target_met.has_value());  // no tighter check exists
+  EXPECT_THAT(result.stats.message, ::testing::HasSubstr("smallest tolerance 1e-10"));
+  EXPECT_THAT(result.stats.message, ::testing::HasSubstr("out of reach"));
+  const auto choice = nlohmann::json::parse(result.stats.choice_json);
+  EXPECT_EQ(choice["pick"]["rtol"].get<double>(), 1e-10);
+  EXPECT_FALSE(choice["pick"]["resolvable"].get<bool>());
 }
 
 TEST(LoopTargetTest, AFourBarDrivenByItsCrankIsTheClosedForm) {
