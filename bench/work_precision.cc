@@ -1,8 +1,10 @@
-// Work-precision study of the four IRB 1600 reference scenes (models/irb1600/*.json): every
-// scene x formulation x method over a sweep of tolerances (adaptive methods) or steps
-// (fixed-step methods), one CSV row per run:
+// Work-precision study of the four IRB 1600 reference scenes (models/irb1600/*.json) and the
+// passive closed-loop linkages (models/linkages/: four_bar, slider_crank, delta, palletiser,
+// each its -passive.json): every scene x formulation x method over a sweep of tolerances
+// (adaptive methods) or steps (fixed-step methods), one CSV row per run:
 //
 //   build/bench/work_precision --out docs/work_precision.csv
+//   build/bench/work_precision --scenes four_bar,slider_crank,delta --out loops.csv
 //   /usr/bin/python3 scripts/plot_work_precision.py --csv docs/work_precision.csv --out-dir docs
 //
 // Columns: scene, formulation, method, rtol (adaptive runs; atol = rtol / 100), step
@@ -15,18 +17,28 @@
 // variants body-index3 and body-index2 with IDA and body-baumgarte with CVODE BDF (the
 // --methods names body-index3/ida, body-index2/ida, body-baumgarte/bdf).
 //
-// error: for seed-run, whose joints are all prescribed, RunStats::tcp_error_max (the TCP
-// against direct kinematics of the closed-form seed motion). For the other scenes, the
-// largest TCP distance from a reference solution over the output frames in [0, error_until]:
-// the reference is a tight run (ERK Fehlberg 13-7-8 at rtol 1e-14; for stiff-servo CVODE BDF
-// at rtol 1e-12) checked against an independent tight run (ERK Verner 8-5-6 at rtol 1e-13;
-// DIRK at rtol 1e-12), and trusted over the leading frames where the two agree within
-// 1e-8 m (all of them unless the motion is chaotic). Their agreement there is written as a
+// error: for the linkages the largest joint difference (rad, or m for the slider) from the
+// reference instead of the TCP's. For seed-run, whose joints are all prescribed,
+// RunStats::tcp_error_max (the TCP against direct kinematics of the closed-form seed motion). For
+// the other scenes, the largest TCP distance from a reference solution over the output frames in
+// [0, error_until]: the reference is a tight run (ERK Fehlberg 13-7-8 at rtol 1e-14; for
+// stiff-servo CVODE BDF at rtol 1e-12) checked against an independent tight run (ERK Verner 8-5-6
+// at rtol 1e-13; DIRK at rtol 1e-12), and trusted over the leading frames where the two agree
+// within 1e-8 m (all of them unless the motion is chaotic). Their agreement there is written as a
 // row with method "reference" and status REFERENCE: the floor below which errors mean
 // nothing. A failed run's error is taken over the frames it produced; status says why it
 // stopped. Once a tolerance runs out of steps (TOO_MUCH_WORK) the tighter ones of that
 // method are not run (status SKIPPED).
 // cpu_s is the median of three runs for runs under 0.5 s, else the single run's.
+//
+// The linkages (scene names of models/linkages/*.sdf): their reference is the trees' (ERK
+// Fehlberg at 1e-14 checked by Verner at 1e-13, with Baumgarte alone: no projection, whose
+// Newton tolerance, atol / 100, limits BDF; agreement 5.5e-9 rad over the four-bar's 5 s,
+// where BDF at 1e-11 and Adams at 1e-11 part by 4.4e-6). Their methods (default): bdf
+// (Baumgarte and projection), adams, erk, erk-verner, dirk (Baumgarte alone), ida (the
+// joint-space index-2 GGL DAE), rk4, and body-index2/ida (refused: the body formulations do
+// not close loops). drift is the largest position constraint residual (m or rad) over the
+// frames.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -43,7 +55,9 @@
 
 #include "common/check.h"
 #include "server/engine/engine.h"
+#include "server/parse/sdf_import.h"
 #include "server/parse/urdf_import.h"
+#include "server/sim/loop_run.h"
 #include "server/sim/run_config.h"
 #include "server/sim/run_result.h"
 #include "server/spec/run_spec_json.h"
@@ -59,6 +73,7 @@ constexpr double kReferenceAgreement = 1e-8;
 struct Options {
   std::string out = "work_precision.csv";
   std::string models_dir = MBSTREAM_SOURCE_DIR "/models/irb1600";
+  std::string linkages_dir = MBSTREAM_SOURCE_DIR "/models/linkages";
   std::vector<std::string> scenes = {"seed-run", "seed-servo", "passive-swing", "stiff-servo"};
   std::vector<std::string> methods;  // empty = all (or the quick subset)
   bool quick = false;
@@ -100,17 +115,29 @@ const std::vector<MethodVariant>& AllMethods() {
       {"ida", Method::kIda, "", false, Formulation::kBodyIndex3, kIndex3MaxSteps},
       {"ida", Method::kIda, "", false, Formulation::kBodyIndex2},
       {"bdf", Method::kBdf, "", false, Formulation::kBodyBaumgarte},
+      {"ida", Method::kIda, "", false},  // joint space: the loops' GGL DAE
   };
   return methods;
 }
 
+// The linkages' default methods (by name()).
+const std::vector<std::string> kLoopMethods = {"bdf",  "adams", "erk", "erk-verner",
+                                               "dirk", "ida",   "rk4", "body-index2/ida"};
+
+bool IsLinkage(const std::string& scene) {
+  return scene == "four_bar" || scene == "slider_crank" || scene == "delta" ||
+         scene == "palletiser";
+}
+
 struct Scene {
   std::string name;
-  RunConfig config;                   // as shipped (duration shortened with --quick)
-  bool closed_form = false;           // every joint prescribed: error = tcp_error_max
-  std::vector<double> reference_tcp;  // 3 per output frame (scenes without a closed form)
-  int window_frames = 0;              // errors are measured over these leading frames
-  double window_end = 0.0;            // s, the time of the last of them
+  Model model;
+  std::vector<LoopClosure> loops;       // the linkages' cut joints (empty: a tree)
+  RunConfig config;                     // as shipped (duration shortened with --quick)
+  bool closed_form = false;             // every joint prescribed: error = tcp_error_max
+  std::vector<double> reference_track;  // TrackOf the reference (scenes without a closed form)
+  int window_frames = 0;                // errors are measured over these leading frames
+  double window_end = 0.0;              // s, the time of the last of them
 };
 
 struct Row {
@@ -133,31 +160,51 @@ std::string FormatOptional(const std::optional<double>& value) {
   return text;
 }
 
-// Largest distance between the TCP tracks of `result` and `reference_tcp` over the first
-// `frames` frames (or fewer, when the run stopped early).
-double TcpDistanceMax(const RunResult& result, const std::vector<double>& reference_tcp,
-                      int frames) {
-  const size_t count =
-      std::min({result.tcp.size() / 3, reference_tcp.size() / 3, static_cast<size_t>(frames)});
-  double error = 0.0;
-  for (size_t k = 0; k < count; ++k) {
-    double squared = 0.0;
-    for (size_t c = 0; c < 3; ++c) {
-      const double d = result.tcp[3 * k + c] - reference_tcp[3 * k + c];
-      squared += d * d;
-    }
-    error = std::max(error, std::sqrt(squared));
+// What a scene's error is measured on, per output frame: the TCP (3 values, m; the distance
+// between two frames the Euclidean norm) or, for the linkages, whose TCP may not move (the
+// four-bar's and slider-crank's), every joint (rad or m; the largest difference).
+const std::vector<double>& TrackOf(const Scene& scene, const RunResult& result) {
+  return scene.loops.empty() ? result.tcp : result.q;
+}
+
+size_t Stride(const Scene& scene, const RunResult& result) {
+  return scene.loops.empty() ? 3 : static_cast<size_t>(result.num_dofs);
+}
+
+double FrameDistance(const Scene& scene, const RunResult& result,
+                     const std::vector<double>& reference, size_t k) {
+  const std::vector<double>& track = TrackOf(scene, result);
+  const size_t n = Stride(scene, result);
+  double squared = 0.0, largest = 0.0;
+  for (size_t c = 0; c < n; ++c) {
+    const double d = track[n * k + c] - reference[n * k + c];
+    squared += d * d;
+    largest = std::max(largest, std::abs(d));
   }
+  return scene.loops.empty() ? std::sqrt(squared) : largest;
+}
+
+// Largest distance of `result`'s track from `reference` over the first `frames` frames (or
+// fewer, when the run stopped early).
+double TrackDistanceMax(const Scene& scene, const RunResult& result,
+                        const std::vector<double>& reference, int frames) {
+  const size_t count = std::min({static_cast<size_t>(result.num_frames()),
+                                 reference.size() / std::max<size_t>(1, Stride(scene, result)),
+                                 static_cast<size_t>(frames)});
+  double error = 0.0;
+  for (size_t k = 0; k < count; ++k)
+    error = std::max(error, FrameDistance(scene, result, reference, k));
   return error;
 }
 
 // Runs `config` once, or three times when it is fast, and returns the first result with
 // the median CPU time in its stats.
-RunResult TimedRun(const Model& model, const RunConfig& config) {
-  RunResult result = Simulate(model, config);
+RunResult TimedRun(const Scene& scene, const RunConfig& config) {
+  if (!scene.loops.empty()) ValidateLoopRun(scene.model, scene.loops, config);
+  auto run = [&] { return Simulate(scene.model, scene.loops, config); };
+  RunResult result = run();
   if (result.stats.cpu_s < kRepeatBelow) {
-    std::array<double, 3> cpu{result.stats.cpu_s, Simulate(model, config).stats.cpu_s,
-                              Simulate(model, config).stats.cpu_s};
+    std::array<double, 3> cpu{result.stats.cpu_s, run().stats.cpu_s, run().stats.cpu_s};
     std::sort(cpu.begin(), cpu.end());
     result.stats.cpu_s = cpu[1];
   }
@@ -170,8 +217,8 @@ RunConfig WithMethod(RunConfig config, const MethodVariant& variant) {
   return config;
 }
 
-RunResult MustFinish(const Model& model, const RunConfig& config, const std::string& what) {
-  RunResult result = Simulate(model, config);
+RunResult MustFinish(const Scene& scene, const RunConfig& config, const std::string& what) {
+  RunResult result = Simulate(scene.model, scene.loops, config);
   if (result.stats.status != RunStatus::kFinished) {
     throw std::runtime_error(what + " did not finish: " + RunStatusName(result.stats.status) +
                              ": " + result.stats.message);
@@ -201,7 +248,7 @@ ReferencePlan ReferencePlanFor(const std::string& scene) {
 // Computes the scene's reference TCP track and the window over which it is trusted (the
 // leading frames where the check agrees within kReferenceAgreement), and returns the row
 // that reports how converged it is.
-Row ComputeReference(const Model& model, Scene& scene) {
+Row ComputeReference(Scene& scene) {
   RunConfig config = scene.config;
   config.formulation = Formulation::kJoint;
   config.max_steps = 50'000'000;
@@ -211,23 +258,22 @@ Row ComputeReference(const Model& model, Scene& scene) {
   RunConfig reference_config = WithMethod(config, plan.reference);
   reference_config.rtol = plan.reference_rtol;
   reference_config.atol = plan.reference_rtol * 1e-2;
-  const RunResult reference = MustFinish(model, reference_config, scene.name + " reference");
-  scene.reference_tcp = reference.tcp;
+  const RunResult reference = MustFinish(scene, reference_config, scene.name + " reference");
+  scene.reference_track = TrackOf(scene, reference);
 
   RunConfig check_config = WithMethod(config, plan.check);
   check_config.rtol = plan.check_rtol;
   check_config.atol = plan.check_rtol * 1e-2;
-  const RunResult check = MustFinish(model, check_config, scene.name + " reference check");
+  const RunResult check = MustFinish(scene, check_config, scene.name + " reference check");
   const int frames = reference.num_frames();
+  const double agreement_limit = kReferenceAgreement;
   int window = 0;
   double agreement = 0.0;       // over the window
   double difference_max = 0.0;  // over the whole run
   for (int k = 0; k < frames; ++k) {
-    const double d = (Eigen::Map<const Eigen::Vector3d>(&reference.tcp[3 * k]) -
-                      Eigen::Map<const Eigen::Vector3d>(&check.tcp[3 * k]))
-                         .norm();
+    const double d = FrameDistance(scene, check, scene.reference_track, static_cast<size_t>(k));
     difference_max = std::max(difference_max, d);
-    if (window == k && d <= kReferenceAgreement) {
+    if (window == k && d <= agreement_limit) {
       ++window;
       agreement = std::max(agreement, d);
     }
@@ -236,13 +282,13 @@ Row ComputeReference(const Model& model, Scene& scene) {
   scene.window_end = reference.t[window - 1];
   std::printf(
       "%s: reference %s rtol %.0e atol %.0e (%ld steps, %.3g s CPU); check %s rtol %.0e: max "
-      "TCP difference %.3g m over the run",
+      "difference %.3g (TCP m; linkages: joints, rad or m) over the run",
       scene.name.c_str(), plan.reference.label.c_str(), reference_config.rtol,
       reference_config.atol, reference.stats.solver.steps, reference.stats.cpu_s,
       plan.check.label.c_str(), check_config.rtol, difference_max);
   if (window < frames) {
     std::printf("; within %.0e m up to t = %.3g s: errors are measured over [0, %.3g] s\n",
-                kReferenceAgreement, scene.window_end, scene.window_end);
+                agreement_limit, scene.window_end, scene.window_end);
   } else {
     std::printf("\n");
   }
@@ -265,18 +311,17 @@ Row ComputeReference(const Model& model, Scene& scene) {
   return row;
 }
 
-Row RunOne(const Model& model, const Scene& scene, const RunConfig& config,
-           const std::string& method_label) {
+Row RunOne(const Scene& scene, const RunConfig& config, const std::string& method_label) {
   Row row;
   row.scene = scene.name;
   row.formulation = FormulationName(config.formulation);
   row.method = method_label;
   try {
-    const RunResult result = TimedRun(model, config);
+    const RunResult result = TimedRun(scene, config);
     const RunStats& s = result.stats;
     row.error = scene.closed_form
                     ? s.tcp_error_max
-                    : TcpDistanceMax(result, scene.reference_tcp, scene.window_frames);
+                    : TrackDistanceMax(scene, result, scene.reference_track, scene.window_frames);
     row.error_until = std::min(scene.window_end, s.t_reached);
     row.cpu_s = s.cpu_s;
     row.steps = s.solver.steps;
@@ -317,12 +362,19 @@ void WriteCsv(const std::string& path, const std::vector<Row>& rows) {
   if (std::fclose(file) != 0) throw std::runtime_error("cannot write " + path);
 }
 
-std::vector<MethodVariant> SelectedMethods(const Options& options) {
+std::vector<MethodVariant> SelectedMethods(const Options& options, bool linkage) {
   std::vector<std::string> names = options.methods;
+  if (names.empty() && linkage) names = kLoopMethods;
   if (names.empty() && options.quick) {
     names = {"bdf", "rk4", "body-index3/ida", "body-index2/ida", "body-baumgarte/bdf"};
   }
-  if (names.empty()) return AllMethods();
+  if (names.empty()) {  // the trees: every method but the loops' DAE
+    std::vector<MethodVariant> all;
+    for (const MethodVariant& m : AllMethods()) {
+      if (!(m.method == Method::kIda && m.formulation == Formulation::kJoint)) all.push_back(m);
+    }
+    return all;
+  }
   std::vector<MethodVariant> selected;
   for (const std::string& name : names) {
     const auto it = std::find_if(AllMethods().begin(), AllMethods().end(),
@@ -335,9 +387,7 @@ std::vector<MethodVariant> SelectedMethods(const Options& options) {
 
 int Run(const Options& options) {
   const auto wall0 = std::chrono::steady_clock::now();
-  const Model model = ImportUrdfFile(options.models_dir + "/irb1600.urdf").model;
-  std::vector<std::string> joints;
-  for (const Body& body : model.bodies) joints.push_back(body.joint.name);
+  const Model irb1600 = ImportUrdfFile(options.models_dir + "/irb1600.urdf").model;
 
   const std::vector<double> tolerances =
       options.quick ? std::vector<double>{1e-4, 1e-7}
@@ -345,13 +395,24 @@ int Run(const Options& options) {
   const std::vector<double> steps =
       options.quick ? std::vector<double>{1e-2, 1e-3}
                     : std::vector<double>{1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5};
-  const std::vector<MethodVariant> methods = SelectedMethods(options);
 
   std::vector<Row> rows;
   for (const std::string& name : options.scenes) {
-    const std::string path = options.models_dir + "/" + name + ".json";
+    const bool linkage = IsLinkage(name);
+    const std::vector<MethodVariant> methods = SelectedMethods(options, linkage);
     Scene scene;
     scene.name = name;
+    std::string path = options.models_dir + "/" + name + ".json";
+    if (linkage) {
+      SdfImport sdf = ImportSdfFile(options.linkages_dir + "/" + name + ".sdf");
+      scene.model = std::move(sdf.model);
+      scene.loops = std::move(sdf.loops);
+      path = options.linkages_dir + "/" + name + "-passive.json";
+    } else {
+      scene.model = irb1600;
+    }
+    std::vector<std::string> joints;
+    for (const Body& body : scene.model.bodies) joints.push_back(body.joint.name);
     scene.config = ToRunConfig(LoadRunSpecFile(path), joints, path);
     if (options.quick) scene.config.duration = kQuickDuration;
     if (options.duration > 0.0) scene.config.duration = options.duration;
@@ -367,10 +428,10 @@ int Run(const Options& options) {
       // Closed form: no method, no tolerance (the spec's want_torques as shipped).
       RunConfig config = scene.config;
       config.formulation = Formulation::kKinematic;
-      rows.push_back(RunOne(model, scene, config, "none"));
+      rows.push_back(RunOne(scene, config, "none"));
       PrintRow(rows.back());
     } else {
-      rows.push_back(ComputeReference(model, scene));
+      rows.push_back(ComputeReference(scene));
     }
 
     for (const MethodVariant& variant : methods) {
@@ -387,13 +448,14 @@ int Run(const Options& options) {
             continue;
           }
           config.fixed_step = step;
-          Row row = RunOne(model, scene, config, variant.label);
+          Row row = RunOne(scene, config, variant.label);
           row.step = step;
           rows.push_back(row);
           PrintRow(row);
         }
       } else {
-        // Once a tolerance runs out of steps, tighter ones would too: they are not run.
+        // Once a tolerance runs out of steps, tighter ones would too: they are not run (nor
+        // after a refusal).
         bool out_of_steps = false;
         for (double rtol : tolerances) {
           config.rtol = rtol;
@@ -405,8 +467,8 @@ int Run(const Options& options) {
             row.method = variant.label;
             row.status = "SKIPPED";
           } else {
-            row = RunOne(model, scene, config, variant.label);
-            out_of_steps = row.status == "TOO_MUCH_WORK";
+            row = RunOne(scene, config, variant.label);
+            out_of_steps = row.status == "TOO_MUCH_WORK" || row.status == "REFUSED";
           }
           row.rtol = config.rtol;
           row.atol = config.atol;
@@ -440,14 +502,17 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--methods", options.methods,
                  "methods to run (comma-separated; default all): bdf, adams, erk, erk-verner, "
-                 "dirk, rk4, euler (joint formulation), body-index3/ida, body-index2/ida, "
-                 "body-baumgarte/bdf (body coordinates)")
+                 "dirk, rk4, euler, ida (joint formulation; ida: the linkages' GGL DAE), "
+                 "body-index3/ida, body-index2/ida, body-baumgarte/bdf (body coordinates)")
       ->delimiter(',');
   app.add_option("--duration", options.duration,
                  "simulated time of every scene (s); default: each scene's own (1 s with --quick)")
       ->check(CLI::PositiveNumber);
   app.add_option("--models-dir", options.models_dir,
                  "the folder of irb1600.urdf and the scenes' JSON files")
+      ->capture_default_str();
+  app.add_option("--linkages-dir", options.linkages_dir,
+                 "the folder of the linkages' SDF and -passive.json files")
       ->capture_default_str();
   app.add_option("--max-steps", options.max_steps,
                  "internal step budget of a run; fixed steps needing more are skipped")

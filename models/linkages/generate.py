@@ -270,6 +270,112 @@ def delta():
     return model("delta", "\n".join(links + joints + balls))
 
 
+# The palletising arm (spatial, z up, the model frame on the floor at the turret's axis): a
+# four-axis machine whose tool flange stays level through two parallelograms in series, as on
+# the palletisers of ABB (IRB 460, 660) or KUKA (KR QUANTEC PA). Axis 1 turns the turret about
+# z; axis 2 tilts the lower arm forward (+y turns z towards x); axis 3 tips the upper arm down
+# (+y); axis 6 turns the tool about the vertical. Parallelogram 1: the rear rod, hinged on the
+# turret at h1 behind the shoulder, is as long as the lower arm and parallel to it, so the
+# elbow plate (turning on the lower arm at the elbow) keeps the turret's orientation;
+# parallelogram 2: the upper rod, hinged on the plate at h2 above the elbow, is as long as the
+# upper arm, so the wrist flange keeps the plate's orientation: level. Every link frame is
+# aligned with the model frame as drawn, its origin on its proximal joint.
+PALLETISER = dict(shoulder=(0.25, 0.0, 0.6), lower=1.0, lower_tilt=0.2, upper=1.1,
+                  upper_dip=0.1, h1=(-0.25, 0.0, 0.0), h2=(0.0, 0.0, 0.25), drop=0.2,
+                  tool=0.15)
+
+
+def palletiser_points():
+    d = PALLETISER
+    s = d["shoulder"]
+    lower = (d["lower"] * math.sin(d["lower_tilt"]), 0.0, d["lower"] * math.cos(d["lower_tilt"]))
+    upper = (d["upper"] * math.cos(d["upper_dip"]), 0.0, -d["upper"] * math.sin(d["upper_dip"]))
+    e = add(s, lower)
+    w = add(e, upper)
+    f = add(w, (0.0, 0.0, -d["drop"]))
+    return dict(S=s, E=e, W=w, F=f, T=add(f, (0.0, 0.0, -d["tool"])), lower=lower,
+                upper=upper)
+
+
+def box_visual(name, a, b, width, colour):
+    """A box of square section `width` from a to b (link frame coordinates) in the x-z plane."""
+    v = add(b, scale(-1.0, a))
+    length = math.sqrt(sum(x * x for x in v))
+    pitch = math.atan2(-v[2], v[0])  # turns the box's x towards v (about +y)
+    return f"""      <visual name="{name}">
+        <pose>{v3(add(a, scale(0.5, v)))} 0 {pitch:.17g} 0</pose>
+        <geometry><box><size>{length:.17g} {width} {width}</size></box></geometry>
+        {material(colour)}
+      </visual>"""
+
+
+def lumped_link(name, origin, mass, centre, radius, visuals):
+    """A link of `mass` at `centre` (link frame) with the inertia of a solid ball of `radius`."""
+    i = 0.4 * mass * radius * radius
+    return f"""    <link name="{name}">
+      <pose>{v3(origin)} 0 0 0</pose>
+      <inertial><pose>{v3(centre)} 0 0 0</pose><mass>{mass}</mass>
+        <inertia><ixx>{i:.17g}</ixx><iyy>{i:.17g}</iyy><izz>{i:.17g}</izz>
+          <ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial>
+{visuals}
+    </link>"""
+
+
+def palletiser():
+    d, p = PALLETISER, palletiser_points()
+    grey, orange = (0.35, 0.35, 0.4), (0.95, 0.55, 0.1)
+    origin = (0.0, 0.0, 0.0)
+    turret_visual = f"""      <visual name="column">
+        <pose>0 0 0.3 0 0 0</pose>
+        <geometry><cylinder><radius>0.3</radius><length>0.6</length></cylinder></geometry>
+        {material(grey)}
+      </visual>"""
+    plate = (box_visual("to_rear_rod", origin, d["h1"], 0.06, grey) + "\n" +
+             box_visual("to_upper_rod", origin, d["h2"], 0.06, grey))
+    flange = (box_visual("to_upper_rod", origin, d["h2"], 0.06, grey) + "\n" +
+              box_visual("drop", origin, (0.0, 0.0, -d["drop"]), 0.08, grey))
+    tool = f"""      <visual name="gripper">
+        <pose>0 0 {-d["tool"] / 2:.17g} 0 0 0</pose>
+        <geometry><box><size>0.4 0.3 {d["tool"]:.17g}</size></box></geometry>
+        {material((0.2, 0.2, 0.25))}
+      </visual>"""
+    links = [
+        lumped_link("turret", origin, 60.0, (0.0, 0.0, 0.35), 0.3, turret_visual),
+        rod_like("lower_arm", p["S"], p["lower"], 25.0, 0.07, orange),
+        rod_like("rear_rod", add(p["S"], d["h1"]), p["lower"], 4.0, 0.025, grey),
+        rod_like("upper_arm", p["E"], p["upper"], 18.0, 0.06, orange),
+        lumped_link("plate", p["E"], 5.0, (-0.08, 0.0, 0.08), 0.1, plate),
+        lumped_link("flange", p["W"], 4.0, (0.0, 0.0, -0.06), 0.08, flange),
+        rod_like("upper_rod", add(p["E"], d["h2"]), p["upper"], 3.0, 0.02, grey),
+        lumped_link("tool", p["F"], 8.0, (0.0, 0.0, -d["tool"] / 2), 0.15, tool),
+        f"""    <link name="tcp">
+      <pose>{v3(p["T"])} 0 0 0</pose>
+      <inertial><mass>0</mass>
+        <inertia><ixx>0</ixx><iyy>0</iyy><izz>0</izz><ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial>
+    </link>""",
+    ]
+    y, z = "0 1 0", "0 0 1"
+    joints = [
+        joint("axis1", "revolute", "world", "turret", axis=z),
+        joint("axis2", "revolute", "turret", "lower_arm", axis=y),
+        joint("rear_rod_joint", "revolute", "turret", "rear_rod", axis=y),
+        joint("axis3", "revolute", "lower_arm", "upper_arm", axis=y),
+        joint("plate_joint", "revolute", "lower_arm", "plate", axis=y),
+        joint("wrist_joint", "revolute", "upper_arm", "flange", axis=y),
+        joint("upper_rod_joint", "revolute", "plate", "upper_rod", axis=y),
+        joint("axis6", "revolute", "flange", "tool", axis=z),
+        """    <joint name="tcp_joint" type="fixed">
+      <parent>tool</parent>
+      <child>tcp</child>
+    </joint>""",
+        # close the parallelograms: the plate and the flange already hang from the arms
+        joint("rear_loop", "revolute", "rear_rod", "plate", pose=f"{v3(d['h1'])} 0 0 0", axis=y),
+        joint("upper_loop", "revolute", "upper_rod", "flange", pose=f"{v3(d['h2'])} 0 0 0",
+              axis=y),
+    ]
+    return model("palletiser", "\n".join(links + joints))
+
+
 def model(name, body):
     return f"""<?xml version="1.0"?>
 <!-- Generated by generate.py: edit that, not this file. -->
@@ -287,6 +393,7 @@ if __name__ == "__main__":
     parallelogram = four_bar("parallelogram", a=0.2, b=0.4, c=0.2, d=0.4, theta2=-math.pi / 3,
                              side=-1)
     for name, text in (("four_bar.sdf", four_bar()), ("slider_crank.sdf", slider_crank()),
-                       ("parallelogram.sdf", parallelogram), ("delta.sdf", delta())):
+                       ("parallelogram.sdf", parallelogram), ("delta.sdf", delta()),
+                       ("palletiser.sdf", palletiser())):
         with open(name, "w") as f:
             f.write(text)

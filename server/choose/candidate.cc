@@ -21,6 +21,7 @@ Candidate MakeCandidate(Method method, const std::string& table) {
       candidate.min_steps_exponent = 1.0 / 13.0;  // CVODE's Adams: order up to 12
       break;
     case Method::kBdf:
+    case Method::kIda:                           // IDA's variable-order BDF
       candidate.min_steps_exponent = 1.0 / 6.0;  // order up to 5
       break;
     case Method::kDirk:

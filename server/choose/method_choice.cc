@@ -16,16 +16,6 @@ namespace mbstream {
 
 namespace {
 
-// The pilots' looser tolerance: the tightest target, within what pilots resolve (the tighter
-// pilot is 100 times below it).
-double PilotRtol(const AccuracyTarget& target) {
-  double smallest = std::numeric_limits<double>::infinity();
-  for (double asked : {target.tcp_error_m, target.joint_error_rad, target.energy_error_rel}) {
-    if (asked > 0.0) smallest = std::min(smallest, asked);
-  }
-  return std::clamp(smallest, 100.0 * kMinRtol, kMaxRtol);
-}
-
 // y = [q; qd] of frame k of a result.
 Eigen::VectorXd StateOf(const RunResult& result, int k) {
   const int n = result.num_dofs;

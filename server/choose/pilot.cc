@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "common/format.h"
@@ -27,6 +28,14 @@ double Growth(double span, double duration, double rate) {
 }
 
 }  // namespace
+
+double PilotRtol(const AccuracyTarget& target, double min_rtol) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (double asked : {target.tcp_error_m, target.joint_error_rad, target.energy_error_rel}) {
+    if (asked > 0.0) smallest = std::min(smallest, asked);
+  }
+  return std::clamp(smallest, 100.0 * min_rtol, kMaxRtol);
+}
 
 PilotSpan PilotSpanFor(const RunConfig& config) {
   PilotSpan pilot;

@@ -31,6 +31,10 @@ struct PilotSpan {
   double interval_s = 0.0;  // s between its output frames
 };
 
+// The pilots' looser tolerance: the tightest target, within what pilots resolve (the tighter
+// pilot is 100 times below it, and no tighter than `min_rtol`).
+double PilotRtol(const AccuracyTarget& target, double min_rtol = kMinRtol);
+
 // 5 % of the run, at least two output frames of it, rounded up to whole output intervals, at
 // most the whole run.
 PilotSpan PilotSpanFor(const RunConfig& config);

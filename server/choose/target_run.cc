@@ -9,16 +9,9 @@
 
 namespace mbstream {
 
-RunResult RunWithTarget(const Model& model, const RunConfig& config, FrameSink* sink,
-                        const std::atomic<bool>* cancel) {
-  MBSTREAM_CHECK_MSG(config.target.any(), "a run without a target runs with SimulateTree");
-  const MethodChoice choice = ChooseMethod(model, config, cancel);
-  TrackingSink tracking(sink);
-  RunResult result =
-      SimulateTree(model, choice.run, &tracking, cancel, PilotLink{choice.continues});
-  const Verification verification =
-      VerifyTarget(model, config, choice, result, tracking.track(), cancel);
-  RunStats& stats = result.stats;
+void FinishTargetRun(const RunConfig& config, const MethodChoice& choice,
+                     const Verification& verification, RunResult* result) {
+  RunStats& stats = result->stats;
   stats.target_met = verification.met;
   stats.choice_json = ChoiceJson(config, choice, verification, stats);
   if (stats.status == RunStatus::kFinished && !verification.message.empty()) {
@@ -28,6 +21,18 @@ RunResult RunWithTarget(const Model& model, const RunConfig& config, FrameSink* 
     stats.message =
         "choice: " + choice.reason + (stats.message.empty() ? "" : "; " + stats.message);
   }
+}
+
+RunResult RunWithTarget(const Model& model, const RunConfig& config, FrameSink* sink,
+                        const std::atomic<bool>* cancel) {
+  MBSTREAM_CHECK_MSG(config.target.any(), "a run without a target runs with SimulateTree");
+  const MethodChoice choice = ChooseMethod(model, config, cancel);
+  TrackingSink tracking(sink);
+  RunResult result =
+      SimulateTree(model, choice.run, &tracking, cancel, PilotLink{choice.continues});
+  const Verification verification =
+      VerifyTarget(model, config, choice, result, tracking.track(), cancel);
+  FinishTargetRun(config, choice, verification, &result);
   return result;
 }
 

@@ -6,11 +6,18 @@
 
 #include <atomic>
 
+#include "server/choose/method_choice.h"
+#include "server/choose/verification.h"
 #include "server/model/model.h"
 #include "server/sim/run_config.h"
 #include "server/sim/run_result.h"
 
 namespace mbstream {
+
+// The end of every target run: the verification's verdict, the choice's JSON and the
+// message of a missed or unverified target into `result`'s stats.
+void FinishTargetRun(const RunConfig& config, const MethodChoice& choice,
+                     const Verification& verification, RunResult* result);
 
 // Chooses, runs and verifies `config` (config.target set, ValidateRun accepted it). The
 // engine's entry (server/engine/engine.h) comes here for a run with a target.

@@ -4,6 +4,7 @@
 
 #include "common/format.h"
 #include "server/choose/pilot.h"
+#include "server/sim/loop_run.h"
 #include "server/sim/simulate.h"
 
 namespace mbstream {
@@ -40,7 +41,7 @@ std::string Misses(const AccuracyTarget& target, const ErrorFigures& achieved, d
 
 Verification VerifyTarget(const Model& model, const RunConfig& asked, const MethodChoice& choice,
                           const RunResult& run, const FrameTrack& track,
-                          const std::atomic<bool>* cancel) {
+                          const std::atomic<bool>* cancel, const std::vector<LoopClosure>& loops) {
   Verification v;
   if (run.has_energy) v.achieved.energy_rel = run.stats.energy_error_max;
   if (choice.closed_form) {
@@ -61,7 +62,8 @@ Verification VerifyTarget(const Model& model, const RunConfig& asked, const Meth
     v.how = asked.verify ? "skipped: no independent check (no other candidate, and no tighter "
                            "tolerance for the run's method)"
                          : "skipped: verify is false";
-    v.message = "not verified (" + v.how.substr(9) + "); the choice predicted the target met";
+    v.message = "not verified (" + v.how.substr(9) + "); the choice predicted the target " +
+                (choice.resolvable ? "met" : "out of reach (see the choice's reason)");
     return v;
   }
   const Candidate& check = choice.candidates[static_cast<size_t>(choice.check)];
@@ -76,7 +78,8 @@ Verification VerifyTarget(const Model& model, const RunConfig& asked, const Meth
       "%s at rtol %.3g (predicted error %.3g x the target), compared on the %d "
       "output frames",
       check.name.c_str(), v.rtol, kCheckSafety, track.frames());
-  const RunResult reference = SimulateTree(model, config, nullptr, cancel, pilot);
+  const RunResult reference = loops.empty() ? SimulateTree(model, config, nullptr, cancel, pilot)
+                                            : SimulateLoops(model, loops, config, nullptr, cancel);
   v.ran = true;
   v.cpu_s = reference.stats.cpu_s;
   v.continued_from_s = reference.stats.continued_from_s;

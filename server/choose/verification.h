@@ -10,10 +10,12 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "server/choose/candidate.h"
 #include "server/choose/frame_track.h"
 #include "server/choose/method_choice.h"
+#include "server/model/loop_closure.h"
 #include "server/model/model.h"
 #include "server/sim/run_result.h"
 
@@ -35,9 +37,11 @@ struct Verification {
 };
 
 // Verifies `run` (its frames in `track`) against `asked`, the run's configuration with its
-// target, as chosen by `choice`.
+// target, as chosen by `choice`. With `loops` (the joints cut from the model's loops) the
+// check is a run of the mechanism (SimulateLoops), which goes on from no pilot.
 Verification VerifyTarget(const Model& model, const RunConfig& asked, const MethodChoice& choice,
                           const RunResult& run, const FrameTrack& track,
-                          const std::atomic<bool>* cancel);
+                          const std::atomic<bool>* cancel,
+                          const std::vector<LoopClosure>& loops = {});
 
 }  // namespace mbstream

@@ -1,5 +1,6 @@
 #include "server/engine/engine.h"
 
+#include "server/choose/loop_target_run.h"
 #include "server/choose/target_run.h"
 #include "server/engine/summary_sink.h"
 #include "server/sim/loop_run.h"
@@ -11,8 +12,10 @@ namespace {
 
 RunResult Dispatch(const Model& model, const std::vector<LoopClosure>& loops,
                    const RunConfig& config, FrameSink* sink, const std::atomic<bool>* cancel) {
-  // ValidateLoopRun refuses a target for a model with loops (PlanLoopRun).
-  if (!loops.empty()) return SimulateLoops(model, loops, config, sink, cancel);
+  if (!loops.empty()) {
+    if (config.target.any()) return RunLoopsWithTarget(model, loops, config, sink, cancel);
+    return SimulateLoops(model, loops, config, sink, cancel);
+  }
   if (config.target.any()) return RunWithTarget(model, config, sink, cancel);
   return SimulateTree(model, config, sink, cancel);
 }

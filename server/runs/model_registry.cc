@@ -298,11 +298,12 @@ int ModelRegistry::LoadBuiltins(const std::string& directory) {
   std::sort(dirs.begin(), dirs.end());
   int loaded = 0;
   for (const fs::path& dir : dirs) {
-    // One URDF: the folder is the model (with its scene and meshes). Several: each URDF is
-    // a model of its own, named after its file.
+    // One model file (URDF or SDFormat): the folder is the model (with its scene and meshes).
+    // Several: each is a model of its own, named after its file (models/linkages/*.sdf).
     std::vector<fs::path> urdfs;
     for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
-      if (entry.path().extension() == ".urdf") urdfs.push_back(entry.path());
+      const fs::path extension = entry.path().extension();
+      if (extension == ".urdf" || extension == ".sdf") urdfs.push_back(entry.path());
     }
     std::sort(urdfs.begin(), urdfs.end());
     std::vector<std::pair<std::string, std::string>> models;  // path, name

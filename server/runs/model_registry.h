@@ -50,8 +50,9 @@ class ModelRegistry {
   // Lists the models of the store (at start) without compiling them; returns how many.
   int LoadStored();
 
-  // Submits every model directory below `directory` (a folder with one .urdf; see
-  // ReadModelBundle) as built-in. Returns how many; logs and skips ones that fail.
+  // Submits every model directory below `directory` (a folder with one .urdf or .sdf; see
+  // ReadModelBundle; a folder with several: each file a model named after it) as built-in. Returns
+  // how many; logs and skips ones that fail.
   int LoadBuiltins(const std::string& directory);
 
   // By id, or by name (the newest with that name), compiled (from the store on first use).

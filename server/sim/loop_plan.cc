@@ -19,10 +19,16 @@ void CheckSupported(const RunConfig& config, const DriveSet& drives) {
           "sources (yet): drop velocity_source from the drives");
     }
   }
-  if (config.target.any() || config.method_auto) {
+  if (config.target.any() && !config.method_auto && config.method != Method::kBdf &&
+      config.method != Method::kIda) {
+    throw InputError(std::string("an accuracy target on a mechanism with closed loops chooses "
+                                 "the tolerance of bdf (with projection) or ida, not ") +
+                     MethodName(config.method) + ": use method auto, bdf or ida");
+  }
+  if (config.method_auto && !config.target.any()) {
     throw InputError(
-        "accuracy targets (method auto) are not available for mechanisms with closed loops "
-        "yet: give a method (bdf) and tolerances");
+        "method auto chooses for an accuracy target: give target_tcp, target_joint or "
+        "target_energy, or a method (bdf) and tolerances");
   }
   switch (config.formulation) {
     case Formulation::kAuto:

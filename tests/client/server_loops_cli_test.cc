@@ -82,6 +82,24 @@ TEST_F(ServerLoopsCliTest, SubmittedSdfRunsGiveTheSameFilesAsSimulate) {
   }
 }
 
+// models/linkages/*.sdf are built-in models (each file one, named after it): run without a
+// submit.
+TEST_F(ServerLoopsCliTest, TheShippedLinkagesAreBuiltInModels) {
+  const CommandOutcome models = Cli("models");
+  ASSERT_EQ(models.exit_code, 0) << models.output;
+  for (const char* name : {"four_bar", "parallelogram", "slider_crank", "delta", "palletiser"}) {
+    EXPECT_THAT(models.output, HasSubstr(name));
+  }
+  const CommandOutcome run =
+      Cli("run palletiser --spec models/linkages/palletiser-driven.json --watch --out " +
+          Out("palletiser"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("loop residual"));
+  const std::string stats = ReadFile(dir_ / "palletiser" / "stats.json");
+  EXPECT_THAT(stats, HasSubstr("\"mobility\": 4"));
+  EXPECT_THAT(stats, HasSubstr("\"formulation\": \"kinematic\""));
+}
+
 TEST_F(ServerLoopsCliTest, AnSdfModelFolderAndItsModelMeshesAreSubmitted) {
   // A folder with one .sdf whose visual refers to model://bars/meshes/bar.stl: found in
   // the package path like a package:// mesh, and stored.
