@@ -13,6 +13,7 @@
 #include "server/kinematics/forward_kinematics.h"
 #include "server/kinematics/loop_coordinates.h"
 #include "server/sim/advance_to_frame.h"
+#include "server/sim/body_run.h"
 #include "server/sim/closed_loop_dae.h"
 #include "server/sim/closed_loop_ode.h"
 #include "server/sim/frame_loop.h"
@@ -244,7 +245,10 @@ std::vector<double> LoopOutputTimes(double duration, double interval) {
 RunConfig TreeConfigOf(const RunConfig& config) {
   RunConfig tree = config;  // the tree's checks, without the kinematic formulation's
   if (tree.formulation == Formulation::kKinematic) tree.formulation = Formulation::kJoint;
-  if (tree.method == Method::kIda) tree.method = Method::kBdf;  // the GGL DAE's tolerances
+  // The GGL DAE's tolerances are the ODE's; the body DAEs take ida as for a tree.
+  if (tree.method == Method::kIda && !IsBodyFormulation(tree.formulation)) {
+    tree.method = Method::kBdf;
+  }
   return tree;
 }
 
@@ -372,6 +376,10 @@ RunResult SimulateLoops(const Model& model_in, const std::vector<LoopClosure>& l
   if (plan.choice.formulation == Formulation::kKinematic) {
     KinematicLoopSource source(model, loops, drives, plan, config.want_torques, &stats);
     RunFrames(times, source, recorder, result, sink, cancel);
+  } else if (IsBodyFormulation(plan.choice.formulation)) {
+    const BodyLoops body_loops{loops, plan.q0, plan.qd0};
+    RunBody(model, config, plan.choice.formulation, drives, times, recorder, result, sink, cancel,
+            &budget, &body_loops);
   } else if (config.method == Method::kIda) {
     RunLoopDae(model, loops, config, drives, plan, frames);
   } else {
