@@ -11,14 +11,20 @@
 
 namespace mbstream {
 
-void AddCutJoints(const std::vector<LoopClosure>& loops, BodyModel* bm) {
-  int row = 0;
+void CheckBodyFormulationCloses(const std::vector<LoopClosure>& loops) {
   for (const LoopClosure& loop : loops) {
     if (loop.type == LoopJointType::kFixed) {
       throw InputError(loop.where + ": joint '" + loop.name +
                        "' (fixed) closes a loop, and the body formulations close loops with "
                        "revolute, prismatic and ball joints only: use formulation joint");
     }
+  }
+}
+
+void AddCutJoints(const std::vector<LoopClosure>& loops, BodyModel* bm) {
+  CheckBodyFormulationCloses(loops);
+  int row = 0;
+  for (const LoopClosure& loop : loops) {
     // The child side must be a body (the base has no velocity columns): swap the sides
     // when it is the base; the constraints are the same.
     int a = loop.body_a, b = loop.body_b;

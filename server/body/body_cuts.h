@@ -15,9 +15,12 @@
 
 namespace mbstream {
 
+// Throws InputError for a cut joint the body formulations do not model (fixed), naming it
+// with FILE:LINE and saying what to use instead. A run's validation calls it up front.
+void CheckBodyFormulationCloses(const std::vector<LoopClosure>& loops);
+
 // Adds the cut joints of `loops` to `bm`, every row kept (SelectCutRows then keeps the
-// independent ones). Throws InputError for a fixed cut joint, which the body formulations
-// do not model, saying what to use instead.
+// independent ones). Throws InputError as CheckBodyFormulationCloses.
 void AddCutJoints(const std::vector<LoopClosure>& loops, BodyModel* bm);
 
 // Keeps the cut rows that are independent of the tree joints' rows and of each other at the

@@ -4,6 +4,7 @@
 
 #include "common/check.h"
 #include "common/format.h"
+#include "server/body/body_cuts.h"
 #include "server/integrate/failure_messages.h"
 #include "server/sim/body_run.h"
 #include "server/sim/initial_state.h"
@@ -24,6 +25,16 @@ void CheckSupported(const RunConfig& config, const DriveSet& drives) {
     throw InputError(
         "accuracy targets (method auto) are not available for mechanisms with closed loops "
         "yet: give a method (bdf) and tolerances");
+  }
+  if (config.want_loop_forces &&
+      (IsBodyFormulation(config.formulation) || config.method == Method::kIda)) {
+    throw InputError(std::string("report_loop_forces: the cut joints' reactions are computed by "
+                                 "formulation joint with an ODE method (bdf, adams, ...) and by "
+                                 "formulation kinematic, not ") +
+                     (config.method == Method::kIda
+                          ? "method ida"
+                          : std::string("formulation ") + FormulationName(config.formulation)) +
+                     ": use formulation joint (method bdf) or auto, or drop report_loop_forces");
   }
   if (config.formulation == Formulation::kBodyIndex3) {
     // Measured on the four-bar and the slider-crank (tests/server/loops/body_loop_test.cc):
@@ -51,6 +62,7 @@ LoopPlan PlanLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
                      const RunConfig& config, const DriveSet& drives) {
   MBSTREAM_CHECK(!loops.empty());
   CheckSupported(config, drives);
+  if (IsBodyFormulation(config.formulation)) CheckBodyFormulationCloses(loops);
   const int n = model.num_dofs();
   const std::vector<int> prescribed = PrescribedJoints(drives);
   const Eigen::VectorXd y0 = InitialJointState(config, drives, n);

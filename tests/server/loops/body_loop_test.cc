@@ -122,5 +122,19 @@ TEST(BodyLoopTest, BodyIndex3IsRefusedSayingWhatToUse) {
   }
 }
 
+TEST(BodyLoopTest, AFixedCutJointIsRefusedNamingItsLine) {
+  SdfImport sdf = ImportSdfFile(kLinkages + "four_bar.sdf");
+  sdf.loops[0].type = LoopJointType::kFixed;
+  try {
+    ValidateLoopRun(sdf.model, sdf.loops, Body(Passive(3, 1.0), Formulation::kBodyIndex2, 1e-8));
+    ADD_FAILURE() << "a fixed cut joint accepted";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(sdf.loops[0].where + ": joint 'loop_joint' (fixed)"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("use formulation joint"), std::string::npos) << message;
+  }
+}
+
 }  // namespace
 }  // namespace mbstream
