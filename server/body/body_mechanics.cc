@@ -28,6 +28,10 @@ BodyMechanics::BodyMechanics(const BodyModel& body_model, const DriveSet& drives
   qd_ = Eigen::VectorXd::Zero(bm_.n);
   effort_ = Eigen::VectorXd::Zero(bm_.n);
   G_ = Eigen::MatrixXd::Zero(m, n6);
+  cut_g_ = Eigen::VectorXd::Zero(bm_.cut_rows_all);
+  cut_g_t_ = cut_g_;
+  cut_gamma_ = cut_g_;
+  cut_G_ = Eigen::MatrixXd::Zero(bm_.cut_rows_all, n6);
   M_ = Eigen::MatrixXd::Zero(n6, n6);
   M_llt_ = Eigen::LLT<Eigen::MatrixXd>(n6);
   rows_of_body_.resize(bm_.n);
@@ -40,6 +44,12 @@ BodyMechanics::BodyMechanics(const BodyModel& body_model, const DriveSet& drives
     };
     add_joint(b);
     for (int c : bm_.children[b]) add_joint(c);
+    for (size_t i = 0; i < bm_.cut_rows.size(); ++i) {
+      const BodyJoint& cut = bm_.cuts[bm_.cut_rows[i].cut];
+      if (cut.child == b || cut.parent == b) {
+        rows_of_body_[b].push_back(bm_.m_tree + static_cast<int>(i));
+      }
+    }
     most_rows = std::max(most_rows, rows_of_body_[b].size());
   }
   Gb_ = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(most_rows), 6);

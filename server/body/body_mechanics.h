@@ -74,11 +74,24 @@ class BodyMechanics {
   const Eigen::VectorXd& actuator_effort() const { return effort_; }
   const Eigen::VectorXd& nu_dot() const { return nu_dot_; }
   const Eigen::VectorXd& lambda() const { return lambda_; }
+  // Every cut joint's rows (BodyModel::cuts, their `row`), the dropped ones included: g and
+  // G after EvaluateConstraints.
+  const Eigen::VectorXd& cut_g() const { return cut_g_; }
+  const Eigen::VectorXd& cut_g_t() const { return cut_g_t_; }
+  const Eigen::MatrixXd& cut_G() const { return cut_G_; }
   // h_j . a for a vector a of size 6n (a = nu: the joint rate).
   double JointRate(int j, const Eigen::VectorXd& a) const;
 
  private:
   int Slot(int body) const { return body < 0 ? bm_.n : body; }
+  // Where EvaluateJoint writes a joint's rows (from its `row`).
+  struct Rows {
+    Eigen::VectorXd& g;
+    Eigen::VectorXd& g_t;
+    Eigen::MatrixXd& G;
+    Eigen::VectorXd& gamma;
+  };
+  void EvaluateJoint(const BodyJoint& joint, const Rows& out, bool acceleration_terms);
   void AddJointRow(const BodyJoint& joint, const RateRow& h, double scale,
                    Eigen::VectorXd& target) const;
   // The vector from the joint frame's origin (fixed in the parent) to the child's origin,
@@ -95,6 +108,8 @@ class BodyMechanics {
   std::vector<double> q_target_, qd_target_, qdd_target_;  // prescribed joints
   Eigen::VectorXd nu_, g_, g_t_, gamma_, f_, q_, qd_, effort_;
   Eigen::MatrixXd G_, M_;
+  Eigen::VectorXd cut_g_, cut_g_t_, cut_gamma_;  // every cut row (BodyModel::cut_rows_all)
+  Eigen::MatrixXd cut_G_;
   bool SolveBlockDiagonal(double alpha, double beta);
   bool SolveDense(double alpha, double beta);
   void StabilisedRhs(double alpha, double beta);

@@ -6,15 +6,10 @@
 
 namespace mbstream {
 
-namespace {
-
-// A unit vector perpendicular to the unit vector a.
 Vector3d Perpendicular(const Vector3d& a) {
   const Vector3d trial = std::abs(a.x()) < 0.9 ? Vector3d::UnitX() : Vector3d::UnitY();
   return (trial - a * a.dot(trial)).normalized();
 }
-
-}  // namespace
 
 void CheckBodyFormulationHandles(const Model& model) {
   for (const Body& body : model.bodies) {
@@ -66,7 +61,7 @@ BodyModel MakeBodyModel(const Model& model, const DriveSet& drives, const Eigen:
     if (body.parent != kBase) bm.children[body.parent].push_back(i);
     bm.joints.push_back(j);
   }
-  bm.m = row;
+  bm.m = bm.m_tree = row;
   if (model.tcp_frame >= 0) {
     const Frame& frame = model.frames[model.tcp_frame];
     bm.tcp_body = frame.body;

@@ -12,6 +12,13 @@
 // multiplier is the drive torque). A prismatic joint has 5 rows too (3 locking the relative
 // orientation; 2 keeping the child's origin on the axis line) and a sixth, the prescribed
 // displacement along the axis, whose multiplier is the drive force.
+//
+// A mechanism with closed loops adds its cut joints (server/model/loop_closure.h) as more
+// joints between two bodies (BodyModel::cuts): a revolute or prismatic one has the same 5
+// rows as in the tree, a ball joint the 3 joint-point rows. Their rows are dependent when the
+// mechanism is (a planar loop of spatial revolutes): SelectCutRows (body_cuts.h) keeps the
+// independent ones at the initial pose, after the tree's, and the dropped rows stay satisfied
+// (their residual is still measured).
 #pragma once
 
 #include <vector>
@@ -34,8 +41,10 @@ struct BodyJoint {
   Vector3d a;          // joint axis in the child frame
   Vector3d u1, u2;     // unit vectors perpendicular to a in the child frame, u2 = a x u1
   Matrix3d R_PJ;       // the joint frame (the child frame at q = 0) in the parent frame
-  int row = 0;         // first constraint row
-  int rows = 5;        // 5, or 6 when prescribed
+  Matrix3d R_BJ = Matrix3d::Identity();  // the joint frame in the child frame (a cut joint's)
+  bool ball = false;                     // a cut ball joint: the 3 joint-point rows only
+  int row = 0;   // first constraint row (a cut joint's: in its rows before selection)
+  int rows = 5;  // 5, or 6 when prescribed
   bool prescribed = false;
   double q_offset = 0.0;  // rad: a velocity source started off its reference's q(0)
   double damping = 0.0;   // N*m*s/rad or N*s/m
@@ -50,6 +59,16 @@ struct BodyModel {
   std::vector<Vector3d> com;      // centre of mass from the body frame's origin, body frame
   std::vector<BodyJoint> joints;  // joint i moves body i
   std::vector<std::vector<int>> children;  // joints whose parent is body i
+  // Cut joints (closed loops): parent = the loop's side A, child = side B (swapped when B is
+  // the base); `row` numbers their rows among cut_rows_all. cut_rows: the kept ones, the
+  // constraint rows m_tree.. m-1, each (cut joint, its row k).
+  std::vector<BodyJoint> cuts;
+  struct CutRow {
+    int cut = 0, k = 0;
+  };
+  std::vector<CutRow> cut_rows;
+  int cut_rows_all = 0;  // every cut joint's rows, dependent ones included
+  int m_tree = 0;        // the tree joints' rows
   Vector3d gravity = Vector3d::Zero();
   bool any_armature = false;
   int tcp_body = kBase;                      // body of the model's TCP frame (kBase: none or fixed)
@@ -64,6 +83,9 @@ struct BodyModel {
   int omega(int body) const { return 7 * n + 6 * body + 3; }
   int multiplier(int row) const { return 13 * n + row; }
 };
+
+// A unit vector perpendicular to the unit vector a.
+Vector3d Perpendicular(const Vector3d& a);
 
 // Throws InputError for what the body formulations do not model (a massless link), saying
 // what to use instead. MakeBodyModel calls it; a run's validation calls it up front.

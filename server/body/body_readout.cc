@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "server/body/body_cuts.h"
+
 namespace mbstream {
 
 BodyReadout::BodyReadout(const BodyModel& body_model, const DriveSet& drives)
@@ -45,6 +47,16 @@ bool BodyReadout::Read(double t, const double* y, bool efforts) {
       double& target = k < 3 ? drift_.position : drift_.orientation;
       target = std::max(target, std::abs(g(r)));
       const double velocity = mech.G().row(r).dot(mech.nu()) + mech.g_t()(r);
+      drift_.velocity = std::max(drift_.velocity, std::abs(velocity));
+    }
+  }
+  // The cut joints' rows, the dropped (dependent) ones included.
+  for (const BodyJoint& cut : bm_.cuts) {
+    for (int k = 0; k < cut.rows; ++k) {
+      const int r = cut.row + k;
+      double& target = IsPointRow(cut, k) ? drift_.position : drift_.orientation;
+      target = std::max(target, std::abs(mech.cut_g()(r)));
+      const double velocity = mech.cut_G().row(r).dot(mech.nu()) + mech.cut_g_t()(r);
       drift_.velocity = std::max(drift_.velocity, std::abs(velocity));
     }
   }

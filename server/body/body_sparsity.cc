@@ -109,6 +109,22 @@ void BodyDaePattern(const BodyModel& bm, ConstraintLevel level, std::vector<int>
       }
     }
   }
+  // The kept cut rows: dense in both bodies' states, and both bodies' force rows in the
+  // row's multiplier and in both bodies' positions (lever arms and directions).
+  for (size_t i = 0; i < bm.cut_rows.size(); ++i) {
+    const BodyJoint& cut = bm.cuts[bm.cut_rows[i].cut];
+    const int lambda = bm.multiplier(bm.m_tree + static_cast<int>(i));
+    const int bodies[2] = {cut.child, cut.parent};
+    for (int rb : bodies) {
+      if (rb == kBase) continue;
+      p.Dense(lambda, 1, BodyModel::position(rb), 7);
+      if (level == ConstraintLevel::kVelocity) p.Dense(lambda, 1, bm.velocity(rb), 6);
+      p.Dense(bm.velocity(rb), 6, lambda, 1);
+      for (int cb : bodies) {
+        if (cb != kBase) p.Dense(bm.velocity(rb), 6, BodyModel::position(cb), 7);
+      }
+    }
+  }
   p.Write(column_starts, row_indices);
 }
 

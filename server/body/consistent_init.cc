@@ -9,17 +9,13 @@
 
 namespace mbstream {
 
-bool ConsistentInitialState(const Model& model, const BodyModel& bm, BodyMechanics& mechanics,
-                            double t0, const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0,
-                            BodyInitialState* state) {
-  const int n = bm.n;
+Eigen::VectorXd BodyStateFromJoints(const Model& model, const BodyModel& bm,
+                                    const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0) {
   Data data(model);
   ForwardKinematics(model, data, q0);
   Rnea(model, data, q0, qd0, data.zeros);  // fills data.v: [w; v_origin] in body axes
-  state->y = Eigen::VectorXd::Zero(bm.dae_size());
-  state->yp = Eigen::VectorXd::Zero(bm.dae_size());
-  Eigen::VectorXd& y = state->y;
-  for (int i = 0; i < n; ++i) {
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(bm.dae_size());
+  for (int i = 0; i < bm.n; ++i) {
     const Pose& X = data.X_world[i];
     const Vector3d w = data.v[i].head<3>();
     const Vector3d v_origin = data.v[i].tail<3>();
@@ -28,6 +24,16 @@ bool ConsistentInitialState(const Model& model, const BodyModel& bm, BodyMechani
     y.segment<3>(bm.velocity(i)) = X.R * (v_origin + w.cross(bm.com[i]));
     y.segment<3>(bm.omega(i)) = w;
   }
+  return y;
+}
+
+bool ConsistentInitialState(const Model& model, const BodyModel& bm, BodyMechanics& mechanics,
+                            double t0, const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0,
+                            BodyInitialState* state) {
+  const int n = bm.n;
+  state->y = BodyStateFromJoints(model, bm, q0, qd0);
+  state->yp = Eigen::VectorXd::Zero(bm.dae_size());
+  Eigen::VectorXd& y = state->y;
   mechanics.Load(t0, y.data());
   mechanics.EvaluateConstraints(/*acceleration_terms=*/true);
   mechanics.EvaluateForces();

@@ -17,6 +17,11 @@ struct BodyInitialState {
   double constraint_residual = 0.0;  // max |g| and |G nu + g_t| at the start (a check)
 };
 
+// The positions and velocities (the first 13n entries; the multipliers 0) of the joint state
+// (q0, qd0): forward kinematics and the velocity recursion.
+Eigen::VectorXd BodyStateFromJoints(const Model& model, const BodyModel& bm,
+                                    const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0);
+
 // `mechanics` is used as a workspace (it must belong to `bm`). Returns false when the
 // acceleration-level system is singular.
 bool ConsistentInitialState(const Model& model, const BodyModel& bm, BodyMechanics& mechanics,

@@ -74,6 +74,26 @@ void LoopConstraints::Residual(const Data& data, Eigen::Ref<Eigen::VectorXd> phi
   }
 }
 
+void LoopConstraints::Reactions(const Data& data, const std::vector<int>& rows,
+                                const Eigen::Ref<const Eigen::VectorXd>& mu,
+                                Eigen::Ref<Eigen::VectorXd> reactions) const {
+  MBSTREAM_CHECK(reactions.size() == 6 * static_cast<Eigen::Index>(loops_.size()));
+  MBSTREAM_CHECK(mu.size() >= static_cast<Eigen::Index>(rows.size()));
+  reactions.setZero();
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const LoopRow& row = rows_[rows[i]];
+    const LoopClosure& loop = loops_[row.loop];
+    const Side a = SideA(data, loop);
+    const double lambda = mu(static_cast<Eigen::Index>(i));
+    if (row.gap) {
+      reactions.segment<3>(6 * row.loop) += lambda * (a.R * row.e_J);
+    } else {
+      const Side b = SideB(data, loop);
+      reactions.segment<3>(6 * row.loop + 3) += lambda * (b.R * row.f_J).cross(a.R * row.e_J);
+    }
+  }
+}
+
 void LoopConstraints::AddChain(const Data& data, int body, const Vector3d& p, const Vector3d& n,
                                const Vector3d& m, double sign, Eigen::Ref<Eigen::MatrixXd> G,
                                int r) const {

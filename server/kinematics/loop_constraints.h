@@ -50,6 +50,15 @@ class LoopConstraints {
   void Bias(const Data& data, const Eigen::Ref<const Eigen::VectorXd>& qd,
             Eigen::Ref<Eigen::VectorXd> bias);
 
+  // The cut joints' reactions from multipliers `mu` of the rows `rows` (the others' taken as
+  // 0), with the equations of motion M qdd + h = tau + G(rows)^T mu, after BodyKinematics at
+  // q: 6 per loop, the force (N) then the torque (N*m, about the joint's origin) that side A
+  // exerts on side B through the joint, in the world frame (side B's are -force, -torque).
+  // A gap row contributes mu n, an alignment row mu (f x e). Allocates nothing.
+  void Reactions(const Data& data, const std::vector<int>& rows,
+                 const Eigen::Ref<const Eigen::VectorXd>& mu,
+                 Eigen::Ref<Eigen::VectorXd> reactions) const;
+
   // Largest |phi| over gap rows (m) and alignment rows (rad) of `values` (a residual, or a
   // velocity residual G qd: m/s and rad/s).
   double MaxGap(const Eigen::Ref<const Eigen::VectorXd>& values) const;

@@ -74,6 +74,18 @@ std::vector<Series> SeriesOf(const RunResult& result) {
            row[1] = r.potential[k];
          }});
   }
+  if (!result.loop_force_names.empty()) {
+    // Force (N) then torque (N*m about the joint's origin) on the cut joint's child side from
+    // its parent side, world frame (RunResult::loop_forces).
+    std::string header = "t";
+    for (const std::string& name : result.loop_force_names) {
+      for (const char* part : {"fx", "fy", "fz", "tx", "ty", "tz"}) {
+        header += ',' + CsvField(name + '.' + part);
+      }
+    }
+    const int width = 6 * static_cast<int>(result.loop_force_names.size());
+    series.push_back({"loop_forces.csv", header, width, slice(&RunResult::loop_forces, width)});
+  }
   return series;
 }
 

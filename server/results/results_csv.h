@@ -36,11 +36,13 @@ struct Series {
   std::function<void(const RunResult&, int k, double* row)> values;  // fills `width` values
 };
 
-// The series a result has: joints, velocities, tcp, then torques and energy when it has them.
+// The series a result has: joints, velocities, tcp, then torques and energy when it has them,
+// and loop_forces.csv when it has the cut joints' reactions.
 std::vector<Series> SeriesOf(const RunResult& result);
 
 // The series files that may be absent from a result (removed when stale).
-inline const char* const kOptionalFiles[] = {"torques.csv", "energy.csv", "probes.csv"};
+inline const char* const kOptionalFiles[] = {"torques.csv", "energy.csv", "probes.csv",
+                                             "loop_forces.csv"};
 
 // Writes path atomically: to path.tmp, then rename. Throws InputError naming the path.
 void WriteFile(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);

@@ -140,6 +140,7 @@ void WriteResultsDirectory(const RunResult& result, const RunProvenance& provena
   }
   if (!result.has_torques) fs::remove(dir / "torques.csv", error);  // never leave a stale file
   if (!result.has_energy) fs::remove(dir / "energy.csv", error);
+  if (result.loop_force_names.empty()) fs::remove(dir / "loop_forces.csv", error);
   if (!probes.empty()) {
     results_csv::WriteFile(dir / "probes.csv", [&](std::ostream& out) {
       out << "seq,t,name,x,y,z,latency_us\n";

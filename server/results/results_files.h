@@ -1,7 +1,8 @@
 // Writes a run's results directory (the files README.md lists): joints.csv, velocities.csv,
 // tcp.csv, torques.csv (when dynamics ran), energy.csv, probes.csv (when a viewer answered),
-// stats.json. Numbers are written in their shortest exact form (std::to_chars: each reads back
-// as the same double), so the same run gives bit-identical files.
+// loop_forces.csv (a mechanism with closed loops, report_loop_forces), stats.json. Numbers are
+// written in their shortest exact form (std::to_chars: each reads back as the same double), so the
+// same run gives bit-identical files.
 #pragma once
 
 #include <string>

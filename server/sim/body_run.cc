@@ -7,6 +7,7 @@
 
 #include "common/format.h"
 #include "server/body/body_baumgarte_ode.h"
+#include "server/body/body_cuts.h"
 #include "server/body/body_dae.h"
 #include "server/body/body_model.h"
 #include "server/body/body_readout.h"
@@ -105,11 +106,16 @@ bool IsBodyFormulation(Formulation formulation) {
 void RunBody(const Model& model, const RunConfig& config, Formulation formulation,
              const DriveSet& drives, const std::vector<double>& times, FrameRecorder& recorder,
              RunResult& result, FrameSink* sink, const std::atomic<bool>* cancel,
-             BudgetTracking* budget) {
+             BudgetTracking* budget, const BodyLoops* loops) {
   const int n = model.num_dofs();
   const Eigen::VectorXd joint_state = InitialJointState(config, drives, n);
-  const Eigen::VectorXd q0 = joint_state.head(n), qd0 = joint_state.tail(n);
-  const BodyModel bm = MakeBodyModel(model, drives, q0);
+  const Eigen::VectorXd q0 = loops ? loops->q0 : Eigen::VectorXd(joint_state.head(n));
+  const Eigen::VectorXd qd0 = loops ? loops->qd0 : Eigen::VectorXd(joint_state.tail(n));
+  BodyModel bm = MakeBodyModel(model, drives, q0);
+  if (loops != nullptr) {
+    AddCutJoints(loops->loops, &bm);
+    SelectCutRows(model, drives, q0, &bm);
+  }
   const bool baumgarte = formulation == Formulation::kBodyBaumgarte;
 
   std::unique_ptr<BodyBaumgarteOde> ode;

@@ -5,7 +5,10 @@
 #include <atomic>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "server/drives/drive_set.h"
+#include "server/model/loop_closure.h"
 #include "server/model/model.h"
 #include "server/sim/frame_recorder.h"
 #include "server/sim/run_budget.h"
@@ -16,6 +19,14 @@ namespace mbstream {
 
 bool IsBodyFormulation(Formulation formulation);
 
+// A mechanism with closed loops: its cut joints (more joints between two bodies: body_cuts.h)
+// and its assembled initial joint state (loop_plan.h), which replaces the config's.
+struct BodyLoops {
+  const std::vector<LoopClosure>& loops;
+  const Eigen::VectorXd& q0;
+  const Eigen::VectorXd& qd0;
+};
+
 // Integrates `model` in body coordinates over `times` and records every good frame; sets
 // the result's equations, Jacobian non-zeros, solver statistics, status and constraint
 // drift. Stops at budget->cpu_deadline_s and fills budget's stop fields when the budget
@@ -23,6 +34,6 @@ bool IsBodyFormulation(Formulation formulation);
 void RunBody(const Model& model, const RunConfig& config, Formulation formulation,
              const DriveSet& drives, const std::vector<double>& times, FrameRecorder& recorder,
              RunResult& result, FrameSink* sink, const std::atomic<bool>* cancel,
-             BudgetTracking* budget);
+             BudgetTracking* budget, const BodyLoops* loops = nullptr);
 
 }  // namespace mbstream

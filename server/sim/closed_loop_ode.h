@@ -52,6 +52,11 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
   // the mechanism, or of the tree's coordinates, where the multipliers are undefined and
   // the ODE has no solution through it). Allocates nothing.
   double ConstraintConditioning();
+  // After Evaluate: the cut joints' reactions from the multipliers (6 per loop:
+  // LoopConstraints::Reactions). Allocates nothing.
+  void Reactions(Eigen::VectorXd* reactions) const {
+    constraints_.Reactions(data_, rank_.independent, mu_, *reactions);
+  }
 
   const LoopRank& rank() const { return rank_; }
   const Eigen::VectorXd& q() const { return q_; }

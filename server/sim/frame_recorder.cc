@@ -43,6 +43,11 @@ void FrameRecorder::UseIntegratedWork() {
   result_.stats.energy_work = kEnergyWorkIntegrated;
 }
 
+void FrameRecorder::AppendLoopForces(const Eigen::VectorXd* forces) {
+  loop_forces_ = forces;
+  result_.loop_forces.reserve(result_.t.capacity() * static_cast<size_t>(forces->size()));
+}
+
 void FrameRecorder::AppendLoopCoordinates(LoopCoordinates* coordinates) {
   loop_coordinates_ = coordinates;
   const Eigen::Index m = coordinates->size();
@@ -81,6 +86,7 @@ bool FrameRecorder::Record(double t, const Eigen::VectorXd& q, const Eigen::Vect
     loop_coordinates_->Compute(q, qd, &loop_value_, &loop_rate_);
     if (!loop_value_.allFinite() || !loop_rate_.allFinite()) return false;
   }
+  if (loop_forces_ != nullptr && !loop_forces_->allFinite()) return false;
   if (latest_only_ && !result_.t.empty()) {  // drop the previous frame (capacity stays)
     ++result_.first_seq;
     result_.t.clear();
@@ -91,6 +97,7 @@ bool FrameRecorder::Record(double t, const Eigen::VectorXd& q, const Eigen::Vect
     result_.kinetic.clear();
     result_.potential.clear();
     result_.work.clear();
+    result_.loop_forces.clear();
   }
   result_.t.push_back(t);
   result_.q.insert(result_.q.end(), q.data(), q.data() + q.size());
@@ -106,6 +113,10 @@ bool FrameRecorder::Record(double t, const Eigen::VectorXd& q, const Eigen::Vect
     if (result_.has_torques) {
       result_.tau.insert(result_.tau.end(), loop_effort_.data(), loop_effort_.data() + m);
     }
+  }
+  if (loop_forces_ != nullptr) {
+    result_.loop_forces.insert(result_.loop_forces.end(), loop_forces_->data(),
+                               loop_forces_->data() + loop_forces_->size());
   }
   if (result_.has_energy) {
     result_.kinetic.push_back(kinetic);

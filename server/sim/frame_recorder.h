@@ -45,6 +45,10 @@ class FrameRecorder {
   // has no drive). `result.num_dofs` counts them. Call before the first frame; `coordinates`
   // must outlive the recorder.
   void AppendLoopCoordinates(LoopCoordinates* coordinates);
+  // Each frame also records `forces` (6 per cut joint: RunResult::loop_forces), as the frame
+  // source left them before Record. Call before the first frame; `forces` must outlive the
+  // recorder.
+  void AppendLoopForces(const Eigen::VectorXd* forces);
 
  private:
   void TrackEnergy(double t, double energy, const Eigen::VectorXd& qd,
@@ -61,6 +65,7 @@ class FrameRecorder {
   bool integrated_work_ = false;
   LoopCoordinates* loop_coordinates_ = nullptr;
   Eigen::VectorXd loop_value_, loop_rate_, loop_effort_;
+  const Eigen::VectorXd* loop_forces_ = nullptr;
   double energy0_ = 0.0, work_ = 0.0, last_power_ = 0.0, last_t_ = 0.0, scale_ = 0.0;
 };
 

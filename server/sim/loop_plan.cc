@@ -4,7 +4,9 @@
 
 #include "common/check.h"
 #include "common/format.h"
+#include "server/body/body_cuts.h"
 #include "server/integrate/failure_messages.h"
+#include "server/sim/body_run.h"
 #include "server/sim/initial_state.h"
 
 namespace mbstream {
@@ -30,15 +32,25 @@ void CheckSupported(const RunConfig& config, const DriveSet& drives) {
         "method auto chooses for an accuracy target: give target_tcp, target_joint or "
         "target_energy, or a method (bdf) and tolerances");
   }
-  switch (config.formulation) {
-    case Formulation::kAuto:
-    case Formulation::kKinematic:
-    case Formulation::kJoint:
-      break;
-    default:
-      throw InputError(std::string("formulation ") + FormulationName(config.formulation) +
-                       " does not close kinematic loops yet; use formulation joint (the loops as "
-                       "constraints with Baumgarte stabilisation and projection) or kinematic");
+  if (config.want_loop_forces &&
+      (IsBodyFormulation(config.formulation) || config.method == Method::kIda)) {
+    throw InputError(std::string("report_loop_forces: the cut joints' reactions are computed by "
+                                 "formulation joint with an ODE method (bdf, adams, ...) and by "
+                                 "formulation kinematic, not ") +
+                     (config.method == Method::kIda
+                          ? "method ida"
+                          : std::string("formulation ") + FormulationName(config.formulation)) +
+                     ": use formulation joint (method bdf) or auto, or drop report_loop_forces");
+  }
+  if (config.formulation == Formulation::kBodyIndex3) {
+    // Measured on the four-bar and the slider-crank (tests/server/loops/body_loop_test.cc):
+    // IDA's Newton iteration fails in the first step at rtol 1e-7 to 1e-10, by 0.05 s at
+    // 1e-6, on the position-level rows of the loops.
+    throw InputError(
+        "formulation body-index3 does not close kinematic loops: with the cut joints' "
+        "position-level constraints IDA's Newton iteration fails from the first step; use "
+        "formulation body-index2 (method ida) or body-baumgarte (method bdf) for body "
+        "coordinates, or joint");
   }
 }
 
@@ -56,6 +68,7 @@ LoopPlan PlanLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
                      const RunConfig& config, const DriveSet& drives) {
   MBSTREAM_CHECK(!loops.empty());
   CheckSupported(config, drives);
+  if (IsBodyFormulation(config.formulation)) CheckBodyFormulationCloses(loops);
   const int n = model.num_dofs();
   const std::vector<int> prescribed = PrescribedJoints(drives);
   const Eigen::VectorXd y0 = InitialJointState(config, drives, n);
@@ -101,6 +114,14 @@ LoopPlan PlanLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
   const std::string mobility =
       FormatString("%d loop equation(s), %d independent, mobility %d", plan.rank.equations,
                    plan.rank.rank, plan.rank.mobility);
+  if (IsBodyFormulation(config.formulation)) {
+    plan.choice = ChooseFormulation(config, drives);  // the tree's reason, the method's checks
+    plan.choice.reason += FormatString(
+        "; the %d cut joint(s) are joints between two bodies like the tree's (%s: the dependent "
+        "rows are dropped at the initial pose)",
+        static_cast<int>(loops.size()), mobility.c_str());
+    return plan;
+  }
   if (config.formulation == Formulation::kKinematic && free_dofs > 0) {
     throw InputError(FormatString(
         "formulation kinematic needs every degree of freedom prescribed, but the mechanism "

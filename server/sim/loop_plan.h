@@ -27,12 +27,12 @@ struct LoopPlan {
 };
 
 // Validates a run of `model` closed by `loops` and assembles its initial state. Throws
-// InputError, saying what to do, for what the loops cannot run: the body formulations (not
-// yet), velocity-source drives, an accuracy target, prescribed joints that the loops already
-// determine, formulation kinematic without every degree of freedom prescribed, and a loop
-// that cannot close near the given pose (its joint named with FILE:LINE). Formulation joint
-// with method ida is the index-2 GGL DAE (closed_loop_dae.h), with an ODE method the
-// Baumgarte ODE (closed_loop_ode.h).
+// InputError, saying what to do, for what the loops cannot run: velocity-source drives, an accuracy
+// target, prescribed joints that the loops already determine, formulation kinematic without every
+// degree of freedom prescribed, and a loop that cannot close near the given pose (its joint named
+// with FILE:LINE). Formulation joint with method ida is the index-2 GGL DAE (closed_loop_dae.h),
+// with an ODE method the Baumgarte ODE (closed_loop_ode.h); the body formulations take the cut
+// joints as more joints (server/body/body_cuts.h).
 LoopPlan PlanLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
                      const RunConfig& config, const DriveSet& drives);
 

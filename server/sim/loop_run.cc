@@ -13,6 +13,7 @@
 #include "server/kinematics/forward_kinematics.h"
 #include "server/kinematics/loop_coordinates.h"
 #include "server/sim/advance_to_frame.h"
+#include "server/sim/body_run.h"
 #include "server/sim/closed_loop_dae.h"
 #include "server/sim/closed_loop_ode.h"
 #include "server/sim/frame_loop.h"
@@ -44,10 +45,11 @@ class KinematicLoopSource : public FrameSource {
  public:
   KinematicLoopSource(const Model& model, const std::vector<LoopClosure>& loops,
                       const DriveSet& drives, const LoopPlan& plan, bool want_torques,
-                      RunStats* stats)
+                      Eigen::VectorXd* reactions, RunStats* stats)
       : model_(model),
         drives_(drives),
         want_torques_(want_torques),
+        reactions_(reactions),
         stats_(stats),
         data_(model),
         constraints_(model, loops),
@@ -62,7 +64,7 @@ class KinematicLoopSource : public FrameSource {
         force_(model.num_dofs()),
         effort_(Eigen::VectorXd::Zero(model.num_dofs())) {
     bool independent = false;
-    solver_.Analyse(data_, q_, &independent);
+    rows_ = solver_.Analyse(data_, q_, &independent).independent;
     mu_.resize(solver_.num_rows());
   }
 
@@ -92,7 +94,7 @@ class KinematicLoopSource : public FrameSource {
     const LoopConstraints& c = constraints_;
     TrackResiduals(c.MaxGap(solver_.residual()), c.MaxAlignment(solver_.residual()),
                    solver_.velocity_residual().cwiseAbs().maxCoeff(), stats_);
-    if (want_torques_) {
+    if (want_torques_ || reactions_ != nullptr) {
       force_ = Rnea(model_, data_, q_, qd_, qdd_);
       for (int i = 0; i < model_.num_dofs(); ++i) force_(i) += drives_.damping(i) * qd_(i);
       solver_.Multipliers(force_, mu_);
@@ -100,6 +102,8 @@ class KinematicLoopSource : public FrameSource {
       for (size_t h = 0; h < prescribed_.size(); ++h) {
         effort_(prescribed_[h]) = mu_(r + static_cast<Eigen::Index>(h));
       }
+      // mu's first entries are the independent loop rows' (LoopSolver::Multipliers).
+      if (reactions_ != nullptr) constraints_.Reactions(data_, rows_, mu_, *reactions_);
     }
     return recorder.Record(t, q_, qd_, want_torques_ ? &effort_ : nullptr);
   }
@@ -113,11 +117,13 @@ class KinematicLoopSource : public FrameSource {
   const Model& model_;
   const DriveSet& drives_;
   const bool want_torques_;
+  Eigen::VectorXd* reactions_;  // null: not asked for
   RunStats* stats_;
   Data data_;
   LoopConstraints constraints_;
   const std::vector<int> prescribed_;
   LoopSolver solver_;
+  std::vector<int> rows_;  // the independent rows of the loop constraints
   Eigen::VectorXd q_, qd_, qdd_, held_q_, held_qd_, held_qdd_, force_, effort_, mu_;
 };
 
@@ -125,8 +131,13 @@ class KinematicLoopSource : public FrameSource {
 class ClosedLoopSource : public FrameSource {
  public:
   ClosedLoopSource(ClosedLoopOde& ode, Integrator& integrator, Eigen::VectorXd& y,
-                   BudgetTracking* budget, RunStats* stats)
-      : ode_(ode), integrator_(integrator), y_(y), budget_(budget), stats_(stats) {}
+                   BudgetTracking* budget, Eigen::VectorXd* reactions, RunStats* stats)
+      : ode_(ode),
+        integrator_(integrator),
+        y_(y),
+        budget_(budget),
+        reactions_(reactions),
+        stats_(stats) {}
 
   bool Advance(const std::vector<double>& times, size_t k, RunStats* stats) override {
     if (!AdvanceToFrame(integrator_, times, k, y_.data(), stats, "", &budget_->t_stop)) {
@@ -155,6 +166,7 @@ class ClosedLoopSource : public FrameSource {
     double gap = 0.0, alignment = 0.0, velocity = 0.0;
     ode_.Residuals(&gap, &alignment, &velocity);
     TrackResiduals(gap, alignment, velocity, stats_);
+    if (reactions_ != nullptr) ode_.Reactions(reactions_);
     return recorder.Record(t, ode_.q(), ode_.qd(), &ode_.drive_effort());
   }
 
@@ -187,6 +199,7 @@ class ClosedLoopSource : public FrameSource {
   Integrator& integrator_;
   Eigen::VectorXd& y_;
   BudgetTracking* budget_;
+  Eigen::VectorXd* reactions_;  // null: not asked for
   RunStats* stats_;
 };
 
@@ -244,7 +257,10 @@ std::vector<double> LoopOutputTimes(double duration, double interval) {
 RunConfig TreeConfigOf(const RunConfig& config) {
   RunConfig tree = config;  // the tree's checks, without the kinematic formulation's
   if (tree.formulation == Formulation::kKinematic) tree.formulation = Formulation::kJoint;
-  if (tree.method == Method::kIda) tree.method = Method::kBdf;  // the GGL DAE's tolerances
+  // The GGL DAE's tolerances are the ODE's; the body DAEs take ida as for a tree.
+  if (tree.method == Method::kIda && !IsBodyFormulation(tree.formulation)) {
+    tree.method = Method::kBdf;
+  }
   return tree;
 }
 
@@ -288,6 +304,7 @@ struct LoopFrames {
   FrameSink* sink;
   const std::atomic<bool>* cancel;
   BudgetTracking* budget;
+  Eigen::VectorXd* reactions;  // the cut joints' reactions when asked for, else null
 };
 
 // Method ida: the index-2 GGL DAE (closed_loop_dae.h).
@@ -329,7 +346,7 @@ void RunLoopOde(const Model& model, const std::vector<LoopClosure>& loops, const
   stats.jacobian_nnz = ode.size() * ode.size();
   stats.integrator =
       std::string(integrator->name()) + (config.method == Method::kBdf ? " with projection" : "");
-  ClosedLoopSource source(ode, *integrator, y, frames.budget, &stats);
+  ClosedLoopSource source(ode, *integrator, y, frames.budget, frames.reactions, &stats);
   RunFrames(frames.times, source, frames.recorder, frames.result, frames.sink, frames.cancel);
   stats.solver = integrator->stats();
 }
@@ -366,12 +383,28 @@ RunResult SimulateLoops(const Model& model_in, const std::vector<LoopClosure>& l
   FrameRecorder recorder(model, drives, result, times.size(), /*track_tcp_error=*/false,
                          /*latest_only=*/sink != nullptr && sink->KeepsFrames());
   recorder.AppendLoopCoordinates(&cut_coordinates);
+  Eigen::VectorXd reactions = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(loops.size()));
+  if (config.want_loop_forces) {  // PlanLoopRun refused it where it is not computed
+    for (const LoopClosure& loop : loops) result.loop_force_names.push_back(loop.name);
+    recorder.AppendLoopForces(&reactions);
+  }
   BudgetTracking budget;
   budget.cpu_deadline_s = cpu0 + config.max_cpu_s;
-  const LoopFrames frames{times, recorder, result, sink, cancel, &budget};
+  const LoopFrames frames{times,
+                          recorder,
+                          result,
+                          sink,
+                          cancel,
+                          &budget,
+                          config.want_loop_forces ? &reactions : nullptr};
   if (plan.choice.formulation == Formulation::kKinematic) {
-    KinematicLoopSource source(model, loops, drives, plan, config.want_torques, &stats);
+    KinematicLoopSource source(model, loops, drives, plan, config.want_torques, frames.reactions,
+                               &stats);
     RunFrames(times, source, recorder, result, sink, cancel);
+  } else if (IsBodyFormulation(plan.choice.formulation)) {
+    const BodyLoops body_loops{loops, plan.q0, plan.qd0};
+    RunBody(model, config, plan.choice.formulation, drives, times, recorder, result, sink, cancel,
+            &budget, &body_loops);
   } else if (config.method == Method::kIda) {
     RunLoopDae(model, loops, config, drives, plan, frames);
   } else {

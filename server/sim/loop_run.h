@@ -2,9 +2,10 @@
 // joints cut from it (server/model/loop_closure.h). Formulations: kinematic (every degree
 // of freedom prescribed: Newton on the loops at each frame, nothing integrated) and joint
 // (the loops as constraints with Baumgarte stabilisation, projected after each step of
-// CVODE BDF: closed_loop_ode.h). Every run reports the largest constraint residuals over
-// its frames (RunStats' drift figures: m, rad, m/s or rad/s) and how the loops were closed
-// (RunStats::loops).
+// CVODE BDF: closed_loop_ode.h; with method ida the index-2 GGL DAE, closed_loop_dae.h) and
+// the body formulations (the cut joints as more joints between bodies: body_run.h). Every run
+// reports the largest constraint residuals over its frames (RunStats' drift figures: m, rad, m/s or
+// rad/s) and how the loops were closed (RunStats::loops).
 #pragma once
 
 #include <atomic>

@@ -52,6 +52,7 @@ struct RunConfig {
   Eigen::VectorXd qd0;              // initial joint velocities (empty = zeros / trajectory)
   std::vector<DriveConfig> drives;  // one per joint, in the model's joint order
   bool want_torques = true;         // report drive efforts (needs dynamics)
+  bool want_loop_forces = false;    // report the cut joints' reactions (RunResult::loop_forces)
   BaumgarteParameters baumgarte;
   // The run's cost budget (see run_budget.h); the run stops with TOO_MUCH_WORK when either
   // runs out. 0 = the default for the run's duration and model (DefaultMaxSteps,

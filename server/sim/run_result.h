@@ -119,6 +119,12 @@ struct RunResult {
   std::vector<double> tcp;                 // m, world frame, 3 per frame
   std::vector<double> tau;                 // drive efforts, N*m or N (when has_torques)
   std::vector<double> kinetic, potential;  // J (when has_energy)
+  // A mechanism with closed loops run with RunConfig::want_loop_forces: the cut joints'
+  // reactions, 6 per cut joint and frame in loop_force_names' order: the force (N) then the
+  // torque (N*m, about the joint's origin) that the joint's parent side exerts on its child
+  // side, in the world frame (LoopConstraints::Reactions). Empty otherwise.
+  std::vector<std::string> loop_force_names;  // the cut joints
+  std::vector<double> loop_forces;
   // J, the work of drives and damping since t = 0 at each frame, when the run integrates it
   // (RunStats::energy_work is kEnergyWorkIntegrated); empty otherwise.
   std::vector<double> work;

@@ -370,6 +370,7 @@ void ReadPhysics(const v1::RunSpec& spec, const std::vector<std::string>& joint_
   config->qd0 = JointVector(spec.initial_qd(), joint_names, "initial_qd", "rad/s or m/s", check);
   config->drives = ToDrives(spec, joint_names, check);
   config->want_torques = spec.has_want_torques() ? spec.want_torques() : true;
+  config->want_loop_forces = spec.report_loop_forces();
   if (spec.has_baumgarte()) {
     const v1::Baumgarte& baumgarte = spec.baumgarte();
     if (baumgarte.has_alpha()) {

@@ -92,6 +92,7 @@ v1::RunSpec ToRunSpec(const RunConfig& config) {
   spec.mutable_initial_qd()->Add(config.qd0.begin(), config.qd0.end());
   for (const DriveConfig& drive : config.drives) ToDriveSpec(drive, spec.add_drives());
   spec.set_want_torques(config.want_torques);
+  spec.set_report_loop_forces(config.want_loop_forces);
   spec.mutable_baumgarte()->set_alpha(config.baumgarte.alpha);
   spec.mutable_baumgarte()->set_beta(config.baumgarte.beta);
   // 0 = the default budget: the fields stay absent.

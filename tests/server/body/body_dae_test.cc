@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <set>
 
+#include "server/body/body_cuts.h"
 #include "server/body/consistent_init.h"
 #include "server/integrate/ida_colored_jacobian.h"
 #include "tests/common/test_models.h"
@@ -114,6 +115,18 @@ TEST(BodyDaeBranchingTest, PatternHoldsEveryNonZeroWithPrismaticJoints) {
       BodyDae dae(bm, drives, level);
       ExpectPatternHolds(dae, bm, "branching");
     }
+  }
+}
+
+TEST(BodyDaeBranchingTest, PatternHoldsEveryNonZeroWithCutJoints) {
+  const Model model = testing::BranchingModel();
+  const RunConfig config = testing::BranchingDrives(model, /*all_prescribed=*/false);
+  const DriveSet drives(model, config.drives);
+  BodyModel bm = MakeBodyModel(model, drives, Eigen::VectorXd());
+  AddCutJoints(testing::CutsOfEveryKind(), &bm);  // every row kept
+  for (ConstraintLevel level : {ConstraintLevel::kPosition, ConstraintLevel::kVelocity}) {
+    BodyDae dae(bm, drives, level);
+    ExpectPatternHolds(dae, bm, "branching with cut joints");
   }
 }
 

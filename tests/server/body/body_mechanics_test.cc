@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "common/check.h"
+#include "server/body/body_cuts.h"
 #include "server/body/consistent_init.h"
 #include "server/body/quaternion.h"
 #include "tests/common/test_models.h"
@@ -59,8 +60,10 @@ Evaluated Evaluate(BodyMechanics& mech, double t, const Eigen::VectorXd& y) {
 
 // G nu + g_t against central differences of g along the motion, gamma against those of
 // G nu + g_t, at random states of `model` under `config`.
-void ExpectConstraintDerivatives(const Model& model, const RunConfig& config) {
-  const MechanicsOf of(model, config);
+void ExpectConstraintDerivatives(const Model& model, const RunConfig& config,
+                                 const std::vector<LoopClosure>& loops = {}) {
+  MechanicsOf of(model, config);
+  AddCutJoints(loops, &of.bm);  // every row kept: none is dropped here
   const BodyModel& bm = of.bm;
   BodyMechanics mech = of.Make();
   std::mt19937 rng(7);
@@ -93,6 +96,12 @@ TEST(BodyMechanicsTest, ConstraintDerivativesOfPrismaticAndBranchingJoints) {
   const Model model = testing::BranchingModel();
   ExpectConstraintDerivatives(model, testing::BranchingDrives(model, /*all_prescribed=*/true));
   ExpectConstraintDerivatives(model, testing::BranchingDrives(model, /*all_prescribed=*/false));
+}
+
+TEST(BodyMechanicsTest, ConstraintDerivativesOfCutJoints) {
+  const Model model = testing::BranchingModel();
+  ExpectConstraintDerivatives(model, testing::BranchingDrives(model, /*all_prescribed=*/false),
+                              testing::CutsOfEveryKind());
 }
 
 TEST(BodyMechanicsTest, ConsistentInitialStateSatisfiesTheConstraints) {

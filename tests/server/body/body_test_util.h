@@ -2,16 +2,46 @@
 #pragma once
 
 #include <random>
+#include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "server/body/body_model.h"
 #include "server/body/quaternion.h"
 #include "server/drives/drive_set.h"
+#include "server/model/loop_closure.h"
 #include "server/model/model.h"
 #include "tests/server/sim/scene_fixture.h"
 
 namespace mbstream::testing {
+
+// Cut joints of every kind the body formulations close loops with, at arbitrary frames (the
+// derivatives hold whether or not the loops are closed), one with the base as its child side;
+// for the branching model (testing::BranchingModel, 5 moving bodies).
+inline std::vector<LoopClosure> CutsOfEveryKind() {
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, -1).normalized()).toRotationMatrix();
+  std::vector<LoopClosure> loops(3);
+  loops[0].type = LoopJointType::kRevolute;
+  loops[0].body_a = 0;
+  loops[0].X_AJ = Pose{turn, Vector3d(0.1, -0.2, 0.3)};
+  loops[0].body_b = 3;
+  loops[0].X_BJ = Pose{turn.transpose(), Vector3d(-0.05, 0.1, 0.2)};
+  loops[0].axis = Vector3d(0.3, -0.4, 0.5).normalized();
+  loops[1].type = LoopJointType::kPrismatic;
+  loops[1].body_a = 2;
+  loops[1].X_AJ = Pose{turn * turn, Vector3d(0.2, 0.1, -0.1)};
+  loops[1].body_b = kBase;
+  loops[1].X_BJ = Pose{turn.transpose(), Vector3d(0.3, 0.0, 0.4)};
+  loops[1].axis = Vector3d(-0.1, 0.9, 0.2).normalized();
+  loops[2].type = LoopJointType::kBall;
+  loops[2].body_a = 1;
+  loops[2].X_AJ = Pose{Eigen::Matrix3d::Identity(), Vector3d(0.0, 0.3, 0.1)};
+  loops[2].body_b = 2;
+  loops[2].X_BJ = Pose{turn, Vector3d(0.1, 0.0, -0.2)};
+  return loops;
+}
 
 // A random (inconsistent) body state: positions, unit-ish quaternions, velocities.
 inline Eigen::VectorXd RandomBodyState(const BodyModel& bm, std::mt19937& rng) {

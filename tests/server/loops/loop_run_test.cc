@@ -364,7 +364,7 @@ TEST(LoopRunTest, RefusesWhatTheLoopsCannotRun) {
   config = BaseConfig(3);
   config.formulation = Formulation::kBodyIndex3;
   config.method = Method::kIda;
-  ExpectRefused(sdf, config, "does not close kinematic loops yet");
+  ExpectRefused(sdf, config, "formulation body-index3 does not close kinematic loops");
 }
 
 TEST(LoopRunTest, ALoopThatCannotCloseNamesItsJointAndLine) {

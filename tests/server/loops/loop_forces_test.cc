@@ -1,0 +1,163 @@
+// The cut joints' reactions (RunConfig::want_loop_forces, RunSpec.report_loop_forces):
+// against the statics of the four-bar held still by its crank, the kinematic run's against
+// the joint-space ODE's on the driven four-bar, the results file's columns, the spec field,
+// and the formulations that do not compute them refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "common/check.h"
+#include "server/kinematics/forward_kinematics.h"
+#include "server/model/data.h"
+#include "server/parse/sdf_import.h"
+#include "server/results/results_csv.h"
+#include "server/sim/loop_run.h"
+#include "server/spec/run_spec_json.h"
+
+namespace mbstream {
+namespace {
+
+const std::string kFourBar = std::string(MBSTREAM_SOURCE_DIR) + "/models/linkages/four_bar.sdf";
+constexpr int kCrank = 0;
+
+// The crank held at its drawn angle (a two-point spline, constant), or turned once a second.
+DriveConfig Crank(double turns_per_second) {
+  DriveConfig drive;
+  drive.kind = DriveConfig::Kind::kPrescribed;
+  drive.trajectory.kind = Trajectory::Kind::kSpline;
+  drive.trajectory.times = {-1.0, 3.0};
+  drive.trajectory.values = {-2.0 * M_PI * turns_per_second, 6.0 * M_PI * turns_per_second};
+  return drive;
+}
+
+RunConfig CrankDriven(double turns_per_second, double duration) {
+  RunConfig config;
+  config.duration = duration;
+  config.output_interval = 0.01;
+  config.drives.assign(3, DriveConfig{});
+  config.drives[kCrank] = Crank(turns_per_second);
+  config.rtol = 1e-10;
+  config.atol = 1e-12;
+  config.want_loop_forces = true;
+  return config;
+}
+
+// (r x F) . y: the moment about the joints' axis (-y or y: the sign does not matter for = 0).
+double MomentY(const Vector3d& r, const Vector3d& force) { return r.cross(force).y(); }
+
+// Held still, the coupler and the rocker are each in equilibrium under gravity, the pin at
+// their proximal joint (the frame origin: no moment about its axis) and the cut joint's
+// reaction: two moment equations, about each body's own pivot, fix the reaction's two
+// components in the plane. Out of the plane (force along y, torques) the planar loop's
+// redundant rows would carry them: statically indeterminate, reported as 0.
+TEST(LoopForcesTest, TheFourBarHeldByItsCrankIsInEquilibrium) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  ASSERT_EQ(sdf.loops.size(), 1u);
+  const RunResult result = SimulateLoops(sdf.model, sdf.loops, CrankDriven(0.0, 0.1));
+  ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  EXPECT_EQ(result.stats.formulation, "kinematic");
+  ASSERT_EQ(result.loop_force_names, std::vector<std::string>{"loop_joint"});
+  ASSERT_EQ(result.loop_forces.size(), 6u * result.num_frames());
+
+  const LoopClosure& loop = sdf.loops[0];
+  ASSERT_NE(loop.body_a, kBase);
+  ASSERT_NE(loop.body_b, kBase);
+  Data data(sdf.model);
+  ForwardKinematics(sdf.model, data, Eigen::VectorXd::Zero(3));  // drawn: closed, held there
+  const Vector3d pin = data.X_world[loop.body_b].Apply(loop.X_BJ.p);
+  const Vector3d gravity(0.0, 0.0, -9.81);
+  const Eigen::Map<const Eigen::Matrix<double, 6, 1>> reaction(result.loop_forces.data());
+  const Vector3d force_on_b = reaction.head<3>();
+  double scale = 0.0;
+  for (const auto& [body, force] :
+       {std::pair{loop.body_b, force_on_b}, std::pair{loop.body_a, Vector3d(-force_on_b)}}) {
+    const Pose& X = data.X_world[body];
+    const Vector3d weight = sdf.model.bodies[body].inertia.mass * gravity;
+    const double gravity_moment = MomentY(X.R * sdf.model.bodies[body].inertia.com, weight);
+    scale = std::max(scale, std::abs(gravity_moment));
+    EXPECT_NEAR(MomentY(pin - X.p, force) + gravity_moment, 0.0, 1e-10)
+        << sdf.model.bodies[body].name;
+  }
+  EXPECT_GT(scale, 0.1);  // N*m: gravity does load the pin
+  EXPECT_GT(force_on_b.norm(), 1.0);
+  EXPECT_EQ(force_on_b.y(), 0.0);
+  EXPECT_EQ(reaction.tail<3>().norm(), 0.0);
+  // Held still, every frame says the same.
+  for (int k = 1; k < result.num_frames(); ++k) {
+    for (int i = 0; i < 6; ++i) EXPECT_NEAR(result.loop_forces[6 * k + i], reaction(i), 1e-9);
+  }
+}
+
+// The kinematic run's multipliers (least squares on the loop and drive rows, from inverse
+// dynamics) and the joint-space ODE's (its acceleration-level solve) are computed apart;
+// turning the crank once a second they agree frame by frame.
+TEST(LoopForcesTest, TheOdeAndTheKinematicRunGiveTheSameReactions) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  RunConfig config = CrankDriven(1.0, 1.0);
+  const RunResult kinematic = SimulateLoops(sdf.model, sdf.loops, config);
+  config.formulation = Formulation::kJoint;
+  const RunResult ode = SimulateLoops(sdf.model, sdf.loops, config);
+  ASSERT_EQ(kinematic.stats.status, RunStatus::kFinished) << kinematic.stats.message;
+  ASSERT_EQ(ode.stats.status, RunStatus::kFinished) << ode.stats.message;
+  ASSERT_EQ(ode.loop_forces.size(), kinematic.loop_forces.size());
+  double worst = 0.0, largest = 0.0;
+  for (size_t i = 0; i < ode.loop_forces.size(); ++i) {
+    worst = std::max(worst, std::abs(ode.loop_forces[i] - kinematic.loop_forces[i]));
+    largest = std::max(largest, std::abs(kinematic.loop_forces[i]));
+  }
+  std::printf("loop forces: largest %.4g N, ODE - kinematic %.3g N\n", largest, worst);
+  EXPECT_GT(largest, 5.0);
+  EXPECT_LT(worst, 1e-6 * largest);
+}
+
+TEST(LoopForcesTest, TheSpecFieldAsksAndTheFileNamesTheColumns) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  const std::vector<std::string> joints = {"crank_joint", "rocker_joint", "coupler_joint"};
+  EXPECT_FALSE(ToRunConfig(ParseRunSpecJson("{}", "spec"), joints, "spec").want_loop_forces);
+  RunConfig config =
+      ToRunConfig(ParseRunSpecJson(R"({"report_loop_forces": true, "duration_s": 0.05})", "spec"),
+                  joints, "spec");
+  EXPECT_TRUE(config.want_loop_forces);
+  config.formulation = Formulation::kJoint;
+  config.rtol = 1e-8;
+  config.atol = 1e-10;
+  const RunResult result = SimulateLoops(sdf.model, sdf.loops, config);
+  ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  bool found = false;
+  for (const results_csv::Series& series : results_csv::SeriesOf(result)) {
+    if (series.file != "loop_forces.csv") continue;
+    found = true;
+    EXPECT_EQ(series.header,
+              "t,loop_joint.fx,loop_joint.fy,loop_joint.fz,loop_joint.tx,loop_joint.ty,"
+              "loop_joint.tz");
+    EXPECT_EQ(series.width, 6);
+  }
+  EXPECT_TRUE(found);
+  config.want_loop_forces = false;
+  for (const results_csv::Series& series :
+       results_csv::SeriesOf(SimulateLoops(sdf.model, sdf.loops, config))) {
+    EXPECT_NE(series.file, "loop_forces.csv");
+  }
+}
+
+TEST(LoopForcesTest, FormulationsWithoutThemAreRefused) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  RunConfig config = CrankDriven(0.0, 0.1);
+  config.drives[kCrank] = DriveConfig{};
+  config.formulation = Formulation::kBodyIndex2;
+  config.method = Method::kIda;
+  try {
+    ValidateLoopRun(sdf.model, sdf.loops, config);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("report_loop_forces"), std::string::npos)
+        << error.what();
+    EXPECT_NE(std::string(error.what()).find("use formulation joint (method bdf)"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace mbstream
