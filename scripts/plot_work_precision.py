@@ -7,7 +7,8 @@ Writes one PNG per scene, <out-dir>/work_precision_<scene>.png: error (m) agains
 (s) on log-log axes, one line per formulation/method (points ordered by tolerance or step).
 The body-coordinate formulations (body-index3, body-index2, body-baumgarte) are dash-dotted.
 Runs that did not finish are red crosses at their CPU time on the top edge of the axes;
-runs with zero error (the closed form) sit on the bottom edge, labelled; the reference
+runs the study refused (status REFUSED: a formulation that does not take the scene) are not
+drawn but named in the legend; runs with zero error (the closed form) sit on the bottom edge, labelled; the reference
 row's agreement is a dashed line, the floor below which errors are not resolved. For
 passive-swing a second panel shows the relative energy error, the long-time accuracy
 figure of a scene whose TCP track is chaotic.
@@ -25,6 +26,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 
 MACHINE = "2-core VM"
+# The closed-loop linkages (models/linkages/): their error is the largest joint difference
+# from the reference (rad; m for the slider), not the TCP's.
+LINKAGES = {"four_bar", "slider_crank", "delta", "palletiser"}
 
 # Fixed colours and markers per method, so the charts of different scenes match.
 STYLES = {
@@ -53,7 +57,9 @@ def style(formulation, method):
     color, marker = STYLES.get(method, ("gray", "."))
     return color, marker, "--" if formulation == "kinematic" else "-"
 FINISHED = "FINISHED"
-NOT_RUN = {"SKIPPED", "REFERENCE"}
+# Rows with no run behind them: SKIPPED (tighter tolerances after a failure), REFERENCE (the
+# reference run's own row) and REFUSED (the formulation does not take the scene; cpu_s is 0).
+NOT_RUN = {"SKIPPED", "REFERENCE", "REFUSED"}
 
 
 def read_rows(path):
@@ -92,8 +98,11 @@ def plot_panel(ax, groups, value_key, ylabel, reference=None):
               if r["status"] == FINISHED and r[value_key] > 0 and math.isfinite(r[value_key])]
     cpus = [r["cpu_s"] for rows in groups.values() for r in rows
             if r["status"] not in NOT_RUN and r["cpu_s"] > 0]
+    refused = [series_label(*key, rows) for key, rows in groups.items()
+               if any(r["status"] == "REFUSED" for r in rows)]
     if not finite or not cpus:
-        ax.text(0.5, 0.5, "no finished runs", transform=ax.transAxes, ha="center")
+        text = "\n".join(["no finished runs"] + [f"{label}: refused" for label in refused])
+        ax.text(0.5, 0.5, text, transform=ax.transAxes, ha="center")
         return
     y_low = min(finite + ([reference] if reference else [])) / 10.0
     y_high = max(finite) * 30.0
@@ -103,7 +112,9 @@ def plot_panel(ax, groups, value_key, ylabel, reference=None):
     for (formulation, method), rows in groups.items():
         color, marker, linestyle = style(formulation, method)
         ok = [r for r in rows if r["status"] == FINISHED]
-        bad = [r for r in rows if r["status"] not in NOT_RUN and r["status"] != FINISHED]
+        # A failed run that took no measurable time sits at the left edge.
+        bad = [dict(r, cpu_s=max(r["cpu_s"], x_low)) for r in rows
+               if r["status"] not in NOT_RUN and r["status"] != FINISHED]
         label = series_label(formulation, method, rows)
         xs = [r["cpu_s"] for r in ok]
         ys = [r[value_key] if r[value_key] > 0 else y_low for r in ok]
@@ -143,6 +154,8 @@ def plot_panel(ax, groups, value_key, ylabel, reference=None):
             ax.annotate(text, ((min if right else max)(r["cpu_s"] for r in bad), y_fail),
                         textcoords="offset points", xytext=(8 if right else -8, -3),
                         ha="left" if right else "right", fontsize=7, color="red")
+    for label in refused:
+        ax.plot([], [], linestyle="none", marker="", label=f"{label}: refused (not run)")
     if reference:
         ax.axhline(reference, color="gray", linestyle=":", linewidth=1.0,
                    label=f"reference agreement ({reference:.1g} m)")
@@ -159,6 +172,8 @@ def plot_panel(ax, groups, value_key, ylabel, reference=None):
 def error_label(scene, rows):
     if scene == "seed-run":
         return "max TCP error vs closed form (m)"
+    if scene in LINKAGES:
+        return "max joint error vs reference (rad; m for a slider)"
     until = [r["error_until"] for r in rows if r["status"] == "REFERENCE"]
     durations = [r["t_reached"] for r in rows if r["status"] == FINISHED]
     if until and durations and until[0] < max(durations) - 1e-9:
@@ -185,7 +200,7 @@ def plot_scene(scene, rows, out_dir):
         fig, axes = plt.subplots(1, 1, figsize=(12, 6.5))
         axes = [axes]
     plot_panel(axes[0], groups, "error", error_label(scene, rows), reference)
-    axes[0].set_title("TCP error", fontsize=10)
+    axes[0].set_title("joint error" if scene in LINKAGES else "TCP error", fontsize=10)
     if energy:
         plot_panel(axes[1], groups, "energy_error", "max relative energy error")
         axes[1].set_title("energy balance error (no damping: energy should be constant)",
@@ -194,7 +209,8 @@ def plot_scene(scene, rows, out_dir):
     axes[-1].legend(handles, labels, fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     durations = [r["t_reached"] for r in rows if r["status"] == FINISHED]
     duration = f", {max(durations):g} s simulated" if durations else ""
-    fig.suptitle(f"Work-precision: {scene}{duration} (IRB 1600; {MACHINE})", fontsize=12)
+    model = "closed-loop linkage" if scene in LINKAGES else "IRB 1600"
+    fig.suptitle(f"Work-precision: {scene}{duration} ({model}; {MACHINE})", fontsize=12)
     fig.tight_layout()
     path = os.path.join(out_dir, f"work_precision_{scene}.png")
     fig.savefig(path, dpi=110)
