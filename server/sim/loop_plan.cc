@@ -37,9 +37,9 @@ void CheckSupported(const RunConfig& config, const DriveSet& drives) {
     throw InputError(std::string("report_loop_forces: the cut joints' reactions are computed by "
                                  "formulation joint with an ODE method (bdf, adams, ...) and by "
                                  "formulation kinematic, not ") +
-                     (config.method == Method::kIda
-                          ? "method ida"
-                          : std::string("formulation ") + FormulationName(config.formulation)) +
+                     (IsBodyFormulation(config.formulation)
+                          ? std::string("formulation ") + FormulationName(config.formulation)
+                          : std::string("method ida")) +
                      ": use formulation joint (method bdf) or auto, or drop report_loop_forces");
   }
   if (config.formulation == Formulation::kBodyIndex3) {

@@ -82,6 +82,50 @@ TEST_F(ServerLoopsCliTest, SubmittedSdfRunsGiveTheSameFilesAsSimulate) {
   }
 }
 
+// The cut joints' reactions (RunSpec.report_loop_forces) from a server run: `mbstream run
+// --out` (GetResult) writes loop_forces.csv as simulate does, bit for bit, beside the drive
+// efforts of a driven run (Frame.tau carries both); a formulation that cannot give them is
+// refused at the door naming the field.
+TEST_F(ServerLoopsCliTest, LoopReactionsOfAServerRunAreTheSameAsSimulate) {
+  const std::string spec_dir = Out("specs");
+  fs::create_directories(spec_dir);
+  struct Case {
+    std::string name;
+    std::string spec;
+  };
+  const std::vector<Case> cases = {
+      {"passive", R"({"duration_s": 0.5, "output_interval_s": 0.01, "formulation": "joint",
+          "method": "bdf", "rtol": 1e-8, "atol": 1e-10, "report_loop_forces": true})"},
+      {"driven", ReadFile("models/linkages/four_bar-driven.json")
+                     .insert(1, "\"report_loop_forces\": true, ")},
+  };
+  for (const Case& c : cases) {
+    const std::string spec = spec_dir + "/" + c.name + ".json";
+    std::ofstream(spec) << c.spec;
+    const CommandOutcome run = Cli("run four_bar --spec " + spec + " --watch --out " + Out(c.name));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const CommandOutcome local =
+        Simulate("models/linkages/four_bar.sdf --spec " + spec + " --out " + Out(c.name + "-l"));
+    ASSERT_EQ(local.exit_code, 0) << local.output;
+    ExpectSameFiles(dir_ / c.name, dir_ / (c.name + "-l"));
+    const std::string forces = ReadFile(dir_ / c.name / "loop_forces.csv");
+    EXPECT_EQ(forces, ReadFile(dir_ / (c.name + "-l") / "loop_forces.csv")) << c.name;
+    EXPECT_EQ(FirstLine(forces),
+              "t,loop_joint.fx,loop_joint.fy,loop_joint.fz,loop_joint.tx,loop_joint.ty,"
+              "loop_joint.tz");
+    EXPECT_TRUE(fs::exists(dir_ / c.name / "torques.csv")) << c.name;  // before the reactions
+  }
+
+  // body-index2 closes the loops but gives no reactions: refused, naming the field.
+  const std::string body = spec_dir + "/body.json";
+  std::ofstream(body) << R"({"duration_s": 0.1, "formulation": "body-index2", "method": "ida",
+      "report_loop_forces": true})";
+  const CommandOutcome refused = Cli("run four_bar --spec " + body);
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_THAT(refused.output, HasSubstr("report_loop_forces"));
+  EXPECT_THAT(refused.output, HasSubstr("formulation body-index2"));
+}
+
 // models/linkages/*.sdf are built-in models (each file one, named after it): run without a
 // submit.
 TEST_F(ServerLoopsCliTest, TheShippedLinkagesAreBuiltInModels) {

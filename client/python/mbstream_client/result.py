@@ -55,6 +55,10 @@ class Result:
                       name, x y z (m, in `frame`), frame, latency_us (empty without a viewer)
     stats:            the run's statistics (like stats.json) plus its state and message
     info:             the RunInfo message
+    loop_forces (N, 6 c): a mechanism with closed loops run with spec report_loop_forces: per
+                      cut joint (loop_force_names) the force (N) and torque (N*m, about the
+                      joint's origin) its parent side exerts on its child side, world frame,
+                      like loop_forces.csv; (N, 0) otherwise
 
     to_pandas() gives the same as DataFrames indexed by t (pandas, optional); plot_tcp() and
     plot_joints() draw them with matplotlib (for a notebook)."""
@@ -75,6 +79,8 @@ class Result:
     probes: np.ndarray
     stats: Dict[str, Any]
     info: "run_pb2.RunInfo" = field(repr=False)
+    loop_force_names: List[str] = field(default_factory=list)
+    loop_forces: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)
 
     @property
     def finished(self) -> bool:
@@ -188,11 +194,19 @@ def _pyplot() -> Any:
     return plt
 
 
-def _matrix(frames: List[Any], attribute: str, width: int) -> np.ndarray:
+def _tail(frames: List[Any], attribute: str, width: int) -> np.ndarray:
+    """The last `width` of each frame's `attribute` values."""
     if not frames or width == 0:
         return np.zeros((len(frames), width))
-    return np.array([list(getattr(f, attribute)) for f in frames], dtype=float).reshape(
-        len(frames), width)
+    return np.array([list(getattr(f, attribute))[-width:] for f in frames], dtype=float)
+
+
+def _matrix(frames: List[Any], attribute: str, width: int, extra: int = 0) -> np.ndarray:
+    """The first `width` of each frame's `attribute` values, which has `extra` more."""
+    if not frames or width == 0:
+        return np.zeros((len(frames), width))
+    values = np.array([list(getattr(f, attribute)) for f in frames], dtype=float)
+    return values.reshape(len(frames), width + extra)[:, :width]
 
 
 def result_from_chunks(chunks: Iterable["run_pb2.ResultChunk"]) -> Result:
@@ -207,7 +221,12 @@ def result_from_chunks(chunks: Iterable["run_pb2.ResultChunk"]) -> Result:
     if info is None:
         info = run_pb2.RunInfo()
     n = info.num_dofs or (len(frames[0].q) if frames else 0)
-    has_tau = bool(frames) and len(frames[0].tau) == n and n > 0
+    # Frame.tau: the drive efforts (n, or none), then the cut joints' reactions (6 each) of a
+    # run with closed loops and spec.report_loop_forces.
+    cut_joints = [c[:c.rfind(" (")] if " (" in c else c for c in info.stats.loops.cut_joints]
+    loop_force_names = cut_joints if info.spec.report_loop_forces else []
+    reactions = 6 * len(loop_force_names)
+    has_tau = bool(frames) and len(frames[0].tau) == n + reactions and n > 0
     names = [p.probe for p in probes]
     frame_names = [p.frame for p in probes]
     dtype = [("seq", "i8"), ("t", "f8"), ("name", "U%d" % max([1] + [len(s) for s in names])),
@@ -224,8 +243,9 @@ def result_from_chunks(chunks: Iterable["run_pb2.ResultChunk"]) -> Result:
         q=_matrix(frames, "q", n), qd=_matrix(frames, "qd", n),
         tcp=np.array([(f.tcp_m.x, f.tcp_m.y, f.tcp_m.z) for f in frames],
                      dtype=float).reshape(len(frames), 3),
-        tau=_matrix(frames, "tau", n if has_tau else 0),
+        tau=_matrix(frames, "tau", n if has_tau else 0, reactions),
         kinetic=np.array([f.kinetic_j for f in frames], dtype=float),
         potential=np.array([f.potential_j for f in frames], dtype=float),
         seq=np.array([f.seq for f in frames], dtype=np.int64),
-        probes=probe_rows, stats=stats_dict(info), info=info)
+        probes=probe_rows, stats=stats_dict(info), info=info, loop_force_names=loop_force_names,
+        loop_forces=_tail(frames, "tau", reactions))

@@ -285,7 +285,30 @@ def _synthetic_result():
     return result_from_chunks([chunk])
 
 
+def _loop_result(report_loop_forces):
+    """Two joints, one cut joint; Frame.tau: the efforts, then its 6 reactions when reported."""
+    chunk = mb.run_pb2.ResultChunk()
+    chunk.info.num_dofs = 2
+    chunk.info.joint_names.extend(["crank", "loop"])
+    chunk.info.spec.report_loop_forces = report_loop_forces
+    chunk.info.stats.loops.cut_joints.append("loop (revolute)")
+    for k in range(3):
+        reactions = [10 * k + i for i in range(6)] if report_loop_forces else []
+        chunk.frames.add(seq=k, t_s=0.1 * k, q=[k, -k], qd=[1, -1], tau=[2 * k, 3] + reactions)
+    return result_from_chunks([chunk])
+
+
 class ResultTest(unittest.TestCase):
+    def test_loop_forces_follow_the_efforts_in_frame_tau(self):
+        result = _loop_result(True)
+        np.testing.assert_array_equal(result.tau, [[0, 3], [2, 3], [4, 3]])
+        self.assertEqual(result.loop_force_names, ["loop"])
+        self.assertEqual(result.loop_forces.shape, (3, 6))
+        np.testing.assert_array_equal(result.loop_forces[2], [20, 21, 22, 23, 24, 25])
+        plain = _loop_result(False)
+        np.testing.assert_array_equal(plain.tau, result.tau)
+        self.assertEqual(plain.loop_forces.shape, (3, 0))
+
     def test_joint_names_and_arrays(self):
         result = _synthetic_result()
         self.assertEqual(result.joint_names, ["shoulder", "elbow"])
