@@ -35,6 +35,7 @@ void AddCutJoints(const std::vector<LoopClosure>& loops, BodyModel* bm) {
     }
     MBSTREAM_CHECK(b != kBase && a != b);
     BodyJoint j;
+    j.sides_swapped = a != loop.body_a;
     j.type = loop.type == LoopJointType::kPrismatic ? JointType::kPrismatic : JointType::kRevolute;
     j.ball = loop.type == LoopJointType::kBall;
     j.parent = a;

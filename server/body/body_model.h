@@ -43,8 +43,9 @@ struct BodyJoint {
   Matrix3d R_PJ;       // the joint frame (the child frame at q = 0) in the parent frame
   Matrix3d R_BJ = Matrix3d::Identity();  // the joint frame in the child frame (a cut joint's)
   bool ball = false;                     // a cut ball joint: the 3 joint-point rows only
-  int row = 0;   // first constraint row (a cut joint's: in its rows before selection)
-  int rows = 5;  // 5, or 6 when prescribed
+  bool sides_swapped = false;  // a cut joint whose child side is the base: parent = its child
+  int row = 0;                 // first constraint row (a cut joint's: in its rows before selection)
+  int rows = 5;                // 5, or 6 when prescribed
   bool prescribed = false;
   double q_offset = 0.0;  // rad: a velocity source started off its reference's q(0)
   double damping = 0.0;   // N*m*s/rad or N*s/m

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/check.h"
 #include "server/body/body_cuts.h"
 
 namespace mbstream {
@@ -62,6 +63,31 @@ bool BodyReadout::Read(double t, const double* y, bool efforts) {
   }
   return q_.allFinite() && qd_.allFinite() && effort_.allFinite() && tcp_.allFinite() &&
          std::isfinite(kinetic_) && std::isfinite(potential_);
+}
+
+void BodyReadout::CutReactions(Eigen::Ref<Eigen::VectorXd> reactions) const {
+  MBSTREAM_CHECK(reactions.size() == 6 * static_cast<Eigen::Index>(bm_.cuts.size()));
+  const BodyMechanics& mech = mechanics_;
+  reactions.setZero();
+  // The kept rows' generalized force on the cut's child body: [force, base frame; torque
+  // about its centre of mass, body frame] (M dnu/dt = f + G^T lambda).
+  for (size_t i = 0; i < bm_.cut_rows.size(); ++i) {
+    const int r = bm_.m_tree + static_cast<int>(i);
+    const int c = bm_.cut_rows[i].cut;
+    const int b = bm_.cuts[c].child;
+    reactions.segment<6>(6 * c) += mech.G().block<1, 6>(r, 6 * b).transpose() * mech.lambda()(r);
+  }
+  for (size_t c = 0; c < bm_.cuts.size(); ++c) {
+    const BodyJoint& cut = bm_.cuts[c];
+    const Matrix3d& R = mech.R(cut.child);
+    const Vector3d force = reactions.segment<3>(6 * c);
+    const Vector3d torque_com = R * reactions.segment<3>(6 * c + 3);
+    // About the joint point p = x + R d_B: tau_p = tau_com + (x - p) x F.
+    Vector3d torque = torque_com - (R * cut.d_B).cross(force);
+    const double sign = cut.sides_swapped ? -1.0 : 1.0;  // the base side is the file's child
+    reactions.segment<3>(6 * c) = sign * force;
+    reactions.segment<3>(6 * c + 3) = sign * torque;
+  }
 }
 
 }  // namespace mbstream

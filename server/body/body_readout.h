@@ -40,6 +40,12 @@ class BodyReadout {
   double potential() const { return potential_; }
   const ConstraintDrift& drift() const { return drift_; }
 
+  // After Read(..., efforts = true): the cut joints' reactions from the multipliers of their
+  // kept rows, 6 per cut joint in BodyModel::cuts' order (RunResult::loop_forces): the force
+  // (N) and the torque (N*m, about the joint point) that the joint's parent side exerts on its
+  // child side, base frame. What only dropped rows would carry is 0. Allocates nothing.
+  void CutReactions(Eigen::Ref<Eigen::VectorXd> reactions) const;
+
  private:
   const BodyModel& bm_;
   BodyMechanics mechanics_;

@@ -47,14 +47,16 @@ std::string Advice(Formulation formulation) {
 class BodySource : public FrameSource {
  public:
   BodySource(BodyReadout& readout, Integrator& integrator, Eigen::VectorXd& y,
-             BodyBaumgarteOde* ode, std::string advice, bool need_effort, BudgetTracking* budget)
+             BodyBaumgarteOde* ode, std::string advice, bool need_effort, BudgetTracking* budget,
+             Eigen::VectorXd* reactions)
       : readout_(readout),
         integrator_(integrator),
         y_(y),
         ode_(ode),
         advice_(std::move(advice)),
         need_effort_(need_effort),
-        budget_(budget) {}
+        budget_(budget),
+        reactions_(reactions) {}
 
   bool Advance(const std::vector<double>& times, size_t k, RunStats* stats) override {
     if (AdvanceToFrame(integrator_, times, k, y_.data(), stats, advice_, &budget_->t_stop)) {
@@ -72,7 +74,8 @@ class BodySource : public FrameSource {
     if (ode_ != nullptr && ode_->num_quadratures() > 0 && integrator_.Quadratures(&work_)) {
       recorder.SetWork(work_);
     }
-    const bool finite = readout_.Read(t, y_.data(), need_effort_);
+    const bool finite = readout_.Read(t, y_.data(), need_effort_ || reactions_ != nullptr);
+    if (finite && reactions_ != nullptr) readout_.CutReactions(*reactions_);
     extras_.tcp = readout_.tcp();
     extras_.kinetic = readout_.kinetic();
     extras_.potential = readout_.potential();
@@ -92,6 +95,7 @@ class BodySource : public FrameSource {
   const std::string advice_;
   const bool need_effort_;
   BudgetTracking* budget_;
+  Eigen::VectorXd* reactions_;  // the cut joints' reactions (null: not reported)
   FrameExtras extras_;
   double work_ = 0.0;  // J, the integrated work of drives and damping (body-baumgarte)
 };
@@ -170,7 +174,8 @@ void RunBody(const Model& model, const RunConfig& config, Formulation formulatio
   BodyReadout readout(bm, drives);
   readout.SetStart(q0);
   BodySource source(readout, *integrator, y, ode.get(), Advice(formulation),
-                    result.has_torques || result.has_energy, budget);
+                    result.has_torques || result.has_energy, budget,
+                    loops != nullptr ? loops->reactions : nullptr);
   RunFrames(times, source, recorder, result, sink, cancel);
   result.stats.solver = integrator->stats();
   const ConstraintDrift& drift = readout.drift();

@@ -25,6 +25,9 @@ struct BodyLoops {
   const std::vector<LoopClosure>& loops;
   const Eigen::VectorXd& q0;
   const Eigen::VectorXd& qd0;
+  // When given (RunConfig::want_loop_forces): filled with the cut joints' reactions
+  // (BodyReadout::CutReactions) before each frame is recorded.
+  Eigen::VectorXd* reactions = nullptr;
 };
 
 // Integrates `model` in body coordinates over `times` and records every good frame; sets

@@ -402,7 +402,7 @@ RunResult SimulateLoops(const Model& model_in, const std::vector<LoopClosure>& l
                                &stats);
     RunFrames(times, source, recorder, result, sink, cancel);
   } else if (IsBodyFormulation(plan.choice.formulation)) {
-    const BodyLoops body_loops{loops, plan.q0, plan.qd0};
+    const BodyLoops body_loops{loops, plan.q0, plan.qd0, frames.reactions};
     RunBody(model, config, plan.choice.formulation, drives, times, recorder, result, sink, cancel,
             &budget, &body_loops);
   } else if (config.method == Method::kIda) {
