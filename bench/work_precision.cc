@@ -36,9 +36,10 @@
 // Newton tolerance, atol / 100, limits BDF; agreement 5.5e-9 rad over the four-bar's 5 s,
 // where BDF at 1e-11 and Adams at 1e-11 part by 4.4e-6). Their methods (default): bdf
 // (Baumgarte and projection), adams, erk, erk-verner, dirk (Baumgarte alone), ida (the
-// joint-space index-2 GGL DAE), rk4, and body-index2/ida (refused: the body formulations do
-// not close loops). drift is the largest position constraint residual (m or rad) over the
-// frames.
+// joint-space index-2 GGL DAE), rk4, and the body-coordinate formulations with the cut
+// joints as constraints between bodies: body-index2/ida and body-baumgarte/bdf, and
+// body-index3/ida (refused with loops: status REFUSED). drift is the largest position
+// constraint residual (m or rad) over the frames.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -121,8 +122,16 @@ const std::vector<MethodVariant>& AllMethods() {
 }
 
 // The linkages' default methods (by name()).
-const std::vector<std::string> kLoopMethods = {"bdf",  "adams", "erk", "erk-verner",
-                                               "dirk", "ida",   "rk4", "body-index2/ida"};
+const std::vector<std::string> kLoopMethods = {"bdf",
+                                               "adams",
+                                               "erk",
+                                               "erk-verner",
+                                               "dirk",
+                                               "ida",
+                                               "rk4",
+                                               "body-index2/ida",
+                                               "body-baumgarte/bdf",
+                                               "body-index3/ida"};
 
 bool IsLinkage(const std::string& scene) {
   return scene == "four_bar" || scene == "slider_crank" || scene == "delta" ||

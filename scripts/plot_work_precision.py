@@ -40,6 +40,7 @@ STYLES = {
     "dirk": ("tab:green", "^"),
     "rk4": ("tab:purple", "P"),
     "euler": ("tab:pink", "X"),
+    "ida": ("darkgoldenrod", "<"),  # the joint space's GGL DAE (closed loops)
 }
 # The body-coordinate formulations, by formulation/method; dash-dotted lines.
 BODY_STYLES = {
@@ -92,7 +93,7 @@ def sweep_key(row):
     return -(value if value is not None else 0.0)
 
 
-def plot_panel(ax, groups, value_key, ylabel, reference=None):
+def plot_panel(ax, groups, value_key, ylabel, reference=None, unit="m"):
     """Plots one log-log panel; returns nothing. groups: {(formulation, method): rows}."""
     finite = [r[value_key] for rows in groups.values() for r in rows
               if r["status"] == FINISHED and r[value_key] > 0 and math.isfinite(r[value_key])]
@@ -158,7 +159,7 @@ def plot_panel(ax, groups, value_key, ylabel, reference=None):
         ax.plot([], [], linestyle="none", marker="", label=f"{label}: refused (not run)")
     if reference:
         ax.axhline(reference, color="gray", linestyle=":", linewidth=1.0,
-                   label=f"reference agreement ({reference:.1g} m)")
+                   label=f"reference agreement ({reference:.1g} {unit})")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlim(x_low, x_high)
@@ -199,7 +200,8 @@ def plot_scene(scene, rows, out_dir):
     else:
         fig, axes = plt.subplots(1, 1, figsize=(12, 6.5))
         axes = [axes]
-    plot_panel(axes[0], groups, "error", error_label(scene, rows), reference)
+    plot_panel(axes[0], groups, "error", error_label(scene, rows), reference,
+               "rad" if scene in LINKAGES else "m")
     axes[0].set_title("joint error" if scene in LINKAGES else "TCP error", fontsize=10)
     if energy:
         plot_panel(axes[1], groups, "energy_error", "max relative energy error")
