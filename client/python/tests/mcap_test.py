@@ -93,6 +93,11 @@ class McapTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "zstd, lz4, none"):
             run.to_mcap(self.path("bad.mcap"), compression="gzip")
         self.assertFalse(os.path.exists(self.path("bad.mcap")))
+        running = self.client.run("irb1600", SEED_SERVO, duration=60, realtime=1)
+        with self.assertRaises(mb.FailedPrecondition):  # 60 s of wall time to its end
+            running.to_mcap(self.path("running.mcap"), wait=False)
+        running.cancel()
+        self.assertFalse(os.path.exists(self.path("running.mcap")))
         result = run.result()
         result._stub = None  # a Result built by hand
         with self.assertRaisesRegex(ValueError, "export_mcap"):
