@@ -2,16 +2,17 @@
 
 #include <vector>
 
+#include "server/mcap/stored_run_mcap.h"
 #include "server/results/results_files.h"
-#include "server/spec/run_spec_json.h"
 #include "server/wire/frame_conversion.h"
 
 namespace mbstream::cli {
 
-grpc::Status DownloadResult(v1::Simulation::Stub& stub, const std::string& run_id,
-                            const std::string& directory, v1::RunInfo* info,
-                            const std::string& probe_set, const ResultMcapOptions* mcap,
-                            bool wait) {
+namespace {
+
+grpc::Status DownloadResultFiles(v1::Simulation::Stub& stub, const std::string& run_id,
+                                 const std::string& directory, v1::RunInfo* info,
+                                 const std::string& probe_set, bool wait) {
   grpc::ClientContext context;
   v1::GetResultRequest request;
   request.set_run_id(run_id);
@@ -24,26 +25,34 @@ grpc::Status DownloadResult(v1::Simulation::Stub& stub, const std::string& run_i
   while (reader->Read(&chunk)) {
     if (chunk.has_info()) *info = chunk.info();
     for (v1::Frame& frame : *chunk.mutable_frames()) frames.push_back(std::move(frame));
-    for (const v1::ProbeReport& p : chunk.probes()) {
-      probes.push_back({p.seq(), p.t_s(), p.probe(), p.position_m().x(), p.position_m().y(),
-                        p.position_m().z(), p.latency_us()});
-    }
+    for (const v1::ProbeReport& p : chunk.probes()) probes.push_back(mcap::ProbeRecordFromProto(p));
   }
   grpc::Status status = reader->Finish();
   if (!status.ok()) return status;
-  const RunResult result = ResultFromFrames(*info, frames);
-  // The spec as the engine saw it (every field explicit), like `mbstream simulate` records.
-  std::string spec_json;
-  try {
-    spec_json = RunSpecToJson(ToRunSpec(ToRunConfig(info->spec(), result.joint_names, "spec")));
-  } catch (const std::exception&) {
-    spec_json = RunSpecToJson(info->spec());
+  if (!directory.empty()) {
+    WriteResultsDirectory(ResultFromFrames(*info, frames), mcap::StoredRunProvenance(*info),
+                          directory, probes);
   }
-  const RunProvenance provenance{info->model_name(), "model " + info->model_id(), spec_json,
-                                 info->model_id(), info->id()};
-  if (!directory.empty()) WriteResultsDirectory(result, provenance, directory, probes);
-  if (mcap != nullptr && !mcap->path.empty()) {
-    return WriteResultMcap(stub, *info, result, probes, StatsJson(result, provenance), *mcap);
+  return grpc::Status::OK;
+}
+
+}  // namespace
+
+grpc::Status DownloadResult(v1::Simulation::Stub& stub, const std::string& run_id,
+                            const std::string& directory, v1::RunInfo* info,
+                            const std::string& probe_set, const ResultMcapOptions* mcap,
+                            bool wait) {
+  // The frames are fetched for the files, or for the info alone (a sweep waiting for its runs);
+  // the MCAP file is the server's, saved as it comes.
+  const bool with_mcap = mcap != nullptr && !mcap->path.empty();
+  if (!directory.empty() || !with_mcap) {
+    if (grpc::Status s = DownloadResultFiles(stub, run_id, directory, info, probe_set, wait);
+        !s.ok()) {
+      return s;
+    }
+  }
+  if (with_mcap) {
+    return SaveResultMcap(stub, run_id, probe_set, wait, *mcap, info);
   }
   return grpc::Status::OK;
 }

@@ -14,8 +14,9 @@ namespace mbstream::cli {
 // `mbstream simulate` writes for the same model and spec). Fills *info. Returns the RPC's
 // status; throws InputError when the directory cannot be written. probes.csv holds the live
 // run's probe reports, or those of the replay probe set `probe_set` when one is given.
-// An empty `directory` writes no files; `mcap` (when given, with a path) writes the run as
-// MCAP too (result_mcap.h). `wait`: a run not ended yet is waited for (else
+// An empty `directory` writes no files; `mcap` (when given, with a path) saves the run as
+// MCAP too, as the server writes it (result_mcap.h; without a directory the frames are then
+// not fetched at all). `wait`: a run not ended yet is waited for (else
 // FAILED_PRECONDITION).
 grpc::Status DownloadResult(v1::Simulation::Stub& stub, const std::string& run_id,
                             const std::string& directory, v1::RunInfo* info,

@@ -1,15 +1,12 @@
-// `mbstream result RUN --mcap FILE`: a downloaded run as one MCAP file (server/mcap/run_mcap.h).
-// The links' poses need the model: its text comes from the server (GetModel with its bundle)
-// and is imported here as `mbstream simulate` imports a file.
+// `mbstream result RUN --mcap FILE`: the run as one MCAP file, written by the server
+// (ExportMcap: server/mcap/stored_run_mcap.h, the one MCAP writer) and saved here as its bytes
+// come, so memory is a message, not the run.
 #pragma once
 
 #include <string>
-#include <vector>
 
 #include "mbstream/v1/run.pb.h"
 #include "mbstream/v1/simulation_service.grpc.pb.h"
-#include "server/results/results_files.h"
-#include "server/sim/run_result.h"
 
 namespace mbstream::cli {
 
@@ -22,10 +19,11 @@ struct ResultMcapOptions {
 // Checks the options before anything is downloaded; throws InputError naming the flag.
 void CheckResultMcapOptions(const ResultMcapOptions& options);
 
-// Writes `result` (with its probe reports and stats.json's text) to options.path. Returns
-// GetModel's status; throws InputError when the file cannot be written.
-grpc::Status WriteResultMcap(v1::Simulation::Stub& stub, const v1::RunInfo& info,
-                             const RunResult& result, const std::vector<ProbeRecord>& probes,
-                             const std::string& stats_json, const ResultMcapOptions& options);
+// Streams ExportMcap for `run_id` (the probe reports of `probe_set`, or the live run's) into
+// options.path, written as options.path + ".tmp" and renamed once whole. Fills *info. Returns
+// the RPC's status (no file then); throws InputError when the file cannot be written.
+grpc::Status SaveResultMcap(v1::Simulation::Stub& stub, const std::string& run_id,
+                            const std::string& probe_set, bool wait,
+                            const ResultMcapOptions& options, v1::RunInfo* info);
 
 }  // namespace mbstream::cli

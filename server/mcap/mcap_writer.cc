@@ -1,43 +1,25 @@
 #include "server/mcap/mcap_writer.h"
 
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
 #include <limits>
 
 #include "common/check.h"
-#include "common/format.h"
 
 namespace mbstream::mcap {
 
-McapWriter::McapWriter(std::string path, McapWriterOptions options)
-    : path_(std::move(path)), temporary_path_(path_ + ".tmp"), options_(std::move(options)) {
-  file_ = std::fopen(temporary_path_.c_str(), "wb");
-  if (file_ == nullptr) {
-    throw InputError(
-        FormatString("cannot write the MCAP file %s: %s; check that its folder "
-                     "exists and is writable",
-                     temporary_path_.c_str(), std::strerror(errno)));
-  }
+McapWriter::McapWriter(const std::string& path, McapWriterOptions options)
+    : McapWriter(std::make_unique<McapFileSink>(path), std::move(options)) {}
+
+McapWriter::McapWriter(std::unique_ptr<McapSink> sink, McapWriterOptions options)
+    : sink_(std::move(sink)), options_(std::move(options)) {
+  MBSTREAM_CHECK(sink_ != nullptr);
   scratch_.clear();
   AppendMagic(scratch_);
   Append(scratch_, Header{options_.profile, options_.library});
   Emit(scratch_, true);
 }
 
-McapWriter::~McapWriter() {
-  if (file_ != nullptr) std::fclose(file_);
-  if (!closed_) {
-    std::error_code error;
-    std::filesystem::remove(temporary_path_, error);
-  }
-}
-
 void McapWriter::Emit(std::string_view bytes, bool data_section) {
-  if (std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size()) {
-    throw InputError(FormatString("cannot write the MCAP file %s: %s (is the disk full?)",
-                                  temporary_path_.c_str(), std::strerror(errno)));
-  }
+  sink_->Write(bytes);
   if (data_section) data_crc_ = Crc32(bytes, data_crc_);
   offset_ += bytes.size();
 }
@@ -173,19 +155,7 @@ void McapWriter::Close() {
   AppendMagic(scratch_);
   Emit(scratch_, false);
 
-  const bool flushed = std::fflush(file_) == 0;
-  const bool closed = std::fclose(file_) == 0;
-  file_ = nullptr;
-  if (!flushed || !closed) {
-    throw InputError(FormatString("cannot write the MCAP file %s: %s (is the disk full?)",
-                                  temporary_path_.c_str(), std::strerror(errno)));
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary_path_, path_, error);
-  if (error) {
-    throw InputError(FormatString("cannot rename %s to %s: %s", temporary_path_.c_str(),
-                                  path_.c_str(), error.message().c_str()));
-  }
+  sink_->Close();
   closed_ = true;
 }
 

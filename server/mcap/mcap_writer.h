@@ -3,13 +3,14 @@
 // records, then DataEnd with the data section's CRC, the summary section (Schema, Channel,
 // Statistics, ChunkIndex records), the SummaryOffset section and the Footer with the
 // summary's CRC. Memory holds one chunk and one ChunkIndex per chunk written, never the
-// messages of earlier chunks. The file is written under a temporary name and renamed by
-// Close, so a failed export leaves no half-written file.
+// messages of earlier chunks. The bytes go to a McapSink front to back (a file written under a
+// temporary name and renamed by Close, so a failed export leaves no half-written file, or a
+// stream).
 #pragma once
 
 #include <cstdint>
-#include <cstdio>
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -17,6 +18,7 @@
 
 #include "server/mcap/mcap_compression.h"
 #include "server/mcap/mcap_records.h"
+#include "server/mcap/mcap_sink.h"
 
 namespace mbstream::mcap {
 
@@ -29,10 +31,12 @@ struct McapWriterOptions {
 
 class McapWriter {
  public:
-  // Opens `path`'s temporary file; throws InputError naming it when it cannot.
-  McapWriter(std::string path, McapWriterOptions options);
-  // Without Close: removes the temporary file.
-  ~McapWriter();
+  // Opens `path`'s temporary file (McapFileSink); throws InputError naming it when it cannot.
+  McapWriter(const std::string& path, McapWriterOptions options);
+  // Writes into `sink` (not null).
+  McapWriter(std::unique_ptr<McapSink> sink, McapWriterOptions options);
+  // Without Close: the sink is dropped unclosed (a file sink removes its temporary file).
+  ~McapWriter() = default;
   McapWriter(const McapWriter&) = delete;
   McapWriter& operator=(const McapWriter&) = delete;
 
@@ -43,8 +47,8 @@ class McapWriter {
                            std::vector<std::pair<std::string, std::string>> metadata = {});
   // One message; log_time and publish_time in ns.
   void Write(std::uint16_t channel_id, std::uint64_t log_time, std::string_view data);
-  // Writes the last chunk, the summary and the footer and renames the file into place.
-  // Throws InputError naming the file when it cannot be written (a full disk).
+  // Writes the last chunk, the summary and the footer and closes the sink (a file is renamed
+  // into place). Throws the sink's error when it cannot be written (a full disk).
   void Close();
 
   std::uint64_t bytes_written() const { return offset_; }
@@ -54,10 +58,8 @@ class McapWriter {
   void Emit(std::string_view bytes, bool data_section);
   void FlushChunk();
 
-  std::string path_;
-  std::string temporary_path_;
+  std::unique_ptr<McapSink> sink_;
   McapWriterOptions options_;
-  std::FILE* file_ = nullptr;
   std::uint64_t offset_ = 0;
   std::uint32_t data_crc_ = 0;
 

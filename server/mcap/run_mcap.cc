@@ -107,12 +107,16 @@ std::uint64_t NowNanoseconds() {
 
 RunMcapWriter::RunMcapWriter(const std::string& path, const Model& model,
                              const std::string& model_text, const RunMcapOptions& options)
+    : RunMcapWriter(std::make_unique<McapFileSink>(path), model, model_text, options) {}
+
+RunMcapWriter::RunMcapWriter(std::unique_ptr<McapSink> sink, const Model& model,
+                             const std::string& model_text, const RunMcapOptions& options)
     : model_(model),
       options_(options),
-      writer_(path, McapWriterOptions{.compression = options.compression,
-                                      .chunk_size = options.chunk_size,
-                                      .profile = "ros2",
-                                      .library = "mbstream " MBSTREAM_VERSION}),
+      writer_(std::move(sink), McapWriterOptions{.compression = options.compression,
+                                                 .chunk_size = options.chunk_size,
+                                                 .profile = "ros2",
+                                                 .library = "mbstream " MBSTREAM_VERSION}),
       data_(model),
       q_(Eigen::VectorXd::Zero(model.num_dofs())) {
   const std::uint16_t joint_state =

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,12 +43,15 @@ class RunMcapWriter : public FrameSink {
   // `model` must outlive the writer. Writes /robot_description and /tf_static at once.
   RunMcapWriter(const std::string& path, const Model& model, const std::string& model_text,
                 const RunMcapOptions& options);
+  // The same into `sink` (the server's ExportMcap streams the bytes to its client).
+  RunMcapWriter(std::unique_ptr<McapSink> sink, const Model& model, const std::string& model_text,
+                const RunMcapOptions& options);
 
   void OnFrame(const RunResult& result, int frame) override;
   bool KeepsFrames() const override { return true; }
 
   // Writes the probe reports and stats.json's text (`stats_json`, "" for none) and closes the
-  // file. Throws InputError naming it when it cannot be written.
+  // file (or the sink). Throws the sink's error when it cannot be written.
   void Finish(const std::vector<ProbeRecord>& probes, const std::string& stats_json, double t_end);
 
   long frames() const { return frames_; }

@@ -35,6 +35,22 @@ grpc::Status SimulationService::AwaitEnd(const grpc::ServerContext& context,
   return grpc::Status::OK;
 }
 
+grpc::Status SimulationService::StillStored(const std::string& run_id) const {
+  // A run deleted while it was read (run_deleter.h) may have lost its later chunks or probes
+  // in between: the stream then ends NOT_FOUND, never OK with part of a result. Its row goes
+  // in the transaction that deletes everything else: still stored now, everything read was.
+  try {
+    runs_->ResultInfo(run_id);
+  } catch (const RequestError& error) {
+    if (error.kind() != RequestErrorKind::kNotFound) throw;
+    return grpc::Status(grpc::StatusCode::NOT_FOUND,
+                        "run " + run_id +
+                            " was deleted while its result was being sent; what was sent is "
+                            "not all of it (`mbstream runs` lists the runs)");
+  }
+  return grpc::Status::OK;
+}
+
 grpc::Status SimulationService::SendResult(grpc::ServerContext& context, const std::string& run_id,
                                            const std::string& probe_set, bool wait,
                                            grpc::ServerWriter<v1::ResultChunk>& writer,
@@ -75,18 +91,7 @@ grpc::Status SimulationService::SendResult(grpc::ServerContext& context, const s
     chunk.AddProbe(probe);
     if (chunk.bytes() >= kChunkBytes && !flush()) return gone;
   }
-  // A run deleted while it was read (run_deleter.h) may have lost its later chunks or probes
-  // in between: the stream then ends NOT_FOUND, never OK with part of a result. Its row goes
-  // in the transaction that deletes everything else: still stored now, everything read was.
-  try {
-    runs_->ResultInfo(run_id);
-  } catch (const RequestError& error) {
-    if (error.kind() != RequestErrorKind::kNotFound) throw;
-    return grpc::Status(grpc::StatusCode::NOT_FOUND,
-                        "run " + run_id +
-                            " was deleted while its result was being sent; what was sent is "
-                            "not all of it (`mbstream runs` lists the runs)");
-  }
+  if (grpc::Status stored = StillStored(run_id); !stored.ok()) return stored;
   if (!flush()) return gone;
   return grpc::Status::OK;
 }

@@ -33,6 +33,7 @@ inline constexpr RpcRole kRpcRoles[] = {
     {"DeleteModel", Role::kAdmin},   //
     {"SetKeep", Role::kRun},         // protects a run from retention (or no longer)
     {"RetentionPlan", Role::kView},  // a dry run: deletes nothing
+    {"ExportMcap", Role::kView},     // a stored run as MCAP
 };
 
 // The role of `method`; a method missing from kRpcRoles is a bug (InternalError).

@@ -70,6 +70,10 @@ class SimulationService final : public v1::Simulation::Service {
   grpc::Status RetentionPlan(grpc::ServerContext* context, const v1::RetentionPlanRequest* request,
                              v1::RetentionPlanResponse* response) override;  // data_rpcs.cc
 
+  grpc::Status ExportMcap(
+      grpc::ServerContext* context, const v1::ExportMcapRequest* request,
+      grpc::ServerWriter<v1::McapFileChunk>* writer) override;  // export_mcap.cc
+
   // Ends every stream at its next event (shutdown).
   void Stop() { stopping_ = true; }
 
@@ -94,6 +98,15 @@ class SimulationService final : public v1::Simulation::Service {
   grpc::Status SendResult(grpc::ServerContext& context, const std::string& run_id,
                           const std::string& probe_set, bool wait,
                           grpc::ServerWriter<v1::ResultChunk>& writer, size_t& sent_bytes);
+
+  // OK while run `run_id` is stored; NOT_FOUND once it was deleted (a reader may then have
+  // read part of it). get_result.cc.
+  grpc::Status StillStored(const std::string& run_id) const;
+
+  // ExportMcap's body: the run as MCAP onto `writer`, adding the file's bytes sent to
+  // `sent_bytes`. export_mcap.cc.
+  grpc::Status SendMcap(grpc::ServerContext& context, const v1::ExportMcapRequest& request,
+                        grpc::ServerWriter<v1::McapFileChunk>& writer, size_t& sent_bytes);
 
   ModelRegistry* models_;
   RunManager* runs_;

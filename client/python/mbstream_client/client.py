@@ -1,4 +1,5 @@
 """The client: one channel to a server and the calls of service mbstream.v1.Simulation."""
+import os
 from types import TracebackType
 from typing import Any, Iterable, List, Mapping, Optional, Sequence, Type, Union
 
@@ -10,6 +11,7 @@ from .bundle import PathLike, read_model_bundle
 from .compare import Comparison, compare_results
 from .channel import make_channel
 from .errors import rpc_errors
+from .mcap import StartLike, save_mcap
 from .result import Result, result_from_chunks
 from .run import Run
 from .server_check import ServerCheck, check_server
@@ -174,11 +176,11 @@ class Client:
             chunks: List[Any] = []
             for chunk in self.stub.GetResults(request):
                 if chunk.HasField("info") and chunks:
-                    results.append(result_from_chunks(chunks))
+                    results.append(result_from_chunks(chunks, self.stub))
                     chunks = []
                 chunks.append(chunk)
             if chunks:
-                results.append(result_from_chunks(chunks))
+                results.append(result_from_chunks(chunks, self.stub))
         for handle, result in zip(handles, results):
             if handle is not None:
                 handle.info = result.info
@@ -194,6 +196,16 @@ class Client:
         """The result of run `run_id` (see Run.result); with `probe_set`, the probes of that
         replay of it (probe_sets())."""
         return self.get_run(run_id).result(wait=wait, check=check, probe_set=probe_set)
+
+    def export_mcap(self, run: Union[Run, str], path: Union[str, "os.PathLike[str]"],
+                    compression: str = "zstd", start: StartLike = None, probe_set: str = "",
+                    wait: bool = True) -> str:
+        """Writes run `run` (a Run handle or id) as one MCAP file at `path` (see
+        Result.to_mcap), its frames never fetched here. Returns `path`."""
+        if isinstance(run, Run):
+            return run.to_mcap(path, compression, start, probe_set, wait)
+        save_mcap(self.stub, run, path, compression, start, probe_set, wait)
+        return os.fspath(path)
 
     def probe_sets(self, run_id: str) -> List[replay_pb2.ProbeSet]:
         """The probe sets of the replays of run `run_id`, oldest first: each one's id (for

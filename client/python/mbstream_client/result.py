@@ -1,11 +1,13 @@
 """A run's stored result as NumPy arrays, with joint names, a pandas view and plots."""
+import os
 from dataclasses import dataclass, field
-from typing import Any, Dict, Iterable, List, Optional
+from typing import Any, Dict, Iterable, List, Optional, Union
 
 import numpy as np
 from google.protobuf import json_format
 
 from ._stubs import run_pb2
+from .mcap import StartLike, save_mcap
 
 
 def stats_dict(info: "run_pb2.RunInfo") -> Dict[str, Any]:
@@ -61,7 +63,8 @@ class Result:
                       like loop_forces.csv; (N, 0) otherwise
 
     to_pandas() gives the same as DataFrames indexed by t (pandas, optional); plot_tcp() and
-    plot_joints() draw them with matplotlib (for a notebook)."""
+    plot_joints() draw them with matplotlib (for a notebook); to_mcap(path) writes the run as
+    an MCAP file for ROS 2 tools and Foxglove."""
     run_id: str
     model_id: str
     model_name: str
@@ -81,6 +84,9 @@ class Result:
     info: "run_pb2.RunInfo" = field(repr=False)
     loop_force_names: List[str] = field(default_factory=list)
     loop_forces: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)
+    # The server it came from (a SimulationStub) and its probe set, for to_mcap.
+    _stub: Any = field(default=None, repr=False, compare=False)
+    _probe_set: str = field(default="", repr=False, compare=False)
 
     @property
     def finished(self) -> bool:
@@ -105,6 +111,24 @@ class Result:
         except ValueError:
             raise KeyError("run %s has no joint '%s'; its joints: %s"
                            % (self.run_id, name, ", ".join(self.joint_names))) from None
+
+    def to_mcap(self, path: Union[str, "os.PathLike[str]"], compression: str = "zstd",
+                start: StartLike = None) -> str:
+        """Writes the run as one MCAP file at `path` (rosbag2's format: `ros2 bag info`,
+        Foxglove and PlotJuggler open it; docs/mcap.md): /joint_states
+        (sensor_msgs/msg/JointState), /tf and /tf_static (each link's pose in its parent),
+        /robot_description (the URDF), /mbstream/probes (this result's probe reports) and
+        /mbstream/stats. The server that computed the run writes the file (it has the model)
+        and its bytes are saved as they come, written as path + ".tmp" and renamed once whole.
+        compression: each chunk's, "zstd", "lz4" or "none". start: the UTC time of t = 0 in
+        the stamps: None (the run's start), "2026-11-26T12:00:00Z", seconds since the Unix
+        epoch, or a datetime (naive = UTC). Returns `path`."""
+        if self._stub is None:
+            raise ValueError("result of run %s was not fetched from a server (Run.result, "
+                             "Client.result or Client.results); use "
+                             "Client.export_mcap(run_id, path)" % self.run_id)
+        save_mcap(self._stub, self.run_id, path, compression, start, self._probe_set)
+        return os.fspath(path)
 
     def to_pandas(self, quantity: Optional[str] = None) -> Any:
         """The result as a pandas DataFrame indexed by t (s). quantity "q", "qd" or "tau":
@@ -209,8 +233,10 @@ def _matrix(frames: List[Any], attribute: str, width: int, extra: int = 0) -> np
     return values.reshape(len(frames), width + extra)[:, :width]
 
 
-def result_from_chunks(chunks: Iterable["run_pb2.ResultChunk"]) -> Result:
-    """A Result from GetResult's stream of ResultChunk messages."""
+def result_from_chunks(chunks: Iterable["run_pb2.ResultChunk"], stub: Any = None,
+                       probe_set: str = "") -> Result:
+    """A Result from GetResult's stream of ResultChunk messages (`stub`: the server's
+    SimulationStub they came from, for Result.to_mcap; `probe_set`: the one asked for)."""
     info = None
     frames, probes = [], []
     for chunk in chunks:
@@ -248,4 +274,4 @@ def result_from_chunks(chunks: Iterable["run_pb2.ResultChunk"]) -> Result:
         potential=np.array([f.potential_j for f in frames], dtype=float),
         seq=np.array([f.seq for f in frames], dtype=np.int64),
         probes=probe_rows, stats=stats_dict(info), info=info, loop_force_names=loop_force_names,
-        loop_forces=_tail(frames, "tau", reactions))
+        loop_forces=_tail(frames, "tau", reactions), _stub=stub, _probe_set=probe_set)

@@ -1,10 +1,12 @@
 """A handle on one run of the server: watch its frames and progress, wait, fetch its result,
 cancel."""
+import os
 import sys
 from typing import TYPE_CHECKING, Any, Iterator, Optional, TextIO, Union
 
 from ._stubs import frame_pb2, run_pb2, simulation_service_pb2 as service_pb2
 from .errors import RunFailed, rpc_errors
+from .mcap import StartLike, save_mcap
 from .result import Result, result_from_chunks
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -186,12 +188,21 @@ class Run:
         with rpc_errors():
             chunks = self._client.stub.GetResult(
                 service_pb2.GetResultRequest(run_id=self.id, probe_set=probe_set, wait=wait))
-            result = result_from_chunks(chunks)
+            result = result_from_chunks(chunks, self._client.stub, probe_set)
         self.info = result.info
         if check and not result.finished:
             raise RunFailed(result.state, result.message or "run %s ended %s"
                             % (self.id, result.state))
         return result
+
+    def to_mcap(self, path: Union[str, "os.PathLike[str]"], compression: str = "zstd",
+                start: StartLike = None, probe_set: str = "", wait: bool = True) -> str:
+        """Writes the run as one MCAP file at `path`, as Result.to_mcap does, without
+        fetching its frames here (the server writes the file; memory stays small for a run of
+        any length). Waits for the run's end unless `wait` is False. Returns `path`."""
+        self.info = save_mcap(self._client.stub, self.id, path, compression, start, probe_set,
+                              wait)
+        return os.fspath(path)
 
     def cancel(self) -> "run_pb2.RunInfo":
         """Asks the server to cancel the run; returns its RunInfo (CANCELLED once it stops)."""

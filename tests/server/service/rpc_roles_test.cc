@@ -178,6 +178,12 @@ class RpcGateTest : public ServerTest {
            v1::RetentionPlanResponse response;
            return stub().RetentionPlan(&context, v1::RetentionPlanRequest(), &response);
          }},
+        {"ExportMcap",
+         [&] {
+           v1::ExportMcapRequest request;
+           request.set_run_id("r-nosuch");
+           return finish(stub().ExportMcap(&context, request), v1::McapFileChunk());
+         }},
     };
     return calls.at(method)();
   }
