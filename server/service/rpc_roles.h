@@ -33,6 +33,8 @@ inline constexpr RpcRole kRpcRoles[] = {
     {"DeleteModel", Role::kAdmin},   //
     {"SetKeep", Role::kRun},         // protects a run from retention (or no longer)
     {"RetentionPlan", Role::kView},  // a dry run: deletes nothing
+    {"GetSweep", Role::kView},       //
+    {"CancelSweep", Role::kRun},     // the runs' own token, or admin (checked in the handler)
 };
 
 // The role of `method`; a method missing from kRpcRoles is a bug (InternalError).

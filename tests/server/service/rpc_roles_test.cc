@@ -178,6 +178,20 @@ class RpcGateTest : public ServerTest {
            v1::RetentionPlanResponse response;
            return stub().RetentionPlan(&context, v1::RetentionPlanRequest(), &response);
          }},
+        {"GetSweep",
+         [&] {
+           v1::GetSweepRequest request;
+           request.set_sweep_id("s-nosuch");
+           v1::SweepProgress progress;
+           return stub().GetSweep(&context, request, &progress);
+         }},
+        {"CancelSweep",
+         [&] {
+           v1::CancelSweepRequest request;
+           request.set_sweep_id("s-nosuch");
+           v1::SweepProgress progress;
+           return stub().CancelSweep(&context, request, &progress);
+         }},
     };
     return calls.at(method)();
   }
