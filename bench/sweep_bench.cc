@@ -174,6 +174,27 @@ void Check(const grpc::Status& status, const char* what) {
   if (!status.ok()) throw std::runtime_error(std::string(what) + ": " + status.error_message());
 }
 
+// GetResults (waiting) of the runs `ids`, each written under `files` when given.
+void FetchBatch(v1::Simulation::Stub& stub, const std::vector<std::string>& ids,
+                const std::string& files, Measured& m) {
+  grpc::ClientContext context;
+  v1::GetResultsRequest request;
+  for (const std::string& id : ids) request.add_run_ids(id);
+  request.set_wait(true);
+  auto reader = stub.GetResults(&context, request);
+  v1::ResultChunk chunk;
+  ResultFiles results(files);
+  while (reader->Read(&chunk)) {
+    if (chunk.has_info() && chunk.info().state() != v1::FINISHED) {
+      throw std::runtime_error("run " + chunk.info().id() + " did not finish");
+    }
+    m.frames += chunk.frames_size();
+    results.Add(chunk);
+  }
+  Check(reader->Finish(), "GetResults");
+  results.Flush();
+}
+
 // The sweep in batches: StartRuns of `batch` runs while at most `window` are in flight, then
 // GetResults (waiting) of the oldest batch: two calls per batch.
 void BatchedSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs, int window,
@@ -194,24 +215,9 @@ void BatchedSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs,
       submitted += n;
       flying += n;
     }
-    grpc::ClientContext context;
-    v1::GetResultsRequest request;
-    for (const std::string& id : in_flight.front()) request.add_run_ids(id);
-    request.set_wait(true);
     flying -= static_cast<int>(in_flight.front().size());
+    FetchBatch(stub, in_flight.front(), files, m);
     in_flight.pop_front();
-    auto reader = stub.GetResults(&context, request);
-    v1::ResultChunk chunk;
-    ResultFiles results(files);
-    while (reader->Read(&chunk)) {
-      if (chunk.has_info() && chunk.info().state() != v1::FINISHED) {
-        throw std::runtime_error("run " + chunk.info().id() + " did not finish");
-      }
-      m.frames += chunk.frames_size();
-      results.Add(chunk);
-    }
-    Check(reader->Finish(), "GetResults");
-    results.Flush();
   }
 }
 
@@ -242,24 +248,9 @@ void OneJobSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs, 
       for (const v1::RunInfo& info : response.runs()) ids.push_back(info.id());
       flying += response.runs_size();
     }
-    grpc::ClientContext context;
-    v1::GetResultsRequest request;
-    for (const std::string& id : in_flight.front()) request.add_run_ids(id);
-    request.set_wait(true);
     flying -= static_cast<int>(in_flight.front().size());
+    FetchBatch(stub, in_flight.front(), files, m);
     in_flight.pop_front();
-    auto reader = stub.GetResults(&context, request);
-    v1::ResultChunk chunk;
-    ResultFiles results(files);
-    while (reader->Read(&chunk)) {
-      if (chunk.has_info() && chunk.info().state() != v1::FINISHED) {
-        throw std::runtime_error("run " + chunk.info().id() + " did not finish");
-      }
-      m.frames += chunk.frames_size();
-      results.Add(chunk);
-    }
-    Check(reader->Finish(), "GetResults");
-    results.Flush();
   }
 }
 
