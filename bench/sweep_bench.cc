@@ -21,6 +21,10 @@
 // command would, with its results directory (the CSV files and stats.json, then removed):
 // in-process as `mbstream simulate --out` writes it, the client as `mbstream results --out`
 // writes a fetched result; without it the in-process side keeps the frames in memory only.
+// `--sweep`: the client is one sweep (StartSweep slices, GetResults of each), as `mbstream
+// sweep` runs it; `--keep summary|all` (both sides): the sweep baselines of issue 33,
+//   sweep_bench --server S --sweep --keep all --files     vs `mbstream simulate --out`
+//   sweep_bench --server S --sweep --keep summary         vs the engine alone (Simulate)
 #include <grpcpp/grpcpp.h>
 #include <sys/resource.h>
 #include <unistd.h>
@@ -170,6 +174,27 @@ void Check(const grpc::Status& status, const char* what) {
   if (!status.ok()) throw std::runtime_error(std::string(what) + ": " + status.error_message());
 }
 
+// GetResults (waiting) of the runs `ids`, each written under `files` when given.
+void FetchBatch(v1::Simulation::Stub& stub, const std::vector<std::string>& ids,
+                const std::string& files, Measured& m) {
+  grpc::ClientContext context;
+  v1::GetResultsRequest request;
+  for (const std::string& id : ids) request.add_run_ids(id);
+  request.set_wait(true);
+  auto reader = stub.GetResults(&context, request);
+  v1::ResultChunk chunk;
+  ResultFiles results(files);
+  while (reader->Read(&chunk)) {
+    if (chunk.has_info() && chunk.info().state() != v1::FINISHED) {
+      throw std::runtime_error("run " + chunk.info().id() + " did not finish");
+    }
+    m.frames += chunk.frames_size();
+    results.Add(chunk);
+  }
+  Check(reader->Finish(), "GetResults");
+  results.Flush();
+}
+
 // The sweep in batches: StartRuns of `batch` runs while at most `window` are in flight, then
 // GetResults (waiting) of the oldest batch: two calls per batch.
 void BatchedSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs, int window,
@@ -190,24 +215,42 @@ void BatchedSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs,
       submitted += n;
       flying += n;
     }
-    grpc::ClientContext context;
-    v1::GetResultsRequest request;
-    for (const std::string& id : in_flight.front()) request.add_run_ids(id);
-    request.set_wait(true);
     flying -= static_cast<int>(in_flight.front().size());
+    FetchBatch(stub, in_flight.front(), files, m);
     in_flight.pop_front();
-    auto reader = stub.GetResults(&context, request);
-    v1::ResultChunk chunk;
-    ResultFiles results(files);
-    while (reader->Read(&chunk)) {
-      if (chunk.has_info() && chunk.info().state() != v1::FINISHED) {
-        throw std::runtime_error("run " + chunk.info().id() + " did not finish");
-      }
-      m.frames += chunk.frames_size();
-      results.Add(chunk);
+  }
+}
+
+// The sweep as one job (`mbstream sweep`'s calls, client/cli/sweep_command.cc): StartSweep of
+// `runs` points (a list of the same duration: the same runs as the other sides) a slice at a
+// time, half a window each, and GetResults (waiting) of each slice. The spec's `keep` says
+// what the runs keep and send (every frame, or the summary only).
+void OneJobSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs, int window,
+                 const std::string& files, Measured& m) {
+  v1::StartSweepRequest start;
+  start.set_model("irb1600");
+  *start.mutable_base() = spec;
+  start.add_list_paths("duration_s");
+  const std::string duration = std::to_string(spec.duration_s());
+  for (int i = 0; i < runs; ++i) start.add_list()->add_values(duration);
+  const int slice = std::max(1, window / 2);
+  std::deque<std::vector<std::string>> in_flight;
+  int flying = 0;
+  while (start.first_point() < runs || !in_flight.empty()) {
+    while (start.first_point() < runs && flying + slice <= window) {
+      grpc::ClientContext context;
+      start.set_max_runs(slice);
+      v1::StartSweepResponse response;
+      Check(stub.StartSweep(&context, start, &response), "StartSweep");
+      start.set_sweep_id(response.sweep_id());
+      start.set_first_point(response.next_point());
+      std::vector<std::string>& ids = in_flight.emplace_back();
+      for (const v1::RunInfo& info : response.runs()) ids.push_back(info.id());
+      flying += response.runs_size();
     }
-    Check(reader->Finish(), "GetResults");
-    results.Flush();
+    flying -= static_cast<int>(in_flight.front().size());
+    FetchBatch(stub, in_flight.front(), files, m);
+    in_flight.pop_front();
   }
 }
 
@@ -266,7 +309,8 @@ struct ClientPattern {
   int window = 32;
   int batch = 0;
   bool watch = false;
-  std::string files;  // with --files: where the client writes each result
+  bool sweep = false;  // StartSweep slices (OneJobSweep)
+  std::string files;   // with --files: where the client writes each result
 };
 
 Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec, int runs,
@@ -280,11 +324,32 @@ Measured ThroughServer(const std::string& server_binary, const v1::RunSpec& spec
   arguments.SetMaxReceiveMessageSize(256 << 20);
   auto stub = v1::Simulation::NewStub(
       grpc::CreateCustomChannel(server.address(), grpc::InsecureChannelCredentials(), arguments));
+  // One short run first, unmeasured: the server compiles a model at its first use (the
+  // in-process side imports it before its clock starts too).
+  {
+    grpc::ClientContext context;
+    v1::StartRunsRequest request;
+    request.set_model("irb1600");
+    v1::RunSpec& warm = *request.add_specs() = spec;
+    warm.set_duration_s(std::min(spec.duration_s(), 0.1));
+    v1::StartRunsResponse response;
+    Check(stub->StartRuns(&context, request, &response), "StartRuns (warm-up)");
+    grpc::ClientContext fetch;
+    v1::GetResultsRequest results;
+    results.add_run_ids(response.runs(0).id());
+    results.set_wait(true);
+    auto reader = stub->GetResults(&fetch, results);
+    for (v1::ResultChunk chunk; reader->Read(&chunk);) {
+    }
+    Check(reader->Finish(), "GetResults (warm-up)");
+  }
   Measured m;
   const double server_cpu0 = ProcessCpuSeconds(server.pid());
   const double client_cpu0 = OwnCpuSeconds();
   const Clock::time_point start = Clock::now();
-  if (client.batch > 0) {
+  if (client.sweep) {
+    OneJobSweep(*stub, spec, runs, client.window, client.files, m);
+  } else if (client.batch > 0) {
     BatchedSweep(*stub, spec, runs, client.window, client.batch, client.files, m);
   } else {
     PerRunSweep(*stub, spec, runs, client.window, client.watch, client.files, m);
@@ -336,7 +401,8 @@ int main(int argc, char** argv) {
   std::string server_binary, baseline_binary, scene = "seed-servo";
   int runs = 1000, window = 32, rounds = 1, batch = 0, baseline_batch = -1;
   double duration = 0.0;
-  bool server_only = false, watch = false, simulate_files = false;
+  bool server_only = false, watch = false, simulate_files = false, sweep = false;
+  std::string keep;
   app.add_option("--server", server_binary, "the mbstream-server binary")->required();
   app.add_option("--runs", runs, "runs on each side");
   app.add_option("--scene", scene, "models/irb1600/SCENE.json");
@@ -348,6 +414,12 @@ int main(int argc, char** argv) {
   app.add_option("--baseline-batch", baseline_batch,
                  "--batch for the baseline server (default: the same; 0 for a binary without "
                  "StartRuns, or to compare the two patterns on one binary)");
+  app.add_flag("--sweep", sweep,
+               "the server side is one sweep (StartSweep slices of half a window, GetResults "
+               "of each), as `mbstream sweep` runs it");
+  app.add_option("--keep", keep,
+                 "RunSpec.keep of every run on both sides (all, summary, final, every:N; "
+                 "default the scene's: all)");
   app.add_flag("--server-only", server_only, "skip the in-process side (for profiling)");
   app.add_flag("--files", simulate_files,
                "both sides write each run's results directory (CSV files and stats.json) and "
@@ -365,6 +437,7 @@ int main(int argc, char** argv) {
     const std::string path = MBSTREAM_SOURCE_DIR "/models/irb1600/" + scene + ".json";
     v1::RunSpec spec = LoadRunSpecFile(path);
     if (duration > 0) spec.set_duration_s(duration);
+    if (!keep.empty()) spec.set_keep(keep);
     const Model model = ImportUrdfFile(MBSTREAM_SOURCE_DIR "/models/irb1600/irb1600.urdf").model;
     std::vector<std::string> joints;
     for (const Body& body : model.bodies) joints.push_back(body.joint.name);
@@ -384,7 +457,7 @@ int main(int argc, char** argv) {
             ? (fs::temp_directory_path() / ("mbstream-simulate-" + std::to_string(getpid())))
                   .string()
             : "";
-    const ClientPattern client{window, batch, watch, files.empty() ? "" : files + "-client"};
+    const ClientPattern client{window, batch, watch, sweep, files.empty() ? "" : files + "-client"};
     Ratios ratios, baseline_ratios;
     for (int round = 0; round < rounds; ++round) {
       if (rounds > 1) std::printf("round %d\n", round + 1);

@@ -134,7 +134,7 @@ void RunManager::ReserveNewRuns(std::vector<v1::RunInfo>& infos,
 
 std::vector<v1::RunInfo> RunManager::StartMany(
     const std::string& model_ref, const google::protobuf::RepeatedPtrField<v1::RunSpec>& specs,
-    const std::string& owner, const std::string& sweep_id) {
+    const std::string& owner, const std::string& sweep_id, int first_point, int total_points) {
   std::shared_ptr<const CompiledModel> model = FindModel(model_ref);
   const int count = specs.size();
   if (count == 0) throw InputError("specs is empty; give at least one run spec");
@@ -180,7 +180,11 @@ std::vector<v1::RunInfo> RunManager::StartMany(
     info.set_created_unix_ms(NowUnixMs());
     info.set_mbstream_version(MBSTREAM_VERSION);
     info.set_owner(owner);
-    info.set_sweep_id(sweep_id);
+    if (!sweep_id.empty()) {
+      info.set_sweep_id(sweep_id);
+      info.set_sweep_point(first_point + i);
+      info.set_sweep_points(total_points);
+    }
     for (const std::string& warning : warnings) info.add_warnings(warning);
   }
 

@@ -82,11 +82,19 @@ class RunManager {
   // Start for several runs of one model at once (a sweep): every spec is validated first
   // (errors name it: "specs[3]: ..."), then either all are queued, stored in one store
   // transaction, or none is (queue too small, store failure, shutting down). Infos in the
-  // specs' order. `sweep_id`, if given, is recorded in each (RunInfo.sweep_id).
+  // specs' order. `sweep_id`, if given, is recorded in each (RunInfo.sweep_id), with its
+  // point (`first_point` + its index in `specs`) and the sweep's `total_points`.
   std::vector<v1::RunInfo> StartMany(const std::string& model,
                                      const google::protobuf::RepeatedPtrField<v1::RunSpec>& specs,
                                      const std::string& owner = "",
-                                     const std::string& sweep_id = "");
+                                     const std::string& sweep_id = "", int first_point = 0,
+                                     int total_points = 0);
+  // The runs of sweep `sweep_id` the store holds (every replica's), in point order, each as
+  // Get returns it (run_manager_sweep.cc). Empty for an unknown sweep.
+  std::vector<v1::RunInfo> SweepRuns(const std::string& sweep_id) const;
+  // Records on each ended run of `runs` that its sweep was cancelled (RunInfo.sweep_cancelled)
+  // and returns how many carry the mark now.
+  int MarkSweepCancelled(const std::vector<v1::RunInfo>& runs);
   // Tests only: where new run ids come from (the time and 32 random bits by default), to
   // force the collisions the store refuses. Call before the first Start.
   void SetRunIdSourceForTesting(std::function<std::string()> source) {

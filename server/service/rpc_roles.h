@@ -34,6 +34,8 @@ inline constexpr RpcRole kRpcRoles[] = {
     {"SetKeep", Role::kRun},         // protects a run from retention (or no longer)
     {"RetentionPlan", Role::kView},  // a dry run: deletes nothing
     {"ExportMcap", Role::kView},     // a stored run as MCAP
+    {"GetSweep", Role::kView},       //
+    {"CancelSweep", Role::kRun},     // the runs' own token, or admin (checked in the handler)
 };
 
 // The role of `method`; a method missing from kRpcRoles is a bug (InternalError).

@@ -69,6 +69,10 @@ class SimulationService final : public v1::Simulation::Service {
                        v1::RunInfo* response) override;  // data_rpcs.cc
   grpc::Status RetentionPlan(grpc::ServerContext* context, const v1::RetentionPlanRequest* request,
                              v1::RetentionPlanResponse* response) override;  // data_rpcs.cc
+  grpc::Status GetSweep(grpc::ServerContext* context, const v1::GetSweepRequest* request,
+                        v1::SweepProgress* response) override;  // sweep_rpcs.cc
+  grpc::Status CancelSweep(grpc::ServerContext* context, const v1::CancelSweepRequest* request,
+                           v1::SweepProgress* response) override;  // sweep_rpcs.cc
 
   grpc::Status ExportMcap(
       grpc::ServerContext* context, const v1::ExportMcapRequest* request,

@@ -3,8 +3,10 @@
 #include <algorithm>
 
 #include "common/check.h"
+#include "server/runs/request_error.h"
 #include "server/runs/timed_id.h"
 #include "server/service/simulation_service.h"
+#include "server/service/sweep_progress.h"
 #include "server/spec/spec_override.h"
 
 namespace mbstream {
@@ -76,12 +78,17 @@ grpc::Status SimulationService::StartSweep(grpc::ServerContext* context,
          given.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-") != std::string::npos)) {
       throw InputError("sweep_id: give the id the sweep's first StartSweep returned (s-...)");
     }
+    if (!given.empty() && SweepWasCancelled(runs_->SweepRuns(given))) {
+      throw RequestError(RequestErrorKind::kFailedPrecondition,
+                         "sweep " + given + " was cancelled (CancelSweep); start a new sweep");
+    }
     const std::string id = given.empty() ? NewTimedId("s-") : given;
     response->set_sweep_id(id);
     for (const std::string& path : sweep.paths) response->add_paths(path);
     if (count > 0) {
       for (v1::RunInfo& info :
-           runs_->StartMany(request->model(), slice, authorizer_->CallerId(*context), id)) {
+           runs_->StartMany(request->model(), slice, authorizer_->CallerId(*context), id,
+                            static_cast<int>(first), static_cast<int>(total))) {
         *response->add_runs() = std::move(info);
       }
     }

@@ -299,5 +299,32 @@ TEST_F(ServerCliTest, ASweepOfServoGainsWritesOneRowPerPoint) {
   EXPECT_THAT(Cli("runs").output, Not(HasSubstr("FAILED")));
 }
 
+// A sweep's progress and its cancellation by id, from any client: --status prints what the
+// server counts, --cancel marks it cancelled (its runs had ended: none is changed).
+TEST_F(ServerCliTest, ASweepIsFollowedAndCancelledByItsId) {
+  StartServer();
+  const CommandOutcome sweep =
+      Cli("sweep irb1600 --spec models/irb1600/seed-servo.json --duration 0.2 "
+          "--grid 'drives[1].pd_servo.kp=100,400,1600' --out " +
+          Out("sweep"));
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.output;
+  EXPECT_THAT(sweep.output, HasSubstr("3/3 runs ended (FINISHED 3)"));
+  const size_t at = sweep.output.find("sweep s-");
+  ASSERT_NE(at, std::string::npos) << sweep.output;
+  const std::string id = sweep.output.substr(at + 6, sweep.output.find(':', at) - at - 6);
+
+  CommandOutcome status = Cli("sweep --status " + id);
+  ASSERT_EQ(status.exit_code, 0) << status.output;
+  EXPECT_THAT(status.output, HasSubstr("sweep " + id + ": 3/3 runs ended (FINISHED 3)"));
+  EXPECT_THAT(status.output, Not(HasSubstr("cancelled")));
+  const CommandOutcome cancel = Cli("sweep --cancel " + id);
+  ASSERT_EQ(cancel.exit_code, 0) << cancel.output;
+  EXPECT_THAT(cancel.output, HasSubstr("(FINISHED 3) - cancelled"));
+  status = Cli("sweep --status s-nosuch");
+  EXPECT_NE(status.exit_code, 0);
+  EXPECT_THAT(status.output, HasSubstr("s-nosuch"));
+  EXPECT_EQ(Cli("sweep irb1600").exit_code, 2);  // no --out
+}
+
 }  // namespace
 }  // namespace mbstream::testing

@@ -454,6 +454,77 @@ TEST_F(ClusterE2eTest, CancelThroughTheOtherReplicaCancelsTheRunOnItsOwner) {
   EXPECT_EQ(ended.replica_address(), busy_->address());
 }
 
+// A sweep started on one replica is followed and cancelled through the other: its runs are
+// found by their sweep id in the shared store, the one integrating on the first replica is
+// cancelled there (forwarded), and the sweep's later slices are refused by either replica.
+TEST_F(ClusterE2eTest, ASweepIsFollowedAndCancelledThroughEitherReplica) {
+  auto a = NewReplica("a");
+  auto b = NewReplica("b");
+  v1::StartSweepRequest start;
+  start.set_model("single_pendulum");
+  *start.mutable_base() = Paced(30.0);
+  v1::SweepAxis& axis = *start.add_grid();
+  axis.set_path("duration_s");
+  for (const char* value : {"30", "31", "32", "33", "34", "35"}) axis.add_values(value);
+  start.set_max_runs(4);
+  v1::StartSweepResponse started;
+  {
+    grpc::ClientContext context;
+    const grpc::Status status = a->stub().StartSweep(&context, start, &started);
+    ASSERT_TRUE(status.ok()) << status.error_message();
+  }
+  const auto sweep_on = [&](Replica& replica) {
+    grpc::ClientContext context;
+    v1::GetSweepRequest request;
+    request.set_sweep_id(started.sweep_id());
+    v1::SweepProgress progress;
+    const grpc::Status status = replica.stub().GetSweep(&context, request, &progress);
+    EXPECT_TRUE(status.ok()) << status.error_message();
+    return progress;
+  };
+  const auto running = [](const v1::SweepProgress& progress) {
+    for (const v1::SweepStateCount& entry : progress.states()) {
+      if (entry.state() == v1::RUNNING) return entry.runs();
+    }
+    return 0;
+  };
+  // One worker each: two runs integrate, one per replica, two wait in the queue.
+  for (const std::string& id : {started.runs(0).id(), started.runs(1).id()}) {
+    a->WaitFor(id, [](const v1::RunInfo& i) { return i.state() == v1::RUNNING; });
+  }
+  v1::SweepProgress progress = sweep_on(*b);
+  EXPECT_EQ(progress.total_points(), 6);
+  EXPECT_EQ(progress.started_runs(), 4);
+  EXPECT_EQ(progress.ended_runs(), 0);
+  EXPECT_EQ(running(progress), 2);
+  EXPECT_EQ(progress.run_ids(3), started.runs(3).id());
+
+  {
+    grpc::ClientContext context;
+    v1::CancelSweepRequest request;
+    request.set_sweep_id(started.sweep_id());
+    const grpc::Status status = b->stub().CancelSweep(&context, request, &progress);
+    ASSERT_TRUE(status.ok()) << status.error_message();
+  }
+  EXPECT_TRUE(progress.cancelled());
+  EXPECT_EQ(progress.ended_runs(), 4);
+  std::set<std::string> owners;
+  for (const v1::RunInfo& run : started.runs()) {
+    const v1::RunInfo ended = a->WaitForEnd(run.id());
+    EXPECT_EQ(ended.state(), v1::CANCELLED) << ended.message();
+    if (!ended.replica_address().empty()) owners.insert(ended.replica_address());
+  }
+  EXPECT_EQ(owners, (std::set<std::string>{a->address(), b->address()}));
+  EXPECT_TRUE(sweep_on(*a).cancelled());
+
+  start.set_sweep_id(started.sweep_id());
+  start.set_first_point(4);
+  start.set_max_runs(0);
+  grpc::ClientContext context;
+  const grpc::Status later = a->stub().StartSweep(&context, start, &started);
+  EXPECT_EQ(later.error_code(), grpc::StatusCode::FAILED_PRECONDITION) << later.error_message();
+}
+
 TEST_F(ClusterE2eTest, ModelsSubmittedToOneReplicaAreListedAndReadByTheOther) {
   auto a = NewReplica("a");
   auto b = NewReplica("b");

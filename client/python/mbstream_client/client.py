@@ -154,7 +154,10 @@ class Client:
         "drives[1].pd_servo.kp", "drives[joint=joint2].pd_servo.kd", "initial_q[0]".
         keep: what each run keeps ("summary": no frames, the default; "final", "every:N",
         "all": fetch them with result(run_id)). The server queues at most `window` runs at a
-        time. spec and overrides as in run(). Needs pandas."""
+        time. progress=True shows the server's count of the sweep on stderr. The table's
+        attrs["sweep_id"] names the sweep (sweep_progress, cancel_sweep); attrs["cancelled"]
+        says it was cancelled before every point started. spec and overrides as in run().
+        Needs pandas."""
         _check_model(model)
         try:
             import pandas as pd
@@ -162,7 +165,24 @@ class Client:
             raise ImportError("Client.sweep needs pandas (Debian: apt-get install "
                               "python3-pandas)") from None
         request = sweep_request(model, load_spec(spec, keep=keep, **overrides), grid, points)
-        return pd.DataFrame(run_sweep(self, request, window, progress))
+        rows, cancelled = run_sweep(self, request, window, progress)
+        table = pd.DataFrame(rows)
+        table.attrs.update(sweep_id=request.sweep_id, cancelled=cancelled)
+        return table
+
+    def sweep_progress(self, sweep_id: str) -> service_pb2.SweepProgress:
+        """A sweep's progress as the server counts it (any replica of a cluster): total_points,
+        started_runs, ended_runs, states (a SweepStateCount per state), cancelled, run_ids in
+        point order. NotFound for an unknown id."""
+        with rpc_errors():
+            return self.stub.GetSweep(service_pb2.GetSweepRequest(sweep_id=sweep_id))
+
+    def cancel_sweep(self, sweep_id: str) -> service_pb2.SweepProgress:
+        """Cancels a sweep: its queued and running runs, and the points not started yet (the
+        sweep() filling its table stops there; its table's attrs["cancelled"] is True). Returns
+        once its runs have ended, with its progress then."""
+        with rpc_errors():
+            return self.stub.CancelSweep(service_pb2.CancelSweepRequest(sweep_id=sweep_id))
 
     def results(self, runs: Iterable[Union[Run, str]], wait: bool = True) -> List["Result"]:
         """The results of several runs (Run handles or ids) in ONE call, in the order given;

@@ -3,11 +3,12 @@ points) into runs (StartSweep), and the client gathers each run's summary into o
 the same columns as `mbstream sweep`'s sweep.csv."""
 import json
 import sys
-from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence
+import time
+from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
 
 from ._stubs import run_pb2
 from ._stubs import simulation_service_pb2 as service_pb2
-from .errors import rpc_errors
+from .errors import FailedPrecondition, rpc_errors
 from .result import Result
 
 
@@ -79,14 +80,61 @@ def sweep_row(result: Result, paths: List[str], values: List[str]) -> Dict[str, 
     return row
 
 
-def run_sweep(client: Any, request: Any, window: int, progress: bool) -> List[Dict[str, Any]]:
-    """Starts the sweep a window of runs at a time and returns its rows in point order."""
+def progress_line(progress: Any) -> str:
+    """A sweep's progress (SweepProgress) as one line with a bar, as `mbstream sweep` shows it:
+    "sweep s-...: [#####.....] 12/24 runs ended (FINISHED 12), 2 running, 10 queued"."""
+    total = max(progress.total_points, 1)
+    width = 20
+    done = width * progress.ended_runs // total
+    ended, waiting = [], []
+    for entry in progress.states:
+        name = run_pb2.RunState.Name(entry.state)
+        if name in ("QUEUED", "RUNNING"):
+            waiting.append("%d %s" % (entry.runs, name.lower()))
+        else:
+            ended.append("%s %d" % (name, entry.runs))
+    line = "sweep %s: [%s%s] %d/%d runs ended" % (progress.sweep_id, "#" * done,
+                                                   "." * (width - done), progress.ended_runs,
+                                                   progress.total_points)
+    if ended:
+        line += " (%s)" % ", ".join(ended)
+    if waiting:
+        line += ", " + ", ".join(waiting)
+    if progress.total_points > progress.started_runs:
+        line += ", %d not started" % (progress.total_points - progress.started_runs)
+    return line + (" - cancelled" if progress.cancelled else "")
+
+
+class _Progress:
+    """The sweep's progress on stderr from GetSweep, at most twice a second (and at the end)."""
+
+    def __init__(self, client: Any, shown: bool):
+        self.client, self.shown, self.last = client, shown, 0.0
+        self.terminal = shown and sys.stderr.isatty()
+
+    def show(self, sweep_id: str, last: bool) -> None:
+        now = time.monotonic()
+        if not self.shown or (not last and now - self.last < 0.5):
+            return
+        self.last = now
+        line = progress_line(self.client.sweep_progress(sweep_id))
+        sys.stderr.write(("\r\033[K" + line + ("\n" if last else "")) if self.terminal
+                         else line + "\n")
+        sys.stderr.flush()
+
+
+def run_sweep(client: Any, request: Any, window: int,
+              progress: bool) -> Tuple[List[Dict[str, Any]], bool]:
+    """Starts the sweep a window of runs at a time and returns its rows in point order, and
+    whether it was cancelled meanwhile (CancelSweep: the points not started yet have no row).
+    Interrupted (Ctrl-C), it cancels the sweep's runs before raising."""
     if window < 1:
         raise ValueError("window must be at least 1, not %r" % (window,))
     pending: List[Any] = []
     rows: List[Dict[str, Any]] = []
     paths: List[str] = []
     total = 0
+    cancelled = False
 
     def start(count: int) -> None:
         nonlocal total, paths
@@ -98,13 +146,21 @@ def run_sweep(client: Any, request: Any, window: int, progress: bool) -> List[Di
         pending.extend(zip([r.id for r in response.runs], [list(p.values) for p in response.points]))
 
     start(window)
-    while pending:
-        run_id, values = pending.pop(0)
-        result = client.result(run_id, wait=True)
-        rows.append(sweep_row(result, paths, values))
-        if progress:
-            sys.stderr.write("sweep %s: %d/%d runs ended\n" % (request.sweep_id, len(rows), total))
-        room = window - len(pending)
-        if request.first_point < total and room >= max(1, window // 2):
-            start(room)
-    return rows
+    shown = _Progress(client, progress)
+    try:
+        while pending:
+            run_id, values = pending.pop(0)
+            result = client.result(run_id, wait=True)
+            rows.append(sweep_row(result, paths, values))
+            room = window - len(pending)
+            if not cancelled and request.first_point < total and room >= max(1, window // 2):
+                try:
+                    start(room)
+                except FailedPrecondition:  # the sweep was cancelled (CancelSweep)
+                    cancelled = True
+            shown.show(request.sweep_id, not pending)
+    except KeyboardInterrupt:
+        client.cancel_sweep(request.sweep_id)
+        raise
+    # Cancelled after its last slice started: the server says so.
+    return rows, cancelled or client.sweep_progress(request.sweep_id).cancelled

@@ -289,6 +289,41 @@ class ClientTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             self.client.sweep("irb1600", SEED_SERVO)
 
+    def test_a_sweep_reports_its_progress_and_is_cancelled_by_its_id(self):
+        table = self.client.sweep("irb1600", SEED_SERVO, duration=0.2, progress=True,
+                                  grid={"drives[1].pd_servo.kp": [100, 400]})
+        sweep_id = table.attrs["sweep_id"]
+        self.assertTrue(sweep_id.startswith("s-"), sweep_id)
+        self.assertFalse(table.attrs["cancelled"])
+        done = self.client.sweep_progress(sweep_id)
+        self.assertEqual((done.total_points, done.started_runs, done.ended_runs), (2, 2, 2))
+        self.assertEqual(list(done.run_ids), table["run_id"].tolist())
+        self.assertIn("2/2 runs ended (FINISHED 2)", mb.sweep.progress_line(done))
+        with self.assertRaises(mb.NotFound):
+            self.client.sweep_progress("s-nosuch")
+
+        # Paced runs of 20 s (the frames kept are paced), two started at a time of four points: cancelled from another
+        # client while the sweep() fills its table, which then ends with the runs it started.
+        with concurrent.futures.ThreadPoolExecutor(1) as pool:
+            filling = pool.submit(self.client.sweep, "irb1600", SEED_SERVO, duration=20,
+                                  realtime=1.0, keep="all",  # paced: its frames are
+                                  window=2, grid={"rtol": [1e-6, 1e-7, 1e-8, 1e-9]})
+            started = []
+            while not started and not filling.done():  # the sweep's first runs, once queued
+                started = [r for r in self.client.runs("irb1600", limit=20)
+                           if r.sweep_id and r.spec.realtime == 1.0
+                           and r.state != mb.run_pb2.CANCELLED]
+            self.assertTrue(started, "the sweep ended before any run was seen")
+            with mb.connect(self.address) as other:
+                cancelled = other.cancel_sweep(started[0].sweep_id)
+            self.assertTrue(cancelled.cancelled)
+            self.assertEqual(cancelled.ended_runs, cancelled.started_runs)
+            table = filling.result(timeout=60)
+        self.assertTrue(table.attrs["cancelled"])
+        self.assertEqual(set(table["state"]), {"CANCELLED"})
+        self.assertLessEqual(len(table), 4)
+        self.assertEqual(self.client.sweep_progress(table.attrs["sweep_id"]).total_points, 4)
+
     def test_run_many_and_results_in_one_call_each(self):
         durations = [0.5, 1.0, 0.25]
         runs = self.client.run_many(

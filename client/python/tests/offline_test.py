@@ -89,7 +89,8 @@ class PackageTest(unittest.TestCase):
     def test_public_api_has_type_hints_and_docstrings(self):
         for function in (mb.connect, mb.Client.run, mb.Client.sweep, mb.Client.submit, mb.Run.watch,
                          mb.Run.result, mb.Result.to_pandas, mb.Result.plot_tcp,
-                         mb.Result.plot_joints, mb.load_spec, mb.read_model_bundle):
+                         mb.Result.plot_joints, mb.load_spec, mb.read_model_bundle,
+                         mb.plot_sweep, mb.Client.sweep_progress, mb.Client.cancel_sweep):
             self.assertIn("return", function.__annotations__, function.__qualname__)
             self.assertTrue(function.__doc__, function.__qualname__)
         self.assertIn("base (world) frame", mb.Result.__doc__)
@@ -359,6 +360,41 @@ class ResultTest(unittest.TestCase):
         with tempfile.TemporaryDirectory() as tmp:
             ax.figure.savefig(os.path.join(tmp, "tcp.png"))
             self.assertGreater(os.path.getsize(os.path.join(tmp, "tcp.png")), 1000)
+
+
+class SweepPlotTest(unittest.TestCase):
+    """plot_sweep: a metric of a two-axis sweep's table as a heat map, axes in ascending order,
+    the mean of repeated points, a missing or unfinished point blank."""
+
+    def test_a_heat_map_of_two_swept_paths(self):
+        try:
+            import pandas as pd
+        except ImportError:
+            self.skipTest("pandas is not installed (python3-pandas)")
+        import matplotlib
+        matplotlib.use("Agg")
+        kp, kd, error = "drives[1].pd_servo.kp", "drives[1].pd_servo.kd", "tracking_error_max:j2"
+        table = pd.DataFrame({kp: [400, 100, 100, 400, 100, 400],
+                              kd: [20.0, 20.0, 40.0, 40.0, 20.0, 80.0],
+                              error: [0.1, 0.5, 0.4, 0.05, 0.7, None]})
+        table.attrs["sweep_id"] = "s-test"
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "sweep.png")
+            ax = mb.plot_sweep(table, kp, kd, error, path=path)
+            self.assertGreater(os.path.getsize(path), 1000)
+        grid = ax.images[0].get_array()
+        self.assertEqual(grid.shape, (3, 2))  # rows: kd 20, 40, 80; columns: kp 100, 400
+        self.assertAlmostEqual(grid[0, 0], 0.6)  # kp 100, kd 20: the mean of two runs
+        self.assertAlmostEqual(grid[1, 1], 0.05)
+        self.assertTrue(grid.mask[2, 0] and grid.mask[2, 1])  # kd 80: none, and no figure
+        self.assertEqual([t.get_text() for t in ax.get_xticklabels()], ["100", "400"])
+        self.assertEqual([t.get_text() for t in ax.get_yticklabels()], ["20", "40", "80"])
+        self.assertEqual((ax.get_xlabel(), ax.get_ylabel()), (kp, kd))
+        self.assertIn("s-test", ax.get_title())
+        self.assertEqual(len(ax.texts), 4)  # one per cell with a figure
+        with self.assertRaises(ValueError) as caught:
+            mb.plot_sweep(table, kp, "rtol", error)
+        self.assertIn("rtol", str(caught.exception))
 
 
 if __name__ == "__main__":

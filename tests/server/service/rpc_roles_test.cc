@@ -184,6 +184,20 @@ class RpcGateTest : public ServerTest {
            request.set_run_id("r-nosuch");
            return finish(stub().ExportMcap(&context, request), v1::McapFileChunk());
          }},
+        {"GetSweep",
+         [&] {
+           v1::GetSweepRequest request;
+           request.set_sweep_id("s-nosuch");
+           v1::SweepProgress progress;
+           return stub().GetSweep(&context, request, &progress);
+         }},
+        {"CancelSweep",
+         [&] {
+           v1::CancelSweepRequest request;
+           request.set_sweep_id("s-nosuch");
+           v1::SweepProgress progress;
+           return stub().CancelSweep(&context, request, &progress);
+         }},
     };
     return calls.at(method)();
   }

@@ -1,0 +1,45 @@
+// RunManager's view of a sweep (StartSweep's runs under one RunInfo.sweep_id): its runs as
+// the store holds them, every replica's, and the mark that it was cancelled.
+#include <algorithm>
+
+#include "server/runs/run.h"
+#include "server/runs/run_manager.h"
+#include "server/store/store.h"
+#include "server/wire/stats_conversion.h"
+
+namespace mbstream {
+
+std::vector<v1::RunInfo> RunManager::SweepRuns(const std::string& sweep_id) const {
+  std::vector<v1::RunInfo> runs;
+  if (sweep_id.empty()) return runs;
+  for (v1::RunInfo& stored : store_->ListRuns()) {
+    if (stored.sweep_id() != sweep_id) continue;
+    // A run integrating here: its live info (the store's row is updated at its end only).
+    if (std::shared_ptr<Run> run = FindActive(stored.id()); run) {
+      const bool cancelled = stored.sweep_cancelled();
+      stored = run->Info();
+      stored.set_sweep_cancelled(stored.sweep_cancelled() || cancelled);
+    }
+    runs.push_back(std::move(stored));
+  }
+  std::stable_sort(runs.begin(), runs.end(), [](const v1::RunInfo& a, const v1::RunInfo& b) {
+    return a.sweep_point() < b.sweep_point();
+  });
+  return runs;
+}
+
+int RunManager::MarkSweepCancelled(const std::vector<v1::RunInfo>& runs) {
+  int marked = 0;
+  for (const v1::RunInfo& run : runs) {
+    std::optional<v1::RunInfo> stored = store_->GetRun(run.id());
+    if (!stored || !IsFinalState(stored->state())) continue;  // deleted, or not ended yet
+    if (!stored->sweep_cancelled()) {
+      stored->set_sweep_cancelled(true);
+      store_->PutRun(*stored);
+    }
+    ++marked;
+  }
+  return marked;
+}
+
+}  // namespace mbstream
