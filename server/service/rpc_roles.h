@@ -33,6 +33,9 @@ inline constexpr RpcRole kRpcRoles[] = {
     {"DeleteModel", Role::kAdmin},   //
     {"SetKeep", Role::kRun},         // protects a run from retention (or no longer)
     {"RetentionPlan", Role::kView},  // a dry run: deletes nothing
+    // Where the data is and what it takes; a copy of every user's data.
+    {"GetStorage", Role::kAdmin},
+    {"BackupStorage", Role::kAdmin},
 };
 
 // The role of `method`; a method missing from kRpcRoles is a bug (InternalError).

@@ -178,6 +178,18 @@ class RpcGateTest : public ServerTest {
            v1::RetentionPlanResponse response;
            return stub().RetentionPlan(&context, v1::RetentionPlanRequest(), &response);
          }},
+        {"GetStorage",
+         [&] {
+           v1::GetStorageResponse response;
+           return stub().GetStorage(&context, v1::GetStorageRequest(), &response);
+         }},
+        {"BackupStorage",
+         [&] {
+           v1::BackupStorageRequest request;
+           request.set_dir((data_.path() / "backup").string());
+           v1::BackupStorageResponse response;
+           return stub().BackupStorage(&context, request, &response);
+         }},
     };
     return calls.at(method)();
   }
