@@ -34,7 +34,9 @@ void AddHealthCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client
   auto service = std::make_shared<std::string>();
   CLI::App* health = app.add_subcommand(
       "health", "ask the server's gRPC health service; exit 0 only when SERVING (4 when not)");
-  health->add_option("--service", *service, "a service name (default: the whole server)");
+  health->add_option("--service", *service,
+                     "a service name (default: the whole server; mbstream.new_runs: whether it "
+                     "accepts new runs, NOT_SERVING while its disk is below --min-free-mb)");
   health->callback([client, service, exit_code] { *exit_code = CheckHealth(*client, *service); });
 }
 

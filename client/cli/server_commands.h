@@ -1,5 +1,5 @@
 // The commands that talk to a server: submit, models, runs, run, result, cancel, delete, keep,
-// retention, health
+// retention, storage, backup, health
 // (README.md, "Server, viewer and CLI by hand"). Each callback stores its exit code in *exit_code.
 #pragma once
 
@@ -23,6 +23,8 @@ void AddReplayCommands(CLI::App& app, std::shared_ptr<const ClientOptions> optio
                        int* exit_code);  // probe-sets, replay
 void AddDataCommands(CLI::App& app, std::shared_ptr<const ClientOptions> options,
                      int* exit_code);  // delete, keep, retention
+void AddStorageCommands(CLI::App& app, std::shared_ptr<const ClientOptions> options,
+                        int* exit_code);  // storage, backup (storage_commands.cc)
 void AddHealthCommand(CLI::App& app, std::shared_ptr<const ClientOptions> options,
                       int* exit_code);  // health (gRPC health checking)
 

@@ -247,4 +247,11 @@ bool MeasuredStore::SetRunKeep(const std::string& run_id, bool keep) {
   return Timed(StoreOperation::kSetRunKeep, [&] { return store_->SetRunKeep(run_id, keep); });
 }
 
+// An operator's occasional calls (GetStorage, BackupStorage): passed on, not timed.
+StoreUsage MeasuredStore::Usage(const std::vector<std::string>& weigh_runs) const {
+  return store_->Usage(weigh_runs);
+}
+
+StoreBackup MeasuredStore::Backup(const std::string& dir) { return store_->Backup(dir); }
+
 }  // namespace mbstream

@@ -13,6 +13,7 @@ namespace mbstream {
 
 class RunManager;
 class Store;
+class FreeSpaceWatch;
 
 class MetricsEndpoint {
  public:
@@ -24,6 +25,9 @@ class MetricsEndpoint {
   // Starts serving on host:port (port 0 = any free port); `runs` must outlive Stop(). Throws
   // InputError naming the address when it cannot listen.
   void Serve(const std::string& host_port, const RunManager& runs);
+  // Before Serve: mbstream_store_free_bytes (read at each scrape) and
+  // mbstream_store_min_free_bytes from `watch`, which must outlive Stop().
+  void ServeFreeSpace(FreeSpaceWatch& watch);
   // Stops serving (scrapes in progress finish first). Idempotent.
   void Stop();
 

@@ -1,6 +1,11 @@
 #include "server/app/server_flags.h"
 
 #include <algorithm>
+#include <string>
+#include <vector>
+
+#include "common/check.h"
+#include "server/runs/retention.h"
 
 namespace mbstream {
 
@@ -118,6 +123,23 @@ void AddSizeFlags(CLI::App& app, ServerConfig* config, ServerFlags* flags) {
                  "in the background; 0 = no limit; `mbstream retention` lists what goes next")
       ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();
+  app.add_option_function<std::vector<std::string>>(
+         "--retain-model",
+         [config](const std::vector<std::string>& values) {
+           for (const std::string& value : values) AddModelRetention(value, config->retention);
+         },
+         "MODEL=RUNS[,DAYS] (repeatable): the runs of this model (name or id) are kept by limits "
+         "of their own, the newest RUNS ended runs and those ended within DAYS days (0 = no "
+         "limit), instead of --retain-runs/--retain-days")
+      ->check([](const std::string& value) {
+        RetentionPolicy policy;
+        try {
+          AddModelRetention(value, policy);
+          return std::string();
+        } catch (const InputError& error) {
+          return std::string(error.what());
+        }
+      });
   app.add_option("--retention-period-s", config->retention_period_s,
                  "s between two passes of retention (--retain-runs, --retain-days)")
       ->check(CLI::Range(0.01, 86400.0))

@@ -15,13 +15,16 @@
 
 #include "common/check.h"
 #include "net/tls_files.h"
+#include "server/app/health_status.h"
 #include "server/app/metrics_endpoint.h"
 #include "server/runs/free_space.h"
+#include "server/runs/free_space_watch.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/run_manager.h"
 #include "server/service/authorizer.h"
 #include "server/service/peer_channels.h"
 #include "server/service/simulation_service.h"
+#include "server/service/storage_keeper.h"
 #include "server/store/store.h"
 #include "server/store/store_location.h"
 
@@ -161,7 +164,10 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
                                              nullptr, replica);
   if (location.kind != StoreLocation::Kind::kPostgresql) {  // --min-free-mb: SQLite only
     const std::string dir = location.target;
-    host->runs_->SetFreeSpaceSource([dir] { return FreeBytesAt(dir); }, dir);
+    FreeSpaceSource source = config.free_space_source;
+    if (!source) source = [dir] { return FreeBytesAt(dir); };
+    host->runs_->SetFreeSpaceSource(source, dir);
+    host->free_space_ = std::make_unique<FreeSpaceWatch>(source, config.limits.min_free_bytes);
   }
   host->grace_s_ = config.grace_s;
   if (replica.private_store) {
@@ -180,9 +186,13 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
       std::make_unique<RunDeleter>(host->store_.get(), host->runs_.get(), host->models_.get());
   host->retention_ =
       std::make_unique<Retention>(host->store_.get(), host->deleter_.get(), config.retention);
+  host->storage_ = std::make_unique<StorageKeeper>(
+      StorageSetup{host->store_.get(), replica.private_store,
+                   replica.private_store ? location.target : host->store_->path(),
+                   host->models_.get(), host->retention_.get(), host->free_space_.get()});
   host->service_ = std::make_unique<SimulationService>(
       host->models_.get(), host->runs_.get(), host->authorizer_.get(), host->peers_.get(),
-      DataKeeping{host->deleter_.get(), host->retention_.get()});
+      DataKeeping{host->deleter_.get(), host->retention_.get(), host->storage_.get()});
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
@@ -209,11 +219,24 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
     host->runs_->SetAdvertisedAddress(AdvertisedAddress(name, port, host->address_));
   }
   host->retention_->Start(config.retention_period_s);  // nothing without --retain-*
-  // grpc.health.v1: SERVING while the store answers and the replica is not draining.
-  grpc::HealthCheckServiceInterface* health = host->server_->GetHealthCheckService();
-  host->runs_->SetServingListener([health](bool serving) { health->SetServingStatus(serving); });
-  if (host->metrics_) host->metrics_->Serve(config.metrics, *host->runs_);
+  host->StartHealthAndMetrics(config);
   return host;
+}
+
+void ServerHost::StartHealthAndMetrics(const ServerConfig& config) {
+  // grpc.health.v1: SERVING while the store answers and the replica is not draining; new runs
+  // besides while the data directory's disk has --min-free-mb free (health_status.h).
+  health_ = std::make_unique<HealthStatus>(server_->GetHealthCheckService());
+  HealthStatus* health = health_.get();
+  runs_->SetServingListener([health](bool serving) { health->SetServing(serving); });
+  if (free_space_) {
+    free_space_->SetListener([health](bool enough) { health->SetEnoughSpace(enough); });
+    free_space_->Start(config.free_space_period_s);
+  }
+  if (metrics_) {
+    if (free_space_) metrics_->ServeFreeSpace(*free_space_);
+    metrics_->Serve(config.metrics, *runs_);
+  }
 }
 
 ServerHost::~ServerHost() {
@@ -226,6 +249,7 @@ std::string ServerHost::metrics_address() const { return metrics_ ? metrics_->ad
 void ServerHost::Shutdown() {
   if (shut_down_ || !server_) return;  // not started (Start threw) or already stopped
   shut_down_ = true;
+  if (free_space_) free_space_->Stop();  // it tells the health service
   spdlog::info("shutting down: interrupting runs and closing streams");
   service_->Stop();
   retention_->Stop();

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "net/server_credentials.h"
+#include "server/runs/free_space.h"
 #include "server/runs/retention.h"
 #include "server/runs/server_limits.h"
 
@@ -22,6 +23,9 @@ class SimulationService;
 class Authorizer;
 class MetricsEndpoint;
 class PeerChannels;
+class FreeSpaceWatch;
+class StorageKeeper;
+class HealthStatus;
 
 struct ServerConfig {
   std::string listen = "127.0.0.1:50051";  // host:port (port 0 = any free) or unix:/path
@@ -54,6 +58,11 @@ struct ServerConfig {
   // Retention (retention.h): --retain-runs, --retain-days; a pass every retention_period_s.
   RetentionPolicy retention;
   double retention_period_s = 60.0;
+  // The free space of the data directory's disk (SQLite store; free_space.h): empty = statvfs
+  // of the data directory (tests give their own), read every free_space_period_s (and by
+  // GetStorage, /metrics) for the health service's new-runs status (health_status.h).
+  FreeSpaceSource free_space_source;
+  double free_space_period_s = 5.0;
 };
 
 // What an operator should know about who can reach the server as configured: one sentence
@@ -86,9 +95,13 @@ class ServerHost {
   void Wait();
 
   RunManager& runs() { return *runs_; }
+  // The data directory's free space against --min-free-mb; null on a PostgreSQL store.
+  FreeSpaceWatch* free_space() { return free_space_.get(); }
 
  private:
   ServerHost() = default;
+  // The health service's statuses, the free-space watch and /metrics (end of Start).
+  void StartHealthAndMetrics(const ServerConfig& config);
   std::unique_ptr<MetricsEndpoint> metrics_;  // before store_: the store may report to it
   std::unique_ptr<Store> store_;
   std::unique_ptr<ModelRegistry> models_;
@@ -96,7 +109,10 @@ class ServerHost {
   std::unique_ptr<RunDeleter> deleter_;  // DeleteRuns, DeleteModel, retention
   std::unique_ptr<Retention> retention_;
   std::unique_ptr<Authorizer> authorizer_;
-  std::unique_ptr<PeerChannels> peers_;  // a shared store's other replicas
+  std::unique_ptr<PeerChannels> peers_;         // a shared store's other replicas
+  std::unique_ptr<FreeSpaceWatch> free_space_;  // SQLite: --min-free-mb, before a run is asked
+  std::unique_ptr<StorageKeeper> storage_;      // GetStorage, BackupStorage
+  std::unique_ptr<HealthStatus> health_;        // after server_ is built
   std::unique_ptr<SimulationService> service_;
   std::unique_ptr<grpc::Server> server_;
   std::string address_;

@@ -33,9 +33,9 @@ void CheckFreeSpace(const FreeSpaceSource& source, int64_t min_free_bytes,
       RequestErrorKind::kResourceExhausted,
       "the disk holding the data directory " + data_dir + " has " + Mebibytes(*free_bytes) +
           " free, less than this server's --min-free-mb (" + Mebibytes(min_free_bytes) +
-          "): new runs are refused until there is more; free space on that disk or move "
-          "--data to a bigger one (deleting runs is not possible yet; the finished runs stay "
-          "readable)");
+          "): new runs are refused until there is more; free space on that disk (delete runs: "
+          "mbstream delete, mbstream-server --retain-runs/--retain-days) or move --data to a "
+          "bigger one (the finished runs stay readable)");
 }
 
 }  // namespace mbstream

@@ -8,7 +8,9 @@
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -19,14 +21,33 @@ namespace mbstream {
 class Store;
 class RunDeleter;
 
+// One model's own retention (--retain-model MODEL=RUNS[,DAYS]): its runs are kept by these
+// limits instead of the server's.
+struct ModelRetention {
+  int64_t retain_runs = 0;
+  double retain_days = 0.0;
+};
+
 struct RetentionPolicy {
   int64_t retain_runs = 0;   // keep the newest this many ended, unkept runs; 0: no count limit
   double retain_days = 0.0;  // delete ended runs older than this (by ended_unix_ms); 0: none
-  bool active() const { return retain_runs > 0 || retain_days > 0.0; }
+  // Models with limits of their own, by name or id (RunInfo.model_name, model_id): their runs
+  // count only against those (0 there: no limit for that model), never against the above.
+  std::map<std::string, ModelRetention> models;
+  bool active() const { return retain_runs > 0 || retain_days > 0.0 || !models.empty(); }
 };
 
+// --retain-model's value "MODEL=RUNS" or "MODEL=RUNS,DAYS" (RUNS, DAYS >= 0) added to
+// `policy`. Throws InputError quoting `text` and the expected form.
+void AddModelRetention(const std::string& text, RetentionPolicy& policy);
+
+// The limits that keep `run`: its model's own (by name, then id), else the server's.
+ModelRetention LimitsFor(const RetentionPolicy& policy, const v1::RunInfo& run);
+
 // Of `runs` (oldest first, as Store::ListRuns), those `policy` deletes at `now_unix_ms`,
-// oldest first.
+// oldest first: per group of runs kept by the same limits (a model of `policy.models`, or
+// all others), the ended unkept runs beyond the newest retain_runs or ended before
+// retain_days.
 std::vector<v1::RunInfo> RetentionPlan(const std::vector<v1::RunInfo>& runs,
                                        const RetentionPolicy& policy, int64_t now_unix_ms);
 

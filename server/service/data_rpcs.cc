@@ -1,5 +1,6 @@
 // SimulationService::DeleteRuns, DeleteModel, SetKeep and RetentionPlan (run_deleter.h,
-// retention.h): what is kept and what is deleted.
+// retention.h): what is kept and what is deleted; GetStorage and BackupStorage
+// (storage_keeper.h): what the data takes, and a consistent copy of it.
 #include "server/service/simulation_service.h"
 
 namespace mbstream {
@@ -56,6 +57,26 @@ grpc::Status SimulationService::RetentionPlan(grpc::ServerContext* context,
     response->set_retain_runs(static_cast<int32_t>(policy.retain_runs));
     response->set_retain_days(policy.retain_days);
     for (v1::RunInfo& info : data_.retention->Plan()) *response->add_runs() = std::move(info);
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status SimulationService::GetStorage(grpc::ServerContext* context,
+                                           const v1::GetStorageRequest*,
+                                           v1::GetStorageResponse* response) {
+  return Admit(*context, "GetStorage", [&]() -> grpc::Status {
+    if (data_.storage == nullptr) return NotServed();
+    *response = data_.storage->Report();
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status SimulationService::BackupStorage(grpc::ServerContext* context,
+                                              const v1::BackupStorageRequest* request,
+                                              v1::BackupStorageResponse* response) {
+  return Admit(*context, "BackupStorage", [&]() -> grpc::Status {
+    if (data_.storage == nullptr) return NotServed();
+    *response = data_.storage->Backup(request->dir());
     return grpc::Status::OK;
   });
 }

@@ -36,6 +36,9 @@ inline constexpr RpcRole kRpcRoles[] = {
     {"ExportMcap", Role::kView},     // a stored run as MCAP
     {"GetSweep", Role::kView},       //
     {"CancelSweep", Role::kRun},     // the runs' own token, or admin (checked in the handler)
+    // Where the data is and what it takes; a copy of every user's data.
+    {"GetStorage", Role::kAdmin},
+    {"BackupStorage", Role::kAdmin},
 };
 
 // The role of `method`; a method missing from kRpcRoles is a bug (InternalError).

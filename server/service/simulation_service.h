@@ -13,6 +13,7 @@
 #include "server/service/peer_channels.h"
 #include "server/service/rpc_roles.h"
 #include "server/service/status_from_exception.h"
+#include "server/service/storage_keeper.h"
 
 namespace mbstream {
 
@@ -20,6 +21,7 @@ namespace mbstream {
 struct DataKeeping {
   const RunDeleter* deleter = nullptr;
   const Retention* retention = nullptr;
+  const StorageKeeper* storage = nullptr;  // GetStorage, BackupStorage (data_rpcs.cc)
 };
 
 class SimulationService final : public v1::Simulation::Service {
@@ -77,6 +79,10 @@ class SimulationService final : public v1::Simulation::Service {
   grpc::Status ExportMcap(
       grpc::ServerContext* context, const v1::ExportMcapRequest* request,
       grpc::ServerWriter<v1::McapFileChunk>* writer) override;  // export_mcap.cc
+  grpc::Status GetStorage(grpc::ServerContext* context, const v1::GetStorageRequest* request,
+                          v1::GetStorageResponse* response) override;  // data_rpcs.cc
+  grpc::Status BackupStorage(grpc::ServerContext* context, const v1::BackupStorageRequest* request,
+                             v1::BackupStorageResponse* response) override;  // data_rpcs.cc
 
   // Ends every stream at its next event (shutdown).
   void Stop() { stopping_ = true; }

@@ -16,6 +16,7 @@ class DiskFullError : public LimitError {
 // What a full disk's message ends with.
 inline constexpr const char* kDiskFullAdvice =
     "the disk holding the data directory is full: free space on it or move --data to a bigger "
-    "disk (deleting runs is not possible yet; the finished runs stay readable)";
+    "disk (delete runs (mbstream delete, --retain-runs, --retain-days); the finished runs stay "
+    "readable)";
 
 }  // namespace mbstream

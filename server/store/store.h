@@ -23,6 +23,7 @@
 #include "mbstream/v1/run.pb.h"
 #include "server/store/frame_chunks.h"
 #include "server/store/run_lease.h"
+#include "server/store/store_usage.h"
 
 namespace mbstream {
 
@@ -147,6 +148,20 @@ class Store {
   // own (GetRun and ListRuns show it as RunInfo.keep); PutRun and FinishRun leave it. False
   // when no such run is stored.
   virtual bool SetRunKeep(const std::string& run_id, bool keep) = 0;
+
+  // Storage (store_usage.cc, postgres_store_usage.cc; store_usage.h). What the store holds:
+  // runs by model and state, the bytes of their frames, probe reports and rows, and (SQLite)
+  // the blocks its files take on the disk; `weighed_bytes` sums the frame and probe bytes of
+  // `weigh_runs` (what deleting them would free). Reads only.
+  virtual StoreUsage Usage(const std::vector<std::string>& weigh_runs) const = 0;
+  // A consistent copy of the live store into directory `dir` (created; it must hold no store):
+  // the database as of one moment, by SQLite's online backup from a read transaction of its
+  // own (writers go on meanwhile), and the frames file up to its size at that moment (every
+  // chunk that database refers to was appended before its row committed); chunks deleted
+  // meanwhile are released only once the copy is done. `--data dir` starts a server from it.
+  // Throws InputError when `dir` holds a store or cannot be written, and for a PostgreSQL
+  // store (pg_dump: docs/cluster.md).
+  virtual StoreBackup Backup(const std::string& dir) = 0;
 
   // At server start: every run still QUEUED or RUNNING becomes INTERRUPTED with `message`
   // and ended_unix_ms = now, its stored frames kept and counted in its row (frames, t_s,

@@ -43,7 +43,7 @@ bool SqliteStore::DeleteRun(const std::string& run_id) {
   // After the commit (frame_file.h): a crash before this leaves the bytes allocated until the
   // next open. Readers hold the mutex while they read a chunk of a row they found: none reads
   // these any more.
-  for (const FrameExtent& extent : extents) impl_->frames.Release(extent.offset, extent.bytes);
+  ReleaseFramesLocked(*impl_, extents);
   impl_->db.Exec("PRAGMA incremental_vacuum", "return the free pages of run " + run_id);
   return rows > 0;
 }

@@ -6,6 +6,7 @@
 #include <mutex>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "server/store/frame_file.h"
 #include "server/store/kept_frames.h"
@@ -50,6 +51,10 @@ struct SqliteStore::Impl {
   SqliteStatement select_probes;
 
   FrameFile frames;  // every chunk's frames since schema version 5
+  // Backups under way (store_backup.cc): while any is, the bytes of deleted chunks are not
+  // released (a backup's database may still refer to them) but kept here until the last ends.
+  int backups = 0;
+  std::vector<FrameExtent> deferred_releases;
 
   // Last: unhooked from `db` before anything else is torn down.
   SqliteCheckpointer checkpointer;
@@ -68,6 +73,10 @@ KeptFrames KeptFramesLocked(SqliteStore::Impl& impl, const std::string& run_id);
 // chunks deleted or replaced. Returns how many bytes. The caller holds the mutex (or has the
 // store to itself).
 int64_t ReleaseUnreferencedFramesLocked(SqliteStore::Impl& impl);
+
+// Releases `extents` of the frames file, or keeps them for later while a backup is under way
+// (store_backup.cc). The caller holds the mutex.
+void ReleaseFramesLocked(SqliteStore::Impl& impl, const std::vector<FrameExtent>& extents);
 
 // Whether `holder` holds the lease of RUNNING run `run_id`. The caller holds the mutex.
 bool HoldsLeaseLocked(SqliteStore::Impl& impl, const std::string& run_id,

@@ -41,6 +41,8 @@
   X(bool, DeleteRun, (const std::string& run_id), )                                             \
   X(int64_t, DeleteModel, (const std::string& model_id), )                                      \
   X(bool, SetRunKeep, (const std::string& run_id, bool keep), )                                 \
+  X(StoreUsage, Usage, (const std::vector<std::string>& weigh_runs), const)                     \
+  X(StoreBackup, Backup, (const std::string& dir), )                                            \
   X(int, MarkUnfinishedRunsInterrupted, (const std::string& message), )                         \
   X(std::optional<v1::RunInfo>, ClaimQueuedRun, (const RunLease& lease), )                      \
   X(bool, RenewLease,                                                                           \

@@ -1,5 +1,6 @@
-// `mbstream delete`, `keep` and `retention --dry-run` as a user runs them against a real
-// mbstream-server that keeps the newest ended run (--retain-runs 1, one pass at start only).
+// `mbstream delete`, `keep`, `retention --dry-run`, `storage` and `backup` as a user runs them
+// against a real mbstream-server that keeps the newest ended run (--retain-runs 1, one pass at
+// start only).
 #include <gmock/gmock.h>
 
 #include <filesystem>
@@ -77,6 +78,39 @@ TEST_F(DataCliTest, KeepRetentionDryRunAndDelete) {
   out = Cli("keep --off " + first);
   ASSERT_EQ(out.exit_code, 0) << out.output;
   EXPECT_THAT(out.output, HasSubstr("no longer kept"));
+}
+
+// `mbstream storage`, `health --service mbstream.new_runs` and `backup DIR`, then a second
+// server started on the backup serves the runs.
+TEST_F(DataCliTest, StorageBackupAndAServerOnTheBackup) {
+  const std::string first = EndedRun(), second = EndedRun();
+  CommandOutcome out = Cli("storage");
+  ASSERT_EQ(out.exit_code, 0) << out.output;
+  EXPECT_THAT(out.output, HasSubstr("store       sqlite " + (dir_ / "data").string()));
+  EXPECT_THAT(out.output, HasSubstr("runs        FINISHED 2"));
+  EXPECT_THAT(out.output, HasSubstr("free "));
+  EXPECT_THAT(out.output, HasSubstr("(--min-free-mb 64.0 MiB)"));
+  EXPECT_THAT(out.output, HasSubstr("would delete 1 runs"));  // --retain-runs 1
+  EXPECT_THAT(out.output, HasSubstr("irb1600"));
+  out = Cli("health --service mbstream.new_runs");
+  EXPECT_EQ(out.exit_code, 0) << out.output;
+  EXPECT_THAT(out.output, HasSubstr("SERVING"));
+
+  const std::string backup = (dir_ / "backup").string();
+  out = Cli("backup " + backup);
+  ASSERT_EQ(out.exit_code, 0) << out.output;
+  EXPECT_THAT(out.output, HasSubstr("backed up 2 runs into " + backup));
+  out = Cli("backup " + backup);  // never over anything
+  EXPECT_EQ(out.exit_code, 2) << out.output;
+  EXPECT_THAT(out.output, HasSubstr("not empty"));
+
+  ServerProcess restored(MBSTREAM_SERVER, backup, {});
+  for (const std::string& run : {first, second}) {
+    out = RunCommand(std::string(MBSTREAM_CLI) + " --server " + restored.address() + " result " +
+                     run + " --out " + (dir_ / run).string());
+    EXPECT_EQ(out.exit_code, 0) << out.output;
+    EXPECT_TRUE(fs::exists(dir_ / run / "joints.csv"));
+  }
 }
 
 }  // namespace

@@ -273,6 +273,22 @@ class Client:
         with rpc_errors():
             return self.stub.RetentionPlan(service_pb2.RetentionPlanRequest())
 
+    def storage(self) -> service_pb2.GetStorageResponse:
+        """Where the server's data is and what it takes (admin token): backend and location,
+        frame_bytes, probe_bytes, run_bytes, model_bytes, disk_bytes, free_bytes (-1 unknown)
+        against min_free_bytes (below_min_free: new runs are refused), runs by state, models
+        (most bytes first) and what retention would delete now (retention_runs,
+        retention_bytes)."""
+        with rpc_errors():
+            return self.stub.GetStorage(service_pb2.GetStorageRequest())
+
+    def backup(self, directory: str) -> service_pb2.BackupStorageResponse:
+        """A consistent copy of the server's live SQLite store into `directory`, a new or empty
+        directory on the server's machine (admin token); `mbstream-server --data DIRECTORY`
+        starts from it. FailedPrecondition on a PostgreSQL store (pg_dump instead)."""
+        with rpc_errors():
+            return self.stub.BackupStorage(service_pb2.BackupStorageRequest(dir=directory))
+
     def compare(self, run_id: str, ghost_run_id: str) -> Comparison:
         """Runs `run_id` and `ghost_run_id` side by side on their common time grid, as
         `mbstream-viewer --run A --compare B` shows them: the TCP distance at each common

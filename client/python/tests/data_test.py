@@ -2,9 +2,12 @@
 """Tests of the data calls of mbstream_client against a live mbstream-server
 ($MBSTREAM_SERVER): delete_runs (a running run cancelled first, every read of a deleted run
 NotFound), delete_model (refused while it has runs, unless with_runs), keep and
-retention_plan (the server keeps the newest 2 ended runs: --retain-runs=2, one pass at start).
+retention_plan (the server keeps the newest 2 ended runs: --retain-runs=2, one pass at start),
+storage and backup.
 ctest runs them through run_with_server.py."""
 import os
+import shutil
+import tempfile
 import unittest
 
 import mbstream_client as mb
@@ -84,6 +87,37 @@ class DataTest(unittest.TestCase):
         self.assertIn(runs[0].id, [info.id for info in self.client.runs()])  # nothing deleted
         self.assertFalse(self.client.keep(runs[0].id, keep=False).keep)
         self.assertIn(runs[0].id, [info.id for info in self.client.retention_plan().runs])
+
+    def test_storage_and_a_backup(self):
+        run = self.client.run("irb1600", SEED_RUN, duration=0.2)
+        run.wait()
+        storage = self.client.storage()
+        self.assertEqual(storage.backend, "sqlite")
+        self.assertGreater(storage.frame_bytes, 0)
+        self.assertGreater(storage.disk_bytes, 0)
+        self.assertGreater(storage.free_bytes, 0)
+        self.assertEqual(storage.min_free_bytes, 64 << 20)
+        self.assertFalse(storage.below_min_free)
+        by_state = {mb.run_pb2.RunState.Name(c.state): c.runs for c in storage.runs}
+        self.assertGreaterEqual(by_state["FINISHED"], 1)
+        self.assertEqual(sum(by_state.values()), len(self.client.runs()))
+        irb = [m for m in storage.models if m.model_name == "irb1600"]
+        self.assertEqual(len(irb), 1)
+        self.assertGreater(irb[0].frame_bytes, 0)
+        self.assertEqual(storage.retain_runs, 2)
+        self.assertEqual(storage.retention_runs, len(self.client.retention_plan().runs))
+
+        directory = os.path.join(tempfile.mkdtemp(), "backup")
+        backup = self.client.backup(directory)
+        self.assertEqual(backup.dir, directory)
+        self.assertGreaterEqual(backup.runs, 1)
+        self.assertTrue(os.path.exists(os.path.join(directory, "mbstream.sqlite3")))
+        self.assertEqual(os.path.getsize(os.path.join(directory, "mbstream.frames")),
+                         backup.frames_bytes)
+        with self.assertRaises(mb.BadRequest) as caught:  # never over another backup
+            self.client.backup(directory)
+        self.assertIn("not empty", caught.exception.message)
+        shutil.rmtree(os.path.dirname(directory))
 
 
 if __name__ == "__main__":

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include <unistd.h>
 
+#include "common/check.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/run_deleter.h"
 #include "server/runs/run_manager.h"
@@ -159,6 +161,73 @@ TEST_F(RetentionTest, TheBackgroundPassDeletesWithoutBeingAsked) {
   }
   retention->Stop();
   EXPECT_EQ(StoredIds(), (Ids{"r-2"}));
+}
+
+// Runs `ids` of model `model` (name and id), ended on days 0, 1, 2, ... in order.
+std::vector<v1::RunInfo> EndedRuns(const std::string& model, const std::vector<std::string>& ids,
+                                   double first_day) {
+  std::vector<v1::RunInfo> runs;
+  for (const std::string& id : ids) {
+    v1::RunInfo& run = runs.emplace_back();
+    run.set_id(id);
+    run.set_model_id("m-" + model);
+    run.set_model_name(model);
+    run.set_state(v1::FINISHED);
+    run.set_created_unix_ms(kStartMs + static_cast<int64_t>((first_day + runs.size()) * kDayMs));
+    run.set_ended_unix_ms(run.created_unix_ms());
+  }
+  return runs;
+}
+
+std::vector<std::string> IdsOf(const std::vector<v1::RunInfo>& runs) {
+  std::vector<std::string> ids;
+  for (const v1::RunInfo& run : runs) ids.push_back(run.id());
+  return ids;
+}
+
+// --retain-model: a model's runs are kept by its own limits (by name or id) and count only
+// against those; the other runs by the server's.
+TEST(ModelRetentionTest, EachModelIsKeptByItsOwnLimits) {
+  RetentionPolicy policy;
+  policy.retain_runs = 2;
+  AddModelRetention("arm=1", policy);          // by name: the newest one
+  AddModelRetention("m-gripper=0,3", policy);  // by id: those ended within 3 days
+  std::vector<v1::RunInfo> runs = EndedRuns("other", {"o-1", "o-2", "o-3"}, 0);
+  for (const v1::RunInfo& run : EndedRuns("arm", {"a-1", "a-2", "a-3"}, 0)) runs.push_back(run);
+  for (const v1::RunInfo& run : EndedRuns("gripper", {"g-1", "g-2", "g-3", "g-4"}, 0)) {
+    runs.push_back(run);
+  }
+  std::stable_sort(runs.begin(), runs.end(), [](const v1::RunInfo& a, const v1::RunInfo& b) {
+    return a.created_unix_ms() < b.created_unix_ms();
+  });
+  const int64_t now = kStartMs + 5 * kDayMs;  // g-1 (day 1) is 4 days old, g-2 3 days
+  EXPECT_EQ(IdsOf(RetentionPlan(runs, policy, now)),
+            (std::vector<std::string>{"o-1", "a-1", "g-1", "a-2"}));
+  EXPECT_EQ(LimitsFor(policy, runs[0]).retain_runs, 2);    // o-1: the server's
+  EXPECT_EQ(LimitsFor(policy, runs[2]).retain_days, 3.0);  // g-1: its model's
+
+  RetentionPolicy only_models;  // no server limits: the other runs stay
+  AddModelRetention("arm=1", only_models);
+  EXPECT_TRUE(only_models.active());
+  EXPECT_EQ(IdsOf(RetentionPlan(runs, only_models, now)), (std::vector<std::string>{"a-1", "a-2"}));
+}
+
+TEST(ModelRetentionTest, AWrongValueSaysTheExpectedForm) {
+  for (const char* wrong :
+       {"arm", "=3", "arm=", "arm=x", "arm=-1", "arm=2,", "arm=2,x", "arm=2;3", "arm=2,-1"}) {
+    RetentionPolicy policy;
+    try {
+      AddModelRetention(wrong, policy);
+      ADD_FAILURE() << wrong << " accepted";
+    } catch (const InputError& error) {
+      EXPECT_NE(std::string(error.what()).find("MODEL=RUNS,DAYS"), std::string::npos) << wrong;
+    }
+    EXPECT_TRUE(policy.models.empty()) << wrong;
+  }
+  RetentionPolicy policy;
+  AddModelRetention("a=b=4,1.5", policy);  // a name may hold '=': the last one splits
+  EXPECT_EQ(policy.models.at("a=b").retain_runs, 4);
+  EXPECT_EQ(policy.models.at("a=b").retain_days, 1.5);
 }
 
 }  // namespace

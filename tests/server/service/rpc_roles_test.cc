@@ -198,6 +198,18 @@ class RpcGateTest : public ServerTest {
            v1::SweepProgress progress;
            return stub().CancelSweep(&context, request, &progress);
          }},
+        {"GetStorage",
+         [&] {
+           v1::GetStorageResponse response;
+           return stub().GetStorage(&context, v1::GetStorageRequest(), &response);
+         }},
+        {"BackupStorage",
+         [&] {
+           v1::BackupStorageRequest request;
+           request.set_dir((data_.path() / "backup").string());
+           v1::BackupStorageResponse response;
+           return stub().BackupStorage(&context, request, &response);
+         }},
     };
     return calls.at(method)();
   }
