@@ -18,7 +18,7 @@ constexpr auto kCancelTimeout = std::chrono::seconds(10);
 
 std::optional<v1::RunInfo> RemoteOwner(PeerChannels* peers, const RunManager& runs,
                                        const std::string& run_id,
-                                       const grpc::ServerContext& context,
+                                       const grpc::ServerContextBase& context,
                                        const std::atomic<bool>& stopping, bool wait_queued) {
   if (peers == nullptr || !runs.shared_store() || PeerChannels::IsProxied(context)) {
     return std::nullopt;
@@ -49,7 +49,7 @@ grpc::Status OwnerStatus(const grpc::Status& status, const v1::RunInfo& owner) {
   }
 }
 
-PeerSubscribe::PeerSubscribe(PeerChannels& peers, const grpc::ServerContext& caller,
+PeerSubscribe::PeerSubscribe(PeerChannels& peers, const grpc::ServerContextBase& caller,
                              const v1::RunInfo& owner, const v1::SubscribeRequest& start)
     : owner_(owner) {
   std::shared_ptr<grpc::Channel> channel = peers.Connect(owner_);
@@ -104,7 +104,7 @@ grpc::Status ProxyWatchRun(PeerChannels& peers, grpc::ServerContext* context,
   return OwnerStatus(reader->Finish(), owner);
 }
 
-grpc::Status ProxyCancelRun(PeerChannels& peers, const grpc::ServerContext& context,
+grpc::Status ProxyCancelRun(PeerChannels& peers, const grpc::ServerContextBase& context,
                             const v1::CancelRunRequest& request, const v1::RunInfo& owner,
                             v1::RunInfo* response) {
   grpc::Status status;
