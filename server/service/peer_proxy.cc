@@ -85,17 +85,18 @@ grpc::Status PeerSubscribe::Finish() {
   return OwnerStatus(stream_->Finish(), owner_);
 }
 
-grpc::Status ProxyWatchRun(PeerChannels& peers, grpc::ServerContext* context,
+grpc::Status ProxyWatchRun(PeerChannels& peers, const grpc::ServerContextBase& context,
                            const v1::WatchRunRequest& request,
-                           grpc::ServerWriter<v1::WatchEvent>* writer, const v1::RunInfo& owner) {
+                           const std::function<bool(const v1::WatchEvent&)>& write,
+                           const v1::RunInfo& owner) {
   std::shared_ptr<grpc::Channel> channel = peers.Connect(owner);
-  std::unique_ptr<grpc::ClientContext> upstream = peers.ContextFor(*context);
+  std::unique_ptr<grpc::ClientContext> upstream = peers.ContextFor(context);
   std::unique_ptr<v1::Simulation::Stub> stub = v1::Simulation::NewStub(channel);
   std::unique_ptr<grpc::ClientReader<v1::WatchEvent>> reader =
       stub->WatchRun(upstream.get(), request);
   v1::WatchEvent event;
   while (reader->Read(&event)) {
-    if (!writer->Write(event)) {
+    if (!write(event)) {
       upstream->TryCancel();
       (void)reader->Finish();
       return grpc::Status(grpc::StatusCode::CANCELLED, "client gone");

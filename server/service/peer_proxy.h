@@ -9,6 +9,7 @@
 #include <grpcpp/server_context.h>
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -62,10 +63,12 @@ class PeerSubscribe {
 // DEADLINE_EXCEEDED messages naming the owner.
 grpc::Status OwnerStatus(const grpc::Status& status, const v1::RunInfo& owner);
 
-// WatchRun relayed from the owner, event by event.
-grpc::Status ProxyWatchRun(PeerChannels& peers, grpc::ServerContext* context,
+// WatchRun relayed from the owner, event by event, each passed to `write` (false: the
+// watcher is gone, the call to the owner is cancelled).
+grpc::Status ProxyWatchRun(PeerChannels& peers, const grpc::ServerContextBase& context,
                            const v1::WatchRunRequest& request,
-                           grpc::ServerWriter<v1::WatchEvent>* writer, const v1::RunInfo& owner);
+                           const std::function<bool(const v1::WatchEvent&)>& write,
+                           const v1::RunInfo& owner);
 
 // CancelRun forwarded to the owner (at most kCancelTimeout); FAILED_PRECONDITION naming the
 // owner when it cannot be reached.

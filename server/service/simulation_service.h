@@ -16,10 +16,11 @@
 
 namespace mbstream {
 
-// Subscribe is a reactor on gRPC's callback API (subscribe_call.h); the other methods are
-// synchronous handlers.
+// Subscribe and WatchRun are reactors on gRPC's callback API (subscribe_call.h,
+// watch_call.h); the other methods are synchronous handlers.
 class SimulationService final
-    : public v1::Simulation::WithCallbackMethod_Subscribe<v1::Simulation::Service> {
+    : public v1::Simulation::WithCallbackMethod_WatchRun<
+          v1::Simulation::WithCallbackMethod_Subscribe<v1::Simulation::Service>> {
  public:
   // None is owned; all must outlive the service. `peers` (a cluster's replicas on a shared
   // store) proxies calls about runs integrating on other replicas; null: none are proxied.
@@ -50,8 +51,9 @@ class SimulationService final
                              v1::ListProbeSetsResponse* response) override;  // replay_rpcs.cc
   grpc::Status ReplayRun(grpc::ServerContext* context, const v1::ReplayRunRequest* request,
                          v1::RunInfo* response) override;  // replay_rpcs.cc
-  grpc::Status WatchRun(grpc::ServerContext* context, const v1::WatchRunRequest* request,
-                        grpc::ServerWriter<v1::WatchEvent>* writer) override;  // watch_run.cc
+  grpc::ServerWriteReactor<v1::WatchEvent>* WatchRun(
+      grpc::CallbackServerContext* context,
+      const v1::WatchRunRequest* request) override;  // watch_call.h
   grpc::ServerBidiReactor<v1::SubscribeRequest, v1::SubscribeEvent>* Subscribe(
       grpc::CallbackServerContext* context) override;  // subscribe_call.h
 

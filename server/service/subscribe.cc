@@ -71,13 +71,9 @@ void SubscribeCall::StartDeadline() {
   Drive(lock);
 }
 
-void SubscribeCall::Enqueue(v1::SubscribeEvent event) {
-  queue_.push_back(Outgoing{std::move(event)});
-}
+void SubscribeCall::Enqueue(v1::SubscribeEvent event) { writes_.Enqueue(std::move(event)); }
 
-void SubscribeCall::Conclude(const grpc::Status& status) {
-  if (!conclusion_) conclusion_ = status;
-}
+void SubscribeCall::Conclude(const grpc::Status& status) { writes_.Conclude(status); }
 
 void SubscribeCall::WakeAt(Clock::time_point due) {
   const uint64_t wake = ++wake_;
@@ -100,7 +96,7 @@ void SubscribeCall::Poke() {
 
 void SubscribeCall::RunStep() {
   std::unique_lock<std::mutex> lock(mutex_);
-  if (phase_ == Phase::kStreaming && sender_ && !conclusion_ && !writing_ && queue_.empty()) {
+  if (phase_ == Phase::kStreaming && sender_ && !writes_.conclusion() && writes_.idle()) {
     const grpc::Status failed = Serve([&] {
       sender_->Step(*this);
       return grpc::Status::OK;
@@ -112,9 +108,9 @@ void SubscribeCall::RunStep() {
 
 bool SubscribeCall::WriteAndWait(const v1::SubscribeEvent& event) {
   std::unique_lock<std::mutex> lock(mutex_);
-  if (conclusion_ || phase_ == Phase::kFinished) return false;
+  if (writes_.conclusion() || phase_ == Phase::kFinished) return false;
   bool written = false, done = false;
-  queue_.push_back(Outgoing{event, &written, &done});
+  writes_.Enqueue(event, &written, &done);
   // Written from the pump: this thread must never finish the call (Teardown joins it).
   deps_.pump->Post([self = shared_from_this()] { self->RunStep(); });
   written_.wait(lock, [&] { return done; });
@@ -123,7 +119,7 @@ bool SubscribeCall::WriteAndWait(const v1::SubscribeEvent& event) {
 
 void SubscribeCall::StartReading(Divert divert) {
   std::unique_lock<std::mutex> lock(mutex_);
-  if (conclusion_) return;
+  if (writes_.conclusion()) return;
   divert_ = std::move(divert);
   reading_ = true;
   read_wanted_ = true;
@@ -160,7 +156,7 @@ void SubscribeCall::OnReadDone(bool ok) {
     read_done_ = true;
     if (inbox_) inbox_->Wake();
     if (divert_.done) divert_.done();
-    if (!conclusion_) Poke();  // the sender ends the stream
+    if (!writes_.conclusion()) Poke();  // the sender ends the stream
     Drive(lock);
     return;
   }
@@ -199,16 +195,8 @@ void SubscribeCall::HandleMessage() {
 
 void SubscribeCall::OnWriteDone(bool ok) {
   std::unique_lock<std::mutex> lock(mutex_);
-  writing_ = false;
-  Outgoing& done = queue_.front();
-  if (done.done != nullptr) {
-    *done.written = ok;
-    *done.done = true;
-    written_.notify_all();
-  }
-  queue_.pop_front();
-  if (!ok && (!conclusion_ || conclusion_->ok())) conclusion_ = Gone();
-  if (!conclusion_ && queue_.empty()) Poke();
+  writes_.Written(ok, Gone(), written_);
+  if (!writes_.conclusion() && writes_.idle()) Poke();
   Drive(lock);
 }
 
@@ -230,24 +218,24 @@ void SubscribeCall::Drive(std::unique_lock<std::mutex>& lock) {
       --in_grpc_;
       continue;
     }
-    if (!writing_ && !queue_.empty()) {
-      writing_ = true;
+    if (const v1::SubscribeEvent* event = writes_.Next()) {
       ++in_grpc_;
-      const v1::SubscribeEvent* event = &queue_.front().event;  // stable until popped
       lock.unlock();
       StartWrite(event);
       lock.lock();
       --in_grpc_;
       continue;
     }
-    if (!conclusion_ || writing_ || in_grpc_ > 0 || phase_ == Phase::kStarting) return;
+    if (!writes_.conclusion() || !writes_.idle() || in_grpc_ > 0 || phase_ == Phase::kStarting) {
+      return;
+    }
     FinishNow(lock);
     return;
   }
 }
 
 void SubscribeCall::FinishNow(std::unique_lock<std::mutex>& lock) {
-  const grpc::Status status = *conclusion_;
+  const grpc::Status status = *writes_.conclusion();
   const bool reading = reading_ && !read_done_;
   // A one-run subscriber half-closes after run_ended (its last probes arrive before), and
   // every viewer after `closing`: wait for that goodbye a while.

@@ -34,6 +34,7 @@
 #include "server/service/replay_inbox.h"
 #include "server/service/sent_frames.h"
 #include "server/service/stream_pump.h"
+#include "server/service/stream_writes.h"
 
 namespace mbstream {
 
@@ -112,12 +113,6 @@ class SubscribeCall final
 
  private:
   enum class Phase { kAwaitStart, kStarting, kStreaming, kFinished };
-  struct Outgoing {
-    v1::SubscribeEvent event;
-    bool* written = nullptr;  // WriteAndWait's: set (with `done`) when the write completed
-    bool* done = nullptr;
-  };
-
   void Begin();
   void StartDeadline();
   void Start();                                         // subscribe_start.cc
@@ -150,10 +145,8 @@ class SubscribeCall final
   bool read_wanted_ = false;  // a read is to be started (Drive)
   bool reading_ = false;      // probe reports are read (the start was accepted)
   bool read_done_ = false;    // the viewer half-closed (or the read failed)
-  bool writing_ = false;
-  int in_grpc_ = 0;  // threads between releasing the lock and a StartRead/StartWrite
-  std::deque<Outgoing> queue_;
-  std::optional<grpc::Status> conclusion_;
+  int in_grpc_ = 0;           // threads between releasing the lock and a StartRead/StartWrite
+  StreamWrites<v1::SubscribeEvent> writes_;
   bool goodbye_timer_ = false;
   bool goodbye_late_ = false;
   uint64_t wake_ = 0;  // WakeAt's latest request

@@ -18,11 +18,11 @@ constexpr auto kQueuedPoll = std::chrono::milliseconds(50);  // a queued run's c
 
 void SubscribeCall::Start() {
   std::unique_lock<std::mutex> lock(mutex_);
-  if (!conclusion_) {
+  if (!writes_.conclusion()) {
     const grpc::Status status = Serve([&] { return Accept(); });
     if (!status.ok()) Conclude(status);
   }
-  if (phase_ == Phase::kStarting && conclusion_) phase_ = Phase::kStreaming;  // to end
+  if (phase_ == Phase::kStarting && writes_.conclusion()) phase_ = Phase::kStreaming;  // to end
   Drive(lock);
 }
 
