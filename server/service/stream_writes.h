@@ -8,6 +8,7 @@
 
 #include <condition_variable>
 #include <deque>
+#include <mutex>
 #include <optional>
 #include <utility>
 
@@ -39,7 +40,22 @@ class StreamWrites {
     queue_.pop_front();
     if (!ok && (!conclusion_ || conclusion_->ok())) conclusion_ = gone;
   }
-  bool idle() const { return !writing_ && queue_.empty(); }
+  bool idle() const { return !writing_ && queue_.empty(); }  // nothing queued or being written
+  // Whether the stream may finish now: it was concluded, is idle, and no thread is about to
+  // start a gRPC operation (OutsideLock).
+  bool may_finish() const { return conclusion_ && idle() && outside_lock_ == 0; }
+
+  // Calls `start` (gRPC's StartRead, StartWrite: never with the reactor's lock held, as gRPC
+  // may run a reaction inline) with `lock` released; meanwhile the stream may not finish
+  // (and be freed by gRPC).
+  template <typename Start>
+  void OutsideLock(std::unique_lock<std::mutex>& lock, Start start) {
+    ++outside_lock_;
+    lock.unlock();
+    start();
+    lock.lock();
+    --outside_lock_;
+  }
 
   void Conclude(const grpc::Status& status) {  // the first status given stays
     if (!conclusion_) conclusion_ = status;
@@ -54,6 +70,7 @@ class StreamWrites {
   };
   std::deque<Outgoing> queue_;
   bool writing_ = false;
+  int outside_lock_ = 0;  // threads in OutsideLock
   std::optional<grpc::Status> conclusion_;
 };
 

@@ -3,8 +3,7 @@
 // replay_stream.cc.
 //
 // Locking: one mutex per call guards its state; gRPC's Start* and Finish are never called
-// with it held (gRPC may run a reaction inline), and a thread about to call them counts in
-// `in_grpc_`, so that the call cannot finish (and be freed by gRPC) in between.
+// with it held (gRPC may run a reaction inline; StreamWrites::OutsideLock).
 #include <spdlog/spdlog.h>
 
 #include "server/service/rpc_roles.h"
@@ -76,23 +75,10 @@ void SubscribeCall::Enqueue(v1::SubscribeEvent event) { writes_.Enqueue(std::mov
 void SubscribeCall::Conclude(const grpc::Status& status) { writes_.Conclude(status); }
 
 void SubscribeCall::WakeAt(Clock::time_point due) {
-  const uint64_t wake = ++wake_;
-  deps_.pump->PostAt(due, [self = shared_from_this(), wake] {
-    {
-      std::lock_guard<std::mutex> lock(self->mutex_);
-      if (wake != self->wake_) return;  // a later step asked for another time
-    }
-    self->RunStep();
-  });
+  steps_.WakeAt(*deps_.pump, due, shared_from_this(), mutex_);
 }
 
-void SubscribeCall::Poke() {
-  if (poke_pending_.exchange(true)) return;
-  deps_.pump->Post([self = shared_from_this()] {
-    self->poke_pending_ = false;
-    self->RunStep();
-  });
-}
+void SubscribeCall::Poke() { steps_.Poke(*deps_.pump, shared_from_this()); }
 
 void SubscribeCall::RunStep() {
   std::unique_lock<std::mutex> lock(mutex_);
@@ -211,24 +197,14 @@ void SubscribeCall::Drive(std::unique_lock<std::mutex>& lock) {
     if (phase_ == Phase::kFinished) return;
     if (read_wanted_) {
       read_wanted_ = false;
-      ++in_grpc_;
-      lock.unlock();
-      StartRead(&request_);
-      lock.lock();
-      --in_grpc_;
+      writes_.OutsideLock(lock, [&] { StartRead(&request_); });
       continue;
     }
     if (const v1::SubscribeEvent* event = writes_.Next()) {
-      ++in_grpc_;
-      lock.unlock();
-      StartWrite(event);
-      lock.lock();
-      --in_grpc_;
+      writes_.OutsideLock(lock, [&] { StartWrite(event); });
       continue;
     }
-    if (!writes_.conclusion() || !writes_.idle() || in_grpc_ > 0 || phase_ == Phase::kStarting) {
-      return;
-    }
+    if (!writes_.may_finish() || phase_ == Phase::kStarting) return;
     FinishNow(lock);
     return;
   }

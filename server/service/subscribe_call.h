@@ -120,6 +120,7 @@ class SubscribeCall final
   grpc::Status AttachHere(bool follow, int max_batch);  // subscribe_start.cc
   void Go(std::unique_ptr<SubscribeSender> sender, const std::string& subscribed);
   void HandleMessage();  // a read message (lock held)
+  friend class PumpSteps;
   void RunStep();
   // Starts the next write, a read that is due, or finishes the call (lock held; released
   // and taken again around gRPC's calls).
@@ -145,12 +146,10 @@ class SubscribeCall final
   bool read_wanted_ = false;  // a read is to be started (Drive)
   bool reading_ = false;      // probe reports are read (the start was accepted)
   bool read_done_ = false;    // the viewer half-closed (or the read failed)
-  int in_grpc_ = 0;           // threads between releasing the lock and a StartRead/StartWrite
   StreamWrites<v1::SubscribeEvent> writes_;
   bool goodbye_timer_ = false;
   bool goodbye_late_ = false;
-  uint64_t wake_ = 0;  // WakeAt's latest request
-  std::atomic<bool> poke_pending_{false};
+  PumpSteps steps_;
   int64_t accepted_ = 0;
   int64_t refused_ = 0;
 };

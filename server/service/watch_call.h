@@ -49,6 +49,7 @@ class WatchCall final : public grpc::ServerWriteReactor<v1::WatchEvent>,
   enum class Phase { kQueued, kWatching, kRelayed, kFinished };
 
   grpc::Status Begin();  // lock held
+  friend class PumpSteps;
   void RunStep();
   void Step();  // lock held, no write pending
   void StepQueued();
@@ -75,9 +76,7 @@ class WatchCall final : public grpc::ServerWriteReactor<v1::WatchEvent>,
   std::shared_ptr<Subscription> slot_;  // counted against the subscriber limit
   std::deque<StreamEvent> events_;
   StreamWrites<v1::WatchEvent> writes_;
-  int in_grpc_ = 0;  // threads between releasing the lock and a StartWrite
-  uint64_t wake_ = 0;
-  std::atomic<bool> poke_pending_{false};
+  PumpSteps steps_;
   std::thread relay_;
 };
 

@@ -93,23 +93,10 @@ void WatchCall::Watch() {
   }
 }
 
-void WatchCall::Poke() {
-  if (poke_pending_.exchange(true)) return;
-  deps_.pump->Post([self = shared_from_this()] {
-    self->poke_pending_ = false;
-    self->RunStep();
-  });
-}
+void WatchCall::Poke() { steps_.Poke(*deps_.pump, shared_from_this()); }
 
 void WatchCall::WakeAt(Clock::time_point due) {
-  const uint64_t wake = ++wake_;
-  deps_.pump->PostAt(due, [self = shared_from_this(), wake] {
-    {
-      std::lock_guard<std::mutex> lock(self->mutex_);
-      if (wake != self->wake_) return;  // a later step asked for another time
-    }
-    self->RunStep();
-  });
+  steps_.WakeAt(*deps_.pump, due, shared_from_this(), mutex_);
 }
 
 void WatchCall::RunStep() {
@@ -253,14 +240,10 @@ void WatchCall::Drive(std::unique_lock<std::mutex>& lock) {
   for (;;) {
     if (phase_ == Phase::kFinished) return;
     if (const v1::WatchEvent* event = writes_.Next()) {
-      ++in_grpc_;
-      lock.unlock();
-      StartWrite(event);
-      lock.lock();
-      --in_grpc_;
+      writes_.OutsideLock(lock, [&] { StartWrite(event); });
       continue;
     }
-    if (!writes_.conclusion() || !writes_.idle() || in_grpc_ > 0) return;
+    if (!writes_.may_finish()) return;
     const grpc::Status status = *writes_.conclusion();
     phase_ = Phase::kFinished;
     lock.unlock();
