@@ -55,7 +55,9 @@ void SubscribeCall::Begin() {
   const auto deadline =
       Clock::now() + std::chrono::duration_cast<Clock::duration>(
                          std::chrono::duration<double>(deps_.runs->limits().subscribe_start_s));
-  deps_.pump->PostAt(deadline, [self = shared_from_this()] { self->StartDeadline(); });
+  deps_.pump->PostAt(deadline, [weak = weak_from_this()] {  // an ended call is not kept
+    if (std::shared_ptr<SubscribeCall> self = weak.lock()) self->StartDeadline();
+  });
   read_wanted_ = true;
   Drive(lock);
 }
@@ -220,7 +222,9 @@ void SubscribeCall::FinishNow(std::unique_lock<std::mutex>& lock) {
     if (!goodbye_timer_) {
       goodbye_timer_ = true;
       const auto wait = status.ok() ? std::chrono::seconds(10) : std::chrono::seconds(2);
-      deps_.pump->PostAt(Clock::now() + wait, [self = shared_from_this()] {
+      deps_.pump->PostAt(Clock::now() + wait, [weak = weak_from_this()] {
+        std::shared_ptr<SubscribeCall> self = weak.lock();
+        if (!self) return;
         std::unique_lock<std::mutex> lock(self->mutex_);
         self->goodbye_late_ = true;
         self->Drive(lock);
@@ -245,7 +249,8 @@ void SubscribeCall::Teardown() {
     deps_.live->Remove(live_id_);
   }
   std::lock_guard<std::mutex> lock(mutex_);
-  inbox_.reset();  // stores the replay's last probe reports before the call ends
+  inbox_.reset();   // stores the replay's last probe reports before the call ends
+  sender_.reset();  // a replay's chunks: no read diverts from now on (phase_ kFinished)
   if (refused_ > 0) {
     spdlog::warn("Subscribe stream ended: {} probe reports stored, {} refused", accepted_,
                  refused_);
