@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   mbstream::cli::AddSweepCommand(app, client, &exit_code);
   mbstream::cli::AddResultCommands(app, client, &exit_code);
   mbstream::cli::AddReplayCommands(app, client, &exit_code);
+  mbstream::cli::AddDataCommands(app, client, &exit_code);
   mbstream::cli::AddHealthCommand(app, client, &exit_code);
   try {
     app.parse(argc, argv);

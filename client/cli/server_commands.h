@@ -1,4 +1,5 @@
-// The commands that talk to a server: submit, models, runs, run, result, cancel, health
+// The commands that talk to a server: submit, models, runs, run, result, cancel, delete, keep,
+// retention, health
 // (README.md, "Server, viewer and CLI by hand"). Each callback stores its exit code in *exit_code.
 #pragma once
 
@@ -20,6 +21,8 @@ void AddResultCommands(CLI::App& app, std::shared_ptr<const ClientOptions> optio
                        int* exit_code);  // result, cancel
 void AddReplayCommands(CLI::App& app, std::shared_ptr<const ClientOptions> options,
                        int* exit_code);  // probe-sets, replay
+void AddDataCommands(CLI::App& app, std::shared_ptr<const ClientOptions> options,
+                     int* exit_code);  // delete, keep, retention
 void AddHealthCommand(CLI::App& app, std::shared_ptr<const ClientOptions> options,
                       int* exit_code);  // health (gRPC health checking)
 

@@ -235,4 +235,16 @@ std::optional<v1::RunInfo> MeasuredStore::EndQueuedRun(const std::string& run_id
   return ended;
 }
 
+bool MeasuredStore::DeleteRun(const std::string& run_id) {
+  return Timed(StoreOperation::kDeleteRun, [&] { return store_->DeleteRun(run_id); });
+}
+
+int64_t MeasuredStore::DeleteModel(const std::string& model_id) {
+  return Timed(StoreOperation::kDeleteModel, [&] { return store_->DeleteModel(model_id); });
+}
+
+bool MeasuredStore::SetRunKeep(const std::string& run_id, bool keep) {
+  return Timed(StoreOperation::kSetRunKeep, [&] { return store_->SetRunKeep(run_id, keep); });
+}
+
 }  // namespace mbstream

@@ -108,6 +108,20 @@ void AddSizeFlags(CLI::App& app, ServerConfig* config, ServerFlags* flags) {
                  "failing them; 0 = no check; not checked for a PostgreSQL --store")
       ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();
+  app.add_option("--retain-runs", config->retention.retain_runs,
+                 "keep the newest this many ended runs (not counting runs marked keep: "
+                 "`mbstream keep`); older ended runs are deleted in the background; 0 = no limit")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--retain-days", config->retention.retain_days,
+                 "delete ended runs (not marked keep) that ended more than this many days ago, "
+                 "in the background; 0 = no limit; `mbstream retention` lists what goes next")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
+  app.add_option("--retention-period-s", config->retention_period_s,
+                 "s between two passes of retention (--retain-runs, --retain-days)")
+      ->check(CLI::Range(0.01, 86400.0))
+      ->capture_default_str();
   app.add_option("--max-message-mb", flags->max_message_mb, "largest gRPC message, MiB")
       ->check(CLI::Range(1.0, 2047.0))
       ->capture_default_str();

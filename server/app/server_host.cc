@@ -177,8 +177,13 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
       throw InputError(error.what());
     }
   }
-  host->service_ = std::make_unique<SimulationService>(host->models_.get(), host->runs_.get(),
-                                                       host->authorizer_.get(), host->peers_.get());
+  host->deleter_ =
+      std::make_unique<RunDeleter>(host->store_.get(), host->runs_.get(), host->models_.get());
+  host->retention_ =
+      std::make_unique<Retention>(host->store_.get(), host->deleter_.get(), config.retention);
+  host->service_ = std::make_unique<SimulationService>(
+      host->models_.get(), host->runs_.get(), host->authorizer_.get(), host->peers_.get(),
+      DataKeeping{host->deleter_.get(), host->retention_.get()});
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
@@ -204,6 +209,7 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   if (config.advertise.empty()) {
     host->runs_->SetAdvertisedAddress(AdvertisedAddress(name, port, host->address_));
   }
+  host->retention_->Start(config.retention_period_s);  // nothing without --retain-*
   // grpc.health.v1: SERVING while the store answers and the replica is not draining.
   grpc::HealthCheckServiceInterface* health = host->server_->GetHealthCheckService();
   host->runs_->SetServingListener([health](bool serving) { health->SetServingStatus(serving); });
@@ -223,6 +229,7 @@ void ServerHost::Shutdown() {
   shut_down_ = true;
   spdlog::info("shutting down: interrupting runs and closing streams");
   service_->Stop();
+  retention_->Stop();
   runs_->Shutdown("the server was shut down");
   server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "net/server_credentials.h"
+#include "server/runs/retention.h"
 #include "server/runs/server_limits.h"
 
 namespace mbstream {
@@ -16,6 +17,7 @@ namespace mbstream {
 class Store;
 class ModelRegistry;
 class RunManager;
+class RunDeleter;
 class SimulationService;
 class Authorizer;
 class MetricsEndpoint;
@@ -49,6 +51,9 @@ struct ServerConfig {
   // advertised host is a container id the certificate cannot name).
   std::string peer_tls_name;
   std::string metrics;  // --metrics host:port serving GET /metrics (port 0 = any); empty = none
+  // Retention (retention.h): --retain-runs, --retain-days; a pass every retention_period_s.
+  RetentionPolicy retention;
+  double retention_period_s = 60.0;
 };
 
 // What an operator should know about who can reach the server as configured: one sentence
@@ -88,6 +93,8 @@ class ServerHost {
   std::unique_ptr<Store> store_;
   std::unique_ptr<ModelRegistry> models_;
   std::unique_ptr<RunManager> runs_;
+  std::unique_ptr<RunDeleter> deleter_;  // DeleteRuns, DeleteModel, retention
+  std::unique_ptr<Retention> retention_;
   std::unique_ptr<Authorizer> authorizer_;
   std::unique_ptr<PeerChannels> peers_;  // a shared store's other replicas
   std::unique_ptr<SimulationService> service_;

@@ -32,7 +32,10 @@ constexpr const char* kStoreOperationNames[] = {"put_model",
                                                 "reap_expired_leases",
                                                 "put_run_if_held",
                                                 "end_queued_run",
-                                                "list_running_runs"};
+                                                "list_running_runs",
+                                                "delete_run",
+                                                "delete_model",
+                                                "set_run_keep"};
 static_assert(std::size(kStoreOperationNames) == static_cast<size_t>(StoreOperation::kCount));
 
 bool IsFinal(v1::RunState state) { return state >= v1::FINISHED && state <= v1::INTERRUPTED; }

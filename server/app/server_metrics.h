@@ -41,6 +41,9 @@ enum class StoreOperation {
   kPutRunIfHeld,
   kEndQueuedRun,
   kListRunningRuns,
+  kDeleteRun,
+  kDeleteModel,
+  kSetRunKeep,
   kCount
 };
 

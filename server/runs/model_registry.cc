@@ -416,6 +416,12 @@ std::vector<v1::ModelInfo> ModelRegistry::List() const {
   return list;
 }
 
+void ModelRegistry::Forget(const std::string& model_id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  by_id_.erase(model_id);
+  order_.erase(std::remove(order_.begin(), order_.end(), model_id), order_.end());
+}
+
 int ModelRegistry::compiled_count() const {
   std::lock_guard<std::mutex> lock(mutex_);
   int count = 0;

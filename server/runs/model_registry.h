@@ -68,6 +68,9 @@ class ModelRegistry {
   v1::ModelBundle Bundle(const std::string& model_id) const;
 
   std::vector<v1::ModelInfo> List() const;  // oldest first
+  // Forgets model `model_id` (deleted from the store: run_deleter.h); runs that hold its
+  // compiled model keep it until they end.
+  void Forget(const std::string& model_id);
 
   // How many models are compiled and cached now (at most limits.compiled_models_cached).
   int compiled_count() const;

@@ -8,11 +8,7 @@ namespace mbstream {
 void RecentResults::Put(const v1::RunInfo& info, std::string chunk) {
   const std::string& run_id = info.id();
   std::lock_guard<std::mutex> lock(mutex_);
-  if (auto kept = kept_.find(run_id); kept != kept_.end()) {  // never a stale copy
-    bytes_ -= kept->second.bytes;
-    kept_.erase(kept);
-    order_.erase(std::find(order_.begin(), order_.end(), run_id));
-  }
+  EraseLocked(run_id);  // never a stale copy
   const std::size_t bytes = chunk.size() + info.ByteSizeLong();
   if (bytes > max_bytes_) return;
   bytes_ += bytes;
@@ -24,6 +20,19 @@ void RecentResults::Put(const v1::RunInfo& info, std::string chunk) {
     kept_.erase(oldest);
     order_.pop_front();
   }
+}
+
+void RecentResults::Erase(const std::string& run_id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  EraseLocked(run_id);
+}
+
+void RecentResults::EraseLocked(const std::string& run_id) {
+  auto kept = kept_.find(run_id);
+  if (kept == kept_.end()) return;
+  bytes_ -= kept->second.bytes;
+  kept_.erase(kept);
+  order_.erase(std::find(order_.begin(), order_.end(), run_id));
 }
 
 bool RecentResults::Get(const std::string& run_id, std::string& chunk) const {

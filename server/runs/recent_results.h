@@ -24,6 +24,8 @@ class RecentResults {
   // Keeps run `info.id()`'s final info and stored chunk blob (its every frame), replacing
   // what was kept for it before.
   void Put(const v1::RunInfo& info, std::string chunk);
+  // Forgets the run (deleted from the store); nothing when it is not kept.
+  void Erase(const std::string& run_id);
   // Copies the run's chunk blob into `chunk`; false when it is not kept.
   bool Get(const std::string& run_id, std::string& chunk) const;
   // Copies the run's final info into `info`; false when it is not kept.
@@ -37,6 +39,8 @@ class RecentResults {
     std::string chunk;
     std::size_t bytes = 0;
   };
+
+  void EraseLocked(const std::string& run_id);  // mutex_ held
 
   const std::size_t max_bytes_;
   mutable std::mutex mutex_;

@@ -129,6 +129,9 @@ class RunManager {
   std::optional<int64_t> ResultFrames(const std::string& run_id, int64_t index, std::string& data,
                                       std::vector<std::string_view>& frames) const;
   std::vector<v1::ProbeReport> ResultProbes(const std::string& run_id) const;
+  // Forgets what this replica keeps of ended run `run_id` in memory (RecentResults), after
+  // the run was deleted from the store (run_deleter.h): later reads ask the store.
+  void ForgetEnded(const std::string& run_id) { recent_results_.Erase(run_id); }
   // Replays (run_manager_replay.cc). Whether the run is queued or running now; a cursor over
   // an ended run's stored frames (`info` from ResultInfo); the replays' probe sets: a new
   // unique set id, creating a set and adding its reports (each call one transaction), the

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "server/runs/request_error.h"
 #include "server/service/encoded_result_chunk.h"
 #include "server/service/simulation_service.h"
 #include "server/service/status_from_exception.h"
@@ -73,6 +74,18 @@ grpc::Status SimulationService::SendResult(grpc::ServerContext& context, const s
   for (const v1::ProbeReport& probe : probes) {
     chunk.AddProbe(probe);
     if (chunk.bytes() >= kChunkBytes && !flush()) return gone;
+  }
+  // A run deleted while it was read (run_deleter.h) may have lost its later chunks or probes
+  // in between: the stream then ends NOT_FOUND, never OK with part of a result. Its row goes
+  // in the transaction that deletes everything else: still stored now, everything read was.
+  try {
+    runs_->ResultInfo(run_id);
+  } catch (const RequestError& error) {
+    if (error.kind() != RequestErrorKind::kNotFound) throw;
+    return grpc::Status(grpc::StatusCode::NOT_FOUND,
+                        "run " + run_id +
+                            " was deleted while its result was being sent; what was sent is "
+                            "not all of it (`mbstream runs` lists the runs)");
   }
   if (!flush()) return gone;
   return grpc::Status::OK;

@@ -29,6 +29,10 @@ inline constexpr RpcRole kRpcRoles[] = {
     {"Subscribe", Role::kView},      // viewers; their probe reports are checked per stream
     {"ListProbeSets", Role::kView},  //
     {"ReplayRun", Role::kRun},       // streams a stored run to every follower
+    {"DeleteRuns", Role::kAdmin},    // data of every user
+    {"DeleteModel", Role::kAdmin},   //
+    {"SetKeep", Role::kRun},         // protects a run from retention (or no longer)
+    {"RetentionPlan", Role::kView},  // a dry run: deletes nothing
 };
 
 // The role of `method`; a method missing from kRpcRoles is a bug (InternalError).

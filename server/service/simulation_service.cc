@@ -9,8 +9,9 @@
 namespace mbstream {
 
 SimulationService::SimulationService(ModelRegistry* models, RunManager* runs,
-                                     const Authorizer* authorizer, PeerChannels* peers)
-    : models_(models), runs_(runs), authorizer_(authorizer), peers_(peers) {
+                                     const Authorizer* authorizer, PeerChannels* peers,
+                                     DataKeeping data)
+    : models_(models), runs_(runs), authorizer_(authorizer), peers_(peers), data_(data) {
   MBSTREAM_CHECK(models_ != nullptr && runs_ != nullptr && authorizer_ != nullptr);
 }
 

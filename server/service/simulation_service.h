@@ -6,6 +6,8 @@
 
 #include "mbstream/v1/simulation_service.grpc.pb.h"
 #include "server/runs/model_registry.h"
+#include "server/runs/retention.h"
+#include "server/runs/run_deleter.h"
 #include "server/runs/run_manager.h"
 #include "server/service/authorizer.h"
 #include "server/service/live_streams.h"
@@ -16,6 +18,12 @@
 
 namespace mbstream {
 
+// What serves the data calls (data_rpcs.cc); none is owned.
+struct DataKeeping {
+  const RunDeleter* deleter = nullptr;
+  const Retention* retention = nullptr;
+};
+
 // Subscribe and WatchRun are reactors on gRPC's callback API (subscribe_call.h,
 // watch_call.h); the other methods are synchronous handlers.
 class SimulationService final
@@ -24,8 +32,9 @@ class SimulationService final
  public:
   // None is owned; all must outlive the service. `peers` (a cluster's replicas on a shared
   // store) proxies calls about runs integrating on other replicas; null: none are proxied.
+  // `data` serves DeleteRuns, DeleteModel, SetKeep and RetentionPlan; without: UNIMPLEMENTED.
   SimulationService(ModelRegistry* models, RunManager* runs, const Authorizer* authorizer,
-                    PeerChannels* peers = nullptr);
+                    PeerChannels* peers = nullptr, DataKeeping data = {});
 
   grpc::Status SubmitModel(grpc::ServerContext* context, const v1::SubmitModelRequest* request,
                            v1::ModelInfo* response) override;
@@ -58,6 +67,14 @@ class SimulationService final
       const v1::WatchRunRequest* request) override;  // watch_call.h
   grpc::ServerBidiReactor<v1::SubscribeRequest, v1::SubscribeEvent>* Subscribe(
       grpc::CallbackServerContext* context) override;  // subscribe_call.h
+  grpc::Status DeleteRuns(grpc::ServerContext* context, const v1::DeleteRunsRequest* request,
+                          v1::DeleteRunsResponse* response) override;  // data_rpcs.cc
+  grpc::Status DeleteModel(grpc::ServerContext* context, const v1::DeleteModelRequest* request,
+                           v1::DeleteModelResponse* response) override;  // data_rpcs.cc
+  grpc::Status SetKeep(grpc::ServerContext* context, const v1::SetKeepRequest* request,
+                       v1::RunInfo* response) override;  // data_rpcs.cc
+  grpc::Status RetentionPlan(grpc::ServerContext* context, const v1::RetentionPlanRequest* request,
+                             v1::RetentionPlanResponse* response) override;  // data_rpcs.cc
 
   // Ends every stream at its next event (shutdown).
   void Stop() {
@@ -91,6 +108,7 @@ class SimulationService final
   RunManager* runs_;
   const Authorizer* authorizer_;
   PeerChannels* peers_;
+  DataKeeping data_;
   std::atomic<bool> stopping_{false};
   LiveStreams live_;  // the open streaming reactors
   StreamPump pump_;   // after live_ and the rest: its tasks may hold the last of a reactor

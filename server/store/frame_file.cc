@@ -106,6 +106,17 @@ FrameExtent FrameFile::Append(std::string_view data) {
   return extent;
 }
 
+bool FrameFile::Release(int64_t offset, int64_t bytes) {
+  if (offset < 0 || bytes <= 0) return bytes == 0;
+  return ::fallocate(fd_, FALLOC_FL_PUNCH_HOLE | FALLOC_FL_KEEP_SIZE, static_cast<off_t>(offset),
+                     static_cast<off_t>(bytes)) == 0;
+}
+
+int64_t FrameFile::allocated_bytes() const {
+  struct stat status {};
+  return ::fstat(fd_, &status) == 0 ? static_cast<int64_t>(status.st_blocks) * 512 : -1;
+}
+
 int64_t FrameFile::end() const {
   struct stat status {};
   return ::fstat(fd_, &status) == 0 ? static_cast<int64_t>(status.st_size) : -1;

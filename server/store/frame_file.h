@@ -10,8 +10,14 @@
 // operating system had not yet written when the machine stopped (SQLite's WAL, written without
 // fsync per commit as the store's synchronous=NORMAL allows, may have reached the disk before
 // this file did) is caught at read by the length and checksum: the chunk is reported damaged,
-// never served. Sync() (before each checkpoint) bounds how far back that can reach. Chunks
-// replaced by a run stored again leave their old bytes unreferenced (never reclaimed).
+// never served. Sync() (before each checkpoint) bounds how far back that can reach.
+//
+// Space comes back without moving a byte: the chunks of a deleted run are released (Release:
+// a hole punched in the file, its size kept) once the transaction that deleted their rows has
+// committed, and at open the store releases every gap between referenced chunks (those of a
+// run stored again, of a delete a crash interrupted before its release). Offsets never change,
+// so a kill -9 at any point leaves every referenced chunk where its row says, its CRC valid;
+// it can only leave unreferenced bytes allocated until the next open.
 #pragma once
 
 #include <cstdint>
@@ -48,8 +54,14 @@ class FrameFile {
   // Makes every append so far durable (fdatasync). Throws InputError when that fails.
   void Sync() const;
 
+  // Gives the disk blocks of bytes [offset, offset + bytes) back to the file system (a hole:
+  // they read as zeros; the file's size stays). Only bytes no row refers to. False when the
+  // file system cannot punch holes or the call failed (the bytes then stay allocated).
+  bool Release(int64_t offset, int64_t bytes);
+
   const std::string& path() const { return path_; }
-  int64_t end() const;  // the file's size
+  int64_t end() const;              // the file's size
+  int64_t allocated_bytes() const;  // what it occupies on the disk
 
  private:
   std::string path_;

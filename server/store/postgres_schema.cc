@@ -89,13 +89,16 @@ DROP INDEX IF EXISTS runs_by_state;
 // frame_file.h); PostgreSQL keeps them in frame_chunks.data, which replicas share.
 constexpr const char* kSchemaV5 = "SELECT 1";
 
+// Version 6: a run marked to be kept, as in store_schema.cc.
+constexpr const char* kSchemaV6 = "ALTER TABLE runs ADD COLUMN keep boolean NOT NULL DEFAULT false";
+
 struct Migration {
   int version;      // the version the step leads to
   const char* sql;  // from the version before
 };
 
-constexpr Migration kMigrations[] = {
-    {1, kSchemaV1}, {2, kSchemaV2}, {3, kSchemaV3}, {4, kSchemaV4}, {5, kSchemaV5}};
+constexpr Migration kMigrations[] = {{1, kSchemaV1}, {2, kSchemaV2}, {3, kSchemaV3},
+                                     {4, kSchemaV4}, {5, kSchemaV5}, {6, kSchemaV6}};
 static_assert(sizeof(kMigrations) / sizeof(kMigrations[0]) == kPostgresSchemaVersion);
 static_assert(kPostgresSchemaVersion == kStoreSchemaVersion, "both stores, one behaviour");
 

@@ -13,7 +13,7 @@ namespace mbstream {
 // The schema version written by this build. Raise it with every schema change and add the
 // step to kMigrations in postgres_schema.cc.
 // 1: models, runs, frame chunks, probes. 2: the replays' probe sets. 3: the run queue's leases.
-inline constexpr int kPostgresSchemaVersion = 5;
+inline constexpr int kPostgresSchemaVersion = 6;
 
 // Creates the schema in an empty database, or migrates an mbstream database of an older
 // version up to `target_version` (tests migrate to an older one to make a previous-version

@@ -35,8 +35,8 @@ constexpr std::pair<const char*, const char*> kStatements[] = {
     {"insert_new_run",
      "INSERT INTO runs (id, model_id, state, created_unix_ms, info) VALUES ($1, $2, $3, $4, $5) "
      "ON CONFLICT (id) DO NOTHING"},
-    {"select_run", "SELECT info FROM runs WHERE id = $1"},
-    {"select_runs", "SELECT info FROM runs ORDER BY created_unix_ms, ord"},
+    {"select_run", "SELECT info, keep FROM runs WHERE id = $1"},
+    {"select_runs", "SELECT info, keep FROM runs ORDER BY created_unix_ms, ord"},
     {"select_unfinished_runs",
      "SELECT info FROM runs WHERE state IN ($1, $2) ORDER BY ord FOR UPDATE"},
     {"delete_frame_chunks", "DELETE FROM frame_chunks WHERE run_id = $1"},
@@ -210,6 +210,7 @@ std::optional<v1::RunInfo> PostgresStore::GetRun(const std::string& run_id) cons
     if (found.empty()) return info;
     pqxx::binarystring blob(nullptr, 0);
     ParseFromStore(BlobOf(found[0][0], blob), info.emplace(), "run " + run_id, impl_->location);
+    info->set_keep(found[0][1].as<bool>());
     return info;
   });
 }
@@ -220,6 +221,7 @@ std::vector<v1::RunInfo> PostgresStore::ListRuns() const {
     pqxx::binarystring blob(nullptr, 0);
     for (const pqxx::row& row : tx.exec_prepared("select_runs")) {
       ParseFromStore(BlobOf(row[0], blob), runs.emplace_back(), "run info", impl_->location);
+      runs.back().set_keep(row[1].as<bool>());
     }
     return runs;
   });

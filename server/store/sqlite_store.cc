@@ -39,6 +39,10 @@ SqliteConnection OpenConfigured(const std::string& path) {
   // WAL: readers never block the writer and a crash never leaves a half-written commit.
   // synchronous=NORMAL in WAL mode survives a killed process; only a power cut can lose the
   // last commits (never corrupt the file).
+  // Pages freed by deletions go back to the file system (PRAGMA incremental_vacuum after each
+  // DeleteRun). Takes effect only before the first table exists: an older store is converted
+  // once by EnableIncrementalVacuum.
+  connection.Exec("PRAGMA auto_vacuum = INCREMENTAL", "enable incremental vacuum");
   connection.Exec("PRAGMA journal_mode = WAL", "switch to the WAL journal");
   connection.Exec(
       "PRAGMA synchronous = NORMAL; PRAGMA foreign_keys = ON; "
@@ -46,6 +50,18 @@ SqliteConnection OpenConfigured(const std::string& path) {
           std::to_string(kJournalSizeLimitBytes),
       "configure connection");
   return connection;
+}
+
+// A store created before incremental vacuum (auto_vacuum NONE) is rewritten once (VACUUM; the
+// database without the frames file is small since schema version 5).
+void EnableIncrementalVacuum(SqliteConnection& connection) {
+  constexpr int kIncremental = 2;
+  bool incremental = false;
+  {
+    SqliteStatement mode(connection, "PRAGMA auto_vacuum", "read the vacuum mode");
+    incremental = mode.Step() && mode.ColumnInt64(0) == kIncremental;
+  }
+  if (!incremental) connection.Exec("VACUUM", "convert the store to incremental vacuum");
 }
 
 }  // namespace
@@ -85,8 +101,8 @@ SqliteStore::Impl::Impl(SqliteConnection connection, const std::string& frames_p
                      "INSERT INTO runs (id, model_id, state, created_unix_ms, info) "
                      "VALUES (?1, ?2, ?3, ?4, ?5) ON CONFLICT (id) DO NOTHING",
                      "write new run"),
-      select_run(db, "SELECT info FROM runs WHERE id = ?1", "read run"),
-      select_runs(db, "SELECT info FROM runs ORDER BY created_unix_ms, ord", "list runs"),
+      select_run(db, "SELECT info, keep FROM runs WHERE id = ?1", "read run"),
+      select_runs(db, "SELECT info, keep FROM runs ORDER BY created_unix_ms, ord", "list runs"),
       select_unfinished_runs(db, "SELECT info FROM runs WHERE state IN (?1, ?2) ORDER BY ord",
                              "list unfinished runs"),
       select_oldest_queued_run(
@@ -125,8 +141,11 @@ std::unique_ptr<SqliteStore> SqliteStore::Open(const std::string& directory) {
   try {
     SqliteConnection connection = OpenConfigured(path);
     EnsureStoreSchema(connection);
-    return std::unique_ptr<SqliteStore>(new SqliteStore(std::make_unique<Impl>(
-        std::move(connection), (std::filesystem::path(directory) / kFramesFileName).string())));
+    EnableIncrementalVacuum(connection);
+    auto impl = std::make_unique<Impl>(
+        std::move(connection), (std::filesystem::path(directory) / kFramesFileName).string());
+    ReleaseUnreferencedFramesLocked(*impl);  // the store is not shared yet
+    return std::unique_ptr<SqliteStore>(new SqliteStore(std::move(impl)));
   } catch (const SqliteError& error) {
     switch (error.code() & 0xff) {
       case SQLITE_NOTADB:

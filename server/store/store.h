@@ -134,6 +134,20 @@ class Store {
   virtual std::optional<v1::ProbeSet> GetProbeSet(const std::string& set_id) const = 0;
   virtual std::vector<v1::ProbeReport> GetProbeSetReports(const std::string& set_id) const = 0;
 
+  // Deleting (store_delete.cc, postgres_store_delete.cc; the statements in delete_sql.h).
+  // Removes run `run_id` whole, in ONE transaction: its row, frame chunks, probe reports,
+  // probe sets and their reports; a reader sees the run whole or not at all. False when no
+  // such run is stored. The SQLite store's frames file keeps the chunks' bytes (frame_file.h).
+  virtual bool DeleteRun(const std::string& run_id) = 0;
+  // Removes model `model_id` (its row and assets) in one transaction when no run of it is
+  // stored. Returns how many runs of it are stored: 0 when it was deleted (or was not stored),
+  // else nothing was deleted.
+  virtual int64_t DeleteModel(const std::string& model_id) = 0;
+  // Marks run `run_id` to be kept (retention never deletes it) or not. The mark is the row's
+  // own (GetRun and ListRuns show it as RunInfo.keep); PutRun and FinishRun leave it. False
+  // when no such run is stored.
+  virtual bool SetRunKeep(const std::string& run_id, bool keep) = 0;
+
   // At server start: every run still QUEUED or RUNNING becomes INTERRUPTED with `message`
   // and ended_unix_ms = now, its stored frames kept and counted in its row (frames, t_s,
   // stats.t_reached_s; the message names them); returns how many.

@@ -64,6 +64,11 @@ void UpsertRunLocked(SqliteStore::Impl& impl, const v1::RunInfo& info);
 // in the transaction that marks the run INTERRUPTED.
 KeptFrames KeptFramesLocked(SqliteStore::Impl& impl, const std::string& run_id);
 
+// At open: releases the frames file's gaps between referenced chunks (frame_file.h): bytes of
+// chunks deleted or replaced. Returns how many bytes. The caller holds the mutex (or has the
+// store to itself).
+int64_t ReleaseUnreferencedFramesLocked(SqliteStore::Impl& impl);
+
 // Whether `holder` holds the lease of RUNNING run `run_id`. The caller holds the mutex.
 bool HoldsLeaseLocked(SqliteStore::Impl& impl, const std::string& run_id,
                       const std::string& holder);

@@ -38,6 +38,9 @@
   X(std::vector<v1::ProbeSet>, ListProbeSets, (const std::string& run_id), const)               \
   X(std::optional<v1::ProbeSet>, GetProbeSet, (const std::string& set_id), const)               \
   X(std::vector<v1::ProbeReport>, GetProbeSetReports, (const std::string& set_id), const)       \
+  X(bool, DeleteRun, (const std::string& run_id), )                                             \
+  X(int64_t, DeleteModel, (const std::string& model_id), )                                      \
+  X(bool, SetRunKeep, (const std::string& run_id, bool keep), )                                 \
   X(int, MarkUnfinishedRunsInterrupted, (const std::string& message), )                         \
   X(std::optional<v1::RunInfo>, ClaimQueuedRun, (const RunLease& lease), )                      \
   X(bool, RenewLease,                                                                           \

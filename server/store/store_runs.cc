@@ -49,6 +49,7 @@ std::optional<v1::RunInfo> SqliteStore::GetRun(const std::string& run_id) const 
   if (!select.Step()) return std::nullopt;
   v1::RunInfo info;
   ParseFromStore(select.ColumnBlob(0), info, "run " + run_id, impl_->db.path());
+  info.set_keep(select.ColumnInt64(1) != 0);
   return info;
 }
 
@@ -59,6 +60,7 @@ std::vector<v1::RunInfo> SqliteStore::ListRuns() const {
   ResetOnExit reset(select);
   while (select.Step()) {
     ParseFromStore(select.ColumnBlob(0), runs.emplace_back(), "run info", impl_->db.path());
+    runs.back().set_keep(select.ColumnInt64(1) != 0);
   }
   return runs;
 }

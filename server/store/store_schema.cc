@@ -105,6 +105,12 @@ ALTER TABLE frame_chunks ADD COLUMN file_bytes INTEGER;
 ALTER TABLE frame_chunks ADD COLUMN file_crc32c INTEGER;
 )sql";
 
+// Version 6: a run marked to be kept (SetRunKeep): retention never deletes it. A column of its
+// own, not in `info`: a run's writers (PutRun, FinishRun) never undo the mark.
+constexpr const char* kSchemaV6 = R"sql(
+ALTER TABLE runs ADD COLUMN keep INTEGER NOT NULL DEFAULT 0;
+)sql";
+
 void WriteVersion(SqliteConnection& connection) {
   connection.Exec("PRAGMA application_id = " + std::to_string(kStoreApplicationId) +
                       "; PRAGMA user_version = " + std::to_string(kStoreSchemaVersion),
@@ -132,6 +138,7 @@ void EnsureStoreSchema(SqliteConnection& connection) {
     connection.Exec(kSchemaV3, "create schema version 3");
     connection.Exec(kSchemaV4, "create schema version 4");
     connection.Exec(kSchemaV5, "create schema version 5");
+    connection.Exec(kSchemaV6, "create schema version 6");
     WriteVersion(connection);
     transaction.Commit();
     return;
@@ -162,6 +169,9 @@ void EnsureStoreSchema(SqliteConnection& connection) {
   }
   if (version < 5) {  // frames outside the database
     connection.Exec(kSchemaV5, "migrate schema to version 5");
+  }
+  if (version < 6) {  // the keep mark
+    connection.Exec(kSchemaV6, "migrate schema to version 6");
   }
   if (version < kStoreSchemaVersion) WriteVersion(connection);
   transaction.Commit();

@@ -208,6 +208,39 @@ class Client:
         with rpc_errors():
             return self.stub.ReplayRun(replay_pb2.ReplayRunRequest(run_id=run_id, speed=speed))
 
+    def delete_runs(self, runs: Iterable[Union[Run, str]]) -> List[run_pb2.RunInfo]:
+        """Deletes runs (Run handles or ids) whole: frames, probe reports and probe sets, each
+        run in one transaction; a queued or running run is cancelled first. Needs an admin
+        token. Every run is looked up first: NotFound names an unknown one and nothing is
+        deleted. Returns the runs as they were (ended) just before deletion."""
+        ids = [run.id if isinstance(run, Run) else run for run in runs]
+        with rpc_errors():
+            return list(self.stub.DeleteRuns(service_pb2.DeleteRunsRequest(run_ids=ids)).runs)
+
+    def delete_model(self, model: str, with_runs: bool = False
+                     ) -> service_pb2.DeleteModelResponse:
+        """Deletes a submitted model (id or name). FailedPrecondition while it has runs unless
+        with_runs (they are deleted first, as delete_runs does), and for a built-in model.
+        Needs an admin token. Returns the model's info and the runs deleted with it."""
+        _check_model(model)
+        with rpc_errors():
+            return self.stub.DeleteModel(
+                service_pb2.DeleteModelRequest(model=model, with_runs=with_runs))
+
+    def keep(self, run: Union[Run, str], keep: bool = True) -> run_pb2.RunInfo:
+        """Marks an ended run (Run handle or id) to be kept: the server's retention
+        (--retain-runs, --retain-days) never deletes it; keep=False: no longer. Returns its info
+        (info.keep). FailedPrecondition while the run is queued or running."""
+        run_id = run.id if isinstance(run, Run) else run
+        with rpc_errors():
+            return self.stub.SetKeep(service_pb2.SetKeepRequest(run_id=run_id, keep=keep))
+
+    def retention_plan(self) -> service_pb2.RetentionPlanResponse:
+        """A dry run of the server's retention: its policy (retain_runs, retain_days; 0 = no
+        limit) and the runs it would delete now (runs, oldest first). Nothing is deleted."""
+        with rpc_errors():
+            return self.stub.RetentionPlan(service_pb2.RetentionPlanRequest())
+
     def compare(self, run_id: str, ghost_run_id: str) -> Comparison:
         """Runs `run_id` and `ghost_run_id` side by side on their common time grid, as
         `mbstream-viewer --run A --compare B` shows them: the TCP distance at each common

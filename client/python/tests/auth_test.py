@@ -42,6 +42,16 @@ class AuthTest(unittest.TestCase):
         self.assertEqual(caught.exception.code, "PERMISSION_DENIED")
         self.assertIn("lacks the role 'run'", caught.exception.message)
 
+    def test_a_view_token_may_not_delete(self):
+        with mb.connect(self.address, token=RUN) as client:
+            run = client.run("irb1600", "models/irb1600/seed-run.json", duration=0.1)
+            run.wait()
+        with mb.connect(self.address, token=VIEW) as client:
+            with self.assertRaises(mb.PermissionDenied) as caught:
+                client.delete_runs([run])
+            self.assertIn("lacks the role 'admin'", caught.exception.message)
+            self.assertEqual(client.get_run(run.id).id, run.id)  # still there
+
     def test_a_run_token_runs(self):
         with mb.connect(self.address, token=RUN) as client:
             result = client.run("irb1600", "models/irb1600/seed-run.json",

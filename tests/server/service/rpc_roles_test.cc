@@ -152,6 +152,32 @@ class RpcGateTest : public ServerTest {
            v1::RunInfo info;
            return stub().ReplayRun(&context, request, &info);
          }},
+        {"DeleteRuns",
+         [&] {
+           v1::DeleteRunsRequest request;
+           request.add_run_ids("r-nosuch");
+           v1::DeleteRunsResponse response;
+           return stub().DeleteRuns(&context, request, &response);
+         }},
+        {"DeleteModel",
+         [&] {
+           v1::DeleteModelRequest request;
+           request.set_model("m-nosuch");
+           v1::DeleteModelResponse response;
+           return stub().DeleteModel(&context, request, &response);
+         }},
+        {"SetKeep",
+         [&] {
+           v1::SetKeepRequest request;
+           request.set_run_id("r-nosuch");
+           v1::RunInfo info;
+           return stub().SetKeep(&context, request, &info);
+         }},
+        {"RetentionPlan",
+         [&] {
+           v1::RetentionPlanResponse response;
+           return stub().RetentionPlan(&context, v1::RetentionPlanRequest(), &response);
+         }},
     };
     return calls.at(method)();
   }

@@ -15,12 +15,14 @@
 #include "mbstream/v1/run.pb.h"
 #include "server/store/store.h"
 
-// SQL that turns the frame_chunks table of a new store back into what versions 1-4 created
-// (before the frames file, frame_file.h), for tests that make an older store from a new one.
+// SQL that turns the tables of a new store back into what versions 1-4 created (before the
+// frames file, frame_file.h, and the keep mark of version 6), for tests that make an older
+// store from a new one.
 inline constexpr const char* kDropFrameFileColumns =
     "ALTER TABLE frame_chunks DROP COLUMN file_offset; "
     "ALTER TABLE frame_chunks DROP COLUMN file_bytes; "
-    "ALTER TABLE frame_chunks DROP COLUMN file_crc32c; ";
+    "ALTER TABLE frame_chunks DROP COLUMN file_crc32c; "
+    "ALTER TABLE runs DROP COLUMN keep; ";
 
 namespace mbstream::testing {
 
