@@ -369,7 +369,8 @@ class ClientTest(unittest.TestCase):
     def test_an_sdf_linkage_is_submitted_and_its_cut_joint_is_in_the_result(self):
         info = self.client.submit("models/linkages/four_bar.sdf", name="four_bar_py")
         self.assertEqual(info.dofs, 3)  # the spanning tree's joints
-        result = self.client.run("four_bar_py", "models/linkages/four_bar-passive.json",
+        # The same bundle as the built-in four_bar: the same model (its id), whatever the name.
+        result = self.client.run(info.id, "models/linkages/four_bar-passive.json",
                                  duration=0.5).result(check=True)
         self.assertEqual(result.joint_names,
                          ["crank_joint", "rocker_joint", "coupler_joint", "loop_joint"])
