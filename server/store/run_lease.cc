@@ -21,6 +21,7 @@ void Requeue(v1::RunInfo& info, const std::string& why) {
   info.set_frames(0);
   info.set_t_s(0.0);
   info.set_started_unix_ms(0);
+  info.set_ended_unix_ms(0);  // a queued run has not ended (the hand-back stamped it)
 }
 
 std::string ReplicaName(const v1::RunInfo& info) {

@@ -315,7 +315,9 @@ TEST_F(ClusterE2eTest, KilledReplicasRunIsInterruptedByTheOtherWhileOtherRunsFin
 
 TEST_F(ClusterE2eTest, DrainedReplicaHandsItsRunBackToAnotherWhenItHasRetries) {
   auto a = NewReplica("a", {"--grace-s", "0"});
-  const v1::RunInfo started = a->Start(Paced(1.5, /*retries=*/1));
+  // Long enough that it cannot end before the drain, however slow the machine: the test waits
+  // for the second attempt to run on b, then cancels it.
+  const v1::RunInfo started = a->Start(Paced(120.0, /*retries=*/1));
   ASSERT_EQ(a->WaitFor(started.id(), [](const v1::RunInfo& i) { return i.state() == v1::RUNNING; })
                 .state(),
             v1::RUNNING);
@@ -325,10 +327,18 @@ TEST_F(ClusterE2eTest, DrainedReplicaHandsItsRunBackToAnotherWhenItHasRetries) {
   std::thread drain([&] { EXPECT_EQ(a->process().Drain(), 0); });  // exit 0
   EXPECT_TRUE(health.WaitFor(Serving::NOT_SERVING));
   drain.join();
-  const v1::RunInfo ended = b->WaitForEnd(started.id());
-  EXPECT_EQ(ended.state(), v1::FINISHED) << ended.message();
-  EXPECT_EQ(ended.attempts(), 2);
-  EXPECT_EQ(ended.replica_address(), b->address());
+  const v1::RunInfo again = b->WaitFor(started.id(), [](const v1::RunInfo& i) {
+    return (i.state() == v1::RUNNING && i.attempts() == 2) || i.ended_unix_ms() > 0;
+  });
+  EXPECT_EQ(again.state(), v1::RUNNING) << again.message();
+  EXPECT_EQ(again.attempts(), 2);
+  EXPECT_EQ(again.replica_address(), b->address());
+  grpc::ClientContext context;
+  v1::CancelRunRequest request;
+  request.set_run_id(started.id());
+  v1::RunInfo answer;
+  ASSERT_TRUE(b->stub().CancelRun(&context, request, &answer).ok());
+  EXPECT_EQ(b->WaitForEnd(started.id()).state(), v1::CANCELLED);
 }
 
 TEST_F(ClusterE2eTest, DrainLetsTheRunningRunFinishWithinTheGracePeriod) {

@@ -144,6 +144,21 @@ TEST_P(StoreQueueTest, ExpiredRunWithRetriesIsQueuedAgainAndCountsItsAttempts) {
   EXPECT_EQ(last[0].attempts(), 2);
 }
 
+// A drained replica stamps the end of its attempt, then hands the run back: queued again, the
+// run has not ended (a client waiting for ended_unix_ms would take it for ended).
+TEST(RunLeaseTest, HandedBackRunWithRetriesIsQueuedWithoutAnEnd) {
+  v1::RunInfo info;
+  info.mutable_spec()->set_retries(1);
+  ApplyClaim(info, {"a", "a:1", 1000, 11000});
+  info.set_ended_unix_ms(2000);
+  EXPECT_EQ(ApplyHandBack(info, 2000, "the replica is draining"), v1::QUEUED);
+  EXPECT_EQ(info.ended_unix_ms(), 0);
+  EXPECT_EQ(info.started_unix_ms(), 0);
+  ApplyClaim(info, {"b", "b:1", 3000, 13000});
+  EXPECT_EQ(ApplyHandBack(info, 4000, "the replica is draining"), v1::INTERRUPTED);
+  EXPECT_EQ(info.ended_unix_ms(), 4000);
+}
+
 TEST_P(StoreQueueTest, HolderWritesItsEndOnlyWhileItHoldsTheLease) {
   auto store = Open();
   store->PutRun(Queued("r-1", 1000));
