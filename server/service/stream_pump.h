@@ -5,13 +5,10 @@
 // gRPC's own poke. Tasks must not block for long (they share the threads). Thread-safe.
 #pragma once
 
-#include <atomic>
 #include <chrono>
 #include <condition_variable>
-#include <cstdint>
 #include <functional>
 #include <map>
-#include <memory>
 #include <mutex>
 #include <thread>
 #include <utility>
@@ -41,38 +38,6 @@ class StreamPump {
   std::multimap<Clock::time_point, std::function<void()>> tasks_;
   bool stopping_ = false;
   std::vector<std::thread> threads_;
-};
-
-// When a reactor's RunStep runs on the pump: soon (Poke; pokes while one is pending are
-// one) or at a time (WakeAt; only the latest time asked for counts). A member of the
-// reactor, which `self` keeps alive until the step ran.
-class PumpSteps {
- public:
-  template <typename Reactor>
-  void Poke(StreamPump& pump, std::shared_ptr<Reactor> self) {
-    if (poke_pending_.exchange(true)) return;
-    pump.Post([this, self = std::move(self)] {
-      poke_pending_ = false;
-      self->RunStep();
-    });
-  }
-  // With `mutex` (the reactor's) held.
-  template <typename Reactor>
-  void WakeAt(StreamPump& pump, StreamPump::Clock::time_point due, std::shared_ptr<Reactor> self,
-              std::mutex& mutex) {
-    const uint64_t wake = ++wake_;
-    pump.PostAt(due, [this, self = std::move(self), wake, &mutex] {
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (wake != wake_) return;  // a later step asked for another time
-      }
-      self->RunStep();
-    });
-  }
-
- private:
-  std::atomic<bool> poke_pending_{false};
-  uint64_t wake_ = 0;  // the latest WakeAt (the reactor's mutex)
 };
 
 }  // namespace mbstream

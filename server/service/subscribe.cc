@@ -2,8 +2,10 @@
 // message's handling is in subscribe_start.cc, the senders in subscribe_senders.cc and
 // replay_stream.cc.
 //
-// Locking: one mutex per call guards its state; gRPC's Start* and Finish are never called
-// with it held (gRPC may run a reaction inline; StreamWrites::OutsideLock).
+// Locking: one mutex per call guards its state; gRPC's Start* and Finish are called only in
+// the call's turn (one thread at a time: pump_steps.h) and never with the mutex held (gRPC
+// may run a reaction inline; StreamWrites::OutsideLock). Every entry (a reaction, a pump
+// task) changes the state under the mutex, then asks for a turn.
 #include <spdlog/spdlog.h>
 
 #include "server/service/rpc_roles.h"
@@ -45,7 +47,7 @@ void SubscribeCall::Begin() {
   }
   if (!admitted.ok()) {
     Conclude(admitted);
-    Drive(lock);
+    Turn(lock);
     return;
   }
   live_id_ = deps_.live->Add(weak_from_this());
@@ -59,7 +61,7 @@ void SubscribeCall::Begin() {
     if (std::shared_ptr<SubscribeCall> self = weak.lock()) self->StartDeadline();
   });
   read_wanted_ = true;
-  Drive(lock);
+  Turn(lock);
 }
 
 void SubscribeCall::StartDeadline() {
@@ -69,7 +71,7 @@ void SubscribeCall::StartDeadline() {
                         "Subscribe: the first message must be `start` with a run_id or "
                         "follow = true, sent within " +
                             std::to_string(deps_.runs->limits().subscribe_start_s) + " s"));
-  Drive(lock);
+  Turn(lock);
 }
 
 void SubscribeCall::Enqueue(v1::SubscribeEvent event) { writes_.Enqueue(std::move(event)); }
@@ -84,7 +86,17 @@ void SubscribeCall::Poke() { steps_.Poke(*deps_.pump, shared_from_this()); }
 
 void SubscribeCall::RunStep() {
   std::unique_lock<std::mutex> lock(mutex_);
-  if (phase_ == Phase::kStreaming && sender_ && !writes_.conclusion() && writes_.idle()) {
+  steps_.Want();
+  Turn(lock);
+}
+
+void SubscribeCall::Turn(std::unique_lock<std::mutex>& lock) {
+  steps_.Turn([&] { Pass(lock); });
+}
+
+void SubscribeCall::Pass(std::unique_lock<std::mutex>& lock) {
+  if (steps_.TakeWanted() && phase_ == Phase::kStreaming && sender_ && !writes_.conclusion() &&
+      writes_.idle()) {
     const grpc::Status failed = Serve([&] {
       sender_->Step(*this);
       return grpc::Status::OK;
@@ -99,8 +111,8 @@ bool SubscribeCall::WriteAndWait(const v1::SubscribeEvent& event) {
   if (writes_.conclusion() || phase_ == Phase::kFinished) return false;
   bool written = false, done = false;
   writes_.Enqueue(event, &written, &done);
-  // Written from the pump: this thread must never finish the call (Teardown joins it).
-  deps_.pump->Post([self = shared_from_this()] { self->RunStep(); });
+  // Written in a turn on the pump: this thread must never finish the call (Teardown joins it).
+  Poke();
   written_.wait(lock, [&] { return done; });
   return written;
 }
@@ -111,7 +123,7 @@ void SubscribeCall::StartReading(Divert divert) {
   divert_ = std::move(divert);
   reading_ = true;
   read_wanted_ = true;
-  deps_.pump->Post([self = shared_from_this()] { self->RunStep(); });  // as WriteAndWait
+  Poke();  // a turn on the pump, as WriteAndWait's
 }
 
 void SubscribeCall::ConcludeLater(const grpc::Status& status) {
@@ -119,7 +131,7 @@ void SubscribeCall::ConcludeLater(const grpc::Status& status) {
     std::lock_guard<std::mutex> lock(mutex_);
     Conclude(status);
   }
-  deps_.pump->Post([self = shared_from_this()] { self->RunStep(); });
+  Poke();
 }
 
 void SubscribeCall::OnReadDone(bool ok) {
@@ -132,7 +144,7 @@ void SubscribeCall::OnReadDone(bool ok) {
                             "Subscribe: the first message must be `start` with a run_id or "
                             "follow = true, sent within " +
                                 std::to_string(deps_.runs->limits().subscribe_start_s) + " s"));
-      Drive(lock);
+      Turn(lock);
       return;
     }
     phase_ = Phase::kStarting;
@@ -145,12 +157,12 @@ void SubscribeCall::OnReadDone(bool ok) {
     if (inbox_) inbox_->Wake();
     if (divert_.done) divert_.done();
     if (!writes_.conclusion()) Poke();  // the sender ends the stream
-    Drive(lock);
+    Turn(lock);
     return;
   }
   HandleMessage();
   read_wanted_ = true;
-  Drive(lock);
+  Turn(lock);
 }
 
 void SubscribeCall::HandleMessage() {
@@ -185,13 +197,13 @@ void SubscribeCall::OnWriteDone(bool ok) {
   std::unique_lock<std::mutex> lock(mutex_);
   writes_.Written(ok, Gone(), written_);
   if (!writes_.conclusion() && writes_.idle()) Poke();
-  Drive(lock);
+  Turn(lock);
 }
 
 void SubscribeCall::OnCancel() {
   std::unique_lock<std::mutex> lock(mutex_);
   Conclude(Gone());
-  Drive(lock);
+  Turn(lock);
 }
 
 void SubscribeCall::Drive(std::unique_lock<std::mutex>& lock) {
@@ -227,7 +239,7 @@ void SubscribeCall::FinishNow(std::unique_lock<std::mutex>& lock) {
         if (!self) return;
         std::unique_lock<std::mutex> lock(self->mutex_);
         self->goodbye_late_ = true;
-        self->Drive(lock);
+        self->Turn(lock);
       });
     }
     return;
@@ -258,7 +270,9 @@ void SubscribeCall::Teardown() {
 }
 
 void SubscribeCall::OnDone() {
-  std::shared_ptr<SubscribeCall> self = std::move(self_);  // freed here or by a pending task
+  std::shared_ptr<SubscribeCall> self;  // freed here or by a pending task (or turn)
+  std::lock_guard<std::mutex> lock(mutex_);
+  self = std::move(self_);
 }
 
 grpc::ServerBidiReactor<v1::SubscribeRequest, v1::SubscribeEvent>* SimulationService::Subscribe(

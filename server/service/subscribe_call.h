@@ -31,6 +31,7 @@
 #include "server/service/authorizer.h"
 #include "server/service/live_streams.h"
 #include "server/service/peer_channels.h"
+#include "server/service/pump_steps.h"
 #include "server/service/replay_inbox.h"
 #include "server/service/sent_frames.h"
 #include "server/service/stream_pump.h"
@@ -99,7 +100,7 @@ class SubscribeCall final
   bool WriteAndWait(const v1::SubscribeEvent& event);
   // The start is accepted (a relay connected): probe reports are read from now on.
   void StartReading(Divert divert);
-  // Ends the stream with `status` (from the pump: never on the calling thread).
+  // Ends the stream with `status` (in a turn on the pump: never on the calling thread).
   void ConcludeLater(const grpc::Status& status);
 
   // Any thread: step the sender soon (on the pump).
@@ -121,9 +122,12 @@ class SubscribeCall final
   void Go(std::unique_ptr<SubscribeSender> sender, const std::string& subscribed);
   void HandleMessage();  // a read message (lock held)
   friend class PumpSteps;
-  void RunStep();
-  // Starts the next write, a read that is due, or finishes the call (lock held; released
-  // and taken again around gRPC's calls).
+  void RunStep();  // a step and a turn (pump_steps.h)
+  // With the lock held: runs Pass in this call's turn (pump_steps.h).
+  void Turn(std::unique_lock<std::mutex>& lock);
+  void Pass(std::unique_lock<std::mutex>& lock);  // the sender's step if asked for, then Drive
+  // In a turn: starts the next write, a read that is due, or finishes the call (lock held;
+  // released and taken again around gRPC's calls).
   void Drive(std::unique_lock<std::mutex>& lock);
   void FinishNow(std::unique_lock<std::mutex>& lock);
   void Teardown();
@@ -149,7 +153,7 @@ class SubscribeCall final
   StreamWrites<v1::SubscribeEvent> writes_;
   bool goodbye_timer_ = false;
   bool goodbye_late_ = false;
-  PumpSteps steps_;
+  PumpSteps steps_;  // steps and turns
   int64_t accepted_ = 0;
   int64_t refused_ = 0;
 };

@@ -23,7 +23,7 @@ void SubscribeCall::Start() {
     if (!status.ok()) Conclude(status);
   }
   if (phase_ == Phase::kStarting && writes_.conclusion()) phase_ = Phase::kStreaming;  // to end
-  Drive(lock);
+  Turn(lock);
 }
 
 grpc::Status SubscribeCall::Accept() {

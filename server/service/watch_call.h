@@ -22,6 +22,7 @@
 #include <thread>
 
 #include "mbstream/v1/simulation_service.grpc.pb.h"
+#include "server/service/pump_steps.h"
 #include "server/service/stream_writes.h"
 #include "server/service/subscribe_call.h"
 
@@ -50,14 +51,19 @@ class WatchCall final : public grpc::ServerWriteReactor<v1::WatchEvent>,
 
   grpc::Status Begin();  // lock held
   friend class PumpSteps;
-  void RunStep();
-  void Step();  // lock held, no write pending
+  void RunStep();  // a step and a turn (pump_steps.h)
+  // With the lock held: runs Pass in this call's turn (pump_steps.h).
+  void Turn(std::unique_lock<std::mutex>& lock);
+  void Pass(std::unique_lock<std::mutex>& lock);  // Step if asked for, then Drive
+  void Step();                                    // lock held, no write pending
   void StepQueued();
   void StepWatching();
   void Watch();  // the run is here (or ended): watched from its subscription
   void Progress(const v1::RunInfo& info);
   void WakeAt(Clock::time_point due);
   bool WriteAndWait(const v1::WatchEvent& event);  // the relay's thread
+  // In a turn: starts the next write or finishes the call (lock held; released and taken
+  // again around gRPC's calls).
   void Drive(std::unique_lock<std::mutex>& lock);
   void Teardown();
 
@@ -76,8 +82,8 @@ class WatchCall final : public grpc::ServerWriteReactor<v1::WatchEvent>,
   std::shared_ptr<Subscription> slot_;  // counted against the subscriber limit
   std::deque<StreamEvent> events_;
   StreamWrites<v1::WatchEvent> writes_;
-  PumpSteps steps_;
-  std::thread relay_;
+  PumpSteps steps_;    // steps and turns
+  std::thread relay_;  // started and joined in turns
 };
 
 }  // namespace mbstream

@@ -52,7 +52,7 @@ grpc::ServerWriteReactor<v1::WatchEvent>* WatchCall::Open(grpc::CallbackServerCo
   std::unique_lock<std::mutex> lock(call->mutex_);
   const grpc::Status begun = Serve([&] { return call->Begin(); });
   if (!begun.ok()) call->writes_.Conclude(begun);
-  call->Drive(lock);
+  call->Turn(lock);
   return call.get();
 }
 
@@ -101,8 +101,17 @@ void WatchCall::WakeAt(Clock::time_point due) {
 
 void WatchCall::RunStep() {
   std::unique_lock<std::mutex> lock(mutex_);
-  if (phase_ != Phase::kFinished && phase_ != Phase::kRelayed && !writes_.conclusion() &&
-      writes_.idle()) {
+  steps_.Want();
+  Turn(lock);
+}
+
+void WatchCall::Turn(std::unique_lock<std::mutex>& lock) {
+  steps_.Turn([&] { Pass(lock); });
+}
+
+void WatchCall::Pass(std::unique_lock<std::mutex>& lock) {
+  if (steps_.TakeWanted() && phase_ != Phase::kFinished && phase_ != Phase::kRelayed &&
+      !writes_.conclusion() && writes_.idle()) {
     const grpc::Status failed = Serve([&] {
       Step();
       return grpc::Status::OK;
@@ -138,10 +147,7 @@ void WatchCall::StepQueued() {
         std::lock_guard<std::mutex> lock(self->mutex_);
         self->writes_.Conclude(status);
       }
-      self->deps_.pump->Post([self] {  // never finished on this thread (Teardown joins it)
-        std::unique_lock<std::mutex> lock(self->mutex_);
-        self->Drive(lock);
-      });
+      self->Poke();  // finished in a turn on the pump, never here (Teardown joins this thread)
     });
     return;
   }
@@ -215,10 +221,7 @@ bool WatchCall::WriteAndWait(const v1::WatchEvent& event) {
   if (writes_.conclusion() || phase_ == Phase::kFinished) return false;
   bool written = false, done = false;
   writes_.Enqueue(event, &written, &done);
-  deps_.pump->Post([self = shared_from_this()] {  // written from the pump, as Subscribe's
-    std::unique_lock<std::mutex> lock(self->mutex_);
-    self->Drive(lock);
-  });
+  Poke();  // written in a turn on the pump, as Subscribe's
   written_.wait(lock, [&] { return done; });
   return written;
 }
@@ -227,13 +230,13 @@ void WatchCall::OnWriteDone(bool ok) {
   std::unique_lock<std::mutex> lock(mutex_);
   writes_.Written(ok, Gone(), written_);
   if (!writes_.conclusion() && writes_.idle() && phase_ != Phase::kRelayed) Poke();
-  Drive(lock);
+  Turn(lock);
 }
 
 void WatchCall::OnCancel() {
   std::unique_lock<std::mutex> lock(mutex_);
   writes_.Conclude(Gone());
-  Drive(lock);
+  Turn(lock);
 }
 
 void WatchCall::Drive(std::unique_lock<std::mutex>& lock) {
@@ -264,7 +267,9 @@ void WatchCall::Teardown() {
 }
 
 void WatchCall::OnDone() {
-  std::shared_ptr<WatchCall> self = std::move(self_);  // freed here or by a pending task
+  std::shared_ptr<WatchCall> self;  // freed here or by a pending task (or turn)
+  std::lock_guard<std::mutex> lock(mutex_);
+  self = std::move(self_);
 }
 
 }  // namespace mbstream
