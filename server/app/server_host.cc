@@ -106,9 +106,10 @@ PeerSecurity PeerSecurityOf(const ServerConfig& config) {
 // gRPC's limits for this server: its handler threads (`quota`), peers' pings, message sizes.
 void ApplyGrpcLimits(const ServerConfig& config, grpc::ResourceQuota& quota,
                      grpc::ServerBuilder& builder) {
-  // gRPC's handler threads: one per open stream (each also counted against
-  // max_subscribers, with a reader thread of its own for Subscribe) plus room for unary
-  // calls; past this, gRPC refuses new calls with RESOURCE_EXHAUSTED instead of growing.
+  // gRPC's handler threads of the synchronous methods (unary calls, GetResult streams);
+  // Subscribe and WatchRun are reactors on the callback API and hold none (their count is
+  // bounded by max_subscribers). Past this, gRPC refuses new calls with RESOURCE_EXHAUSTED
+  // instead of growing.
   quota.SetMaxThreads(config.limits.max_subscribers + kUnaryThreads);
   builder.SetResourceQuota(quota);
   // Other replicas proxying streams here ping idle connections every 20 s (peer_channels.cc).

@@ -120,72 +120,81 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
   return outcome;
 }
 
+v1::RunInfo RunManager::FinalInfo(Run& run, const Outcome& outcome) {
+  v1::RunInfo info = run.Info();
+  info.set_state(outcome.state);
+  info.set_message(outcome.message);
+  *info.mutable_stats() = outcome.stats;
+  info.set_ended_unix_ms(NowUnixMs());
+  run.probes().Close();  // later reports are refused
+  if (const std::string& error = run.spool().error(); !error.empty()) {
+    info.set_state(v1::FAILED);
+    info.set_message("the frames could not be stored (" + error +
+                     "); the run was stopped, the frames stored before are kept");
+  } else if (const std::string probe_error = run.probes().error(); !probe_error.empty()) {
+    info.set_state(v1::FAILED);
+    info.set_message("the probe reports could not be stored (" + probe_error +
+                     "); the run was stopped, the frames and reports stored before are kept");
+  }
+  if (run.interrupted && !replica_.private_store) {  // drained or stopped: hand it back
+    ApplyHandBack(info, info.ended_unix_ms(), outcome.message);
+  }
+  return info;
+}
+
+void RunManager::StoreFinal(Run& run, v1::RunInfo& info) {
+  // The frames are in the store already but for the spool's last chunk, written together
+  // with the final info; the probe reports but for the recorder's last batch, stored just
+  // before. Nothing is stored once another replica took the run over.
+  // A private store's runs hold no lease (ClaimPrivate): stored unconditionally.
+  const std::string holder = replica_.private_store ? std::string() : LeaseHolder(run.Info());
+  try {
+    // The lease is checked in the transaction that stores the result; the probe recorder's
+    // last batch, stored before it, checks it with a renewal of its own (Execute).
+    if (run.lease_lost || run.probes().lease_lost()) {
+      run.lease_lost = true;
+    } else if (info.state() == v1::QUEUED) {  // its reports not stored yet are dropped
+      if (!store_->PutRunIfHeld(info, holder)) run.lease_lost = true;
+      spdlog::info("run {} handed back to the queue: {}", run.id(), info.message());
+    } else if (!run.probes().Flush()) {
+      run.lease_lost = true;
+    } else {
+      if (!run.spool().Finish(info, *store_, holder)) {
+        run.lease_lost = true;
+      } else if (std::string whole = run.spool().TakeWholeResult();
+                 !whole.empty() && info.state() != v1::INTERRUPTED) {  // final for good
+        recent_results_.Put(info, std::move(whole));  // before anyone sees the run ended
+      }
+    }
+  } catch (const std::exception& error) {
+    spdlog::error("run {}: storing the result failed: {}", run.id(), error.what());
+    info.set_state(v1::FAILED);
+    info.set_message(std::string("the result could not be stored: ") + error.what());
+    try {
+      store_->PutRun(info);  // at least the final state, if the store takes that
+    } catch (const std::exception& again) {
+      spdlog::error("run {}: storing its final state failed too: {}", run.id(), again.what());
+    }
+  }
+  if (run.lease_lost) {  // show what the store holds, as the replica that took it over wrote
+    spdlog::warn("run {}: replica {} lost its lease; nothing more stored here", run.id(),
+                 replica_.id);
+    try {
+      if (std::optional<v1::RunInfo> stored = store_->GetRun(run.id())) info = *stored;
+    } catch (const std::exception& error) {
+      spdlog::error("run {}: reading it back failed: {}", run.id(), error.what());
+    }
+  }
+}
+
 void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome) {
   if (const std::shared_ptr<const v1::Frame> last = run->latest_frame();
       last != nullptr && !run->interrupted && !run->lease_lost) {
     run->WaitForProbes(last->seq(), std::chrono::duration<double>(limits_.probe_grace_s));
   }
   // Store first, then show the final state: whoever sees a run ended can fetch its result.
-  // The frames are in the store already but for the spool's last chunk, written together
-  // with the final info; the probe reports but for the recorder's last batch, stored just
-  // before. Nothing is stored once another replica took the run over.
-  // A private store's runs hold no lease (ClaimPrivate): stored unconditionally.
-  const std::string holder = replica_.private_store ? std::string() : LeaseHolder(run->Info());
-  v1::RunInfo info = run->Info();
-  info.set_state(outcome.state);
-  info.set_message(outcome.message);
-  *info.mutable_stats() = outcome.stats;
-  info.set_ended_unix_ms(NowUnixMs());
-  run->probes().Close();  // later reports are refused
-  if (const std::string& error = run->spool().error(); !error.empty()) {
-    info.set_state(v1::FAILED);
-    info.set_message("the frames could not be stored (" + error +
-                     "); the run was stopped, the frames stored before are kept");
-  } else if (const std::string probe_error = run->probes().error(); !probe_error.empty()) {
-    info.set_state(v1::FAILED);
-    info.set_message("the probe reports could not be stored (" + probe_error +
-                     "); the run was stopped, the frames and reports stored before are kept");
-  }
-  if (run->interrupted && !replica_.private_store) {  // drained or stopped: hand it back
-    ApplyHandBack(info, info.ended_unix_ms(), outcome.message);
-  }
-  try {
-    // The lease is checked in the transaction that stores the result; the probe recorder's
-    // last batch, stored before it, checks it with a renewal of its own (Execute).
-    if (run->lease_lost || run->probes().lease_lost()) {
-      run->lease_lost = true;
-    } else if (info.state() == v1::QUEUED) {  // its reports not stored yet are dropped
-      if (!store_->PutRunIfHeld(info, holder)) run->lease_lost = true;
-      spdlog::info("run {} handed back to the queue: {}", run->id(), info.message());
-    } else if (!run->probes().Flush()) {
-      run->lease_lost = true;
-    } else {
-      if (!run->spool().Finish(info, *store_, holder)) {
-        run->lease_lost = true;
-      } else if (std::string whole = run->spool().TakeWholeResult();
-                 !whole.empty() && info.state() != v1::INTERRUPTED) {  // final for good
-        recent_results_.Put(info, std::move(whole));  // before anyone sees the run ended
-      }
-    }
-  } catch (const std::exception& error) {
-    spdlog::error("run {}: storing the result failed: {}", run->id(), error.what());
-    info.set_state(v1::FAILED);
-    info.set_message(std::string("the result could not be stored: ") + error.what());
-    try {
-      store_->PutRun(info);  // at least the final state, if the store takes that
-    } catch (const std::exception& again) {
-      spdlog::error("run {}: storing its final state failed too: {}", run->id(), again.what());
-    }
-  }
-  if (run->lease_lost) {  // show what the store holds, as the replica that took it over wrote
-    spdlog::warn("run {}: replica {} lost its lease; nothing more stored here", run->id(),
-                 replica_.id);
-    try {
-      if (std::optional<v1::RunInfo> stored = store_->GetRun(run->id())) info = *stored;
-    } catch (const std::exception& error) {
-      spdlog::error("run {}: reading it back failed: {}", run->id(), error.what());
-    }
-  }
+  v1::RunInfo info = FinalInfo(*run, outcome);
+  StoreFinal(*run, info);
   run->UpdateInfo([&](v1::RunInfo& live) { live = info; });
   {
     std::lock_guard<std::mutex> lock(mutex_);

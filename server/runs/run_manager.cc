@@ -147,97 +147,17 @@ std::vector<v1::RunInfo> RunManager::StartMany(
   }
   // A disk nearly full refuses new runs before they fail on it (docs/reliability.md).
   CheckFreeSpace(free_space_source_, limits_.min_free_bytes, data_dir_);
-  // Every spec checked before anything is queued; a batch's errors name the spec.
   std::vector<v1::RunInfo> infos(count);
-  std::vector<RunConfig> configs;
-  configs.reserve(count);
-  for (int i = 0; i < count; ++i) {
-    const v1::RunSpec& spec = specs[i];
-    const std::string where = count > 1 ? "specs[" + std::to_string(i) + "]: " : "";
-    std::vector<std::string> warnings;
-    try {
-      configs.push_back(PrepareConfig(*model, spec, &warnings));
-    } catch (const InputError& e) {
-      if (where.empty()) throw;
-      throw InputError(where + e.what());
-    } catch (const RequestError& e) {
-      if (where.empty()) throw;
-      throw RequestError(e.kind(), where + e.what());
-    }
-    const RunConfig& config = configs.back();
-    v1::RunInfo& info = infos[i];
-    info.set_model_id(model->info.id());
-    info.set_model_name(model->info.name());
-    *info.mutable_spec() = spec;
-    info.mutable_spec()->DiscardUnknownFields();  // kept in every RunInfo: only what we read
-    info.set_state(v1::QUEUED);
-    info.set_expected_frames(
-        KeptFrameCount(config.keep, OutputFrameCount(config.duration, config.output_interval)));
-    info.set_duration_s(config.duration);
-    // Every joint of the model file: a closed loop's cut joints after the tree's.
-    info.set_num_dofs(static_cast<int>(model->result_joint_names.size()));
-    for (const std::string& name : model->result_joint_names) info.add_joint_names(name);
-    info.set_created_unix_ms(NowUnixMs());
-    info.set_mbstream_version(MBSTREAM_VERSION);
-    info.set_owner(owner);
-    if (!sweep_id.empty()) {
-      info.set_sweep_id(sweep_id);
-      info.set_sweep_point(first_point + i);
-      info.set_sweep_points(total_points);
-    }
-    for (const std::string& warning : warnings) info.add_warnings(warning);
-  }
-
-  // No lock across the store's I/O: new ids are reserved in active_ and queue_ under the lock
-  // (counting against the queue limit), stored QUEUED in one transaction that refuses an id
-  // already stored by any replica (from then on any replica may claim them; a taken id: new
-  // ids for all, again), and the workers woken.
-  std::vector<std::shared_ptr<Run>> runs(count);
-  auto forget = [&](const std::vector<std::shared_ptr<Run>>& forgotten) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    for (const std::shared_ptr<Run>& run : forgotten) {
-      unstored_.erase(run.get());
-      queue_.erase(std::remove(queue_.begin(), queue_.end(), run), queue_.end());
-      if (auto found = active_.find(run->id()); found != active_.end() && found->second == run) {
-        active_.erase(found);
-      }
-    }
-  };
-  constexpr int kIdAttempts = 100;  // each fails with odds of about 1e-6 (NewRunId)
-  for (int attempt = 1;; ++attempt) {
-    ReserveNewRuns(infos, configs, model, runs);
-    bool stored = false;
-    try {
-      stored = store_->AddRuns(infos);
-    } catch (...) {
-      forget(runs);
-      throw;
-    }
-    if (stored) break;
-    forget(runs);
-    MBSTREAM_CHECK_MSG(attempt < kIdAttempts, "no free run ids after 100 attempts");
-  }
-  std::string stop_reason;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    for (const std::shared_ptr<Run>& run : runs) unstored_.erase(run.get());
-    if (stopping_) stop_reason = stop_reason_;
-    ++wakeups_;
-  }
-  if (!stop_reason.empty()) {  // the server began to stop while the runs were being stored
-    std::vector<std::shared_ptr<Run>> ended;
+  const std::vector<RunConfig> configs = PrepareRuns(*model, specs, owner, infos);
+  if (!sweep_id.empty()) {
     for (int i = 0; i < count; ++i) {
-      if (store_->EndQueuedRun(infos[i].id(), v1::INTERRUPTED,
-                               stop_reason + " before this run started", NowUnixMs())) {
-        ended.push_back(runs[i]);
-      }
-    }
-    if (!ended.empty()) {
-      forget(ended);
-      throw RequestError(RequestErrorKind::kUnavailable,
-                         "the server is shutting down; start the run on another server");
+      infos[i].set_sweep_id(sweep_id);
+      infos[i].set_sweep_point(first_point + i);
+      infos[i].set_sweep_points(total_points);
     }
   }
+  const std::vector<std::shared_ptr<Run>> runs = StoreNewRuns(infos, configs, model);
+  RefuseIfStopped(infos, runs);
   if (count == 1) {
     work_.notify_one();
   } else {
@@ -248,6 +168,108 @@ std::vector<v1::RunInfo> RunManager::StartMany(
                  model->info.name(), info.duration_s(), info.expected_frames());
   }
   return infos;
+}
+
+std::vector<RunConfig> RunManager::PrepareRuns(
+    const CompiledModel& model, const google::protobuf::RepeatedPtrField<v1::RunSpec>& specs,
+    const std::string& owner, std::vector<v1::RunInfo>& infos) {
+  // Every spec checked before anything is queued; a batch's errors name the spec.
+  const int count = specs.size();
+  std::vector<RunConfig> configs;
+  configs.reserve(count);
+  for (int i = 0; i < count; ++i) {
+    const v1::RunSpec& spec = specs[i];
+    const std::string where = count > 1 ? "specs[" + std::to_string(i) + "]: " : "";
+    std::vector<std::string> warnings;
+    try {
+      configs.push_back(PrepareConfig(model, spec, &warnings));
+    } catch (const InputError& e) {
+      if (where.empty()) throw;
+      throw InputError(where + e.what());
+    } catch (const RequestError& e) {
+      if (where.empty()) throw;
+      throw RequestError(e.kind(), where + e.what());
+    }
+    const RunConfig& config = configs.back();
+    v1::RunInfo& info = infos[i];
+    info.set_model_id(model.info.id());
+    info.set_model_name(model.info.name());
+    *info.mutable_spec() = spec;
+    info.mutable_spec()->DiscardUnknownFields();  // kept in every RunInfo: only what we read
+    info.set_state(v1::QUEUED);
+    info.set_expected_frames(
+        KeptFrameCount(config.keep, OutputFrameCount(config.duration, config.output_interval)));
+    info.set_duration_s(config.duration);
+    // Every joint of the model file: a closed loop's cut joints after the tree's.
+    info.set_num_dofs(static_cast<int>(model.result_joint_names.size()));
+    for (const std::string& name : model.result_joint_names) info.add_joint_names(name);
+    info.set_created_unix_ms(NowUnixMs());
+    info.set_mbstream_version(MBSTREAM_VERSION);
+    info.set_owner(owner);
+    for (const std::string& warning : warnings) info.add_warnings(warning);
+  }
+  return configs;
+}
+
+void RunManager::Forget(const std::vector<std::shared_ptr<Run>>& runs) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (const std::shared_ptr<Run>& run : runs) {
+    unstored_.erase(run.get());
+    queue_.erase(std::remove(queue_.begin(), queue_.end(), run), queue_.end());
+    if (auto found = active_.find(run->id()); found != active_.end() && found->second == run) {
+      active_.erase(found);
+    }
+  }
+}
+
+std::vector<std::shared_ptr<Run>> RunManager::StoreNewRuns(
+    std::vector<v1::RunInfo>& infos, const std::vector<RunConfig>& configs,
+    const std::shared_ptr<const CompiledModel>& model) {
+  // No lock across the store's I/O: new ids are reserved in active_ and queue_ under the lock
+  // (counting against the queue limit), stored QUEUED in one transaction that refuses an id
+  // already stored by any replica (from then on any replica may claim them; a taken id: new
+  // ids for all, again), and the workers woken.
+  std::vector<std::shared_ptr<Run>> runs(infos.size());
+  constexpr int kIdAttempts = 100;  // each fails with odds of about 1e-6 (NewRunId)
+  for (int attempt = 1;; ++attempt) {
+    ReserveNewRuns(infos, configs, model, runs);
+    bool stored = false;
+    try {
+      stored = store_->AddRuns(infos);
+    } catch (...) {
+      Forget(runs);
+      throw;
+    }
+    if (stored) break;
+    Forget(runs);
+    MBSTREAM_CHECK_MSG(attempt < kIdAttempts, "no free run ids after 100 attempts");
+  }
+  return runs;
+}
+
+void RunManager::RefuseIfStopped(const std::vector<v1::RunInfo>& infos,
+                                 const std::vector<std::shared_ptr<Run>>& runs) {
+  std::string stop_reason;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const std::shared_ptr<Run>& run : runs) unstored_.erase(run.get());
+    if (stopping_) stop_reason = stop_reason_;
+    ++wakeups_;
+  }
+  if (stop_reason.empty()) return;
+  // The server began to stop while the runs were being stored.
+  std::vector<std::shared_ptr<Run>> ended;
+  for (size_t i = 0; i < infos.size(); ++i) {
+    if (store_->EndQueuedRun(infos[i].id(), v1::INTERRUPTED,
+                             stop_reason + " before this run started", NowUnixMs())) {
+      ended.push_back(runs[i]);
+    }
+  }
+  if (!ended.empty()) {
+    Forget(ended);
+    throw RequestError(RequestErrorKind::kUnavailable,
+                       "the server is shutting down; start the run on another server");
+  }
 }
 
 std::shared_ptr<Run> RunManager::FindActive(const std::string& run_id) const {

@@ -258,7 +258,12 @@ class RunManager {
   RunConfig PrepareConfig(const CompiledModel& model, const v1::RunSpec& spec,
                           std::vector<std::string>* warnings) const;
   Outcome Execute(const std::shared_ptr<Run>& run);
+  // Finish's steps (run_execution.cc): the probes' grace, the final info, stored, then shown.
   void Finish(const std::shared_ptr<Run>& run, const Outcome& outcome);
+  v1::RunInfo FinalInfo(Run& run, const Outcome& outcome);  // closes the run's probe recorder
+  // Stores `info` (the recorder's last batch, the spool's last chunk) unless the lease was
+  // lost; then `info` becomes what the store holds.
+  void StoreFinal(Run& run, v1::RunInfo& info);
   std::shared_ptr<Run> FindActive(const std::string& run_id) const;
   // A run `stored` says RUNNING here that is not in active_ yet: claimed by a worker of this
   // replica that is still preparing it (ClaimNext). Waits until the worker lists it (the run)
@@ -279,6 +284,18 @@ class RunManager {
   void ReserveNewRuns(std::vector<v1::RunInfo>& infos, const std::vector<RunConfig>& configs,
                       const std::shared_ptr<const CompiledModel>& model,
                       std::vector<std::shared_ptr<Run>>& runs);
+  // StartMany's steps (run_manager.cc): every spec checked and its info filled (errors name
+  // the spec); the runs reserved and stored QUEUED (new ids while one is taken); refused
+  // when the server began to stop meanwhile; Forget undoes a reservation.
+  std::vector<RunConfig> PrepareRuns(const CompiledModel& model,
+                                     const google::protobuf::RepeatedPtrField<v1::RunSpec>& specs,
+                                     const std::string& owner, std::vector<v1::RunInfo>& infos);
+  std::vector<std::shared_ptr<Run>> StoreNewRuns(std::vector<v1::RunInfo>& infos,
+                                                 const std::vector<RunConfig>& configs,
+                                                 const std::shared_ptr<const CompiledModel>& model);
+  void RefuseIfStopped(const std::vector<v1::RunInfo>& infos,
+                       const std::vector<std::shared_ptr<Run>>& runs);
+  void Forget(const std::vector<std::shared_ptr<Run>>& runs);
 
   ModelRegistry* models_;
   Store* store_;

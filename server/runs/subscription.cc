@@ -23,6 +23,7 @@ void Subscription::Push(StreamEvent event) {
       pending_missed_.erase(pending);
     }
     events_.push_back(std::move(event));
+    if (listener_) listener_();
   }
   ready_.notify_one();
 }
@@ -50,6 +51,7 @@ void Subscription::Close() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     closed_ = true;
+    if (listener_) listener_();
   }
   ready_.notify_all();
 }
@@ -63,6 +65,11 @@ void Subscription::Cancel() {
     pending_missed_.clear();
   }
   ready_.notify_all();
+}
+
+void Subscription::SetListener(std::function<void()> listener) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  listener_ = std::move(listener);
 }
 
 bool Subscription::cancelled() const {

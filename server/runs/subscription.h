@@ -14,6 +14,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -50,6 +51,11 @@ class Subscription {
   bool Pop(std::chrono::milliseconds timeout, int max_frames, std::deque<StreamEvent>* out,
            int64_t* missed);
 
+  // Called (under the queue's lock: it must only hand off, never call back) whenever an event
+  // is pushed or the queue closes: a consumer that does not wait in Pop is told to pop.
+  // Empty: none (again).
+  void SetListener(std::function<void()> listener);
+
   // Set by the consumer when its stream has gone; producers then detach it.
   void Cancel();
   bool cancelled() const;
@@ -70,6 +76,7 @@ class Subscription {
   int64_t missed_total_ = 0;
   bool closed_ = false;
   bool cancelled_ = false;
+  std::function<void()> listener_;
 };
 
 }  // namespace mbstream

@@ -113,7 +113,7 @@ Authorizer Authorizer::FromTokenFile(const std::string& path) {
   return authorizer;
 }
 
-const Authorizer::Grant* Authorizer::Find(const grpc::ServerContext& context) const {
+const Authorizer::Grant* Authorizer::Find(const grpc::ServerContextBase& context) const {
   const auto& metadata = context.client_metadata();
   const auto found = metadata.find("authorization");
   if (found == metadata.end()) return nullptr;
@@ -123,7 +123,7 @@ const Authorizer::Grant* Authorizer::Find(const grpc::ServerContext& context) co
   return entry == roles_.end() ? nullptr : &entry->second;
 }
 
-grpc::Status Authorizer::Check(const grpc::ServerContext& context, Role role) const {
+grpc::Status Authorizer::Check(const grpc::ServerContextBase& context, Role role) const {
   if (!enabled_) return grpc::Status::OK;
   const auto& metadata = context.client_metadata();
   const auto found = metadata.find("authorization");
@@ -147,12 +147,12 @@ grpc::Status Authorizer::Check(const grpc::ServerContext& context, Role role) co
   return grpc::Status::OK;
 }
 
-std::string Authorizer::CallerId(const grpc::ServerContext& context) const {
+std::string Authorizer::CallerId(const grpc::ServerContextBase& context) const {
   const Grant* grant = enabled_ ? Find(context) : nullptr;
   return grant ? grant->id : "";
 }
 
-bool Authorizer::CallerHas(const grpc::ServerContext& context, Role role) const {
+bool Authorizer::CallerHas(const grpc::ServerContextBase& context, Role role) const {
   if (!enabled_) return true;
   const Grant* grant = Find(context);
   const unsigned needed = static_cast<unsigned>(role);

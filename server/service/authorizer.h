@@ -32,13 +32,13 @@ class Authorizer {
 
   // OK, UNAUTHENTICATED (no or unknown token) or PERMISSION_DENIED (the token lacks `role`).
   // The scheme name "Bearer" is matched case-insensitively (RFC 6750 / RFC 7235).
-  grpc::Status Check(const grpc::ServerContext& context, Role role) const;
+  grpc::Status Check(const grpc::ServerContextBase& context, Role role) const;
 
   // Who calls: the id of the caller's token ("t-" and 12 hex digits of its SHA-256, safe to
   // store and log), "" without token checking or without a known token.
-  std::string CallerId(const grpc::ServerContext& context) const;
+  std::string CallerId(const grpc::ServerContextBase& context) const;
   // Whether the caller's token has `role` (true without token checking).
-  bool CallerHas(const grpc::ServerContext& context, Role role) const;
+  bool CallerHas(const grpc::ServerContextBase& context, Role role) const;
 
   bool enabled() const { return enabled_; }
   size_t token_count() const { return roles_.size(); }
@@ -50,7 +50,7 @@ class Authorizer {
     std::string id;      // the token's id (CallerId)
   };
   // The caller's grant, nullptr without a known token.
-  const Grant* Find(const grpc::ServerContext& context) const;
+  const Grant* Find(const grpc::ServerContextBase& context) const;
 
   bool enabled_ = false;
   std::unordered_map<std::string, Grant> roles_;  // token -> grant

@@ -7,7 +7,7 @@
 namespace mbstream {
 
 FollowRelays::FollowRelays(PeerChannels* peers, const RunManager* runs,
-                           const grpc::ServerContext* context,
+                           const grpc::ServerContextBase* context,
                            std::function<bool(const v1::SubscribeEvent&)> write, int max_batch)
     : peers_(peers),
       runs_(runs),

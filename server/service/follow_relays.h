@@ -26,7 +26,7 @@ class FollowRelays {
  public:
   // `write` sends an event on the follow stream (serialized with the stream's own events;
   // false when the stream is gone). None is owned; all outlive the relays.
-  FollowRelays(PeerChannels* peers, const RunManager* runs, const grpc::ServerContext* context,
+  FollowRelays(PeerChannels* peers, const RunManager* runs, const grpc::ServerContextBase* context,
                std::function<bool(const v1::SubscribeEvent&)> write, int max_batch);
   ~FollowRelays();  // Stop()
 
@@ -50,7 +50,7 @@ class FollowRelays {
 
   PeerChannels* const peers_;
   const RunManager* const runs_;
-  const grpc::ServerContext* const context_;
+  const grpc::ServerContextBase* const context_;
   const std::function<bool(const v1::SubscribeEvent&)> write_;
   const int max_batch_;
   std::mutex mutex_;

@@ -68,7 +68,7 @@ std::shared_ptr<grpc::Channel> PeerChannels::Connect(const v1::RunInfo& owner) {
 }
 
 std::unique_ptr<grpc::ClientContext> PeerChannels::ContextFor(
-    const grpc::ServerContext& caller) const {
+    const grpc::ServerContextBase& caller) const {
   std::unique_ptr<grpc::ClientContext> context = grpc::ClientContext::FromServerContext(caller);
   for (const auto& [key, value] : caller.client_metadata()) {
     if (key == "authorization") {
@@ -79,7 +79,7 @@ std::unique_ptr<grpc::ClientContext> PeerChannels::ContextFor(
   return context;
 }
 
-bool PeerChannels::IsProxied(const grpc::ServerContext& context) {
+bool PeerChannels::IsProxied(const grpc::ServerContextBase& context) {
   return context.client_metadata().count(kProxiedBy) > 0;
 }
 

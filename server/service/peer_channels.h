@@ -49,10 +49,10 @@ class PeerChannels {
   std::shared_ptr<grpc::Channel> Connect(const v1::RunInfo& owner);
   // A client context for a call made on behalf of `caller`: cancelled with it (and its
   // deadline), with its authorization metadata and kProxiedBy.
-  std::unique_ptr<grpc::ClientContext> ContextFor(const grpc::ServerContext& caller) const;
+  std::unique_ptr<grpc::ClientContext> ContextFor(const grpc::ServerContextBase& caller) const;
 
   // Whether `context`'s call was proxied here by another replica.
-  static bool IsProxied(const grpc::ServerContext& context);
+  static bool IsProxied(const grpc::ServerContextBase& context);
   // "run R integrates on replica X (host:port)", for messages.
   static std::string Where(const v1::RunInfo& owner);
 

@@ -18,7 +18,7 @@ constexpr auto kCancelTimeout = std::chrono::seconds(10);
 
 std::optional<v1::RunInfo> RemoteOwner(PeerChannels* peers, const RunManager& runs,
                                        const std::string& run_id,
-                                       const grpc::ServerContext& context,
+                                       const grpc::ServerContextBase& context,
                                        const std::atomic<bool>& stopping, bool wait_queued) {
   if (peers == nullptr || !runs.shared_store() || PeerChannels::IsProxied(context)) {
     return std::nullopt;
@@ -49,7 +49,7 @@ grpc::Status OwnerStatus(const grpc::Status& status, const v1::RunInfo& owner) {
   }
 }
 
-PeerSubscribe::PeerSubscribe(PeerChannels& peers, const grpc::ServerContext& caller,
+PeerSubscribe::PeerSubscribe(PeerChannels& peers, const grpc::ServerContextBase& caller,
                              const v1::RunInfo& owner, const v1::SubscribeRequest& start)
     : owner_(owner) {
   std::shared_ptr<grpc::Channel> channel = peers.Connect(owner_);
@@ -85,17 +85,18 @@ grpc::Status PeerSubscribe::Finish() {
   return OwnerStatus(stream_->Finish(), owner_);
 }
 
-grpc::Status ProxyWatchRun(PeerChannels& peers, grpc::ServerContext* context,
+grpc::Status ProxyWatchRun(PeerChannels& peers, const grpc::ServerContextBase& context,
                            const v1::WatchRunRequest& request,
-                           grpc::ServerWriter<v1::WatchEvent>* writer, const v1::RunInfo& owner) {
+                           const std::function<bool(const v1::WatchEvent&)>& write,
+                           const v1::RunInfo& owner) {
   std::shared_ptr<grpc::Channel> channel = peers.Connect(owner);
-  std::unique_ptr<grpc::ClientContext> upstream = peers.ContextFor(*context);
+  std::unique_ptr<grpc::ClientContext> upstream = peers.ContextFor(context);
   std::unique_ptr<v1::Simulation::Stub> stub = v1::Simulation::NewStub(channel);
   std::unique_ptr<grpc::ClientReader<v1::WatchEvent>> reader =
       stub->WatchRun(upstream.get(), request);
   v1::WatchEvent event;
   while (reader->Read(&event)) {
-    if (!writer->Write(event)) {
+    if (!write(event)) {
       upstream->TryCancel();
       (void)reader->Finish();
       return grpc::Status(grpc::StatusCode::CANCELLED, "client gone");
@@ -104,7 +105,7 @@ grpc::Status ProxyWatchRun(PeerChannels& peers, grpc::ServerContext* context,
   return OwnerStatus(reader->Finish(), owner);
 }
 
-grpc::Status ProxyCancelRun(PeerChannels& peers, const grpc::ServerContext& context,
+grpc::Status ProxyCancelRun(PeerChannels& peers, const grpc::ServerContextBase& context,
                             const v1::CancelRunRequest& request, const v1::RunInfo& owner,
                             v1::RunInfo* response) {
   grpc::Status status;

@@ -9,6 +9,7 @@
 #include <grpcpp/server_context.h>
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -26,7 +27,7 @@ namespace mbstream {
 // `stopping` end the wait: nullopt). Never for a call proxied here already, nor without peers.
 std::optional<v1::RunInfo> RemoteOwner(PeerChannels* peers, const RunManager& runs,
                                        const std::string& run_id,
-                                       const grpc::ServerContext& context,
+                                       const grpc::ServerContextBase& context,
                                        const std::atomic<bool>& stopping, bool wait_queued);
 
 // One Subscribe call to the owner of a run, on behalf of a stream of this replica. Write and
@@ -35,8 +36,8 @@ class PeerSubscribe {
  public:
   // Connects (PeerChannels::Connect: throws RequestError(kUnavailable) naming the owner) and
   // sends `start`.
-  PeerSubscribe(PeerChannels& peers, const grpc::ServerContext& caller, const v1::RunInfo& owner,
-                const v1::SubscribeRequest& start);
+  PeerSubscribe(PeerChannels& peers, const grpc::ServerContextBase& caller,
+                const v1::RunInfo& owner, const v1::SubscribeRequest& start);
   ~PeerSubscribe();  // cancels the call if it has not finished
 
   bool Read(v1::SubscribeEvent* event) { return stream_->Read(event); }
@@ -62,14 +63,16 @@ class PeerSubscribe {
 // DEADLINE_EXCEEDED messages naming the owner.
 grpc::Status OwnerStatus(const grpc::Status& status, const v1::RunInfo& owner);
 
-// WatchRun relayed from the owner, event by event.
-grpc::Status ProxyWatchRun(PeerChannels& peers, grpc::ServerContext* context,
+// WatchRun relayed from the owner, event by event, each passed to `write` (false: the
+// watcher is gone, the call to the owner is cancelled).
+grpc::Status ProxyWatchRun(PeerChannels& peers, const grpc::ServerContextBase& context,
                            const v1::WatchRunRequest& request,
-                           grpc::ServerWriter<v1::WatchEvent>* writer, const v1::RunInfo& owner);
+                           const std::function<bool(const v1::WatchEvent&)>& write,
+                           const v1::RunInfo& owner);
 
 // CancelRun forwarded to the owner (at most kCancelTimeout); FAILED_PRECONDITION naming the
 // owner when it cannot be reached.
-grpc::Status ProxyCancelRun(PeerChannels& peers, const grpc::ServerContext& context,
+grpc::Status ProxyCancelRun(PeerChannels& peers, const grpc::ServerContextBase& context,
                             const v1::CancelRunRequest& request, const v1::RunInfo& owner,
                             v1::RunInfo* response);
 

@@ -191,126 +191,157 @@ struct Player {
 
 }  // namespace
 
-grpc::Status SendReplay(const ReplayStreamContext& io, ReplayPlan& plan) {
-  const grpc::Status gone(grpc::StatusCode::CANCELLED, "the subscriber went away");
-  v1::SubscribeEvent event;
-  auto write = [&] { return io.stream->Write(event); };
-  {
-    auto* started = event.mutable_run_started();
-    *started->mutable_run() = plan.run;
-    *started->mutable_model() = io.models->Info(plan.run.model_id());
-    *started->mutable_bundle() = io.models->Bundle(started->model().id());
-    if (!write()) return gone;
-  }
-  Player player;
-  player.plan = &plan;
-  player.step = plan.start_step;
-  player.paused = plan.options.paused();
-  player.send_one = player.paused;
-  player.speed = plan.options.speed();
-  player.Anchor();
-  auto send_state = [&](const std::string& error) {
-    player.FillState(event.mutable_replay_state(), io.inbox->set().id());
-    event.mutable_replay_state()->set_error(error);
-    return write();
-  };
-  if (!send_state("")) return gone;
+namespace {
 
-  // The frames sent and not yet answered, oldest first, while the viewer answers probes.
-  std::deque<int64_t> ahead;
-  Clock::time_point last_answer = Clock::now();
-  int64_t last_answered = -1;  // the answer `ahead` was last trimmed to
-  // False without wait_for_probes, or once the viewer was not waited for: flow control alone.
-  bool gate = plan.options.wait_for_probes();
-  auto window_full = [&] {
-    if (!gate) return false;
-    const int64_t answered = io.inbox->answered_seq();
-    while (answered != last_answered && !ahead.empty()) {
-      const int64_t seq = ahead.front();
-      ahead.pop_front();
+// Sends run_started, replay_state, the frames paced by their simulated times (and controls
+// as they come), then run_ended (unless looping). Ends OK when the replay ended or the viewer
+// said goodbye, UNAVAILABLE when the server stops (the call: CANCELLED when the viewer went
+// away). Each Step sends what is due and asks to be woken for what comes next.
+class ReplaySender final : public SubscribeSender {
+ public:
+  ReplaySender(ReplayPlan plan, int max_batch) : plan_(std::move(plan)), max_batch_(max_batch) {
+    player_.plan = &plan_;
+    player_.step = plan_.start_step;
+    player_.paused = plan_.options.paused();
+    player_.send_one = player_.paused;
+    player_.speed = plan_.options.speed();
+    gate_ = plan_.options.wait_for_probes();
+  }
+
+  void Step(SubscribeCall& call) override {
+    if (!started_) {
+      SendStart(call);
+      return;
+    }
+    ReplayInbox& inbox = *call.inbox();
+    inbox.FlushIfDue();  // the viewer's reports, when their interval has passed
+    if (call.stopping()) {
+      const std::string reason = "the server is shutting down; reconnect later";
+      v1::SubscribeEvent closing;
+      closing.set_closing(reason);
+      call.Enqueue(std::move(closing));
+      call.Conclude(grpc::Status(grpc::StatusCode::UNAVAILABLE, reason));
+      return;
+    }
+    if (call.reader_done()) {  // the viewer said goodbye
+      call.Conclude(grpc::Status::OK);
+      return;
+    }
+    for (v1::ReplayControl control; inbox.NextControl(Clock::now(), &control);) {
+      bool state_now = true;
+      const std::string error = player_.Apply(control, &state_now);
+      if (state_now) SendState(call, error);
+    }
+    if (player_.paused && !player_.send_one) {
+      call.WakeAt(Clock::now() + kPoll);  // or at the next control
+      return;
+    }
+    if (player_.step >= plan_.grid.frames) {
+      if (!plan_.options.loop()) {
+        v1::SubscribeEvent ended;
+        *ended.mutable_run_ended() = plan_.run;
+        call.Enqueue(std::move(ended));
+        call.Conclude(grpc::Status::OK);
+        return;
+      }
+      player_.step = 0;
+      player_.Anchor();
+    }
+    const Clock::time_point due = player_.Due(player_.step);
+    if (!player_.send_one && WindowFull(inbox)) {
+      call.WakeAt(Clock::now() + std::chrono::milliseconds(10));
+      return;
+    }
+    if (!player_.send_one && Clock::now() < due) {
+      call.WakeAt(std::min(due, Clock::now() + kPoll));
+      return;
+    }
+    SendFrames(call);
+  }
+
+ private:
+  void SendStart(SubscribeCall& call) {
+    started_ = true;
+    v1::SubscribeEvent event;
+    auto* started = event.mutable_run_started();
+    *started->mutable_run() = plan_.run;
+    ModelRegistry& models = *call.deps().models;
+    *started->mutable_model() = models.Info(plan_.run.model_id());
+    *started->mutable_bundle() = models.Bundle(started->model().id());
+    call.Enqueue(std::move(event));
+    player_.Anchor();
+    last_answer_ = Clock::now();
+    SendState(call, "");
+  }
+
+  void SendState(SubscribeCall& call, const std::string& error) {
+    v1::SubscribeEvent event;
+    player_.FillState(event.mutable_replay_state(), call.inbox()->set().id());
+    event.mutable_replay_state()->set_error(error);
+    call.Enqueue(std::move(event));
+  }
+
+  // Whether the viewer is kMaxAhead frames behind in its probe answers (wait_for_probes).
+  bool WindowFull(const ReplayInbox& inbox) {
+    if (!gate_) return false;
+    const int64_t answered = inbox.answered_seq();
+    while (answered != last_answered_ && !ahead_.empty()) {
+      const int64_t seq = ahead_.front();
+      ahead_.pop_front();
       if (seq == answered) {
-        last_answer = Clock::now();
-        last_answered = answered;
+        last_answer_ = Clock::now();
+        last_answered_ = answered;
         break;
       }
     }
-    if (ahead.size() < kMaxAhead) return false;
-    if (Clock::now() - last_answer > (answered < 0 ? kFirstAnswer : kStall)) {
-      gate = false;
-      ahead.clear();
+    if (ahead_.size() < kMaxAhead) return false;
+    if (Clock::now() - last_answer_ > (answered < 0 ? kFirstAnswer : kStall)) {
+      gate_ = false;  // not waited for again: flow control alone
+      ahead_.clear();
       return false;
     }
     return true;
-  };
-  // Applies the next control that comes until `deadline`, if one does (*applied says
-  // whether); false when the viewer went away.
-  v1::ReplayControl control;
-  auto apply_next = [&](Clock::time_point deadline, bool* applied = nullptr) {
-    const bool got = io.inbox->NextControl(deadline, &control);
-    if (applied) *applied = got;
-    if (!got) return true;
-    bool state_now = true;
-    const std::string error = player.Apply(control, &state_now);
-    return !state_now || send_state(error);
-  };
-  for (;;) {
-    if (io.context->IsCancelled()) return gone;
-    io.inbox->FlushIfDue();  // the viewer's reports, when their interval has passed
-    if (*io.stopping) {
-      const std::string reason = "the server is shutting down; reconnect later";
-      event.set_closing(reason);
-      (void)write();
-      return grpc::Status(grpc::StatusCode::UNAVAILABLE, reason);
-    }
-    if (io.reader_done()) return grpc::Status::OK;  // the viewer said goodbye
-    bool applied = true;
-    while (applied) {
-      if (!apply_next(Clock::now(), &applied)) return gone;
-    }
-    if (player.paused && !player.send_one) {
-      if (!apply_next(Clock::now() + kPoll)) return gone;
-      continue;
-    }
-    if (player.step >= plan.grid.frames) {
-      if (plan.options.loop()) {
-        player.step = 0;
-        player.Anchor();
-        continue;
-      }
-      *event.mutable_run_ended() = plan.run;
-      if (!write()) return gone;
-      return grpc::Status::OK;
-    }
-    const Clock::time_point due = player.Due(player.step);
-    if (!player.send_one && window_full()) {
-      if (!apply_next(Clock::now() + std::chrono::milliseconds(10))) return gone;
-      continue;
-    }
-    if (!player.send_one && Clock::now() < due) {
-      if (!apply_next(std::min(due, Clock::now() + kPoll))) return gone;
-      continue;
-    }
+  }
+
+  void SendFrames(SubscribeCall& call) {
+    v1::SubscribeEvent event;
     v1::FrameBatch* batch = event.mutable_frames();
-    batch->Clear();
-    batch->set_run_id(plan.run.id());
+    batch->set_run_id(plan_.run.id());
     const SentFrames::Clock::time_point now = SentFrames::Clock::now();
     do {
-      const v1::Frame& frame = player.Frame(player.step);
+      const v1::Frame& frame = player_.Frame(player_.step);
       *batch->add_frames() = frame;
-      io.sent->Record(plan.run.id(), frame.seq(), frame.t_s(), now);
-      if (plan.ghost) *batch->add_ghost_frames() = player.Ghost(player.step);
-      if (gate) ahead.push_back(frame.seq());
-      player.last_sent = player.step++;
-    } while (!player.send_one && batch->frames_size() < io.max_batch &&
-             player.step < plan.grid.frames && player.Due(player.step) <= Clock::now() &&
-             ahead.size() < kMaxAhead);
-    player.send_one = false;
-    if (!write()) return gone;
-    if (player.state_after_send) {
-      player.state_after_send = false;
-      if (!send_state("")) return gone;
+      call.sent().Record(plan_.run.id(), frame.seq(), frame.t_s(), now);
+      if (plan_.ghost) *batch->add_ghost_frames() = player_.Ghost(player_.step);
+      if (gate_) ahead_.push_back(frame.seq());
+      player_.last_sent = player_.step++;
+    } while (!player_.send_one && batch->frames_size() < max_batch_ &&
+             player_.step < plan_.grid.frames && player_.Due(player_.step) <= Clock::now() &&
+             ahead_.size() < kMaxAhead);
+    player_.send_one = false;
+    call.Enqueue(std::move(event));
+    if (player_.state_after_send) {
+      player_.state_after_send = false;
+      SendState(call, "");
     }
   }
+
+  ReplayPlan plan_;
+  const int max_batch_;
+  Player player_;
+  bool started_ = false;
+  // The frames sent and not yet answered, oldest first, while the viewer answers probes.
+  std::deque<int64_t> ahead_;
+  Clock::time_point last_answer_;
+  int64_t last_answered_ = -1;  // the answer `ahead_` was last trimmed to
+  // False without wait_for_probes, or once the viewer was not waited for: flow control alone.
+  bool gate_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<SubscribeSender> NewReplaySender(ReplayPlan plan, int max_batch) {
+  return std::make_unique<ReplaySender>(std::move(plan), max_batch);
 }
 
 }  // namespace mbstream

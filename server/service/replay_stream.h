@@ -15,6 +15,7 @@
 #include "server/runs/run_manager.h"
 #include "server/service/replay_inbox.h"
 #include "server/service/sent_frames.h"
+#include "server/service/subscribe_call.h"
 
 namespace mbstream {
 
@@ -38,23 +39,9 @@ std::optional<ReplayPlan> PlanReplay(RunManager& runs, const v1::SubscribeReques
 // Checks a ReplayRequest's speed (Replay.speed and ReplayControl.speed): "" or why not.
 std::string CheckReplaySpeed(double speed);
 
-using SubscribeStream = grpc::ServerReaderWriter<v1::SubscribeEvent, v1::SubscribeRequest>;
-
-struct ReplayStreamContext {
-  grpc::ServerContext* context;
-  SubscribeStream* stream;
-  RunManager* runs;
-  ModelRegistry* models;
-  const std::atomic<bool>* stopping;
-  ReplayInbox* inbox;
-  SentFrames* sent;
-  std::function<bool()> reader_done;  // the viewer half-closed
-  int max_batch;
-};
-
-// Sends run_started, replay_state, the frames paced by their simulated times (and controls
-// as they come), then run_ended (unless looping). OK when the replay ended or the viewer
-// said goodbye; CANCELLED when it went away; UNAVAILABLE when the server stops.
-grpc::Status SendReplay(const ReplayStreamContext& io, ReplayPlan& plan);
+// The sender of a replay's Subscribe stream (subscribe_call.h): run_started, replay_state,
+// the frames paced by their simulated times (and the viewer's controls as they come: its
+// call's ReplayInbox), then run_ended (unless looping).
+std::unique_ptr<SubscribeSender> NewReplaySender(ReplayPlan plan, int max_batch);
 
 }  // namespace mbstream

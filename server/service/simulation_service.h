@@ -10,10 +10,12 @@
 #include "server/runs/run_deleter.h"
 #include "server/runs/run_manager.h"
 #include "server/service/authorizer.h"
+#include "server/service/live_streams.h"
 #include "server/service/peer_channels.h"
 #include "server/service/rpc_roles.h"
 #include "server/service/status_from_exception.h"
 #include "server/service/storage_keeper.h"
+#include "server/service/stream_pump.h"
 
 namespace mbstream {
 
@@ -24,7 +26,11 @@ struct DataKeeping {
   const StorageKeeper* storage = nullptr;  // GetStorage, BackupStorage (data_rpcs.cc)
 };
 
-class SimulationService final : public v1::Simulation::Service {
+// Subscribe and WatchRun are reactors on gRPC's callback API (subscribe_call.h,
+// watch_call.h); the other methods are synchronous handlers.
+class SimulationService final
+    : public v1::Simulation::WithCallbackMethod_WatchRun<
+          v1::Simulation::WithCallbackMethod_Subscribe<v1::Simulation::Service>> {
  public:
   // None is owned; all must outlive the service. `peers` (a cluster's replicas on a shared
   // store) proxies calls about runs integrating on other replicas; null: none are proxied.
@@ -58,11 +64,11 @@ class SimulationService final : public v1::Simulation::Service {
                              v1::ListProbeSetsResponse* response) override;  // replay_rpcs.cc
   grpc::Status ReplayRun(grpc::ServerContext* context, const v1::ReplayRunRequest* request,
                          v1::RunInfo* response) override;  // replay_rpcs.cc
-  grpc::Status WatchRun(grpc::ServerContext* context, const v1::WatchRunRequest* request,
-                        grpc::ServerWriter<v1::WatchEvent>* writer) override;  // watch_run.cc
-  grpc::Status Subscribe(grpc::ServerContext* context,
-                         grpc::ServerReaderWriter<v1::SubscribeEvent, v1::SubscribeRequest>* stream)
-      override;  // subscribe.cc
+  grpc::ServerWriteReactor<v1::WatchEvent>* WatchRun(
+      grpc::CallbackServerContext* context,
+      const v1::WatchRunRequest* request) override;  // watch_call.h
+  grpc::ServerBidiReactor<v1::SubscribeRequest, v1::SubscribeEvent>* Subscribe(
+      grpc::CallbackServerContext* context) override;  // subscribe_call.h
   grpc::Status DeleteRuns(grpc::ServerContext* context, const v1::DeleteRunsRequest* request,
                           v1::DeleteRunsResponse* response) override;  // data_rpcs.cc
   grpc::Status DeleteModel(grpc::ServerContext* context, const v1::DeleteModelRequest* request,
@@ -85,7 +91,10 @@ class SimulationService final : public v1::Simulation::Service {
                              v1::BackupStorageResponse* response) override;  // data_rpcs.cc
 
   // Ends every stream at its next event (shutdown).
-  void Stop() { stopping_ = true; }
+  void Stop() {
+    stopping_ = true;
+    live_.PokeAll();
+  }
 
  private:
   // The gate of every handler: the caller's token must have the role kRpcRoles gives
@@ -124,6 +133,8 @@ class SimulationService final : public v1::Simulation::Service {
   PeerChannels* peers_;
   DataKeeping data_;
   std::atomic<bool> stopping_{false};
+  LiveStreams live_;  // the open streaming reactors
+  StreamPump pump_;   // after live_ and the rest: its tasks may hold the last of a reactor
 };
 
 }  // namespace mbstream
