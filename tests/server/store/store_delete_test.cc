@@ -15,18 +15,6 @@ namespace {
 class StoreDeleteTest : public testing::StoreBackendTest {};
 INSTANTIATE_STORE_BACKENDS(StoreDeleteTest);
 
-// Run `id` ended with `frames` frames, live probe reports and a replay's probe set.
-void StoreWholeRun(Store& store, const std::string& id, int64_t frames) {
-  store.PutRun(MakeRun(id, v1::RUNNING, 1));
-  store.FinishRun(MakeRun(id, v1::FINISHED, 1), MakeFrames(frames, 2));
-  store.AddProbes({MakeProbe(id, 0, "tcp"), MakeProbe(id, 1, "tcp")});
-  v1::ProbeSet set;
-  set.set_id("ps-" + id);
-  set.set_run_id(id);
-  store.CreateProbeSet(set);
-  store.AddProbeSetReports(set.id(), {MakeProbe(id, 3, "tcp")});
-}
-
 TEST_P(StoreDeleteTest, DeleteRunRemovesAllOfItAndNothingElse) {
   auto store = Open();
   StoreWholeRun(*store, "r-1", kFramesPerChunk + 5);

@@ -78,6 +78,21 @@ v1::ModelBundle MakeBundle(const std::string& name, int num_assets) {
   return bundle;
 }
 
+void StoreWholeRun(Store& store, const std::string& id, int64_t frames,
+                   const std::string& model_id) {
+  v1::RunInfo info = MakeRun(id, v1::RUNNING, 1);
+  info.set_model_id(model_id);
+  store.PutRun(info);
+  info.set_state(v1::FINISHED);
+  store.FinishRun(info, MakeFrames(frames, 2));
+  store.AddProbes({MakeProbe(id, 0, "tcp"), MakeProbe(id, 1, "tcp")});
+  v1::ProbeSet set;
+  set.set_id("ps-" + id);
+  set.set_run_id(id);
+  store.CreateProbeSet(set);
+  store.AddProbeSetReports(set.id(), {MakeProbe(id, 3, "tcp")});
+}
+
 v1::RunInfo MakeRun(const std::string& id, v1::RunState state, int64_t created_unix_ms) {
   v1::RunInfo info;
   info.set_id(id);

@@ -75,6 +75,10 @@ v1::RunInfo MakeRun(const std::string& id, v1::RunState state, int64_t created_u
 // `count` frames of `dofs` joints with seq 0..count-1 (torques and energies filled).
 std::vector<v1::Frame> MakeFrames(int64_t count, int dofs);
 v1::ProbeReport MakeProbe(const std::string& run_id, int64_t seq, const std::string& probe);
+// Run `id` of model `model_id` stored whole: RUNNING, then FINISHED with `frames` frames (2
+// joints), two live probe reports (seq 0 and 1) and a replay's probe set "ps-<id>" of one.
+void StoreWholeRun(Store& store, const std::string& id, int64_t frames,
+                   const std::string& model_id = "m-abc");
 
 inline bool Same(const google::protobuf::Message& a, const google::protobuf::Message& b) {
   return google::protobuf::util::MessageDifferencer::Equals(a, b);

@@ -12,21 +12,6 @@ namespace {
 class StoreUsageTest : public testing::StoreBackendTest {};
 INSTANTIATE_STORE_BACKENDS(StoreUsageTest);
 
-// Run `id` of `model` ended with `frames` frames, 2 probe reports and a probe set of 1.
-void StoreRunOf(Store& store, const std::string& id, const std::string& model, int64_t frames) {
-  v1::RunInfo info = MakeRun(id, v1::RUNNING, 1);
-  info.set_model_id(model);
-  store.PutRun(info);
-  info.set_state(v1::FINISHED);
-  store.FinishRun(info, MakeFrames(frames, 2));
-  store.AddProbes({MakeProbe(id, 0, "tcp"), MakeProbe(id, 1, "tcp")});
-  v1::ProbeSet set;
-  set.set_id("ps-" + id);
-  set.set_run_id(id);
-  store.CreateProbeSet(set);
-  store.AddProbeSetReports(set.id(), {MakeProbe(id, 3, "tcp")});
-}
-
 int64_t ProbeBytes(const std::string& id) {
   return static_cast<int64_t>(MakeProbe(id, 0, "tcp").ByteSizeLong() +
                               MakeProbe(id, 1, "tcp").ByteSizeLong() +
@@ -44,9 +29,9 @@ int64_t FrameBytes(int64_t frames) {
 TEST_P(StoreUsageTest, CountsRunsAndBytesByModelAndState) {
   auto store = Open();
   EXPECT_EQ(store->Usage({}).frame_bytes, 0);
-  StoreRunOf(*store, "r-1", "m-a", kFramesPerChunk + 5);
-  StoreRunOf(*store, "r-2", "m-a", 7);
-  StoreRunOf(*store, "r-3", "m-b", 3);
+  StoreWholeRun(*store, "r-1", kFramesPerChunk + 5, "m-a");
+  StoreWholeRun(*store, "r-2", 7, "m-a");
+  StoreWholeRun(*store, "r-3", 3, "m-b");
   v1::RunInfo queued = MakeRun("r-4", v1::QUEUED, 2);
   queued.set_model_id("m-b");
   ASSERT_TRUE(store->AddRuns({queued}));
