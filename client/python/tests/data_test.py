@@ -11,23 +11,14 @@ import tempfile
 import unittest
 
 import mbstream_client as mb
+from server_case import ServerTestCase
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..")
 IRB = os.path.join(ROOT, "models", "irb1600")
 SEED_RUN = os.path.join(IRB, "seed-run.json")
 
 
-class DataTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        address = os.environ.get("MBSTREAM_SERVER")
-        if not address:
-            raise unittest.SkipTest("set MBSTREAM_SERVER (run_with_server.py does)")
-        cls.client = mb.connect(address)
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.client.close()
+class DataTest(ServerTestCase):
 
     def test_delete_runs_cancels_a_running_run_and_every_read_is_not_found(self):
         ended = self.client.run("irb1600", SEED_RUN)

@@ -9,6 +9,7 @@ import unittest
 import numpy as np
 
 import mbstream_client as mb
+from server_case import ServerTestCase
 from mbstream_client import simulation_service_pb2 as service_pb2
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..")
@@ -51,17 +52,7 @@ def replay_answering_probes(client, run_id, viewer):
     return probe_set
 
 
-class ReplayTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        address = os.environ.get("MBSTREAM_SERVER")
-        if not address:
-            raise unittest.SkipTest("set MBSTREAM_SERVER (run_with_server.py does)")
-        cls.client = mb.connect(address)
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.client.close()
+class ReplayTest(ServerTestCase):
 
     def test_each_replays_probe_set_can_be_fetched(self):
         run = self.client.run("irb1600", SEED_SERVO, duration=1)
