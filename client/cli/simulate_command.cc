@@ -75,6 +75,44 @@ std::string ReadModelText(const std::string& path) {
   return text.str();
 }
 
+// The run's one-paragraph summary on stdout.
+void PrintSummary(const RunStats& s, int64_t frames, const RunConfig& config,
+                  const std::string& out_dir) {
+  std::cout << RunStatusName(s.status) << ": " << frames;
+  if (config.keep.mode != FrameKeep::Mode::kAll) {
+    std::cout << " of " << s.summary.frames_computed << " frames kept (keep " << s.summary.keep
+              << ")";
+  } else {
+    std::cout << " frames";
+  }
+  std::cout << " to t = " << s.t_reached << " s, formulation " << s.formulation << " ("
+            << s.equations << " equations), method " << s.method << ", " << s.solver.steps
+            << " steps, cpu " << s.cpu_s * 1e3 << " ms";
+  if (s.tcp_error_max >= 0) std::cout << ", TCP error " << s.tcp_error_max << " m";
+  if (s.energy_error_max >= 0) std::cout << ", energy error " << s.energy_error_max;
+  if (!s.loops.cut_joints.empty()) {
+    std::cout << ", loop residual " << s.drift_position_max << " m, " << s.drift_orientation_max
+              << " rad, velocity " << s.drift_velocity_max;
+  }
+  std::cout << "\nresults in " << out_dir << "\n";
+}
+
+// Messages on a failed or missed run, the trust line, and the exit code.
+int ExitCodeOf(const RunStats& s, bool accept_untrusted) {
+  if (s.status != RunStatus::kFinished) {
+    std::cerr << "mbstream simulate: run " << RunStatusName(s.status) << ": " << s.message << "\n";
+  }
+  const bool missed =
+      s.status == RunStatus::kFinished && s.target_met.has_value() && !*s.target_met;
+  if (s.status == RunStatus::kFinished && s.target_met.has_value()) {
+    std::cout << TargetLine(*s.target_met, s.message) << "\n";
+  }
+  std::cout << TrustLine(TrustName(s.trust), s.trust_reason) << std::endl;
+  if (s.status != RunStatus::kFinished) return kExitRunFailed;
+  if ((s.trust == Trust::kLow || missed) && !accept_untrusted) return kExitUntrusted;
+  return kExitOk;
+}
+
 int RunSimulate(const SimulateOptions& options) {
   // URDF or SDFormat by content; an SDFormat model may close loops (import.loops).
   ModelFileImport import =
@@ -121,40 +159,12 @@ int RunSimulate(const SimulateOptions& options) {
     mcap_writer->Finish({}, StatsJson(result, provenance, writer.frames()), result.stats.t_reached);
   }
 
-  const RunStats& s = result.stats;
-  std::cout << RunStatusName(s.status) << ": " << writer.frames();
-  if (config.keep.mode != FrameKeep::Mode::kAll) {
-    std::cout << " of " << s.summary.frames_computed << " frames kept (keep " << s.summary.keep
-              << ")";
-  } else {
-    std::cout << " frames";
-  }
-  std::cout << " to t = " << s.t_reached << " s, formulation " << s.formulation << " ("
-            << s.equations << " equations), method " << s.method << ", " << s.solver.steps
-            << " steps, cpu " << s.cpu_s * 1e3 << " ms";
-  if (s.tcp_error_max >= 0) std::cout << ", TCP error " << s.tcp_error_max << " m";
-  if (s.energy_error_max >= 0) std::cout << ", energy error " << s.energy_error_max;
-  if (!s.loops.cut_joints.empty()) {
-    std::cout << ", loop residual " << s.drift_position_max << " m, " << s.drift_orientation_max
-              << " rad, velocity " << s.drift_velocity_max;
-  }
-  std::cout << "\nresults in " << options.out_dir << "\n";
+  PrintSummary(result.stats, writer.frames(), config, options.out_dir);
   if (mcap_writer) {
     std::cout << "MCAP in " << options.mcap_path << " (" << mcap_writer->bytes_written()
               << " bytes)\n";
   }
-  if (s.status != RunStatus::kFinished) {
-    std::cerr << "mbstream simulate: run " << RunStatusName(s.status) << ": " << s.message << "\n";
-  }
-  const bool missed =
-      s.status == RunStatus::kFinished && s.target_met.has_value() && !*s.target_met;
-  if (s.status == RunStatus::kFinished && s.target_met.has_value()) {
-    std::cout << TargetLine(*s.target_met, s.message) << "\n";
-  }
-  std::cout << TrustLine(TrustName(s.trust), s.trust_reason) << std::endl;
-  if (s.status != RunStatus::kFinished) return kExitRunFailed;
-  if ((s.trust == Trust::kLow || missed) && !options.accept_untrusted) return kExitUntrusted;
-  return kExitOk;
+  return ExitCodeOf(result.stats, options.accept_untrusted);
 }
 
 }  // namespace

@@ -143,85 +143,88 @@ std::unique_ptr<ServerHost> ServerHost::Start(const ServerConfig& config) {
   } catch (const net::SecurityConfigError& error) {
     throw InputError(error.what());
   }
-  host->authorizer_ = std::make_unique<Authorizer>(
-      config.token_file.empty() ? Authorizer::AllowAll()
-                                : Authorizer::FromTokenFile(config.token_file));
+  host->BuildParts(config);
+  host->Listen(config, credentials);
+  host->retention_->Start(config.retention_period_s);  // nothing without --retain-*
+  host->StartHealthAndMetrics(config);
+  return host;
+}
+
+void ServerHost::BuildParts(const ServerConfig& config) {
+  authorizer_ = std::make_unique<Authorizer>(config.token_file.empty()
+                                                 ? Authorizer::AllowAll()
+                                                 : Authorizer::FromTokenFile(config.token_file));
   const StoreLocation location = StoreLocationOf(config);
-  host->store_ = OpenStore(location);
+  store_ = OpenStore(location);
   if (!config.metrics.empty()) {
-    host->metrics_ = std::make_unique<MetricsEndpoint>();
-    host->store_ = host->metrics_->Measure(std::move(host->store_));
+    metrics_ = std::make_unique<MetricsEndpoint>();
+    store_ = metrics_->Measure(std::move(store_));
   }
-  host->models_ = std::make_unique<ModelRegistry>(host->store_.get(), config.limits);
-  const int stored = host->models_->LoadStored();
-  const int builtin =
-      config.models_dir.empty() ? 0 : host->models_->LoadBuiltins(config.models_dir);
+  models_ = std::make_unique<ModelRegistry>(store_.get(), config.limits);
+  const int stored = models_->LoadStored();
+  const int builtin = config.models_dir.empty() ? 0 : models_->LoadBuiltins(config.models_dir);
   spdlog::info("{} stored and {} built-in models loaded", stored, builtin);
   ReplicaOptions replica;
   replica.address = config.advertise;
   replica.lease_timeout_s = config.lease_timeout_s;
   replica.private_store = location.kind != StoreLocation::Kind::kPostgresql;
-  host->runs_ = std::make_unique<RunManager>(host->models_.get(), host->store_.get(), config.limits,
-                                             nullptr, replica);
+  runs_ =
+      std::make_unique<RunManager>(models_.get(), store_.get(), config.limits, nullptr, replica);
   if (location.kind != StoreLocation::Kind::kPostgresql) {  // --min-free-mb: SQLite only
     const std::string dir = location.target;
     FreeSpaceSource source = config.free_space_source;
     if (!source) source = [dir] { return FreeBytesAt(dir); };
-    host->runs_->SetFreeSpaceSource(source, dir);
-    host->free_space_ = std::make_unique<FreeSpaceWatch>(source, config.limits.min_free_bytes);
+    runs_->SetFreeSpaceSource(source, dir);
+    free_space_ = std::make_unique<FreeSpaceWatch>(source, config.limits.min_free_bytes);
   }
-  host->grace_s_ = config.grace_s;
+  grace_s_ = config.grace_s;
   if (replica.private_store) {
     if (!config.peer_ca.empty()) {
       throw InputError("--peer-ca is for replicas sharing a PostgreSQL --store; this one has none");
     }
   } else {
     try {
-      host->peers_ =
-          std::make_unique<PeerChannels>(PeerSecurityOf(config), host->runs_->replica_id());
+      peers_ = std::make_unique<PeerChannels>(PeerSecurityOf(config), runs_->replica_id());
     } catch (const net::SecurityConfigError& error) {
       throw InputError(error.what());
     }
   }
-  host->deleter_ =
-      std::make_unique<RunDeleter>(host->store_.get(), host->runs_.get(), host->models_.get());
-  host->retention_ =
-      std::make_unique<Retention>(host->store_.get(), host->deleter_.get(), config.retention);
-  host->storage_ = std::make_unique<StorageKeeper>(
-      StorageSetup{host->store_.get(), replica.private_store,
-                   replica.private_store ? location.target : host->store_->path(),
-                   host->models_.get(), host->retention_.get(), host->free_space_.get()});
-  host->service_ = std::make_unique<SimulationService>(
-      host->models_.get(), host->runs_.get(), host->authorizer_.get(), host->peers_.get(),
-      DataKeeping{host->deleter_.get(), host->retention_.get(), host->storage_.get()});
+  deleter_ = std::make_unique<RunDeleter>(store_.get(), runs_.get(), models_.get());
+  retention_ = std::make_unique<Retention>(store_.get(), deleter_.get(), config.retention);
+  storage_ = std::make_unique<StorageKeeper>(StorageSetup{
+      store_.get(), replica.private_store, replica.private_store ? location.target : store_->path(),
+      models_.get(), retention_.get(), free_space_.get()});
+  service_ = std::make_unique<SimulationService>(
+      models_.get(), runs_.get(), authorizer_.get(), peers_.get(),
+      DataKeeping{deleter_.get(), retention_.get(), storage_.get()});
+}
 
+void ServerHost::Listen(const ServerConfig& config,
+                        const std::shared_ptr<grpc::ServerCredentials>& credentials) {
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
   int port = 0;
   builder.AddListeningPort(config.listen, credentials, &port);
-  builder.RegisterService(host->service_.get());
+  builder.RegisterService(service_.get());
   grpc::ResourceQuota quota("mbstream-server");
   ApplyGrpcLimits(config, quota, builder);
   // A unix socket is created owner-only (the umask applies while gRPC binds it).
   const bool unix_socket = config.listen.rfind("unix:", 0) == 0;
   const mode_t previous_mask = unix_socket ? umask(0077) : 0;
-  host->server_ = builder.BuildAndStart();
+  server_ = builder.BuildAndStart();
   if (unix_socket) umask(previous_mask);
   std::string name, port_text;
   const bool has_port = SplitPort(config.listen, &name, &port_text);
-  if (!host->server_ || (has_port && port == 0)) {
-    host->runs_->Shutdown("the server could not start");
+  if (!server_ || (has_port && port == 0)) {
+    runs_->Shutdown("the server could not start");
     throw InputError("cannot listen on " + config.listen +
                      ": is the address valid and the port free? (use port 0 for any free port)");
   }
-  host->address_ = has_port ? name + ":" + std::to_string(port) : config.listen;
+  address_ = has_port ? name + ":" + std::to_string(port) : config.listen;
   if (config.advertise.empty()) {
-    host->runs_->SetAdvertisedAddress(AdvertisedAddress(name, port, host->address_));
+    runs_->SetAdvertisedAddress(AdvertisedAddress(name, port, address_));
   }
-  host->retention_->Start(config.retention_period_s);  // nothing without --retain-*
-  host->StartHealthAndMetrics(config);
-  return host;
 }
 
 void ServerHost::StartHealthAndMetrics(const ServerConfig& config) {

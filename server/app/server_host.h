@@ -101,6 +101,10 @@ class ServerHost {
  private:
   ServerHost() = default;
   // The health service's statuses, the free-space watch and /metrics (end of Start).
+  void BuildParts(const ServerConfig& config);  // store, models, runs, service...
+  // The gRPC server on config.listen (InputError when it cannot listen there).
+  void Listen(const ServerConfig& config,
+              const std::shared_ptr<grpc::ServerCredentials>& credentials);
   void StartHealthAndMetrics(const ServerConfig& config);
   std::unique_ptr<MetricsEndpoint> metrics_;  // before store_: the store may report to it
   std::unique_ptr<Store> store_;

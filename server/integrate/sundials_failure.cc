@@ -144,26 +144,16 @@ std::string Detail(const char* flag_name, const char* solver_message) {
   return FormatString(" [%s; SUNDIALS: %s]", flag_name, solver_message);
 }
 
-}  // namespace
-
-AdvanceResult FailureResult(const FailureContext& c) {
-  const Classified classified =
-      c.family == Family::kCvode ? ClassifyCvode(c.flag) : ClassifyArkode(c.flag);
-  const std::string detail = Detail(classified.flag_name, c.solver_message);
-
-  // A failure the right-hand side adapter recorded (divergence, non-finite derivative, the
-  // model's own unrecoverable failure) explains any flag it led to.
-  if (c.rhs != nullptr && c.rhs->event() != RhsAdapter::Event::kNone) {
-    AdvanceResult result = RhsEventResult(
-        c.solver, *c.rhs, c.t_reached, c.implicit ? MethodKind::kImplicit : MethodKind::kExplicit);
-    result.message += detail;
-    return result;
-  }
-
+// The status and message of a classified failure (the flag's own detail is added after).
+struct Outcome {
+  IntegratorStatus status = IntegratorStatus::kSetupFailure;
+  std::string message;
+};
+Outcome KindOutcome(Kind kind, const FailureContext& c) {
   const double t = c.t_reached;
   IntegratorStatus status = IntegratorStatus::kSetupFailure;
   std::string message;
-  switch (classified.kind) {
+  switch (kind) {
     case Kind::kTooMuchWork:
       status = IntegratorStatus::kTooMuchWork;
       message = TooMuchWorkMessage(c.solver, c.max_steps, t, c.t_out, c.implicit);
@@ -237,7 +227,27 @@ AdvanceResult FailureResult(const FailureContext& c) {
           c.solver, t);
       break;
   }
-  return {status, t, message + detail};
+  return {status, message};
+}
+
+}  // namespace
+
+AdvanceResult FailureResult(const FailureContext& c) {
+  const Classified classified =
+      c.family == Family::kCvode ? ClassifyCvode(c.flag) : ClassifyArkode(c.flag);
+  const std::string detail = Detail(classified.flag_name, c.solver_message);
+
+  // A failure the right-hand side adapter recorded (divergence, non-finite derivative, the
+  // model's own unrecoverable failure) explains any flag it led to.
+  if (c.rhs != nullptr && c.rhs->event() != RhsAdapter::Event::kNone) {
+    AdvanceResult result = RhsEventResult(
+        c.solver, *c.rhs, c.t_reached, c.implicit ? MethodKind::kImplicit : MethodKind::kExplicit);
+    result.message += detail;
+    return result;
+  }
+
+  const Outcome outcome = KindOutcome(classified.kind, c);
+  return {outcome.status, c.t_reached, outcome.message + detail};
 }
 
 }  // namespace mbstream::sundials
