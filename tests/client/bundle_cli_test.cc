@@ -8,7 +8,7 @@
 #include <random>
 #include <string>
 
-#include "tests/common/server_process.h"
+#include "tests/common/cli_server_test.h"
 
 namespace mbstream::testing {
 namespace {
@@ -69,23 +69,8 @@ void WriteDescription(const fs::path& folder, const std::string& package, bool m
 )");
 }
 
-class BundleCliTest : public ::testing::Test {
+class BundleCliTest : public CliServerTest {
  protected:
-  void SetUp() override {
-    std::random_device random;
-    dir_ = fs::temp_directory_path() / ("mbstream-bundle-" + std::to_string(random()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    server_.reset();
-    fs::remove_all(dir_);
-  }
-  void StartServer(const std::vector<std::string>& args = {}) {
-    server_ = std::make_unique<ServerProcess>(MBSTREAM_SERVER, (dir_ / "data").string(), args);
-  }
-  CommandOutcome Cli(const std::string& args) {
-    return RunCommand(std::string(MBSTREAM_CLI) + " --server " + server_->address() + " " + args);
-  }
   CommandOutcome Local(const std::string& args) {
     return RunCommand(std::string(MBSTREAM_CLI) + " " + args);
   }
@@ -96,9 +81,6 @@ class BundleCliTest : public ::testing::Test {
     std::ofstream(path, std::ios::binary) << text;
     return path.string();
   }
-
-  fs::path dir_;
-  std::unique_ptr<ServerProcess> server_;
 };
 
 TEST_F(BundleCliTest, SubmitRepairFixesATriangleInequalityDefect) {

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <random>
 
-#include "tests/common/server_process.h"
+#include "tests/common/cli_server_test.h"
 
 namespace mbstream::testing {
 namespace {
@@ -15,31 +15,17 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-class DataCliTest : public ::testing::Test {
+class DataCliTest : public CliServerTest {
  protected:
   void SetUp() override {
-    std::random_device random;
-    dir_ = fs::temp_directory_path() / ("mbstream-data-cli-" + std::to_string(random()));
-    fs::create_directories(dir_);
-    server_ = std::make_unique<ServerProcess>(
-        MBSTREAM_SERVER, (dir_ / "data").string(),
-        std::vector<std::string>{"--retain-runs", "1", "--retention-period-s", "86400"});
-  }
-  void TearDown() override {
-    server_.reset();
-    fs::remove_all(dir_);
-  }
-  CommandOutcome Cli(const std::string& args) {
-    return RunCommand(std::string(MBSTREAM_CLI) + " --server " + server_->address() + " " + args);
+    CliServerTest::SetUp();
+    StartServer({"--retain-runs", "1", "--retention-period-s", "86400"});
   }
   std::string EndedRun() {
     const CommandOutcome run = Cli("run irb1600 --spec models/irb1600/seed-run.json --watch");
     EXPECT_EQ(run.exit_code, 0) << run.output;
     return run.output.substr(0, run.output.find('\n'));
   }
-
-  fs::path dir_;
-  std::unique_ptr<ServerProcess> server_;
 };
 
 TEST_F(DataCliTest, KeepRetentionDryRunAndDelete) {

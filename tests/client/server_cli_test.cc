@@ -12,8 +12,8 @@
 #include <random>
 #include <sstream>
 
+#include "tests/common/cli_server_test.h"
 #include "tests/common/sanitized_build.h"
-#include "tests/common/server_process.h"
 
 namespace mbstream::testing {
 namespace {
@@ -22,32 +22,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-std::string ReadFile(const fs::path& path) { return ReadTextFile(path.string()); }
-
-std::string FirstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
-
-class ServerCliTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    std::random_device random;
-    dir_ = fs::temp_directory_path() / ("mbstream-cli-" + std::to_string(random()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    server_.reset();
-    fs::remove_all(dir_);
-  }
-  void StartServer(const std::vector<std::string>& args = {}) {
-    server_ = std::make_unique<ServerProcess>(MBSTREAM_SERVER, (dir_ / "data").string(), args);
-  }
-  CommandOutcome Cli(const std::string& args) {
-    return RunCommand(std::string(MBSTREAM_CLI) + " --server " + server_->address() + " " + args);
-  }
-  std::string Out(const std::string& name) { return (dir_ / name).string(); }
-
-  fs::path dir_;
-  std::unique_ptr<ServerProcess> server_;
-};
+class ServerCliTest : public CliServerTest {};
 
 TEST_F(ServerCliTest, SubmitRunWatchOutGivesTheSameFilesAsSimulate) {
   StartServer();

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <random>
 
-#include "tests/common/server_process.h"
+#include "tests/common/cli_server_test.h"
 
 namespace mbstream::testing {
 namespace {
@@ -16,33 +16,15 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-std::string ReadFile(const fs::path& path) { return ReadTextFile(path.string()); }
-
-std::string FirstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
-
-class ServerLoopsCliTest : public ::testing::Test {
+class ServerLoopsCliTest : public CliServerTest {
  protected:
   void SetUp() override {
-    std::random_device random;
-    dir_ = fs::temp_directory_path() / ("mbstream-loops-" + std::to_string(random()));
-    fs::create_directories(dir_);
-    server_ = std::make_unique<ServerProcess>(MBSTREAM_SERVER, (dir_ / "data").string(),
-                                              std::vector<std::string>{});
-  }
-  void TearDown() override {
-    server_.reset();
-    fs::remove_all(dir_);
-  }
-  CommandOutcome Cli(const std::string& args) {
-    return RunCommand(std::string(MBSTREAM_CLI) + " --server " + server_->address() + " " + args);
+    CliServerTest::SetUp();
+    StartServer();
   }
   CommandOutcome Simulate(const std::string& args) {
     return RunCommand(std::string(MBSTREAM_CLI) + " simulate " + args);
   }
-  std::string Out(const std::string& name) { return (dir_ / name).string(); }
-
-  fs::path dir_;
-  std::unique_ptr<ServerProcess> server_;
 };
 
 // The server's files of a run against simulate's: every file the run writes.

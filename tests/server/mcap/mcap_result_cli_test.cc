@@ -11,8 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/common/cli_server_test.h"
 #include "tests/common/sanitized_build.h"
-#include "tests/common/server_process.h"
 
 namespace mbstream::testing {
 namespace {
@@ -20,25 +20,12 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-class McapResultCliTest : public ::testing::Test {
+class McapResultCliTest : public CliServerTest {
  protected:
   void SetUp() override {
-    std::random_device random;
-    dir_ = fs::temp_directory_path() / ("mbstream-mcap-cli-" + std::to_string(random()));
-    fs::create_directories(dir_);
-    server_ = std::make_unique<ServerProcess>(MBSTREAM_SERVER, (dir_ / "data").string());
+    CliServerTest::SetUp();
+    StartServer();
   }
-  void TearDown() override {
-    server_.reset();
-    fs::remove_all(dir_);
-  }
-  CommandOutcome Cli(const std::string& args) {
-    return RunCommand(std::string(MBSTREAM_CLI) + " --server " + server_->address() + " " + args);
-  }
-  std::string Out(const std::string& name) { return (dir_ / name).string(); }
-
-  fs::path dir_;
-  std::unique_ptr<ServerProcess> server_;
 };
 
 // A field of /proc/PID/status in KB ("VmRSS", "VmHWM"); -1 when missing.
