@@ -12,8 +12,8 @@
 #include <thread>
 
 #include "mbstream/v1/viewer_service.grpc.pb.h"
+#include "tests/common/cli_server_test.h"
 #include "tests/common/csv_rows.h"
-#include "tests/common/server_process.h"
 
 namespace mbstream::testing {
 namespace {
@@ -23,20 +23,11 @@ using ::testing::HasSubstr;
 
 using Rows = std::vector<std::vector<std::string>>;
 
-class ReplayE2eTest : public ::testing::Test {
+class ReplayE2eTest : public CliServerTest {
  protected:
   void SetUp() override {
-    dir_ =
-        fs::temp_directory_path() / ("mbstream-replay-" + std::to_string(std::random_device()()));
-    fs::create_directories(dir_);
-    server_ = std::make_unique<ServerProcess>(MBSTREAM_SERVER, (dir_ / "data").string());
-  }
-  void TearDown() override {
-    server_.reset();
-    fs::remove_all(dir_);
-  }
-  CommandOutcome Cli(const std::string& args) {
-    return RunCommand(std::string(MBSTREAM_CLI) + " --server " + server_->address() + " " + args);
+    CliServerTest::SetUp();
+    StartServer();
   }
   // Starts a --follow viewer in the background that exits after one run; waits until it
   // is subscribed.
@@ -80,8 +71,6 @@ class ReplayE2eTest : public ::testing::Test {
     EXPECT_EQ(count, 1) << sets.output;
     return id;
   }
-  fs::path dir_;
-  std::unique_ptr<ServerProcess> server_;
 };
 
 TEST_F(ReplayE2eTest, ReplayAnswersWithTheLiveRunsProbesBitForBit) {

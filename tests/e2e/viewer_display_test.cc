@@ -9,7 +9,7 @@
 #include <random>
 #include <thread>
 
-#include "tests/common/server_process.h"
+#include "tests/common/cli_server_test.h"
 #include "tests/e2e/probe_checks.h"
 #include "tests/viewer/xvfb_server.h"
 
@@ -20,20 +20,17 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-class ViewerDisplayTest : public ::testing::Test {
+class ViewerDisplayTest : public CliServerTest {
  protected:
   void SetUp() override {
-    dir_ =
-        fs::temp_directory_path() / ("mbstream-display-" + std::to_string(std::random_device()()));
-    fs::create_directories(dir_);
-    server_ = std::make_unique<ServerProcess>(MBSTREAM_SERVER, (dir_ / "data").string());
+    CliServerTest::SetUp();
+    StartServer();
   }
   void TearDown() override {
     // A viewer still running (a test that failed) is stopped with what it started (Xvfb).
     const std::string group = ReadTextFile((dir_ / "viewer.pgid").string());
     if (!group.empty()) kill(-std::stoi(group), SIGTERM);
-    server_.reset();
-    fs::remove_all(dir_);
+    CliServerTest::TearDown();
   }
   std::string Cli() const { return std::string(MBSTREAM_CLI) + " --server " + server_->address(); }
   // Starts `command` (a viewer; no single quotes) in the background, in a process group of its
@@ -45,8 +42,6 @@ class ViewerDisplayTest : public ::testing::Test {
             .exit_code,
         0);
   }
-  fs::path dir_;
-  std::unique_ptr<ServerProcess> server_;
 };
 
 // Waits up to 30 s for `path` to exist.

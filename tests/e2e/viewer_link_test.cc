@@ -7,8 +7,8 @@
 #include <random>
 #include <sstream>
 
+#include "tests/common/cli_server_test.h"
 #include "tests/common/csv_rows.h"
-#include "tests/common/server_process.h"
 #include "tests/e2e/probe_checks.h"
 
 namespace mbstream::testing {
@@ -17,26 +17,16 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-class ViewerLinkTest : public ::testing::Test {
+class ViewerLinkTest : public CliServerTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mbstream-e2e-" + std::to_string(std::random_device()()));
-    fs::create_directories(dir_);
-    server_ = std::make_unique<ServerProcess>(MBSTREAM_SERVER, (dir_ / "data").string());
-  }
-  void TearDown() override {
-    server_.reset();
-    fs::remove_all(dir_);
-  }
-  CommandOutcome Cli(const std::string& args) {
-    return RunCommand(std::string(MBSTREAM_CLI) + " --server " + server_->address() + " " + args);
+    CliServerTest::SetUp();
+    StartServer();
   }
   std::string Viewer(const std::string& args) {
     return "scripts/with-xvfb.sh " + std::string(MBSTREAM_VIEWER) + " --server " +
            server_->address() + " --offscreen --size 320x240 " + args;
   }
-  fs::path dir_;
-  std::unique_ptr<ServerProcess> server_;
 };
 
 TEST_F(ViewerLinkTest, FollowingViewerAnswersEveryFrameWithTheTcp) {
