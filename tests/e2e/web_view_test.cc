@@ -120,6 +120,25 @@ class WebViewTest : public ::testing::Test {
     EXPECT_TRUE(seen.is_object()) << browsed.output;
     return seen.is_object() ? seen : nlohmann::json::object();
   }
+  // Follows a run of the submitted model `model` (20 s at real time, 20 frames/s) with a
+  // viewer started with `viewer_args` and the browser, cancels it, and checks what every
+  // submitted model's page shows: the run, no error, the robot on the screenshot.
+  nlohmann::json WatchSubmittedRun(const std::string& model, const std::string& viewer_args) {
+    const std::string url = StartViewer("--follow --exit-after-runs 1 " + viewer_args);
+    const CommandOutcome started =
+        Cli("run " + model + " --duration 20 --output-interval 0.05 --realtime 1");
+    EXPECT_EQ(started.exit_code, 0) << started.output;
+    const std::string run = started.output.substr(0, started.output.find('\n'));
+    const nlohmann::json seen = Browse(url);
+    Cli("cancel " + run);
+    PrintFigures(seen);
+    const nlohmann::json errors = seen.value("errors", nlohmann::json());
+    EXPECT_TRUE(errors.is_array()) << "the browser saw nothing";
+    EXPECT_TRUE(errors.empty()) << errors;
+    EXPECT_EQ(seen.value("run", ""), run);
+    EXPECT_GT(seen.value("drawn_fraction", 0.0), 0.005) << "the screenshot shows no robot";
+    return seen;
+  }
   // Every recorded frame's first probe against the run's TCP at the same seq.
   void ExpectProbesAtTcp(const nlohmann::json& seen, const std::string& run_id) {
     ExpectProbesAtTcpWith(seen, run_id, "");
@@ -315,18 +334,7 @@ TEST_F(WebViewTest, AColladaMeshedRobotIsDrawnWithItsMaterialColours) {
       << joint("tool_tcp", "fixed", "tool", "tcp", "0 0 0.1") << "</robot>\n";
   const CommandOutcome submitted = Cli("submit " + (robot / "colladabot.urdf").string());
   ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
-  const std::string url = StartViewer("--follow --exit-after-runs 1");
-  const CommandOutcome started =
-      Cli("run colladabot --duration 20 --output-interval 0.05 --realtime 1");
-  ASSERT_EQ(started.exit_code, 0) << started.output;
-  const std::string run = started.output.substr(0, started.output.find('\n'));
-  const nlohmann::json seen = Browse(url);
-  Cli("cancel " + run);
-  PrintFigures(seen);
-  ASSERT_TRUE(seen.contains("errors")) << "the browser saw nothing";
-  EXPECT_EQ(seen.value("run", ""), run);
-  EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
-  EXPECT_GT(seen.value("drawn_fraction", 0.0), 0.005) << "the screenshot shows no robot";
+  const nlohmann::json seen = WatchSubmittedRun("colladabot", "");
   EXPECT_EQ(seen.value("triangles", 0), 36) << "three Collada boxes of 12 triangles";
   ASSERT_TRUE(seen["parts"].is_array()) << seen.dump().substr(0, 2000);
   std::vector<Vector3d> colours;
@@ -412,18 +420,8 @@ TEST_F(WebViewTest, ATexturedMeshAndAMissingOneLookInThePageAsInTheWindow) {
   // server keeps them): the viewer draws the texture from the server's bundle alone.
   EXPECT_THAT(submitted.output, HasSubstr(", 3 assets"));
   // The VTK window writes a snapshot every 10th draw: the same texture there.
-  const std::string url = StartViewer(
-      "--follow --exit-after-runs 1 --snapshot-every 10 --snapshots " + (dir_ / "window").string());
-  const CommandOutcome started =
-      Cli("run skinbot --duration 20 --output-interval 0.05 --realtime 1");
-  ASSERT_EQ(started.exit_code, 0) << started.output;
-  const std::string run = started.output.substr(0, started.output.find('\n'));
-  const nlohmann::json seen = Browse(url);
-  Cli("cancel " + run);
-  ASSERT_TRUE(seen.contains("errors")) << "the browser saw nothing";
-  EXPECT_EQ(seen.value("run", ""), run);
-  EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
-  EXPECT_GT(seen.value("drawn_fraction", 0.0), 0.005) << "the screenshot shows no robot";
+  const nlohmann::json seen =
+      WatchSubmittedRun("skinbot", "--snapshot-every 10 --snapshots " + (dir_ / "window").string());
   EXPECT_THAT(seen.value("hud", ""), HasSubstr("1 mesh missing: gone.dae"));
   std::printf("web look: drawn %.4f, red %.4f of the page\n", seen.value("drawn_fraction", 0.0),
               seen.value("red_fraction", 0.0));
@@ -458,17 +456,7 @@ TEST_F(WebViewTest, APublishedTexturedColladaRobotIsDrawnFromItsSubmittedBundle)
   const CommandOutcome submitted = Cli("submit " + (dir_ / "wam" / "wam.urdf").string());
   ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
   EXPECT_THAT(submitted.output, HasSubstr(", 14 assets")) << "8 Collada meshes and 6 images";
-  const std::string url = StartViewer("--follow --exit-after-runs 1");
-  const CommandOutcome started = Cli("run wam --duration 20 --output-interval 0.05 --realtime 1");
-  ASSERT_EQ(started.exit_code, 0) << started.output;
-  const std::string run = started.output.substr(0, started.output.find('\n'));
-  const nlohmann::json seen = Browse(url);
-  Cli("cancel " + run);
-  PrintFigures(seen);
-  ASSERT_TRUE(seen.contains("errors")) << "the browser saw nothing";
-  EXPECT_EQ(seen.value("run", ""), run);
-  EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
-  EXPECT_GT(seen.value("drawn_fraction", 0.0), 0.005) << "the screenshot shows no robot";
+  const nlohmann::json seen = WatchSubmittedRun("wam", "");
   EXPECT_GT(seen.value("triangles", 0), 5000) << "the WAM's Collada meshes (9,433 drawn)";
   EXPECT_THAT(seen.value("hud", ""), Not(HasSubstr("missing")));
   ASSERT_TRUE(seen["parts"].is_array()) << seen.dump().substr(0, 2000);
