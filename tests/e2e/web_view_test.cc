@@ -3,10 +3,15 @@
 // through SwiftShader) driven by playwright-core (web_page_check.mjs): the page draws the
 // run, its probes (from its own scene graph) are where the server put the TCP, a second
 // page shows the same run at once, a replay's controls and compare ghost work, and the page
-// over HTTPS (--web-tls) with the server's tokens, a robot whose meshes are Collada, and one
-// with a textured OBJ and a missing mesh.
+// over HTTPS (--web-tls) with the server's tokens, a robot whose meshes are Collada, one
+// with a textured OBJ and a missing mesh (drawn textured in the page and in the VTK window's
+// snapshots, from the submitted bundle alone), and a published robot with textured Collada
+// meshes (the Barrett WAM that Debian's dart-doc ships).
 #include <gmock/gmock.h>
 #include <signal.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGReader.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -24,7 +29,40 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using ::testing::StartsWith;
+
+// The fraction of a PNG's pixels that are strongly red, as web_page_check.mjs counts them in
+// the page's screenshot (a test's red texture; no default colour is); -1 when unreadable.
+double RedFractionOfPng(const fs::path& png) {
+  vtkNew<vtkPNGReader> reader;
+  if (!reader->CanReadFile(png.c_str())) return -1.0;
+  reader->SetFileName(png.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  const int components = image->GetNumberOfScalarComponents();
+  if (image->GetScalarType() != VTK_UNSIGNED_CHAR || components < 3) return -1.0;
+  const auto* pixels = static_cast<const unsigned char*>(image->GetScalarPointer());
+  const long count = static_cast<long>(dims[0]) * dims[1];
+  long red = 0;
+  for (long i = 0; i < count; ++i) {
+    const unsigned char* p = pixels + i * components;
+    if (p[0] > 60 && p[0] > 2 * p[1] && p[0] > 2 * p[2]) ++red;
+  }
+  return count > 0 ? static_cast<double>(red) / static_cast<double>(count) : -1.0;
+}
+
+// The last PNG the viewer wrote into `dir` (frame_NNNNN.png, in order).
+fs::path LastSnapshot(const fs::path& dir) {
+  fs::path last;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(dir, error)) {
+    if (entry.path().extension() == ".png" && entry.path() > last) last = entry.path();
+  }
+  return last;
+}
 
 class WebViewTest : public ::testing::Test {
  protected:
@@ -81,6 +119,25 @@ class WebViewTest : public ::testing::Test {
     nlohmann::json seen = nlohmann::json::parse(browsed.output, nullptr, false);
     EXPECT_TRUE(seen.is_object()) << browsed.output;
     return seen.is_object() ? seen : nlohmann::json::object();
+  }
+  // Follows a run of the submitted model `model` (20 s at real time, 20 frames/s) with a
+  // viewer started with `viewer_args` and the browser, cancels it, and checks what every
+  // submitted model's page shows: the run, no error, the robot on the screenshot.
+  nlohmann::json WatchSubmittedRun(const std::string& model, const std::string& viewer_args) {
+    const std::string url = StartViewer("--follow --exit-after-runs 1 " + viewer_args);
+    const CommandOutcome started =
+        Cli("run " + model + " --duration 20 --output-interval 0.05 --realtime 1");
+    EXPECT_EQ(started.exit_code, 0) << started.output;
+    const std::string run = started.output.substr(0, started.output.find('\n'));
+    const nlohmann::json seen = Browse(url);
+    Cli("cancel " + run);
+    PrintFigures(seen);
+    const nlohmann::json errors = seen.value("errors", nlohmann::json());
+    EXPECT_TRUE(errors.is_array()) << "the browser saw nothing";
+    EXPECT_TRUE(errors.empty()) << errors;
+    EXPECT_EQ(seen.value("run", ""), run);
+    EXPECT_GT(seen.value("drawn_fraction", 0.0), 0.005) << "the screenshot shows no robot";
+    return seen;
   }
   // Every recorded frame's first probe against the run's TCP at the same seq.
   void ExpectProbesAtTcp(const nlohmann::json& seen, const std::string& run_id) {
@@ -277,18 +334,7 @@ TEST_F(WebViewTest, AColladaMeshedRobotIsDrawnWithItsMaterialColours) {
       << joint("tool_tcp", "fixed", "tool", "tcp", "0 0 0.1") << "</robot>\n";
   const CommandOutcome submitted = Cli("submit " + (robot / "colladabot.urdf").string());
   ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
-  const std::string url = StartViewer("--follow --exit-after-runs 1");
-  const CommandOutcome started =
-      Cli("run colladabot --duration 20 --output-interval 0.05 --realtime 1");
-  ASSERT_EQ(started.exit_code, 0) << started.output;
-  const std::string run = started.output.substr(0, started.output.find('\n'));
-  const nlohmann::json seen = Browse(url);
-  Cli("cancel " + run);
-  PrintFigures(seen);
-  ASSERT_TRUE(seen.contains("errors")) << "the browser saw nothing";
-  EXPECT_EQ(seen.value("run", ""), run);
-  EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
-  EXPECT_GT(seen.value("drawn_fraction", 0.0), 0.005) << "the screenshot shows no robot";
+  const nlohmann::json seen = WatchSubmittedRun("colladabot", "");
   EXPECT_EQ(seen.value("triangles", 0), 36) << "three Collada boxes of 12 triangles";
   ASSERT_TRUE(seen["parts"].is_array()) << seen.dump().substr(0, 2000);
   std::vector<Vector3d> colours;
@@ -373,17 +419,9 @@ TEST_F(WebViewTest, ATexturedMeshAndAMissingOneLookInThePageAsInTheWindow) {
   // The bundle carries the OBJ's .mtl and its image (mbstream submit attaches them, the
   // server keeps them): the viewer draws the texture from the server's bundle alone.
   EXPECT_THAT(submitted.output, HasSubstr(", 3 assets"));
-  const std::string url = StartViewer("--follow --exit-after-runs 1");
-  const CommandOutcome started =
-      Cli("run skinbot --duration 20 --output-interval 0.05 --realtime 1");
-  ASSERT_EQ(started.exit_code, 0) << started.output;
-  const std::string run = started.output.substr(0, started.output.find('\n'));
-  const nlohmann::json seen = Browse(url);
-  Cli("cancel " + run);
-  ASSERT_TRUE(seen.contains("errors")) << "the browser saw nothing";
-  EXPECT_EQ(seen.value("run", ""), run);
-  EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
-  EXPECT_GT(seen.value("drawn_fraction", 0.0), 0.005) << "the screenshot shows no robot";
+  // The VTK window writes a snapshot every 10th draw: the same texture there.
+  const nlohmann::json seen =
+      WatchSubmittedRun("skinbot", "--snapshot-every 10 --snapshots " + (dir_ / "window").string());
   EXPECT_THAT(seen.value("hud", ""), HasSubstr("1 mesh missing: gone.dae"));
   std::printf("web look: drawn %.4f, red %.4f of the page\n", seen.value("drawn_fraction", 0.0),
               seen.value("red_fraction", 0.0));
@@ -397,6 +435,34 @@ TEST_F(WebViewTest, ATexturedMeshAndAMissingOneLookInThePageAsInTheWindow) {
   }
   EXPECT_EQ(textured, 1) << seen["parts"] << ReadTextFile((dir_ / "viewer.log").string());
   EXPECT_EQ(tinted, 1) << seen["parts"];
+  ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
+  const fs::path window = LastSnapshot(dir_ / "window");  // complete: the viewer has exited
+  ASSERT_FALSE(window.empty()) << "the VTK window wrote no snapshot";
+  const double window_red = RedFractionOfPng(window);
+  std::printf("window look: red %.4f of %s\n", window_red, window.filename().c_str());
+  EXPECT_GT(window_red, 0.002) << "the VTK window draws no texture (" << window << ")";
+}
+
+// A published robot whose meshes are textured Collada: the Barrett WAM of DART's examples
+// (Debian's dart-doc: wam.urdf, meshes/wam/*.dae naming ../images/*.jpg, package:// URIs).
+// Submitted as published, with nothing but its folder; the page draws every mesh, six of them
+// with their images, and names no missing mesh.
+TEST_F(WebViewTest, APublishedTexturedColladaRobotIsDrawnFromItsSubmittedBundle) {
+  const fs::path published = "/usr/share/doc/dart/data/urdf/wam";
+  if (!fs::exists(published / "wam.urdf")) {
+    GTEST_SKIP() << published << " is not here: install Debian's dart-doc (scripts/setup.sh)";
+  }
+  fs::copy(published, dir_ / "wam", fs::copy_options::recursive);
+  const CommandOutcome submitted = Cli("submit " + (dir_ / "wam" / "wam.urdf").string());
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
+  EXPECT_THAT(submitted.output, HasSubstr(", 14 assets")) << "8 Collada meshes and 6 images";
+  const nlohmann::json seen = WatchSubmittedRun("wam", "");
+  EXPECT_GT(seen.value("triangles", 0), 5000) << "the WAM's Collada meshes (9,433 drawn)";
+  EXPECT_THAT(seen.value("hud", ""), Not(HasSubstr("missing")));
+  ASSERT_TRUE(seen["parts"].is_array()) << seen.dump().substr(0, 2000);
+  int textured = 0;
+  for (const auto& part : seen["parts"]) textured += part.value("textured", false) ? 1 : 0;
+  EXPECT_GE(textured, 6) << seen["parts"] << ReadTextFile((dir_ / "viewer.log").string());
   ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
 }
 

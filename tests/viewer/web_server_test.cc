@@ -20,6 +20,9 @@
 #include <mutex>
 #include <random>
 #include <string>
+#include <thread>
+#include <utility>
+#include <vector>
 
 #include "viewer/web/web_server.h"
 #include "viewer/web/web_view.h"
@@ -132,6 +135,28 @@ TEST_F(WebServerTest, ALatePageGetsTheSceneAndTheNewestFrameAtOnce) {
   auto page = Page();
   EXPECT_EQ(Read(*page), R"({"type":"scene","version":1})");
   EXPECT_EQ(Read(*page), R"({"type":"frame","n":2})");
+}
+
+// What the viewer's threads hand to the web thread (WebView: the newest pose, to encode and
+// send) runs there, in the order posted, not on the poster's thread.
+TEST_F(WebServerTest, PostedWorkRunsOnTheWebThreadInOrder) {
+  std::mutex mutex;
+  std::condition_variable ran;
+  std::vector<std::pair<int, std::thread::id>> seen;  // each task's number and thread
+  for (int i = 0; i < 3; ++i) {
+    server_->Post([&, i] {
+      std::lock_guard<std::mutex> lock(mutex);
+      seen.emplace_back(i, std::this_thread::get_id());
+      ran.notify_all();
+    });
+  }
+  std::unique_lock<std::mutex> lock(mutex);
+  ASSERT_TRUE(ran.wait_for(lock, std::chrono::seconds(30), [&] { return seen.size() == 3; }));
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(seen[i].first, i);
+    EXPECT_NE(seen[i].second, std::this_thread::get_id());
+    EXPECT_EQ(seen[i].second, seen[0].second);
+  }
 }
 
 TEST_F(WebServerTest, PagesPastTheLimitAreRefusedWithTheFlagNamed) {

@@ -97,6 +97,17 @@ class LinkStatus {
     std::lock_guard<std::mutex> lock(mutex_);
     return status_;
   }
+  // Into `out`, whose strings keep their memory (no allocation once they are long enough).
+  void Get(v1::ViewerStatus* out) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    out->CopyFrom(status_);
+  }
+  // The newest frame's seq and simulated time alone.
+  void GetSeq(int64_t* seq, double* t_s) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    *seq = status_.seq();
+    *t_s = status_.t_s();
+  }
 
  private:
   template <typename Change>

@@ -563,6 +563,8 @@ void WebServer::PublishFrame(std::string json) {
   impl_->Publish(std::make_shared<const std::string>(std::move(json)), false);
 }
 
+void WebServer::Post(std::function<void()> task) { asio::post(impl_->ioc, std::move(task)); }
+
 int WebServer::pages() const { return impl_->pages.load(); }
 
 }  // namespace mbstream::viewer

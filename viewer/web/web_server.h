@@ -70,6 +70,8 @@ class WebServer {
   // the newest frame (sent to every page, replacing one not yet sent).
   void SetScene(std::string json);
   void PublishFrame(std::string json);
+  // Any thread: runs `task` on the server's thread (queued until Start, dropped at Stop).
+  void Post(std::function<void()> task);
 
   int pages() const;
   struct Impl;

@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <memory>
+#include <utility>
 
 #include "viewer/web/frame_message.h"
 #include "viewer/web/scene_export.h"
@@ -67,12 +69,13 @@ void WebView::OnScene(Scene* scene) {
   if (!scene) return;
   ++version_;
   const auto begin = std::chrono::steady_clock::now();
-  std::string json = ExportSceneJson(*scene, version_);
+  auto json = std::make_shared<std::string>(ExportSceneJson(*scene, version_));
   spdlog::info(
       "web: scene '{}' exported for the pages: {} parts, {} bytes in {:.1f} ms",
-      scene->description().title, scene->part_actors().size(), json.size(),
+      scene->description().title, scene->part_actors().size(), json->size(),
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count());
-  server_.SetScene(std::move(json));
+  // Sent from the web thread, so that it comes after the frames of the scene before it.
+  server_.Post([this, json] { server_.SetScene(std::move(*json)); });
   scene->Frames(&frames_);
   if (scene->ghost()) {
     ghost_frames_ = scene->ghost()->Frames();
@@ -80,7 +83,9 @@ void WebView::OnScene(Scene* scene) {
     ghost_frames_.clear();
   }
   scene->ProbeReports(&probes_);
-  PublishLocked();
+  posed_unix_ms_ = UnixMs();
+  status_->GetSeq(&seq_, &t_s_);
+  RequestLocked(true);
 }
 
 void WebView::OnPosed(Scene& scene, std::span<const ProbeReport> probes) {
@@ -89,26 +94,47 @@ void WebView::OnPosed(Scene& scene, std::span<const ProbeReport> probes) {
   scene.Frames(&frames_);
   if (scene.ghost()) ghost_frames_ = scene.ghost()->Frames();
   probes_.assign(probes.begin(), probes.end());
-  PublishLocked();
+  posed_unix_ms_ = UnixMs();
+  status_->GetSeq(&seq_, &t_s_);  // the batch's (the link set it before posing us)
+  RequestLocked(true);
 }
 
 void WebView::OnTick() {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (!scene_ || StateKey(status_->Get()) == published_state_) return;
-  PublishLocked();
+  if (scene_) RequestLocked(false);
 }
 
-void WebView::PublishLocked() {
-  const v1::ViewerStatus status = status_->Get();
-  published_state_ = StateKey(status);
+void WebView::RequestLocked(bool posed) {
+  posed_ = posed_ || posed;
+  if (requested_) return;
+  requested_ = true;
+  server_.Post([this] { Publish(); });
+}
+
+void WebView::Publish() {
+  status_->Get(&status_copy_);
+  const std::string state = StateKey(status_copy_);
   FrameMessage frame;
-  frame.scene_version = version_;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    requested_ = false;
+    if (!scene_) return;
+    const bool posed = std::exchange(posed_, false);
+    if (!posed && state == published_state_) return;
+    sent_frames_.assign(frames_.begin(), frames_.end());
+    sent_ghost_frames_.assign(ghost_frames_.begin(), ghost_frames_.end());
+    sent_probes_.assign(probes_.begin(), probes_.end());
+    frame.scene_version = version_;
+    frame.posed_unix_ms = posed ? posed_unix_ms_ : UnixMs();
+    status_copy_.set_seq(seq_);  // the pose's, not a newer batch's
+    status_copy_.set_t_s(t_s_);
+  }
+  published_state_ = state;
   frame.number = ++number_;
-  frame.posed_unix_ms = UnixMs();
-  frame.frames = frames_;
-  frame.ghost_frames = ghost_frames_;
-  frame.probes = probes_;
-  server_.PublishFrame(FrameMessageJson(frame, status));
+  frame.frames = sent_frames_;
+  frame.ghost_frames = sent_ghost_frames_;
+  frame.probes = sent_probes_;
+  server_.PublishFrame(FrameMessageJson(frame, status_copy_));
 }
 
 }  // namespace mbstream::viewer
