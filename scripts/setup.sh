@@ -25,6 +25,7 @@ PACKAGES=(
   # viewer and headless rendering
   libvtk9-dev xvfb xauth
   libassimp-dev  # viewer meshes: Collada, OBJ, STL, glTF, PLY
+  dart-doc  # a published robot with textured Collada meshes (the Barrett WAM) for WebViewTest
   # mbstream-viewer --web: Boost.Beast (HTTP, WebSocket); node for `npm ci` in viewer/web
   # (three.js, served to the pages; playwright-core for the test), chromium for the test
   libboost-dev nodejs chromium
