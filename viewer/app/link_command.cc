@@ -75,6 +75,89 @@ bool HasDisplay() {
   return display && *display;
 }
 
+// The Viewer control service and its gRPC server, when --listen is given.
+struct ControlServer {
+  std::unique_ptr<ViewerControlService> service;
+  std::unique_ptr<grpc::Server> server;
+};
+
+// The Viewer control service on options.listen (nothing when it is empty). False, said on
+// stderr, when it cannot listen there.
+bool StartControl(const LinkCommandOptions& options, SceneSlot* slot, LinkStatus* status,
+                  SubscriberLink& link, ControlServer& control) {
+  if (options.listen.empty()) return true;
+  control.service = std::make_unique<ViewerControlService>(
+      slot, status, [&link](const v1::ReplayControl& c) { return link.SendControl(c); });
+  grpc::ServerBuilder builder;
+  int port = 0;
+  try {
+    builder.AddListeningPort(options.listen, net::MakeServerCredentials(options.listen_tls), &port);
+  } catch (const net::SecurityConfigError& e) {
+    std::cerr << "mbstream-viewer: " << e.what() << "\n";
+    return false;
+  }
+  builder.RegisterService(control.service.get());
+  control.server = builder.BuildAndStart();
+  if (!control.server) {
+    std::cerr << "mbstream-viewer: cannot listen on " << options.listen << "\n";
+    return false;
+  }
+  const std::string address =
+      options.listen.rfind("unix:", 0) == 0
+          ? options.listen
+          : options.listen.substr(0, options.listen.rfind(':') + 1) + std::to_string(port);
+  std::cout << "control service listening on " << address << std::endl;
+  return true;
+}
+
+// The web view on options.web.address (null when it is empty), fed by the link's poses.
+// False, said on stderr, when it cannot start.
+bool StartWeb(const LinkCommandOptions& options, LinkStatus* status, SubscriberLink& link,
+              std::unique_ptr<WebView>& web) {
+  if (options.web.address.empty()) return true;
+  WebView::SendControl send;
+  if (!options.link.follow) {
+    send = [&link](const v1::ReplayControl& c) { return link.SendControl(c); };
+  }
+  try {
+    // Pages need the server's view role; steering a replay (every page's and the window's)
+    // needs its run role.
+    WebOptions web_options = options.web;
+    auto access = std::make_shared<PageAccess>(options.link.server, options.link.security,
+                                               !options.link.follow);
+    web_options.check_access = [access](const std::string& token, auto done) {
+      access->Check(token, std::move(done));
+    };
+    web = std::make_unique<WebView>(std::move(web_options), status, std::move(send));
+  } catch (const std::exception& e) {
+    std::cerr << "mbstream-viewer: " << e.what() << "\n";
+    return false;
+  }
+  WebView* view = web.get();
+  link.SetPosedListener(
+      [view](Scene& scene, std::span<const ProbeReport> probes) { view->OnPosed(scene, probes); });
+  web->Start();
+  std::cout << "web on " << web->url() << std::endl;
+  return true;
+}
+
+// The last status, logged as the viewer ends.
+void LogFinalStatus(const LinkStatus& status) {
+  const v1::ViewerStatus final = status.Get();
+  spdlog::info("viewer done: {} runs, last run {}: {} frames, {} probe reports", final.runs_seen(),
+               final.run_id(), final.frames(), final.probe_reports());
+  if (final.mode() == "replay") {
+    spdlog::info("replay of run {}: probe set {}", final.run_id(), final.probe_set());
+  }
+  if (!final.compare_run_id().empty()) {
+    spdlog::info(
+        "compare {} with ghost {}: {} ghost frames, max |TCP - ghost TCP| {:.17g} m at "
+        "t = {:.17g} s",
+        final.run_id(), final.compare_run_id(), final.ghost_frames(), final.tcp_distance_max_m(),
+        final.tcp_distance_max_t_s());
+  }
+}
+
 }  // namespace
 
 int RunLink(const LinkCommandOptions& options) {
@@ -116,57 +199,10 @@ int RunLink(const LinkCommandOptions& options) {
 
   // Built first (it starts streaming in Run()): the control service sends through it.
   SubscriberLink link(link_options, std::move(scenes), &slot, &status);
-  std::unique_ptr<ViewerControlService> control;
-  std::unique_ptr<grpc::Server> control_server;
-  if (!options.listen.empty()) {
-    control = std::make_unique<ViewerControlService>(
-        &slot, &status, [&link](const v1::ReplayControl& c) { return link.SendControl(c); });
-    grpc::ServerBuilder builder;
-    int port = 0;
-    try {
-      builder.AddListeningPort(options.listen, net::MakeServerCredentials(options.listen_tls),
-                               &port);
-    } catch (const net::SecurityConfigError& e) {
-      std::cerr << "mbstream-viewer: " << e.what() << "\n";
-      return 1;
-    }
-    builder.RegisterService(control.get());
-    control_server = builder.BuildAndStart();
-    if (!control_server) {
-      std::cerr << "mbstream-viewer: cannot listen on " << options.listen << "\n";
-      return 1;
-    }
-    const std::string address =
-        options.listen.rfind("unix:", 0) == 0
-            ? options.listen
-            : options.listen.substr(0, options.listen.rfind(':') + 1) + std::to_string(port);
-    std::cout << "control service listening on " << address << std::endl;
-  }
-
+  ControlServer control;
+  if (!StartControl(options, &slot, &status, link, control)) return 1;
   std::unique_ptr<WebView> web;
-  if (!options.web.address.empty()) {
-    WebView::SendControl send;
-    if (!options.link.follow)
-      send = [&link](const v1::ReplayControl& c) { return link.SendControl(c); };
-    try {
-      // Pages need the server's view role; steering a replay (every page's and the window's)
-      // needs its run role.
-      WebOptions web_options = options.web;
-      auto access = std::make_shared<PageAccess>(options.link.server, options.link.security,
-                                                 !options.link.follow);
-      web_options.check_access = [access](const std::string& token, auto done) {
-        access->Check(token, std::move(done));
-      };
-      web = std::make_unique<WebView>(std::move(web_options), &status, std::move(send));
-    } catch (const std::exception& e) {
-      std::cerr << "mbstream-viewer: " << e.what() << "\n";
-      return 1;
-    }
-    link.SetPosedListener(
-        [&web](Scene& scene, std::span<const ProbeReport> probes) { web->OnPosed(scene, probes); });
-    web->Start();
-    std::cout << "web on " << web->url() << std::endl;
-  }
+  if (!StartWeb(options, &status, link, web)) return 1;
 
   signals.Start([&link] { link.Stop(); });
   std::atomic<bool> stop{false};
@@ -188,24 +224,12 @@ int RunLink(const LinkCommandOptions& options) {
   network.join();
   if (web) web->Stop();
   signals.Finish();  // before `link` goes
-  if (control_server) control_server->Shutdown();
+  if (control.server) control.server->Shutdown();
   std::error_code ignored;
   std::filesystem::remove_all(
       std::filesystem::temp_directory_path() / ("mbstream-viewer-" + std::to_string(getpid())),
       ignored);
-  const v1::ViewerStatus final = status.Get();
-  spdlog::info("viewer done: {} runs, last run {}: {} frames, {} probe reports", final.runs_seen(),
-               final.run_id(), final.frames(), final.probe_reports());
-  if (final.mode() == "replay") {
-    spdlog::info("replay of run {}: probe set {}", final.run_id(), final.probe_set());
-  }
-  if (!final.compare_run_id().empty()) {
-    spdlog::info(
-        "compare {} with ghost {}: {} ghost frames, max |TCP - ghost TCP| {:.17g} m at "
-        "t = {:.17g} s",
-        final.run_id(), final.compare_run_id(), final.ghost_frames(), final.tcp_distance_max_m(),
-        final.tcp_distance_max_t_s());
-  }
+  LogFinalStatus(status);
   return exit_code;
 }
 
