@@ -3,7 +3,7 @@
 // is never taken, a claim whose lease expired is reaped when the clock passes it and taken here,
 // a run whose lease another replica reaped is stopped at the next renewal, shutdown wakes the
 // waiting workers and interrupts what is queued, a drained queue claims no more and hands its
-// queued runs back.
+// queued runs back; Attach finds the runs here.
 #include "server/runs/run_queue.h"
 
 #include <gtest/gtest.h>
@@ -174,6 +174,26 @@ TEST_F(RunQueueTest, ACancelledQueuedRunIsNeverTakenAndARunningOneStops) {
   EXPECT_TRUE(ended_[0]->cancel);
   EXPECT_EQ(Started(), std::vector<std::string>{running});
   EXPECT_FALSE(queue_->Cancel("r-unknown").has_value());
+}
+
+// Attach finds a run queued or integrating here; a run the store holds ended is not here, and
+// one it does not hold is not found.
+TEST_F(RunQueueTest, AttachFindsTheRunsHereAndTellsAnEndedOneFromAnUnknownOne) {
+  MakeQueue(/*private_store=*/true);
+  const std::string running = Enqueue();
+  ASSERT_TRUE(clock_.WaitForWaiter().has_value());
+  const std::string queued = Enqueue();
+  v1::RunInfo ended;
+  ended.set_id("r-ended");
+  ended.set_state(v1::FINISHED);
+  store_->PutRun(ended);
+  auto subscriber = std::make_shared<Subscription>(16);
+  EXPECT_EQ(queue_->Attach(subscriber, running, true), RunQueue::Attached::kAttached);
+  EXPECT_EQ(queue_->Attach(subscriber, queued, true), RunQueue::Attached::kAttached);
+  EXPECT_EQ(queue_->Find(running)->subscriber_count(), 1);
+  EXPECT_EQ(queue_->Attach(subscriber, "r-ended", true), RunQueue::Attached::kNotHere);
+  EXPECT_EQ(queue_->Attach(subscriber, "r-unknown", true), RunQueue::Attached::kNotFound);
+  subscriber->Cancel();
 }
 
 TEST_F(RunQueueTest, AClaimIsReapedWhenTheClockPassesItsLeaseAndTakenHere) {
