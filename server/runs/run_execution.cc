@@ -1,4 +1,4 @@
-// RunManager's worker side: executing one run and storing it.
+// RunManager's worker side (RunQueue's hooks): executing one claimed run and storing it.
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -78,12 +78,38 @@ class PublishingSink : public FrameSink {
 
 }  // namespace
 
+RunQueue::Hooks RunManager::QueueHooks() {
+  RunQueue::Hooks hooks;
+  hooks.new_run_id = [this] { return run_id_source_ ? run_id_source_() : NewRunId(); };
+  hooks.prepare = [this](const v1::RunInfo& info) { return RunOf(info); };
+  hooks.execute = [this](const std::shared_ptr<Run>& run) { RunClaimed(run); };
+  hooks.state_changed = [this] { NoteStateChange(); };
+  return hooks;
+}
+
+void RunManager::RunClaimed(const std::shared_ptr<Run>& run) {
+  Outcome outcome;
+  try {
+    outcome = Execute(run);
+  } catch (const InputError& error) {  // ValidateRun should have refused it
+    spdlog::error("run {}: invalid input found only by the worker: {}", run->id(), error.what());
+    outcome.state = v1::FAILED;
+    outcome.message = error.what();
+  } catch (const std::exception& error) {
+    spdlog::error("run {}: {}", run->id(), error.what());
+    outcome.state = v1::FAILED;
+    outcome.message = std::string("internal error: ") + error.what();
+  }
+  Finish(run, outcome);
+}
+
 RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
   Outcome outcome;
   if (run->cancel) {  // cancelled or interrupted while queued
     outcome.state = run->interrupted ? v1::INTERRUPTED : v1::CANCELLED;
-    outcome.message = run->interrupted ? stop_reason_ + " before this run started"
-                                       : "cancelled before it started";
+    outcome.message = run->interrupted
+                          ? queue_.stop_reason().value_or("") + " before this run started"
+                          : "cancelled before it started";
     return outcome;
   }
   {
@@ -92,15 +118,17 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
         *run, [&] { run->UpdateInfo([](v1::RunInfo& info) { info.set_state(v1::RUNNING); }); });
   }
   NoteStateChange();
-  // Stored RUNNING already by the claim (ClaimNext; still QUEUED with a private store): the
-  // row is written again when it ends.
+  // Stored RUNNING already by the claim (RunQueue::ClaimNext; still QUEUED with a private store):
+  // the row is written again when it ends.
   spdlog::info("run {} started", run->id());
 
   const std::string holder = replica_.private_store ? std::string() : LeaseHolder(run->Info());
   // Probe reports are stored as they come, each batch while `holder` still holds the lease
   // (checked by a renewal in its own transaction, before the batch's).
   run->probes().Open([this, id = run->id(), holder](const std::vector<v1::ProbeReport>& batch) {
-    if (!holder.empty() && !store_->RenewLease(id, holder, NowUnixMs() + LeaseMs())) return false;
+    if (!holder.empty() && !store_->RenewLease(id, holder, queue_.NewLease().expires_unix_ms)) {
+      return false;
+    }
     store_->AddProbes(batch);
     return true;
   });
@@ -112,7 +140,7 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
   outcome.message = stats.message;
   if (outcome.state == v1::CANCELLED && run->interrupted) {
     outcome.state = v1::INTERRUPTED;
-    outcome.message = stop_reason_ +
+    outcome.message = queue_.stop_reason().value_or("") +
                       " during this run; the frames up to t = " + std::to_string(stats.t_reached) +
                       " s are kept";
   }
@@ -146,7 +174,7 @@ void RunManager::StoreFinal(Run& run, v1::RunInfo& info) {
   // The frames are in the store already but for the spool's last chunk, written together
   // with the final info; the probe reports but for the recorder's last batch, stored just
   // before. Nothing is stored once another replica took the run over.
-  // A private store's runs hold no lease (ClaimPrivate): stored unconditionally.
+  // A private store's runs hold no lease (RunQueue::ClaimPrivate): stored unconditionally.
   const std::string holder = replica_.private_store ? std::string() : LeaseHolder(run.Info());
   try {
     // The lease is checked in the transaction that stores the result; the probe recorder's
@@ -196,13 +224,7 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
   v1::RunInfo info = FinalInfo(*run, outcome);
   StoreFinal(*run, info);
   run->UpdateInfo([&](v1::RunInfo& live) { live = info; });
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (auto found = active_.find(run->id()); found != active_.end() && found->second == run) {
-      active_.erase(found);
-    }
-  }
-  idle_.notify_all();
+  queue_.Release(run);
   run->End();
   NoteStateChange();
   info = run->Info();

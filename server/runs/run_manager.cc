@@ -40,6 +40,12 @@ RequestError NotFound(const std::string& run_id) {
                       "no run '" + run_id + "' on this server; `mbstream runs` lists them");
 }
 
+// `replica` with an id (a new one when none is given).
+ReplicaOptions WithId(ReplicaOptions replica) {
+  if (replica.id.empty()) replica.id = NewReplicaId();
+  return replica;
+}
+
 }  // namespace
 
 RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& limits,
@@ -48,23 +54,12 @@ RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& 
       store_(store),
       limits_(limits),
       clock_(clock != nullptr ? clock : &SteadyRunClock()),
-      replica_(std::move(replica)),
+      replica_(WithId(std::move(replica))),
       recent_results_(static_cast<std::size_t>(std::max<int64_t>(limits_.recent_results_bytes, 0))),
       fan_out_(limits_.max_subscribers, limits_.subscriber_queue_frames),
-      follower_replays_(store_, clock_) {
+      follower_replays_(store_, clock_),
+      queue_(store_, replica_, limits_, QueueHooks()) {
   MBSTREAM_CHECK(models_ != nullptr && store_ != nullptr && limits_.workers > 0);
-  MBSTREAM_CHECK(replica_.lease_timeout_s > 0.0 && replica_.claim_poll_s > 0.0);
-  if (replica_.id.empty()) replica_.id = NewReplicaId();
-  if (replica_.private_store) {
-    const int interrupted = store_->MarkUnfinishedRunsInterrupted(
-        "the server stopped while this run was queued or running; start it again");
-    if (interrupted > 0) {
-      spdlog::warn("{} runs of a previous server marked INTERRUPTED", interrupted);
-    }
-  }
-  spdlog::info("replica {}: leases of {} s", replica_.id, replica_.lease_timeout_s);
-  for (int i = 0; i < limits_.workers; ++i) workers_.emplace_back([this] { WorkerLoop(); });
-  keeper_ = std::thread([this] { KeeperLoop(); });
   if (!replica_.private_store) {
     cluster_follow_ = std::make_unique<ClusterFollow>(
         store_, replica_.id, std::chrono::duration<double>(replica_.claim_poll_s),
@@ -108,30 +103,6 @@ v1::RunInfo RunManager::Start(const std::string& model_ref, const v1::RunSpec& s
   return std::move(StartMany(model_ref, one, owner).front());
 }
 
-void RunManager::ReserveNewRuns(std::vector<v1::RunInfo>& infos,
-                                const std::vector<RunConfig>& configs,
-                                const std::shared_ptr<const CompiledModel>& model,
-                                std::vector<std::shared_ptr<Run>>& runs) {
-  const int count = static_cast<int>(infos.size());
-  for (;;) {
-    for (v1::RunInfo& info : infos) info.set_id(run_id_source_ ? run_id_source_() : NewRunId());
-    std::lock_guard<std::mutex> lock(mutex_);
-    CheckAccepting(count);
-    std::set<std::string> ids;
-    for (const v1::RunInfo& info : infos) {
-      if (active_.count(info.id()) || !ids.insert(info.id()).second) break;
-    }
-    if (static_cast<int>(ids.size()) < count) continue;  // an id taken meanwhile: new ids
-    for (int i = 0; i < count; ++i) {
-      runs[i] = std::make_shared<Run>(infos[i], configs[i], model, *clock_, ProbeOptions());
-      active_[infos[i].id()] = runs[i];
-      queue_.push_back(runs[i]);
-      unstored_.insert(runs[i].get());
-    }
-    return;
-  }
-}
-
 std::vector<v1::RunInfo> RunManager::StartMany(
     const std::string& model_ref, const google::protobuf::RepeatedPtrField<v1::RunSpec>& specs,
     const std::string& owner, const std::string& sweep_id, int first_point, int total_points) {
@@ -156,13 +127,9 @@ std::vector<v1::RunInfo> RunManager::StartMany(
       infos[i].set_sweep_points(total_points);
     }
   }
-  const std::vector<std::shared_ptr<Run>> runs = StoreNewRuns(infos, configs, model);
-  RefuseIfStopped(infos, runs);
-  if (count == 1) {
-    work_.notify_one();
-  } else {
-    work_.notify_all();
-  }
+  queue_.Enqueue(infos, [&](const v1::RunInfo& info, size_t i) {
+    return std::make_shared<Run>(info, configs[i], model, *clock_, ProbeOptions());
+  });
   for (const v1::RunInfo& info : infos) {
     spdlog::info("run {} queued: model {} '{}', {} s, {} frames", info.id(), model->info.id(),
                  model->info.name(), info.duration_s(), info.expected_frames());
@@ -211,104 +178,8 @@ std::vector<RunConfig> RunManager::PrepareRuns(
   return configs;
 }
 
-void RunManager::Forget(const std::vector<std::shared_ptr<Run>>& runs) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  for (const std::shared_ptr<Run>& run : runs) {
-    unstored_.erase(run.get());
-    queue_.erase(std::remove(queue_.begin(), queue_.end(), run), queue_.end());
-    if (auto found = active_.find(run->id()); found != active_.end() && found->second == run) {
-      active_.erase(found);
-    }
-  }
-}
-
-std::vector<std::shared_ptr<Run>> RunManager::StoreNewRuns(
-    std::vector<v1::RunInfo>& infos, const std::vector<RunConfig>& configs,
-    const std::shared_ptr<const CompiledModel>& model) {
-  // No lock across the store's I/O: new ids are reserved in active_ and queue_ under the lock
-  // (counting against the queue limit), stored QUEUED in one transaction that refuses an id
-  // already stored by any replica (from then on any replica may claim them; a taken id: new
-  // ids for all, again), and the workers woken.
-  std::vector<std::shared_ptr<Run>> runs(infos.size());
-  constexpr int kIdAttempts = 100;  // each fails with odds of about 1e-6 (NewRunId)
-  for (int attempt = 1;; ++attempt) {
-    ReserveNewRuns(infos, configs, model, runs);
-    bool stored = false;
-    try {
-      stored = store_->AddRuns(infos);
-    } catch (...) {
-      Forget(runs);
-      throw;
-    }
-    if (stored) break;
-    Forget(runs);
-    MBSTREAM_CHECK_MSG(attempt < kIdAttempts, "no free run ids after 100 attempts");
-  }
-  return runs;
-}
-
-void RunManager::RefuseIfStopped(const std::vector<v1::RunInfo>& infos,
-                                 const std::vector<std::shared_ptr<Run>>& runs) {
-  std::string stop_reason;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    for (const std::shared_ptr<Run>& run : runs) unstored_.erase(run.get());
-    if (stopping_) stop_reason = stop_reason_;
-    ++wakeups_;
-  }
-  if (stop_reason.empty()) return;
-  // The server began to stop while the runs were being stored.
-  std::vector<std::shared_ptr<Run>> ended;
-  for (size_t i = 0; i < infos.size(); ++i) {
-    if (store_->EndQueuedRun(infos[i].id(), v1::INTERRUPTED,
-                             stop_reason + " before this run started", NowUnixMs())) {
-      ended.push_back(runs[i]);
-    }
-  }
-  if (!ended.empty()) {
-    Forget(ended);
-    throw RequestError(RequestErrorKind::kUnavailable,
-                       "the server is shutting down; start the run on another server");
-  }
-}
-
-std::shared_ptr<Run> RunManager::FindActive(const std::string& run_id) const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  auto found = active_.find(run_id);
-  return found == active_.end() ? nullptr : found->second;
-}
-
 v1::RunInfo RunManager::Cancel(const std::string& run_id) {
-  std::shared_ptr<Run> run = FindActive(run_id);
-  bool queued_here = false, dequeued = false;
-  if (run) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    auto queued = std::find(queue_.begin(), queue_.end(), run);
-    queued_here = queued != queue_.end();
-    // A private store's claims are made in queue_ (ClaimPrivate), not in the store: taken
-    // out of it here, no worker claims the run while its row is ended.
-    if (queued_here && replica_.private_store && !unstored_.count(run.get())) {
-      queue_.erase(queued);
-      dequeued = true;
-    }
-  }
-  if (run && !queued_here) {  // integrating here
-    run->cancel = true;
-    spdlog::info("run {} cancel requested", run_id);
-    return run->Info();
-  }
-  if (dequeued) return CancelDequeued(run);
-  // Queued (here or by another replica): ended in the store unless a replica claimed it.
-  if (std::optional<v1::RunInfo> ended =
-          store_->EndQueuedRun(run_id, v1::CANCELLED, "cancelled before it started", NowUnixMs())) {
-    if (run) EndPlaceholder(run, *ended);
-    spdlog::info("run {} cancelled before it started", run_id);
-    return *ended;
-  }
-  if (run = FindActive(run_id); run) {  // claimed by a worker of this replica meanwhile
-    run->cancel = true;
-    return run->Info();
-  }
+  if (std::optional<v1::RunInfo> cancelled = queue_.Cancel(run_id)) return *cancelled;
   v1::RunInfo info = Get(run_id);
   if (!IsFinalState(info.state())) {
     throw RequestError(RequestErrorKind::kFailedPrecondition,
@@ -317,29 +188,6 @@ v1::RunInfo RunManager::Cancel(const std::string& run_id) {
                            info.replica_address() + " cancel " + run_id + ")");
   }
   return info;
-}
-
-v1::RunInfo RunManager::CancelDequeued(const std::shared_ptr<Run>& run) {
-  std::optional<v1::RunInfo> ended;
-  try {
-    ended =
-        store_->EndQueuedRun(run->id(), v1::CANCELLED, "cancelled before it started", NowUnixMs());
-  } catch (const std::exception& error) {
-    spdlog::error("run {}: storing its cancellation failed: {}", run->id(), error.what());
-  }
-  if (!ended) {  // a worker ends it CANCELLED instead (Execute), storing it again
-    run->cancel = true;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      queue_.push_front(run);
-      ++wakeups_;
-    }
-    work_.notify_one();
-    return run->Info();
-  }
-  EndPlaceholder(run, *ended);
-  spdlog::info("run {} cancelled before it started", run->id());
-  return *ended;
 }
 
 v1::RunInfo RunManager::Get(const std::string& run_id) const {
@@ -446,91 +294,28 @@ std::vector<v1::ProbeReport> RunManager::ResultProbes(const std::string& run_id)
   return store_->GetProbes(run_id);
 }
 
-void RunManager::CheckAccepting(int runs) const {
-  if (stopping_) {
-    throw RequestError(RequestErrorKind::kUnavailable,
-                       "the server is shutting down; start the run on another server");
-  }
-  if (draining_) {
-    throw RequestError(RequestErrorKind::kUnavailable,
-                       "this replica is draining (shutting down); start the run on another one");
-  }
-  if (static_cast<int>(queue_.size()) + runs > limits_.max_queued_runs) {
-    throw RequestError(
-        RequestErrorKind::kResourceExhausted,
-        runs == 1 ? "the run queue is full (" + std::to_string(limits_.max_queued_runs) +
-                        " runs waiting); wait for runs to finish or cancel some"
-                  : "the run queue has room for " +
-                        std::to_string(limits_.max_queued_runs - static_cast<int>(queue_.size())) +
-                        " of these " + std::to_string(runs) +
-                        " runs; wait for runs to finish, or start fewer");
-  }
-}
-
 std::shared_ptr<Subscription> RunManager::NewSubscription() { return fan_out_.NewSubscription(); }
 
 void RunManager::AttachRun(const std::shared_ptr<Subscription>& subscriber,
                            const std::string& run_id, bool send_started) {
-  if (std::shared_ptr<Run> run = FindActive(run_id)) {
-    run->Attach(subscriber, send_started);
-    return;
-  }
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (auto found = elsewhere_.find(run_id); found != elsewhere_.end()) {
-      found->second->Attach(subscriber, send_started);  // ended when the store shows it ended
+  switch (queue_.Attach(subscriber, run_id, send_started)) {
+    case RunQueue::Attached::kAttached:
       return;
-    }
+    case RunQueue::Attached::kNotFound:
+      throw NotFound(run_id);
+    case RunQueue::Attached::kNotHere:
+      break;
   }
-  std::optional<v1::RunInfo> stored = store_->GetRun(run_id);
-  if (!stored) throw NotFound(run_id);
-  // Claimed here a moment ago (a proxied subscriber comes as soon as the claim is stored).
-  if (std::shared_ptr<Run> run = AwaitClaimedHere(std::move(*stored))) {
-    run->Attach(subscriber, send_started);
-    return;
-  }
-  // Ended and stored (a run leaves active_ only after it is stored and has ended), or on
-  // another replica (not followed here yet: docs/cluster.md).
+  // Ended and stored (a run leaves the queue's runs only after it is stored and has ended),
+  // or on another replica (not followed here yet: docs/cluster.md).
   if (send_started) subscriber->Push({StreamEvent::Kind::kRunStarted, run_id, nullptr});
   subscriber->Push({StreamEvent::Kind::kRunEnded, run_id, nullptr});
-}
-
-std::shared_ptr<Run> RunManager::AwaitClaimedHere(v1::RunInfo stored) {
-  // Woken by each claim the workers prepare; the store is read again then and every
-  // kRecheck (a failed preparation is stored FAILED, a lost lease reaped).
-  constexpr auto kRecheck = std::chrono::milliseconds(100);
-  std::unique_lock<std::mutex> lock(mutex_);
-  for (;;) {
-    if (auto it = active_.find(stored.id()); it != active_.end()) return it->second;
-    if (stopping_ || stored.state() != v1::RUNNING || stored.replica() != replica_.id) {
-      return nullptr;
-    }
-    claimed_.wait_for(lock, kRecheck);
-    if (auto it = active_.find(stored.id()); it != active_.end()) return it->second;
-    lock.unlock();
-    std::optional<v1::RunInfo> again = store_->GetRun(stored.id());
-    lock.lock();
-    if (!again) return nullptr;
-    stored = std::move(*again);
-  }
 }
 
 bool RunManager::AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber) {
   // In one step with the worker's marking a run RUNNING and attaching the followers
   // (FanOut::AnnounceStart): the follower sees each run exactly once, here or from the worker.
-  return fan_out_.Follow(subscriber, [this] {
-    std::lock_guard<std::mutex> lock(mutex_);
-    std::shared_ptr<Run> running;
-    int64_t running_since = 0;
-    for (const auto& [id, run] : active_) {
-      const v1::RunInfo info = run->Info();
-      if (info.state() == v1::RUNNING && (!running || info.started_unix_ms() > running_since)) {
-        running = run;
-        running_since = info.started_unix_ms();
-      }
-    }
-    return running;
-  });
+  return fan_out_.Follow(subscriber, [this] { return queue_.NewestRunning(); });
 }
 
 void RunManager::AttachFollow(const std::shared_ptr<Subscription>& subscriber) {
@@ -568,53 +353,15 @@ bool RunManager::AddProbes(const std::string& run_id, const std::vector<v1::Prob
 }
 
 void RunManager::Shutdown(const std::string& reason) {
-  std::vector<std::shared_ptr<Subscription>> followers;
-  std::deque<std::shared_ptr<Run>> queued;
-  std::map<std::string, std::shared_ptr<Run>> elsewhere;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (stopping_ && workers_.empty() && !keeper_.joinable()) return;
-    stopping_ = true;
-    stop_reason_ = reason;
-    queued.swap(queue_);
-    elsewhere.swap(elsewhere_);
-    for (const auto& run : queued) active_.erase(run->id());
-    for (auto& [id, run] : active_) {
-      run->interrupted = true;
-      run->cancel = true;
-    }
-  }
-  followers = fan_out_.followers();
+  if (!queue_.Shutdown(reason)) return;  // shut down already
   follower_replays_.Stop();
-  work_.notify_all();
-  claimed_.notify_all();
-  state_changed_.notify_all();
-  for (std::thread& worker : workers_) worker.join();
-  workers_.clear();
-  // Runs queued here and not claimed: INTERRUPTED with a private store; left queued in a
-  // shared one (another replica takes them).
-  for (const auto& run : queued) {
-    std::optional<v1::RunInfo> ended;
-    if (replica_.private_store) {
-      try {
-        ended = store_->EndQueuedRun(run->id(), v1::INTERRUPTED,
-                                     reason + " before this run started", NowUnixMs());
-      } catch (const std::exception& error) {
-        spdlog::error("run {}: storing its interruption failed: {}", run->id(), error.what());
-      }
-    }
-    EndPlaceholder(run, ended ? *ended : run->Info());
-  }
-  for (const auto& [id, run] : elsewhere) run->End();
   if (cluster_follow_) cluster_follow_->Stop();
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    keeper_stop_ = true;
-  }
-  keeper_wake_.notify_all();
-  if (keeper_.joinable()) keeper_.join();
-  for (const auto& follower : followers) follower->Close();
-  UpdateServing();
+  for (const auto& follower : fan_out_.followers()) follower->Close();
+}
+
+void RunManager::Drain(std::chrono::duration<double> grace, const std::string& reason) {
+  queue_.Drain(grace);
+  Shutdown(reason);
 }
 
 }  // namespace mbstream

@@ -1,27 +1,19 @@
-// Runs on the server: a bounded queue, a fixed pool of worker threads, cancellation and
-// shutdown, and a facade over parts that own their state and are tested alone: FanOut
-// (subscriptions, followers, announcements), FollowerReplays (stored runs replayed to the
-// followers) and each run's ProbeRecorder (probe reports stored in batches as they come; a
-// replay's from RecordProbeSet). gRPC-free: the service calls it.
-//
-// The queue is in the store (Store::ClaimQueuedRun): Start writes a run QUEUED, and an idle
-// worker of any replica on the same store claims the oldest queued run under a lease, which a
-// keeper thread renews while the run integrates and which lets the other replicas reap the
-// run of a replica that died (run_manager_queue.cc, docs/cluster.md).
+// Runs on the server: a facade over parts that own their state and are tested alone:
+// RunQueue (the queue, the worker threads, leases, cluster claims, draining and shutdown),
+// FanOut (subscriptions, followers, announcements), FollowerReplays (stored runs replayed to
+// the followers) and each run's ProbeRecorder (probe reports stored in batches as they come;
+// a replay's from RecordProbeSet). It validates and prepares runs, integrates a claimed run
+// (run_execution.cc) and answers reads. gRPC-free: the service calls it.
 #pragma once
 
 #include <chrono>
 #include <condition_variable>
-#include <deque>
 #include <functional>
-#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <set>
 #include <string>
 #include <string_view>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -37,6 +29,7 @@
 #include "server/runs/replay_cursor.h"
 #include "server/runs/run.h"
 #include "server/runs/run_clock.h"
+#include "server/runs/run_queue.h"
 #include "server/runs/server_limits.h"
 #include "server/runs/subscription.h"
 #include "server/store/run_lease.h"
@@ -46,29 +39,12 @@ namespace mbstream {
 class Store;
 class ClusterFollow;
 
-// How a run manager takes part in a cluster of replicas sharing one store.
-struct ReplicaOptions {
-  std::string id;       // RunInfo.replica; empty: host name, process id and a random suffix
-  std::string address;  // RunInfo.replica_address (--advertise); may be set later
-  // s within which the runs of a replica that died are reaped by another (between half of it
-  // and all of it after the death; run_manager_queue.cc, LeaseMs).
-  double lease_timeout_s = 10.0;
-  // s between looks at the shared store's queue by an idle worker (runs started on other
-  // replicas); a private store is looked at only when this replica queues a run.
-  double claim_poll_s = 0.25;
-  // A store of this server alone (SQLite): runs it left queued or running are INTERRUPTED at
-  // start, and queued ones when it stops. A shared store (PostgreSQL): they stay for the
-  // other replicas and the lease reaper, and interrupted runs with retries left are queued
-  // again.
-  bool private_store = true;
-};
-
 class RunManager {
  public:
   // `models`, `store` and `clock` are not owned and must outlive the manager (`clock` paces
-  // realtime runs; the steady clock when null). With a private store, marks runs the store
-  // still lists as queued or running (a previous server died) INTERRUPTED; then starts
-  // `limits.workers` threads and the lease keeper.
+  // realtime runs; the steady clock when null). Starts the run queue (run_queue.h): with a
+  // private store, runs the store still lists as queued or running (a previous server died)
+  // are marked INTERRUPTED; then `limits.workers` worker threads and the lease keeper start.
   RunManager(ModelRegistry* models, Store* store, const ServerLimits& limits,
              RunClock* clock = nullptr, ReplicaOptions replica = {});
   ~RunManager();  // Shutdown("the server stopped")
@@ -192,14 +168,16 @@ class RunManager {
   // here to end, then Shutdown(reason) (what still runs is handed back).
   void Drain(std::chrono::duration<double> grace, const std::string& reason);
 
-  // This replica (run_manager_queue.cc). Its id; the address it advertises (set once the
+  // This replica (RunQueue). Its id; the address it advertises (set once the
   // server listens); whether it should get calls: the store answered the keeper's last look
   // and it is neither draining nor stopping. `listener` is called with each change of that
   // (from the keeper's thread or Drain's caller), and at once with the present value.
   const std::string& replica_id() const { return replica_.id; }
-  void SetAdvertisedAddress(const std::string& address);
-  bool serving() const;
-  void SetServingListener(std::function<void(bool)> listener);
+  void SetAdvertisedAddress(const std::string& address) { queue_.SetAdvertisedAddress(address); }
+  bool serving() const { return queue_.serving(); }
+  void SetServingListener(std::function<void(bool)> listener) {
+    queue_.SetServingListener(std::move(listener));
+  }
 
   // The cluster (run_manager_cluster.cc). Where run `run_id` integrates, for the service's
   // proxies: here (with a private store: always, and the store is not read), queued in a
@@ -229,28 +207,11 @@ class RunManager {
     std::string message;
     v1::RunStats stats;
   };
-  void WorkerLoop();
-  // The queue (run_manager_queue.cc). Claims the oldest queued run of the store for this
-  // replica, with its Run (the one Start made here, or one made from the stored info);
-  // nullptr when none is queued or the store failed. With a private store the queue is
-  // this process's own: ClaimPrivate takes the oldest stored run of queue_ without a store
-  // transaction (its row stays QUEUED until the run ends; a crash marks either INTERRUPTED
-  // at the next start).
-  std::shared_ptr<Run> ClaimNext();
-  std::shared_ptr<Run> ClaimPrivate();
-  // Cancels a queued run Cancel took out of a private store's queue_: ended in the store, or
-  // (the store failed) queued again with `cancel` set, for a worker to end.
-  v1::RunInfo CancelDequeued(const std::shared_ptr<Run>& run);
+  // What the run queue asks of the manager (RunQueue::Hooks).
+  RunQueue::Hooks QueueHooks();
+  // A claimed run, on a worker thread: executed (a failure becomes the outcome), finished.
+  void RunClaimed(const std::shared_ptr<Run>& run);
   std::shared_ptr<Run> RunOf(const v1::RunInfo& info);  // model compiled, config prepared
-  RunLease NewLease() const;
-  int64_t LeaseMs() const;  // how long a claim or renewal holds
-  void KeeperLoop();
-  void KeepLeases();  // renews, reaps, follows runs started here and claimed elsewhere
-  // Records whether the store answered (when given) and tells the listener of a change.
-  void UpdateServing(std::optional<bool> store_reachable = std::nullopt);
-  // A run started here ended without a worker of this replica (cancelled while queued,
-  // ended elsewhere): shows `info` and ends its streams.
-  void EndPlaceholder(const std::shared_ptr<Run>& run, const v1::RunInfo& info);
   // The model by id or name, loading the store's list again once when it is unknown (a
   // model submitted to another replica).
   std::shared_ptr<const CompiledModel> FindModel(const std::string& model_ref) const;
@@ -264,84 +225,44 @@ class RunManager {
   // Stores `info` (the recorder's last batch, the spool's last chunk) unless the lease was
   // lost; then `info` becomes what the store holds.
   void StoreFinal(Run& run, v1::RunInfo& info);
-  std::shared_ptr<Run> FindActive(const std::string& run_id) const;
-  // A run `stored` says RUNNING here that is not in active_ yet: claimed by a worker of this
-  // replica that is still preparing it (ClaimNext). Waits until the worker lists it (the run)
-  // or the store shows it otherwise (null: ended, reaped, another replica's).
-  std::shared_ptr<Run> AwaitClaimedHere(v1::RunInfo stored);
+  // A run queued or integrating here (RunQueue::Find); nullptr otherwise.
+  std::shared_ptr<Run> FindActive(const std::string& run_id) const { return queue_.Find(run_id); }
   // False when no run of this replica is running (the follower waits for the next).
   bool AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber);
-  // Throws UNAVAILABLE when stopping, RESOURCE_EXHAUSTED when the queue cannot take `runs`
-  // more (mutex_ held).
-  void CheckAccepting(int runs = 1) const;
   // A new run id: the time and 32 random bits (free in the store only once AddRuns took it).
   std::string NewRunId() const;
   // How runs and replays batch their probe reports: limits_.max_probe_reports, a batch at
   // least every limits_.frame_flush_s (as frames).
   ProbeRecorder::Options ProbeOptions() const;
-  // New ids for `infos` reserved in active_ and queue_ as `runs` (not yet stored), once the
-  // queue has room for them all; throws as CheckAccepting. Call without mutex_.
-  void ReserveNewRuns(std::vector<v1::RunInfo>& infos, const std::vector<RunConfig>& configs,
-                      const std::shared_ptr<const CompiledModel>& model,
-                      std::vector<std::shared_ptr<Run>>& runs);
-  // StartMany's steps (run_manager.cc): every spec checked and its info filled (errors name
-  // the spec); the runs reserved and stored QUEUED (new ids while one is taken); refused
-  // when the server began to stop meanwhile; Forget undoes a reservation.
+  // StartMany's first step (run_manager.cc): every spec checked and its info filled (errors
+  // name the spec).
   std::vector<RunConfig> PrepareRuns(const CompiledModel& model,
                                      const google::protobuf::RepeatedPtrField<v1::RunSpec>& specs,
                                      const std::string& owner, std::vector<v1::RunInfo>& infos);
-  std::vector<std::shared_ptr<Run>> StoreNewRuns(std::vector<v1::RunInfo>& infos,
-                                                 const std::vector<RunConfig>& configs,
-                                                 const std::shared_ptr<const CompiledModel>& model);
-  void RefuseIfStopped(const std::vector<v1::RunInfo>& infos,
-                       const std::vector<std::shared_ptr<Run>>& runs);
-  void Forget(const std::vector<std::shared_ptr<Run>>& runs);
+  // A run of this replica changed state (AwaitChange): counted and notified.
+  void NoteStateChange();
 
   ModelRegistry* models_;
   Store* store_;
   const ServerLimits limits_;
   RunClock* clock_;
 
-  ReplicaOptions replica_;
+  const ReplicaOptions replica_;      // as given, with its id; the address is RunQueue's
   RecentResults recent_results_;      // frames of ended runs for their GetResult
   FanOut fan_out_;                    // subscriptions and follow streams
   FollowerReplays follower_replays_;  // ReplayToFollowers; stopped by Shutdown
 
-  mutable std::mutex mutex_;
-  std::condition_variable work_;
-  uint64_t wakeups_ = 0;  // runs queued by Start or the reaper: idle workers look at the store
-  // Runs started here and not yet claimed by any replica (also in active_), oldest first.
-  std::deque<std::shared_ptr<Run>> queue_;
-  // Runs of queue_ whose QUEUED row Start has not stored yet: not claimable (ClaimPrivate).
-  std::set<const Run*> unstored_;
-  std::map<std::string, std::shared_ptr<Run>> active_;  // queued here and running here
-  // Runs started here that another replica claimed: ended (their streams) when the store
-  // shows them ended.
-  std::map<std::string, std::shared_ptr<Run>> elsewhere_;
-  std::condition_variable idle_;  // a run integrating here ended (Drain waits for it)
-  // A claim of this replica was prepared (listed in active_) or failed (AwaitClaimedHere).
-  std::condition_variable claimed_;
-  // A run of this replica changed state (AwaitChange): counted and notified by
-  // NoteStateChange, which is called without mutex_.
+  // AwaitChange waits on state_changed_ for state_changes_ to move (NoteStateChange).
+  mutable std::mutex changes_mutex_;
   mutable std::condition_variable state_changed_;
   uint64_t state_changes_ = 0;
-  void NoteStateChange();
-  bool draining_ = false;
-  bool store_reachable_ = true;
-  bool serving_reported_ = true;  // the last value given to the listener
-  std::function<void(bool)> serving_listener_;
-  bool keeper_stop_ = false;
-  std::condition_variable keeper_wake_;
-  std::thread keeper_;
-  bool stopping_ = false;
-  std::string stop_reason_;
-  int run_counter_ = 0;
   std::function<std::string()> run_id_source_;  // SetRunIdSourceForTesting; empty: NewRunId
   FreeSpaceSource free_space_source_;           // SetFreeSpaceSource; empty: no free-space check
   std::string data_dir_;                        // named in the refusal
-  std::vector<std::thread> workers_;
   // Follow streams of a shared store also get the runs other replicas claim (kRemoteRun).
   std::unique_ptr<ClusterFollow> cluster_follow_;
+  // Last: its threads call the manager (QueueHooks) as soon as it is made.
+  RunQueue queue_;
 };
 
 }  // namespace mbstream

@@ -8,7 +8,7 @@ namespace mbstream {
 
 void RunManager::NoteStateChange() {
   {
-    std::lock_guard<std::mutex> lock(mutex_);
+    std::lock_guard<std::mutex> lock(changes_mutex_);
     ++state_changes_;
   }
   state_changed_.notify_all();
@@ -22,7 +22,7 @@ v1::RunInfo RunManager::AwaitChange(const std::string& run_id, v1::RunState from
   for (;;) {
     uint64_t seen = 0;
     {
-      std::lock_guard<std::mutex> lock(mutex_);
+      std::lock_guard<std::mutex> lock(changes_mutex_);
       seen = state_changes_;  // before reading the run: no change is missed in between
     }
     const auto now = std::chrono::steady_clock::now();
@@ -33,11 +33,13 @@ v1::RunInfo RunManager::AwaitChange(const std::string& run_id, v1::RunState from
       v1::RunInfo info = Get(run_id);
       if (info.state() != from || now >= until) return info;
     }
+    // Shutdown (RunQueue) sets its reason and then calls NoteStateChange: no wait misses it.
+    auto stopping = [&] { return queue_.stop_reason().has_value(); };
     {
-      std::unique_lock<std::mutex> lock(mutex_);
-      if (!stopping_) {
+      std::unique_lock<std::mutex> lock(changes_mutex_);
+      if (!stopping()) {
         state_changed_.wait_until(lock, std::min(until, now + kRecheck),
-                                  [&] { return stopping_ || state_changes_ != seen; });
+                                  [&] { return stopping() || state_changes_ != seen; });
         continue;
       }
     }

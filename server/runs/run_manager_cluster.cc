@@ -1,9 +1,8 @@
 // RunManager's answers about the cluster (docs/cluster.md, "Calls for runs on other
 // replicas"): where a run integrates, for the service's proxies; the runs other replicas
-// claim, for follow streams; models submitted to other replicas.
+// claim, for follow streams; models submitted to other replicas, and the runs claimed here
+// that other replicas started.
 #include <spdlog/spdlog.h>
-
-#include <algorithm>
 
 #include "server/runs/cluster_follow.h"
 #include "server/runs/request_error.h"
@@ -16,10 +15,7 @@ namespace mbstream {
 RunManager::RunPlace RunManager::Locate(const std::string& run_id) const {
   RunPlace place;
   if (replica_.private_store) return place;  // every run is this server's
-  if (std::shared_ptr<Run> run = FindActive(run_id)) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (std::find(queue_.begin(), queue_.end(), run) == queue_.end()) return place;  // running
-  }
+  if (queue_.IntegratesHere(run_id)) return place;
   std::optional<v1::RunInfo> stored = store_->GetRun(run_id);
   if (!stored) {
     place.info = Get(run_id);  // throws kNotFound (or found here meanwhile)
@@ -34,6 +30,25 @@ RunManager::RunPlace RunManager::Locate(const std::string& run_id) const {
     place.where = RunPlace::Where::kElsewhere;
   }
   return place;
+}
+
+std::shared_ptr<const CompiledModel> RunManager::FindModel(const std::string& model_ref) const {
+  try {
+    return models_->Find(model_ref);
+  } catch (const RequestError& error) {
+    if (error.kind() != RequestErrorKind::kNotFound) throw;
+  }
+  // Submitted to another replica since this one listed the store's models.
+  if (models_->LoadStored() == 0) return models_->Find(model_ref);  // throws kNotFound again
+  spdlog::info("models of other replicas loaded from the store for '{}'", model_ref);
+  return models_->Find(model_ref);
+}
+
+std::shared_ptr<Run> RunManager::RunOf(const v1::RunInfo& info) {
+  std::shared_ptr<const CompiledModel> model = FindModel(info.model_id());
+  std::vector<std::string> warnings;
+  const RunConfig config = PrepareConfig(*model, info.spec(), &warnings);
+  return std::make_shared<Run>(info, config, std::move(model), *clock_, ProbeOptions());
 }
 
 void RunManager::RefreshModels() const {

@@ -78,11 +78,8 @@ v1::RunInfo RunManager::ReplayToFollowers(const std::string& run_id, double spee
     throw RequestError(RequestErrorKind::kFailedPrecondition,
                        "run " + run_id + " has no stored frames: there is nothing to replay");
   }
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (stopping_) {
-      throw RequestError(RequestErrorKind::kUnavailable, "the server is shutting down");
-    }
+  if (queue_.stop_reason()) {
+    throw RequestError(RequestErrorKind::kUnavailable, "the server is shutting down");
   }
   const std::vector<std::shared_ptr<Subscription>> followers = fan_out_.followers();
   follower_replays_.Start(info, speed_x, followers);
