@@ -57,7 +57,7 @@ TEST_F(MeasuredStoreTest, CountsEveryRunOfABatchAndTimesTheBatchOnce) {
   EXPECT_EQ(store_.ListRuns().size(), 3u);
 }
 
-// A private store's claim (RunManager::ClaimPrivate) writes nothing and is counted; a result
+// A private store's claim (RunQueue::ClaimPrivate) writes nothing and is counted; a result
 // the store refused (the lease is not held) is not.
 TEST_F(MeasuredStoreTest, CountsAClaimMadeWithoutTheStoreAndOnlyStoredResults) {
   store_.PutRun(MakeRun("r-1", v1::QUEUED, 1000));

@@ -54,7 +54,7 @@ TEST_F(FrameStorageTest, FramesAreStoredWhileTheRunRuns) {
   ASSERT_EQ(stored.size(), kFramesPerChunk);
   for (int64_t k = 0; k < chunk; ++k) ASSERT_EQ(stored[k].seq(), k);
   // The row is not final: a private store's run stays QUEUED there until it ends (its claim
-  // is made in the server's memory, RunManager::ClaimPrivate); the server says RUNNING.
+  // is made in the server's memory, RunQueue::ClaimPrivate); the server says RUNNING.
   EXPECT_EQ(store->GetRun(started.id())->state(), v1::QUEUED);
   EXPECT_EQ(GetRun(started.id()).state(), v1::RUNNING);
 
