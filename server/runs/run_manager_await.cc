@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "server/runs/run_manager.h"
+#include "server/wire/stats_conversion.h"
 
 namespace mbstream {
 
@@ -27,9 +28,11 @@ v1::RunInfo RunManager::AwaitChange(const std::string& run_id, v1::RunState from
     }
     const auto now = std::chrono::steady_clock::now();
     // A run of this replica is looked at without copying its info (woken by every run's
-    // changes, most waits see their run unchanged).
+    // changes, most waits see their run unchanged). One that shows a final state while it is
+    // still listed here (Finish between its last UpdateInfo and Release) is waited for until
+    // it is gone: whoever is told a run ended then reads it, and its result, as stored.
     if (std::shared_ptr<Run> run = FindActive(run_id);
-        run == nullptr || run->state() != from || now >= until) {
+        run == nullptr || (run->state() != from && !IsFinalState(run->state())) || now >= until) {
       v1::RunInfo info = Get(run_id);
       if (info.state() != from || now >= until) return info;
     }
