@@ -44,6 +44,8 @@ enum class StoreOperation {
   kDeleteRun,
   kDeleteModel,
   kSetRunKeep,
+  kListSweepRuns,
+  kMarkSweepCancelled,
   kCount
 };
 

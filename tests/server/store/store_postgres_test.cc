@@ -163,6 +163,44 @@ TEST_F(PostgresStoreTest, VersionOneDatabaseIsMigratedKeepingItsRuns) {
   EXPECT_TRUE(tx.exec1("SELECT to_regclass('runs_queue') IS NOT NULL")[0].as<bool>());
 }
 
+TEST_F(PostgresStoreTest, VersionSixDatabaseFindsItsSweepsAfterTheUpgrade) {
+  {
+    pqxx::connection raw(uri_);
+    EnsurePostgresSchema(raw, uri_, 6);
+  }
+  v1::RunInfo cancelled = MakeRun("r-1", v1::CANCELLED, 1000);
+  cancelled.set_sweep_id("s-a");
+  cancelled.set_sweep_cancelled(true);  // where version 6 kept the mark: in the info
+  v1::RunInfo queued = MakeRun("r-2", v1::QUEUED, 1001);
+  queued.set_sweep_id("s-a");
+  queued.set_sweep_point(1);
+  {
+    pqxx::connection raw(uri_);  // version-6 rows, written as version 6 wrote them
+    pqxx::work tx(raw);
+    for (const v1::RunInfo& run : {cancelled, queued, MakeRun("r-3", v1::FINISHED, 1002)}) {
+      std::string bytes;
+      ASSERT_TRUE(run.SerializeToString(&bytes));
+      tx.exec_params(
+          "INSERT INTO runs (id, model_id, state, created_unix_ms, info) "
+          "VALUES ($1, $2, $3, $4, $5)",
+          run.id(), run.model_id(), static_cast<int>(run.state()), run.created_unix_ms(),
+          pqxx::binarystring(bytes));
+    }
+    tx.commit();
+  }
+  auto store = Open();
+  const std::vector<v1::RunInfo> runs = store->ListSweepRuns("s-a");
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[0].id(), "r-1");
+  EXPECT_TRUE(runs[0].sweep_cancelled());
+  EXPECT_EQ(runs[1].id(), "r-2");
+  EXPECT_FALSE(runs[1].sweep_cancelled());
+  EXPECT_EQ(store->MarkSweepCancelled("s-a"), 1);  // r-2; r-1's mark was carried over
+  pqxx::connection raw(uri_);
+  pqxx::work tx(raw);
+  EXPECT_TRUE(tx.exec1("SELECT to_regclass('runs_by_sweep') IS NOT NULL")[0].as<bool>());
+}
+
 // A trigger makes the second chunk's insert fail: the whole FinishRun rolls back, the error
 // is an InternalError naming the operation and PostgreSQL's message, and the store stays
 // usable.
