@@ -251,6 +251,10 @@ std::vector<v1::RunInfo> MeasuredStore::ListSweepRuns(const std::string& sweep_i
   return Timed(StoreOperation::kListSweepRuns, [&] { return store_->ListSweepRuns(sweep_id); });
 }
 
+bool MeasuredStore::SweepCancelled(const std::string& sweep_id) const {
+  return Timed(StoreOperation::kSweepCancelled, [&] { return store_->SweepCancelled(sweep_id); });
+}
+
 int MeasuredStore::MarkSweepCancelled(const std::string& sweep_id) {
   return Timed(StoreOperation::kMarkSweepCancelled,
                [&] { return store_->MarkSweepCancelled(sweep_id); });

@@ -37,7 +37,8 @@ constexpr const char* kStoreOperationNames[] = {"put_model",
                                                 "delete_model",
                                                 "set_run_keep",
                                                 "list_sweep_runs",
-                                                "mark_sweep_cancelled"};
+                                                "mark_sweep_cancelled",
+                                                "sweep_cancelled"};
 static_assert(std::size(kStoreOperationNames) == static_cast<size_t>(StoreOperation::kCount));
 
 bool IsFinal(v1::RunState state) { return state >= v1::FINISHED && state <= v1::INTERRUPTED; }

@@ -46,6 +46,7 @@ enum class StoreOperation {
   kSetRunKeep,
   kListSweepRuns,
   kMarkSweepCancelled,
+  kSweepCancelled,
   kCount
 };
 

@@ -95,6 +95,9 @@ class RunManager {
   // Records on every stored run of sweep `sweep_id` that the sweep was cancelled
   // (RunInfo.sweep_cancelled; Store::MarkSweepCancelled) and returns how many were marked now.
   int MarkSweepCancelled(const std::string& sweep_id);
+  // Whether sweep `sweep_id` was cancelled (a stored run carries the mark), from the store's
+  // index alone: StartSweep asks before each slice.
+  bool SweepCancelled(const std::string& sweep_id) const;
   // Tests only: where new run ids come from (the time and 32 random bits by default), to
   // force the collisions the store refuses. Call before the first Start.
   void SetRunIdSourceForTesting(std::function<std::string()> source) {

@@ -28,6 +28,10 @@ std::vector<v1::RunInfo> RunManager::SweepRuns(const std::string& sweep_id) cons
   return runs;
 }
 
+bool RunManager::SweepCancelled(const std::string& sweep_id) const {
+  return !sweep_id.empty() && store_->SweepCancelled(sweep_id);
+}
+
 int RunManager::MarkSweepCancelled(const std::string& sweep_id) {
   if (sweep_id.empty()) return 0;
   return store_->MarkSweepCancelled(sweep_id);

@@ -102,7 +102,7 @@ constexpr const char* kSchemaV6 = "ALTER TABLE runs ADD COLUMN keep boolean NOT 
 constexpr const char* kSchemaV7 = R"sql(
 ALTER TABLE runs ADD COLUMN sweep_id text;
 ALTER TABLE runs ADD COLUMN sweep_cancelled boolean NOT NULL DEFAULT false;
-CREATE INDEX runs_by_sweep ON runs (sweep_id) WHERE sweep_id IS NOT NULL;
+CREATE INDEX runs_by_sweep ON runs (sweep_id, sweep_cancelled) WHERE sweep_id IS NOT NULL;
 )sql";
 
 // Version 7's columns of the runs stored before it (each RunInfo read once, at the upgrade).

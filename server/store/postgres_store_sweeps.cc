@@ -23,4 +23,10 @@ int PostgresStore::MarkSweepCancelled(const std::string& sweep_id) {
   });
 }
 
+bool PostgresStore::SweepCancelled(const std::string& sweep_id) const {
+  return impl_->Transact("read sweep " + sweep_id, [&](pqxx::work& tx) {
+    return !tx.exec_params(kSweepCancelledSql, sweep_id).empty();
+  });
+}
+
 }  // namespace mbstream

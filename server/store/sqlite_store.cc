@@ -107,6 +107,7 @@ SqliteStore::Impl::Impl(SqliteConnection connection, const std::string& frames_p
       select_runs(db, "SELECT info, keep, sweep_cancelled FROM runs ORDER BY created_unix_ms, ord",
                   "list runs"),
       select_sweep_runs(db, kSelectSweepRunsSql, "list a sweep's runs"),
+      select_sweep_cancelled(db, kSweepCancelledSql, "read a sweep's mark"),
       select_unfinished_runs(db, "SELECT info FROM runs WHERE state IN (?1, ?2) ORDER BY ord",
                              "list unfinished runs"),
       select_oldest_queued_run(

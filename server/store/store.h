@@ -158,6 +158,9 @@ class Store {
   // row's own, as `keep`: PutRun and FinishRun leave it. Returns how many runs were marked now
   // (0 when every one carried the mark already, or the sweep is unknown).
   virtual int MarkSweepCancelled(const std::string& sweep_id) = 0;
+  // Whether a stored run of sweep `sweep_id` carries the mark, from the index alone (no
+  // RunInfo read). Reads only.
+  virtual bool SweepCancelled(const std::string& sweep_id) const = 0;
 
   // Storage (store_usage.cc, postgres_store_usage.cc; store_usage.h). What the store holds:
   // runs by model and state, the bytes of their frames, probe reports and rows, and (SQLite)

@@ -37,6 +37,7 @@ struct SqliteStore::Impl {
   SqliteStatement select_run;
   SqliteStatement select_runs;
   SqliteStatement select_sweep_runs;  // store_sweeps.cc
+  SqliteStatement select_sweep_cancelled;
   SqliteStatement select_unfinished_runs;
   // The run queue (store_queue.cc): prepared once, used for every run.
   SqliteStatement select_oldest_queued_run;

@@ -120,7 +120,7 @@ ALTER TABLE runs ADD COLUMN keep INTEGER NOT NULL DEFAULT 0;
 constexpr const char* kSchemaV7 = R"sql(
 ALTER TABLE runs ADD COLUMN sweep_id TEXT;
 ALTER TABLE runs ADD COLUMN sweep_cancelled INTEGER NOT NULL DEFAULT 0;
-CREATE INDEX runs_by_sweep ON runs (sweep_id) WHERE sweep_id IS NOT NULL;
+CREATE INDEX runs_by_sweep ON runs (sweep_id, sweep_cancelled) WHERE sweep_id IS NOT NULL;
 )sql";
 
 // Version 7's columns of the runs stored before it (each RunInfo read once, at the upgrade).

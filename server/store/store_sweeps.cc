@@ -25,4 +25,12 @@ int SqliteStore::MarkSweepCancelled(const std::string& sweep_id) {
   return static_cast<int>(impl_->db.Changes());
 }
 
+bool SqliteStore::SweepCancelled(const std::string& sweep_id) const {
+  std::lock_guard lock(impl_->mutex);
+  SqliteStatement& select = impl_->select_sweep_cancelled;
+  ResetOnExit reset(select);
+  select.BindText(1, sweep_id);
+  return select.Step();
+}
+
 }  // namespace mbstream

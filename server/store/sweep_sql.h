@@ -12,6 +12,11 @@ inline constexpr const char* kSelectSweepRunsSql =
     "SELECT info, keep, sweep_cancelled FROM runs WHERE sweep_id = $1 "
     "ORDER BY created_unix_ms, ord";
 
+// Whether a run of a sweep carries the mark, from the index alone (it holds the mark: the rows,
+// their infos past it, are not read). StartSweep asks it before each slice.
+inline constexpr const char* kSweepCancelledSql =
+    "SELECT 1 FROM runs WHERE sweep_id = $1 AND sweep_cancelled LIMIT 1";
+
 // Marks every stored run of a sweep cancelled, in one statement: a run deleted meanwhile is not
 // written again (a read-then-write would re-insert its row). The mark is the row's own column:
 // a run's writers (PutRun, FinishRun) never undo it. Rows marked already are left alone.

@@ -11,6 +11,7 @@
 #include "server/store/sqlite_connection.h"
 #include "server/store/sqlite_statement.h"
 #include "server/store/store.h"
+#include "server/store/sweep_sql.h"
 #include "tests/server/store/store_test_util.h"
 
 namespace mbstream {
@@ -70,7 +71,11 @@ TEST_P(StoreSweepsTest, ListSweepRunsFindsTheSweepsRunsOnlyOldestFirst) {
 TEST_P(StoreSweepsTest, MarkSweepCancelledMarksEveryRunOfTheSweepAndWritersKeepTheMark) {
   auto store = Open();
   AddRuns(*store);
+  EXPECT_FALSE(store->SweepCancelled("s-a"));
   EXPECT_EQ(store->MarkSweepCancelled("s-a"), 3);
+  EXPECT_TRUE(store->SweepCancelled("s-a"));
+  EXPECT_FALSE(store->SweepCancelled("s-b"));
+  EXPECT_FALSE(store->SweepCancelled("s-unknown"));
   EXPECT_EQ(store->MarkSweepCancelled("s-a"), 0);  // marked already
   EXPECT_EQ(store->MarkSweepCancelled("s-unknown"), 0);
   for (const v1::RunInfo& run : store->ListSweepRuns("s-a")) EXPECT_TRUE(run.sweep_cancelled());
@@ -105,18 +110,22 @@ TEST_P(StoreSweepsTest, ADeletedRunIsNotCreatedAgainByTheMark) {
   EXPECT_EQ(store->ListRuns().size(), 4u);
 }
 
-TEST(StoreSweepsSqliteTest, ASweepsRunsAreFoundByTheIndex) {
-  TempDirectory temp;
-  Store::Open(temp.str());
-  auto raw = SqliteConnection::Open((temp.path() / Store::kFileName).string());
-  SqliteStatement plan(raw,
-                       "EXPLAIN QUERY PLAN SELECT info, keep, sweep_cancelled FROM runs "
-                       "WHERE sweep_id = $1 ORDER BY created_unix_ms, ord",
-                       "explain");
+// SQLite's plan of `sql` (EXPLAIN QUERY PLAN's details, a line each).
+std::string PlanOf(SqliteConnection& raw, const std::string& sql) {
+  SqliteStatement plan(raw, "EXPLAIN QUERY PLAN " + sql, "explain");
   std::string details;
   while (plan.Step()) details += std::string(plan.ColumnText(3)) + "\n";
   plan.Reset();
-  EXPECT_THAT(details, HasSubstr("USING INDEX runs_by_sweep"));
+  return details;
+}
+
+TEST(StoreSweepsSqliteTest, ASweepsRunsAndItsMarkAreFoundByTheIndex) {
+  TempDirectory temp;
+  Store::Open(temp.str());
+  auto raw = SqliteConnection::Open((temp.path() / Store::kFileName).string());
+  EXPECT_THAT(PlanOf(raw, kSelectSweepRunsSql), HasSubstr("USING INDEX runs_by_sweep"));
+  // The mark from the index alone: no row (and its RunInfo) read.
+  EXPECT_THAT(PlanOf(raw, kSweepCancelledSql), HasSubstr("USING COVERING INDEX runs_by_sweep"));
 }
 
 TEST(StoreSweepsSqliteTest, AVersionSixStoreFindsItsSweepsAfterTheUpgrade) {
