@@ -1,6 +1,7 @@
-// `mbstream result RUN --out DIR` and `mbstream cancel RUN`.
+// `mbstream result RUN --out DIR` and `mbstream cancel RUN` (or `cancel --sweep SWEEP_ID`).
 #include <iostream>
 
+#include "client/cli/exit_codes.h"
 #include "client/cli/result_download.h"
 #include "client/cli/server_commands.h"
 #include "common/check.h"
@@ -71,9 +72,24 @@ void AddResultCommands(CLI::App& app, std::shared_ptr<const ClientOptions> clien
   });
 
   auto cancel_id = std::make_shared<std::string>();
-  CLI::App* cancel = app.add_subcommand("cancel", "stop a queued or running run");
-  cancel->add_option("run", *cancel_id, "run id")->required();
-  cancel->callback([client, cancel_id, exit_code] { *exit_code = Cancel(*client, *cancel_id); });
+  auto sweep_id = std::make_shared<std::string>();
+  CLI::App* cancel =
+      app.add_subcommand("cancel", "stop a queued or running run, or every run of a sweep");
+  CLI::Option* run = cancel->add_option("run", *cancel_id, "run id");
+  cancel
+      ->add_option("--sweep", *sweep_id,
+                   "cancel sweep ID instead: its queued and running runs, and the slices not "
+                   "started (as `mbstream sweep --cancel ID`)")
+      ->excludes(run);
+  cancel->callback([client, cancel_id, sweep_id, exit_code] {
+    if (cancel_id->empty() == sweep_id->empty()) {
+      std::cerr << "mbstream cancel: give a RUN id or --sweep SWEEP_ID\n";
+      *exit_code = kExitBadRequest;
+      return;
+    }
+    *exit_code = sweep_id->empty() ? Cancel(*client, *cancel_id)
+                                   : SweepCall(*client, *sweep_id, true, "cancel");
+  });
 }
 
 }  // namespace mbstream::cli

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include <memory>
+#include <string>
 
 #include "client/cli/server_connection.h"
 
@@ -25,6 +26,12 @@ void AddDataCommands(CLI::App& app, std::shared_ptr<const ClientOptions> options
                      int* exit_code);  // delete, keep, retention
 void AddStorageCommands(CLI::App& app, std::shared_ptr<const ClientOptions> options,
                         int* exit_code);  // storage, backup (storage_commands.cc)
+// `mbstream sweep --status ID` (GetSweep) and `--cancel ID` (CancelSweep; also `mbstream cancel
+// --sweep ID`): the sweep's progress line printed, an RPC error reported as `command`'s
+// (sweep_command.cc). Returns the exit code.
+int SweepCall(const ClientOptions& client, const std::string& id, bool cancel,
+              const std::string& command);
+
 void AddHealthCommand(CLI::App& app, std::shared_ptr<const ClientOptions> options,
                       int* exit_code);  // health (gRPC health checking)
 

@@ -2,8 +2,9 @@
 //  [--keep summary|final|every:N|all] [--window N] --out DIR`: one sweep on the server,
 // its table in DIR/sweep.csv (sweep_table.h) and, when more than the summary is kept, each
 // run's results in DIR/runs/RUN_ID/; its progress as the server reports it (GetSweep).
-// `mbstream sweep --status SWEEP_ID` prints a sweep's progress, `--cancel SWEEP_ID` cancels it
-// (CancelSweep: the command that started it stops starting runs and exits 1).
+// `mbstream sweep --status SWEEP_ID` prints a sweep's progress, `--cancel SWEEP_ID` (or
+// `mbstream cancel --sweep SWEEP_ID`) cancels it (CancelSweep: the command that started it
+// stops starting runs and exits 1).
 #include <unistd.h>
 
 #include <chrono>
@@ -165,8 +166,10 @@ int Sweep(const ClientOptions& client, const SweepOptions& options) {
   return cancelled ? kExitRunFailed : kExitOk;
 }
 
-// `mbstream sweep --status ID` and `--cancel ID`: GetSweep or CancelSweep, its line printed.
-int SweepCall(const ClientOptions& client, const std::string& id, bool cancel) {
+}  // namespace
+
+int SweepCall(const ClientOptions& client, const std::string& id, bool cancel,
+              const std::string& command) {
   std::unique_ptr<v1::Simulation::Stub> stub = ConnectSimulation(client);
   v1::SweepProgress progress;
   grpc::ClientContext context;
@@ -180,12 +183,10 @@ int SweepCall(const ClientOptions& client, const std::string& id, bool cancel) {
     request.set_sweep_id(id);
     status = stub->GetSweep(&context, request, &progress);
   }
-  if (!status.ok()) return ReportRpcError("sweep", client, status);
+  if (!status.ok()) return ReportRpcError(command, client, status);
   std::cout << SweepProgressLine(progress) << "\n";
   return kExitOk;
 }
-
-}  // namespace
 
 void AddSweepCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client, int* exit_code) {
   auto options = std::make_shared<SweepOptions>();
@@ -213,7 +214,8 @@ void AddSweepCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client,
     try {
       if (!options->cancel_id.empty() || !options->status_id.empty()) {
         const bool cancel = !options->cancel_id.empty();
-        *exit_code = SweepCall(*client, cancel ? options->cancel_id : options->status_id, cancel);
+        *exit_code =
+            SweepCall(*client, cancel ? options->cancel_id : options->status_id, cancel, "sweep");
         return;
       }
       if (options->model.empty() || options->out_dir.empty()) {

@@ -247,6 +247,19 @@ bool MeasuredStore::SetRunKeep(const std::string& run_id, bool keep) {
   return Timed(StoreOperation::kSetRunKeep, [&] { return store_->SetRunKeep(run_id, keep); });
 }
 
+std::vector<v1::RunInfo> MeasuredStore::ListSweepRuns(const std::string& sweep_id) const {
+  return Timed(StoreOperation::kListSweepRuns, [&] { return store_->ListSweepRuns(sweep_id); });
+}
+
+bool MeasuredStore::SweepCancelled(const std::string& sweep_id) const {
+  return Timed(StoreOperation::kSweepCancelled, [&] { return store_->SweepCancelled(sweep_id); });
+}
+
+int MeasuredStore::MarkSweepCancelled(const std::string& sweep_id) {
+  return Timed(StoreOperation::kMarkSweepCancelled,
+               [&] { return store_->MarkSweepCancelled(sweep_id); });
+}
+
 // An operator's occasional calls (GetStorage, BackupStorage): passed on, not timed.
 StoreUsage MeasuredStore::Usage(const std::vector<std::string>& weigh_runs) const {
   return store_->Usage(weigh_runs);

@@ -35,7 +35,10 @@ constexpr const char* kStoreOperationNames[] = {"put_model",
                                                 "list_running_runs",
                                                 "delete_run",
                                                 "delete_model",
-                                                "set_run_keep"};
+                                                "set_run_keep",
+                                                "list_sweep_runs",
+                                                "mark_sweep_cancelled",
+                                                "sweep_cancelled"};
 static_assert(std::size(kStoreOperationNames) == static_cast<size_t>(StoreOperation::kCount));
 
 bool IsFinal(v1::RunState state) { return state >= v1::FINISHED && state <= v1::INTERRUPTED; }

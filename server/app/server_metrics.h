@@ -44,6 +44,9 @@ enum class StoreOperation {
   kDeleteRun,
   kDeleteModel,
   kSetRunKeep,
+  kListSweepRuns,
+  kMarkSweepCancelled,
+  kSweepCancelled,
   kCount
 };
 

@@ -68,9 +68,12 @@ class RunManager {
   // The runs of sweep `sweep_id` the store holds (every replica's), in point order, each as
   // Get returns it (run_manager_sweep.cc). Empty for an unknown sweep.
   std::vector<v1::RunInfo> SweepRuns(const std::string& sweep_id) const;
-  // Records on each ended run of `runs` that its sweep was cancelled (RunInfo.sweep_cancelled)
-  // and returns how many carry the mark now.
-  int MarkSweepCancelled(const std::vector<v1::RunInfo>& runs);
+  // Records on every stored run of sweep `sweep_id` that the sweep was cancelled
+  // (RunInfo.sweep_cancelled; Store::MarkSweepCancelled) and returns how many were marked now.
+  int MarkSweepCancelled(const std::string& sweep_id);
+  // Whether sweep `sweep_id` was cancelled (a stored run carries the mark), from the store's
+  // index alone: StartSweep asks before each slice.
+  bool SweepCancelled(const std::string& sweep_id) const;
   // Tests only: where new run ids come from (the time and 32 random bits by default), to
   // force the collisions the store refuses. Call before the first Start.
   void SetRunIdSourceForTesting(std::function<std::string()> source) {

@@ -1,5 +1,6 @@
 // RunManager's view of a sweep (StartSweep's runs under one RunInfo.sweep_id): its runs as
-// the store holds them, every replica's, and the mark that it was cancelled.
+// the store holds them, every replica's (found by the store's index of sweep ids), and the
+// mark that it was cancelled.
 #include <algorithm>
 
 #include "server/runs/run.h"
@@ -12,8 +13,7 @@ namespace mbstream {
 std::vector<v1::RunInfo> RunManager::SweepRuns(const std::string& sweep_id) const {
   std::vector<v1::RunInfo> runs;
   if (sweep_id.empty()) return runs;
-  for (v1::RunInfo& stored : store_->ListRuns()) {
-    if (stored.sweep_id() != sweep_id) continue;
+  for (v1::RunInfo& stored : store_->ListSweepRuns(sweep_id)) {
     // A run integrating here: its live info (the store's row is updated at its end only).
     if (std::shared_ptr<Run> run = FindActive(stored.id()); run) {
       const bool cancelled = stored.sweep_cancelled();
@@ -28,18 +28,13 @@ std::vector<v1::RunInfo> RunManager::SweepRuns(const std::string& sweep_id) cons
   return runs;
 }
 
-int RunManager::MarkSweepCancelled(const std::vector<v1::RunInfo>& runs) {
-  int marked = 0;
-  for (const v1::RunInfo& run : runs) {
-    std::optional<v1::RunInfo> stored = store_->GetRun(run.id());
-    if (!stored || !IsFinalState(stored->state())) continue;  // deleted, or not ended yet
-    if (!stored->sweep_cancelled()) {
-      stored->set_sweep_cancelled(true);
-      store_->PutRun(*stored);
-    }
-    ++marked;
-  }
-  return marked;
+bool RunManager::SweepCancelled(const std::string& sweep_id) const {
+  return !sweep_id.empty() && store_->SweepCancelled(sweep_id);
+}
+
+int RunManager::MarkSweepCancelled(const std::string& sweep_id) {
+  if (sweep_id.empty()) return 0;
+  return store_->MarkSweepCancelled(sweep_id);
 }
 
 }  // namespace mbstream

@@ -6,7 +6,6 @@
 #include "server/runs/request_error.h"
 #include "server/runs/timed_id.h"
 #include "server/service/simulation_service.h"
-#include "server/service/sweep_progress.h"
 #include "server/spec/spec_override.h"
 
 namespace mbstream {
@@ -78,7 +77,7 @@ grpc::Status SimulationService::StartSweep(grpc::ServerContext* context,
          given.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-") != std::string::npos)) {
       throw InputError("sweep_id: give the id the sweep's first StartSweep returned (s-...)");
     }
-    if (!given.empty() && SweepWasCancelled(runs_->SweepRuns(given))) {
+    if (!given.empty() && runs_->SweepCancelled(given)) {
       throw RequestError(RequestErrorKind::kFailedPrecondition,
                          "sweep " + given + " was cancelled (CancelSweep); start a new sweep");
     }

@@ -63,7 +63,10 @@ grpc::Status SimulationService::CancelSweep(grpc::ServerContext* context,
       }
     }
     const auto until = std::chrono::steady_clock::now() + kCancelWait;
-    // Twice: a slice started while the first pass ran (before the mark) is cancelled too.
+    // The mark first: StartSweep refuses later slices from now on. Twice: a slice that passed
+    // StartSweep's check before the mark, started while the first pass ran, is cancelled (and
+    // marked) too.
+    runs_->MarkSweepCancelled(id);
     for (int pass = 0; pass < 2; ++pass) {
       for (const v1::RunInfo& run : runs) {
         if (IsFinalState(run.state())) continue;
@@ -74,12 +77,10 @@ grpc::Status SimulationService::CancelSweep(grpc::ServerContext* context,
         if (grpc::Status status = CancelRun(context, &cancel, &now);
             !status.ok() && status.error_code() != grpc::StatusCode::NOT_FOUND) {
           return status;
-        } else if (status.ok() && IsFinalState(now.state())) {
-          runs_->MarkSweepCancelled({now});  // ended while queued: later slices refused now
         }
       }
       for (const v1::RunInfo& run : runs) AwaitEnded(*runs_, run, until);
-      runs_->MarkSweepCancelled(runs_->SweepRuns(id));
+      runs_->MarkSweepCancelled(id);
       runs = runs_->SweepRuns(id);
     }
     *response = SweepProgressOf(id, runs);

@@ -1,9 +1,14 @@
 #include "server/store/postgres_schema.h"
 
+#include <string_view>
+
 #include <pqxx/pqxx>
 
 #include "common/check.h"
+#include "mbstream/v1/run.pb.h"
+#include "server/store/store_codec.h"
 #include "server/store/store_schema.h"
+#include "server/store/sweep_sql.h"
 
 namespace mbstream {
 namespace {
@@ -92,13 +97,40 @@ constexpr const char* kSchemaV5 = "SELECT 1";
 // Version 6: a run marked to be kept, as in store_schema.cc.
 constexpr const char* kSchemaV6 = "ALTER TABLE runs ADD COLUMN keep boolean NOT NULL DEFAULT false";
 
+// Version 7: a run's sweep, indexed, and the mark that it was cancelled, as in store_schema.cc;
+// BackfillSweeps fills both from each stored RunInfo.
+constexpr const char* kSchemaV7 = R"sql(
+ALTER TABLE runs ADD COLUMN sweep_id text;
+ALTER TABLE runs ADD COLUMN sweep_cancelled boolean NOT NULL DEFAULT false;
+CREATE INDEX runs_by_sweep ON runs (sweep_id, sweep_cancelled) WHERE sweep_id IS NOT NULL;
+)sql";
+
+// Version 7's columns of the runs stored before it (each RunInfo read once, at the upgrade).
+void BackfillSweeps(pqxx::work& tx, const std::string& location) {
+  v1::RunInfo info;
+  pqxx::binarystring blob(nullptr, 0);
+  for (const pqxx::row& row : tx.exec(kSelectRunInfosSql)) {
+    blob = pqxx::binarystring(row[1]);
+    ParseFromStore(std::string_view(blob.get(), blob.size()), info,
+                   "run " + row[0].as<std::string>(), location);
+    if (info.sweep_id().empty()) continue;
+    tx.exec_params(kBackfillSweepSql, info.sweep_id(), info.sweep_cancelled(), info.id());
+  }
+}
+
 struct Migration {
   int version;      // the version the step leads to
   const char* sql;  // from the version before
+  void (*backfill)(pqxx::work& tx, const std::string& location) = nullptr;  // then, if any
 };
 
-constexpr Migration kMigrations[] = {{1, kSchemaV1}, {2, kSchemaV2}, {3, kSchemaV3},
-                                     {4, kSchemaV4}, {5, kSchemaV5}, {6, kSchemaV6}};
+constexpr Migration kMigrations[] = {{1, kSchemaV1},
+                                     {2, kSchemaV2},
+                                     {3, kSchemaV3},
+                                     {4, kSchemaV4},
+                                     {5, kSchemaV5},
+                                     {6, kSchemaV6},
+                                     {7, kSchemaV7, BackfillSweeps}};
 static_assert(sizeof(kMigrations) / sizeof(kMigrations[0]) == kPostgresSchemaVersion);
 static_assert(kPostgresSchemaVersion == kStoreSchemaVersion, "both stores, one behaviour");
 
@@ -134,6 +166,7 @@ void EnsurePostgresSchema(pqxx::connection_base& db, const std::string& location
     if (migration.version > version && migration.version <= target_version) {
       tx.exec(migration.sql,
               "migrate the store schema to version " + std::to_string(migration.version));
+      if (migration.backfill != nullptr) migration.backfill(tx, location);
       tx.exec_params("UPDATE mbstream_schema SET version = $1", migration.version);
     }
   }

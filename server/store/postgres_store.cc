@@ -29,14 +29,16 @@ constexpr std::pair<const char*, const char*> kStatements[] = {
      "SELECT m.id, octet_length(m.bundle) + COALESCE((SELECT sum(octet_length(a.data)) "
      "FROM model_assets a WHERE a.model_id = m.id), 0) FROM models m"},
     {"upsert_run",
-     "INSERT INTO runs (id, model_id, state, created_unix_ms, info) VALUES ($1, $2, $3, $4, $5) "
+     "INSERT INTO runs (id, model_id, state, created_unix_ms, info, sweep_id) "
+     "VALUES ($1, $2, $3, $4, $5, NULLIF($6, '')) "
      "ON CONFLICT (id) DO UPDATE SET model_id = excluded.model_id, state = excluded.state, "
-     "created_unix_ms = excluded.created_unix_ms, info = excluded.info"},
+     "created_unix_ms = excluded.created_unix_ms, info = excluded.info, "
+     "sweep_id = excluded.sweep_id"},
     {"insert_new_run",
-     "INSERT INTO runs (id, model_id, state, created_unix_ms, info) VALUES ($1, $2, $3, $4, $5) "
-     "ON CONFLICT (id) DO NOTHING"},
-    {"select_run", "SELECT info, keep FROM runs WHERE id = $1"},
-    {"select_runs", "SELECT info, keep FROM runs ORDER BY created_unix_ms, ord"},
+     "INSERT INTO runs (id, model_id, state, created_unix_ms, info, sweep_id) "
+     "VALUES ($1, $2, $3, $4, $5, NULLIF($6, '')) ON CONFLICT (id) DO NOTHING"},
+    {"select_run", "SELECT info, keep, sweep_cancelled FROM runs WHERE id = $1"},
+    {"select_runs", "SELECT info, keep, sweep_cancelled FROM runs ORDER BY created_unix_ms, ord"},
     {"select_unfinished_runs",
      "SELECT info FROM runs WHERE state IN ($1, $2) ORDER BY ord FOR UPDATE"},
     {"delete_frame_chunks", "DELETE FROM frame_chunks WHERE run_id = $1"},
@@ -169,14 +171,21 @@ std::map<std::string, int64_t> PostgresStore::ModelBytes() const {
 
 namespace {
 
-// Runs prepared `statement` (upsert_run or insert_new_run: the same five parameters) for `info`.
+// Runs prepared `statement` (upsert_run or insert_new_run: the same six parameters) for `info`.
 pqxx::result WriteRun(pqxx::transaction_base& tx, const char* statement, const v1::RunInfo& info) {
   const std::string bytes = SerializeForStore(info, "run " + info.id());
   return tx.exec_prepared(statement, info.id(), info.model_id(), static_cast<int>(info.state()),
-                          info.created_unix_ms(), BlobParam(bytes));
+                          info.created_unix_ms(), BlobParam(bytes), info.sweep_id());
 }
 
 }  // namespace
+
+void ReadRunRow(const pqxx::row& row, pqxx::binarystring& blob, v1::RunInfo& info,
+                const std::string& location) {
+  ParseFromStore(BlobOf(row[0], blob), info, "run info", location);
+  info.set_keep(row[1].as<bool>());
+  if (row[2].as<bool>()) info.set_sweep_cancelled(true);
+}
 
 void UpsertRun(pqxx::transaction_base& tx, const v1::RunInfo& info) {
   WriteRun(tx, "upsert_run", info);
@@ -209,8 +218,7 @@ std::optional<v1::RunInfo> PostgresStore::GetRun(const std::string& run_id) cons
     const pqxx::result found = tx.exec_prepared("select_run", run_id);
     if (found.empty()) return info;
     pqxx::binarystring blob(nullptr, 0);
-    ParseFromStore(BlobOf(found[0][0], blob), info.emplace(), "run " + run_id, impl_->location);
-    info->set_keep(found[0][1].as<bool>());
+    ReadRunRow(found[0], blob, info.emplace(), impl_->location);
     return info;
   });
 }
@@ -220,8 +228,7 @@ std::vector<v1::RunInfo> PostgresStore::ListRuns() const {
     std::vector<v1::RunInfo> runs;
     pqxx::binarystring blob(nullptr, 0);
     for (const pqxx::row& row : tx.exec_prepared("select_runs")) {
-      ParseFromStore(BlobOf(row[0], blob), runs.emplace_back(), "run info", impl_->location);
-      runs.back().set_keep(row[1].as<bool>());
+      ReadRunRow(row, blob, runs.emplace_back(), impl_->location);
     }
     return runs;
   });

@@ -58,6 +58,11 @@ inline std::string_view BlobOf(const pqxx::field& field, pqxx::binarystring& hol
 // A bytea parameter (sent in binary form).
 inline pqxx::binarystring BlobParam(const std::string& bytes) { return pqxx::binarystring(bytes); }
 
+// The run of a row (info, keep, sweep_cancelled) of select_run, select_runs or
+// kSelectSweepRunsSql; `blob` holds the info's unescaped bytes.
+void ReadRunRow(const pqxx::row& row, pqxx::binarystring& blob, v1::RunInfo& info,
+                const std::string& location);
+
 // Writes the run row (insert, or update keeping its order and its frames).
 void UpsertRun(pqxx::transaction_base& transaction, const v1::RunInfo& info);
 

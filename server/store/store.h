@@ -149,6 +149,19 @@ class Store {
   // when no such run is stored.
   virtual bool SetRunKeep(const std::string& run_id, bool keep) = 0;
 
+  // Sweeps (store_sweeps.cc, postgres_store_sweeps.cc; the statements in sweep_sql.h). The runs
+  // of sweep `sweep_id` (RunInfo.sweep_id), oldest first, as GetRun returns them, found by the
+  // index of sweep ids (not by reading every run). Empty for an unknown sweep. Reads only.
+  virtual std::vector<v1::RunInfo> ListSweepRuns(const std::string& sweep_id) const = 0;
+  // Marks every stored run of sweep `sweep_id` cancelled (RunInfo.sweep_cancelled), in one
+  // statement on the rows that exist: a run deleted meanwhile stays deleted. The mark is the
+  // row's own, as `keep`: PutRun and FinishRun leave it. Returns how many runs were marked now
+  // (0 when every one carried the mark already, or the sweep is unknown).
+  virtual int MarkSweepCancelled(const std::string& sweep_id) = 0;
+  // Whether a stored run of sweep `sweep_id` carries the mark, from the index alone (no
+  // RunInfo read). Reads only.
+  virtual bool SweepCancelled(const std::string& sweep_id) const = 0;
+
   // Storage (store_usage.cc, postgres_store_usage.cc; store_usage.h). What the store holds:
   // runs by model and state, the bytes of their frames, probe reports and rows, and (SQLite)
   // the blocks its files take on the disk; `weighed_bytes` sums the frame and probe bytes of

@@ -36,6 +36,8 @@ struct SqliteStore::Impl {
   SqliteStatement insert_new_run;  // nothing when the id is taken
   SqliteStatement select_run;
   SqliteStatement select_runs;
+  SqliteStatement select_sweep_runs;  // store_sweeps.cc
+  SqliteStatement select_sweep_cancelled;
   SqliteStatement select_unfinished_runs;
   // The run queue (store_queue.cc): prepared once, used for every run.
   SqliteStatement select_oldest_queued_run;
@@ -59,6 +61,10 @@ struct SqliteStore::Impl {
   // Last: unhooked from `db` before anything else is torn down.
   SqliteCheckpointer checkpointer;
 };
+
+// The run of a row of select_run, select_runs or select_sweep_runs (info, keep,
+// sweep_cancelled). The caller holds the mutex.
+void ReadRunRowLocked(const SqliteStore::Impl& impl, const SqliteStatement& row, v1::RunInfo& info);
 
 // Writes the run row (insert, or update keeping the row's order and its frames). The caller
 // holds the mutex.

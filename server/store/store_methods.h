@@ -41,6 +41,9 @@
   X(bool, DeleteRun, (const std::string& run_id), )                                             \
   X(int64_t, DeleteModel, (const std::string& model_id), )                                      \
   X(bool, SetRunKeep, (const std::string& run_id, bool keep), )                                 \
+  X(std::vector<v1::RunInfo>, ListSweepRuns, (const std::string& sweep_id), const)              \
+  X(int, MarkSweepCancelled, (const std::string& sweep_id), )                                   \
+  X(bool, SweepCancelled, (const std::string& sweep_id), const)                                 \
   X(StoreUsage, Usage, (const std::vector<std::string>& weigh_runs), const)                     \
   X(StoreBackup, Backup, (const std::string& dir), )                                            \
   X(int, MarkUnfinishedRunsInterrupted, (const std::string& message), )                         \

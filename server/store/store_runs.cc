@@ -7,7 +7,7 @@ namespace mbstream {
 
 namespace {
 
-// Runs `statement` (upsert_run or insert_new_run: the same five parameters) for `info`.
+// Runs `statement` (upsert_run or insert_new_run: the same six parameters) for `info`.
 void WriteRunLocked(SqliteStatement& statement, const v1::RunInfo& info) {
   const std::string bytes = SerializeForStore(info, "run " + info.id());
   ResetOnExit reset(statement);
@@ -16,10 +16,18 @@ void WriteRunLocked(SqliteStatement& statement, const v1::RunInfo& info) {
   statement.BindInt64(3, info.state());
   statement.BindInt64(4, info.created_unix_ms());
   statement.BindBlob(5, bytes);
+  statement.BindText(6, info.sweep_id());
   statement.Run();
 }
 
 }  // namespace
+
+void ReadRunRowLocked(const SqliteStore::Impl& impl, const SqliteStatement& row,
+                      v1::RunInfo& info) {
+  ParseFromStore(row.ColumnBlob(0), info, "run info", impl.db.path());
+  info.set_keep(row.ColumnInt64(1) != 0);
+  if (row.ColumnInt64(2) != 0) info.set_sweep_cancelled(true);
+}
 
 void UpsertRunLocked(SqliteStore::Impl& impl, const v1::RunInfo& info) {
   WriteRunLocked(impl.upsert_run, info);
@@ -48,8 +56,7 @@ std::optional<v1::RunInfo> SqliteStore::GetRun(const std::string& run_id) const 
   select.BindText(1, run_id);
   if (!select.Step()) return std::nullopt;
   v1::RunInfo info;
-  ParseFromStore(select.ColumnBlob(0), info, "run " + run_id, impl_->db.path());
-  info.set_keep(select.ColumnInt64(1) != 0);
+  ReadRunRowLocked(*impl_, select, info);
   return info;
 }
 
@@ -58,10 +65,7 @@ std::vector<v1::RunInfo> SqliteStore::ListRuns() const {
   std::lock_guard lock(impl_->mutex);
   SqliteStatement& select = impl_->select_runs;
   ResetOnExit reset(select);
-  while (select.Step()) {
-    ParseFromStore(select.ColumnBlob(0), runs.emplace_back(), "run info", impl_->db.path());
-    runs.back().set_keep(select.ColumnInt64(1) != 0);
-  }
+  while (select.Step()) ReadRunRowLocked(*impl_, select, runs.emplace_back());
   return runs;
 }
 

@@ -1,11 +1,14 @@
 #include "server/store/store_schema.h"
 
 #include <string>
+#include <vector>
 
 #include "common/check.h"
 #include "server/store/sqlite_connection.h"
 #include "server/store/sqlite_statement.h"
 #include "server/store/sqlite_transaction.h"
+#include "server/store/store_codec.h"
+#include "server/store/sweep_sql.h"
 
 namespace mbstream {
 namespace {
@@ -111,6 +114,38 @@ constexpr const char* kSchemaV6 = R"sql(
 ALTER TABLE runs ADD COLUMN keep INTEGER NOT NULL DEFAULT 0;
 )sql";
 
+// Version 7: a run's sweep (RunInfo.sweep_id; NULL for a run started alone), indexed for a
+// sweep's progress and cancel, and the mark that its sweep was cancelled, a column of its own
+// as `keep` is (sweep_sql.h). BackfillSweeps fills both from each stored RunInfo.
+constexpr const char* kSchemaV7 = R"sql(
+ALTER TABLE runs ADD COLUMN sweep_id TEXT;
+ALTER TABLE runs ADD COLUMN sweep_cancelled INTEGER NOT NULL DEFAULT 0;
+CREATE INDEX runs_by_sweep ON runs (sweep_id, sweep_cancelled) WHERE sweep_id IS NOT NULL;
+)sql";
+
+// Version 7's columns of the runs stored before it (each RunInfo read once, at the upgrade).
+void BackfillSweeps(SqliteConnection& connection) {
+  std::vector<v1::RunInfo> swept;
+  {
+    SqliteStatement select(connection, kSelectRunInfosSql, "read runs for schema version 7");
+    ResetOnExit reset(select);
+    v1::RunInfo info;
+    while (select.Step()) {
+      ParseFromStore(select.ColumnBlob(1), info, "run " + std::string(select.ColumnText(0)),
+                     connection.path());
+      if (!info.sweep_id().empty()) swept.push_back(info);
+    }
+  }
+  SqliteStatement update(connection, kBackfillSweepSql, "migrate schema to version 7");
+  for (const v1::RunInfo& info : swept) {
+    ResetOnExit reset(update);
+    update.BindText(1, info.sweep_id());
+    update.BindInt64(2, info.sweep_cancelled() ? 1 : 0);
+    update.BindText(3, info.id());
+    update.Run();
+  }
+}
+
 void WriteVersion(SqliteConnection& connection) {
   connection.Exec("PRAGMA application_id = " + std::to_string(kStoreApplicationId) +
                       "; PRAGMA user_version = " + std::to_string(kStoreSchemaVersion),
@@ -139,6 +174,7 @@ void EnsureStoreSchema(SqliteConnection& connection) {
     connection.Exec(kSchemaV4, "create schema version 4");
     connection.Exec(kSchemaV5, "create schema version 5");
     connection.Exec(kSchemaV6, "create schema version 6");
+    connection.Exec(kSchemaV7, "create schema version 7");
     WriteVersion(connection);
     transaction.Commit();
     return;
@@ -172,6 +208,10 @@ void EnsureStoreSchema(SqliteConnection& connection) {
   }
   if (version < 6) {  // the keep mark
     connection.Exec(kSchemaV6, "migrate schema to version 6");
+  }
+  if (version < 7) {  // the sweep columns
+    connection.Exec(kSchemaV7, "migrate schema to version 7");
+    BackfillSweeps(connection);
   }
   if (version < kStoreSchemaVersion) WriteVersion(connection);
   transaction.Commit();

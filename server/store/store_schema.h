@@ -17,7 +17,9 @@ inline constexpr int32_t kStoreApplicationId = 0x6d627374;
 // 3: the run queue's leases (runs.lease_holder, runs.lease_expires_unix_ms).
 // 4: runs_by_state dropped.
 // 5: frames in the frames file (frame_chunks.file_offset, file_bytes, file_crc32c).
-inline constexpr int32_t kStoreSchemaVersion = 6;
+// 6: the keep mark (runs.keep).
+// 7: a run's sweep (runs.sweep_id, indexed by runs_by_sweep; runs.sweep_cancelled).
+inline constexpr int32_t kStoreSchemaVersion = 7;
 
 // Creates the schema in a new (empty) database, or checks that an existing one is an mbstream
 // database this build can use. Throws InputError naming the file and what to do when it is

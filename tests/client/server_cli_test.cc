@@ -301,5 +301,31 @@ TEST_F(ServerCliTest, ASweepIsFollowedAndCancelledByItsId) {
   EXPECT_EQ(Cli("sweep irb1600").exit_code, 2);  // no --out
 }
 
+// `mbstream cancel --sweep ID` is `mbstream sweep --cancel ID` under the command that cancels
+// runs; a run id and --sweep together, or neither, are refused.
+TEST_F(ServerCliTest, TheCancelCommandCancelsASweepByItsId) {
+  StartServer();
+  const CommandOutcome sweep =
+      Cli("sweep irb1600 --spec models/irb1600/seed-servo.json --duration 0.1 "
+          "--grid 'drives[1].pd_servo.kp=100,400' --out " +
+          Out("sweep"));
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.output;
+  const size_t at = sweep.output.find("sweep s-");
+  ASSERT_NE(at, std::string::npos) << sweep.output;
+  const std::string id = sweep.output.substr(at + 6, sweep.output.find(':', at) - at - 6);
+
+  const CommandOutcome cancel = Cli("cancel --sweep " + id);
+  ASSERT_EQ(cancel.exit_code, 0) << cancel.output;
+  EXPECT_THAT(cancel.output,
+              HasSubstr("sweep " + id + ": 2/2 runs ended (FINISHED 2) - cancelled"));
+  EXPECT_THAT(Cli("sweep --status " + id).output, HasSubstr("- cancelled"));
+  const CommandOutcome unknown = Cli("cancel --sweep s-nosuch");
+  EXPECT_NE(unknown.exit_code, 0);
+  EXPECT_THAT(unknown.output, HasSubstr("mbstream cancel"));
+  EXPECT_THAT(unknown.output, HasSubstr("s-nosuch"));
+  EXPECT_EQ(Cli("cancel").exit_code, 2);
+  EXPECT_NE(Cli("cancel r-1 --sweep " + id).exit_code, 0);
+}
+
 }  // namespace
 }  // namespace mbstream::testing

@@ -3,6 +3,7 @@
 // migrated from the previous version, and a failing write rolled back whole.
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -90,6 +91,21 @@ class PostgresStoreTest : public ::testing::Test {
                                                            std::to_string(databases++));
   }
   std::unique_ptr<Store> Open() const { return OpenStore(ParseStoreLocation(uri_)); }
+  // Rows as every version up to 6 wrote them (the columns of version 1), in one transaction.
+  void InsertOldRuns(const std::vector<v1::RunInfo>& runs) const {
+    pqxx::connection raw(uri_);
+    pqxx::work tx(raw);
+    for (const v1::RunInfo& run : runs) {
+      std::string bytes;
+      ASSERT_TRUE(run.SerializeToString(&bytes));
+      tx.exec_params(
+          "INSERT INTO runs (id, model_id, state, created_unix_ms, info) "
+          "VALUES ($1, $2, $3, $4, $5)",
+          run.id(), run.model_id(), static_cast<int>(run.state()), run.created_unix_ms(),
+          pqxx::binarystring(bytes));
+    }
+    tx.commit();
+  }
 
   std::string uri_;
 };
@@ -134,18 +150,7 @@ TEST_F(PostgresStoreTest, VersionOneDatabaseIsMigratedKeepingItsRuns) {
     EXPECT_EQ(tx.exec1("SELECT version FROM mbstream_schema")[0].as<int>(), 1);
   }
   const v1::RunInfo run = MakeRun("r-1", v1::FINISHED, 1000);
-  {
-    pqxx::connection raw(uri_);  // a version-1 row, written as version 1 wrote it
-    pqxx::work tx(raw);
-    std::string bytes;
-    ASSERT_TRUE(run.SerializeToString(&bytes));
-    tx.exec_params(
-        "INSERT INTO runs (id, model_id, state, created_unix_ms, info) "
-        "VALUES ($1, $2, $3, $4, $5)",
-        run.id(), run.model_id(), static_cast<int>(run.state()), run.created_unix_ms(),
-        pqxx::binarystring(bytes));
-    tx.commit();
-  }
+  InsertOldRuns({run});  // a version-1 row, written as version 1 wrote it
   auto store = Open();
   ASSERT_TRUE(store->GetRun("r-1").has_value());
   EXPECT_TRUE(Same(*store->GetRun("r-1"), run));
@@ -161,6 +166,32 @@ TEST_F(PostgresStoreTest, VersionOneDatabaseIsMigratedKeepingItsRuns) {
   EXPECT_EQ(tx.exec1("SELECT version FROM mbstream_schema")[0].as<int>(), kPostgresSchemaVersion);
   EXPECT_FALSE(tx.exec1("SELECT to_regclass('runs_by_state') IS NOT NULL")[0].as<bool>());
   EXPECT_TRUE(tx.exec1("SELECT to_regclass('runs_queue') IS NOT NULL")[0].as<bool>());
+}
+
+TEST_F(PostgresStoreTest, VersionSixDatabaseFindsItsSweepsAfterTheUpgrade) {
+  {
+    pqxx::connection raw(uri_);
+    EnsurePostgresSchema(raw, uri_, 6);
+  }
+  v1::RunInfo cancelled = MakeRun("r-1", v1::CANCELLED, 1000);
+  cancelled.set_sweep_id("s-a");
+  cancelled.set_sweep_cancelled(true);  // where version 6 kept the mark: in the info
+  v1::RunInfo queued = MakeRun("r-2", v1::QUEUED, 1001);
+  queued.set_sweep_id("s-a");
+  queued.set_sweep_point(1);
+  // Version-6 rows, written as version 6 wrote them.
+  InsertOldRuns({cancelled, queued, MakeRun("r-3", v1::FINISHED, 1002)});
+  auto store = Open();
+  const std::vector<v1::RunInfo> runs = store->ListSweepRuns("s-a");
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[0].id(), "r-1");
+  EXPECT_TRUE(runs[0].sweep_cancelled());
+  EXPECT_EQ(runs[1].id(), "r-2");
+  EXPECT_FALSE(runs[1].sweep_cancelled());
+  EXPECT_EQ(store->MarkSweepCancelled("s-a"), 1);  // r-2; r-1's mark was carried over
+  pqxx::connection raw(uri_);
+  pqxx::work tx(raw);
+  EXPECT_TRUE(tx.exec1("SELECT to_regclass('runs_by_sweep') IS NOT NULL")[0].as<bool>());
 }
 
 // A trigger makes the second chunk's insert fail: the whole FinishRun rolls back, the error

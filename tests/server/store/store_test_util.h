@@ -15,10 +15,18 @@
 #include "mbstream/v1/run.pb.h"
 #include "server/store/store.h"
 
+// SQL that turns the tables of a new store back into what version 6 created (before the sweep
+// columns of version 7), for tests that make an older store from a new one.
+#define MBSTREAM_DROP_SWEEP_COLUMNS_SQL     \
+  "DROP INDEX runs_by_sweep; "              \
+  "ALTER TABLE runs DROP COLUMN sweep_id; " \
+  "ALTER TABLE runs DROP COLUMN sweep_cancelled; "
+inline constexpr const char* kDropSweepColumns = MBSTREAM_DROP_SWEEP_COLUMNS_SQL;
+
 // SQL that turns the tables of a new store back into what versions 1-4 created (before the
-// frames file, frame_file.h, and the keep mark of version 6), for tests that make an older
-// store from a new one.
-inline constexpr const char* kDropFrameFileColumns =
+// frames file, frame_file.h, the keep mark of version 6 and the sweep columns of version 7), for
+// tests that make an older store from a new one.
+inline constexpr const char* kDropFrameFileColumns = MBSTREAM_DROP_SWEEP_COLUMNS_SQL
     "ALTER TABLE frame_chunks DROP COLUMN file_offset; "
     "ALTER TABLE frame_chunks DROP COLUMN file_bytes; "
     "ALTER TABLE frame_chunks DROP COLUMN file_crc32c; "
