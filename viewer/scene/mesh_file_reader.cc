@@ -115,6 +115,40 @@ vtkSmartPointer<vtkPolyData> Decimated(vtkPolyData* input, long long target) {
   return best;
 }
 
+// The triangles of one mesh of a material, a texture's coordinates with them.
+struct Gathered {
+  vtkSmartPointer<vtkPoints> points;
+  vtkSmartPointer<vtkCellArray> triangles;
+  std::filesystem::path texture;
+  vtkSmartPointer<vtkFloatArray> uv;  // with a texture
+};
+
+// Appends `mesh`'s vertices and triangles to `gathered`; returns how many triangles.
+long long Append(const aiMesh& mesh, Gathered& gathered) {
+  long long appended = 0;
+  vtkPoints* points = gathered.points;
+  vtkCellArray* triangles = gathered.triangles;
+  const vtkIdType offset = points->GetNumberOfPoints();
+  for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+    const aiVector3D& p = mesh.mVertices[v];
+    points->InsertNextPoint(p.x, p.y, p.z);
+    if (gathered.uv) {
+      const aiVector3D uv = mesh.HasTextureCoords(0) ? mesh.mTextureCoords[0][v] : aiVector3D();
+      const float tuple[2] = {uv.x, uv.y};
+      gathered.uv->InsertNextTypedTuple(tuple);
+    }
+  }
+  for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+    const aiFace& face = mesh.mFaces[f];
+    if (face.mNumIndices != 3) continue;
+    const vtkIdType ids[3] = {offset + face.mIndices[0], offset + face.mIndices[1],
+                              offset + face.mIndices[2]};
+    triangles->InsertNextCell(3, ids);
+    ++appended;
+  }
+  return appended;
+}
+
 }  // namespace
 
 MeshFileContents ReadMeshFile(const std::filesystem::path& path) {
@@ -133,12 +167,6 @@ MeshFileContents ReadMeshFile(const std::filesystem::path& path) {
                      "); give a Collada, OBJ, STL, glTF/GLB or PLY file");
   }
   // After PreTransformVertices every mesh is in the scene's frame, one per material.
-  struct Gathered {
-    vtkSmartPointer<vtkPoints> points;
-    vtkSmartPointer<vtkCellArray> triangles;
-    std::filesystem::path texture;
-    vtkSmartPointer<vtkFloatArray> uv;  // with a texture
-  };
   std::map<unsigned, Gathered> by_material;
   MeshFileContents contents;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
@@ -158,26 +186,7 @@ MeshFileContents ReadMeshFile(const std::filesystem::path& path) {
         gathered.uv->SetNumberOfComponents(2);
       }
     }
-    vtkPoints* points = gathered.points;
-    vtkCellArray* triangles = gathered.triangles;
-    const vtkIdType offset = points->GetNumberOfPoints();
-    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
-      const aiVector3D& p = mesh.mVertices[v];
-      points->InsertNextPoint(p.x, p.y, p.z);
-      if (gathered.uv) {
-        const aiVector3D uv = mesh.HasTextureCoords(0) ? mesh.mTextureCoords[0][v] : aiVector3D();
-        const float tuple[2] = {uv.x, uv.y};
-        gathered.uv->InsertNextTypedTuple(tuple);
-      }
-    }
-    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
-      const aiFace& face = mesh.mFaces[f];
-      if (face.mNumIndices != 3) continue;
-      const vtkIdType ids[3] = {offset + face.mIndices[0], offset + face.mIndices[1],
-                                offset + face.mIndices[2]};
-      triangles->InsertNextCell(3, ids);
-      ++contents.file_triangle_count;
-    }
+    contents.file_triangle_count += Append(mesh, gathered);
   }
   if (contents.file_triangle_count == 0) {
     throw SceneError(path.string() + ": the mesh file holds no triangles; give a file with a " +
