@@ -150,13 +150,6 @@ SdfTree ChooseSdfTree(const SdfFile& file) {
         cut[j] = true;
         continue;
       }
-      if (info.joint->Type() == sdf::JointType::BALL) {
-        throw InputError(info.where + ": joint '" + info.joint->Name() +
-                         "': a ball joint inside the tree is not supported yet (only as the "
-                         "joint that closes a loop); reorder the joints so that another "
-                         "joint reaches link '" +
-                         info.child + "' first, or use revolute joints");
-      }
       reached[info.child] = true;
       tree.tree.push_back(j);
       queue.push_back(info.child);
@@ -180,6 +173,12 @@ SdfTree ChooseSdfTree(const SdfFile& file) {
     if (cut[j]) tree.cut.push_back(j);
   }
   return tree;
+}
+
+std::string SdfBallAxisName(const std::string& joint, int axis) {
+  MBSTREAM_CHECK(axis >= 0 && axis < 3);
+  static constexpr const char* kSuffix[3] = {".x", ".y", ".z"};
+  return joint + kSuffix[axis];
 }
 
 Eigen::Isometry3d ModelFramePose(const sdf::SemanticPose& pose, const std::string& what,

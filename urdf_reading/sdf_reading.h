@@ -65,8 +65,17 @@ struct SdfTree {
 
 // Throws InputError "SOURCE:LINE: what; what to do" for a nested model, a joint naming a link
 // the model lacks, a joint type mbstream does not simulate (universal, screw, gearbox,
-// revolute2), a ball joint inside the tree, a link or joint not reached from the world.
+// revolute2), a link or joint not reached from the world.
 SdfTree ChooseSdfTree(const SdfFile& file);
+
+// A ball joint inside the tree moves its child by three revolute joints through its centre
+// (the joint frame's origin): about the joint frame's x axis, then about y and z as turned by
+// the ones before (Cardan angles x-y-z: R = Rx(q_x) Ry(q_y) Rz(q_z), rad), named "JOINT.x",
+// "JOINT.y", "JOINT.z" (`axis` 0, 1, 2) in the results and the viewer's chain; the two links
+// between them, massless, take the first two names. The angles lock at q_y = +-90 degrees
+// (the child's z axis along the joint frame's x axis), where a run stops and says so
+// (server/model/ball_joint.h).
+std::string SdfBallAxisName(const std::string& joint, int axis);
 
 // `pose` resolved in the model frame (X_M?). Throws InputError "WHERE: WHAT: its pose cannot
 // be resolved: ...".

@@ -8,6 +8,8 @@ joint with x along the link, as drawn at q = 0; bars are boxes of 0.02 m square 
 """
 import math
 
+import scene_writer
+
 W = 0.02  # m, bar section
 
 # Colours of the links as drawn (the viewer reads <material>: diffuse, else ambient).
@@ -206,7 +208,17 @@ def small_link(name, origin, mass=0.005, inertia=1e-7):
     </link>"""
 
 
-def delta():
+def rpy_of_columns(x, y, z):
+    """SDFormat's roll, pitch, yaw of the rotation whose columns are x, y, z (model axes)."""
+    R = [[x[0], y[0], z[0]], [x[1], y[1], z[1]], [x[2], y[2], z[2]]]
+    return (math.atan2(R[2][1], R[2][2]), -math.asin(R[2][0]), math.atan2(R[1][0], R[0][0]))
+
+
+def delta(ball_wrist=False):
+    """ball_wrist: the platform hangs from rod 1a by one ball joint `wrist` in the tree (three
+    Cardan axes wrist.x, .y, .z: server/model/ball_joint.h) instead of the three revolutes; its
+    frame's x is -normal, y the arm's tangent, z along the rod, so wrist.x = -wrist_1,
+    wrist.y = wrist_2, wrist.z = wrist_3 and the motion is the same."""
     d = DELTA
     p = (0.0, 0.0, d["z0"])
     thetas = delta_ik(p)
@@ -242,7 +254,14 @@ def delta():
                                 axis=v3(t)))
             joints.append(joint(f"elbow{n}{side}_2", "revolute", f"knuckle{n}{side}", rod,
                                 axis=v3(normal)))
-            if (n, side) == (1, "a"):  # the wrist: the tree's way to the platform
+            if (n, side) == (1, "a") and ball_wrist:
+                rpy = rpy_of_columns(scale(-1.0, normal), t, unit(r))
+                joints.append(f"""    <joint name="wrist" type="ball">
+      <parent>{rod}</parent>
+      <child>platform</child>
+      <pose>{v3(add(bottom, scale(-1.0, p)))} {v3(rpy)}</pose>
+    </joint>""")
+            elif (n, side) == (1, "a"):  # the wrist: the tree's way to the platform
                 links.append(small_link("wrist1", bottom))
                 links.append(small_link("wrist2", bottom))
                 joints.append(joint("wrist_1", "revolute", rod, "wrist1", axis=v3(normal)))
@@ -267,7 +286,7 @@ def delta():
       <parent>platform</parent>
       <child>tcp</child>
     </joint>""")
-    return model("delta", "\n".join(links + joints + balls))
+    return model("delta_ball" if ball_wrist else "delta", "\n".join(links + joints + balls))
 
 
 # The palletising arm (spatial, z up, the model frame on the floor at the turret's axis): a
@@ -397,3 +416,15 @@ if __name__ == "__main__":
                        ("palletiser.sdf", palletiser())):
         with open(name, "w") as f:
             f.write(text)
+    # Each linkage's scene script, from its model (scene_writer.py).
+    titles = {"four_bar": "Four-bar linkage (crank-rocker)", "slider_crank": "Slider-crank",
+              "parallelogram": "Parallelogram linkage", "delta": "Delta robot",
+              "palletiser": "Palletising arm with two parallelograms"}
+    for name, title in titles.items():
+        with open(f"{name}.sdf") as f:
+            text = scene_writer.scene_script(f.read(), title)
+        with open(f"{name}.scene", "w") as f:
+            f.write(text)
+    # The Delta with a ball joint inside the tree, for tests/server/loops/ball_joint_test.cc.
+    with open("../../tests/data/delta_ball.sdf", "w") as f:
+        f.write(delta(ball_wrist=True))

@@ -66,6 +66,8 @@ class LoopSolver {
   // SolveVelocities: for the run's constraint residuals.
   const Eigen::VectorXd& residual() const { return phi_; }
   const Eigen::VectorXd& velocity_residual() const { return phi_dot_; }
+  // After SolveVelocities: A = [G (independent rows); E (held joints)] at its q.
+  const Eigen::MatrixXd& constraint_rows() const { return A_; }
   int num_rows() const { return static_cast<int>(rows_.size() + held_.size()); }
 
  private:

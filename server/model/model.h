@@ -1,16 +1,18 @@
 // The constant description of a mechanism: a tree of rigid bodies, one joint each.
 //
 // Bodies are the links that move: each has exactly one revolute or prismatic joint to its
-// parent, so body i is also degree of freedom i (q(i), qd(i), tau(i)). Links attached by
-// fixed joints are merged into the body they hang from (their inertia added) and survive
-// as frames. Bodies are in topological order: a parent's index is below its children's.
-// A Model is built once by ModelBuilder and never changes; per-run workspaces are Data.
+// parent (a ball joint is three such bodies, ball_joint.h), so body i is also degree of freedom i
+// (q(i), qd(i), tau(i)). Links attached by fixed joints are merged into the body they hang from
+// (their inertia added) and survive as frames. Bodies are in topological order: a parent's index is
+// below its children's. A Model is built once by ModelBuilder and never changes; per-run workspaces
+// are Data.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "server/math/rigid_inertia.h"
+#include "server/model/ball_joint.h"
 #include "server/model/joint.h"
 
 namespace mbstream {
@@ -39,6 +41,8 @@ struct Model {
   std::vector<Frame> frames;          // every link, then named points
   Vector3d gravity{0.0, 0.0, -9.81};  // m/s^2 in the base frame
   int tcp_frame = -1;                 // index into frames of the tool centre point, or -1
+  // Ball joints inside the tree, each three revolute bodies (ball_joint.h).
+  std::vector<BallJoint> ball_joints;
 
   int num_dofs() const { return static_cast<int>(bodies.size()); }
   // Index of the frame (or body) with this name, or -1.

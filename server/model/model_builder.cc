@@ -73,6 +73,29 @@ const ModelBuilder::LinkPlace& ModelBuilder::PlaceOf(const std::string& link,
 
 void ModelBuilder::AddMovingLink(const std::string& link, const std::string& parent_link,
                                  const Joint& joint, const RigidInertia& inertia) {
+  AddBody(link, parent_link, joint, inertia, /*massless=*/false);
+}
+
+void ModelBuilder::AddBallLink(const std::string& link, const std::string& parent_link,
+                               const std::string& joint_name, const std::string& where,
+                               const Pose& X_PJ, const std::string (&axis_names)[3],
+                               const RigidInertia& inertia) {
+  const int first = static_cast<int>(model_.bodies.size());
+  std::string parent = parent_link;
+  for (int k = 0; k < 3; ++k) {
+    Joint joint;
+    joint.name = axis_names[k];
+    joint.axis = Vector3d::Unit(k);
+    if (k == 0) joint.X_PJ = X_PJ;
+    const bool last = k == 2;
+    AddBody(last ? link : axis_names[k], parent, joint, last ? inertia : RigidInertia{}, !last);
+    parent = axis_names[k];
+  }
+  model_.ball_joints.push_back(BallJoint{joint_name, where, first});
+}
+
+void ModelBuilder::AddBody(const std::string& link, const std::string& parent_link,
+                           const Joint& joint, const RigidInertia& inertia, bool massless) {
   const std::string what = "joint '" + joint.name + "' (link '" + link + "')";
   CheckNewName(link);
   const LinkPlace& parent = PlaceOf(parent_link, what);
@@ -86,7 +109,7 @@ void ModelBuilder::AddMovingLink(const std::string& link, const std::string& par
   if (!(joint.damping >= 0.0) || !(joint.armature >= 0.0)) {
     throw InputError(what + ": damping and armature must be finite and >= 0");
   }
-  ValidateRigidInertia(inertia, "link '" + link + "'");
+  if (!massless) ValidateRigidInertia(inertia, "link '" + link + "'");
 
   Body body;
   body.name = link;

@@ -20,6 +20,14 @@ class ModelBuilder {
   void AddMovingLink(const std::string& link, const std::string& parent_link, const Joint& joint,
                      const RigidInertia& inertia);
 
+  // Adds `link`, moved by a ball joint named `joint_name` (at `where` in the model file) whose
+  // frame is X_PJ in `parent_link`: three revolute bodies through the joint's centre, about
+  // its x, y and z axes in turn (ball_joint.h), named axis_names[0..2] (the joints; the first
+  // two massless links take the same names), the last carrying `link` and its inertia.
+  void AddBallLink(const std::string& link, const std::string& parent_link,
+                   const std::string& joint_name, const std::string& where, const Pose& X_PJ,
+                   const std::string (&axis_names)[3], const RigidInertia& inertia);
+
   // Adds `link` rigidly attached to `parent_link` at X_PL. Its inertia (which may be zero
   // mass) is merged into the body it hangs from; the link stays available as a frame.
   void AddFixedLink(const std::string& link, const std::string& parent_link, const Pose& X_PL,
@@ -44,6 +52,9 @@ class ModelBuilder {
   };
   const LinkPlace& PlaceOf(const std::string& link, const std::string& context) const;
   void CheckNewName(const std::string& link) const;
+  // AddMovingLink's work; `massless`: no inertia of its own (a ball joint's inner links).
+  void AddBody(const std::string& link, const std::string& parent_link, const Joint& joint,
+               const RigidInertia& inertia, bool massless);
 
   Model model_;
   std::map<std::string, LinkPlace> links_;

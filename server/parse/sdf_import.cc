@@ -127,6 +127,14 @@ class SdfReader {
       }
       const Pose X_MJ = JointFrame(info);
       frame_of_[info.child] = X_MJ;
+      if (info.joint->Type() == sdf::JointType::BALL) {
+        const std::string axes[3] = {urdf_reading::SdfBallAxisName(info.joint->Name(), 0),
+                                     urdf_reading::SdfBallAxisName(info.joint->Name(), 1),
+                                     urdf_reading::SdfBallAxisName(info.joint->Name(), 2)};
+        builder.AddBallLink(info.child, info.parent, info.joint->Name(), info.where,
+                            F_P.Inverse() * X_MJ, axes, InertiaIn(link, X_MJ));
+        return;
+      }
       Joint joint;
       joint.name = info.joint->Name();
       joint.type = info.joint->Type() == sdf::JointType::PRISMATIC ? JointType::kPrismatic

@@ -4,7 +4,9 @@
 // poses relative to frames; the reading the viewer shares).
 // The model is the file's top-level <model>, or the one model of its one <world>. Links
 // carry <inertial>; joints are revolute, continuous (revolute without limits), prismatic,
-// fixed or ball, with <axis> (<xyz>, <limit>, <dynamics damping>).
+// fixed or ball, with <axis> (<xyz>, <limit>, <dynamics damping>). A ball joint inside the
+// tree becomes three revolute joints through its centre, "JOINT.x", "JOINT.y", "JOINT.z"
+// (Cardan angles; urdf_reading::SdfBallAxisName, server/model/ball_joint.h).
 //
 // The spanning tree is chosen breadth-first from the world: starting at "world", each link
 // in turn (in the order reached) takes its joints in file order; a joint whose child has
@@ -15,8 +17,8 @@
 //
 // Bad input (after the shape check, see ImportSdf) throws InputError "FILE:LINE: what is wrong;
 // what to do": SDFormat's own errors (quoted), no model or several, two worlds, a nested model, a
-// joint type mbstream does not simulate (universal, screw, gearbox, revolute2), a ball joint inside
-// the tree, a link not reachable from the world through parent-to-child joints (a floating link).
+// joint type mbstream does not simulate (universal, screw, gearbox, revolute2), a link not
+// reachable from the world through parent-to-child joints (a floating link).
 #pragma once
 
 #include <string>

@@ -126,4 +126,9 @@ void ClosedLoopDae::Readout(double t, const double* y, Eigen::VectorXd* effort, 
   }
 }
 
+void ClosedLoopDae::Reactions(const double* y, Eigen::VectorXd* reactions) const {
+  const Eigen::Map<const Eigen::VectorXd> lambda(y + 2 * n_, rank_.rank);
+  constraints_.Reactions(data_, rank_.independent, lambda, *reactions);
+}
+
 }  // namespace mbstream

@@ -44,6 +44,10 @@ class ClosedLoopDae : public DaeSystem {
   // G v. Allocates nothing.
   void Readout(double t, const double* y, Eigen::VectorXd* effort, double* gap, double* alignment,
                double* velocity);
+  // After Readout at the same y: the cut joints' reactions (6 per loop,
+  // LoopConstraints::Reactions) from lambda's entries of the independent loop rows (M v' + h =
+  // tau + A^T lambda, the sign of the ODE's multipliers). Allocates nothing.
+  void Reactions(const double* y, Eigen::VectorXd* reactions) const;
 
   int num_multipliers() const { return k_; }
 

@@ -47,9 +47,7 @@ ClosedLoopOde::ClosedLoopOde(const Model& model, const std::vector<LoopClosure>&
   b_.resize(k);
   mu_.resize(k);
   s_llt_ = Eigen::LLT<Eigen::MatrixXd>(k);
-  unit_rows_.resize(k, n_);
-  gram_.resize(k, k);
-  gram_eigen_ = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(k);
+  conditioning_ = RowConditioning(k, n_);
 }
 
 void ClosedLoopOde::HeldValues(double t) {
@@ -129,21 +127,7 @@ int ClosedLoopOde::Project(double t, const double* y, double* correction) {
   return 0;
 }
 
-double ClosedLoopOde::ConstraintConditioning() {
-  const Eigen::Index k = A_.rows();
-  if (k == 0) return 1.0;
-  for (Eigen::Index i = 0; i < k; ++i) {
-    const double norm = A_.row(i).norm();
-    if (!(norm > 0.0)) return 0.0;
-    unit_rows_.row(i) = A_.row(i) / norm;
-  }
-  gram_.noalias() = unit_rows_ * unit_rows_.transpose();
-  gram_eigen_.compute(gram_, Eigen::EigenvaluesOnly);
-  if (gram_eigen_.info() != Eigen::Success) return 0.0;
-  const double largest = gram_eigen_.eigenvalues()(k - 1);
-  const double smallest = std::max(0.0, gram_eigen_.eigenvalues()(0));
-  return largest > 0.0 ? std::sqrt(smallest / largest) : 0.0;
-}
+double ClosedLoopOde::ConstraintConditioning() { return conditioning_.Of(A_); }
 
 void ClosedLoopOde::Residuals(double* gap, double* alignment, double* velocity) const {
   *gap = constraints_.MaxGap(phi_);

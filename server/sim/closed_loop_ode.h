@@ -20,6 +20,7 @@
 #include "server/integrate/ode_system.h"
 #include "server/kinematics/loop_constraints.h"
 #include "server/kinematics/loop_solver.h"
+#include "server/kinematics/row_conditioning.h"
 #include "server/model/data.h"
 #include "server/model/model.h"
 
@@ -59,6 +60,7 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
   }
 
   const LoopRank& rank() const { return rank_; }
+  const Model& model() const { return model_; }
   const Eigen::VectorXd& q() const { return q_; }
   const Eigen::VectorXd& qd() const { return qd_; }
   const Eigen::VectorXd& qdd() const { return qdd_; }
@@ -83,8 +85,7 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
   Eigen::VectorXd phi_, phi_dot_, bias_, b_, mu_;
   Eigen::MatrixXd G_, A_, Y_, S_;
   Eigen::LLT<Eigen::MatrixXd> mass_llt_, s_llt_;
-  Eigen::MatrixXd unit_rows_, gram_;                           // ConstraintConditioning
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> gram_eigen_;  // its workspace
+  RowConditioning conditioning_{0, 0};  // ConstraintConditioning's workspace
   DriveSet::Workspace drive_workspace_;
 };
 

@@ -50,6 +50,8 @@ class FrameRecorder {
   // recorder.
   void AppendLoopForces(const Eigen::VectorXd* forces);
 
+  const Model& model() const { return model_; }
+
  private:
   void TrackEnergy(double t, double energy, const Eigen::VectorXd& qd,
                    const Eigen::VectorXd* effort);

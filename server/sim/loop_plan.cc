@@ -32,14 +32,6 @@ void CheckSupported(const RunConfig& config, const DriveSet& drives) {
         "method auto chooses for an accuracy target: give target_tcp, target_joint or "
         "target_energy, or a method (bdf) and tolerances");
   }
-  if (config.want_loop_forces && !IsBodyFormulation(config.formulation) &&
-      config.method == Method::kIda) {
-    throw InputError(
-        "report_loop_forces: the cut joints' reactions are computed by formulations kinematic, "
-        "joint with an ODE method (bdf, adams, ...), body-index2 and body-baumgarte, not by "
-        "formulation joint with method ida (the GGL DAE): use method bdf, or drop "
-        "report_loop_forces");
-  }
   if (config.formulation == Formulation::kBodyIndex3) {
     // Measured on the four-bar and the slider-crank (tests/server/loops/body_loop_test.cc):
     // IDA's Newton iteration fails in the first step at rtol 1e-7 to 1e-10, by 0.05 s at

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "common/format.h"
@@ -26,6 +27,7 @@
 #include "server/sim/run_trust.h"
 #include "server/sim/run_validation.h"
 #include "server/sim/simulate.h"
+#include "server/sim/singular_pose.h"
 
 namespace mbstream {
 
@@ -62,10 +64,12 @@ class KinematicLoopSource : public FrameSource {
         held_qd_(Eigen::VectorXd::Zero(model.num_dofs())),
         held_qdd_(Eigen::VectorXd::Zero(model.num_dofs())),
         force_(model.num_dofs()),
-        effort_(Eigen::VectorXd::Zero(model.num_dofs())) {
+        effort_(Eigen::VectorXd::Zero(model.num_dofs())),
+        last_q_(plan.q0) {
     bool independent = false;
     rows_ = solver_.Analyse(data_, q_, &independent).independent;
     mu_.resize(solver_.num_rows());
+    singular_.emplace(model, solver_.num_rows());
   }
 
   bool Advance(const std::vector<double>& times, size_t k, RunStats* stats) override {
@@ -81,12 +85,18 @@ class KinematicLoopSource : public FrameSource {
       stats->message = FormatString(
           "the loops cannot be closed at t = %.6g s (Newton: largest residual %.3g m or rad): "
           "the prescribed motion leaves the mechanism's reach or passes a singular pose; "
-          "check the drives' ranges",
-          t, solver_.residual().cwiseAbs().maxCoeff());
+          "check the drives' ranges (the last pose closed, at t = %.6g s: %s)",
+          t, solver_.residual().cwiseAbs().maxCoeff(), k > 0 ? times[k - 1] : 0.0,
+          PoseText(model_, last_q_).c_str());
       return false;
     }
     solver_.SolveVelocities(data_, qd_, held_qd_);
+    if (const auto singular = singular_->Check(t, q_, solver_.constraint_rows())) {
+      StopRun(stats, RunStatus::kFailed, *singular);
+      return false;
+    }
     solver_.SolveAccelerations(data_, qd_, qdd_, held_qdd_);
+    last_q_ = q_;
     return true;
   }
 
@@ -125,6 +135,8 @@ class KinematicLoopSource : public FrameSource {
   LoopSolver solver_;
   std::vector<int> rows_;  // the independent rows of the loop constraints
   Eigen::VectorXd q_, qd_, qdd_, held_q_, held_qd_, held_qdd_, force_, effort_, mu_;
+  Eigen::VectorXd last_q_;                     // the last frame's pose, for messages
+  std::optional<SingularPoseWatch> singular_;  // sized once the rows are known
 };
 
 // The joint-space ODE with the loops as constraints, integrated frame to frame.
@@ -145,7 +157,7 @@ class ClosedLoopSource : public FrameSource {
       const double t = budget_->t_stop;
       if (ode_.Evaluate(t, y_.data())) {
         const double conditioning = ode_.ConstraintConditioning();
-        if (conditioning < kSingular) StopSingular(t, conditioning, stats);
+        if (conditioning < kSingularPoseConditioning) StopSingular(t, conditioning, stats);
       }
       return false;
     }
@@ -153,7 +165,7 @@ class ClosedLoopSource : public FrameSource {
     // At each frame: stop at (near) a singular pose rather than grind towards it.
     if (ode_.Evaluate(times[k], y_.data())) {
       const double conditioning = ode_.ConstraintConditioning();
-      if (conditioning < kSingular) {
+      if (conditioning < kSingularPoseConditioning) {
         StopSingular(times[k], conditioning, stats);
         return false;
       }
@@ -178,21 +190,18 @@ class ClosedLoopSource : public FrameSource {
   }
 
  private:
-  // ClosedLoopOde::ConstraintConditioning below which a frame stops the run, and an
-  // integrator's failure is put down to a singular pose. The passive Delta's fall
-  // (docs/closed_loops.md): 0.019 as drawn, 1.9e-3 at t = 0.285 s, 5.7e-4 at 0.29 s and
-  // 8.8e-6 at 0.2923 s, where CVODE stalls (all six rods parallel).
-  static constexpr double kSingular = 1e-3;
-
-  static void StopSingular(double t, double conditioning, RunStats* stats) {
+  // A frame stops the run at ClosedLoopOde::ConstraintConditioning below
+  // kSingularPoseConditioning, and an integrator's failure is put down to a singular pose.
+  void StopSingular(double t, double conditioning, RunStats* stats) const {
     StopRun(stats, RunStatus::kFailed,
             FormatString(
                 "the loop constraints became singular at t = %.6g s (smallest singular value of "
                 "the constraint Jacobian, rows scaled to unit length, %.2g of its largest): the "
                 "mechanism reached a singular configuration, where the loops no longer "
                 "determine its motion and its joint forces are unbounded (a Delta robot: its "
-                "rods all parallel); add joint limits or shorten the run",
-                t, conditioning));
+                "rods all parallel; a dead centre); add joint limits or shorten the run (the "
+                "pose: %s)",
+                t, conditioning, PoseText(ode_.model(), ode_.q()).c_str()));
   }
 
   ClosedLoopOde& ode_;
@@ -207,11 +216,12 @@ class ClosedLoopSource : public FrameSource {
 class ClosedLoopDaeSource : public FrameSource {
  public:
   ClosedLoopDaeSource(ClosedLoopDae& dae, Integrator& integrator, Eigen::VectorXd& y, int n,
-                      BudgetTracking* budget, RunStats* stats)
+                      BudgetTracking* budget, Eigen::VectorXd* reactions, RunStats* stats)
       : dae_(dae),
         integrator_(integrator),
         y_(y),
         budget_(budget),
+        reactions_(reactions),
         stats_(stats),
         q_(n),
         qd_(n),
@@ -227,6 +237,7 @@ class ClosedLoopDaeSource : public FrameSource {
     qd_ = y_.segment(n, n);
     double gap = 0.0, alignment = 0.0, velocity = 0.0;
     dae_.Readout(t, y_.data(), &effort_, &gap, &alignment, &velocity);
+    if (reactions_ != nullptr) dae_.Reactions(y_.data(), reactions_);
     TrackResiduals(gap, alignment, velocity, stats_);
     return recorder.Record(t, q_, qd_, &effort_);
   }
@@ -240,6 +251,7 @@ class ClosedLoopDaeSource : public FrameSource {
   Integrator& integrator_;
   Eigen::VectorXd& y_;
   BudgetTracking* budget_;
+  Eigen::VectorXd* reactions_;  // null: not asked for
   RunStats* stats_;
   Eigen::VectorXd q_, qd_, effort_;
 };
@@ -323,7 +335,8 @@ void RunLoopDae(const Model& model, const std::vector<LoopClosure>& loops, const
   stats.equations = dae.size();
   stats.jacobian_nnz = dae.JacobianNonZeros();
   stats.integrator = std::string(integrator->name()) + " (index-2 GGL)";
-  ClosedLoopDaeSource source(dae, *integrator, y, model.num_dofs(), frames.budget, &stats);
+  ClosedLoopDaeSource source(dae, *integrator, y, model.num_dofs(), frames.budget, frames.reactions,
+                             &stats);
   RunFrames(frames.times, source, frames.recorder, frames.result, frames.sink, frames.cancel);
   stats.solver = integrator->stats();
 }

@@ -130,18 +130,18 @@ TEST(SdfScene, TheDeltaRobotsArmsRodsAndPlatformMeetWhereTheyAreDrawn) {
 }
 
 TEST(SdfScene, ErrorsAreTheServersWithFileAndLine) {
-  const std::string ball_in_tree =
+  const std::string universal =
       "<sdf version=\"1.7\"><model name=\"m\">\n"
       "<link name=\"a\"/>\n"
-      "<joint name=\"j\" type=\"ball\"><parent>world</parent><child>a</child></joint>\n"
+      "<joint name=\"j\" type=\"universal\"><parent>world</parent><child>a</child></joint>\n"
       "</model></sdf>\n";
   try {
-    SceneFromModelText(ball_in_tree, "m.sdf",
+    SceneFromModelText(universal, "m.sdf",
                        [](const std::string&) { return std::filesystem::path(); });
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()).rfind(
-                  "m.sdf:3: joint 'j': a ball joint inside the tree is not supported yet", 0),
+                  "m.sdf:3: joint 'j': this joint type is not simulated by mbstream", 0),
               0u)
         << e.what();
   }

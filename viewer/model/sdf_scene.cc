@@ -23,7 +23,7 @@ ChainJointKind KindOf(const sdf::Joint& joint) {
       return ChainJointKind::kPrismatic;
     case sdf::JointType::FIXED:
       return ChainJointKind::kFixed;
-    default:  // revolute, continuous (ChooseSdfTree refuses the others inside the tree)
+    default:  // revolute, continuous; ball: three revolutes (SceneFromSdf)
       return ChainJointKind::kRevolute;
   }
 }
@@ -97,7 +97,21 @@ SceneDescription SceneFromSdf(const std::string& text, const std::string& source
     joint.parent = frame_of.at(outline.parent);
     joint.pre = X_ML.at(outline.parent).inverse() * frame.X_ML;
     joint.kind = KindOf(*outline.joint);
-    if (joint.kind != ChainJointKind::kFixed) {
+    if (outline.joint->Type() == sdf::JointType::BALL) {
+      // Three revolute joints through the centre, as the server's model (SdfBallAxisName).
+      for (int axis = 0; axis < 2; ++axis) {
+        ChainJoint inner = joint;
+        inner.name = ur::SdfBallAxisName(outline.joint->Name(), axis);
+        inner.axis = Eigen::Vector3d::Unit(axis);
+        joints.push_back(std::move(inner));
+        scene.frame_names.push_back(joints.back().name);
+        joint.parent = static_cast<int>(joints.size());
+        joint.pre = Eigen::Isometry3d::Identity();
+      }
+      joint.name = ur::SdfBallAxisName(outline.joint->Name(), 2);
+      joint.axis = Eigen::Vector3d::UnitZ();
+    }
+    if (joint.kind != ChainJointKind::kFixed && outline.joint->Type() != sdf::JointType::BALL) {
       joint.axis = ur::SdfJointAxis(file, outline, frame.X_ML);
     }
     joints.push_back(std::move(joint));

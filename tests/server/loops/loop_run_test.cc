@@ -14,6 +14,7 @@
 #include "server/sim/closed_loop_dae.h"
 #include "server/sim/closed_loop_ode.h"
 #include "server/sim/loop_plan.h"
+#include "server/spec/run_spec_json.h"
 #include "tests/common/allocation_counter.h"
 
 namespace mbstream {
@@ -453,6 +454,29 @@ TEST(LoopRunTest, TheEngineEntryRunsAModelWithLoopsAsSimulateLoopsDoes) {
   EXPECT_EQ(entry.t, direct.t);
   EXPECT_EQ(entry.q, direct.q);
   EXPECT_EQ(entry.qd, direct.qd);
+}
+
+// Every linkage of models/linkages/ ships a driven and a passive run spec (its scene script:
+// tests/viewer/linkage_scene_test.cc): each loads and is accepted for its model; the
+// parallelogram's, the newest, also run (0.5 s) to the end.
+TEST(LoopRunTest, EveryLinkagesRunSpecsLoadAndAreAccepted) {
+  const std::string dir = std::string(MBSTREAM_SOURCE_DIR) + "/models/linkages/";
+  for (const std::string name :
+       {"four_bar", "parallelogram", "slider_crank", "delta", "palletiser"}) {
+    const SdfImport sdf = ImportSdfFile(dir + name + ".sdf");
+    std::vector<std::string> joints;
+    for (const Body& body : sdf.model.bodies) joints.push_back(body.joint.name);
+    for (const std::string kind : {"-driven.json", "-passive.json"}) {
+      SCOPED_TRACE(name + kind);
+      RunConfig config = ToRunConfig(LoadRunSpecFile(dir + name + kind), joints, name + kind);
+      EXPECT_NO_THROW(ValidateLoopRun(sdf.model, sdf.loops, config));
+      if (name != "parallelogram") continue;
+      config.duration = 0.5;
+      const RunResult result = Simulate(sdf.model, sdf.loops, config);
+      EXPECT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+      EXPECT_LT(result.stats.drift_position_max, 1e-10);
+    }
+  }
 }
 
 }  // namespace

@@ -16,6 +16,17 @@ SimTK::Rotation ToRotation(const Matrix3d& R) {
   return SimTK::Rotation(m);
 }
 
+// A body of inertia `in` (about its frame's origin, as Simbody takes it).
+SimTK::Body::Rigid RigidOf(const RigidInertia& in) {
+  // Inertia about the body origin: I_cm + m (|c|^2 1 - c c^T).
+  const Matrix3d I = in.inertia_com + in.mass * (in.com.squaredNorm() * Matrix3d::Identity() -
+                                                 in.com * in.com.transpose());
+  return SimTK::Body::Rigid(
+      SimTK::MassProperties(in.mass, ToVec3(in.com),
+                            SimTK::Inertia(SimTK::Mat33(I(0, 0), I(0, 1), I(0, 2), I(1, 0), I(1, 1),
+                                                        I(1, 2), I(2, 0), I(2, 1), I(2, 2)))));
+}
+
 // A rotation taking `to` (z for a pin, x for a slider) onto the joint's axis.
 Matrix3d AxisFrame(const Vector3d& axis, const Vector3d& to) {
   return Eigen::Quaterniond::FromTwoVectors(to, axis).toRotationMatrix();
@@ -34,14 +45,7 @@ std::vector<std::vector<double>> SimbodyTrajectories(const SdfImport& sdf,
   const Model& model = sdf.model;
   std::vector<MobilizedBody> bodies;
   for (const Body& body : model.bodies) {
-    const RigidInertia& in = body.inertia;
-    // Inertia about the body origin: I_cm + m (|c|^2 1 - c c^T).
-    const Matrix3d I = in.inertia_com + in.mass * (in.com.squaredNorm() * Matrix3d::Identity() -
-                                                   in.com * in.com.transpose());
-    const SimTK::Body::Rigid info(
-        MassProperties(in.mass, ToVec3(in.com),
-                       Inertia(Mat33(I(0, 0), I(0, 1), I(0, 2), I(1, 0), I(1, 1), I(1, 2), I(2, 0),
-                                     I(2, 1), I(2, 2)))));
+    const SimTK::Body::Rigid info = RigidOf(body.inertia);
     const bool pin = body.joint.type == JointType::kRevolute;
     const Matrix3d R_JM = AxisFrame(body.joint.axis, pin ? Vector3d::UnitZ() : Vector3d::UnitX());
     const Transform X_PF(ToRotation(body.joint.X_PJ.R * R_JM), ToVec3(body.joint.X_PJ.p));
@@ -76,6 +80,39 @@ std::vector<std::vector<double>> SimbodyTrajectories(const SdfImport& sdf,
     q.push_back(frame);
   }
   return q;
+}
+
+std::vector<Matrix3d> SimbodyBallOrientations(const Model& model, const Matrix3d& R0,
+                                              const Vector3d& w0,
+                                              const std::vector<double>& times) {
+  using namespace SimTK;
+  MultibodySystem system;
+  SimbodyMatterSubsystem matter(system);
+  GeneralForceSubsystem forces(system);
+  Force::UniformGravity gravity(forces, matter, Vec3(0, 0, -9.81));
+  const SimTK::Body::Rigid info = RigidOf(model.bodies.back().inertia);
+  const Pose& X_PJ = model.bodies.front().joint.X_PJ;
+  const Transform X_PF(ToRotation(X_PJ.R), ToVec3(X_PJ.p));
+  MobilizedBody::Ball ball(matter.updGround(), X_PF, info, Transform());
+  State state = system.realizeTopology();
+  system.realizeModel(state);  // a Ball mobilizer's quaternion coordinates exist from here
+  ball.setQToFitRotation(state, ToRotation(R0));
+  ball.setUToFitAngularVelocity(state, ToVec3(w0));
+  RungeKuttaMersonIntegrator integrator(system);
+  integrator.setAccuracy(1e-12);
+  TimeStepper stepper(system, integrator);
+  stepper.initialize(state);
+  std::vector<Matrix3d> orientations;
+  for (double t : times) {
+    if (t > 0.0) stepper.stepTo(t);
+    const Rotation& R = ball.getMobilizerTransform(integrator.getState()).R();
+    Matrix3d out;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) out(i, j) = R.asMat33()(i, j);
+    }
+    orientations.push_back(out);
+  }
+  return orientations;
 }
 
 }  // namespace mbstream
