@@ -306,15 +306,23 @@ int ModelRegistry::LoadBuiltins(const std::string& directory) {
       if (extension == ".urdf" || extension == ".sdf") urdfs.push_back(entry.path());
     }
     std::sort(urdfs.begin(), urdfs.end());
-    std::vector<std::pair<std::string, std::string>> models;  // path, name
+    struct Builtin {
+      std::string path, name, scene;  // scene: NAME.scene beside a one-file model, or ""
+    };
+    std::vector<Builtin> models;
     if (urdfs.size() == 1) {
-      models.emplace_back(dir.string(), dir.filename().string());
+      models.push_back({dir.string(), dir.filename().string(), ""});
     } else {
-      for (const fs::path& urdf : urdfs) models.emplace_back(urdf.string(), urdf.stem().string());
+      for (const fs::path& urdf : urdfs) {
+        fs::path scene = urdf;
+        scene.replace_extension(".scene");
+        models.push_back({urdf.string(), urdf.stem().string(),
+                          fs::is_regular_file(scene, error) ? scene.string() : ""});
+      }
     }
-    for (const auto& [path, name] : models) {
+    for (const auto& [path, name, scene] : models) {
       try {
-        Submit(ReadModelBundle(path, "", {}, name), true);
+        Submit(ReadModelBundle(path, scene, {}, name), true);
         ++loaded;
       } catch (const std::exception& e) {
         spdlog::warn("built-in model {} skipped: {}", path, e.what());

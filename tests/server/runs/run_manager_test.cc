@@ -231,6 +231,15 @@ TEST_F(RunManagerTest, PrivateStoreClaimsInMemoryAndCancelsAQueuedRunBeforeAnyWo
 
 // The result of a run that just ended is served from memory as it was stored (a sweep's
 // GetResult follows every end): the store is not read for it. Without that memory, it is.
+// A folder of one-file models (models/linkages) gives each its NAME.scene; a model folder
+// (models/irb1600) its own scene.
+TEST_F(RunManagerTest, BuiltinModelsComeWithTheirSceneScripts) {
+  for (const char* name : {"irb1600", "four_bar", "slider_crank", "delta", "parallelogram"}) {
+    const v1::ModelInfo info = models_->Info(name);
+    EXPECT_TRUE(info.has_scene()) << name;
+  }
+}
+
 TEST_F(RunManagerTest, AnEndedRunsResultAndInfoAreServedFromMemoryAsStored) {
   auto result = [&](const std::string& run_id) {
     std::string data;
