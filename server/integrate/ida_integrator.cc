@@ -141,7 +141,13 @@ IdaIntegrator::IdaIntegrator(DaeSystem& system, double t0, const double* y0, con
   CheckSetup(IDAInit(memory_, ResidualCallback, t0, y0_.get(), yp0_.get()), "IDAInit");
   CheckSetup(IDASetUserData(memory_, &callbacks_), "IDASetUserData");
   const IntegratorOptions& base = options.base;
-  CheckSetup(IDASStolerances(memory_, base.rtol, base.atol), "IDASStolerances");
+  {
+    // IDA keeps a copy of the absolute tolerances.
+    const Vector atols(N_VNew_Serial(n, ctx));
+    MBSTREAM_CHECK_MSG(atols, "N_VNew_Serial failed");
+    system.AbsoluteTolerances(base.atol, y0, N_VGetArrayPointer(atols.get()));
+    CheckSetup(IDASVtolerances(memory_, base.rtol, atols.get()), "IDASVtolerances");
+  }
   CheckSetup(IDASetId(memory_, id_.get()), "IDASetId");
   CheckSetup(IDASetSuppressAlg(memory_, options.suppress_algebraic ? SUNTRUE : SUNFALSE),
              "IDASetSuppressAlg");

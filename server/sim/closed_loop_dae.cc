@@ -43,6 +43,10 @@ void ClosedLoopDae::DifferentialIds(double* id) const {
   for (int i = 0; i < size(); ++i) id[i] = i < 2 * n_ ? 1.0 : 0.0;
 }
 
+void ClosedLoopDae::AbsoluteTolerances(double atol, const double* y0, double* atols) const {
+  MultiplierTolerances(size(), 2 * n_, atol, y0, atols);
+}
+
 void ClosedLoopDae::Constraints(const Eigen::VectorXd& q) {
   BodyKinematics(model_, data_, q);
   constraints_.Residual(data_, phi_);

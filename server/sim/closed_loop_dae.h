@@ -31,6 +31,8 @@ class ClosedLoopDae : public DaeSystem {
   int size() const override { return 2 * n_ + 2 * k_; }
   int Residual(double t, const double* y, const double* yp, double* r) override;
   void DifferentialIds(double* id) const override;
+  // The run's atol for q and v; MultiplierTolerances for lambda and mu.
+  void AbsoluteTolerances(double atol, const double* y0, double* atols) const override;
   const std::vector<int>& JacobianColumnStarts() const override { return column_starts_; }
   const std::vector<int>& JacobianRowIndices() const override { return row_indices_; }
 
