@@ -29,6 +29,7 @@ ClosedLoopDae::ClosedLoopDae(const Model& model, const std::vector<LoopClosure>&
       phi_dot_(constraints_.num_rows()),
       G_(constraints_.num_rows(), n_),
       A_(k_, n_),
+      conditioning_(k_, n_),
       drive_workspace_(drives.MakeWorkspace()) {
   // Every unknown may appear in every equation: a dense pattern (the mechanisms are small).
   const int size = 2 * n_ + 2 * k_;
@@ -128,6 +129,12 @@ void ClosedLoopDae::Readout(double t, const double* y, Eigen::VectorXd* effort, 
   for (size_t h = 0; h < prescribed_.size(); ++h) {
     (*effort)(prescribed_[h]) = y[2 * n_ + rank_.rank + static_cast<int>(h)];
   }
+}
+
+double ClosedLoopDae::ConstraintConditioning(const double* y) {
+  q_ = Eigen::Map<const Eigen::VectorXd>(y, n_);
+  Constraints(q_);
+  return conditioning_.Of(A_);
 }
 
 void ClosedLoopDae::Reactions(const double* y, Eigen::VectorXd* reactions) const {

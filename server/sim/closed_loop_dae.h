@@ -17,6 +17,7 @@
 #include "server/integrate/ida_system.h"
 #include "server/kinematics/loop_constraints.h"
 #include "server/kinematics/loop_solver.h"
+#include "server/kinematics/row_conditioning.h"
 #include "server/model/data.h"
 #include "server/model/model.h"
 
@@ -50,6 +51,11 @@ class ClosedLoopDae : public DaeSystem {
   // LoopConstraints::Reactions) from lambda's entries of the independent loop rows (M v' + h =
   // tau + A^T lambda, the sign of the ODE's multipliers). Allocates nothing.
   void Reactions(const double* y, Eigen::VectorXd* reactions) const;
+  // At y's pose: RowConditioning::Of A (the independent loop rows and the prescribed joints'),
+  // which a singular pose of the mechanism takes to 0 (singular_pose.h). Allocates nothing.
+  double ConstraintConditioning(const double* y);
+
+  const Model& model() const { return model_; }
 
   int num_multipliers() const { return k_; }
 
@@ -66,6 +72,7 @@ class ClosedLoopDae : public DaeSystem {
   LoopConstraints constraints_;
   Eigen::VectorXd q_, v_, vp_, lambda_, mu_, tau_, phi_, phi_dot_;
   Eigen::MatrixXd G_, A_;
+  RowConditioning conditioning_;  // ConstraintConditioning's workspace
   DriveSet::Workspace drive_workspace_;
   std::vector<int> column_starts_, row_indices_;
 };

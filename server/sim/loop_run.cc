@@ -139,6 +139,21 @@ class KinematicLoopSource : public FrameSource {
   std::optional<SingularPoseWatch> singular_;  // sized once the rows are known
 };
 
+// Stops a run whose constraint matrix A's RowConditioning fell to `conditioning` below
+// kSingularPoseConditioning at time t and pose q, or whose integrator failed there.
+void StopSingular(const Model& model, const Eigen::VectorXd& q, double t, double conditioning,
+                  RunStats* stats) {
+  StopRun(
+      stats, RunStatus::kFailed,
+      FormatString("the loop constraints became singular at t = %.6g s (smallest singular value of "
+                   "the constraint Jacobian, rows scaled to unit length, %.2g of its largest): the "
+                   "mechanism reached a singular configuration, where the loops no longer "
+                   "determine its motion and its joint forces are unbounded (a Delta robot: its "
+                   "rods all parallel; a dead centre); add joint limits or shorten the run (the "
+                   "pose: %s)",
+                   t, conditioning, PoseText(model, q).c_str()));
+}
+
 // The joint-space ODE with the loops as constraints, integrated frame to frame.
 class ClosedLoopSource : public FrameSource {
  public:
@@ -157,7 +172,9 @@ class ClosedLoopSource : public FrameSource {
       const double t = budget_->t_stop;
       if (ode_.Evaluate(t, y_.data())) {
         const double conditioning = ode_.ConstraintConditioning();
-        if (conditioning < kSingularPoseConditioning) StopSingular(t, conditioning, stats);
+        if (conditioning < kSingularPoseConditioning) {
+          StopSingular(ode_.model(), ode_.q(), t, conditioning, stats);
+        }
       }
       return false;
     }
@@ -166,7 +183,7 @@ class ClosedLoopSource : public FrameSource {
     if (ode_.Evaluate(times[k], y_.data())) {
       const double conditioning = ode_.ConstraintConditioning();
       if (conditioning < kSingularPoseConditioning) {
-        StopSingular(times[k], conditioning, stats);
+        StopSingular(ode_.model(), ode_.q(), times[k], conditioning, stats);
         return false;
       }
     }
@@ -190,20 +207,6 @@ class ClosedLoopSource : public FrameSource {
   }
 
  private:
-  // A frame stops the run at ClosedLoopOde::ConstraintConditioning below
-  // kSingularPoseConditioning, and an integrator's failure is put down to a singular pose.
-  void StopSingular(double t, double conditioning, RunStats* stats) const {
-    StopRun(stats, RunStatus::kFailed,
-            FormatString(
-                "the loop constraints became singular at t = %.6g s (smallest singular value of "
-                "the constraint Jacobian, rows scaled to unit length, %.2g of its largest): the "
-                "mechanism reached a singular configuration, where the loops no longer "
-                "determine its motion and its joint forces are unbounded (a Delta robot: its "
-                "rods all parallel; a dead centre); add joint limits or shorten the run (the "
-                "pose: %s)",
-                t, conditioning, PoseText(ode_.model(), ode_.q()).c_str()));
-  }
-
   ClosedLoopOde& ode_;
   Integrator& integrator_;
   Eigen::VectorXd& y_;
@@ -227,8 +230,14 @@ class ClosedLoopDaeSource : public FrameSource {
         qd_(n),
         effort_(n) {}
 
+  // As the ODE's source: a frame at (near) a singular pose stops the run, and an integrator's
+  // failure at one is put down to it.
   bool Advance(const std::vector<double>& times, size_t k, RunStats* stats) override {
-    return AdvanceToFrame(integrator_, times, k, y_.data(), stats, "", &budget_->t_stop);
+    if (!AdvanceToFrame(integrator_, times, k, y_.data(), stats, "", &budget_->t_stop)) {
+      StopIfSingular(budget_->t_stop, stats);  // y_ holds the state at t_stop
+      return false;
+    }
+    return k == 0 || !StopIfSingular(times[k], stats);
   }
 
   bool Record(double t, FrameRecorder& recorder) override {
@@ -247,6 +256,14 @@ class ClosedLoopDaeSource : public FrameSource {
   }
 
  private:
+  bool StopIfSingular(double t, RunStats* stats) {
+    const double conditioning = dae_.ConstraintConditioning(y_.data());
+    if (!(conditioning < kSingularPoseConditioning)) return false;
+    q_ = y_.head(q_.size());
+    StopSingular(dae_.model(), q_, t, conditioning, stats);
+    return true;
+  }
+
   ClosedLoopDae& dae_;
   Integrator& integrator_;
   Eigen::VectorXd& y_;
