@@ -133,15 +133,7 @@ SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
     }
   } clear{this};
   auto stream = stub->Subscribe(&context);
-  v1::SubscribeRequest start;
-  if (options_.follow) {
-    start.mutable_start()->set_follow(true);
-  } else {
-    start.mutable_start()->set_run_id(options_.run_id);
-    SetReplay(options_.replay, start.mutable_start()->mutable_replay());
-  }
-  start.mutable_start()->set_max_batch(options_.max_batch);
-  stream->Write(start);
+  stream->Write(StartRequest());
   {
     std::lock_guard<std::mutex> lock(write_mutex_);
     writer_ = stream.get();
@@ -152,30 +144,7 @@ SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
   StreamState state;
   bool closing = false;
   while (!state.done && !state.broken && !closing && stream->Read(&event)) {
-    switch (event.event_case()) {
-      case v1::SubscribeEvent::kSubscribed:
-        spdlog::info("subscribed to {}: {}", options_.server, event.subscribed());
-        break;
-      case v1::SubscribeEvent::kClosing:
-        // Half-close below; the stream ends UNAVAILABLE and the link reconnects.
-        spdlog::warn("{}: {}", options_.server, event.closing());
-        closing = true;
-        break;
-      case v1::SubscribeEvent::kRunStarted:
-        OnRunStarted(event.run_started(), &state);
-        break;
-      case v1::SubscribeEvent::kReplayState:
-        OnReplayState(event.replay_state(), state);
-        break;
-      case v1::SubscribeEvent::kFrames:
-        OnFrames(event.frames(), &state);
-        break;
-      case v1::SubscribeEvent::kRunEnded:
-        OnRunEnded(event.run_ended(), runs_ended, &state);
-        break;
-      case v1::SubscribeEvent::EVENT_NOT_SET:
-        break;
-    }
+    closing = !Dispatch(event, runs_ended, &state);
   }
   // Half-close: the server ends the stream (also a follow stream) once it has read our last
   // probe reports; drain what it still sends.
@@ -199,6 +168,46 @@ SubscriberLink::StreamEnd SubscriberLink::Stream(int* runs_ended) {
   spdlog::warn("the stream ended: {} ({})", status.error_message(),
                static_cast<int>(status.error_code()));
   return StreamEnd::kRetry;
+}
+
+v1::SubscribeRequest SubscriberLink::StartRequest() const {
+  v1::SubscribeRequest start;
+  if (options_.follow) {
+    start.mutable_start()->set_follow(true);
+  } else {
+    start.mutable_start()->set_run_id(options_.run_id);
+    SetReplay(options_.replay, start.mutable_start()->mutable_replay());
+  }
+  start.mutable_start()->set_max_batch(options_.max_batch);
+  return start;
+}
+
+bool SubscriberLink::Dispatch(const v1::SubscribeEvent& event, int* runs_ended,
+                              StreamState* state) {
+  switch (event.event_case()) {
+    case v1::SubscribeEvent::kSubscribed:
+      spdlog::info("subscribed to {}: {}", options_.server, event.subscribed());
+      break;
+    case v1::SubscribeEvent::kClosing:
+      // The caller half-closes; the stream ends UNAVAILABLE and the link reconnects.
+      spdlog::warn("{}: {}", options_.server, event.closing());
+      return false;
+    case v1::SubscribeEvent::kRunStarted:
+      OnRunStarted(event.run_started(), state);
+      break;
+    case v1::SubscribeEvent::kReplayState:
+      OnReplayState(event.replay_state(), *state);
+      break;
+    case v1::SubscribeEvent::kFrames:
+      OnFrames(event.frames(), state);
+      break;
+    case v1::SubscribeEvent::kRunEnded:
+      OnRunEnded(event.run_ended(), runs_ended, state);
+      break;
+    case v1::SubscribeEvent::EVENT_NOT_SET:
+      break;
+  }
+  return true;
 }
 
 std::string SubscriberLink::ShowRun(const v1::SubscribeEvent::RunStarted& started) {

@@ -64,6 +64,10 @@ class SubscriberLink {
 
   // One connection: subscribes, handles events until the end, returns how it ended.
   StreamEnd Stream(int* runs_ended);
+  // The stream's first message: follow, or one run (and its replay settings).
+  v1::SubscribeRequest StartRequest() const;
+  // Hands one event to its handler; false when the server said it is closing the stream.
+  bool Dispatch(const v1::SubscribeEvent& event, int* runs_ended, StreamState* state);
   // One handler per event kind; each updates `state` (the run shown, whether to stop).
   void OnRunStarted(const v1::SubscribeEvent::RunStarted& started, StreamState* state);
   void OnReplayState(const v1::ReplayState& replay, const StreamState& state);
