@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "common/check.h"
 #include "server/engine/engine.h"
@@ -84,6 +85,25 @@ RunConfig BaseConfig(int n) {
   config.rtol = 1e-10;
   config.atol = 1e-12;
   return config;
+}
+
+// A linkage of models/linkages/ and one of its run specs ("-driven.json", "-passive.json").
+struct Linkage {
+  SdfImport sdf;
+  std::vector<std::string> joints;  // the tree's, for ToRunConfig
+};
+
+Linkage LoadLinkage(const std::string& name) {
+  Linkage linkage{
+      ImportSdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/models/linkages/" + name + ".sdf"), {}};
+  for (const Body& body : linkage.sdf.model.bodies) linkage.joints.push_back(body.joint.name);
+  return linkage;
+}
+
+RunConfig LinkageSpec(const Linkage& linkage, const std::string& name, const std::string& kind) {
+  const std::string file = name + kind;
+  return ToRunConfig(LoadRunSpecFile(std::string(MBSTREAM_SOURCE_DIR) + "/models/linkages/" + file),
+                     linkage.joints, file);
 }
 
 TEST(LoopRunTest, KinematicFourBarFollowsTheClosedFormLoopClosure) {
@@ -302,14 +322,11 @@ TEST(LoopRunTest, GglDaeWithIdaAgreesWithTheProjectedOde) {
 // every one of them (on the Delta already at 1e-7). Each run against the projected ODE at
 // rtol 1e-10: the final joint values, closer as the tolerance tightens.
 TEST(LoopRunTest, TheGglDaeRunsEveryPassiveLinkageAtTightTolerances) {
-  const std::string dir = std::string(MBSTREAM_SOURCE_DIR) + "/models/linkages/";
   for (const std::string name :
        {"four_bar", "parallelogram", "slider_crank", "delta", "palletiser"}) {
-    const SdfImport sdf = ImportSdfFile(dir + name + ".sdf");
-    std::vector<std::string> joints;
-    for (const Body& body : sdf.model.bodies) joints.push_back(body.joint.name);
-    RunConfig config =
-        ToRunConfig(LoadRunSpecFile(dir + name + "-passive.json"), joints, name + "-passive.json");
+    const Linkage linkage = LoadLinkage(name);
+    const SdfImport& sdf = linkage.sdf;
+    RunConfig config = LinkageSpec(linkage, name, "-passive.json");
     config.duration = std::min(config.duration, 1.0);
     config.formulation = Formulation::kJoint;
     config.method = Method::kBdf;
@@ -506,15 +523,13 @@ TEST(LoopRunTest, TheEngineEntryRunsAModelWithLoopsAsSimulateLoopsDoes) {
 // tests/viewer/linkage_scene_test.cc): each loads and is accepted for its model; the
 // parallelogram's, the newest, also run (0.5 s) to the end.
 TEST(LoopRunTest, EveryLinkagesRunSpecsLoadAndAreAccepted) {
-  const std::string dir = std::string(MBSTREAM_SOURCE_DIR) + "/models/linkages/";
   for (const std::string name :
        {"four_bar", "parallelogram", "slider_crank", "delta", "palletiser"}) {
-    const SdfImport sdf = ImportSdfFile(dir + name + ".sdf");
-    std::vector<std::string> joints;
-    for (const Body& body : sdf.model.bodies) joints.push_back(body.joint.name);
+    const Linkage linkage = LoadLinkage(name);
+    const SdfImport& sdf = linkage.sdf;
     for (const std::string kind : {"-driven.json", "-passive.json"}) {
       SCOPED_TRACE(name + kind);
-      RunConfig config = ToRunConfig(LoadRunSpecFile(dir + name + kind), joints, name + kind);
+      RunConfig config = LinkageSpec(linkage, name, kind);
       EXPECT_NO_THROW(ValidateLoopRun(sdf.model, sdf.loops, config));
       if (name != "parallelogram") continue;
       config.duration = 0.5;
