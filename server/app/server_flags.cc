@@ -113,6 +113,13 @@ void AddSizeFlags(CLI::App& app, ServerConfig* config, ServerFlags* flags) {
                  "failing them; 0 = no check; not checked for a PostgreSQL --store")
       ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();
+  app.add_option("--max-message-mb", flags->max_message_mb, "largest gRPC message, MiB")
+      ->check(CLI::Range(1.0, 2047.0))
+      ->capture_default_str();
+}
+
+// Retention: which ended runs are deleted in the background, and how often it looks.
+void AddRetentionFlags(CLI::App& app, ServerConfig* config) {
   app.add_option("--retain-runs", config->retention.retain_runs,
                  "keep the newest this many ended runs (not counting runs marked keep: "
                  "`mbstream keep`); older ended runs are deleted in the background; 0 = no limit")
@@ -143,9 +150,6 @@ void AddSizeFlags(CLI::App& app, ServerConfig* config, ServerFlags* flags) {
   app.add_option("--retention-period-s", config->retention_period_s,
                  "s between two passes of retention (--retain-runs, --retain-days)")
       ->check(CLI::Range(0.01, 86400.0))
-      ->capture_default_str();
-  app.add_option("--max-message-mb", flags->max_message_mb, "largest gRPC message, MiB")
-      ->check(CLI::Range(1.0, 2047.0))
       ->capture_default_str();
 }
 
@@ -196,6 +200,7 @@ void AddSecurityAndClusterFlags(CLI::App& app, ServerConfig* config, ServerFlags
 void ServerFlags::AddTo(CLI::App& app, ServerConfig* config) {
   AddServingFlags(app, config);
   AddSizeFlags(app, config, this);
+  AddRetentionFlags(app, config);
   AddSecurityAndClusterFlags(app, config, this);
 }
 
