@@ -124,8 +124,9 @@ void PredictLoops(const AccuracyTarget& target, const ErrorFit& fit, Candidate* 
   c->run_rtol = std::max(run, kLoopMinRtol);
   c->check_rtol = std::max(kLoopMinRtol, std::min(RtolFor(target, fit, kCheckSafety),
                                                   c->run_rtol * kCheckSafety / kRunSafety));
-  // IDA's Newton on the GGL DAE stops converging at tight tolerances (below rtol 1e-6 to
-  // 1e-8 on the linkages, docs/accuracy.md): it is trusted down to its tightest pilot only.
+  // IDA on the GGL DAE is trusted down to its tightest pilot only: its Newton stopped
+  // converging below rtol 1e-6 to 1e-8 on the linkages until the multipliers got tolerances
+  // of their own (docs/closed_loops.md), and a tolerance beyond the pilots is not measured.
   const bool ida = c->method == Method::kIda;
   if (ida) c->resolvable = c->resolvable && c->run_rtol >= c->rtol[1];
   c->run_cpu_s = PredictedCpu(*c, c->run_rtol);
