@@ -137,6 +137,13 @@ TEST_F(ServerCliTest, ASecondSignalDuringADrainEndsTheServerAtOnce) {
   EXPECT_THAT(runs.output, ::testing::ContainsRegex(slow_id + " +irb1600 +INTERRUPTED"));
 }
 
+// The sweep's id in `mbstream sweep`'s output ("sweep s-...: ..."), or "" when it is missing.
+std::string SweepIdOf(const std::string& output) {
+  const size_t at = output.find("sweep s-");
+  if (at == std::string::npos) return "";
+  return output.substr(at + 6, output.find(':', at) - at - 6);
+}
+
 std::string LastLine(const std::string& text) {
   std::string last;
   std::stringstream in(text);
@@ -284,9 +291,8 @@ TEST_F(ServerCliTest, ASweepIsFollowedAndCancelledByItsId) {
           Out("sweep"));
   ASSERT_EQ(sweep.exit_code, 0) << sweep.output;
   EXPECT_THAT(sweep.output, HasSubstr("3/3 runs ended (FINISHED 3)"));
-  const size_t at = sweep.output.find("sweep s-");
-  ASSERT_NE(at, std::string::npos) << sweep.output;
-  const std::string id = sweep.output.substr(at + 6, sweep.output.find(':', at) - at - 6);
+  const std::string id = SweepIdOf(sweep.output);
+  ASSERT_FALSE(id.empty()) << sweep.output;
 
   CommandOutcome status = Cli("sweep --status " + id);
   ASSERT_EQ(status.exit_code, 0) << status.output;
@@ -310,9 +316,8 @@ TEST_F(ServerCliTest, TheCancelCommandCancelsASweepByItsId) {
           "--grid 'drives[1].pd_servo.kp=100,400' --out " +
           Out("sweep"));
   ASSERT_EQ(sweep.exit_code, 0) << sweep.output;
-  const size_t at = sweep.output.find("sweep s-");
-  ASSERT_NE(at, std::string::npos) << sweep.output;
-  const std::string id = sweep.output.substr(at + 6, sweep.output.find(':', at) - at - 6);
+  const std::string id = SweepIdOf(sweep.output);
+  ASSERT_FALSE(id.empty()) << sweep.output;
 
   const CommandOutcome cancel = Cli("cancel --sweep " + id);
   ASSERT_EQ(cancel.exit_code, 0) << cancel.output;

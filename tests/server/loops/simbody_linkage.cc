@@ -27,6 +27,14 @@ SimTK::Body::Rigid RigidOf(const RigidInertia& in) {
                                                         I(1, 2), I(2, 0), I(2, 1), I(2, 2)))));
 }
 
+// A Simbody system with its matter and gravity (-9.81 m/s^2 along z), as both runs below use.
+struct GravityWorld {
+  SimTK::MultibodySystem system;
+  SimTK::SimbodyMatterSubsystem matter{system};
+  SimTK::GeneralForceSubsystem forces{system};
+  SimTK::Force::UniformGravity gravity{forces, matter, SimTK::Vec3(0, 0, -9.81)};
+};
+
 // A rotation taking `to` (z for a pin, x for a slider) onto the joint's axis.
 Matrix3d AxisFrame(const Vector3d& axis, const Vector3d& to) {
   return Eigen::Quaterniond::FromTwoVectors(to, axis).toRotationMatrix();
@@ -38,10 +46,9 @@ std::vector<std::vector<double>> SimbodyTrajectories(const SdfImport& sdf,
                                                      const std::vector<double>& times,
                                                      const std::vector<double>& qd0) {
   using namespace SimTK;
-  MultibodySystem system;
-  SimbodyMatterSubsystem matter(system);
-  GeneralForceSubsystem forces(system);
-  Force::UniformGravity gravity(forces, matter, Vec3(0, 0, -9.81));
+  GravityWorld world;
+  MultibodySystem& system = world.system;
+  SimbodyMatterSubsystem& matter = world.matter;
   const Model& model = sdf.model;
   std::vector<MobilizedBody> bodies;
   for (const Body& body : model.bodies) {
@@ -86,10 +93,9 @@ std::vector<Matrix3d> SimbodyBallOrientations(const Model& model, const Matrix3d
                                               const Vector3d& w0,
                                               const std::vector<double>& times) {
   using namespace SimTK;
-  MultibodySystem system;
-  SimbodyMatterSubsystem matter(system);
-  GeneralForceSubsystem forces(system);
-  Force::UniformGravity gravity(forces, matter, Vec3(0, 0, -9.81));
+  GravityWorld world;
+  MultibodySystem& system = world.system;
+  SimbodyMatterSubsystem& matter = world.matter;
   const SimTK::Body::Rigid info = RigidOf(model.bodies.back().inertia);
   const Pose& X_PJ = model.bodies.front().joint.X_PJ;
   const Transform X_PF(ToRotation(X_PJ.R), ToVec3(X_PJ.p));
