@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/check.h"
+#include "server/runs/request_error.h"
 #include "server/service/peer_proxy.h"
 #include "server/service/status_from_exception.h"
 
@@ -81,14 +82,24 @@ grpc::Status SimulationService::CancelRun(grpc::ServerContext* context,
                               " was started with another token; only that token or an admin "
                               "token may cancel it");
     }
-    if (peers_ != nullptr && !PeerChannels::IsProxied(*context)) {
-      if (RunManager::RunPlace place = runs_->Locate(info.id());
-          place.where == RunManager::RunPlace::Where::kElsewhere) {
-        return ProxyCancelRun(*peers_, *context, *request, place.info, response);
+    const bool forwards = peers_ != nullptr && !PeerChannels::IsProxied(*context);
+    // A run queued in the shared store when located may be claimed by another replica before
+    // Cancel ends it (Cancel then refuses: it integrates there): located again, the cancel is
+    // forwarded there. A run is claimed once; the third look covers a hand-back (drain).
+    for (int look = 0;; ++look) {
+      if (forwards) {
+        if (RunManager::RunPlace place = runs_->Locate(info.id());
+            place.where == RunManager::RunPlace::Where::kElsewhere) {
+          return ProxyCancelRun(*peers_, *context, *request, place.info, response);
+        }
+      }
+      try {
+        *response = runs_->Cancel(request->run_id());
+        return grpc::Status::OK;
+      } catch (const RequestError& error) {
+        if (!forwards || error.kind() != RequestErrorKind::kFailedPrecondition || look == 2) throw;
       }
     }
-    *response = runs_->Cancel(request->run_id());
-    return grpc::Status::OK;
   });
 }
 
