@@ -180,7 +180,9 @@ TEST(ProbeRecorderTest, BatchesReachTheStoreBeforeTheLastFlush) {
 
 // Readers add and store due batches (as a replay's reader does) while another thread stores
 // batches too (as a run's worker does): every report is stored exactly once, in the order
-// each reader added its own.
+// each reader added its own. Halfway, each reader waits for a stored batch, so that reports
+// are added after one whatever the threads' scheduling (one batch of all 1,200 happened on a
+// busy machine).
 TEST(ProbeRecorderTest, ReportsAddedWhileBatchesAreStoredAreEachStoredOnce) {
   testing::ManualRunClock clock;
   ProbeRecorder recorder("run r-1", clock, Options(7, {}, 1'000'000));
@@ -192,6 +194,9 @@ TEST(ProbeRecorderTest, ReportsAddedWhileBatchesAreStoredAreEachStoredOnce) {
   for (int r = 0; r < kReaders; ++r) {
     readers.emplace_back([&, r] {
       for (int i = 0; i < kEach; ++i) {
+        if (i == kEach / 2) {
+          while (recorder.batches() == 0) std::this_thread::yield();  // the worker stores one
+        }
         EXPECT_TRUE(recorder.Add(Reports("r-1", int64_t{r} * kEach + i, 1)));
         recorder.FlushIfDue();
       }
