@@ -19,7 +19,8 @@ while [ $# -gt 0 ]; do
     *) TARGETS+=("$1"); shift ;;
   esac
 done
-ALL_TARGETS=(urdf_import_fuzzer scene_script_fuzzer run_spec_json_fuzzer start_run_fuzzer)
+ALL_TARGETS=(urdf_import_fuzzer sdf_import_fuzzer scene_script_fuzzer run_spec_json_fuzzer
+             start_run_fuzzer)
 
 BUILD=${FUZZ_BUILD_DIR:-build-fuzz}
 JOBS=${JOBS:-2}
@@ -57,9 +58,10 @@ fi
 OUT=$BUILD/fuzz
 SEEDS=$OUT/seeds
 rm -rf "$SEEDS"
-mkdir -p "$SEEDS"/{urdf_import_fuzzer,scene_script_fuzzer,run_spec_json_fuzzer,start_run_fuzzer} \
+mkdir -p "$SEEDS"/{urdf_import_fuzzer,sdf_import_fuzzer,scene_script_fuzzer,run_spec_json_fuzzer,start_run_fuzzer} \
   "$OUT/artifacts" "$OUT/logs"
 cp models/*/*.urdf fuzz/seeds/urdf/* "$SEEDS/urdf_import_fuzzer/"
+cp models/*/*.sdf tests/data/*.sdf fuzz/seeds/sdf/* "$SEEDS/sdf_import_fuzzer/"
 cp models/*/*.scene tests/viewer/data/*.txt fuzz/seeds/scene/* "$SEEDS/scene_script_fuzzer/"
 cp models/*/*.json fuzz/seeds/run_spec/* "$SEEDS/run_spec_json_fuzzer/"
 # Whole requests: each shipped model with each spec, shortened to fit the fuzzer's limits
@@ -69,9 +71,14 @@ cp models/*/*.json fuzz/seeds/run_spec/* "$SEEDS/run_spec_json_fuzzer/"
 # to libFuzzer's 30 s timeout; those files seed urdf_import_fuzzer above, and what the
 # fuzzer tests here (a request's validation) they would not exercise any further.
 n=0
-for urdf in models/*/*.urdf; do
-  case "$urdf" in models/big/*) continue ;; esac
-  for spec in models/*/*.json fuzz/seeds/run_spec/*; do
+# The linkages (SDFormat, closed loops) each with their own specs.
+for urdf in models/*/*.urdf models/linkages/*.sdf; do
+  case "$urdf" in
+    models/big/*) continue ;;
+    models/linkages/*) specs=("${urdf%.sdf}"-*.json) ;;
+    *) specs=(models/*/*.json fuzz/seeds/run_spec/*) ;;
+  esac
+  for spec in "${specs[@]}"; do
     n=$((n + 1))
     { cat "$urdf"; printf '\n@@spec\n'
       sed -E 's/"duration_s": *[0-9.eE+-]+/"duration_s": 0.1/' "$spec"; } \
@@ -84,7 +91,7 @@ cp fuzz/seeds/start_run/* "$SEEDS/start_run_fuzzer/"
 export ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/cmake/sanitizers/lsan.supp:print_suppressions=0
-declare -A DICT=([urdf_import_fuzzer]=urdf [scene_script_fuzzer]=scene_script
+declare -A DICT=([urdf_import_fuzzer]=urdf [sdf_import_fuzzer]=sdf [scene_script_fuzzer]=scene_script
                  [run_spec_json_fuzzer]=run_spec [start_run_fuzzer]=start_run)
 failed=0
 printf '%-22s %8s %12s %10s %8s\n' target seconds executions exec/s corpus | tee "$OUT/summary.txt"

@@ -94,7 +94,8 @@ TEST_F(ServerCliTest, KilledServerRestartsWithEveryModelAndRunAndTheInterruptedO
       Cli("run irb1600 --spec models/irb1600/seed-run.json --out " + Out("finished"));
   ASSERT_EQ(finished.exit_code, 0) << finished.output;
   const std::string finished_id = FirstLine(finished.output);
-  const CommandOutcome slow = Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 1");
+  const CommandOutcome slow =
+      Cli("run irb1600 --spec models/irb1600/seed-run.json --duration 600 --realtime 1");
   ASSERT_EQ(slow.exit_code, 0) << slow.output;
   const std::string slow_id = FirstLine(slow.output);
   ASSERT_TRUE(WaitForLineIn(server_->log_path(), "run " + slow_id + " started"));
@@ -120,7 +121,8 @@ TEST_F(ServerCliTest, KilledServerRestartsWithEveryModelAndRunAndTheInterruptedO
 // the drain waits for is cut short, and the next start marks it INTERRUPTED.
 TEST_F(ServerCliTest, ASecondSignalDuringADrainEndsTheServerAtOnce) {
   StartServer({"--grace-s", "600"});
-  const CommandOutcome slow = Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 1");
+  const CommandOutcome slow =
+      Cli("run irb1600 --spec models/irb1600/seed-run.json --duration 600 --realtime 1");
   ASSERT_EQ(slow.exit_code, 0) << slow.output;
   const std::string slow_id = FirstLine(slow.output);
   ASSERT_TRUE(WaitForLineIn(server_->log_path(), "run " + slow_id + " started"));

@@ -28,9 +28,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// seed-servo: 401 frames, one per 0.05 s of simulated time; at realtime 1, 20 s of wall time,
-// of which the test needs about 2 s.
-constexpr const char* kSpec = "--spec models/irb1600/seed-servo.json --realtime 1";
+// seed-servo lengthened to 600 s: one frame per 0.05 s of simulated time, at realtime 1 as
+// long in wall time, of which the test needs about 2 s (the server is killed): a busy machine
+// cannot end the run first.
+constexpr const char* kSpec = "--spec models/irb1600/seed-servo.json --duration 600 --realtime 1";
 
 std::unique_ptr<v1::Simulation::Stub> Connect(const std::string& address) {
   return v1::Simulation::NewStub(grpc::CreateChannel(address, grpc::InsecureChannelCredentials()));

@@ -74,7 +74,7 @@ TEST_F(ViewerLinkTest, FollowingViewerShowsALiveLoopRunOfTheDeltaAndAnswersWithI
 
 TEST_F(ViewerLinkTest, RunModeJoinsARunningRunAndAnswersFromThenOn) {
   const CommandOutcome started =
-      Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 1");
+      Cli("run irb1600 --spec models/irb1600/seed-run.json --duration 600 --realtime 1");
   ASSERT_EQ(started.exit_code, 0) << started.output;
   const std::string run = started.output.substr(0, started.output.find('\n'));
   const fs::path log = dir_ / "viewer.log";
@@ -98,7 +98,7 @@ TEST_F(ViewerLinkTest, RunModeJoinsARunningRunAndAnswersFromThenOn) {
 // now and then, cancelling a stream context that was being destroyed).
 TEST_F(ViewerLinkTest, SigtermWhileFollowingARunExitsCleanly) {
   const CommandOutcome started =
-      Cli("run irb1600 --spec models/irb1600/seed-run.json --realtime 1");
+      Cli("run irb1600 --spec models/irb1600/seed-run.json --duration 600 --realtime 1");
   ASSERT_EQ(started.exit_code, 0) << started.output;
   const std::string run = started.output.substr(0, started.output.find('\n'));
   for (int attempt = 0; attempt < 3; ++attempt) {
