@@ -197,8 +197,8 @@ if [ "$ASAN" = 1 ] && ! over_budget asan+ubsan; then
   stage "asan+ubsan: ctest" sanitized_ctest "$ASAN_DIR" -E "^(${ASAN_SKIP})\$"
 fi
 
-# Expected: four targets (fewer built without the viewer) for FUZZ_SECONDS each, and the build.
-if [ "$FUZZ" = 1 ] && ! over_budget fuzz $((4 * ${FUZZ_SECONDS:-60} + 60)); then
+# Expected: five targets (fewer built without the viewer) for FUZZ_SECONDS each, and the build.
+if [ "$FUZZ" = 1 ] && ! over_budget fuzz $((5 * ${FUZZ_SECONDS:-60} + 60)); then
   if [ "$ASAN" = 1 ] && [ -f "$ASAN_DIR/CMakeCache.txt" ]; then export FUZZ_BUILD_DIR=$ASAN_DIR; fi
   stage "fuzz: build+run" bash fuzz/run.sh --seconds "${FUZZ_SECONDS:-60}"
 fi
