@@ -4,7 +4,7 @@
 // outcome must be a RunInfo or an InputError / RequestError with a message; a run must end
 // (within 60 s; the limits below keep accepted runs tiny) and never with an internal error.
 //
-// Input (fuzz/README.md): the URDF text, then a line "@@spec", then the RunSpec JSON, then
+// Input (fuzz/README.md): the URDF or SDFormat text, then a line "@@spec", then the RunSpec JSON, then
 // optionally a line "@@assets" and one asset name per line (each sent with a small body).
 #include <spdlog/spdlog.h>
 
