@@ -4,8 +4,9 @@
 // outcome must be a RunInfo or an InputError / RequestError with a message; a run must end
 // (within 60 s; the limits below keep accepted runs tiny) and never with an internal error.
 //
-// Input (fuzz/README.md): the URDF or SDFormat text, then a line "@@spec", then the RunSpec JSON, then
-// optionally a line "@@assets" and one asset name per line (each sent with a small body).
+// Input (fuzz/README.md): the URDF or SDFormat text, then a line "@@spec", then the RunSpec
+// JSON, then optionally a line "@@assets" and one asset name per line (each sent with a small
+// body).
 #include <spdlog/spdlog.h>
 
 #include <unistd.h>
