@@ -10,6 +10,7 @@
 #include <string>
 
 #include "client/cli/exit_codes.h"
+#include "client/cli/model_flags.h"
 #include "client/cli/run_overrides.h"
 #include "common/check.h"
 #include "server/engine/engine.h"
@@ -37,6 +38,7 @@ struct SimulateOptions {
   std::string mcap_start;  // the time of t = 0 (default: now, UTC)
   bool accept_untrusted = false;
   bool repair = false;
+  bool couple_mimic = false;
   // The server's limits and defaults (mbstream-server's flags of the same names), so that
   // simulate and the server agree on every input.
   int max_links = 256;
@@ -114,10 +116,12 @@ int ExitCodeOf(const RunStats& s, bool accept_untrusted) {
 }
 
 int RunSimulate(const SimulateOptions& options) {
-  // URDF or SDFormat by content; an SDFormat model may close loops (import.loops).
+  // URDF or SDFormat by content; an SDFormat model may close loops, a URDF's <mimic> couple
+  // joints (import.loops).
   ModelFileImport import =
-      ImportModelFile(options.model_path,
-                      UrdfImportOptions{.repair = options.repair, .max_links = options.max_links});
+      ImportModelFile(options.model_path, UrdfImportOptions{.repair = options.repair,
+                                                            .max_links = options.max_links,
+                                                            .couple_mimic = options.couple_mimic});
   for (const std::string& warning : import.warnings) spdlog::warn("{}", warning);
   v1::RunSpec spec;
   std::string source = "(command line)";
@@ -208,8 +212,8 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
                    "most frames of the run (as mbstream-server)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  command->add_flag("--repair", options->repair,
-                    "repair the defects published URDFs commonly carry (each one a warning)");
+  command->add_flag("--repair", options->repair, kRepairHelp);
+  command->add_flag("--couple-mimic", options->couple_mimic, kCoupleMimicHelp);
   command->callback([options, exit_code] {
     try {
       *exit_code = RunSimulate(*options);

@@ -1,8 +1,9 @@
 // `mbstream submit MODEL.urdf|MODEL.sdf|DIR [--scene FILE] [--asset FILE]... [--package-path
 // DIR]...
-//  [--with-collision] [--name NAME] [--repair]`
+//  [--with-collision] [--name NAME] [--repair] [--couple-mimic]`
 #include <iostream>
 
+#include "client/cli/model_flags.h"
 #include "client/cli/server_commands.h"
 #include "common/check.h"
 #include "server/wire/model_bundle_files.h"
@@ -14,6 +15,7 @@ namespace {
 struct SubmitOptions {
   BundleFiles files;
   bool repair = false;
+  bool couple_mimic = false;
 };
 
 int Submit(const ClientOptions& client, const SubmitOptions& options) {
@@ -22,6 +24,7 @@ int Submit(const ClientOptions& client, const SubmitOptions& options) {
   for (const std::string& warning : read.warnings) std::cerr << "warning: " << warning << "\n";
   *request.mutable_bundle() = std::move(read.bundle);
   request.mutable_bundle()->set_repair(options.repair);
+  request.mutable_bundle()->set_couple_mimic(options.couple_mimic);
   grpc::ClientContext context;
   v1::ModelInfo info;
   const grpc::Status status = ConnectSimulation(client)->SubmitModel(&context, request, &info);
@@ -63,8 +66,8 @@ void AddSubmitCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client
                     "attach the collision meshes too (the engine does not need them)");
   command->add_option("--name", options->files.name,
                       "display name (default: the URDF's robot name, the SDFormat model's name)");
-  command->add_flag("--repair", options->repair,
-                    "repair the defects published URDFs commonly carry (each one a warning)");
+  command->add_flag("--repair", options->repair, kRepairHelp);
+  command->add_flag("--couple-mimic", options->couple_mimic, kCoupleMimicHelp);
   command->callback([client, options, exit_code] {
     try {
       *exit_code = Submit(*client, *options);

@@ -18,6 +18,11 @@ void CheckBodyFormulationCloses(const std::vector<LoopClosure>& loops) {
                        "' (fixed) closes a loop, and the body formulations close loops with "
                        "revolute, prismatic and ball joints only: use formulation joint");
     }
+    if (loop.type == LoopJointType::kMimic) {
+      throw InputError(loop.where + ": joint '" + loop.name +
+                       "' follows another joint (<mimic>), a relation of joint coordinates "
+                       "that the body formulations do not have: use formulation joint");
+    }
   }
 }
 

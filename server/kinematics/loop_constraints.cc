@@ -23,8 +23,12 @@ LoopConstraints::LoopConstraints(const Model& model, const std::vector<LoopClosu
   for (size_t k = 0; k < loops.size(); ++k) {
     const LoopClosure& loop = loops[k];
     const int i = static_cast<int>(k);
-    auto gap = [&](const Vector3d& n) { rows_.push_back({i, true, n, Vector3d::Zero()}); };
-    auto align = [&](const Vector3d& e, const Vector3d& f) { rows_.push_back({i, false, e, f}); };
+    using Kind = LoopRow::Kind;
+    const Vector3d zero = Vector3d::Zero();
+    auto gap = [&](const Vector3d& n) { rows_.push_back({i, Kind::kGap, n, zero}); };
+    auto align = [&](const Vector3d& e, const Vector3d& f) {
+      rows_.push_back({i, Kind::kAlignment, e, f});
+    };
     Vector3d n1, n2;
     Perpendiculars(loop.axis, &n1, &n2);
     switch (loop.type) {
@@ -42,6 +46,12 @@ LoopConstraints::LoopConstraints(const Model& model, const std::vector<LoopClosu
       case LoopJointType::kFixed:
         gap(ex), gap(ey), gap(ez);
         align(ey, ez), align(ez, ex), align(ex, ey);
+        break;
+      case LoopJointType::kMimic:
+        MBSTREAM_CHECK_MSG(loop.body_a >= 0 && loop.body_a < model.num_dofs() && loop.body_b >= 0 &&
+                               loop.body_b < model.num_dofs(),
+                           "a coupling joins two moving bodies");
+        rows_.push_back({i, Kind::kCoupling, zero, zero});
         break;
     }
   }
@@ -64,14 +74,25 @@ LoopConstraints::Side LoopConstraints::SideB(const Data& data, const LoopClosure
   return {X_W.R * loop.X_BJ.R, X_W.Apply(loop.X_BJ.p)};
 }
 
-void LoopConstraints::Residual(const Data& data, Eigen::Ref<Eigen::VectorXd> phi) const {
-  MBSTREAM_CHECK(phi.size() == num_rows());
+void LoopConstraints::Residual(const Data& data, const Eigen::Ref<const Eigen::VectorXd>& q,
+                               Eigen::Ref<Eigen::VectorXd> phi) const {
+  MBSTREAM_CHECK(phi.size() == num_rows() && q.size() == model_.num_dofs());
   for (int r = 0; r < num_rows(); ++r) {
     const LoopRow& row = rows_[r];
     const LoopClosure& loop = loops_[row.loop];
+    if (row.kind == LoopRow::Kind::kCoupling) {
+      phi(r) = q(loop.body_b) - loop.multiplier * q(loop.body_a) - loop.offset;
+      continue;
+    }
     const Side a = SideA(data, loop), b = SideB(data, loop);
-    phi(r) = row.gap ? (b.p - a.p).dot(a.R * row.e_J) : (a.R * row.e_J).dot(b.R * row.f_J);
+    phi(r) = row.kind == LoopRow::Kind::kGap ? (b.p - a.p).dot(a.R * row.e_J)
+                                             : (a.R * row.e_J).dot(b.R * row.f_J);
   }
+}
+
+bool LoopConstraints::InMetres(const LoopRow& row) const {
+  if (row.kind != LoopRow::Kind::kCoupling) return row.kind == LoopRow::Kind::kGap;
+  return model_.bodies[loops_[row.loop].body_b].joint.type == JointType::kPrismatic;
 }
 
 void LoopConstraints::Reactions(const Data& data, const std::vector<int>& rows,
@@ -85,7 +106,12 @@ void LoopConstraints::Reactions(const Data& data, const std::vector<int>& rows,
     const LoopClosure& loop = loops_[row.loop];
     const Side a = SideA(data, loop);
     const double lambda = mu(static_cast<Eigen::Index>(i));
-    if (row.gap) {
+    if (row.kind == LoopRow::Kind::kCoupling) {
+      const Joint& follower = model_.bodies[loop.body_b].joint;
+      const Vector3d u = data.X_world[loop.body_b].R * follower.axis;
+      const int slot = follower.type == JointType::kPrismatic ? 0 : 3;
+      reactions.segment<3>(6 * row.loop + slot) += lambda * u;
+    } else if (row.kind == LoopRow::Kind::kGap) {
       reactions.segment<3>(6 * row.loop) += lambda * (a.R * row.e_J);
     } else {
       const Side b = SideB(data, loop);
@@ -115,8 +141,13 @@ void LoopConstraints::Jacobian(const Data& data, Eigen::Ref<Eigen::MatrixXd> G) 
   for (int r = 0; r < num_rows(); ++r) {
     const LoopRow& row = rows_[r];
     const LoopClosure& loop = loops_[row.loop];
+    if (row.kind == LoopRow::Kind::kCoupling) {
+      G(r, loop.body_b) += 1.0;
+      G(r, loop.body_a) -= loop.multiplier;
+      continue;
+    }
     const Side a = SideA(data, loop), b = SideB(data, loop);
-    if (row.gap) {
+    if (row.kind == LoopRow::Kind::kGap) {
       // d/dt [(p_B - p_A) . n] = n . (v_B - v_A) + (n x d) . w_a.
       const Vector3d n = a.R * row.e_J;
       const Vector3d d = b.p - a.p;
@@ -181,10 +212,14 @@ void LoopConstraints::Bias(const Data& data, const Eigen::Ref<const Eigen::Vecto
   for (int r = 0; r < num_rows(); ++r) {
     const LoopRow& row = rows_[r];
     const LoopClosure& loop = loops_[row.loop];
+    if (row.kind == LoopRow::Kind::kCoupling) {  // linear in q: no velocity product
+      bias(r) = 0.0;
+      continue;
+    }
     const Side a = SideA(data, loop), b = SideB(data, loop);
     const int ka = loop.body_a, kb = loop.body_b;
     const Vector3d e = a.R * row.e_J;
-    if (row.gap) {
+    if (row.kind == LoopRow::Kind::kGap) {
       const Vector3d d = b.p - a.p;
       const Vector3d d_dot = point_v(kb, b.p) - point_v(ka, a.p);
       bias(r) = (point_a(kb, b.p) - point_a(ka, a.p)).dot(e) + 2.0 * d_dot.dot(w(ka).cross(e)) +
@@ -200,7 +235,7 @@ void LoopConstraints::Bias(const Data& data, const Eigen::Ref<const Eigen::Vecto
 double LoopConstraints::MaxGap(const Eigen::Ref<const Eigen::VectorXd>& values) const {
   double m = 0.0;
   for (int r = 0; r < num_rows(); ++r) {
-    if (rows_[r].gap) m = std::max(m, std::abs(values(r)));
+    if (InMetres(rows_[r])) m = std::max(m, std::abs(values(r)));
   }
   return m;
 }
@@ -208,7 +243,7 @@ double LoopConstraints::MaxGap(const Eigen::Ref<const Eigen::VectorXd>& values) 
 double LoopConstraints::MaxAlignment(const Eigen::Ref<const Eigen::VectorXd>& values) const {
   double m = 0.0;
   for (int r = 0; r < num_rows(); ++r) {
-    if (!rows_[r].gap) m = std::max(m, std::abs(values(r)));
+    if (!InMetres(rows_[r])) m = std::max(m, std::abs(values(r)));
   }
   return m;
 }

@@ -20,6 +20,7 @@ int Columns(LoopJointType type) {
     case LoopJointType::kBall:
       return 3;
     case LoopJointType::kFixed:
+    case LoopJointType::kMimic:  // the follower is a tree joint, in the tree's columns
       return 0;
   }
   return 0;
@@ -98,6 +99,7 @@ void LoopCoordinates::Compute(const Eigen::VectorXd& q, const Eigen::VectorXd& q
   int k = 0;
   for (size_t l = 0; l < loops_.size(); ++l) {
     const LoopClosure& loop = loops_[l];
+    if (Columns(loop.type) == 0) continue;
     Matrix3d Ra, Rb;
     Vector3d pa, pb, wa, wb, va, vb;
     side(loop.body_a, loop.X_AJ, &Ra, &pa, &wa, &va);
@@ -134,6 +136,7 @@ void LoopCoordinates::Compute(const Eigen::VectorXd& q, const Eigen::VectorXd& q
         break;
       }
       case LoopJointType::kFixed:
+      case LoopJointType::kMimic:
         break;
     }
   }

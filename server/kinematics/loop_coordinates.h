@@ -8,7 +8,7 @@
 // - prismatic: B's displacement along the axis from A (m), and its rate (m/s);
 // - ball: three columns, the rotation vector of B in A (rad, |r| <= pi), and B's angular
 //   velocity relative to A in A (rad/s: not the rotation vector's derivative);
-// - fixed: no column.
+// - fixed, and a coupling (mimic: its follower is a tree joint): no column.
 #pragma once
 
 #include <string>

@@ -81,7 +81,7 @@ int LoopSolver::SolvePositions(Data& data, Eigen::VectorXd& q, const Eigen::Vect
   const int r = static_cast<int>(rows_.size());
   for (int iteration = 0;; ++iteration) {
     BodyKinematics(model_, data, q);
-    constraints_.Residual(data, phi_);
+    constraints_.Residual(data, q, phi_);
     double largest = phi_.size() > 0 ? phi_.cwiseAbs().maxCoeff() : 0.0;
     for (int i = 0; i < r; ++i) c_(i) = phi_(rows_[i]);
     for (size_t h = 0; h < held_.size(); ++h) {

@@ -12,6 +12,8 @@ const char* LoopJointTypeName(LoopJointType type) {
       return "ball";
     case LoopJointType::kFixed:
       return "fixed";
+    case LoopJointType::kMimic:
+      return "mimic";
   }
   return "?";
 }
@@ -25,6 +27,8 @@ int LoopJointEquations(LoopJointType type) {
       return 3;
     case LoopJointType::kFixed:
       return 6;
+    case LoopJointType::kMimic:
+      return 1;
   }
   return 0;
 }

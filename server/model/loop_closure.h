@@ -8,6 +8,10 @@
 // joint's parent side) and frame B fixed in body `body_b` (its child side). When the loop is
 // closed, A and B coincide up to the motion the joint allows: a rotation about the axis
 // (revolute), a translation along it (prismatic), any rotation (ball), none (fixed).
+//
+// A coupling of two tree joints (a URDF <mimic>, kMimic) travels the same way: the joint of
+// body_b follows the joint of body_a, q(body_b) = multiplier * q(body_a) + offset, one
+// equation on the coordinates (rad or m; both bodies move, the frames and axis are unused).
 #pragma once
 
 #include <string>
@@ -16,12 +20,13 @@
 
 namespace mbstream {
 
-enum class LoopJointType { kRevolute, kPrismatic, kBall, kFixed };
+enum class LoopJointType { kRevolute, kPrismatic, kBall, kFixed, kMimic };
 
-// "revolute", "prismatic", "ball", "fixed".
+// "revolute", "prismatic", "ball", "fixed", "mimic".
 const char* LoopJointTypeName(LoopJointType type);
 
-// Constraint equations of a cut joint of this type: 6 less the joint's freedoms.
+// Constraint equations of a cut joint of this type: 6 less the joint's freedoms (a coupling:
+// 1).
 int LoopJointEquations(LoopJointType type);
 
 struct LoopClosure {
@@ -33,6 +38,8 @@ struct LoopClosure {
   int body_b = -1;                    // child side: body index or kBase
   Pose X_BJ;                          // the joint frame in body_b's frame
   Vector3d axis = Vector3d::UnitZ();  // unit, in J (revolute, prismatic)
+  double multiplier = 1.0;            // kMimic: q(body_b) = multiplier * q(body_a) + offset
+  double offset = 0.0;                // kMimic: rad or m, as q(body_b)
 };
 
 }  // namespace mbstream

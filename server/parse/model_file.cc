@@ -17,6 +17,7 @@ ModelFileImport ImportModelFile(const std::string& path, const UrdfImportOptions
   if (result.format == ModelFormat::kUrdf) {
     UrdfImport urdf = ImportUrdfFile(path, urdf_options);
     result.model = std::move(urdf.model);
+    result.loops = std::move(urdf.loops);
     result.warnings = std::move(urdf.warnings);
   } else {
     SdfImport sdf = ImportSdf(text, path, SdfImportOptions{.max_links = urdf_options.max_links});

@@ -19,7 +19,7 @@ using urdf_reading::ModelFormat;
 struct ModelFileImport {
   ModelFormat format = ModelFormat::kUrdf;
   Model model;
-  std::vector<LoopClosure> loops;  // SDFormat's cut joints; empty for URDF
+  std::vector<LoopClosure> loops;  // SDFormat's cut joints; URDF's <mimic> couplings
   std::vector<std::string> warnings;
 };
 

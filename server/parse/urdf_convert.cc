@@ -159,10 +159,6 @@ Joint ConvertJoint(const urdf::Joint& joint, double rotor_inertia,
                        " is ignored; mbstream models viscous damping only");
     }
   }
-  if (joint.mimic != nullptr) {
-    diagnostics.Warn(where + ": <mimic> is ignored; the joint moves as a degree of freedom " +
-                     "of its own");
-  }
   return result;
 }
 

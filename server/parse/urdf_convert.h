@@ -7,7 +7,8 @@
 // positive definite or breaks the triangle inequality.
 // Warnings: a non-unit axis (normalised); an empty position range (lower = upper); a
 // zero effort or velocity limit (read as no limit); position limits on a continuous joint,
-// friction, <mimic> (all ignored); a mass below 1e-6 kg; an inertia on a zero mass.
+// friction (both ignored); a mass below 1e-6 kg; an inertia on a zero mass. (<mimic>:
+// urdf_mimic.h.)
 #pragma once
 
 #include <string>

@@ -33,6 +33,11 @@ std::string UrdfDiagnostics::Joint(const std::string& name) const {
   return Where(source_, LineOf(joint_lines_, name), "joint", name);
 }
 
+std::string UrdfDiagnostics::JointLine(const std::string& name) const {
+  const int line = LineOf(joint_lines_, name);
+  return line > 0 ? source_ + ":" + std::to_string(line) : source_;
+}
+
 std::string FormatNumber(double value) {
   char buffer[32];
   std::snprintf(buffer, sizeof(buffer), "%.15g", value);

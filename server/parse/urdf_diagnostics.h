@@ -27,8 +27,9 @@ class UrdfDiagnostics {
         repair_(repair) {}
 
   const std::string& source() const { return source_; }
-  std::string Link(const std::string& name) const;   // "FILE:LINE: link 'NAME'"
-  std::string Joint(const std::string& name) const;  // "FILE:LINE: joint 'NAME'"
+  std::string Link(const std::string& name) const;       // "FILE:LINE: link 'NAME'"
+  std::string Joint(const std::string& name) const;      // "FILE:LINE: joint 'NAME'"
+  std::string JointLine(const std::string& name) const;  // "FILE:LINE" (or "FILE")
   void Warn(std::string message) const { warnings_->push_back(std::move(message)); }
   // Whether defects that have a repair are repaired (with a warning) rather than errors.
   bool repair() const { return repair_; }

@@ -14,6 +14,7 @@
 #include "server/parse/urdf_convert.h"
 #include "server/parse/urdf_diagnostics.h"
 #include "server/parse/urdf_meshes.h"
+#include "server/parse/urdf_mimic.h"
 #include "server/parse/urdf_xml_scan.h"
 #include "server/parse/urdfdom_parse.h"
 #include "urdf_reading/joint_order.h"
@@ -109,6 +110,7 @@ UrdfImport ImportUrdf(const std::string& text, const std::string& source,
   const std::string tcp = ChooseTcp(*urdf, joints, facts, diagnostics);
   if (!tcp.empty()) Guarded(source, [&] { builder.SetTcp(tcp); });
   result.model = builder.Build();
+  result.loops = MimicCouplings(joints, result.model, options.couple_mimic, diagnostics);
   const int links = static_cast<int>(result.model.frames.size());
   if (options.max_links > 0 && links > options.max_links) {
     throw LimitError(source + ": the model has " + std::to_string(links) +

@@ -20,20 +20,23 @@
 // a warning in the same form: a non-unit axis (normalised), a revolute joint without
 // <limit> (unlimited), zero effort or velocity limits (read as none), an empty position
 // range, a mass below 1e-6 kg, a scaled mesh, a visual mesh that is not supplied (collision
-// meshes not supplied: one warning), ignored features (friction, <mimic>, limits
-// of a continuous joint), no TCP, no moving joint.
+// meshes not supplied: one warning), ignored features (friction, <mimic> unless coupled,
+// limits of a continuous joint), no TCP, no moving joint. A <mimic> is a coupling of two
+// joints with couple_mimic (urdf_mimic.h).
 #pragma once
 
 #include <set>
 #include <string>
 #include <vector>
 
+#include "server/model/loop_closure.h"
 #include "server/model/model.h"
 
 namespace mbstream {
 
 struct UrdfImport {
   Model model;
+  std::vector<LoopClosure> loops;  // the <mimic> couplings (couple_mimic), in joint order
   std::vector<std::string> warnings;
   std::vector<std::string> mesh_files;  // every visual/collision <mesh filename>, as written
 };
@@ -47,6 +50,9 @@ struct UrdfImportOptions {
   // urdf_reading/xml_shape.h): checked on the text before any parse and on the model
   // built; over it, LimitError naming --max-links.
   int max_links = 0;
+  // Hold each joint with a <mimic> to its leader (a coupling in `loops`); off: the joint
+  // moves freely, with a warning.
+  bool couple_mimic = false;
 };
 
 // Imports URDF XML `text`. `source` names the file in messages. `assets` are the mesh

@@ -59,8 +59,10 @@ std::string ModelContentId(const v1::ModelBundle& bundle) {
     hash.AddField(asset->name());
     hash.AddField(asset->data());
   }
-  // Appended only when set, so that the ids of bundles without repairs stay as they were.
+  // Appended only when set, so that the ids of bundles without these options stay as they
+  // were.
   if (bundle.repair()) hash.AddField("repair");
+  if (bundle.couple_mimic()) hash.AddField("couple_mimic");
   return "m-" + hash.HexDigest().substr(0, 24);
 }
 

@@ -89,8 +89,8 @@ std::string SourceName(const v1::ModelBundle& bundle) {
   return bundle.urdf_file_name().empty() ? std::string("model.urdf") : bundle.urdf_file_name();
 }
 
-// A bundle's model imported: URDF, or SDFormat (told apart by content, as `mbstream
-// simulate` does) with the joints that close its loops.
+// A bundle's model imported: URDF (with its <mimic> couplings when asked for), or SDFormat
+// (told apart by content, as `mbstream simulate` does) with the joints that close its loops.
 struct BundleImport {
   Model model;
   std::vector<LoopClosure> loops;
@@ -114,10 +114,12 @@ BundleImport ImportBundle(const v1::ModelBundle& bundle, const ServerLimits& lim
   }
   std::set<std::string> assets;
   for (const v1::Asset& asset : bundle.assets()) assets.insert(asset.name());
-  UrdfImport urdf =
-      ImportUrdf(bundle.urdf(), source, assets,
-                 UrdfImportOptions{.repair = bundle.repair(), .max_links = limits.max_links});
+  UrdfImport urdf = ImportUrdf(bundle.urdf(), source, assets,
+                               UrdfImportOptions{.repair = bundle.repair(),
+                                                 .max_links = limits.max_links,
+                                                 .couple_mimic = bundle.couple_mimic()});
   result.model = std::move(urdf.model);
+  result.loops = std::move(urdf.loops);
   result.warnings = std::move(urdf.warnings);
   result.mesh_files = std::move(urdf.mesh_files);
   return result;

@@ -50,7 +50,7 @@ void ClosedLoopDae::AbsoluteTolerances(double atol, const double* y0, double* at
 
 void ClosedLoopDae::Constraints(const Eigen::VectorXd& q) {
   BodyKinematics(model_, data_, q);
-  constraints_.Residual(data_, phi_);
+  constraints_.Residual(data_, q, phi_);
   constraints_.Jacobian(data_, G_);
   for (int i = 0; i < rank_.rank; ++i) A_.row(i) = G_.row(rank_.independent[i]);
   A_.bottomRows(static_cast<Eigen::Index>(prescribed_.size())).setZero();

@@ -71,7 +71,7 @@ bool ClosedLoopOde::Evaluate(double t, const double* y) {
   if (mass_llt_.info() != Eigen::Success) return false;
   // The constraints and their Baumgarte-stabilised acceleration targets b.
   BodyKinematics(model_, data_, q_);
-  constraints_.Residual(data_, phi_);
+  constraints_.Residual(data_, q_, phi_);
   constraints_.Jacobian(data_, G_);
   constraints_.Bias(data_, qd_, bias_);
   phi_dot_.noalias() = G_ * qd_;

@@ -75,6 +75,14 @@ LoopPlan PlanLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
   if (iterations < 0) {
     const Eigen::VectorXd& phi = solver.residual();
     const LoopClosure& loop = WorstLoop(loops, constraints, phi);
+    if (loop.type == LoopJointType::kMimic) {
+      throw InputError(FormatString(
+          "%s: joint '%s' follows joint '%s' (<mimic>: %g times its value %+g), but the "
+          "pose cannot be made to meet that near the given one (largest residual %.3g m or "
+          "rad); prescribe the leader, not the follower, or give initial_q that meets it",
+          loop.where.c_str(), loop.name.c_str(), model.bodies[loop.body_a].joint.name.c_str(),
+          loop.multiplier, loop.offset, phi.cwiseAbs().maxCoeff()));
+    }
     throw InputError(FormatString(
         "%s: joint '%s': the loop it closes cannot be assembled near the given pose (largest "
         "residual %.3g m or rad after 50 Newton iterations); check the link lengths and joint "

@@ -1,6 +1,6 @@
 // SDFormat linkages with closed loops through a live mbstream-server (issue 31): submitted
 // like a URDF, run with the loops held, and the same files as `mbstream simulate`, bit for
-// bit, the cut joints' columns included.
+// bit, the cut joints' columns included; a URDF <mimic> held with --couple-mimic.
 #include <gmock/gmock.h>
 
 #include <filesystem>
@@ -8,6 +8,7 @@
 #include <random>
 
 #include "tests/common/cli_server_test.h"
+#include "tests/common/csv_rows.h"
 
 namespace mbstream::testing {
 namespace {
@@ -62,6 +63,48 @@ TEST_F(ServerLoopsCliTest, SubmittedSdfRunsGiveTheSameFilesAsSimulate) {
     EXPECT_THAT(stats, HasSubstr("\"cut_joints\": [\n      \"loop_joint (revolute)\""));
     EXPECT_THAT(stats, HasSubstr("\"mobility\": 1"));
   }
+}
+
+// A URDF whose second joint follows the first (<mimic>): submitted with --couple-mimic the
+// server holds the coupling (its own model id; the same files as simulate --couple-mimic);
+// without, the joint moves freely and the submit warns.
+TEST_F(ServerLoopsCliTest, AUrdfMimicIsHeldWhenSubmittedWithCoupleMimic) {
+  const std::string inertial = R"(<inertial><origin xyz="0 0 -0.3"/><mass value="1"/>
+      <inertia ixx="0.03" iyy="0.03" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial>)";
+  std::ofstream(dir_ / "rods.urdf") << R"(<robot name="rods"><link name="base"/>
+  <link name="a">)" << inertial << R"(</link><link name="b">)"
+                                    << inertial << R"(</link>
+  <joint name="ja" type="continuous"><parent link="base"/><child link="a"/><axis xyz="0 1 0"/>
+  </joint>
+  <joint name="jb" type="continuous"><parent link="a"/><child link="b"/><axis xyz="0 1 0"/>
+    <origin xyz="0 0 -0.1"/><mimic joint="ja" multiplier="-0.5" offset="0.25"/></joint>
+</robot>)";
+  std::ofstream(dir_ / "swing.json")
+      << R"({"duration_s": 1, "output_interval_s": 0.05, "formulation": "joint",
+             "method": "bdf", "rtol": 1e-9, "atol": 1e-11, "initial_q": [1.0, 0.0]})";
+  const CommandOutcome free = Cli("submit " + Out("rods.urdf") + " --name rods_free");
+  ASSERT_EQ(free.exit_code, 0) << free.output;
+  EXPECT_THAT(free.output, HasSubstr("<mimic> of joint 'ja' is ignored"));
+  const CommandOutcome coupled = Cli("submit " + Out("rods.urdf") + " --couple-mimic");
+  ASSERT_EQ(coupled.exit_code, 0) << coupled.output;
+  EXPECT_THAT(coupled.output, Not(HasSubstr("mimic")));
+  EXPECT_NE(FirstLine(coupled.output), FirstLine(free.output));  // another model id
+
+  const CommandOutcome run = Cli("run " + FirstLine(coupled.output) + " --spec " +
+                                 Out("swing.json") + " --watch --out " + Out("served"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const CommandOutcome local = Simulate(Out("rods.urdf") + " --couple-mimic --spec " +
+                                        Out("swing.json") + " --out " + Out("local"));
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+  ExpectSameFiles(dir_ / "served", dir_ / "local");
+  EXPECT_THAT(ReadFile(dir_ / "served" / "stats.json"),
+              HasSubstr("\"cut_joints\": [\n      \"jb (mimic)\""));
+  const std::vector<std::vector<std::string>> joints = ReadCsv(dir_ / "served" / "joints.csv");
+  ASSERT_EQ(joints.size(), 21u);
+  for (const auto& row : joints) {
+    EXPECT_NEAR(std::stod(row[2]), -0.5 * std::stod(row[1]) + 0.25, 1e-8) << "t = " << row[0];
+  }
+  EXPECT_LT(std::stod(joints.back()[1]), 0.9);  // it swung
 }
 
 // The cut joints' reactions (RunSpec.report_loop_forces) from a server run: `mbstream run

@@ -80,9 +80,9 @@ TEST(LoopConstraintsTest, JacobianAndBiasMatchFiniteDifferences) {
       qp(j) += h;
       qm(j) -= h;
       BodyKinematics(model, data, qp);
-      constraints.Residual(data, plus);
+      constraints.Residual(data, qp, plus);
       BodyKinematics(model, data, qm);
-      constraints.Residual(data, minus);
+      constraints.Residual(data, qm, minus);
       const Eigen::VectorXd column = (plus - minus) / (2.0 * h);
       EXPECT_LT((column - G.col(j)).cwiseAbs().maxCoeff(), 1e-8) << "column " << j;
     }
@@ -105,7 +105,7 @@ TEST(LoopConstraintsTest, LinkagesAreClosedAsDrawnWithMobilityOne) {
     const Eigen::VectorXd q = Eigen::VectorXd::Zero(sdf.model.num_dofs());
     BodyKinematics(sdf.model, data, q);
     Eigen::VectorXd phi(constraints.num_rows());
-    constraints.Residual(data, phi);
+    constraints.Residual(data, q, phi);
     EXPECT_LT(phi.cwiseAbs().maxCoeff(), 1e-15) << path;
     // A planar loop closed by a spatial revolute joint: 5 equations, 2 independent (the
     // in-plane gaps); the out-of-plane gap and the axes' alignment hold identically.

@@ -125,8 +125,9 @@ TEST(UrdfImportWarningsTest, IgnoredJointFeaturesAreWarned) {
       LinkXml("link1") + JointXml("j1", "revolute", "base", "link1") + LinkXml("link2") +
       JointXml("j2", "revolute", "link1", "link2", kAxisAndLimits + R"(<mimic joint="j1"/>)") +
       LinkXml("tcp", "") + JointXml("t", "fixed", "link2", "tcp", ""));
-  EXPECT_THAT(ImportWarnings(mimic), ElementsAre(AllOf(HasSubstr("odd.urdf:6: joint 'j2'"),
-                                                       HasSubstr("<mimic> is ignored"))));
+  EXPECT_THAT(ImportWarnings(mimic),
+              ElementsAre(AllOf(HasSubstr("odd.urdf:6: joint 'j2'"),
+                                HasSubstr("<mimic> of joint 'j1' is ignored"))));
 }
 
 TEST(UrdfImportWarningsTest, ExtensionsInTheWrongPlace) {

@@ -1,0 +1,12 @@
+// The help of the model import flags that `mbstream submit` and `mbstream simulate` share.
+#pragma once
+
+namespace mbstream::cli {
+
+inline constexpr char kRepairHelp[] =
+    "repair the defects published URDFs commonly carry (each one a warning)";
+inline constexpr char kCoupleMimicHelp[] =
+    "hold each URDF joint with a <mimic> to its leader (q = multiplier * q(leader) + offset, "
+    "run as a closed loop); without it such a joint moves freely, with a warning";
+
+}  // namespace mbstream::cli
