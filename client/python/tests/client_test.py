@@ -166,6 +166,30 @@ class ClientTest(unittest.TestCase):
         self.assertEqual(info.dofs, 1)
         self.assertTrue(any("repaired:" in w for w in info.warnings), info.warnings)
 
+    def test_couple_mimic_true_holds_a_mimic_joint_to_its_leader(self):
+        rods = self.write("rods.urdf", """<robot name="rods"><link name="base"/>
+  <link name="a"><inertial><origin xyz="0 0 -0.3"/><mass value="1"/>
+    <inertia ixx="0.03" iyy="0.03" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="b"><inertial><origin xyz="0 0 -0.3"/><mass value="1"/>
+    <inertia ixx="0.03" iyy="0.03" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="ja" type="continuous"><parent link="base"/><child link="a"/>
+    <axis xyz="0 1 0"/></joint>
+  <joint name="jb" type="continuous"><parent link="a"/><child link="b"/><axis xyz="0 1 0"/>
+    <origin xyz="0 0 -0.1"/><mimic joint="ja" multiplier="2" offset="-0.1"/></joint>
+</robot>
+""")
+        free = self.client.submit(rods)
+        self.assertTrue(any("--couple-mimic" in w for w in free.warnings), free.warnings)
+        coupled = self.client.submit(rods, couple_mimic=True)
+        self.assertNotEqual(coupled.id, free.id)
+        self.assertFalse(any("mimic" in w for w in coupled.warnings), coupled.warnings)
+        spec = {"duration_s": 0.5, "output_interval_s": 0.05, "formulation": "joint",
+                "method": "bdf", "rtol": 1e-9, "atol": 1e-11, "initial_q": [0.5, 0.9]}
+        result = self.client.run(coupled.id, spec).result(check=True)
+        self.assertEqual(list(result.joint_names), ["ja", "jb"])
+        np.testing.assert_allclose(result.q[:, 1], 2.0 * result.q[:, 0] - 0.1, atol=1e-8)
+        self.assertGreater(abs(result.q[-1, 0] - 0.5), 0.01)  # it swung
+
     def test_errors_carry_the_status_name_and_the_servers_message(self):
         with self.assertRaises(mb.NotFound) as caught:
             self.client.run("nosuch")
