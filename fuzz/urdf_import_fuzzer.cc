@@ -1,4 +1,5 @@
-// Fuzzes the URDF import (server/parse), without and with repairs (and a link limit): any
+// Fuzzes the URDF import (server/parse), without and with repairs (and a link limit, and
+// <mimic> joints coupled: every coupling between two distinct moving joints, finite): any
 // text either imports or throws InputError (or LimitError) with a message; nothing else (a
 // crash, a sanitizer report, another exception) is allowed. Seeds with deep nesting and
 // attribute floods (fuzz/seeds/urdf) exercise the shape check before TinyXML.
@@ -21,8 +22,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   for (const bool repair : {false, true}) {
     try {
       const mbstream::UrdfImport imported = mbstream::ImportUrdf(
-          text, "fuzz.urdf", kAssets, {.repair = repair, .max_links = repair ? 64 : 0});
+          text, "fuzz.urdf", kAssets,
+          {.repair = repair, .max_links = repair ? 64 : 0, .couple_mimic = repair});
       if (imported.model.num_dofs() < 0) std::abort();
+      for (const mbstream::LoopClosure& coupling : imported.loops) {  // <mimic>, coupled
+        if (coupling.body_a < 0 || coupling.body_a >= imported.model.num_dofs() ||
+            coupling.body_b < 0 || coupling.body_b >= imported.model.num_dofs() ||
+            coupling.body_a == coupling.body_b || !std::isfinite(coupling.multiplier) ||
+            !std::isfinite(coupling.offset)) {
+          std::abort();
+        }
+      }
       for (const std::string& warning : imported.warnings) {
         if (warning.empty()) std::abort();
       }
