@@ -79,7 +79,9 @@ LoopPlan PlanLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
       throw InputError(FormatString(
           "%s: joint '%s' follows joint '%s' (<mimic>: %g times its value %+g), but the "
           "pose cannot be made to meet that near the given one (largest residual %.3g m or "
-          "rad); prescribe the leader, not the follower, or give initial_q that meets it",
+          "rad): a prescribed follower, or couplings that contradict each other; prescribe "
+          "the leader, not the follower, check the <mimic> multipliers and offsets, or give "
+          "initial_q that meets them",
           loop.where.c_str(), loop.name.c_str(), model.bodies[loop.body_a].joint.name.c_str(),
           loop.multiplier, loop.offset, phi.cwiseAbs().maxCoeff()));
     }

@@ -257,5 +257,35 @@ TEST(MimicRunTest, TheBodyFormulationsRefuseACouplingAndAConflictingDriveIsNamed
   }
 }
 
+// Two joints that follow each other: consistent couplings are one equation (the other
+// redundant: mobility 1, and the run holds them); contradicting ones are refused.
+TEST(MimicRunTest, CouplingsThatFollowEachOtherAreRedundantOrRefused) {
+  const auto cycle = [](const std::string& back_offset) {
+    std::string urdf = TwoRods(R"(<mimic joint="ja" multiplier="-0.5" offset="0.25"/>)");
+    const std::string ja_axis = R"(<child link="a"/><axis xyz="0 1 0"/>)";
+    urdf.replace(
+        urdf.find(ja_axis), ja_axis.size(),
+        ja_axis + R"(<mimic joint="jb" multiplier="-2" offset=")" + back_offset + R"("/>)");
+    return Coupled(urdf);
+  };
+  const UrdfImport consistent = cycle("0.5");  // q_a = -2 q_b + 0.5, the same line
+  ASSERT_EQ(consistent.loops.size(), 2u);
+  const RunResult result = SimulateLoops(consistent.model, consistent.loops, Passive(1.0));
+  ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  EXPECT_EQ(result.stats.loops.equations, 2);
+  EXPECT_EQ(result.stats.loops.independent, 1);
+  EXPECT_EQ(result.stats.loops.mobility, 1);
+  for (int k = 0; k < result.num_frames(); ++k) {
+    EXPECT_NEAR(result.q[2 * k + 1], -0.5 * result.q[2 * k] + 0.25, 1e-10);
+  }
+  const UrdfImport contradicting = cycle("0.9");
+  try {
+    ValidateLoopRun(contradicting.model, contradicting.loops, Passive(1.0));
+    FAIL() << "accepted";
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), HasSubstr("couplings that contradict each other"));
+  }
+}
+
 }  // namespace
 }  // namespace mbstream
