@@ -16,8 +16,8 @@
 namespace mbstream {
 
 // Throws InputError for a cut joint the body formulations do not model (fixed, or a joint
-// coupling: a URDF <mimic>), naming it
-// with FILE:LINE and saying what to use instead. A run's validation calls it up front.
+// coupling: a URDF <mimic>), naming it with FILE:LINE and saying what to use instead. A run's
+// validation calls it up front.
 void CheckBodyFormulationCloses(const std::vector<LoopClosure>& loops);
 
 // Adds the cut joints of `loops` to `bm`, every row kept (SelectCutRows then keeps the

@@ -104,14 +104,16 @@ void LoopConstraints::Reactions(const Data& data, const std::vector<int>& rows,
   for (size_t i = 0; i < rows.size(); ++i) {
     const LoopRow& row = rows_[rows[i]];
     const LoopClosure& loop = loops_[row.loop];
-    const Side a = SideA(data, loop);
     const double lambda = mu(static_cast<Eigen::Index>(i));
     if (row.kind == LoopRow::Kind::kCoupling) {
       const Joint& follower = model_.bodies[loop.body_b].joint;
       const Vector3d u = data.X_world[loop.body_b].R * follower.axis;
       const int slot = follower.type == JointType::kPrismatic ? 0 : 3;
       reactions.segment<3>(6 * row.loop + slot) += lambda * u;
-    } else if (row.kind == LoopRow::Kind::kGap) {
+      continue;
+    }
+    const Side a = SideA(data, loop);
+    if (row.kind == LoopRow::Kind::kGap) {
       reactions.segment<3>(6 * row.loop) += lambda * (a.R * row.e_J);
     } else {
       const Side b = SideB(data, loop);

@@ -27,14 +27,15 @@ std::vector<LoopClosure> MimicCouplings(const std::vector<urdf::JointConstShared
     if (joint->mimic == nullptr) continue;
     const urdf::JointMimic& mimic = *joint->mimic;
     const std::string where = diagnostics.Joint(joint->name);
+    const int follower = BodyOfJoint(model, joint->name);  // -1: a fixed joint
     if (!couple) {
-      diagnostics.Warn(where + ": <mimic> of joint '" + mimic.joint_name +
-                       "' is ignored; the joint moves as a degree of freedom of its own " +
-                       "(submit or simulate with --couple-mimic to hold it to '" +
-                       mimic.joint_name + "')");
+      diagnostics.Warn(where + ": <mimic> of joint '" + mimic.joint_name + "' is ignored; " +
+                       (follower < 0 ? std::string("the joint is fixed; remove the <mimic>")
+                                     : "the joint moves as a degree of freedom of its own "
+                                       "(submit or simulate with --couple-mimic to hold it to '" +
+                                           mimic.joint_name + "')"));
       continue;
     }
-    const int follower = BodyOfJoint(model, joint->name);
     if (follower < 0) {
       throw InputError(where + ": a fixed joint cannot follow joint '" + mimic.joint_name +
                        "' (<mimic>); remove the <mimic> or make the joint revolute or prismatic");
@@ -48,7 +49,8 @@ std::vector<LoopClosure> MimicCouplings(const std::vector<urdf::JointConstShared
     }
     if (!std::isfinite(mimic.multiplier) || !std::isfinite(mimic.offset)) {
       throw InputError(where + ": <mimic> multiplier " + FormatNumber(mimic.multiplier) +
-                       " and offset " + FormatNumber(mimic.offset) + " must be finite numbers");
+                       " and offset " + FormatNumber(mimic.offset) +
+                       " must be finite; give numbers");
     }
     LoopClosure coupling;
     coupling.name = joint->name;

@@ -5,7 +5,8 @@
 // becomes a LoopClosure of type kMimic (server/model/loop_closure.h): one equation on the
 // joint coordinates that the closed-loop runs hold, as they hold a cut joint's. Not coupled
 // (the default, as MuJoCo's and Gazebo's URDF readers do), the joint moves as a degree of
-// freedom of its own, with a warning saying how to couple it.
+// freedom of its own, with a warning saying how to couple it (a fixed joint's <mimic>: a
+// warning to remove it).
 //
 // Errors (InputError, "FILE:LINE: joint 'NAME': ..."), coupled only: a <mimic> on a fixed
 // joint, a leader that is not a moving joint of the model or is the joint itself, a

@@ -110,8 +110,11 @@ TEST(UrdfMimicTest, ABadMimicIsAnErrorNamingTheJointWhenCoupled) {
                 std::string(R"(<joint name="jb" type="fixed">)").size(),
                 R"(<joint name="jb" type="fixed"><mimic joint="ja"/>)");
   EXPECT_THAT(error_of(fixed), HasSubstr("joint 'jb': a fixed joint cannot follow joint 'ja'"));
-  // Not coupled, the same files import (with the warning).
+  // Not coupled, the same files import (with the warning; a fixed joint's says to remove it).
   EXPECT_NO_THROW(ImportUrdf(TwoRods(R"(<mimic joint="nowhere"/>)"), "rods.urdf", {}, {}));
+  EXPECT_THAT(::testing::PrintToString(ImportUrdf(fixed, "rods.urdf", {}, {}).warnings),
+              HasSubstr("joint 'jb': <mimic> of joint 'ja' is ignored; the joint is fixed; "
+                        "remove the <mimic>"));
 }
 
 RunConfig Passive(double duration) {
@@ -208,13 +211,18 @@ TEST(MimicRunTest, APrescribedLeaderCarriesItsFollowersLoad) {
   EXPECT_LT(worst, 1e-9 * largest);
 
   // Multiplier -0.5: by virtual work the leader's effort is tau_a - 0.5 tau_b, the tree's
-  // inverse dynamics along the coupled motion.
+  // inverse dynamics along the coupled motion; the coupling's reaction is what holds the
+  // follower, tau_b, a torque along its axis (world y).
   const UrdfImport halved =
       Coupled(TwoRods(R"(<mimic joint="ja" multiplier="-0.5" offset="0.25"/>)"));
-  const RunResult driven = SimulateLoops(halved.model, halved.loops, config);
+  RunConfig with_reactions = config;
+  with_reactions.want_loop_forces = true;
+  const RunResult driven = SimulateLoops(halved.model, halved.loops, with_reactions);
   ASSERT_EQ(driven.stats.status, RunStatus::kFinished) << driven.stats.message;
+  ASSERT_EQ(driven.loop_force_names, std::vector<std::string>{"jb"});
+  ASSERT_EQ(driven.loop_forces.size(), 6u * static_cast<size_t>(driven.num_frames()));
   Data data(halved.model);
-  double worst_work = 0.0;
+  double worst_work = 0.0, worst_hold = 0.0;
   for (int k = 0; k < driven.num_frames(); ++k) {
     const double t = driven.t[k], w = M_PI;
     const double qa = 0.8 * std::sin(w * t), qda = 0.8 * w * std::cos(w * t),
@@ -225,8 +233,13 @@ TEST(MimicRunTest, APrescribedLeaderCarriesItsFollowersLoad) {
         Rnea(halved.model, data, Eigen::Vector2d(qa, -0.5 * qa + 0.25),
              Eigen::Vector2d(qda, -0.5 * qda), Eigen::Vector2d(qdda, -0.5 * qdda));
     worst_work = std::max(worst_work, std::abs(driven.tau[2 * k] - (tau(0) - 0.5 * tau(1))));
+    const double* reaction = &driven.loop_forces[6 * static_cast<size_t>(k)];
+    for (int c = 0; c < 6; ++c) {
+      worst_hold = std::max(worst_hold, std::abs(reaction[c] - (c == 4 ? tau(1) : 0.0)));
+    }
   }
   EXPECT_LT(worst_work, 1e-9 * largest);
+  EXPECT_LT(worst_hold, 1e-9 * largest);
 }
 
 TEST(MimicRunTest, TheBodyFormulationsRefuseACouplingAndAConflictingDriveIsNamed) {
