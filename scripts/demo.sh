@@ -31,8 +31,11 @@ cli=$build_dir/client/mbstream
 
 if [ $build -eq 1 ]; then
   scripts/setup.sh
-  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$build_dir" -j2 --target mbstream-server mbstream-viewer mbstream
+  # The configuration and compiler cache of scripts/test.sh: a test.sh after the demo
+  # compiles only what the demo did not need.
+  source scripts/build_env.sh
+  mbstream_configure "$build_dir" >/dev/null
+  mbstream_build "$build_dir" mbstream-server mbstream-viewer mbstream
 fi
 
 rm -rf "$out"

@@ -6,7 +6,7 @@ set -euo pipefail
 
 PACKAGES=(
   # toolchain
-  build-essential g++ cmake ccache pkg-config git clang-format
+  build-essential g++ cmake ninja-build ccache pkg-config git clang-format
   lld  # the linker CMake picks when present (cmake/MbstreamCompilerSettings.cmake)
   # core numerics
   libeigen3-dev libsundials-dev libsuitesparse-dev
@@ -52,7 +52,7 @@ COMMANDS=(
   curl:curl ip:iproute2 ss:iproute2 ps:procps pkill:procps runuser:util-linux timeout:coreutils
   psql:postgresql-client haproxy:haproxy Xvfb:xvfb xvfb-run:xvfb xauth:xauth
   docker-compose:docker-compose openssl:openssl python3:python3 clang++:clang
-  clang-format:clang-format ccache:ccache cmake:cmake protoc:protobuf-compiler ld.lld:lld
+  clang-format:clang-format ccache:ccache cmake:cmake ninja:ninja-build protoc:protobuf-compiler ld.lld:lld
   grpc_cpp_plugin:protobuf-compiler-grpc node:nodejs chromium:chromium
 )
 

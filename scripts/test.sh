@@ -34,14 +34,8 @@ done
 bash scripts/setup.sh
 
 BUILD_DIR=${BUILD_DIR:-build}
-JOBS=${JOBS:-2}
-export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/ccache}
-export CCACHE_MAXSIZE=${CCACHE_MAXSIZE:-5G}
-# Paths under the checkout are hashed relative to it: a second checkout reuses the cache.
-export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}
-# The sanitizer builds have debug line tables (-g1): without this ccache would hash the
-# build directory into every such object and a second checkout would miss.
-export CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
+# The compiler cache and the Release configuration, shared with scripts/demo.sh.
+source scripts/build_env.sh
 ROOT=$PWD
 SAN=$ROOT/cmake/sanitizers
 
@@ -78,20 +72,8 @@ report_times() {
 }
 trap report_times EXIT
 
-configure() {  # configure DIR extra-cmake-args...
-  local dir=$1
-  shift
-  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release -DMBSTREAM_WERROR=ON "$@"
-}
-build() {  # build DIR [targets...]
-  local dir=$1
-  shift
-  if [ $# -gt 0 ]; then
-    cmake --build "$dir" --parallel "$JOBS" --target "$@"
-  else
-    cmake --build "$dir" --parallel "$JOBS"
-  fi
-}
+configure() { mbstream_configure "$@"; }  # configure DIR extra-cmake-args...
+build() { mbstream_build "$@"; }  # build DIR [targets...]
 # The last lines of each failed test's output, printed again after ctest's summary: with
 # two tests at a time a failure's output lies hundreds of lines up, among passing tests.
 failed_outputs() {  # failed_outputs DIR
@@ -106,12 +88,16 @@ failed_outputs() {  # failed_outputs DIR
       inside { print }' "$1/Testing/Temporary/LastTest.log" | tail -n 60
   done <"$failed"
 }
+# Tests run from the checkout's root but never write into it: a run that leaves untracked or
+# modified files there fails (scripts/check_clean_tree.sh names them).
 run_ctest() {  # run_ctest DIR extra-ctest-args...
   local dir=$1 status=0
   shift
+  bash scripts/check_clean_tree.sh snapshot "$dir/source-tree-before-ctest.txt"
   # shellcheck disable=SC2086  # CTEST_ARGS is a list of flags
   (cd "$dir" && ctest --output-on-failure --parallel "$JOBS" "$@" ${CTEST_ARGS:-}) || status=$?
   if [ "$status" != 0 ]; then failed_outputs "$dir"; fi
+  bash scripts/check_clean_tree.sh compare "$dir/source-tree-before-ctest.txt" || status=1
   return "$status"
 }
 
