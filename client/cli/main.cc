@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "client/cli/exit_codes.h"
 #include "client/cli/server_commands.h"
 #include "client/cli/simulate_command.h"
 #include "common/check.h"
@@ -29,7 +30,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
-    return app.exit(error);
+    // CLI11 prints the help (exit 0) or the usage error; a usage error is a bad request,
+    // exit 2 as the README's exit codes say, not CLI11's own codes (105, 106, ...).
+    return app.exit(error) == 0 ? mbstream::cli::kExitOk : mbstream::cli::kExitBadRequest;
   } catch (const mbstream::InputError& error) {
     std::cerr << "mbstream: " << error.what() << "\n";
     return 2;

@@ -9,6 +9,7 @@
 #include "client/cli/result_download.h"
 #include "client/cli/run_overrides.h"
 #include "client/cli/server_commands.h"
+#include "client/cli/summary_line.h"
 #include "common/check.h"
 #include "server/spec/run_spec_json.h"
 
@@ -79,22 +80,7 @@ int RunOnServer(const ClientOptions& client, const RunOptions& options) {
   // A copy: DownloadResult below assigns a new RunInfo to `info`, which deletes the stats
   // message a reference would point at (found by UBSan's vptr check under --asan).
   const v1::RunStats s = info.stats();
-  std::cerr << v1::RunState_Name(info.state()) << ": " << info.frames();
-  if (s.summary().keep() != "all" && !s.summary().keep().empty()) {
-    std::cerr << " of " << s.summary().frames_computed() << " frames kept (keep "
-              << s.summary().keep() << ")";
-  } else {
-    std::cerr << " frames";
-  }
-  std::cerr << " to t = " << s.t_reached_s() << " s, formulation " << s.formulation() << " ("
-            << s.equations() << " equations), method " << s.method() << ", " << s.steps()
-            << " steps, cpu " << s.cpu_s() * 1e3 << " ms";
-  if (s.tcp_error_max_m() >= 0) std::cerr << ", TCP error " << s.tcp_error_max_m() << " m";
-  if (s.loops().cut_joints_size() > 0) {  // as simulate says it
-    std::cerr << ", loop residual " << s.drift_position_max_m() << " m, "
-              << s.drift_orientation_max_rad() << " rad, velocity " << s.drift_velocity_max();
-  }
-  std::cerr << "\n";
+  std::cerr << SummaryLine(v1::RunState_Name(info.state()), info.frames(), s) << "\n";
   if (!options.out_dir.empty()) {
     const grpc::Status downloaded = DownloadResult(*stub, info.id(), options.out_dir, &info);
     if (!downloaded.ok()) return ReportRpcError("run", client, downloaded);

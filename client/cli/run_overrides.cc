@@ -23,8 +23,9 @@ void RunOverrides::AddTo(CLI::App& command) {
   command.add_option("--verify", verify,
                      "check the achieved error after a target run (true, the default, or false)");
   command.add_option("--keep", keep,
-                     "the frames kept: all (the default), every:N (every Nth and the last), final "
-                     "or summary (none: stats.json's summary only)");
+                     "the frames kept: all (the default of simulate and run), every:N (every Nth "
+                     "and the last), final or summary (none: stats.json's summary only; the "
+                     "default of sweep)");
 }
 
 void RunOverrides::ApplyTo(v1::RunSpec& spec) const {

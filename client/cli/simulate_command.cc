@@ -12,6 +12,7 @@
 #include "client/cli/exit_codes.h"
 #include "client/cli/model_flags.h"
 #include "client/cli/run_overrides.h"
+#include "client/cli/summary_line.h"
 #include "common/check.h"
 #include "server/engine/engine.h"
 #include "server/mcap/run_mcap.h"
@@ -23,6 +24,7 @@
 #include "server/sim/run_validation.h"
 #include "server/spec/run_spec_json.h"
 #include "server/wire/model_info.h"
+#include "server/wire/stats_conversion.h"
 
 namespace mbstream::cli {
 
@@ -77,26 +79,10 @@ std::string ReadModelText(const std::string& path) {
   return text.str();
 }
 
-// The run's one-paragraph summary on stdout.
-void PrintSummary(const RunStats& s, int64_t frames, const RunConfig& config,
-                  const std::string& out_dir) {
-  std::cout << RunStatusName(s.status) << ": " << frames;
-  if (config.keep.mode != FrameKeep::Mode::kAll) {
-    std::cout << " of " << s.summary.frames_computed << " frames kept (keep " << s.summary.keep
-              << ")";
-  } else {
-    std::cout << " frames";
-  }
-  std::cout << " to t = " << s.t_reached << " s, formulation " << s.formulation << " ("
-            << s.equations << " equations), method " << s.method << ", " << s.solver.steps
-            << " steps, cpu " << s.cpu_s * 1e3 << " ms";
-  if (s.tcp_error_max >= 0) std::cout << ", TCP error " << s.tcp_error_max << " m";
-  if (s.energy_error_max >= 0) std::cout << ", energy error " << s.energy_error_max;
-  if (!s.loops.cut_joints.empty()) {
-    std::cout << ", loop residual " << s.drift_position_max << " m, " << s.drift_orientation_max
-              << " rad, velocity " << s.drift_velocity_max;
-  }
-  std::cout << "\nresults in " << out_dir << "\n";
+// The run's summary line on stdout (the same line as `mbstream run --watch`: summary_line.h).
+void PrintSummary(const RunStats& s, int64_t frames, const std::string& out_dir) {
+  std::cout << SummaryLine(RunStatusName(s.status), frames, StatsToProto(s)) << "\nresults in "
+            << out_dir << "\n";
 }
 
 // Messages on a failed or missed run, the trust line, and the exit code.
@@ -163,7 +149,7 @@ int RunSimulate(const SimulateOptions& options) {
     mcap_writer->Finish({}, StatsJson(result, provenance, writer.frames()), result.stats.t_reached);
   }
 
-  PrintSummary(result.stats, writer.frames(), config, options.out_dir);
+  PrintSummary(result.stats, writer.frames(), options.out_dir);
   if (mcap_writer) {
     std::cout << "MCAP in " << options.mcap_path << " (" << mcap_writer->bytes_written()
               << " bytes)\n";

@@ -35,6 +35,13 @@ int Submit(const ClientOptions& client, const SubmitOptions& options) {
             << (info.tcp_frame().empty() ? "none" : info.tcp_frame()) << ", scene "
             << (info.has_scene() ? "yes" : "no") << ", " << info.num_assets() << " assets\n";
   for (const std::string& warning : info.warnings()) std::cerr << "warning: " << warning << "\n";
+  if (!options.files.name.empty() && info.name() != options.files.name) {
+    // A model is stored once per content: the same files submitted again are the model
+    // already there, under the name it was first given.
+    std::cerr << "note: --name '" << options.files.name << "' not applied: the content is that of "
+              << "model " << info.id() << ", already there as '" << info.name()
+              << "'; run it by that name or id (or change the files to submit a new model)\n";
+  }
   return 0;
 }
 

@@ -142,4 +142,10 @@ void ClosedLoopDae::Reactions(const double* y, Eigen::VectorXd* reactions) const
   constraints_.Reactions(data_, rank_.independent, lambda, *reactions);
 }
 
+double ClosedLoopDae::ConstraintPower(const double* y) const {
+  double power = 0.0;
+  for (int i = 0; i < rank_.rank; ++i) power += y[2 * n_ + i] * phi_dot_(rank_.independent[i]);
+  return power;
+}
+
 }  // namespace mbstream

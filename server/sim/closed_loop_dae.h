@@ -51,6 +51,9 @@ class ClosedLoopDae : public DaeSystem {
   // LoopConstraints::Reactions) from lambda's entries of the independent loop rows (M v' + h =
   // tau + A^T lambda, the sign of the ODE's multipliers). Allocates nothing.
   void Reactions(const double* y, Eigen::VectorXd* reactions) const;
+  // After Readout at the same y: the power of the loop constraints' forces, lambda^T G v over
+  // the independent rows (W; zero to the tolerance, which holds G v = 0). Allocates nothing.
+  double ConstraintPower(const double* y) const;
   // At y's pose: RowConditioning::Of A (the independent loop rows and the prescribed joints'),
   // which a singular pose of the mechanism takes to 0 (singular_pose.h). Allocates nothing.
   double ConstraintConditioning(const double* y);

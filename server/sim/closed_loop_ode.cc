@@ -129,6 +129,12 @@ int ClosedLoopOde::Project(double t, const double* y, double* correction) {
 
 double ClosedLoopOde::ConstraintConditioning() { return conditioning_.Of(A_); }
 
+double ClosedLoopOde::ConstraintPower() const {
+  double power = 0.0;
+  for (int i = 0; i < rank_.rank; ++i) power += mu_(i) * phi_dot_(rank_.independent[i]);
+  return power;
+}
+
 void ClosedLoopOde::Residuals(double* gap, double* alignment, double* velocity) const {
   *gap = constraints_.MaxGap(phi_);
   *alignment = constraints_.MaxAlignment(phi_);

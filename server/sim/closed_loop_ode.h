@@ -53,6 +53,11 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
   // the mechanism, or of the tree's coordinates, where the multipliers are undefined and
   // the ODE has no solution through it). Allocates nothing.
   double ConstraintConditioning();
+  // After Evaluate: the power of the loop constraints' forces G^T mu on the tree, mu^T G qd
+  // over the independent rows (W): zero where the velocity constraints hold, and the work the
+  // Baumgarte terms do where they do not (the energy balance counts it). The prescribed
+  // joints' rows are their drive efforts. Allocates nothing.
+  double ConstraintPower() const;
   // After Evaluate: the cut joints' reactions from the multipliers (6 per loop:
   // LoopConstraints::Reactions). Allocates nothing.
   void Reactions(Eigen::VectorXd* reactions) const {

@@ -32,6 +32,7 @@ FrameRecorder::FrameRecorder(const Model& model, const DriveSet& drives, RunResu
   if (result_.has_energy) {
     result_.stats.energy_error_max = 0.0;
     result_.stats.energy_work_approximate = drives_.any_work();
+    if (drives_.any_work()) result_.stats.energy_quadrature_error_max = 0.0;
     result_.stats.energy_work = drives_.any_work() ? kEnergyWorkTrapezoid : kEnergyWorkNone;
   }
 }
@@ -40,6 +41,7 @@ void FrameRecorder::UseIntegratedWork() {
   integrated_work_ = true;
   result_.work.reserve(result_.t.capacity());
   result_.stats.energy_work_approximate = false;
+  result_.stats.energy_quadrature_error_max = -1.0;
   result_.stats.energy_work = kEnergyWorkIntegrated;
 }
 
@@ -133,20 +135,37 @@ bool FrameRecorder::Record(double t, const Eigen::VectorXd& q, const Eigen::Vect
 // (integrated with the ODE, or the trapezoid rule over the output samples).
 void FrameRecorder::TrackEnergy(double t, double energy, const Eigen::VectorXd& qd,
                                 const Eigen::VectorXd* effort) {
-  double power = 0.0;
+  double power = constraint_power_;
   for (int i = 0; i < drives_.size(); ++i) {
     const double drive = effort ? (*effort)(i) : 0.0;
     power += (drive - drives_.damping(i) * qd(i)) * qd(i);
   }
+  bool compare = false;  // the coarse rule has reached this frame too
   if (result_.first_seq == 0 && result_.t.size() == 1) {
     energy0_ = energy;
+    energy_frames_ = 0;
+    coarse_work_ = 0.0;
     if (integrated_work_) work_ = 0.0;
   } else if (!integrated_work_) {
     work_ += 0.5 * (power + last_power_) * (t - last_t_);
+    ++energy_frames_;
+    if (energy_frames_ % 2 == 0) {
+      coarse_work_ += 0.5 * (power + power2_) * (t - t2_);
+      compare = true;
+    }
+  }
+  if (energy_frames_ % 2 == 0) {  // this frame starts the coarse rule's next interval
+    power2_ = power;
+    t2_ = t;
   }
   last_power_ = power;
   last_t_ = t;
   scale_ = std::max({scale_, std::abs(energy0_), std::abs(energy)});
+  if (compare && result_.stats.energy_quadrature_error_max >= 0.0) {
+    const double estimate = std::abs(work_ - coarse_work_) / 3.0 / std::max(scale_, 1e-300);
+    result_.stats.energy_quadrature_error_max =
+        std::max(result_.stats.energy_quadrature_error_max, estimate);
+  }
   const double error = std::abs(energy - energy0_ - work_) / std::max(scale_, 1e-300);
   result_.stats.energy_error_max = std::max(result_.stats.energy_error_max, error);
 }

@@ -39,6 +39,10 @@ class FrameRecorder {
   // instead of the trapezoid rule over the output frames. Call before the first frame.
   void UseIntegratedWork();
   void SetWork(double work) { work_ = work; }
+  // A mechanism with closed loops: the power of the loop constraints' forces at the next
+  // Record (the multipliers' lambda^T G qd, zero when the velocity constraints hold exactly),
+  // counted with the drives' in the work of the energy balance. Call before each Record.
+  void SetConstraintPower(double power) { constraint_power_ = power; }
 
   // A mechanism with closed loops: each frame's q and qd gain the cut joints' coordinates
   // and rates (loop_coordinates.h) after the tree's, its efforts as many zeros (a cut joint
@@ -69,6 +73,12 @@ class FrameRecorder {
   Eigen::VectorXd loop_value_, loop_rate_, loop_effort_;
   const Eigen::VectorXd* loop_forces_ = nullptr;
   double energy0_ = 0.0, work_ = 0.0, last_power_ = 0.0, last_t_ = 0.0, scale_ = 0.0;
+  double constraint_power_ = 0.0;
+  // The trapezoid rule over every other frame (frames 0, 2, 4, ...), for the estimate of the
+  // rule's error (RunStats::energy_quadrature_error_max): its work, the power and time at
+  // the start of its current interval, and the frames since the first.
+  double coarse_work_ = 0.0, power2_ = 0.0, t2_ = 0.0;
+  long energy_frames_ = 0;
 };
 
 }  // namespace mbstream

@@ -196,6 +196,7 @@ class ClosedLoopSource : public FrameSource {
     ode_.Residuals(&gap, &alignment, &velocity);
     TrackResiduals(gap, alignment, velocity, stats_);
     if (reactions_ != nullptr) ode_.Reactions(reactions_);
+    recorder.SetConstraintPower(ode_.ConstraintPower());
     return recorder.Record(t, ode_.q(), ode_.qd(), &ode_.drive_effort());
   }
 
@@ -248,6 +249,7 @@ class ClosedLoopDaeSource : public FrameSource {
     dae_.Readout(t, y_.data(), &effort_, &gap, &alignment, &velocity);
     if (reactions_ != nullptr) dae_.Reactions(y_.data(), reactions_);
     TrackResiduals(gap, alignment, velocity, stats_);
+    recorder.SetConstraintPower(dae_.ConstraintPower(y_.data()));
     return recorder.Record(t, q_, qd_, &effort_);
   }
 
@@ -442,7 +444,7 @@ RunResult SimulateLoops(const Model& model_in, const std::vector<LoopClosure>& l
   }
   stats.cpu_s = ThreadCpuSeconds() - cpu0;
   stats.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  AssessTrust(&stats);
+  AssessTrust(&stats, TrustScaleOf(model, config, plan.choice.formulation));
   return result;
 }
 

@@ -82,6 +82,11 @@ struct RunStats {
   double tcp_error_max = -1.0;     // m, TCP against direct kinematics of the prescribed motion
   double energy_error_max = -1.0;  // relative energy-balance error over the run
   bool energy_work_approximate = false;  // work of drives/damping integrated from outputs
+  // With energy_work_approximate: the trapezoid rule's own error, estimated by comparing it
+  // with the rule over every other frame (Richardson: a third of their difference),
+  // relative to the energy scale, the largest over the run (negative = not estimated). The
+  // trust limit of the balance allows for it (run_trust.h).
+  double energy_quadrature_error_max = -1.0;
   // How the work W of drives and damping in the energy balance E(t) - E(0) - W(t) was
   // computed: kEnergyWork* below ("" when there is no energy balance).
   std::string energy_work;

@@ -125,7 +125,7 @@ RunResult SimulateTree(const Model& model_in, const RunConfig& config_in, FrameS
     result.stats.message =
         BudgetMessage(config, BudgetReportOf(config, result.stats, budget, warnings));
   }
-  AssessTrust(&result.stats);
+  AssessTrust(&result.stats, TrustScaleOf(model, config, choice.formulation));
   return result;
 }
 

@@ -45,6 +45,17 @@ std::optional<Eigen::Vector3d> DiffuseOf(const aiMaterial& material) {
   return Eigen::Vector3d(colour.r, colour.g, colour.b).cwiseMax(0.0).cwiseMin(1.0);
 }
 
+// The opacity of `material` (MeshSurface::opacity): Assimp's AI_MATKEY_OPACITY, which its
+// Collada reader computes from <transparent> and <transparency> by the opaque mode; 1 when
+// the material has none.
+double OpacityOf(const aiMaterial& material) {
+  float opacity = 1.0f;
+  if (material.Get(AI_MATKEY_OPACITY, opacity) != AI_SUCCESS || !std::isfinite(opacity)) {
+    return 1.0;
+  }
+  return std::clamp(static_cast<double>(opacity), 0.0, 1.0);
+}
+
 bool Textured(const aiMaterial& material) {
   for (const aiTextureType type : {aiTextureType_DIFFUSE, aiTextureType_BASE_COLOR}) {
     if (material.GetTextureCount(type) > 0) return true;
@@ -203,7 +214,10 @@ MeshFileContents ReadMeshFile(const std::filesystem::path& path) {
       surface.texture = data.texture;
     }
     if (material < scene->mNumMaterials) {
-      if (HasMaterials(path)) surface.colour = DiffuseOf(*scene->mMaterials[material]);
+      if (HasMaterials(path)) {
+        surface.colour = DiffuseOf(*scene->mMaterials[material]);
+        surface.opacity = OpacityOf(*scene->mMaterials[material]);
+      }
       contents.textured =
           contents.textured || (surface.texture.empty() && Textured(*scene->mMaterials[material]));
     }

@@ -21,6 +21,13 @@ struct MeshSurface {
   // Points and triangles (no normals); with `texture`, texture coordinates too.
   vtkSmartPointer<vtkPolyData> triangles;
   std::optional<Eigen::Vector3d> colour;  // the material's diffuse colour, if it has one
+  // The material's opacity, 0 (invisible) to 1 (opaque; also when the file gives none). A
+  // Collada <transparent>/<transparency> pair is read by its opaque mode, as the
+  // specification says (1.4.1, "Determining Transparency"): A_ONE (the default) takes
+  // transparent's alpha times transparency, RGB_ZERO one less the luminance of its colour
+  // times transparency, so <transparency>1</transparency> under A_ONE and 0.0 under RGB_ZERO
+  // are both opaque. Assimp computes it so (AI_MATKEY_OPACITY; mesh_look_test checks both).
+  double opacity = 1.0;
   // The material's diffuse texture (an image file: PNG, JPEG, ...), when it has one beside
   // the mesh and the surface has texture coordinates: drawn with it (its colour, not
   // `colour`, which such files often leave black). Empty otherwise.

@@ -33,6 +33,7 @@ struct Surface {
   vtkSmartPointer<vtkPolyDataNormals> output;
   Eigen::Vector3d colour;
   std::filesystem::path texture;  // drawn with it (and white), when not empty
+  double opacity = 1.0;           // the file material's (MeshSurface::opacity)
 };
 
 // The image file `path` as a texture (repeated, as OBJ and Collada texture coordinates
@@ -97,8 +98,9 @@ std::vector<Surface> Surfaces(const VisualPart& part, long long max_triangles,
         CachedMeshFile(file->path, max_triangles);
     for (const MeshSurface& surface : contents->surfaces) {
       const bool own = file->file_colours && surface.colour.has_value();
+      // The file's material opacity goes with its colours (MeshFile::file_colours).
       surfaces.push_back({Place(part, surface.triangles, false), own ? *surface.colour : part.color,
-                          surface.texture});
+                          surface.texture, file->file_colours ? surface.opacity : 1.0});
     }
     if (stats) {
       stats->triangles += contents->triangle_count;
@@ -150,7 +152,7 @@ VisualActors MakeVisualActors(const VisualPart& part, long long max_triangles) {
     actor->SetMapper(mapper);
     vtkProperty* property = actor->GetProperty();
     property->SetColor(surface.colour.x(), surface.colour.y(), surface.colour.z());
-    property->SetOpacity(part.opacity);
+    property->SetOpacity(part.opacity * surface.opacity);
     property->SetAmbient(0.15);
     property->SetDiffuse(0.8);
     property->SetSpecular(0.25);

@@ -301,7 +301,13 @@ TEST(RunBudgetTest, TrustNamesTheRemedyOfTheIndicatorThatFailed) {
   s.drift_position_max = 2e-3;  // and an indicator of the integration: both remedies
   AssessTrust(&s);
   EXPECT_THAT(s.trust_reason, HasSubstr("use a smaller output_interval_s"));
+  // body-index2's drift grows with time whatever the tolerance (its limit shrinks with the
+  // tolerance too, run_trust.h): the remedy is the formulation (issue 42, item 4).
+  EXPECT_THAT(s.trust_reason, HasSubstr("use the body-index3 formulation"));
+  s.formulation = "joint";  // a drift the tolerance controls: tighten it
+  AssessTrust(&s);
   EXPECT_THAT(s.trust_reason, HasSubstr("tighten rtol/atol"));
+  s.formulation = "body-index2";
   s.drift_position_max = -1.0;
   s.energy_work_approximate = false;  // the work integrated with the motion
   AssessTrust(&s);
