@@ -55,13 +55,18 @@ void CollectPackages(const fs::path& dir, const std::string& package, int depth,
 MeshFileSearch::MeshFileSearch(fs::path urdf_dir, std::vector<fs::path> package_path)
     : urdf_dir_(std::move(urdf_dir)), package_path_(std::move(package_path)) {}
 
-std::vector<fs::path> MeshFileSearch::PackageFolders(const std::string& package) const {
+std::vector<fs::path> PackageFolders(const std::vector<fs::path>& package_path,
+                                     const std::string& package) {
   std::vector<fs::path> found;
-  for (const fs::path& root : package_path_) {
+  for (const fs::path& root : package_path) {
     std::error_code error;
     if (fs::is_directory(root, error)) CollectPackages(root, package, 0, &found);
   }
   return found;
+}
+
+std::vector<fs::path> MeshFileSearch::PackageFolders(const std::string& package) const {
+  return urdf_reading::PackageFolders(package_path_, package);
 }
 
 MeshSearch MeshFileSearch::Find(const std::string& filename) const {
@@ -97,6 +102,13 @@ MeshSearch MeshFileSearch::Find(const std::string& filename) const {
                                         "' (a package.xml naming it, or a "
                                         "folder of that name) below " +
                                         roots;
+    }
+    if (scheme == kModel.size()) {
+      // A world's included model folder beside it or beside an ancestor (sdf_includes.h).
+      for (fs::path dir = fs::absolute(urdf_dir_).lexically_normal();; dir = dir.parent_path()) {
+        if (attempt(dir / package / rest)) return search;
+        if (dir == dir.parent_path()) break;
+      }
     }
     for (fs::path dir = fs::absolute(urdf_dir_).lexically_normal();; dir = dir.parent_path()) {
       if (attempt(dir / rest)) return search;

@@ -2,7 +2,9 @@
 // the file of a URDF <mesh filename> (or an SDFormat <mesh><uri>) on the user's disk, the
 // way ROS users expect: relative paths from the URDF's folder; package://PKG/REST in the
 // package path (folders whose package.xml names PKG, or named PKG), then REST relative to
-// each of the URDF's ancestors (robot folders are often renamed); file:// as a file.
+// each of the URDF's ancestors (robot folders are often renamed); model://MODEL/REST alike,
+// and first MODEL/REST beside the file or an ancestor (a world's model folders,
+// sdf_includes.h); file:// as a file.
 #pragma once
 
 #include <filesystem>
@@ -32,6 +34,11 @@ class MeshFileSearch {
   std::filesystem::path urdf_dir_;
   std::vector<std::filesystem::path> package_path_;
 };
+
+// The folders below the `package_path` entries (at most 6 levels down, in order) whose
+// package.xml names `package` or whose name is `package`.
+std::vector<std::filesystem::path> PackageFolders(
+    const std::vector<std::filesystem::path>& package_path, const std::string& package);
 
 // The package path from `--package-path` flags followed by $MBSTREAM_PACKAGE_PATH (colon
 // separated, empty entries skipped).

@@ -1,19 +1,13 @@
 #include "urdf_reading/sdf_reading.h"
 
 #include <algorithm>
-#include <deque>
-#include <map>
 
-#include <sdf/Box.hh>
 #include <sdf/Collision.hh>
 #include <sdf/Console.hh>
-#include <sdf/Cylinder.hh>
 #include <sdf/Geometry.hh>
-#include <sdf/JointAxis.hh>
 #include <sdf/Link.hh>
-#include <sdf/Material.hh>
 #include <sdf/Mesh.hh>
-#include <sdf/Sphere.hh>
+#include <sdf/ParserConfig.hh>
 #include <sdf/Visual.hh>
 #include <sdf/World.hh>
 
@@ -41,12 +35,39 @@ void AddMesh(const sdf::Geometry* geometry, std::vector<std::string>* uris) {
   }
 }
 
-std::optional<Eigen::Vector3d> Colour(const sdf::Material& material, const char* element,
-                                      const ignition::math::Color& colour) {
-  if (material.Element() == nullptr || !material.Element()->HasElement(element)) {
-    return std::nullopt;
+// A file path libsdformat gives an element or an error: a real file (an included model's),
+// not the "<data-string>" of text loaded from memory.
+bool IsFilePath(const std::string& path) { return !path.empty() && path.front() != '<'; }
+
+std::string Joined(const std::vector<std::filesystem::path>& paths) {
+  std::string text;
+  for (const std::filesystem::path& path : paths)
+    text += (text.empty() ? "" : ", ") + path.string();
+  return text;
+}
+
+// The include that was not found, as an error naming where the <include> stands.
+struct IncludeMiss {
+  std::string uri;
+  std::vector<std::filesystem::path> tried;
+};
+
+[[noreturn]] void ThrowIncludeMiss(const std::string& source, const sdf::Errors& errors,
+                                   const IncludeMiss& miss) {
+  std::string where = source;
+  for (const sdf::Error& error : errors) {
+    if (error.Message().find(miss.uri) == std::string::npos) continue;
+    if (error.FilePath().has_value() && IsFilePath(*error.FilePath())) where = *error.FilePath();
+    if (error.LineNumber().has_value()) where += ":" + std::to_string(*error.LineNumber());
+    break;
   }
-  return Eigen::Vector3d(colour.R(), colour.G(), colour.B());
+  const bool model_uri = miss.uri.starts_with("model://");
+  throw InputError(where + ": <include> of '" + miss.uri + "': not found; tried " +
+                   Joined(miss.tried) + "; " +
+                   (model_uri ? "give --package-path DIR (a folder holding the model's folder, "
+                                "with its model.config or model.sdf) or set "
+                                "MBSTREAM_PACKAGE_PATH"
+                              : "check the path (relative to the including file)"));
 }
 
 }  // namespace
@@ -63,10 +84,13 @@ SdfFile::SdfFile(const std::string& text, std::string source, const SdfLoadOptio
   limits.nesting_note =
       "an SDFormat model nests about 8 deep (sdf, world, model, link, visual, geometry, mesh, "
       "uri)";
-  limits.refused_element = "include";
-  limits.refused_note =
-      "it would read another file (a model:// path, a URL, a file of the machine that reads "
-      "this one); copy the included model's links and joints into this file";
+  if (!options.includes) {
+    limits.refused_element = "include";
+    limits.refused_note =
+        "the server reads no file a model names (a model:// path, a URL, a file of its own); "
+        "give the world to `mbstream submit`, which sends the included models inside it, or "
+        "copy the included model's links and joints into this file";
+  }
   if (const auto problem = CheckXmlShape(text, limits)) {
     const std::string message =
         source_ + ":" + std::to_string(problem->line) + ": " + problem->what;
@@ -75,214 +99,136 @@ SdfFile::SdfFile(const std::string& text, std::string source, const SdfLoadOptio
   }
   // SDFormat's errors come back in `errors` and into our message: keep its console quiet.
   sdf::Console::Instance()->SetQuiet(true);
-  const sdf::Errors errors = root_->LoadSdfString(text);
-  if (!errors.empty()) ThrowSdfErrors(source_, errors);
+  sdf::ParserConfig config;
+  std::vector<IncludeMiss> misses;
+  if (options.includes) {
+    config.SetFindCallback([&](const std::string& uri) {
+      SdfIncludeSearch search = FindSdfInclude(uri, *options.includes);
+      if (search.found.empty()) misses.push_back({uri, std::move(search.tried)});
+      return search.found.string();
+    });
+  }
+  const sdf::Errors errors = root_->LoadSdfString(text, config);
+  if (!errors.empty()) {
+    if (!misses.empty()) ThrowIncludeMiss(source_, errors, misses.front());
+    ThrowSdfErrors(source_, errors);
+  }
   if (root_->WorldCount() > 1) {
     throw InputError(source_ + ": the file has " + std::to_string(root_->WorldCount()) +
                      " worlds; give one world (or a top-level <model>)");
   }
-  model_ = root_->Model();
-  if (model_ == nullptr && root_->WorldCount() == 1) {
+  if (const sdf::Model* model = root_->Model(); model != nullptr) {
+    title_ = model->Name();
+    AddModel(*model, "", Eigen::Isometry3d::Identity(), model->Static(), 0);
+  } else if (root_->WorldCount() == 1) {
     const sdf::World& world = *root_->WorldByIndex(0);
-    if (world.ModelCount() != 1) {
-      throw InputError(Where(world.Element()) + ": world '" + world.Name() + "' has " +
-                       std::to_string(world.ModelCount()) +
-                       " models; mbstream simulates one mechanism: give the world one model");
+    if (world.ModelCount() == 0) {
+      throw InputError(Where(world.Element()) + ": world '" + world.Name() +
+                       "' has no model; give it a <model> or an <include>");
     }
-    model_ = world.ModelByIndex(0);
+    const bool several = world.ModelCount() > 1;
+    title_ = several ? world.Name() : world.ModelByIndex(0)->Name();
+    for (uint64_t k = 0; k < world.ModelCount(); ++k) {
+      const sdf::Model& model = *world.ModelByIndex(k);
+      ignition::math::Pose3d X_WM;
+      const sdf::Errors pose_errors = model.SemanticPose().Resolve(X_WM, kSdfWorld);
+      if (!pose_errors.empty()) {
+        throw InputError(Where(model.Element()) + ": model '" + model.Name() +
+                         "': its pose cannot be resolved: \"" + pose_errors.front().Message() +
+                         "\"; check its relative_to frame");
+      }
+      AddModel(model, several ? model.Name() + kSdfScope : "", ToIsometry(X_WM), model.Static(),
+               static_cast<int>(models_.size()));
+    }
   }
-  if (model_ == nullptr) {
+  if (models_.empty()) {
     throw InputError(source_ + ": no <model> in the file; give a <model> with links and joints");
   }
+  if (options.max_links > 0) {
+    uint64_t links = 0;
+    for (const SdfModelEntry& entry : models_) links += entry.model->LinkCount();
+    if (links > static_cast<uint64_t>(options.max_links)) {
+      throw LimitError(source_ + ": more than " + std::to_string(options.max_links) +
+                       " <link> elements with the included models, the limit (--max-links); "
+                       "split the world or raise the limit");
+    }
+  }
+}
+
+void SdfFile::AddModel(const sdf::Model& model, std::string prefix, const Eigen::Isometry3d& X_WM,
+                       bool is_static, int top) {
+  models_.push_back({&model, prefix, X_WM, is_static, top});
+  for (uint64_t k = 0; k < model.ModelCount(); ++k) {
+    const sdf::Model& nested = *model.ModelByIndex(k);
+    const Eigen::Isometry3d X_MN = ToIsometry([&] {
+      ignition::math::Pose3d pose;
+      const sdf::Errors errors = nested.SemanticPose().Resolve(pose, "__model__");
+      if (!errors.empty()) {
+        throw InputError(Where(nested.Element()) + ": model '" + nested.Name() +
+                         "': its pose cannot be resolved: \"" + errors.front().Message() +
+                         "\"; check its relative_to frame");
+      }
+      return pose;
+    }());
+    AddModel(nested, prefix + nested.Name() + kSdfScope, X_WM * X_MN, is_static || nested.Static(),
+             top);
+  }
+}
+
+std::string SdfFile::ExpandedText() const {
+  return "<?xml version=\"1.0\"?>\n" + root_->Element()->ToString("", false, false);
 }
 
 std::string SdfFile::Where(const sdf::ElementPtr& element) const {
-  if (element != nullptr && element->LineNumber().has_value()) {
-    return source_ + ":" + std::to_string(*element->LineNumber());
-  }
-  return source_;
+  if (element == nullptr) return source_;
+  const std::string file = IsFilePath(element->FilePath()) ? element->FilePath() : source_;
+  if (element->LineNumber().has_value()) return file + ":" + std::to_string(*element->LineNumber());
+  return file;
 }
 
-SdfTree ChooseSdfTree(const SdfFile& file) {
-  const sdf::Model& model = file.model();
-  if (model.ModelCount() > 0) {
-    throw InputError(file.Where(model.ModelByIndex(0)->Element()) + ": model '" +
-                     model.ModelByIndex(0)->Name() +
-                     "': nested models are not supported yet; flatten the model into one "
-                     "<model> of links and joints");
-  }
-  SdfTree tree;
-  for (uint64_t k = 0; k < model.JointCount(); ++k) {
-    const sdf::Joint* joint = model.JointByIndex(k);
-    SdfJointOutline info{joint, joint->ParentLinkName(), joint->ChildLinkName(),
-                         file.Where(joint->Element())};
-    for (const std::string* link : {&info.parent, &info.child}) {
-      if (*link != kSdfWorld && model.LinkByName(*link) == nullptr) {
-        throw InputError(info.where + ": joint '" + joint->Name() + "': link '" + *link +
-                         "' is not a link of model '" + model.Name() +
-                         "'; name a link of this model (or world)");
-      }
-    }
-    switch (joint->Type()) {
-      case sdf::JointType::REVOLUTE:
-      case sdf::JointType::CONTINUOUS:
-      case sdf::JointType::PRISMATIC:
-      case sdf::JointType::FIXED:
-      case sdf::JointType::BALL:
-        break;
-      default:
-        throw InputError(info.where + ": joint '" + joint->Name() +
-                         "': this joint type is not simulated by mbstream; use revolute, "
-                         "continuous, prismatic, fixed or ball joints");
-    }
-    tree.joints.push_back(std::move(info));
-  }
-  std::map<std::string, bool> reached{{kSdfWorld, true}};
-  std::deque<std::string> queue{kSdfWorld};
-  std::vector<bool> cut(tree.joints.size(), false);
-  while (!queue.empty()) {
-    const std::string link = queue.front();
-    queue.pop_front();
-    for (size_t j = 0; j < tree.joints.size(); ++j) {
-      const SdfJointOutline& info = tree.joints[j];
-      if (info.parent != link) continue;
-      if (reached[info.child]) {
-        cut[j] = true;
-        continue;
-      }
-      reached[info.child] = true;
-      tree.tree.push_back(j);
-      queue.push_back(info.child);
-    }
-  }
-  for (uint64_t k = 0; k < model.LinkCount(); ++k) {
-    const sdf::Link* link = model.LinkByIndex(k);
-    if (!reached[link->Name()]) {
-      throw InputError(file.Where(link->Element()) + ": link '" + link->Name() +
-                       "' is not reached from the world through parent-to-child joints (a "
-                       "floating link); attach it, e.g. with a fixed joint whose parent is "
-                       "world");
-    }
-  }
-  for (size_t j = 0; j < tree.joints.size(); ++j) {
-    const SdfJointOutline& info = tree.joints[j];
-    if (!reached[info.parent]) {
-      throw InputError(info.where + ": joint '" + info.joint->Name() + "': its parent link '" +
-                       info.parent + "' is not reached from the world; attach it");
-    }
-    if (cut[j]) tree.cut.push_back(j);
-  }
-  return tree;
-}
-
-std::string SdfBallAxisName(const std::string& joint, int axis) {
-  MBSTREAM_CHECK(axis >= 0 && axis < 3);
-  static constexpr const char* kSuffix[3] = {".x", ".y", ".z"};
-  return joint + kSuffix[axis];
-}
-
-Eigen::Isometry3d ModelFramePose(const sdf::SemanticPose& pose, const std::string& what,
-                                 const std::string& where) {
+Eigen::Isometry3d WorldPose(const SdfModelEntry& entry, const sdf::SemanticPose& pose,
+                            const std::string& what, const std::string& where) {
   ignition::math::Pose3d resolved;
   const sdf::Errors errors = pose.Resolve(resolved, "__model__");
   if (!errors.empty()) {
     throw InputError(where + ": " + what + ": its pose cannot be resolved: \"" +
                      errors.front().Message() + "\"; check its relative_to frame");
   }
-  return ToIsometry(resolved);
+  return entry.X_WM * ToIsometry(resolved);
 }
 
-std::vector<SdfLinkFrame> SdfLinkFrames(const SdfFile& file, const SdfTree& tree) {
-  std::vector<SdfLinkFrame> frames;
-  for (const size_t j : tree.tree) {
-    const SdfJointOutline& info = tree.joints[j];
-    SdfLinkFrame frame;
-    frame.link = info.child;
-    if (info.joint->Type() == sdf::JointType::FIXED) {
-      const sdf::Link& link = *file.model().LinkByName(info.child);
-      frame.X_ML = ModelFramePose(link.SemanticPose(), "link '" + link.Name() + "'",
-                                  file.Where(link.Element()));
-    } else {
-      frame.X_ML = ModelFramePose(info.joint->SemanticPose(), "joint '" + info.joint->Name() + "'",
-                                  info.where);
-    }
-    frames.push_back(std::move(frame));
-  }
-  return frames;
-}
-
-Eigen::Vector3d SdfJointAxis(const SdfFile& file, const SdfJointOutline& joint,
-                             const Eigen::Isometry3d& X_MJ) {
-  const sdf::JointAxis* axis = joint.joint->Axis(0);
-  if (axis == nullptr) {
-    throw InputError(joint.where + ": joint '" + joint.joint->Name() +
-                     "': no <axis>; give <axis><xyz>0 0 1</xyz></axis>");
-  }
-  ignition::math::Vector3d xyz;
-  const sdf::Errors errors = axis->ResolveXyz(xyz, "__model__");
-  if (!errors.empty()) ThrowSdfErrors(file.source(), errors);
-  const Eigen::Vector3d a = X_MJ.linear().transpose() * Eigen::Vector3d(xyz.X(), xyz.Y(), xyz.Z());
-  if (!(a.norm() > 1e-12)) {
-    throw InputError(joint.where + ": joint '" + joint.joint->Name() +
-                     "': the axis is zero; give a unit vector");
-  }
-  return a.normalized();
-}
-
-std::vector<SdfVisual> SdfVisuals(const SdfFile& file, std::vector<std::string>* warnings) {
-  std::vector<SdfVisual> visuals;
-  const sdf::Model& model = file.model();
-  for (uint64_t l = 0; l < model.LinkCount(); ++l) {
-    const sdf::Link& link = *model.LinkByIndex(l);
-    for (uint64_t v = 0; v < link.VisualCount(); ++v) {
-      const sdf::Visual& visual = *link.VisualByIndex(v);
-      SdfVisual out;
-      out.link = link.Name();
-      out.name = visual.Name();
-      out.where = file.Where(visual.Element());
-      const sdf::Geometry* geometry = visual.Geom();
-      const sdf::GeometryType type =
-          geometry == nullptr ? sdf::GeometryType::EMPTY : geometry->Type();
-      if (type == sdf::GeometryType::BOX && geometry->BoxShape() != nullptr) {
-        const ignition::math::Vector3d& size = geometry->BoxShape()->Size();
-        out.geometry = SdfBox{Eigen::Vector3d(size.X(), size.Y(), size.Z())};
-      } else if (type == sdf::GeometryType::CYLINDER && geometry->CylinderShape() != nullptr) {
-        out.geometry =
-            SdfCylinder{geometry->CylinderShape()->Radius(), geometry->CylinderShape()->Length()};
-      } else if (type == sdf::GeometryType::SPHERE && geometry->SphereShape() != nullptr) {
-        out.geometry = SdfSphere{geometry->SphereShape()->Radius()};
-      } else if (type == sdf::GeometryType::MESH && geometry->MeshShape() != nullptr) {
-        const ignition::math::Vector3d& scale = geometry->MeshShape()->Scale();
-        out.geometry =
-            SdfMesh{geometry->MeshShape()->Uri(), Eigen::Vector3d(scale.X(), scale.Y(), scale.Z())};
-      } else {
-        if (warnings != nullptr) {
-          warnings->push_back(out.where + ": link '" + link.Name() + "': visual '" + visual.Name() +
-                              "': its geometry is not drawn (box, cylinder, sphere and mesh "
-                              "are); use one of those");
-        }
-        continue;
-      }
-      out.X_MV = ModelFramePose(visual.SemanticPose(), "visual '" + visual.Name() + "'", out.where);
-      if (const sdf::Material* material = visual.Material(); material != nullptr) {
-        out.diffuse = Colour(*material, "diffuse", material->Diffuse());
-        out.ambient = Colour(*material, "ambient", material->Ambient());
-      }
-      visuals.push_back(std::move(out));
+SdfLinkRef FindSdfLink(const SdfFile& file, const std::string& scoped_name) {
+  const std::vector<SdfModelEntry>& models = file.models();
+  for (size_t m = 0; m < models.size(); ++m) {
+    const std::string& prefix = models[m].prefix;
+    if (scoped_name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string local = scoped_name.substr(prefix.size());
+    if (local.find(kSdfScope) != std::string::npos) continue;  // a nested model's
+    if (const sdf::Link* link = models[m].model->LinkByName(local); link != nullptr) {
+      return {link, static_cast<int>(m)};
     }
   }
-  return visuals;
+  return {};
 }
 
-SdfMeshes MeshesOf(const sdf::Model& model) {
+Eigen::Isometry3d SdfLinkPose(const SdfFile& file, const std::string& scoped_name) {
+  const SdfLinkRef ref = FindSdfLink(file, scoped_name);
+  MBSTREAM_CHECK(ref.link != nullptr);
+  return WorldPose(file.models()[ref.model], ref.link->SemanticPose(), "link '" + scoped_name + "'",
+                   file.Where(ref.link->Element()));
+}
+
+SdfMeshes MeshesOf(const SdfFile& file) {
   SdfMeshes meshes;
-  for (uint64_t l = 0; l < model.LinkCount(); ++l) {
-    const sdf::Link& link = *model.LinkByIndex(l);
-    for (uint64_t v = 0; v < link.VisualCount(); ++v) {
-      AddMesh(link.VisualByIndex(v)->Geom(), &meshes.visual);
-    }
-    for (uint64_t c = 0; c < link.CollisionCount(); ++c) {
-      AddMesh(link.CollisionByIndex(c)->Geom(), &meshes.collision);
+  for (const SdfModelEntry& entry : file.models()) {
+    for (uint64_t l = 0; l < entry.model->LinkCount(); ++l) {
+      const sdf::Link& link = *entry.model->LinkByIndex(l);
+      for (uint64_t v = 0; v < link.VisualCount(); ++v) {
+        AddMesh(link.VisualByIndex(v)->Geom(), &meshes.visual);
+      }
+      for (uint64_t c = 0; c < link.CollisionCount(); ++c) {
+        AddMesh(link.CollisionByIndex(c)->Geom(), &meshes.collision);
+      }
     }
   }
   return meshes;
@@ -290,29 +236,23 @@ SdfMeshes MeshesOf(const sdf::Model& model) {
 
 SdfMeshes ReadSdfMeshes(const std::string& text) {
   // Hostile text never reaches libsdformat (a flood of attributes takes it minutes).
-  XmlShapeLimits limits;
-  limits.links_at_any_depth = true;
-  limits.refused_element = "include";
-  if (CheckXmlShape(text, limits)) return {};
-  sdf::Console::Instance()->SetQuiet(true);
-  sdf::Root root;
-  if (!root.LoadSdfString(text).empty()) return {};
-  const sdf::Model* model = root.Model();
-  if (model == nullptr && root.WorldCount() == 1 && root.WorldByIndex(0)->ModelCount() == 1) {
-    model = root.WorldByIndex(0)->ModelByIndex(0);
+  try {
+    return MeshesOf(SdfFile(text, "model.sdf"));
+  } catch (const InputError&) {
+    return {};
   }
-  return model == nullptr ? SdfMeshes{} : MeshesOf(*model);
 }
 
 [[noreturn]] void ThrowSdfErrors(const std::string& source, const sdf::Errors& errors) {
   std::string message;
   for (const sdf::Error& error : errors) {
     if (!message.empty()) message += "\n";
-    message += source;
+    const bool in_file = error.FilePath().has_value() && IsFilePath(*error.FilePath());
+    message += in_file ? *error.FilePath() : source;
     if (error.LineNumber().has_value()) message += ":" + std::to_string(*error.LineNumber());
     message += ": SDFormat: \"" + error.Message() + "\"";
   }
-  throw InputError(message + "\nfix the model file (SDFormat 1.6 or later, one model)");
+  throw InputError(message + "\nfix the model file (SDFormat 1.6 or later)");
 }
 
 }  // namespace mbstream::urdf_reading

@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "client/cli/exit_codes.h"
 #include "client/cli/model_flags.h"
@@ -41,6 +42,8 @@ struct SimulateOptions {
   bool accept_untrusted = false;
   bool repair = false;
   bool couple_mimic = false;
+  bool floating_base = false;
+  std::vector<std::string> package_paths;
   // The server's limits and defaults (mbstream-server's flags of the same names), so that
   // simulate and the server agree on every input.
   int max_links = 256;
@@ -105,9 +108,12 @@ int RunSimulate(const SimulateOptions& options) {
   // URDF or SDFormat by content; an SDFormat model may close loops, a URDF's <mimic> couple
   // joints (import.loops).
   ModelFileImport import =
-      ImportModelFile(options.model_path, UrdfImportOptions{.repair = options.repair,
-                                                            .max_links = options.max_links,
-                                                            .couple_mimic = options.couple_mimic});
+      ImportModelFile(options.model_path,
+                      UrdfImportOptions{.repair = options.repair,
+                                        .max_links = options.max_links,
+                                        .couple_mimic = options.couple_mimic,
+                                        .floating_base = options.floating_base},
+                      options.package_paths);
   for (const std::string& warning : import.warnings) spdlog::warn("{}", warning);
   v1::RunSpec spec;
   std::string source = "(command line)";
@@ -163,7 +169,9 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<SimulateOptions>();
   CLI::App* command = app.add_subcommand(
       "simulate", "run the engine in-process (no server) and write the results files");
-  command->add_option("model", options->model_path, "the model's URDF or SDFormat file")
+  command
+      ->add_option("model", options->model_path,
+                   "the model's URDF or SDFormat file, or an SDFormat world")
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("--spec", options->spec_path, "run spec (protobuf JSON of RunSpec)")
@@ -200,6 +208,12 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::PositiveNumber);
   command->add_flag("--repair", options->repair, kRepairHelp);
   command->add_flag("--couple-mimic", options->couple_mimic, kCoupleMimicHelp);
+  command->add_flag("--floating-base", options->floating_base, kFloatingBaseHelp);
+  command
+      ->add_option("--package-path", options->package_paths,
+                   "a folder searched for the models of a world's model:// includes (before "
+                   "$MBSTREAM_PACKAGE_PATH, colon separated)")
+      ->check(CLI::ExistingDirectory);
   command->callback([options, exit_code] {
     try {
       *exit_code = RunSimulate(*options);

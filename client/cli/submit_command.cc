@@ -1,6 +1,6 @@
-// `mbstream submit MODEL.urdf|MODEL.sdf|DIR [--scene FILE] [--asset FILE]... [--package-path
-// DIR]...
-//  [--with-collision] [--name NAME] [--repair] [--couple-mimic]`
+// `mbstream submit MODEL.urdf|MODEL.sdf|WORLD.sdf|DIR [--scene FILE] [--asset FILE]...
+//  [--package-path DIR]... [--with-collision] [--name NAME] [--repair] [--couple-mimic]
+//  [--floating-base]`
 #include <iostream>
 
 #include "client/cli/model_flags.h"
@@ -16,6 +16,7 @@ struct SubmitOptions {
   BundleFiles files;
   bool repair = false;
   bool couple_mimic = false;
+  bool floating_base = false;
 };
 
 int Submit(const ClientOptions& client, const SubmitOptions& options) {
@@ -25,6 +26,7 @@ int Submit(const ClientOptions& client, const SubmitOptions& options) {
   *request.mutable_bundle() = std::move(read.bundle);
   request.mutable_bundle()->set_repair(options.repair);
   request.mutable_bundle()->set_couple_mimic(options.couple_mimic);
+  request.mutable_bundle()->set_floating_base(options.floating_base);
   grpc::ClientContext context;
   v1::ModelInfo info;
   const grpc::Status status = ConnectSimulation(client)->SubmitModel(&context, request, &info);
@@ -54,8 +56,10 @@ void AddSubmitCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client
   command
       ->add_option("model", options->files.model_path,
                    "URDF or SDFormat file (told apart by content), or a model directory (one "
-                   ".urdf or .sdf, its .scene); the meshes they refer to are found and attached, "
-                   "with the files those name (an OBJ's .mtl and images, a Collada's images)")
+                   ".urdf or .sdf, its .scene), or a world's directory (its world .sdf and the "
+                   "models it includes); the meshes they refer to are found and attached, "
+                   "with the files those name (an OBJ's .mtl and images, a Collada's images); "
+                   "a world's <include>s are sent written into it")
       ->required()
       ->check(CLI::ExistingPath);
   command->add_option("--scene", options->files.scene_path, "scene script for viewers")
@@ -67,7 +71,8 @@ void AddSubmitCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client
   command
       ->add_option("--package-path", options->files.package_paths,
                    "a folder searched for the ROS packages of package:// meshes and the models "
-                   "of model:// meshes (before $MBSTREAM_PACKAGE_PATH, colon separated)")
+                   "of model:// meshes and includes (before $MBSTREAM_PACKAGE_PATH, colon "
+                   "separated)")
       ->check(CLI::ExistingDirectory);
   command->add_flag("--with-collision", options->files.with_collision,
                     "attach the collision meshes too (the engine does not need them)");
@@ -75,6 +80,7 @@ void AddSubmitCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client
                       "display name (default: the URDF's robot name, the SDFormat model's name)");
   command->add_flag("--repair", options->repair, kRepairHelp);
   command->add_flag("--couple-mimic", options->couple_mimic, kCoupleMimicHelp);
+  command->add_flag("--floating-base", options->floating_base, kFloatingBaseHelp);
   command->callback([client, options, exit_code] {
     try {
       *exit_code = Submit(*client, *options);

@@ -1,13 +1,16 @@
 #include "server/parse/model_file.h"
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "server/parse/sdf_import.h"
+#include "urdf_reading/mesh_file_search.h"
 
 namespace mbstream {
 
-ModelFileImport ImportModelFile(const std::string& path, const UrdfImportOptions& urdf_options) {
+ModelFileImport ImportModelFile(const std::string& path, const UrdfImportOptions& urdf_options,
+                                const std::vector<std::string>& package_path) {
   std::ifstream in(path);
   std::ostringstream buffer;
   if (in) buffer << in.rdbuf();  // unreadable: the URDF reader says so, as it always has
@@ -20,7 +23,12 @@ ModelFileImport ImportModelFile(const std::string& path, const UrdfImportOptions
     result.loops = std::move(urdf.loops);
     result.warnings = std::move(urdf.warnings);
   } else {
-    SdfImport sdf = ImportSdf(text, path, SdfImportOptions{.max_links = urdf_options.max_links});
+    const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    SdfImport sdf = ImportSdf(
+        text, path,
+        SdfImportOptions{.max_links = urdf_options.max_links,
+                         .includes = urdf_reading::SdfIncludePath{
+                             dir.empty() ? "." : dir, urdf_reading::PackagePath(package_path)}});
     result.model = std::move(sdf.model);
     result.loops = std::move(sdf.loops);
     result.warnings = std::move(sdf.warnings);

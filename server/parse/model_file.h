@@ -23,8 +23,10 @@ struct ModelFileImport {
   std::vector<std::string> warnings;
 };
 
-// Reads the file at `path` and imports it as URDF (with `urdf_options`) or SDFormat.
-ModelFileImport ImportModelFile(const std::string& path,
-                                const UrdfImportOptions& urdf_options = {});
+// Reads the file at `path` and imports it as URDF (with `urdf_options`) or SDFormat (its
+// <include>s found beside it, its ancestors and in `package_path` then
+// $MBSTREAM_PACKAGE_PATH: urdf_reading/sdf_includes.h).
+ModelFileImport ImportModelFile(const std::string& path, const UrdfImportOptions& urdf_options = {},
+                                const std::vector<std::string>& package_path = {});
 
 }  // namespace mbstream

@@ -7,28 +7,30 @@
 #include <map>
 #include <sstream>
 
-#include <sdf/Collision.hh>
-#include <sdf/Geometry.hh>
 #include <sdf/Joint.hh>
 #include <sdf/JointAxis.hh>
 #include <sdf/Link.hh>
-#include <sdf/Mesh.hh>
-#include <sdf/Model.hh>
-#include <sdf/Root.hh>
-#include <sdf/Visual.hh>
-#include <sdf/World.hh>
 
 #include "common/check.h"
 #include "server/model/model_builder.h"
+#include "urdf_reading/mesh_file_search.h"
 #include "urdf_reading/sdf_reading.h"
 
 namespace mbstream {
 
 namespace {
 
-constexpr const char* kWorld = urdf_reading::kSdfWorld;
-using urdf_reading::MeshesOf;
-using urdf_reading::ThrowSdfErrors;
+namespace ur = urdf_reading;
+constexpr const char* kWorld = ur::kSdfWorld;
+
+Pose ToPose(const Eigen::Isometry3d& X) { return Pose{X.linear(), X.translation()}; }
+
+Eigen::Isometry3d ToIsometry(const Pose& X) {
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = X.R;
+  out.translation() = X.p;
+  return out;
+}
 
 Pose ToPose(const ignition::math::Pose3d& pose) {
   const ignition::math::Matrix3d r(pose.Rot());
@@ -40,18 +42,21 @@ Pose ToPose(const ignition::math::Pose3d& pose) {
   return X;
 }
 
-using JointInfo = urdf_reading::SdfJointOutline;
+using JointInfo = ur::SdfJointOutline;
 
 class SdfReader {
  public:
-  explicit SdfReader(const urdf_reading::SdfFile& file)
-      : file_(file), sdf_(file.model()), source_(file.source()) {}
+  explicit SdfReader(const ur::SdfFile& file) : file_(file), source_(file.source()) {}
 
   SdfImport Read() {
-    const urdf_reading::SdfTree tree = urdf_reading::ChooseSdfTree(file_);
-    ModelBuilder builder(sdf_.Name(), kWorld);
+    const ur::SdfTree tree = ur::ChooseSdfTree(file_);
+    result_.warnings = tree.warnings;
+    const std::vector<ur::SdfLinkFrame> frames = ur::SdfLinkFrames(file_, tree);
+    ModelBuilder builder(file_.title(), kWorld);
     frame_of_[kWorld] = Pose::Identity();
-    for (const size_t j : tree.tree) AddTreeJoint(builder, tree.joints[j]);
+    for (size_t k = 0; k < tree.tree.size(); ++k) {
+      AddTreeJoint(builder, tree.joints[tree.tree[k]], ToPose(frames[k].X_WL));
+    }
     SetTcpIfNamed(builder);
     result_.model = builder.Build();
     for (const size_t j : tree.cut) result_.loops.push_back(LoopOf(tree.joints[j]));
@@ -59,46 +64,18 @@ class SdfReader {
   }
 
  private:
-  Pose ModelPoseOf(const sdf::SemanticPose& pose, const std::string& what,
-                   const std::string& where) const {
-    ignition::math::Pose3d resolved;
-    const sdf::Errors errors = pose.Resolve(resolved, "__model__");
-    if (!errors.empty()) {
-      throw InputError(where + ": " + what + ": its pose cannot be resolved: \"" +
-                       errors.front().Message() + "\"; check its relative_to frame");
-    }
-    return ToPose(resolved);
-  }
-
-  // X_MJ, the joint frame in the model frame.
+  // X_WJ, a file joint's frame in the world.
   Pose JointFrame(const JointInfo& info) const {
-    return ModelPoseOf(info.joint->SemanticPose(), "joint '" + info.joint->Name() + "'",
-                       info.where);
+    return ToPose(ur::WorldPose(file_.models()[info.model], info.joint->SemanticPose(),
+                                "joint '" + info.name + "'", info.where));
   }
 
-  // The joint's unit axis in its own frame J.
-  Vector3d AxisInJoint(const JointInfo& info, const Pose& X_MJ) const {
-    const sdf::JointAxis* axis = info.joint->Axis(0);
-    if (axis == nullptr) {
-      throw InputError(info.where + ": joint '" + info.joint->Name() +
-                       "': no <axis>; give <axis><xyz>0 0 1</xyz></axis>");
-    }
-    ignition::math::Vector3d xyz;
-    const sdf::Errors errors = axis->ResolveXyz(xyz, "__model__");
-    if (!errors.empty()) ThrowSdfErrors(source_, errors);
-    const Vector3d a = X_MJ.R.transpose() * Vector3d(xyz.X(), xyz.Y(), xyz.Z());
-    if (!(a.norm() > 1e-12)) {
-      throw InputError(info.where + ": joint '" + info.joint->Name() +
-                       "': the axis is zero; give a unit vector");
-    }
-    return a.normalized();
-  }
-
-  RigidInertia InertiaIn(const sdf::Link& link, const Pose& F_L) const {
-    const ignition::math::Inertiald& inertial = link.Inertial();
-    const Pose X_ML =
-        ModelPoseOf(link.SemanticPose(), "link '" + link.Name() + "'", file_.Where(link.Element()));
-    const Pose X_FI = F_L.Inverse() * X_ML * ToPose(inertial.Pose());
+  // The link's inertia in frame F_L (in the world).
+  RigidInertia InertiaIn(const std::string& scoped_link, const Pose& F_L) const {
+    const ur::SdfLinkRef ref = ur::FindSdfLink(file_, scoped_link);
+    const ignition::math::Inertiald& inertial = ref.link->Inertial();
+    const Pose X_WL = ToPose(ur::SdfLinkPose(file_, scoped_link));
+    const Pose X_FI = F_L.Inverse() * X_WL * ToPose(inertial.Pose());
     const ignition::math::Matrix3d moi = inertial.MassMatrix().Moi();
     Matrix3d I;
     for (int i = 0; i < 3; ++i) {
@@ -113,34 +90,34 @@ class SdfReader {
     return value;
   }
 
-  void AddTreeJoint(ModelBuilder& builder, const JointInfo& info) {
-    const sdf::Link& link = *sdf_.LinkByName(info.child);
-    const std::string what = info.where + ": joint '" + info.joint->Name() + "'";
+  void AddTreeJoint(ModelBuilder& builder, const JointInfo& info, const Pose& F_L) {
+    const std::string what = info.where + ": joint '" + info.name + "'";
     const Pose& F_P = frame_of_.at(info.parent);
+    frame_of_[info.child] = F_L;
     try {
-      if (info.joint->Type() == sdf::JointType::FIXED) {
-        const Pose F_L = ModelPoseOf(link.SemanticPose(), "link '" + link.Name() + "'",
-                                     file_.Where(link.Element()));
-        frame_of_[info.child] = F_L;
-        builder.AddFixedLink(info.child, info.parent, F_P.Inverse() * F_L, InertiaIn(link, F_L));
+      if (info.role == ur::SdfJointRole::kFree) {
+        AddFreeBody(builder, info, F_L);
         return;
       }
-      const Pose X_MJ = JointFrame(info);
-      frame_of_[info.child] = X_MJ;
+      if (info.role == ur::SdfJointRole::kWeld || info.joint->Type() == sdf::JointType::FIXED) {
+        builder.AddFixedLink(info.child, info.parent, F_P.Inverse() * F_L,
+                             InertiaIn(info.child, F_L));
+        return;
+      }
       if (info.joint->Type() == sdf::JointType::BALL) {
-        const std::string axes[3] = {urdf_reading::SdfBallAxisName(info.joint->Name(), 0),
-                                     urdf_reading::SdfBallAxisName(info.joint->Name(), 1),
-                                     urdf_reading::SdfBallAxisName(info.joint->Name(), 2)};
-        builder.AddBallLink(info.child, info.parent, info.joint->Name(), info.where,
-                            F_P.Inverse() * X_MJ, axes, InertiaIn(link, X_MJ));
+        const std::string axes[3] = {ur::SdfBallAxisName(info.name, 0),
+                                     ur::SdfBallAxisName(info.name, 1),
+                                     ur::SdfBallAxisName(info.name, 2)};
+        builder.AddBallLink(info.child, info.parent, info.name, info.where, F_P.Inverse() * F_L,
+                            axes, InertiaIn(info.child, F_L));
         return;
       }
       Joint joint;
-      joint.name = info.joint->Name();
+      joint.name = info.name;
       joint.type = info.joint->Type() == sdf::JointType::PRISMATIC ? JointType::kPrismatic
                                                                    : JointType::kRevolute;
-      joint.X_PJ = F_P.Inverse() * X_MJ;
-      joint.axis = AxisInJoint(info, X_MJ);
+      joint.X_PJ = F_P.Inverse() * F_L;
+      joint.axis = ur::SdfJointAxis(file_, info, ToIsometry(F_L));
       const sdf::JointAxis& axis = *info.joint->Axis(0);
       if (info.joint->Type() != sdf::JointType::CONTINUOUS) {
         joint.limits.lower = LimitOrInfinity(axis.Lower(), false);
@@ -152,7 +129,7 @@ class SdfReader {
         throw InputError("the damping is negative; give a damping >= 0");
       }
       joint.damping = axis.Damping();
-      builder.AddMovingLink(info.child, info.parent, joint, InertiaIn(link, X_MJ));
+      builder.AddMovingLink(info.child, info.parent, joint, InertiaIn(info.child, F_L));
     } catch (const InputError& error) {
       const std::string message = error.what();
       if (message.rfind(source_, 0) == 0) throw;  // already placed
@@ -160,14 +137,23 @@ class SdfReader {
     }
   }
 
+  // A model's canonical link with no joint to the world: a free body at its pose.
+  void AddFreeBody(ModelBuilder&, const JointInfo& info, const Pose&) {
+    throw InputError(info.where + ": model '" + file_.models()[info.model].model->Name() +
+                     "' has no joint to the world (a free body), which this build does not "
+                     "simulate yet; give it a joint to the world or make it <static>");
+  }
+
   void SetTcpIfNamed(ModelBuilder& builder) const {
-    for (uint64_t k = 0; k < sdf_.LinkCount(); ++k) {
-      const std::string& name = sdf_.LinkByIndex(k)->Name();
-      std::string lower = name;
-      for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      if (lower == "tcp" || lower == "tool0") {
-        builder.SetTcp(name);
-        return;
+    for (const ur::SdfModelEntry& entry : file_.models()) {
+      for (uint64_t k = 0; k < entry.model->LinkCount(); ++k) {
+        const std::string& name = entry.model->LinkByIndex(k)->Name();
+        std::string lower = name;
+        for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (lower == "tcp" || lower == "tool0") {
+          builder.SetTcp(entry.prefix + name);
+          return;
+        }
       }
     }
   }
@@ -175,7 +161,7 @@ class SdfReader {
   LoopClosure LoopOf(const JointInfo& info) const {
     const Model& model = result_.model;
     LoopClosure loop;
-    loop.name = info.joint->Name();
+    loop.name = info.name;
     loop.where = info.where;
     switch (info.joint->Type()) {
       case sdf::JointType::PRISMATIC:
@@ -190,25 +176,24 @@ class SdfReader {
       default:
         loop.type = LoopJointType::kRevolute;
     }
-    const Pose X_MJ = JointFrame(info);
+    const Pose X_WJ = JointFrame(info);
     if (loop.type == LoopJointType::kRevolute || loop.type == LoopJointType::kPrismatic) {
-      loop.axis = AxisInJoint(info, X_MJ);
+      loop.axis = ur::SdfJointAxis(file_, info, ToIsometry(X_WJ));
     }
     // The joint frame in the body that carries each side's link.
     auto side = [&](const std::string& link, int* body, Pose* X_BJ) {
       const Frame& frame = model.frames[model.FindFrame(link)];
       *body = frame.body;
-      *X_BJ = frame.X_BF * frame_of_.at(link).Inverse() * X_MJ;
+      *X_BJ = frame.X_BF * frame_of_.at(link).Inverse() * X_WJ;
     };
     side(info.parent, &loop.body_a, &loop.X_AJ);
     side(info.child, &loop.body_b, &loop.X_BJ);
     return loop;
   }
 
-  const urdf_reading::SdfFile& file_;
-  const sdf::Model& sdf_;
+  const ur::SdfFile& file_;
   const std::string source_;
-  std::map<std::string, Pose> frame_of_;  // F_L: each link's frame in the Model, in the model frame
+  std::map<std::string, Pose> frame_of_;  // F_L: each link's frame in the Model, in the world
   SdfImport result_;
 };
 
@@ -216,9 +201,10 @@ class SdfReader {
 
 SdfImport ImportSdf(const std::string& text, const std::string& source,
                     const SdfImportOptions& options) {
-  const urdf_reading::SdfFile file(text, source, {.max_links = options.max_links});
+  const ur::SdfFile file(text, source,
+                         {.max_links = options.max_links, .includes = options.includes});
   SdfImport result = SdfReader(file).Read();
-  SdfMeshes meshes = MeshesOf(file.model());
+  SdfMeshes meshes = ur::MeshesOf(file);
   result.mesh_files = std::move(meshes.visual);
   for (std::string& uri : meshes.collision) {
     if (std::find(result.mesh_files.begin(), result.mesh_files.end(), uri) ==
@@ -234,7 +220,12 @@ SdfImport ImportSdfFile(const std::string& path, const SdfImportOptions& options
   if (!in) throw InputError(path + ": cannot read the file; check the path");
   std::ostringstream text;
   text << in.rdbuf();
-  return ImportSdf(text.str(), path, options);
+  SdfImportOptions local = options;
+  if (!local.includes) {
+    local.includes =
+        ur::SdfIncludePath{std::filesystem::path(path).parent_path(), ur::PackagePath({})};
+  }
+  return ImportSdf(text.str(), path, local);
 }
 
 }  // namespace mbstream

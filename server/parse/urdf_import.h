@@ -53,6 +53,10 @@ struct UrdfImportOptions {
   // Hold each joint with a <mimic> to its leader (a coupling in `loops`); off: the joint
   // moves freely, with a warning.
   bool couple_mimic = false;
+  // The root link moves freely: a free joint to the world named after the link (x y z qw qx
+  // qy qz, 6 velocities), the root's inertia its body's. A root link named "world" (whose
+  // floating joint already frees the base) is refused with it.
+  bool floating_base = false;
 };
 
 // Imports URDF XML `text`. `source` names the file in messages. `assets` are the mesh

@@ -15,6 +15,7 @@
 #include "server/parse/sdf_import.h"
 #include "urdf_reading/mesh_file_search.h"
 #include "urdf_reading/mesh_lookup.h"
+#include "urdf_reading/sdf_reading.h"
 #include "urdf_reading/urdf_outline.h"
 
 namespace mbstream {
@@ -103,9 +104,23 @@ std::string Joined(const std::vector<fs::path>& paths) {
   return text;
 }
 
-// The model file of a model folder: its one URDF, else its one SDFormat file.
+// Whether the SDFormat file at `path` holds a <world>.
+bool HoldsWorld(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str().find("<world") != std::string::npos;
+}
+
+// The model file of a model folder: its one URDF, else its one SDFormat file; a world's
+// folder (one .sdf holding a <world> directly in it) gives that world, whatever its models'
+// folders hold.
 fs::path UrdfOfFolder(const fs::path& dir) {
   std::vector<fs::path> urdfs = FilesWithExtension(dir, ".urdf");
+  if (const std::vector<fs::path> direct = FilesWithExtension(dir, ".sdf");
+      urdfs.empty() && direct.size() == 1 && HoldsWorld(direct[0])) {
+    return direct[0];
+  }
   if (urdfs.empty()) urdfs = FilesBelow(dir, ".urdf");
   if (urdfs.size() == 1) return urdfs[0];
   if (urdfs.empty()) {
@@ -221,6 +236,17 @@ BundleRead ReadModelBundle(const BundleFiles& files) {
   }
   if (IsXacro(urdf_path)) RefuseXacro(urdf_path);
   bundle.set_urdf(ReadTextFile(urdf_path));
+  if (DetectModelFormat(bundle.urdf()) == ModelFormat::kSdf &&
+      bundle.urdf().find("<include") != std::string::npos) {
+    // The server reads no file a model names: the included models go inside the world
+    // (found as urdf_reading/sdf_includes.h says; errors name the file and line here).
+    const urdf_reading::SdfFile world(
+        bundle.urdf(), urdf_path.string(),
+        {.includes = urdf_reading::SdfIncludePath{
+             urdf_path.parent_path().empty() ? fs::path(".") : urdf_path.parent_path(),
+             urdf_reading::PackagePath(files.package_paths)}});
+    bundle.set_urdf(world.ExpandedText());
+  }
   bundle.set_urdf_file_name(urdf_path.string());
   if (!scene_path.empty()) bundle.set_scene_script(ReadTextFile(scene_path));
 

@@ -11,8 +11,11 @@ namespace mbstream {
 
 struct BundleFiles {
   // A URDF or SDFormat file (told apart by content), or a folder: its one *.urdf (directly
-  // in it, else the one found below it), or without one its one *.sdf (likewise), and its
-  // one *.scene (directly in it), unless `scene_path` is given.
+  // in it, else the one found below it), or without one its one *.sdf (likewise; a world's
+  // folder: the one *.sdf holding a <world> directly in it), and its one *.scene (directly
+  // in it), unless `scene_path` is given. An SDFormat file's <include>s are read here
+  // (urdf_reading/sdf_includes.h: beside it, its ancestors, the package path) and sent
+  // written into it: the server reads no file a model names.
   std::string model_path;
   std::string scene_path;                // scene script (may be empty)
   std::vector<std::string> asset_paths;  // more files, each added under its file name

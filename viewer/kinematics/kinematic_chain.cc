@@ -9,6 +9,29 @@
 
 namespace mbstream::viewer {
 
+namespace {
+
+constexpr int kFreeValues = 7;
+constexpr const char* kFreeSuffix[kFreeValues] = {".x", ".y", ".z", ".qw", ".qx", ".qy", ".qz"};
+
+}  // namespace
+
+int ChainJointValues(ChainJointKind kind) {
+  switch (kind) {
+    case ChainJointKind::kFixed:
+      return 0;
+    case ChainJointKind::kFree:
+      return kFreeValues;
+    default:
+      return 1;
+  }
+}
+
+std::string FreeValueName(const std::string& joint, int value) {
+  MBSTREAM_CHECK(value >= 0 && value < kFreeValues);
+  return joint + kFreeSuffix[value];
+}
+
 KinematicChain::KinematicChain(Eigen::Isometry3d base_in_world, std::vector<ChainJoint> joints)
     : base_in_world_(base_in_world), joints_(std::move(joints)) {
   for (size_t i = 0; i < joints_.size(); ++i) {
@@ -17,36 +40,63 @@ KinematicChain::KinematicChain(Eigen::Isometry3d base_in_world, std::vector<Chai
       throw InputError("joint '" + joint.name + "' hangs from frame " +
                        std::to_string(joint.parent) + ", which is not an earlier frame");
     }
-    if (joint.kind != ChainJointKind::kFixed) {
+    if (joint.kind == ChainJointKind::kRevolute || joint.kind == ChainJointKind::kPrismatic) {
       const double norm = joint.axis.norm();
       if (!(norm > 1e-12)) {
         throw InputError("joint '" + joint.name + "' has a zero axis");
       }
       joint.axis /= norm;
-      value_of_joint_.push_back(static_cast<int>(dof_joints_.size()));
-      dof_joints_.push_back(static_cast<int>(i));
-    } else {
-      value_of_joint_.push_back(-1);
     }
+    const int values = ChainJointValues(joint.kind);
+    value_of_joint_.push_back(values == 0 ? -1 : static_cast<int>(dof_joints_.size()));
+    for (int v = 0; v < values; ++v) dof_joints_.push_back(static_cast<int>(i));
   }
 }
 
 void KinematicChain::OrderJointValuesBy(const std::vector<std::string>& names) {
-  std::map<std::string, int> joint_of_name;
-  for (int index : dof_joints_) joint_of_name[joints_[index].name] = index;
-  std::string missing, extra;
-  std::vector<int> order;
-  std::set<std::string> seen;
-  for (const std::string& name : names) {
-    const auto it = joint_of_name.find(name);
-    if (it == joint_of_name.end() || !seen.insert(name).second) {
-      extra += (extra.empty() ? "'" : ", '") + name + "'";
+  // Every joint value by name, and each free joint's seven by the joint's name.
+  std::map<std::string, std::vector<int>> values_of_name;  // values in the current order
+  std::map<std::string, std::string> joint_of_name;
+  for (size_t i = 0; i < joints_.size(); ++i) {
+    const ChainJoint& joint = joints_[i];
+    const int first = value_of_joint_[i];
+    if (first < 0) continue;
+    if (joint.kind == ChainJointKind::kFree) {
+      std::vector<int>& all = values_of_name[joint.name];
+      for (int v = 0; v < kFreeValues; ++v) {
+        values_of_name[FreeValueName(joint.name, v)] = {first + v};
+        joint_of_name[FreeValueName(joint.name, v)] = joint.name;
+        all.push_back(first + v);
+      }
     } else {
-      order.push_back(it->second);
+      values_of_name[joint.name] = {first};
+    }
+    joint_of_name[joint.name] = joint.name;
+  }
+  std::string missing, extra;
+  std::vector<int> order;  // the old value index of each new value
+  std::set<int> seen;
+  for (const std::string& name : names) {
+    const auto it = values_of_name.find(name);
+    bool fresh = it != values_of_name.end();
+    if (fresh) {
+      for (const int value : it->second) fresh = fresh && seen.count(value) == 0;
+    }
+    if (!fresh) {
+      extra += (extra.empty() ? "'" : ", '") + name + "'";
+      continue;
+    }
+    for (const int value : it->second) {
+      seen.insert(value);
+      order.push_back(value);
     }
   }
-  for (const auto& [name, index] : joint_of_name) {
-    if (seen.count(name) == 0) missing += (missing.empty() ? "'" : ", '") + name + "'";
+  std::set<std::string> missing_joints;
+  for (int value = 0; value < dof(); ++value) {
+    if (seen.count(value) == 0) missing_joints.insert(joints_[dof_joints_[value]].name);
+  }
+  for (const std::string& name : missing_joints) {
+    missing += (missing.empty() ? "'" : ", '") + name + "'";
   }
   if (!missing.empty() || !extra.empty()) {
     std::string message = "the joint names differ:";
@@ -55,10 +105,24 @@ void KinematicChain::OrderJointValuesBy(const std::vector<std::string>& names) {
     message.pop_back();
     throw InputError(message);
   }
-  dof_joints_ = std::move(order);
-  for (size_t value = 0; value < dof_joints_.size(); ++value) {
-    value_of_joint_[dof_joints_[value]] = static_cast<int>(value);
+  // A free joint's seven values stay together, in their order: the server names them so.
+  std::vector<int> new_of_old(dof());
+  for (size_t value = 0; value < order.size(); ++value) new_of_old[order[value]] = value;
+  std::vector<int> dof_joints(dof());
+  for (size_t i = 0; i < joints_.size(); ++i) {
+    const int first = value_of_joint_[i];
+    if (first < 0) continue;
+    const int values = ChainJointValues(joints_[i].kind);
+    for (int v = 1; v < values; ++v) {
+      if (new_of_old[first + v] != new_of_old[first] + v) {
+        throw InputError("the joint names differ: free joint '" + joints_[i].name +
+                         "' has its seven values apart or out of order in the model");
+      }
+    }
+    value_of_joint_[i] = new_of_old[first];
+    for (int v = 0; v < values; ++v) dof_joints[new_of_old[first] + v] = static_cast<int>(i);
   }
+  dof_joints_ = std::move(dof_joints);
 }
 
 void KinematicChain::Compute(std::span<const double> q, std::span<Eigen::Isometry3d> frames) const {
@@ -68,10 +132,20 @@ void KinematicChain::Compute(std::span<const double> q, std::span<Eigen::Isometr
   for (size_t i = 0; i < joints_.size(); ++i) {
     const ChainJoint& joint = joints_[i];
     Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+    const int v = value_of_joint_[i];
     if (joint.kind == ChainJointKind::kRevolute) {
-      motion.linear() = Eigen::AngleAxisd(q[value_of_joint_[i]], joint.axis).toRotationMatrix();
+      motion.linear() = Eigen::AngleAxisd(q[v], joint.axis).toRotationMatrix();
     } else if (joint.kind == ChainJointKind::kPrismatic) {
-      motion.translation() = joint.axis * q[value_of_joint_[i]];
+      motion.translation() = joint.axis * q[v];
+    } else if (joint.kind == ChainJointKind::kFree) {
+      Eigen::Quaterniond rotation(q[v + 3], q[v + 4], q[v + 5], q[v + 6]);
+      const double norm = rotation.norm();
+      if (norm > 1e-12)
+        rotation.coeffs() /= norm;
+      else
+        rotation = Eigen::Quaterniond::Identity();  // no rotation to show (a NaN-free pose)
+      motion.linear() = rotation.toRotationMatrix();
+      motion.translation() = Eigen::Vector3d(q[v], q[v + 1], q[v + 2]);
     }
     frames[i + 1] = frames[joint.parent] * joint.pre * motion * joint.post;
   }

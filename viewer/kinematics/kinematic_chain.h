@@ -2,7 +2,9 @@
 //
 // Frame 0 is the device base, placed in World; frame i+1 belongs to joint i and hangs from
 // frame `parent` (< i+1): frame = parent * pre * motion(q) * post, where motion is a
-// rotation about `axis` (revolute, q in rad) or a translation along it (prismatic, q in m).
+// rotation about `axis` (revolute, q in rad) or a translation along it (prismatic, q in m),
+// or for a free joint the pose its seven values give (x y z in m, then the unit quaternion
+// qw qx qy qz: motion = translation(x, y, z) * rotation(q), the quaternion normalised).
 // Fixed joints (URDF) take no joint value. Lengths are metres.
 #pragma once
 
@@ -14,7 +16,13 @@
 
 namespace mbstream::viewer {
 
-enum class ChainJointKind { kRevolute, kPrismatic, kFixed };
+enum class ChainJointKind { kRevolute, kPrismatic, kFixed, kFree };
+
+// The joint values a joint of `kind` takes: 1, 0 (fixed) or 7 (free).
+int ChainJointValues(ChainJointKind kind);
+
+// The names of a free joint's seven values: "NAME.x" ".y" ".z" ".qw" ".qx" ".qy" ".qz".
+std::string FreeValueName(const std::string& joint, int value);
 
 struct ChainJoint {
   std::string name;
@@ -32,16 +40,17 @@ class KinematicChain {
   KinematicChain(Eigen::Isometry3d base_in_world, std::vector<ChainJoint> joints);
 
   int frame_count() const { return static_cast<int>(joints_.size()) + 1; }
-  // Number of joint values (moving joints), in joint order.
+  // Number of joint values (one per revolute or prismatic joint, seven per free joint).
   int dof() const { return static_cast<int>(dof_joints_.size()); }
   const std::vector<ChainJoint>& joints() const { return joints_; }
-  // The joint of joint value `i`.
+  // The joint of joint value `i` (a free joint's for each of its seven).
   const ChainJoint& dof_joint(int i) const { return joints_[dof_joints_[i]]; }
   const Eigen::Isometry3d& base_in_world() const { return base_in_world_; }
 
-  // Reorders the joint values to follow `names` (the server's joint order). Throws
-  // InputError naming the joints that differ when `names` are not exactly the
-  // moving joints' names.
+  // Reorders the joint values to follow `names` (the server's joint order): a moving joint's
+  // name; for a free joint either its name (its seven values in their order) or its seven
+  // value names (FreeValueName). Throws InputError naming the joints that differ when
+  // `names` are not exactly the moving joints'.
   void OrderJointValuesBy(const std::vector<std::string>& names);
 
   // Every frame in World for joint values `q` (size dof(), SI). `frames` has frame_count()
@@ -52,7 +61,7 @@ class KinematicChain {
   Eigen::Isometry3d base_in_world_ = Eigen::Isometry3d::Identity();
   std::vector<ChainJoint> joints_;
   std::vector<int> dof_joints_;      // joint index of each joint value
-  std::vector<int> value_of_joint_;  // joint value of each joint, -1 for a fixed joint
+  std::vector<int> value_of_joint_;  // first joint value of each joint, -1 for a fixed joint
 };
 
 }  // namespace mbstream::viewer

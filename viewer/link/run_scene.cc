@@ -67,7 +67,7 @@ SceneDescription SceneFromBundle(const v1::ModelInfo& model, const v1::ModelBund
       const bool sdf =
           urdf_reading::DetectModelFormat(bundle.urdf()) == urdf_reading::ModelFormat::kSdf;
       scene = SceneFromModelText(bundle.urdf(), model.name() + (sdf ? ".sdf" : ".urdf"),
-                                 BundleMeshFinder(dir));
+                                 BundleMeshFinder(dir), bundle.floating_base());
     }
   }
   return scene;

@@ -12,13 +12,16 @@
 
 namespace mbstream::viewer {
 
-// SceneFromUrdf or SceneFromSdf of `text`; `source` names it in messages.
+// SceneFromUrdf or SceneFromSdf of `text` (a bundle's: an <include> is refused);
+// `source` names it in messages; `floating_base`: a URDF's root moves freely.
 SceneDescription SceneFromModelText(const std::string& text, const std::string& source,
-                                    const MeshFinder& find_mesh);
+                                    const MeshFinder& find_mesh, bool floating_base = false);
 
-// Reads the file at `path`; its meshes are found on disk as `mbstream submit` finds them
-// (DiskMeshFinder with `package_path`). Throws InputError for an unreadable file.
+// Reads the file at `path`; its meshes (and an SDFormat world's <include>s) are found on disk
+// as `mbstream submit` finds them (DiskMeshFinder with `package_path`). Throws InputError
+// for an unreadable file.
 SceneDescription SceneFromModelFile(const std::filesystem::path& path,
-                                    const std::vector<std::string>& package_path = {});
+                                    const std::vector<std::string>& package_path = {},
+                                    bool floating_base = false);
 
 }  // namespace mbstream::viewer

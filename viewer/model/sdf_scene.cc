@@ -28,6 +28,12 @@ ChainJointKind KindOf(const sdf::Joint& joint) {
   }
 }
 
+// A scoped name's last part: "tool0" of "irb1600::tool0".
+std::string LocalName(const std::string& name) {
+  const size_t scope = name.rfind(ur::kSdfScope);
+  return scope == std::string::npos ? name : name.substr(scope + 2);
+}
+
 bool IsTcpName(std::string name) {
   for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return name == "tcp" || name == "tool0";
@@ -74,61 +80,95 @@ VisualPart PartOf(const ur::SdfVisual& visual, int frame, const Eigen::Isometry3
   return part;
 }
 
+// The chain joint of a tree joint (a ball joint's last axis; SceneFromSdf adds the others).
+ChainJointKind KindOf(const ur::SdfJointOutline& outline) {
+  switch (outline.role) {
+    case ur::SdfJointRole::kFree:
+      return ChainJointKind::kFree;
+    case ur::SdfJointRole::kWeld:
+      return ChainJointKind::kFixed;
+    default:
+      return KindOf(*outline.joint);
+  }
+}
+
+bool IsBall(const ur::SdfJointOutline& outline) {
+  return outline.role == ur::SdfJointRole::kFile && outline.joint->Type() == sdf::JointType::BALL;
+}
+
+// A free joint's seven values holding its link at X_WL: x y z, qw qx qy qz.
+void AppendFreeValues(const Eigen::Isometry3d& X_WL, std::vector<double>* q) {
+  const Eigen::Quaterniond rotation(X_WL.linear());
+  const Eigen::Vector3d& p = X_WL.translation();
+  q->insert(q->end(),
+            {p.x(), p.y(), p.z(), rotation.w(), rotation.x(), rotation.y(), rotation.z()});
+}
+
 }  // namespace
 
 SceneDescription SceneFromSdf(const std::string& text, const std::string& source,
-                              const MeshFinder& find_mesh) {
-  const ur::SdfFile file(text, source);
+                              const MeshFinder& find_mesh,
+                              const std::optional<ur::SdfIncludePath>& includes) {
+  const ur::SdfFile file(text, source, {.includes = includes});
   const ur::SdfTree tree = ur::ChooseSdfTree(file);
   const std::vector<ur::SdfLinkFrame> frames = ur::SdfLinkFrames(file, tree);
 
   SceneDescription scene;
-  scene.title = file.model().Name();
+  scene.title = file.title();
   scene.joints_named_as_model = true;
+  scene.warnings = tree.warnings;
   std::map<std::string, int> frame_of{{ur::kSdfWorld, 0}};
-  std::map<std::string, Eigen::Isometry3d> X_ML{{ur::kSdfWorld, Eigen::Isometry3d::Identity()}};
+  std::map<std::string, Eigen::Isometry3d> X_WL{{ur::kSdfWorld, Eigen::Isometry3d::Identity()}};
   scene.frame_names.push_back(ur::kSdfWorld);
   std::vector<ChainJoint> joints;
   for (size_t k = 0; k < tree.tree.size(); ++k) {
     const ur::SdfJointOutline& outline = tree.joints[tree.tree[k]];
     const ur::SdfLinkFrame& frame = frames[k];
     ChainJoint joint;
-    joint.name = outline.joint->Name();
+    joint.name = outline.name;
     joint.parent = frame_of.at(outline.parent);
-    joint.pre = X_ML.at(outline.parent).inverse() * frame.X_ML;
-    joint.kind = KindOf(*outline.joint);
-    if (outline.joint->Type() == sdf::JointType::BALL) {
+    joint.kind = KindOf(outline);
+    // A free joint's values are its link's pose in the world (its parent), as the server's.
+    joint.pre = joint.kind == ChainJointKind::kFree
+                    ? Eigen::Isometry3d::Identity()
+                    : Eigen::Isometry3d(X_WL.at(outline.parent).inverse() * frame.X_WL);
+    if (IsBall(outline)) {
       // Three revolute joints through the centre, as the server's model (SdfBallAxisName).
       for (int axis = 0; axis < 2; ++axis) {
         ChainJoint inner = joint;
-        inner.name = ur::SdfBallAxisName(outline.joint->Name(), axis);
+        inner.name = ur::SdfBallAxisName(outline.name, axis);
         inner.axis = Eigen::Vector3d::Unit(axis);
         joints.push_back(std::move(inner));
         scene.frame_names.push_back(joints.back().name);
         joint.parent = static_cast<int>(joints.size());
         joint.pre = Eigen::Isometry3d::Identity();
       }
-      joint.name = ur::SdfBallAxisName(outline.joint->Name(), 2);
+      joint.name = ur::SdfBallAxisName(outline.name, 2);
       joint.axis = Eigen::Vector3d::UnitZ();
+    } else if (joint.kind == ChainJointKind::kRevolute ||
+               joint.kind == ChainJointKind::kPrismatic) {
+      joint.axis = ur::SdfJointAxis(file, outline, frame.X_WL);
     }
-    if (joint.kind != ChainJointKind::kFixed && outline.joint->Type() != sdf::JointType::BALL) {
-      joint.axis = ur::SdfJointAxis(file, outline, frame.X_ML);
+    if (joint.kind == ChainJointKind::kFree) {
+      AppendFreeValues(frame.X_WL, &scene.initial_q);
+    } else if (joint.kind != ChainJointKind::kFixed) {
+      scene.initial_q.insert(scene.initial_q.end(), IsBall(outline) ? 3 : 1, 0.0);
     }
     joints.push_back(std::move(joint));
     frame_of[frame.link] = static_cast<int>(joints.size());
-    X_ML[frame.link] = frame.X_ML;
+    X_WL[frame.link] = frame.X_WL;
     scene.frame_names.push_back(frame.link);
   }
   scene.chain = KinematicChain(Eigen::Isometry3d::Identity(), std::move(joints));
-  scene.initial_q.assign(scene.chain.dof(), 0.0);
+  MBSTREAM_CHECK(static_cast<int>(scene.initial_q.size()) == scene.chain.dof());
 
   for (const ur::SdfVisual& visual : ur::SdfVisuals(file, &scene.warnings)) {
-    const Eigen::Isometry3d X_LV = X_ML.at(visual.link).inverse() * visual.X_MV;
+    const Eigen::Isometry3d X_LV = X_WL.at(visual.link).inverse() * visual.X_WV;
     scene.visuals.push_back(
         PartOf(visual, frame_of.at(visual.link), X_LV, find_mesh, &scene.warnings));
   }
   for (const std::string& name : scene.frame_names) {
-    if (!IsTcpName(name)) continue;
+    if (!IsTcpName(LocalName(name))) continue;
     ProbePoint probe;
     probe.name = "tcp";
     probe.frame = frame_of.at(name);

@@ -41,10 +41,20 @@ VisualPart BoxPart(const std::string& name, int frame, const Eigen::Vector3d& si
   return part;
 }
 
+// A free joint's seven values holding its link at X_PL: x y z, qw qx qy qz.
+void AppendFreeValues(const Eigen::Isometry3d& X_PL, std::vector<double>* q) {
+  const Eigen::Quaterniond rotation(X_PL.linear());
+  const Eigen::Vector3d& p = X_PL.translation();
+  q->insert(q->end(),
+            {p.x(), p.y(), p.z(), rotation.w(), rotation.x(), rotation.y(), rotation.z()});
+}
+
+constexpr char kWorld[] = "world";
+
 class UrdfSceneBuilder {
  public:
-  UrdfSceneBuilder(const std::string& source, MeshFinder find_mesh)
-      : source_(source), find_mesh_(std::move(find_mesh)) {}
+  UrdfSceneBuilder(const std::string& source, MeshFinder find_mesh, bool floating_base)
+      : source_(source), find_mesh_(std::move(find_mesh)), floating_base_(floating_base) {}
 
   SceneDescription Build(const std::string& text) {
     std::string error;
@@ -62,7 +72,23 @@ class UrdfSceneBuilder {
     scene.title = model->getName();
     scene.joints_named_as_model = true;
     const std::string root = model->getRoot()->name;
-    frame_of_link_[root] = 0;
+    scene_root_ = root;
+    std::vector<ChainJoint> joints;
+    if (floating_base_) {
+      // The root moves freely in the world (frame 0): a free joint named after it.
+      if (root == kWorld) {
+        Fail(
+            "--floating-base: the root link is 'world' already; its 'floating' joint frees "
+            "the base: drop --floating-base");
+      }
+      scene.frame_names.push_back(kWorld);
+      ChainJoint free;
+      free.name = root;
+      free.kind = ChainJointKind::kFree;
+      joints.push_back(free);
+      AppendFreeValues(Eigen::Isometry3d::Identity(), &scene.initial_q);
+    }
+    frame_of_link_[root] = static_cast<int>(joints.size());
     scene.frame_names.push_back(root);
 
     const urdf_reading::JointOrder order = urdf_reading::OrderJoints(*model, outline->joint_order);
@@ -71,14 +97,20 @@ class UrdfSceneBuilder {
            order.unplaced.front()->parent_link_name + "' is not connected to the root link '" +
            root + "'; the joints form a loop: remove a joint to open it");
     }
-    std::vector<ChainJoint> joints;
     for (const urdf::JointConstSharedPtr& joint : order.ordered) {
       joints.push_back(ChainJointOf(*joint, frame_of_link_.at(joint->parent_link_name)));
+      if (joints.back().kind == ChainJointKind::kFree) {
+        // Its values are the child's pose in the root (the world), as the server's.
+        AppendFreeValues(ToIsometry(joint->parent_to_joint_origin_transform), &scene.initial_q);
+        joints.back().pre = Eigen::Isometry3d::Identity();
+      } else if (joints.back().kind != ChainJointKind::kFixed) {
+        scene.initial_q.push_back(0.0);
+      }
       frame_of_link_[joint->child_link_name] = static_cast<int>(joints.size());
       scene.frame_names.push_back(joint->child_link_name);
     }
     scene.chain = KinematicChain(Eigen::Isometry3d::Identity(), std::move(joints));
-    scene.initial_q.assign(scene.chain.dof(), 0.0);
+    MBSTREAM_CHECK(static_cast<int>(scene.initial_q.size()) == scene.chain.dof());
 
     for (const std::string& name : scene.frame_names) {
       const urdf::LinkConstSharedPtr link = model->getLink(name);
@@ -93,7 +125,7 @@ class UrdfSceneBuilder {
       probe.name = "tcp";
       probe.frame = frame_of_link_.at(tcp);
       probe.refer = 0;
-      probe.refer_name = root;
+      probe.refer_name = scene.frame_names[0];
       scene.probes.push_back(probe);
     }
     return scene;
@@ -121,10 +153,16 @@ class UrdfSceneBuilder {
       case urdf::Joint::FIXED:
         chain_joint.kind = ChainJointKind::kFixed;
         break;
+      case urdf::Joint::FLOATING:
+        if (parent != 0) {
+          Fail("joint '" + joint.name + "': a floating joint's parent must be the root link '" +
+               scene_root_ + "' (the world); make it fixed, revolute or prismatic");
+        }
+        chain_joint.kind = ChainJointKind::kFree;
+        return chain_joint;
       default:
         Fail("joint '" + joint.name +
-             "': floating and planar joints are not supported; make it fixed, revolute or "
-             "prismatic");
+             "': planar joints are not supported; make it fixed, revolute or prismatic");
     }
     if (chain_joint.kind != ChainJointKind::kFixed && !(chain_joint.axis.norm() > 1e-12)) {
       Fail("joint '" + joint.name + "': the axis is zero; give e.g. <axis xyz=\"0 0 1\"/>");
@@ -206,6 +244,8 @@ class UrdfSceneBuilder {
 
   std::string source_;
   MeshFinder find_mesh_;
+  bool floating_base_ = false;
+  std::string scene_root_;  // the URDF's root link
   const urdf_reading::UrdfOutline* outline_ = nullptr;
   std::map<std::string, int> frame_of_link_;
 };
@@ -218,8 +258,8 @@ SceneDescription SceneFromUrdf(const std::string& text, const std::string& sourc
 }
 
 SceneDescription SceneFromUrdf(const std::string& text, const std::string& source,
-                               const MeshFinder& find_mesh) {
-  return UrdfSceneBuilder(source, find_mesh).Build(text);
+                               const MeshFinder& find_mesh, bool floating_base) {
+  return UrdfSceneBuilder(source, find_mesh, floating_base).Build(text);
 }
 
 SceneDescription SceneFromUrdfFile(const std::filesystem::path& path,

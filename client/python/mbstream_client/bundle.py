@@ -1,10 +1,12 @@
 """Model bundles from files, like the C++ CLI's ReadModelBundle
 (server/wire/model_bundle_files.cc)."""
+import copy
 import os
 import posixpath
 import re
 import urllib.parse
-from typing import Iterable, Optional, Union
+import xml.etree.ElementTree as ET
+from typing import Iterable, List, Optional, Sequence, Union
 
 from ._stubs import model_pb2
 from .errors import bad_request
@@ -106,15 +108,138 @@ def _add_referenced(bundle: "model_pb2.ModelBundle", name: str, path: str) -> No
             break
 
 
+def _package_folders(package_path: Sequence[str], name: str) -> List[str]:
+    """The folders below the package path entries (6 levels at most, in order) named `name`
+    or whose package.xml names it, as the C++ urdf_reading::PackageFolders finds them."""
+    found = []
+    for root in package_path:
+        if not os.path.isdir(root):
+            continue
+        for folder, dirs, _ in os.walk(root):
+            dirs[:] = sorted(d for d in dirs if not d.startswith("."))
+            if folder[len(root):].count(os.sep) >= 6:
+                dirs[:] = []
+            xml = os.path.join(folder, "package.xml")
+            named = False
+            if os.path.isfile(xml):
+                match = re.search(r"<name>\s*([^<\s]+)\s*</name>", _read(xml).decode("utf-8",
+                                                                                    "replace"))
+                named = bool(match and match.group(1) == name)
+            if named or os.path.basename(folder) == name:
+                found.append(folder)
+    return found
+
+
+def _include_file(uri: str, directory: str, package_path: Sequence[str]):
+    """The model file an <include><uri> names, as the C++ FindSdfInclude finds it
+    (urdf_reading/sdf_includes.h), and every place tried."""
+    tried: List[str] = []
+
+    def attempt(candidate: str) -> bool:
+        candidate = os.path.normpath(candidate)
+        if candidate not in tried:
+            tried.append(candidate)
+        return os.path.exists(candidate)
+
+    if uri.startswith("file://"):
+        return (uri[7:] if attempt(uri[7:]) else None), tried
+    if not uri.startswith("model://"):
+        candidate = uri if os.path.isabs(uri) else os.path.join(directory, uri)
+        return (candidate if attempt(candidate) else None), tried
+    name, _, rest = uri[len("model://"):].partition("/")
+    folders = _package_folders(package_path, name)
+    folder = os.path.abspath(directory)
+    while True:
+        folders.append(os.path.join(folder, name))
+        if os.path.dirname(folder) == folder:
+            break
+        folder = os.path.dirname(folder)
+    for folder in folders:
+        if rest:
+            if attempt(os.path.join(folder, rest)):
+                return os.path.join(folder, rest), tried
+            continue
+        config = os.path.join(folder, "model.config")
+        if attempt(config):
+            sdf = ET.fromstring(_text(config)).findtext("sdf")
+            return os.path.join(folder, (sdf or "model.sdf").strip()), tried
+        if attempt(os.path.join(folder, "model.sdf")):
+            return os.path.join(folder, "model.sdf"), tried
+    return None, tried
+
+
+def _line_of(text: str, needle: str) -> int:
+    at = text.find(needle)
+    return text.count("\n", 0, at) + 1 if at >= 0 else 0
+
+
+def _expand_includes(element: ET.Element, text: str, source: str,
+                     package_path: Sequence[str]) -> None:
+    """Replaces each <include> below `element` by the <model> it names, with the include's
+    <name>, <pose> and <static> (as libsdformat reads it, and as `mbstream submit` sends a
+    world: the server reads no file a model names)."""
+    for parent in list(element.iter()):
+        for index, child in enumerate(list(parent)):
+            if child.tag != "include":
+                continue
+            uri = (child.findtext("uri") or "").strip()
+            where = "%s:%d" % (source, _line_of(text, uri)) if uri else source
+            if child.find("placement_frame") is not None:
+                raise bad_request("%s: <include> of '%s': <placement_frame> is not read by "
+                                  "this client; give the <pose> of the model frame" % (where, uri))
+            found, tried = _include_file(uri, os.path.dirname(source) or ".", package_path)
+            if found is None or not os.path.isfile(found):
+                raise bad_request(
+                    "%s: <include> of '%s': not found; tried %s; give package_path=[DIR] (a "
+                    "folder holding the model's folder, with its model.config or model.sdf) "
+                    "or set MBSTREAM_PACKAGE_PATH" % (where, uri, ", ".join(tried)))
+            included_text = _text(found)
+            model = ET.fromstring(included_text).find("model")
+            if model is None:
+                raise bad_request("%s: <include> of '%s': %s holds no <model>; include a "
+                                  "model" % (where, uri, found))
+            model = copy.deepcopy(model)
+            _expand_includes(model, included_text, found, package_path)
+            if child.findtext("name"):
+                model.set("name", child.findtext("name").strip())
+            for tag in ("pose", "static"):
+                given = child.find(tag)
+                if given is None:
+                    continue
+                for old in model.findall(tag):
+                    model.remove(old)
+                model.insert(0, copy.deepcopy(given))
+            parent.remove(child)
+            parent.insert(index, model)
+
+
+def expand_sdf_includes(text: str, source: str,
+                        package_path: Iterable[PathLike] = ()) -> str:
+    """SDFormat `text` (read from `source`) with each <include> replaced by the model it
+    names (found beside `source`, its ancestors and in `package_path`, then
+    $MBSTREAM_PACKAGE_PATH); the text unchanged when it has none."""
+    if "<include" not in text:
+        return text
+    paths = [os.fspath(p) for p in package_path]
+    paths += [p for p in os.environ.get("MBSTREAM_PACKAGE_PATH", "").split(":") if p]
+    root = ET.fromstring(text)
+    _expand_includes(root, text, source, paths)
+    return '<?xml version="1.0"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
+
+
 def read_model_bundle(urdf_path_or_dir: PathLike, scene: Optional[PathLike] = None,
                       assets: Iterable[PathLike] = (),
-                      name: Optional[str] = None) -> "model_pb2.ModelBundle":
+                      name: Optional[str] = None,
+                      package_path: Iterable[PathLike] = ()) -> "model_pb2.ModelBundle":
     """A ModelBundle from a URDF or SDFormat file (the server tells them apart by content),
     or from a directory holding exactly one .urdf, or else exactly one .sdf (then its one
     .scene, unless `scene` is given, and every mesh file below it (.stl, .obj, .dae, .gltf,
     .glb), named by their path relative to the directory, with the files those name beside
     them: an OBJ's .mtl and its images, a Collada's or glTF's images and buffers, as
-    `mbstream submit` attaches them). `assets` are more files, named by their file name."""
+    `mbstream submit` attaches them). `assets` are more files, named by their file name. An
+    SDFormat world's <include>s are read here and sent written into it (the server reads no
+    file a model names): model://NAME is a folder NAME beside the file or an ancestor, or in
+    `package_path` and $MBSTREAM_PACKAGE_PATH (docs/worlds.md)."""
     path = os.fspath(urdf_path_or_dir)
     bundle = model_pb2.ModelBundle(name=name or "")
     urdf_path = path
@@ -140,6 +265,11 @@ def read_model_bundle(urdf_path_or_dir: PathLike, scene: Optional[PathLike] = No
                 _add_asset(bundle, name_in_bundle, mesh)
                 _add_referenced(bundle, name_in_bundle, mesh)
     bundle.urdf = _text(urdf_path)
+    if re.search(r"<sdf[\s>]", bundle.urdf):
+        try:
+            bundle.urdf = expand_sdf_includes(bundle.urdf, urdf_path, package_path)
+        except ET.ParseError as error:
+            raise bad_request("%s: %s; fix the XML" % (urdf_path, error)) from None
     bundle.urdf_file_name = urdf_path
     if scene:
         bundle.scene_script = _text(os.fspath(scene))

@@ -64,7 +64,9 @@ class Client:
 
     def submit(self, urdf_path_or_dir: PathLike, scene: Optional[PathLike] = None,
                assets: Iterable[PathLike] = (), name: Optional[str] = None,
-               repair: bool = False, couple_mimic: bool = False) -> model_pb2.ModelInfo:
+               repair: bool = False, couple_mimic: bool = False,
+               floating_base: bool = False,
+               package_path: Iterable[PathLike] = ()) -> model_pb2.ModelInfo:
         """Submits a model: a URDF or SDFormat file (an SDFormat mechanism may close loops),
         or a directory with one .urdf or one .sdf (and its .scene and STL files; see
         read_model_bundle). Returns the server's ModelInfo (id "m-...": the
@@ -72,10 +74,14 @@ class Client:
         with the importer's messages. With repair=True the server repairs the defects
         published URDFs commonly carry, each listed in the ModelInfo's warnings. With
         couple_mimic=True each URDF joint with a <mimic> follows its leader (a closed-loop
-        equation); without, it moves freely and a warning says so."""
-        bundle = read_model_bundle(urdf_path_or_dir, scene, assets, name)
+        equation); without, it moves freely and a warning says so. With floating_base=True a
+        URDF's root link moves freely (a free joint named after it). An SDFormat world's
+        <include>s are found beside it and in `package_path` and sent written into it
+        (docs/worlds.md)."""
+        bundle = read_model_bundle(urdf_path_or_dir, scene, assets, name, package_path)
         bundle.repair = repair
         bundle.couple_mimic = couple_mimic
+        bundle.floating_base = floating_base
         return self.submit_bundle(bundle)
 
     def submit_bundle(self, bundle: model_pb2.ModelBundle) -> model_pb2.ModelInfo:

@@ -122,7 +122,9 @@ TEST(SdfImportTest, TheXmlShapeAndTheLinkLimitAreCheckedBeforeTheParse) {
     const std::string include = "<sdf version=\"1.7\">\n<model name=\"m\"><link name=\"a\"/>\n" +
                                 std::string("<include><uri>") + uri + "</uri></include>\n" +
                                 "</model></sdf>\n";
-    EXPECT_EQ(message(include).rfind("m.sdf:3: <include> is not read by mbstream", 0), 0u)
+    EXPECT_EQ(message(include).rfind(
+                  "m.sdf:3: <include> is not read by mbstream: the server reads no file", 0),
+              0u)
         << message(include);
   }
   const std::string utf16("\xff\xfe<\0s\0d\0f\0", 10);
