@@ -13,8 +13,8 @@
 namespace mbstream::urdf_reading {
 
 struct SdfIncludePath {
-  std::filesystem::path file_dir;                   // the including file's folder
-  std::vector<std::filesystem::path> package_path;  // --package-path, $MBSTREAM_PACKAGE_PATH
+  std::filesystem::path file_dir;                        // the including file's folder
+  std::vector<std::filesystem::path> package_path = {};  // --package-path, $MBSTREAM_PACKAGE_PATH
 };
 
 struct SdfIncludeSearch {

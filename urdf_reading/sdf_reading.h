@@ -33,7 +33,7 @@ struct SdfLoadOptions {
   // Where an <include>'s <uri> is found (a reading on the user's machine: `mbstream submit`,
   // `simulate`, the viewer's --model). Without it an <include> is refused: the server reads
   // no file a model names (`mbstream submit` sends the included models inside the world).
-  std::optional<SdfIncludePath> includes;
+  std::optional<SdfIncludePath> includes = std::nullopt;
 };
 
 // One model of the file, in document order (a nested model after the one holding it).

@@ -54,7 +54,7 @@ struct SdfImportOptions {
   // Most <link> elements (--max-links); 0: no limit. Over it: LimitError, before any parse.
   int max_links = 0;
   // Where <include>s are found (a reading on the user's machine); none: refused.
-  std::optional<urdf_reading::SdfIncludePath> includes;
+  std::optional<urdf_reading::SdfIncludePath> includes = std::nullopt;
 };
 
 // Imports SDFormat XML `text`; `source` names the file in messages. Before libsdformat

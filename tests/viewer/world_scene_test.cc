@@ -75,7 +75,7 @@ TEST(WorldScene, TheServersNamesOrderTheValuesAFreeJointByNameOrByItsSevenValues
   EXPECT_EQ(by_joint.chain.dof_joint(21).name, "irb1600::joint6");
   SceneDescription by_value = SceneFromModelFile(kWorld);
   std::vector<std::string> values(kJoints.begin(), kJoints.begin() + 6);
-  for (const std::string& box : {"box_a::link", "box_b::link", "box_c::link"}) {
+  for (const char* box : {"box_a::link", "box_b::link", "box_c::link"}) {
     for (const char* suffix : {".x", ".y", ".z", ".qw", ".qx", ".qy", ".qz"}) {
       values.push_back(box + std::string(suffix));
     }

@@ -1,7 +1,7 @@
 // SDFormat worlds (issue 43, docs/worlds.md): several models inline and through <include> of
 // model://, each at its <pose>; static models welded where they stand; names scoped
-// MODEL::NAME; an include that is not found named with its file, line and the places tried;
-// the server's reading refuses every include.
+// MODEL::NAME; an include that is not found named with its file, the line of its <uri> and
+// the places tried; the server's reading refuses every include.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -144,7 +144,7 @@ TEST_F(SdfIncludeTest, AnIncludeNotFoundIsNamedWithItsLineAndThePlacesTried) {
     ADD_FAILURE() << "imported";
   } catch (const InputError& error) {
     const std::string message = error.what();
-    EXPECT_EQ(message.rfind((dir_ / "models/world.sdf").string() + ":5: <include> of "
+    EXPECT_EQ(message.rfind((dir_ / "models/world.sdf").string() + ":6: <include> of "
                                                                    "'model://no_such_model': "
                                                                    "not found; tried ",
                             0),
