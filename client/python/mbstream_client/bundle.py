@@ -200,8 +200,9 @@ def _expand_includes(element: ET.Element, text: str, source: str,
                                   "model" % (where, uri, found))
             model = copy.deepcopy(model)
             _expand_includes(model, included_text, found, package_path)
-            if child.findtext("name"):
-                model.set("name", child.findtext("name").strip())
+            include_name = (child.findtext("name") or "").strip()
+            if include_name:
+                model.set("name", include_name)
             for tag in ("pose", "static"):
                 given = child.find(tag)
                 if given is None:
