@@ -103,6 +103,41 @@ TEST(WorldScene, TheServersNamesOrderTheValuesAFreeJointByNameOrByItsSevenValues
   }
 }
 
+// A URDF's free base, as the server reads it: a 'floating' joint from the world (its child's
+// pose the joint's seven values, starting at its <origin>), or --floating-base (the root
+// moved by a free joint named after it, frame 0 the world).
+TEST(WorldScene, AUrdfsFloatingJointAndFloatingBaseAreFreeJoints) {
+  const std::string trunk =
+      "  <link name=\"trunk\"><visual><geometry><box size=\"0.4 0.2 0.1\"/></geometry></visual>"
+      "</link>\n  <link name=\"leg\"/>\n"
+      "  <joint name=\"hip\" type=\"revolute\"><parent link=\"trunk\"/><child link=\"leg\"/>"
+      "<axis xyz=\"0 1 0\"/></joint>\n</robot>\n";
+  const MeshFinder none = [](const std::string&) { return std::filesystem::path(); };
+  const SceneDescription floating = SceneFromModelText(
+      "<robot name=\"walker\">\n  <link name=\"world\"/>\n"
+      "  <joint name=\"base_free\" type=\"floating\"><parent link=\"world\"/>"
+      "<child link=\"trunk\"/><origin xyz=\"0 0 1\" rpy=\"0 0 1.5707963267948966\"/></joint>\n" +
+          trunk,
+      "walker.urdf", none);
+  ASSERT_EQ(floating.chain.dof(), 7 + 1);
+  EXPECT_EQ(floating.chain.dof_joint(0).kind, ChainJointKind::kFree);
+  EXPECT_EQ(floating.chain.dof_joint(0).name, "base_free");
+  const std::vector<double> start = {0, 0, 1, std::sqrt(0.5), 0, 0, std::sqrt(0.5), 0};
+  for (int k = 0; k < 8; ++k) EXPECT_NEAR(floating.initial_q[k], start[k], 1e-12) << k;
+  std::vector<Eigen::Isometry3d> frames(floating.chain.frame_count());
+  floating.chain.Compute(floating.initial_q, frames);
+  EXPECT_LT((frames[1].translation() - Vector3d(0, 0, 1)).norm(), 1e-12);
+  EXPECT_LT((frames[1].linear() * Vector3d::UnitX() - Vector3d::UnitY()).norm(), 1e-12);
+
+  const SceneDescription base =
+      SceneFromModelText("<robot name=\"walker\">\n" + trunk, "walker.urdf", none, true);
+  EXPECT_EQ(base.frame_names[0], "world");
+  EXPECT_EQ(base.frame_names[1], "trunk");
+  EXPECT_EQ(base.chain.dof_joint(0).name, "trunk");
+  EXPECT_EQ(base.chain.dof(), 7 + 1);
+  EXPECT_EQ(base.visuals.at(0).frame, 1);  // the trunk's box moves with it
+}
+
 SceneOptions Offscreen() {
   SceneOptions options;
   options.width = 640;

@@ -20,6 +20,7 @@ struct PoseOptions {
   std::string scene_file;  // a scene script, or empty
   std::string model_file;  // a URDF or SDFormat file (--model, alias --urdf), or empty
   std::vector<std::string> package_paths;  // --package-path: where package:// meshes are
+  bool floating_base = false;              // --floating-base: a URDF's root moves freely
   std::vector<std::string> asset_dirs;
   std::optional<std::string> pose;  // "Q1,Q2,...", degrees or mm
   bool offscreen = false;
@@ -42,6 +43,7 @@ struct LinkCommandOptions {
   // .mtl files and textures, which a bundle does not carry) instead of the run's bundle.
   std::string model_file;
   std::vector<std::string> package_paths;
+  bool floating_base = false;
   std::vector<std::string> asset_dirs;
   std::string listen;         // the Viewer control service; empty = none
   WebOptions web;             // --web HOST:PORT (address empty = none), --web-root, --web-max-pages

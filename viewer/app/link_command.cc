@@ -172,7 +172,7 @@ int RunLink(const LinkCommandOptions& options) {
       std::filesystem::temp_directory_path() / ("mbstream-viewer-" + std::to_string(getpid()));
   if (!options.scene_file.empty() || !options.model_file.empty()) {
     scenes.override_scene = LoadScene(options.scene_file, options.model_file, options.asset_dirs,
-                                      options.package_paths);
+                                      options.package_paths, options.floating_base);
     if (!scenes.override_scene) return 1;
   }
   SceneOptions scene_options;

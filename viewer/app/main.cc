@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
     link.scene_file = pose.scene_file;
     link.model_file = pose.model_file;
     link.package_paths = pose.package_paths;
+    link.floating_base = pose.floating_base;
     link.asset_dirs = flags.asset_dirs;
     link.offscreen = pose.offscreen;
     link.width = pose.width;

@@ -25,7 +25,8 @@ bool HasDisplay() {
 
 int RunPose(const PoseOptions& options) {
   std::optional<SceneDescription> description =
-      LoadScene(options.scene_file, options.model_file, options.asset_dirs, options.package_paths);
+      LoadScene(options.scene_file, options.model_file, options.asset_dirs, options.package_paths,
+                options.floating_base);
   if (!description) return 1;
   std::vector<double> q_si = description->initial_q;
   if (options.pose) {

@@ -33,7 +33,8 @@ ss::Translation TranslateForCommandLine(const std::string& file,
 std::optional<SceneDescription> LoadScene(const std::string& scene_file,
                                           const std::string& model_file,
                                           const std::vector<std::string>& asset_dirs,
-                                          const std::vector<std::string>& package_path) {
+                                          const std::vector<std::string>& package_path,
+                                          bool floating_base) {
   if (!scene_file.empty()) {
     const ss::Translation translation = TranslateForCommandLine(scene_file, asset_dirs);
     if (!translation.ok()) {
@@ -44,7 +45,7 @@ std::optional<SceneDescription> LoadScene(const std::string& scene_file,
     return SceneFromScript(translation.script);
   }
   try {
-    SceneDescription scene = SceneFromModelFile(model_file, package_path);
+    SceneDescription scene = SceneFromModelFile(model_file, package_path, floating_base);
     for (const std::string& warning : scene.warnings) spdlog::warn("{}", warning);
     return scene;
   } catch (const std::exception& e) {

@@ -21,7 +21,8 @@ scene_script::Translation TranslateForCommandLine(const std::string& file,
 std::optional<SceneDescription> LoadScene(const std::string& scene_file,
                                           const std::string& model_file,
                                           const std::vector<std::string>& asset_dirs,
-                                          const std::vector<std::string>& package_path = {});
+                                          const std::vector<std::string>& package_path = {},
+                                          bool floating_base = false);
 
 // "0,30,-45.5" -> values; nullopt after printing what is wrong.
 std::optional<std::vector<double>> ParsePose(const std::string& text);

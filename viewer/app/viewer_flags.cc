@@ -48,6 +48,10 @@ void AddLocalFlags(CLI::App& app, ViewerFlags& flags, Related& o) {
                  "file's ancestors)")
       ->check(CLI::ExistingDirectory)
       ->needs(o.model);
+  app.add_flag("--floating-base", flags.pose.floating_base,
+               "With --model: a URDF's root link moves freely (a free joint named after it), "
+               "as mbstream submit --floating-base")
+      ->needs(o.model);
   o.pose = app.add_option("--pose", flags.pose.pose,
                           "Joint values Q1,Q2,... in degrees (revolute) or mm "
                           "(prismatic), like the script's Initial");

@@ -151,6 +151,25 @@ class ErrorTest(unittest.TestCase):
             self.assertEqual([a.name for a in bundle.assets],
                              ["meshes/cube.obj", "meshes/cube.mtl", "textures/skin.png"])
 
+    def test_a_worlds_folder_is_sent_with_its_included_models_written_into_it(self):
+        # issue 43: the server reads no file a model names; the client reads the includes.
+        world = os.path.join(REPO, "models", "worlds", "irb1600_table")
+        bundle = mb.read_model_bundle(world)
+        self.assertTrue(bundle.urdf_file_name.endswith("world.sdf"))
+        self.assertNotIn("<include", bundle.urdf)
+        names = re.findall(r'<model name="([^"]+)"', bundle.urdf)
+        self.assertEqual(names, ["irb1600", "table", "box_a", "box_b", "box_c"])
+        self.assertIn("<pose>1.1 0.1 1.0 0 0 0.5</pose>", bundle.urdf)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "w.sdf")
+            with open(path, "w") as f:
+                f.write('<sdf version="1.8"><world name="w">\n'
+                        '<include><uri>model://nowhere</uri></include></world></sdf>\n')
+            with self.assertRaises(mb.BadRequest) as caught:
+                mb.read_model_bundle(path)
+            self.assertIn(path + ":2: <include> of 'model://nowhere': not found; tried " +
+                          os.path.join(tmp, "nowhere", "model.config"), caught.exception.message)
+
     def test_hostile_inputs_are_named_before_any_call(self):
         # issue 36: a URDF that is not UTF-8 is named by file and line, not UnicodeDecodeError.
         with tempfile.TemporaryDirectory() as tmp:
