@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <ctime>
 
+#include "server/parse/import_cancel.h"
+
 namespace mbstream {
 
 sigset_t BlockStopSignals() {
@@ -62,6 +64,9 @@ void ServeUntilSignalled(ServerHost& host, const sigset_t& signals, StopWatchdog
     int signal = 0;
     sigwait(&signals, &signal);
     spdlog::info("signal {} received", signal == SIGINT ? "SIGINT" : "SIGTERM");
+    // A model being imported is abandoned at its next check (import_cancel.h): its call
+    // answers UNAVAILABLE and nothing of it is stored, so the shutdown need not wait for it.
+    CancelAllImports();
     // A stop is at once: a handler that outlives gRPC's 2 s shutdown deadline (a request
     // still being served) must not hold the process, and a second signal ends it now, during
     // a drain's grace period too. The store stays consistent (SQLite's journal, PostgreSQL's

@@ -1,7 +1,8 @@
 // How mbstream-server stops: SIGTERM drains (its runs get --grace-s to end), SIGINT stops
-// at once (runs INTERRUPTED); a second signal (during a drain too), or 5 s after the
-// shutdown began (after the drain's grace period), exits without waiting for requests still
-// being served.
+// at once (runs INTERRUPTED); either cancels every model import (CancelAllImports,
+// server/parse/import_cancel.h), so a submit mid-parse does not hold the shutdown. A second
+// signal (during a drain too), or 5 s after the shutdown began (after the drain's grace
+// period), exits without waiting for requests still being served.
 #pragma once
 
 #include <pthread.h>

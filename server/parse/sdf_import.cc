@@ -13,6 +13,7 @@
 
 #include "common/check.h"
 #include "server/model/model_builder.h"
+#include "server/parse/import_cancel.h"
 #include "urdf_reading/mesh_file_search.h"
 #include "urdf_reading/sdf_reading.h"
 
@@ -203,6 +204,7 @@ SdfImport ImportSdf(const std::string& text, const std::string& source,
                     const SdfImportOptions& options) {
   const ur::SdfFile file(text, source,
                          {.max_links = options.max_links, .includes = options.includes});
+  ThrowIfImportCancelled();  // libsdformat's parse cannot be stopped inside (import_cancel.h)
   SdfImport result = SdfReader(file).Read();
   SdfMeshes meshes = ur::MeshesOf(file);
   result.mesh_files = std::move(meshes.visual);

@@ -11,6 +11,7 @@
 
 #include "common/check.h"
 #include "server/model/model_builder.h"
+#include "server/parse/import_cancel.h"
 #include "server/parse/urdf_convert.h"
 #include "server/parse/urdf_diagnostics.h"
 #include "server/parse/urdf_meshes.h"
@@ -78,17 +79,21 @@ UrdfImport ImportUrdf(const std::string& text, const std::string& source,
                       const std::set<std::string>& assets, const UrdfImportOptions& options) {
   UrdfImport result;
   const UrdfXmlFacts facts = ScanUrdfXml(text, source, &result.warnings, options.max_links);
+  ThrowIfImportCancelled();  // between the stages, and every 256 joints (import_cancel.h)
   result.mesh_files = facts.mesh_files;
   const UrdfDiagnostics diagnostics(source, facts.link_lines, facts.joint_lines, &result.warnings,
                                     options.repair);
   const std::shared_ptr<urdf::ModelInterface> urdf =
       ParseWithUrdfdom(facts.urdfdom_text, diagnostics);
+  ThrowIfImportCancelled();
   const JointList joints = JointsParentFirst(*urdf, facts, diagnostics);
+  ImportCancelPoll poll;
 
   MissingMeshes missing_meshes;
   CheckMeshes(*urdf->getRoot(), assets, diagnostics, &missing_meshes);
   ModelBuilder builder(urdf->getName(), urdf->getRoot()->name);
   for (const auto& joint : joints) {
+    poll.Tick();
     const urdf::Link& child = *urdf->getLink(joint->child_link_name);
     CheckMeshes(child, assets, diagnostics, &missing_meshes);
     if (joint->type == urdf::Joint::FIXED) {
@@ -109,6 +114,7 @@ UrdfImport ImportUrdf(const std::string& text, const std::string& source,
   WarnMissingMeshes(missing_meshes, diagnostics);
   const std::string tcp = ChooseTcp(*urdf, joints, facts, diagnostics);
   if (!tcp.empty()) Guarded(source, [&] { builder.SetTcp(tcp); });
+  ThrowIfImportCancelled();
   result.model = builder.Build();
   result.loops = MimicCouplings(joints, result.model, options.couple_mimic, diagnostics);
   const int links = static_cast<int>(result.model.frames.size());

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "common/check.h"
+#include "server/parse/import_cancel.h"
 #include "server/parse/urdf_diagnostics.h"
 #include "urdf_reading/xml_shape.h"
 
@@ -177,7 +178,9 @@ UrdfXmlFacts ScanUrdfXml(const std::string& text, const std::string& source,
 
   Scanner scanner(source, warnings);
   bool rewritten = false;
+  ImportCancelPoll poll;  // import_cancel.h
   for (TiXmlElement* e = robot->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
+    poll.Tick();
     const std::string_view tag = e->Value();
     if (tag == "link") scanner.ScanLink(*e);
     if (tag == "joint") rewritten = scanner.ScanJoint(*e) || rewritten;

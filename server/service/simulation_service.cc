@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/check.h"
+#include "server/parse/import_cancel.h"
 #include "server/runs/request_error.h"
 #include "server/service/peer_proxy.h"
 #include "server/service/status_from_exception.h"
@@ -20,6 +21,9 @@ grpc::Status SimulationService::SubmitModel(grpc::ServerContext* context,
                                             const v1::SubmitModelRequest* request,
                                             v1::ModelInfo* response) {
   const grpc::Status status = Admit(*context, "SubmitModel", [&]() -> grpc::Status {
+    // A caller gone abandons the import (ImportCancelled: UNAVAILABLE, nothing stored).
+    const ImportCancelScope cancel_scope([context] { return context->IsCancelled(); });
+    spdlog::debug("SubmitModel: importing a bundle of {} bytes", request->ByteSizeLong());
     *response = models_->Submit(request->bundle(), false);
     return grpc::Status::OK;
   });

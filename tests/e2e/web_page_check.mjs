@@ -1,13 +1,18 @@
 // Drives Debian's chromium (headless, WebGL through SwiftShader) with playwright-core from
 // viewer/web/node_modules: opens an mbstream-viewer --web page, waits for frames (events,
 // never fixed sleeps), records what the page draws, opens a second page, takes a screenshot.
-// Usage: node web_page_check.mjs URL OUT_DIR WEB_ROOT [replay | denied | watch-only:TOKEN]
+// Usage: node web_page_check.mjs URL OUT_DIR WEB_ROOT
+//   [replay | denied | watch-only:TOKEN | stall:FRAMES]
 // (`denied`: pages with a token lacking the view role and with none are refused; an https URL
 // is opened with --ignore-certificate-errors, the test's certificate being self-signed;
 // `watch-only:TOKEN`: URL's page (a view token) cannot steer the replay, a page with TOKEN
-// (the run role) pauses it for both)
+// (the run role) pauses it for both; `replay` also sets the speed from the page and measures
+// the replay's pace; `stall:FRAMES`: a page in a second browser is stalled, its processes
+// stopped (SIGSTOP: a laptop's lid closed), while the first page gets FRAMES frames, then
+// woken: its missed count rises, the first page keeps pace)
 // Prints one JSON object on stdout: the figures and the recorded frames.
 import { createRequire } from 'node:module';
+import process from 'node:process';
 import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
@@ -17,15 +22,15 @@ const [mode, steerToken] = (modeArg || '').split(':');
 const require = createRequire(resolve(webRoot, 'package.json'));
 const { chromium } = require('playwright-core');
 
+const launchArgs = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+  '--disable-background-networking', '--disable-component-update', '--disable-sync',
+  '--use-gl=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'];
 const profile = mkdtempSync(join(tmpdir(), 'mbstream-chromium-'));
 const context = await chromium.launchPersistentContext(profile, {
   executablePath: '/usr/bin/chromium',
   headless: true,
   viewport: { width: 800, height: 600 },
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-         '--disable-background-networking', '--disable-component-update', '--disable-sync',
-         '--use-gl=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
-         ...(url.startsWith('https:') ? ['--ignore-certificate-errors'] : [])],
+  args: [...launchArgs, ...(url.startsWith('https:') ? ['--ignore-certificate-errors'] : [])],
 });
 const result = {};
 const outside = [];  // requests to anywhere but the viewer
@@ -64,6 +69,60 @@ try {
                       compare: await page.evaluate(() => window.mbstream.compare),
                       ghost_distance: await page.evaluate(() => window.mbstream.ghost_distance) };
     await page.evaluate(() => window.mbstream.send({ resume: true }));
+    // Speed from the page's control: the replay's run time per wall second follows it (x5,
+    // then x1), and the viewer reports the speed in its frames.
+    const pace = async (span) => {  // span: run seconds to time
+      for (;;) {
+        const a = await page.evaluate(() => ({ t: window.mbstream.t, at: performance.now() }));
+        await page.waitForFunction(([t0, dt]) => window.mbstream.t >= t0 + dt || window.mbstream.t < t0,
+                                   [a.t, span], { timeout: 30000 });
+        const b = await page.evaluate(() => ({ t: window.mbstream.t, at: performance.now() }));
+        if (b.t > a.t) return (b.t - a.t) / ((b.at - a.at) / 1000);  // else it looped: again
+      }
+    };
+    await page.waitForFunction(() => window.mbstream.paused === false, null, { timeout: 30000 });
+    await page.selectOption('#speed', '5');
+    await page.waitForFunction(() => window.mbstream.speed === 5, null, { timeout: 30000 });
+    const fast = await pace(4.0);
+    await page.selectOption('#speed', '1');
+    await page.waitForFunction(() => window.mbstream.speed === 1, null, { timeout: 30000 });
+    result.replay.speed = { fast, slow: await pace(1.0) };
+  }
+
+  if (mode === 'stall') {
+    // A page in a second browser, stopped whole (its browser, network and renderer
+    // processes) while the first page gets FRAMES frames, then woken.
+    const frames = Number(steerToken || 200);
+    const server = await chromium.launchServer({ executablePath: '/usr/bin/chromium',
+                                                 headless: true, args: launchArgs });
+    const other = await chromium.connect(server.wsEndpoint());
+    try {
+      const stalled = await other.newPage();
+      await stalled.goto(url, { waitUntil: 'load' });
+      await stalled.waitForFunction(() => window.mbstream && window.mbstream.frames >= 5, null,
+                                    { timeout: 60000 });
+      const read = (p) => p.evaluate(() => ({ seq: window.mbstream.seq, frames: window.mbstream.frames,
+        missed: window.mbstream.missed, viewer_frames: window.mbstream.viewer_frames }));
+      const stalledBefore = await read(stalled);
+      const before = await read(page);
+      const group = server.process().pid;  // playwright starts it as a process group's leader
+      process.kill(-group, 'SIGSTOP');
+      try {
+        await page.waitForFunction((n) => window.mbstream.frames >= n, before.frames + frames,
+                                   { timeout: 120000 });
+      } finally {
+        process.kill(-group, 'SIGCONT');
+      }
+      const after = await read(page);
+      await stalled.waitForFunction((m) => window.mbstream.missed > m, stalledBefore.missed,
+                                    { timeout: 60000 });
+      result.stall = { before, after, stalled_before: stalledBefore,
+                       stalled_after: await read(stalled),
+                       stalled_hud: await stalled.evaluate(() => document.getElementById('hud').textContent) };
+    } finally {
+      await other.close();
+      await server.close();
+    }
   }
 
   if (mode === 'watch-only') {

@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
 
 #include "tests/common/csv_rows.h"
 #include "tests/common/server_process.h"
@@ -230,9 +231,73 @@ TEST_F(WebViewTest, ReplayControlsAndTheCompareGhostWorkFromThePage) {
   EXPECT_EQ(seen["replay"]["compare"], run_b);
   EXPECT_NEAR(seen["replay"]["ghost_distance"].get<double>(), 0.0, 1e-9);  // the same motion
   EXPECT_THAT(seen.value("hud", ""), HasSubstr("ghost " + run_b));
+  // The page's speed control: the replay's run time per wall second follows it.
+  ASSERT_TRUE(seen["replay"].contains("speed")) << seen["replay"];
+  const double fast = seen["replay"]["speed"]["fast"].get<double>();
+  const double slow = seen["replay"]["speed"]["slow"].get<double>();
+  std::printf("replay pace from the page: x5 gives %.2f, x1 gives %.2f run s per wall s\n", fast,
+              slow);
+  EXPECT_NEAR(slow, 1.0, 0.35);
+  EXPECT_GT(fast / slow, 3.0);
+  EXPECT_LT(fast / slow, 7.0);
   EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
   EXPECT_GT(seen.value("drawn_fraction", 0.0), 0.01);
   ExpectProbesAtTcp(seen, run_a);
+}
+
+// A real page stalled (issue 42, item 8): a second browser's page is stopped whole (SIGSTOP
+// of its browser's processes, as a laptop's lid closed) while the first page gets 1000 frames
+// (10 s of the live seed run at 100 frames/s), then woken. The viewer kept only the newest frame
+// for it: its HUD's missed count rises. The first page got every frame the viewer posted meanwhile,
+// and the viewer's probe reports reached the server for every frame of the stall.
+TEST_F(WebViewTest, AStalledPageMissesFramesWhileTheOtherKeepsPaceAndProbesGoOn) {
+  const std::string url = StartViewer("--follow --exit-after-runs 1");
+  const CommandOutcome started =
+      Cli("run irb1600 --spec models/irb1600/seed-run.json --duration 600 --output-interval 0.01 "
+          "--realtime 1");
+  ASSERT_EQ(started.exit_code, 0) << started.output;
+  const std::string run = started.output.substr(0, started.output.find('\n'));
+  const nlohmann::json seen = Browse(url, "stall:1000");
+  Cli("cancel " + run);
+  ASSERT_TRUE(seen.contains("stall")) << seen.dump().substr(0, 2000);
+  const nlohmann::json& stall = seen["stall"];
+  const auto figure = [&](const char* page, const char* what) {
+    return stall[page][what].get<int64_t>();
+  };
+  std::printf(
+      "stall: the stalled page missed %lld frames; the other got %lld while the viewer drew %lld "
+      "(missed %lld), seq %lld to %lld\n",
+      static_cast<long long>(figure("stalled_after", "missed") -
+                             figure("stalled_before", "missed")),
+      static_cast<long long>(figure("after", "frames") - figure("before", "frames")),
+      static_cast<long long>(figure("after", "viewer_frames") - figure("before", "viewer_frames")),
+      static_cast<long long>(figure("after", "missed") - figure("before", "missed")),
+      static_cast<long long>(figure("before", "seq")),
+      static_cast<long long>(figure("after", "seq")));
+  EXPECT_GT(figure("stalled_after", "missed"), figure("stalled_before", "missed"));
+  EXPECT_THAT(stall.value("stalled_hud", ""), HasSubstr("(missed "));
+  // The other page kept pace: every frame message the viewer published reached it (none
+  // missed: the web thread may merge poses when it falls behind the viewer, which the viewer's
+  // own frame count shows), and its seq followed the viewer's frames.
+  const int64_t got = figure("after", "frames") - figure("before", "frames");
+  const int64_t drawn = figure("after", "viewer_frames") - figure("before", "viewer_frames");
+  EXPECT_GE(got, 1000);
+  EXPECT_LE(figure("after", "missed") - figure("before", "missed"), got / 50 + 1);
+  EXPECT_GE(static_cast<double>(figure("after", "seq") - figure("before", "seq")),
+            0.95 * static_cast<double>(drawn));
+  // The probe reports kept arriving: one stored for (nearly) every seq of the stall.
+  Cli("result " + run + " --out " + (dir_ / "out").string());  // exit 1: cancelled
+  const auto probes = ReadCsv(dir_ / "out" / "probes.csv");
+  std::set<int64_t> reported_seqs;  // a report per probe and frame
+  for (const auto& row : probes) {
+    const int64_t seq = std::stoll(row[0]);
+    if (seq > figure("before", "seq") && seq <= figure("after", "seq")) reported_seqs.insert(seq);
+  }
+  const auto reported = static_cast<int64_t>(reported_seqs.size());
+  const int64_t frames = figure("after", "seq") - figure("before", "seq");
+  EXPECT_GE(static_cast<double>(reported), 0.95 * static_cast<double>(frames))
+      << reported << " probe reports for " << frames << " frames of the stall";
+  ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
 }
 
 // --web-tls and tokens: a server that requires tokens, the viewer's page over HTTPS (a

@@ -37,6 +37,11 @@ constexpr std::size_t kMaxRequestBytes = 8 * 1024;
 constexpr std::size_t kMaxMessageBytes = 4 * 1024;
 constexpr auto kHttpTimeout = std::chrono::seconds(30);
 constexpr auto kTokenTimeout = std::chrono::seconds(10);  // from a page's open to its token
+// A page's socket send buffer (the kernel doubles it): what a stalled page can still have
+// queued behind the newest frame, about 90 frames of 1.4 KB, instead of the megabytes
+// Linux's autotuning grows to on a fast link (a page woken from a stall would otherwise get
+// a minute of old frames before the newest).
+constexpr int kPageSendBufferBytes = 64 * 1024;
 
 // URL path -> file under the root; empty when the path is not one of the page's files.
 std::filesystem::path FileFor(const std::filesystem::path& root, std::string_view target) {
@@ -125,6 +130,8 @@ class PageSession : public WebServer::Impl::Page,
   void Open(http::request<http::string_body> request) {
     beast::error_code ignored;  // frames are small: no Nagle delay behind a delayed ACK
     beast::get_lowest_layer(ws_).socket().set_option(tcp::no_delay(true), ignored);
+    beast::get_lowest_layer(ws_).socket().set_option(
+        asio::socket_base::send_buffer_size(kPageSendBufferBytes), ignored);
     beast::get_lowest_layer(ws_).expires_never();  // the WebSocket's own timeouts from here
     ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
     ws_.read_message_max(kMaxMessageBytes);
