@@ -22,13 +22,14 @@ int ListModels(const ClientOptions& client) {
   return 0;
 }
 
-// Pages through ListRuns (newest first) until `limit` runs (0 = all) are printed.
+// Pages through ListRuns (newest first) until `limit` runs (0 = all) are printed. The ID
+// column holds a run id (r-YYYYMMDD-HHMMSS-8 hex digits: 26 characters).
 int ListRuns(const ClientOptions& client, const std::string& model, int limit) {
   std::unique_ptr<v1::Simulation::Stub> stub = ConnectSimulation(client);
   v1::ListRunsRequest request;
   request.set_model(model);
   request.set_limit(limit);
-  std::printf("%-24s %-20s %-20s %9s %8s %s\n", "ID", "MODEL", "STATE", "T (s)", "FRAMES",
+  std::printf("%-26s %-20s %-20s %9s %8s %s\n", "ID", "MODEL", "STATE", "T (s)", "FRAMES",
               "MESSAGE");
   do {
     grpc::ClientContext context;
@@ -36,7 +37,7 @@ int ListRuns(const ClientOptions& client, const std::string& model, int limit) {
     const grpc::Status status = stub->ListRuns(&context, request, &response);
     if (!status.ok()) return ReportRpcError("runs", client, status);
     for (const v1::RunInfo& r : response.runs()) {
-      std::printf("%-24s %-20s %-20s %9.3f %8lld %s\n", r.id().c_str(), r.model_name().c_str(),
+      std::printf("%-26s %-20s %-20s %9.3f %8lld %s\n", r.id().c_str(), r.model_name().c_str(),
                   v1::RunState_Name(r.state()).c_str(), r.t_s(), static_cast<long long>(r.frames()),
                   r.message().c_str());
     }

@@ -1,8 +1,11 @@
 #include "client/cli/server_connection.h"
 
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "common/check.h"
+#include "common/did_you_mean.h"
 #include "net/tls_files.h"
 
 namespace mbstream::cli {
@@ -32,9 +35,41 @@ std::unique_ptr<v1::Simulation::Stub> ConnectSimulation(const ClientOptions& opt
   }
 }
 
+namespace {
+
+// The server's "no model 'NAME' on this server; known models: A (ID), B (ID) (...)": "; did you
+// mean 'A'?" for the closest known name, or "".
+std::string ModelDidYouMean(const std::string& message) {
+  const std::string start = "no model '";
+  const std::string list = "; known models: ";
+  const size_t name_at = message.find(start);
+  const size_t list_at = message.find(list);
+  if (name_at == std::string::npos || list_at == std::string::npos) return "";
+  const size_t name_end = message.find("' on this server", name_at);
+  if (name_end == std::string::npos) return "";
+  const std::string name =
+      message.substr(name_at + start.size(), name_end - name_at - start.size());
+  std::vector<std::string> known;
+  size_t at = list_at + list.size();
+  while (at < message.size()) {
+    const size_t open = message.find(" (", at);
+    if (open == std::string::npos) break;
+    known.push_back(message.substr(at, open - at));
+    const size_t next = message.find("), ", open);
+    if (next == std::string::npos) break;
+    at = next + 3;
+  }
+  return DidYouMean(name, known);
+}
+
+}  // namespace
+
 int ReportRpcError(const std::string& command, const ClientOptions& options,
                    const grpc::Status& status) {
   std::cerr << "mbstream " << command << ": " << status.error_message();
+  if (status.error_code() == grpc::StatusCode::NOT_FOUND) {
+    std::cerr << ModelDidYouMean(status.error_message());
+  }
   if (status.error_code() == grpc::StatusCode::UNAVAILABLE &&
       status.error_message().find("shutting down") == std::string::npos) {
     std::cerr << " (server " << options.server

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "common/check.h"
+#include "common/did_you_mean.h"
 #include "server/spec/run_spec_json.h"
 
 namespace mbstream {
@@ -250,6 +251,24 @@ std::vector<DriveConfig> ToDrives(const v1::RunSpec& spec,
                                   const std::vector<std::string>& joint_names,
                                   const Checker& check) {
   const int n = static_cast<int>(joint_names.size());
+  // A drive that names a joint the model lacks says so first (a spec meant for another
+  // model): that, not the count, is what to fix.
+  for (int i = 0; i < spec.drives_size(); ++i) {
+    const std::string& name = spec.drives(i).joint();
+    if (name.empty() ||
+        std::find(joint_names.begin(), joint_names.end(), name) != joint_names.end()) {
+      continue;
+    }
+    check.Name(name, "drives[" + std::to_string(i) + "].joint");
+    check.Fail(
+        "drives[" + std::to_string(i) + "].joint",
+        "the model has no joint named " + Quote(name) + DidYouMean(name, joint_names) +
+            "; give one of " + JoinNames(joint_names) +
+            (spec.drives_size() > n ? " (is the spec meant for another model? it has " +
+                                          std::to_string(spec.drives_size()) +
+                                          " drives, the model " + std::to_string(n) + " joints)"
+                                    : ""));
+  }
   if (spec.drives_size() > n) {
     check.Fail("drives", "has " + std::to_string(spec.drives_size()) +
                              " drives but the model has " + std::to_string(n) + " joints (" +
@@ -266,7 +285,8 @@ std::vector<DriveConfig> ToDrives(const v1::RunSpec& spec,
       while (joint < n && joint_names[joint] != drive.joint()) ++joint;
       if (joint == n) {
         check.Fail(field + ".joint", "the model has no joint named " + Quote(drive.joint()) +
-                                         "; give one of " + JoinNames(joint_names));
+                                         DidYouMean(drive.joint(), joint_names) + "; give one of " +
+                                         JoinNames(joint_names));
       }
     }
     if (driven_by[joint]) {

@@ -1,16 +1,51 @@
 // RunSpec <-> JSON text, with protobuf's own JSON mapping.
 #include "server/spec/run_spec_json.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
+#include <google/protobuf/descriptor.h>
 #include <google/protobuf/util/json_util.h>
 
 #include "common/check.h"
+#include "common/did_you_mean.h"
 #include "server/spec/json_shape.h"
 
 namespace mbstream {
+
+namespace {
+
+// The field names of `descriptor` and of the messages it holds, once each.
+void FieldNames(const google::protobuf::Descriptor* descriptor, std::vector<std::string>* names,
+                std::vector<const google::protobuf::Descriptor*>* seen) {
+  if (std::find(seen->begin(), seen->end(), descriptor) != seen->end()) return;
+  seen->push_back(descriptor);
+  for (int i = 0; i < descriptor->field_count(); ++i) {
+    const google::protobuf::FieldDescriptor* field = descriptor->field(i);
+    names->push_back(field->name());
+    if (field->message_type() != nullptr) FieldNames(field->message_type(), names, seen);
+  }
+}
+
+// Protobuf's "[(PATH) ]NAME: Cannot find field.": "; did you mean 'FIELD'?" for the closest
+// field name of a RunSpec (its nested messages' too), or "".
+std::string FieldDidYouMean(const std::string& message) {
+  const size_t end = message.find(": Cannot find field");
+  if (end == std::string::npos || end > 300) return "";
+  const size_t start = message.find_last_of(" )", end);
+  const std::string name = message.substr(start == std::string::npos ? 0 : start + 1,
+                                          end - (start == std::string::npos ? 0 : start + 1));
+  std::vector<std::string> names;
+  std::vector<const google::protobuf::Descriptor*> seen;
+  FieldNames(v1::RunSpec::descriptor(), &names, &seen);
+  return DidYouMean(name, names);
+}
+
+}  // namespace
 
 v1::RunSpec ParseRunSpecJson(const std::string& json, const std::string& source) {
   CheckJsonShape(json, source);
@@ -20,9 +55,10 @@ v1::RunSpec ParseRunSpecJson(const std::string& json, const std::string& source)
   const auto status = google::protobuf::util::JsonStringToMessage(json, &spec, options);
   if (!status.ok()) {
     // Cut: the message quotes an unknown key whole, and a key may be megabytes long.
-    throw InputError(
-        source + ": invalid JSON/RunSpec: " + CutForMessage(std::string(status.message()), 400) +
-        "; see models/irb1600/seed-run.json for an example");
+    const std::string message(status.message());
+    throw InputError(source + ": invalid JSON/RunSpec: " + CutForMessage(message, 400) +
+                     FieldDidYouMean(message) +
+                     "; see models/irb1600/seed-run.json for an example");
   }
   return spec;
 }
