@@ -88,5 +88,21 @@ TEST_F(CliAnswersDirTest, SimulatesSummaryLineHasTheEnergyError) {
   EXPECT_THAT(run.output, HasSubstr(", energy error "));
 }
 
+// Against a server: a mistyped model name gets the closest built-in; a --name that cannot be
+// applied (the files are a model already stored under its own name) is said.
+TEST_F(CliAnswersDirTest, AServerAnswersAMistypedModelAndAnIgnoredName) {
+  testing::ServerProcess server(MBSTREAM_SERVER, (dir_ / "data").string());
+  const std::string cli = "--server " + server.address() + " ";
+  const testing::CommandOutcome typo =
+      Mbstream(cli + "run irb1601 --spec models/irb1600/seed-run.json");
+  EXPECT_EQ(typo.exit_code, 2) << typo.output;
+  EXPECT_THAT(typo.output, HasSubstr("no model 'irb1601'"));
+  EXPECT_THAT(typo.output, HasSubstr("did you mean 'irb1600'?"));
+  const testing::CommandOutcome named = Mbstream(cli + "submit models/irb1600 --name my_arm");
+  EXPECT_EQ(named.exit_code, 0) << named.output;
+  EXPECT_THAT(named.output, HasSubstr("note: --name 'my_arm' not applied"));
+  EXPECT_THAT(named.output, HasSubstr("already there as 'irb1600'"));
+}
+
 }  // namespace
 }  // namespace mbstream
