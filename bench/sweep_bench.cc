@@ -21,8 +21,8 @@
 // command would, with its results directory (the CSV files and stats.json, then removed):
 // in-process as `mbstream simulate --out` writes it, the client as `mbstream results --out`
 // writes a fetched result; without it the in-process side keeps the frames in memory only.
-// `--sweep`: the client is one sweep (StartSweep slices, GetResults of each), as `mbstream
-// sweep` runs it; `--keep summary|all` (both sides): the sweep baselines of issue 33,
+// `--sweep`: the client is one sweep (StartSweep, then GetSweep pages and GetResults of each), as
+// `mbstream sweep` runs it; `--keep summary|all` (both sides): the sweep baselines of issue 33,
 //   sweep_bench --server S --sweep --keep all --files     vs `mbstream simulate --out`
 //   sweep_bench --server S --sweep --keep summary         vs the engine alone (Simulate)
 #include <grpcpp/grpcpp.h>
@@ -221,10 +221,11 @@ void BatchedSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs,
   }
 }
 
-// The sweep as one job (`mbstream sweep`'s calls, client/cli/sweep_command.cc): StartSweep of
-// `runs` points (a list of the same duration: the same runs as the other sides) a slice at a
-// time, half a window each, and GetResults (waiting) of each slice. The spec's `keep` says
-// what the runs keep and send (every frame, or the summary only).
+// The sweep as one job (`mbstream sweep`'s calls, client/cli/sweep_command.cc): one
+// StartSweep of `runs` points (a list of the same duration: the same runs as the other sides)
+// that the server feeds, at most `window` queued or running at once, followed a page of half
+// a window at a time (GetSweep from the next point) with GetResults (waiting) of each page.
+// The spec's `keep` says what the runs keep and send (every frame, or the summary only).
 void OneJobSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs, int window,
                  const std::string& files, Measured& m) {
   v1::StartSweepRequest start;
@@ -233,24 +234,27 @@ void OneJobSweep(v1::Simulation::Stub& stub, const v1::RunSpec& spec, int runs, 
   start.add_list_paths("duration_s");
   const std::string duration = std::to_string(spec.duration_s());
   for (int i = 0; i < runs; ++i) start.add_list()->add_values(duration);
-  const int slice = std::max(1, window / 2);
-  std::deque<std::vector<std::string>> in_flight;
-  int flying = 0;
-  while (start.first_point() < runs || !in_flight.empty()) {
-    while (start.first_point() < runs && flying + slice <= window) {
-      grpc::ClientContext context;
-      start.set_max_runs(slice);
-      v1::StartSweepResponse response;
-      Check(stub.StartSweep(&context, start, &response), "StartSweep");
-      start.set_sweep_id(response.sweep_id());
-      start.set_first_point(response.next_point());
-      std::vector<std::string>& ids = in_flight.emplace_back();
-      for (const v1::RunInfo& info : response.runs()) ids.push_back(info.id());
-      flying += response.runs_size();
+  start.set_window(window);
+  v1::StartSweepResponse response;
+  {
+    grpc::ClientContext context;
+    Check(stub.StartSweep(&context, start, &response), "StartSweep");
+  }
+  const int page = std::max(1, window / 2);
+  for (int next = 0; next < runs;) {
+    grpc::ClientContext context;
+    v1::GetSweepRequest request;
+    request.set_sweep_id(response.sweep_id());
+    request.set_runs_from(next);
+    request.set_max_runs(page);
+    v1::SweepProgress progress;
+    Check(stub.GetSweep(&context, request, &progress), "GetSweep");
+    if (progress.run_ids_size() == 0) {  // not queued yet
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      continue;
     }
-    flying -= static_cast<int>(in_flight.front().size());
-    FetchBatch(stub, in_flight.front(), files, m);
-    in_flight.pop_front();
+    FetchBatch(stub, {progress.run_ids().begin(), progress.run_ids().end()}, files, m);
+    next += progress.run_ids_size();
   }
 }
 
@@ -309,7 +313,7 @@ struct ClientPattern {
   int window = 32;
   int batch = 0;
   bool watch = false;
-  bool sweep = false;  // StartSweep slices (OneJobSweep)
+  bool sweep = false;  // one StartSweep, followed (OneJobSweep)
   std::string files;   // with --files: where the client writes each result
 };
 
@@ -415,8 +419,8 @@ int main(int argc, char** argv) {
                  "--batch for the baseline server (default: the same; 0 for a binary without "
                  "StartRuns, or to compare the two patterns on one binary)");
   app.add_flag("--sweep", sweep,
-               "the server side is one sweep (StartSweep slices of half a window, GetResults "
-               "of each), as `mbstream sweep` runs it");
+               "the server side is one sweep (one StartSweep of --window, then GetSweep pages of "
+               "half a window and GetResults of each), as `mbstream sweep` runs it");
   app.add_option("--keep", keep,
                  "RunSpec.keep of every run on both sides (all, summary, final, every:N; "
                  "default the scene's: all)");

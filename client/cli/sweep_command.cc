@@ -1,17 +1,22 @@
 // `mbstream sweep MODEL [--spec FILE] [overrides] (--grid PATH=VALUES ... | --list FILE.csv)
-//  [--keep summary|final|every:N|all] [--window N] --out DIR`: one sweep on the server,
-// its table in DIR/sweep.csv (sweep_table.h) and, when more than the summary is kept, each
-// run's results in DIR/runs/RUN_ID/; its progress as the server reports it (GetSweep).
-// `mbstream sweep --status SWEEP_ID` prints a sweep's progress, `--cancel SWEEP_ID` (or
-// `mbstream cancel --sweep SWEEP_ID`) cancels it (CancelSweep: the command that started it
-// stops starting runs and exits 1).
+//  [--keep summary|final|every:N|all] [--window N] --out DIR`: one sweep, stored whole and
+// fed by the server (StartSweep); this command prints its id and follows it: its table in
+// DIR/sweep.csv (sweep_table.h) and, when more than the summary is kept, each run's results in
+// DIR/runs/RUN_ID/, its progress as the server reports it (GetSweep). Ctrl-C detaches: the
+// sweep goes on. `mbstream sweep --wait SWEEP_ID --out DIR` follows a sweep started before
+// (by any client) and writes its whole table; `--status SWEEP_ID` prints its progress,
+// `--cancel SWEEP_ID` (or `mbstream cancel --sweep SWEEP_ID`) cancels it (CancelSweep: a
+// command following it exits 1).
+#include <signal.h>
 #include <unistd.h>
 
 #include <chrono>
-#include <deque>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
+#include <thread>
 
 #include "client/cli/exit_codes.h"
 #include "client/cli/result_download.h"
@@ -32,29 +37,12 @@ struct SweepOptions {
   std::vector<std::string> grid;
   RunOverrides overrides;
   int window = 32;
-  std::string status_id, cancel_id;  // --status, --cancel: of a sweep started before
+  // --status, --cancel, --wait: of a sweep started before
+  std::string status_id, cancel_id, wait_id;
 };
 
-struct Pending {
-  std::string run_id;
-  std::vector<std::string> values;
-};
-
-// Starts the sweep's next slice (at most `count` runs) and queues its runs in *pending.
-grpc::Status StartSlice(v1::Simulation::Stub& stub, v1::StartSweepRequest& request, int count,
-                        v1::StartSweepResponse* response, std::deque<Pending>* pending) {
-  request.set_max_runs(count);
-  grpc::ClientContext context;
-  const grpc::Status status = stub.StartSweep(&context, request, response);
-  if (!status.ok()) return status;
-  request.set_sweep_id(response->sweep_id());
-  request.set_first_point(response->next_point());
-  for (int k = 0; k < response->runs_size(); ++k) {
-    const auto& values = response->points(k).values();
-    pending->push_back({response->runs(k).id(), {values.begin(), values.end()}});
-  }
-  return status;
-}
+// Runs asked of GetSweep at a time while following.
+constexpr int kFollowPage = 64;
 
 v1::StartSweepRequest SweepRequest(const SweepOptions& options) {
   v1::StartSweepRequest request;
@@ -69,6 +57,7 @@ v1::StartSweepRequest SweepRequest(const SweepOptions& options) {
         "give what the sweep varies: --grid PATH=VALUES (one per axis) or --list "
         "FILE.csv");
   }
+  request.set_window(options.window);
   return request;
 }
 
@@ -90,6 +79,7 @@ class SweepProgressDisplay {
     shown_ = true;
     v1::GetSweepRequest request;
     request.set_sweep_id(sweep_id_);
+    request.set_max_runs(1);  // the counts only, whatever the sweep's size
     v1::SweepProgress progress;
     grpc::ClientContext context;
     context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
@@ -109,61 +99,151 @@ class SweepProgressDisplay {
   std::chrono::steady_clock::time_point last_;
 };
 
-int Sweep(const ClientOptions& client, const SweepOptions& options) {
-  v1::StartSweepRequest request = SweepRequest(options);
-  const bool keeps_frames = request.base().keep() != "summary";
-  const std::filesystem::path out(options.out_dir);
-  std::error_code error;
-  std::filesystem::create_directories(out, error);
-  std::ofstream table(out / "sweep.csv");
-  if (error || !table) throw InputError((out / "sweep.csv").string() + ": cannot be written");
-  std::unique_ptr<v1::Simulation::Stub> stub = ConnectSimulation(client);
-  std::deque<Pending> pending;
-  v1::StartSweepResponse slice;
-  if (grpc::Status s = StartSlice(*stub, request, options.window, &slice, &pending); !s.ok()) {
+// Ctrl-C while following: the sweep goes on on the server; say how to pick it up again.
+char detach_message[512];
+void DetachOnInterrupt(int) {
+  const ssize_t written = write(STDERR_FILENO, detach_message, std::strlen(detach_message));
+  (void)written;
+  _exit(130);
+}
+
+class DetachOnCtrlC {
+ public:
+  DetachOnCtrlC(const std::string& id, const std::string& out) {
+    const std::string message = "\nmbstream sweep: detached; sweep " + id +
+                                " goes on on the server (follow it again: mbstream sweep "
+                                "--wait " +
+                                id + " --out " + out + "; cancel: mbstream sweep --cancel " + id +
+                                ")\n";
+    std::snprintf(detach_message, sizeof(detach_message), "%s", message.c_str());
+    struct sigaction action {};
+    action.sa_handler = DetachOnInterrupt;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &previous_);
+  }
+  ~DetachOnCtrlC() { sigaction(SIGINT, &previous_, nullptr); }
+
+ private:
+  struct sigaction previous_ {};
+};
+
+grpc::Status GetSweepPage(v1::Simulation::Stub& stub, const std::string& id, int from,
+                          v1::SweepProgress* page) {
+  v1::GetSweepRequest request;
+  request.set_sweep_id(id);
+  request.set_runs_from(from);
+  request.set_max_runs(kFollowPage);
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
+  return stub.GetSweep(&context, request, page);
+}
+
+// Follows sweep `id` from its first point: each run's row in DIR/sweep.csv as it ends (its
+// results in DIR/runs/RUN_ID/ when it keeps frames), until every point has ended or the sweep
+// was cancelled. The server feeds the sweep: this only reads.
+int Follow(const ClientOptions& client, v1::Simulation::Stub& stub, const std::string& id,
+           const std::filesystem::path& out) {
+  v1::SweepProgress page;
+  if (grpc::Status s = GetSweepPage(stub, id, 0, &page); !s.ok()) {
     return ReportRpcError("sweep", client, s);
   }
-  const int total = slice.total_points();
-  const std::string id = slice.sweep_id();
-  const std::vector<std::string> paths(slice.paths().begin(), slice.paths().end());
-  std::cerr << "sweep " << id << ": " << total << " runs (cancel: mbstream sweep --cancel " << id
-            << ")\n";
-  int ended = 0, finished = 0;
-  bool cancelled = false;
+  std::ofstream table(out / "sweep.csv");
+  if (!table) throw InputError((out / "sweep.csv").string() + ": cannot be written");
+  const std::vector<std::string> paths(page.paths().begin(), page.paths().end());
+  int total = page.total_points(), next = 0, finished = 0;
+  bool cancelled = false, fresh = true;
+  std::optional<bool> keeps_frames;  // from the sweep's first run's spec
   {
-    SweepProgressDisplay display(*stub, id);
-    while (!pending.empty()) {
-      const Pending run = pending.front();
-      pending.pop_front();
-      v1::RunInfo info;
-      const std::string directory = keeps_frames ? (out / "runs" / run.run_id).string() : "";
-      if (grpc::Status s = DownloadResult(*stub, run.run_id, directory, &info, "", nullptr, true);
-          !s.ok()) {
-        return ReportRpcError("sweep", client, s);
+    SweepProgressDisplay display(stub, id);
+    for (;;) {
+      if (!fresh) {
+        if (grpc::Status s = GetSweepPage(stub, id, next, &page); !s.ok()) {
+          return ReportRpcError("sweep", client, s);
+        }
       }
-      if (ended == 0) {
-        table << SweepTableHeader(paths, {info.joint_names().begin(), info.joint_names().end()})
-              << "\n";
+      fresh = false;
+      total = page.total_points();
+      cancelled = cancelled || page.cancelled();
+      if (page.run_ids_size() == 0) {
+        if (cancelled || next >= total) break;
+        // The next point is not queued yet (the server queues it once a place in the
+        // sweep's window frees up): ask again in a moment.
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        continue;
       }
-      table << SweepTableRow(info, run.values) << "\n" << std::flush;
-      ++ended;
-      if (info.state() == v1::FINISHED) ++finished;
-      // Refill half a window at a time: few calls, and the queue never holds more than a window.
-      const int room = options.window - static_cast<int>(pending.size());
-      if (!cancelled && request.first_point() < total && room >= std::max(1, options.window / 2)) {
-        grpc::Status s = StartSlice(*stub, request, room, &slice, &pending);
-        cancelled = s.error_code() == grpc::StatusCode::FAILED_PRECONDITION;  // CancelSweep
-        if (!s.ok() && !cancelled) return ReportRpcError("sweep", client, s);
+      for (int i = 0; i < page.run_ids_size(); ++i) {
+        const std::string& run_id = page.run_ids(i);
+        if (!keeps_frames) {
+          v1::GetRunRequest request;
+          request.set_run_id(run_id);
+          v1::RunInfo first;
+          grpc::ClientContext context;
+          if (grpc::Status s = stub.GetRun(&context, request, &first); !s.ok()) {
+            return ReportRpcError("sweep", client, s);
+          }
+          keeps_frames = first.spec().keep() != "summary";
+        }
+        v1::RunInfo info;
+        const std::string directory = *keeps_frames ? (out / "runs" / run_id).string() : "";
+        if (grpc::Status s = DownloadResult(stub, run_id, directory, &info, "", nullptr, true);
+            !s.ok()) {
+          return ReportRpcError("sweep", client, s);
+        }
+        if (next == 0) {
+          table << SweepTableHeader(paths, {info.joint_names().begin(), info.joint_names().end()})
+                << "\n";
+        }
+        const auto& values = page.points(i).values();
+        table << SweepTableRow(info, {values.begin(), values.end()}) << "\n" << std::flush;
+        ++next;
+        if (info.state() == v1::FINISHED) ++finished;
+        if (display.Show(next, total, false)) cancelled = true;
       }
-      // Cancelled after its last slice started: the server's count says so at the end.
-      if (display.Show(ended, total, pending.empty())) cancelled = true;
+      if (next >= total) break;
     }
+    display.Show(next, total, true);
   }
   std::cerr << "sweep " << id << (cancelled ? " was cancelled" : "") << ": " << finished << " of "
             << total << " runs finished"
             << (finished < total ? " (the others: see the state column)" : "") << "; table in "
             << (out / "sweep.csv").string() << "\n";
   return cancelled ? kExitRunFailed : kExitOk;
+}
+
+std::filesystem::path OutDirectory(const std::string& dir) {
+  const std::filesystem::path out(dir);
+  std::error_code error;
+  std::filesystem::create_directories(out, error);
+  if (error) throw InputError(out.string() + ": cannot be created (" + error.message() + ")");
+  return out;
+}
+
+int Sweep(const ClientOptions& client, const SweepOptions& options) {
+  v1::StartSweepRequest request = SweepRequest(options);
+  const std::filesystem::path out = OutDirectory(options.out_dir);
+  std::unique_ptr<v1::Simulation::Stub> stub = ConnectSimulation(client);
+  v1::StartSweepResponse started;
+  {
+    grpc::ClientContext context;
+    if (grpc::Status s = stub->StartSweep(&context, request, &started); !s.ok()) {
+      return ReportRpcError("sweep", client, s);
+    }
+  }
+  const std::string& id = started.sweep_id();
+  std::cerr << "sweep " << id << ": " << started.total_points()
+            << " runs, fed by the server (Ctrl-C detaches; follow again: mbstream sweep --wait "
+            << id << " --out " << options.out_dir << "; cancel: mbstream sweep --cancel " << id
+            << ")\n";
+  std::cout << id << "\n" << std::flush;
+  DetachOnCtrlC detach(id, options.out_dir);
+  return Follow(client, *stub, id, out);
+}
+
+int Wait(const ClientOptions& client, const std::string& id, const std::string& out_dir) {
+  const std::filesystem::path out = OutDirectory(out_dir);
+  std::unique_ptr<v1::Simulation::Stub> stub = ConnectSimulation(client);
+  DetachOnCtrlC detach(id, out_dir);
+  return Follow(client, *stub, id, out);
 }
 
 }  // namespace
@@ -203,13 +283,19 @@ void AddSweepCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client,
       ->add_option("--list", options->list_path,
                    "the points as CSV: a header of paths, a row of values per run")
       ->check(CLI::ExistingFile);
-  command->add_option("--window", options->window, "most runs queued at once (default 32)")
+  command
+      ->add_option("--window", options->window,
+                   "most runs of the sweep queued or running at once on the server "
+                   "(default 32)")
       ->check(CLI::Range(1, 10000));
   command->add_option("--out", options->out_dir, "where sweep.csv (and runs/) are written");
   command->add_option("--status", options->status_id,
                       "print the progress of sweep ID (started before, by anyone) and exit");
   command->add_option("--cancel", options->cancel_id,
-                      "cancel sweep ID: its queued and running runs, and the slices not started");
+                      "cancel sweep ID: its queued and running runs, and the points not queued");
+  command->add_option("--wait", options->wait_id,
+                      "follow sweep ID (started before, by anyone) until it ends; with --out, "
+                      "its whole table");
   command->callback([client, options, exit_code] {
     try {
       if (!options->cancel_id.empty() || !options->status_id.empty()) {
@@ -218,9 +304,18 @@ void AddSweepCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client,
             SweepCall(*client, cancel ? options->cancel_id : options->status_id, cancel, "sweep");
         return;
       }
+      if (!options->wait_id.empty()) {
+        if (options->out_dir.empty()) {
+          throw InputError("give --out DIR: where sweep " + options->wait_id +
+                           "'s table (sweep.csv) is written");
+        }
+        *exit_code = Wait(*client, options->wait_id, options->out_dir);
+        return;
+      }
       if (options->model.empty() || options->out_dir.empty()) {
         throw InputError(
-            "give the MODEL and --out DIR to start a sweep (or --status / --cancel SWEEP_ID)");
+            "give the MODEL and --out DIR to start a sweep (or --status / --cancel / --wait "
+            "SWEEP_ID)");
       }
       *exit_code = Sweep(*client, *options);
     } catch (const InputError& error) {

@@ -247,8 +247,43 @@ bool MeasuredStore::SetRunKeep(const std::string& run_id, bool keep) {
   return Timed(StoreOperation::kSetRunKeep, [&] { return store_->SetRunKeep(run_id, keep); });
 }
 
-std::vector<v1::RunInfo> MeasuredStore::ListSweepRuns(const std::string& sweep_id) const {
-  return Timed(StoreOperation::kListSweepRuns, [&] { return store_->ListSweepRuns(sweep_id); });
+bool MeasuredStore::AddSweep(const StoredSweep& sweep) {
+  return Timed(StoreOperation::kAddSweep, [&] { return store_->AddSweep(sweep); });
+}
+
+std::optional<StoredSweep> MeasuredStore::GetSweep(const std::string& sweep_id,
+                                                   bool definition) const {
+  return Timed(StoreOperation::kGetSweep, [&] { return store_->GetSweep(sweep_id, definition); });
+}
+
+std::vector<StoredSweep> MeasuredStore::ListOpenSweeps() const {
+  return Timed(StoreOperation::kListOpenSweeps, [&] { return store_->ListOpenSweeps(); });
+}
+
+SweepFeed MeasuredStore::AddSweepRuns(const std::string& sweep_id,
+                                      const std::vector<v1::RunInfo>& infos) {
+  const SweepFeed fed =
+      Timed(StoreOperation::kAddSweepRuns, [&] { return store_->AddSweepRuns(sweep_id, infos); });
+  if (fed == SweepFeed::kAdded) {
+    for (const v1::RunInfo& info : infos) CountState(info);
+  }
+  return fed;
+}
+
+std::vector<v1::RunInfo> MeasuredStore::ListSweepRuns(const std::string& sweep_id, int first_point,
+                                                      int max_runs, bool unfinished_only) const {
+  return Timed(StoreOperation::kListSweepRuns, [&] {
+    return store_->ListSweepRuns(sweep_id, first_point, max_runs, unfinished_only);
+  });
+}
+
+Store::StateCounts MeasuredStore::CountSweepRuns(const std::string& sweep_id) const {
+  return Timed(StoreOperation::kCountSweepRuns, [&] { return store_->CountSweepRuns(sweep_id); });
+}
+
+std::vector<v1::RunInfo> MeasuredStore::ListUnfinishedSweepRuns() const {
+  return Timed(StoreOperation::kListUnfinishedSweepRuns,
+               [&] { return store_->ListUnfinishedSweepRuns(); });
 }
 
 bool MeasuredStore::SweepCancelled(const std::string& sweep_id) const {

@@ -38,7 +38,13 @@ constexpr const char* kStoreOperationNames[] = {"put_model",
                                                 "set_run_keep",
                                                 "list_sweep_runs",
                                                 "mark_sweep_cancelled",
-                                                "sweep_cancelled"};
+                                                "sweep_cancelled",
+                                                "add_sweep",
+                                                "get_sweep",
+                                                "list_open_sweeps",
+                                                "add_sweep_runs",
+                                                "count_sweep_runs",
+                                                "list_unfinished_sweep_runs"};
 static_assert(std::size(kStoreOperationNames) == static_cast<size_t>(StoreOperation::kCount));
 
 bool IsFinal(v1::RunState state) { return state >= v1::FINISHED && state <= v1::INTERRUPTED; }

@@ -47,6 +47,12 @@ enum class StoreOperation {
   kListSweepRuns,
   kMarkSweepCancelled,
   kSweepCancelled,
+  kAddSweep,
+  kGetSweep,
+  kListOpenSweeps,
+  kAddSweepRuns,
+  kCountSweepRuns,
+  kListUnfinishedSweepRuns,
   kCount
 };
 

@@ -190,8 +190,11 @@ void RunManager::StoreFinal(Run& run, v1::RunInfo& info) {
       if (!run.spool().Finish(info, *store_, holder)) {
         run.lease_lost = true;
       } else if (std::string whole = run.spool().TakeWholeResult();
-                 !whole.empty() && info.state() != v1::INTERRUPTED) {  // final for good
-        recent_results_.Put(info, std::move(whole));  // before anyone sees the run ended
+                 (!whole.empty() || info.frames() == 0) &&
+                 info.state() != v1::INTERRUPTED) {  // final for good
+        // Before anyone sees the run ended; a run without frames (a sweep's, keeping the
+        // summary) too: its GetResult then reads its row once, not twice.
+        recent_results_.Put(info, std::move(whole));
       }
     }
   } catch (const std::exception& error) {
@@ -201,7 +204,12 @@ void RunManager::StoreFinal(Run& run, v1::RunInfo& info) {
     try {
       store_->PutRun(info);  // at least the final state, if the store takes that
     } catch (const std::exception& again) {
-      spdlog::error("run {}: storing its final state failed too: {}", run.id(), again.what());
+      // Shown as it is meanwhile (Get, ResultInfo), and written once the store takes it.
+      spdlog::error(
+          "run {}: storing its final state failed too ({}); it is written again "
+          "until the store takes it",
+          run.id(), again.what());
+      pending_finals_.Add(info);
     }
   }
   if (run.lease_lost) {  // show what the store holds, as the replica that took it over wrote

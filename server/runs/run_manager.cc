@@ -58,8 +58,19 @@ RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& 
       recent_results_(static_cast<std::size_t>(std::max<int64_t>(limits_.recent_results_bytes, 0))),
       fan_out_(limits_.max_subscribers, limits_.subscriber_queue_frames),
       follower_replays_(store_, clock_),
+      feeder_(
+          store_,
+          std::chrono::milliseconds(
+              replica_.private_store
+                  ? 1000
+                  : std::max<int64_t>(50, static_cast<int64_t>(replica_.claim_poll_s * 1000))),
+          [this](const StoredSweep& sweep, const SweepPlan& plan, int first, int count) {
+            return !FeedSweep(sweep, plan, first, count).empty();
+          },
+          [this] { pending_finals_.Retry(*store_); }),
       queue_(store_, replica_, limits_, QueueHooks()) {
   MBSTREAM_CHECK(models_ != nullptr && store_ != nullptr && limits_.workers > 0);
+  feeder_.Start();
   if (!replica_.private_store) {
     cluster_follow_ = std::make_unique<ClusterFollow>(
         store_, replica_.id, std::chrono::duration<double>(replica_.claim_poll_s),
@@ -193,6 +204,7 @@ v1::RunInfo RunManager::Cancel(const std::string& run_id) {
 v1::RunInfo RunManager::Get(const std::string& run_id) const {
   if (std::shared_ptr<Run> run = FindActive(run_id)) return run->Info();
   if (v1::RunInfo info; recent_results_.GetInfo(run_id, info)) return info;  // ended here
+  if (v1::RunInfo info; pending_finals_.Find(run_id, info)) return info;     // not stored yet
   std::optional<v1::RunInfo> stored = store_->GetRun(run_id);
   if (!stored) throw NotFound(run_id);
   return *stored;
@@ -265,6 +277,7 @@ v1::RunInfo RunManager::ResultInfo(const std::string& run_id) const {
                        "run " + run_id + " is " + v1::RunState_Name(run->Info().state()) +
                            "; wait for it to end (`mbstream run --watch` or WatchRun)");
   }
+  if (v1::RunInfo pending; pending_finals_.Find(run_id, pending)) return pending;
   std::optional<v1::RunInfo> info = store_->GetRun(run_id);
   if (!info) throw NotFound(run_id);
   if (!IsFinalState(info->state())) {  // queued, or integrating on another replica
@@ -353,6 +366,7 @@ bool RunManager::AddProbes(const std::string& run_id, const std::vector<v1::Prob
 }
 
 void RunManager::Shutdown(const std::string& reason) {
+  feeder_.Stop();                        // no more points queued
   if (!queue_.Shutdown(reason)) return;  // shut down already
   follower_replays_.Stop();
   if (cluster_follow_) cluster_follow_->Stop();

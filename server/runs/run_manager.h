@@ -9,6 +9,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -20,10 +21,12 @@
 #include "mbstream/v1/replay.pb.h"
 #include "mbstream/v1/run.pb.h"
 #include "mbstream/v1/run_spec.pb.h"
+#include "mbstream/v1/sweep.pb.h"
 #include "server/runs/fan_out.h"
 #include "server/runs/follower_replays.h"
 #include "server/runs/free_space.h"
 #include "server/runs/model_registry.h"
+#include "server/runs/pending_finals.h"
 #include "server/runs/probe_recorder.h"
 #include "server/runs/recent_results.h"
 #include "server/runs/replay_cursor.h"
@@ -32,7 +35,10 @@
 #include "server/runs/run_queue.h"
 #include "server/runs/server_limits.h"
 #include "server/runs/subscription.h"
+#include "server/runs/sweep_feeder.h"
+#include "server/runs/sweep_plan.h"
 #include "server/store/run_lease.h"
+#include "server/store/stored_sweep.h"
 
 namespace mbstream {
 
@@ -65,6 +71,35 @@ class RunManager {
                                      const std::string& owner = "",
                                      const std::string& sweep_id = "", int first_point = 0,
                                      int total_points = 0);
+  // Sweeps the server feeds (run_manager_sweep.cc; docs/cluster.md, "Sweeps"). StartSweep
+  // checks every point's values against the spec's fields and the first `window` points
+  // against the model (InputError or RequestError naming the point), stores the sweep whole
+  // and queues its first window (as the queue has room); the feeder queues the rest, at most
+  // `window` (0: 32) of its runs queued or running at once. A later point the model refuses
+  // is stored as a FAILED run of the sweep. Throws as StartMany.
+  struct StartedSweep {
+    std::string id;
+    int total_points = 0;
+    std::vector<std::string> paths;
+    std::vector<v1::RunInfo> runs;  // queued (or FAILED) by this call, in point order
+    std::vector<std::vector<std::string>> values;  // each run's values, in paths' order
+  };
+  StartedSweep StartSweep(const std::string& model, v1::SweepDefinition definition, int window,
+                          const std::string& owner);
+  // A sweep as the store holds it: its row (nullopt for a sweep an older server started in
+  // slices: then `runs` are all its runs), its runs by state (those integrating here as they
+  // are now) and a page of its runs, in point order from point `runs_from`, at most
+  // `max_runs` (0 = 1,000, at most 1,000), each with its values. Throws kNotFound.
+  struct SweepView {
+    std::optional<StoredSweep> stored;
+    std::map<int, int> states;  // by v1::RunState
+    std::vector<v1::RunInfo> runs;
+    std::vector<std::string> paths;
+    std::vector<std::vector<std::string>> values;  // of each run of `runs` (with `stored`)
+  };
+  SweepView ViewSweep(const std::string& sweep_id, int runs_from, int max_runs) const;
+  // The runs of sweep `sweep_id` QUEUED or RUNNING in the store (at most its window).
+  std::vector<v1::RunInfo> UnfinishedSweepRuns(const std::string& sweep_id) const;
   // The runs of sweep `sweep_id` the store holds (every replica's), in point order, each as
   // Get returns it (run_manager_sweep.cc). Empty for an unknown sweep.
   std::vector<v1::RunInfo> SweepRuns(const std::string& sweep_id) const;
@@ -118,7 +153,10 @@ class RunManager {
   std::vector<v1::ProbeReport> ResultProbes(const std::string& run_id) const;
   // Forgets what this replica keeps of ended run `run_id` in memory (RecentResults), after
   // the run was deleted from the store (run_deleter.h): later reads ask the store.
-  void ForgetEnded(const std::string& run_id) { recent_results_.Erase(run_id); }
+  void ForgetEnded(const std::string& run_id) {
+    recent_results_.Erase(run_id);
+    pending_finals_.Erase(run_id);
+  }
   // Replays (run_manager_replay.cc). Whether the run is queued or running now; a cursor over
   // an ended run's stored frames (`info` from ResultInfo); the replays' probe sets: a new
   // unique set id, creating a set and adding its reports (each call one transaction), the
@@ -244,6 +282,13 @@ class RunManager {
                                      const std::string& owner, std::vector<v1::RunInfo>& infos);
   // A run of this replica changed state (AwaitChange): counted and notified.
   void NoteStateChange();
+  // The feeder's step (run_manager_sweep.cc): points [first, first + count) of `sweep` (at
+  // most what the queue takes) expanded, checked and stored with the sweep's next point in
+  // one store transaction, the QUEUED ones queued here. Returns the runs stored, in point
+  // order; none when the store refused them (another replica queued them first, the sweep
+  // was cancelled or its window is full), the queue is full or stopping, or the disk full.
+  std::vector<v1::RunInfo> FeedSweep(const StoredSweep& sweep, const SweepPlan& plan, int first,
+                                     int count);
 
   ModelRegistry* models_;
   Store* store_;
@@ -252,6 +297,7 @@ class RunManager {
 
   const ReplicaOptions replica_;      // as given, with its id; the address is RunQueue's
   RecentResults recent_results_;      // frames of ended runs for their GetResult
+  PendingFinals pending_finals_;      // final states the store refused (a full disk)
   FanOut fan_out_;                    // subscriptions and follow streams
   FollowerReplays follower_replays_;  // ReplayToFollowers; stopped by Shutdown
 
@@ -264,6 +310,9 @@ class RunManager {
   std::string data_dir_;                        // named in the refusal
   // Follow streams of a shared store also get the runs other replicas claim (kRemoteRun).
   std::unique_ptr<ClusterFollow> cluster_follow_;
+  // Keeps the stored sweeps' windows filled (FeedSweep); started once queue_ is made, and
+  // woken by every state change of this replica's runs.
+  SweepFeeder feeder_;
   // Last: its threads call the manager (QueueHooks) as soon as it is made.
   RunQueue queue_;
 };

@@ -13,6 +13,7 @@ void RunManager::NoteStateChange() {
     ++state_changes_;
   }
   state_changed_.notify_all();
+  feeder_.Wake();  // a run of a sweep may have ended: its window has room
 }
 
 v1::RunInfo RunManager::AwaitChange(const std::string& run_id, v1::RunState from,

@@ -30,6 +30,7 @@ RunQueue::RunQueue(Store* store, ReplicaOptions replica, const ServerLimits& lim
     if (interrupted > 0) {
       spdlog::warn("{} runs of a previous server marked INTERRUPTED", interrupted);
     }
+    RequeueSweepRuns();
   }
   spdlog::info("replica {}: leases of {} s", replica_.id, replica_.lease_timeout_s);
   for (int i = 0; i < workers_count_; ++i) workers_.emplace_back([this] { WorkerLoop(); });
@@ -37,6 +38,55 @@ RunQueue::RunQueue(Store* store, ReplicaOptions replica, const ServerLimits& lim
 }
 
 RunQueue::~RunQueue() { Shutdown("the server stopped"); }
+
+void RunQueue::RequeueSweepRuns() {
+  // A run that brought its server down each time it ran is not run a fourth time.
+  constexpr int kMaxSweepRestarts = 3;
+  int requeued = 0;
+  for (v1::RunInfo& info : store_->ListUnfinishedSweepRuns()) {
+    if (info.attempts() >= kMaxSweepRestarts) {
+      store_->EndQueuedRun(info.id(), v1::INTERRUPTED,
+                           "the server stopped " + std::to_string(kMaxSweepRestarts) +
+                               " times while this run of sweep " + info.sweep_id() +
+                               " was queued or running; start it again",
+                           NowMs());
+      continue;
+    }
+    info.set_state(v1::QUEUED);
+    info.set_attempts(info.attempts() + 1);
+    info.set_started_unix_ms(0);
+    info.set_replica("");
+    info.set_replica_address("");
+    std::shared_ptr<Run> run;
+    try {
+      store_->PutRun(info);
+      run = hooks_.prepare(info);
+    } catch (const std::exception& error) {
+      spdlog::error("run {} of sweep {}: cannot be queued again: {}", info.id(), info.sweep_id(),
+                    error.what());
+      store_->EndQueuedRun(info.id(), v1::FAILED,
+                           std::string("the server restarted and could not queue the run "
+                                       "again: ") +
+                               error.what(),
+                           NowMs());
+      continue;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    active_[info.id()] = run;
+    queue_.push_back(run);
+    ++wakeups_;
+    ++requeued;
+  }
+  if (requeued > 0) {
+    spdlog::warn("{} runs of sweeps a previous server left queued or running queued again",
+                 requeued);
+  }
+}
+
+int RunQueue::Room() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return std::max(0, max_queued_runs_ - static_cast<int>(queue_.size()));
+}
 
 std::vector<std::shared_ptr<Run>> RunQueue::Reserve(
     std::vector<v1::RunInfo>& infos,
@@ -75,7 +125,8 @@ void RunQueue::Forget(const std::vector<std::shared_ptr<Run>>& runs) {
 
 std::vector<std::shared_ptr<Run>> RunQueue::Enqueue(
     std::vector<v1::RunInfo>& infos,
-    const std::function<std::shared_ptr<Run>(const v1::RunInfo&, size_t)>& make_run) {
+    const std::function<std::shared_ptr<Run>(const v1::RunInfo&, size_t)>& make_run,
+    const StoreRuns& store_runs) {
   // No lock across the store's I/O: new ids are reserved in active_ and queue_ under the lock
   // (counting against the queue limit), stored QUEUED in one transaction that refuses an id
   // already stored by any replica (from then on any replica may claim them; a taken id: new
@@ -86,7 +137,7 @@ std::vector<std::shared_ptr<Run>> RunQueue::Enqueue(
     runs = Reserve(infos, make_run);
     bool stored = false;
     try {
-      stored = store_->AddRuns(infos);
+      stored = store_runs ? store_runs(infos) : store_->AddRuns(infos);
     } catch (...) {
       Forget(runs);
       throw;
@@ -161,6 +212,16 @@ bool RunQueue::IntegratesHere(const std::string& run_id) const {
   auto found = active_.find(run_id);
   return found != active_.end() &&
          std::find(queue_.begin(), queue_.end(), found->second) == queue_.end();
+}
+
+std::vector<v1::RunInfo> RunQueue::SweepInfos(const std::string& sweep_id) const {
+  std::vector<v1::RunInfo> infos;
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (const auto& [id, run] : active_) {
+    v1::RunInfo info = run->Info();
+    if (info.sweep_id() == sweep_id) infos.push_back(std::move(info));
+  }
+  return infos;
 }
 
 std::shared_ptr<Run> RunQueue::NewestRunning() const {
@@ -357,11 +418,26 @@ bool RunQueue::Shutdown(const std::string& reason) {
 void RunQueue::EndLeftRuns(const std::deque<std::shared_ptr<Run>>& queued,
                            const std::map<std::string, std::shared_ptr<Run>>& elsewhere,
                            const std::string& reason) {
-  // Runs queued here and not claimed: INTERRUPTED with a private store; left queued in a
-  // shared one (another replica takes them).
+  // Runs queued here and not claimed: INTERRUPTED with a private store (but those of the
+  // sweeps it feeds); left queued in a shared one (another replica takes them).
+  std::map<std::string, bool> fed_sweeps;  // by id: stored and not cancelled
+  auto fed = [&](const std::string& sweep_id) {
+    if (sweep_id.empty()) return false;
+    auto [known, inserted] = fed_sweeps.try_emplace(sweep_id, false);
+    if (inserted) {
+      try {
+        const std::optional<StoredSweep> sweep = store_->GetSweep(sweep_id, false);
+        known->second = sweep && !sweep->cancelled;
+      } catch (const std::exception& error) {
+        spdlog::error("sweep {}: reading it failed: {}", sweep_id, error.what());
+      }
+    }
+    return known->second;
+  };
   for (const auto& run : queued) {
     std::optional<v1::RunInfo> ended;
-    if (replica_.private_store) {
+    // A run of a sweep the server feeds stays queued: the next start runs it.
+    if (replica_.private_store && !fed(run->Info().sweep_id())) {
       try {
         ended = store_->EndQueuedRun(run->id(), v1::INTERRUPTED,
                                      reason + " before this run started", NowMs());

@@ -69,7 +69,8 @@ class RunQueue {
 
   // `store` is not owned and must outlive the queue. `replica.id` must be set. With a
   // private store, marks runs the store still lists as queued or running (a previous server
-  // died) INTERRUPTED; then starts `limits.workers` worker threads and the keeper. Lease
+  // died) INTERRUPTED, but queues those of the sweeps it feeds again (RequeueSweepRuns);
+  // then starts `limits.workers` worker threads and the keeper. Lease
   // times (claims, renewals, reaps) are the milliseconds of `lease_clock` since its epoch
   // (a test's manual clock); Unix time, as every replica sharing the store, when null.
   RunQueue(Store* store, ReplicaOptions replica, const ServerLimits& limits, Hooks hooks,
@@ -81,9 +82,16 @@ class RunQueue {
   // the store holds one already) and the workers woken. Returns the runs in `infos`' order.
   // Throws RequestError: kUnavailable when stopping or draining, kResourceExhausted when the
   // queue (limits.max_queued_runs) has no room for them all; the store's errors.
+  // `store_runs`, when given, stores them instead of Store::AddRuns (a sweep's points:
+  // Store::AddSweepRuns), with AddRuns' contract: false when an id is taken; what it throws
+  // leaves nothing queued.
+  using StoreRuns = std::function<bool(const std::vector<v1::RunInfo>&)>;
   std::vector<std::shared_ptr<Run>> Enqueue(
       std::vector<v1::RunInfo>& infos,
-      const std::function<std::shared_ptr<Run>(const v1::RunInfo&, size_t)>& make_run);
+      const std::function<std::shared_ptr<Run>(const v1::RunInfo&, size_t)>& make_run,
+      const StoreRuns& store_runs = nullptr);
+  // How many more runs the queue takes now (limits.max_queued_runs less those queued here).
+  int Room() const;
   // Cancels a run queued or integrating here, or queued in the store by any replica: its info
   // (CANCELLED when it was queued; cancel requested when it integrates here). nullopt when
   // the run is neither (ended, unknown, or integrating on another replica).
@@ -92,6 +100,8 @@ class RunQueue {
   std::shared_ptr<Run> Find(const std::string& run_id) const;
   // Whether run `run_id` is integrating here (claimed, not queued).
   bool IntegratesHere(const std::string& run_id) const;
+  // The infos of the runs of sweep `sweep_id` queued or integrating here.
+  std::vector<v1::RunInfo> SweepInfos(const std::string& sweep_id) const;
   // The newest run integrating here in state RUNNING, or nullptr.
   std::shared_ptr<Run> NewestRunning() const;
   // Run `run` (claimed here) is stored and about to end: no longer listed (Find), and
@@ -133,6 +143,10 @@ class RunQueue {
   std::optional<std::string> stop_reason() const;
 
  private:
+  // At start with a private store: the runs of stored sweeps a previous server left queued
+  // or running (Store::ListUnfinishedSweepRuns) queued here again under their ids, from their
+  // start; one queued again kMaxSweepRestarts times already ends INTERRUPTED instead.
+  void RequeueSweepRuns();
   void WorkerLoop();
   void KeeperLoop();
   std::shared_ptr<Run> ClaimNext();

@@ -1,46 +1,27 @@
-// StartSweep: a parameter sweep expanded here (server/spec/spec_override.h) and queued as
-// StartRuns queues runs, a slice at a time.
-#include <algorithm>
-
+// StartSweep: a parameter sweep stored whole and fed by the server (RunManager::StartSweep,
+// server/runs/sweep_feeder.h): this call checks it, stores it and queues its first window.
 #include "common/check.h"
 #include "server/runs/request_error.h"
-#include "server/runs/timed_id.h"
 #include "server/service/simulation_service.h"
-#include "server/spec/spec_override.h"
 
 namespace mbstream {
 
 namespace {
 
-// Most points of one sweep: its expansion is redone for every slice.
-constexpr long kMaxSweepPoints = 100'000;
-
-SweepPoints PointsOf(const v1::StartSweepRequest& request) {
-  if (request.grid_size() > 0 && (request.list_size() > 0 || request.list_paths_size() > 0)) {
-    throw InputError("StartSweep: give a grid or a list, not both");
+// The sweep as the store keeps it (v1.SweepDefinition: the request's fields, wire for wire).
+v1::SweepDefinition DefinitionOf(const v1::StartSweepRequest& request) {
+  v1::SweepDefinition definition;
+  *definition.mutable_base() = request.base();
+  for (const v1::SweepAxis& axis : request.grid()) {
+    v1::SweepDefinition::Axis& stored = *definition.add_grid();
+    stored.set_path(axis.path());
+    stored.mutable_values()->CopyFrom(axis.values());
   }
-  if (request.grid_size() > 0) {
-    std::vector<std::string> paths;
-    std::vector<std::vector<std::string>> values;
-    for (const v1::SweepAxis& axis : request.grid()) {
-      paths.push_back(axis.path());
-      values.emplace_back(axis.values().begin(), axis.values().end());
-    }
-    return GridPoints(paths, values, kMaxSweepPoints, "grid");
-  }
-  if (request.list_size() == 0) {
-    throw InputError("StartSweep: the sweep has no points; give grid axes or list points");
-  }
-  if (request.list_size() > kMaxSweepPoints) {
-    throw InputError("list: more than " + std::to_string(kMaxSweepPoints) +
-                     " points; split the sweep");
-  }
-  SweepPoints sweep;
-  sweep.paths.assign(request.list_paths().begin(), request.list_paths().end());
+  definition.mutable_list_paths()->CopyFrom(request.list_paths());
   for (const v1::SweepPoint& point : request.list()) {
-    sweep.points.emplace_back(point.values().begin(), point.values().end());
+    definition.add_list()->mutable_values()->CopyFrom(point.values());
   }
-  return sweep;
+  return definition;
 }
 
 }  // namespace
@@ -49,54 +30,31 @@ grpc::Status SimulationService::StartSweep(grpc::ServerContext* context,
                                            const v1::StartSweepRequest* request,
                                            v1::StartSweepResponse* response) {
   return Admit(*context, "StartSweep", [&]() -> grpc::Status {
-    const SweepPoints sweep = PointsOf(*request);
-    const long total = static_cast<long>(sweep.points.size());
-    if (request->first_point() < 0 || request->first_point() > total) {
-      throw InputError("first_point is " + std::to_string(request->first_point()) +
-                       "; the sweep has " + std::to_string(total) + " points (0.." +
-                       std::to_string(total) + ")");
-    }
-    if (request->max_runs() < 0) {
-      throw InputError("max_runs is " + std::to_string(request->max_runs()) +
-                       "; give 0 (all that are left) or the most runs to start now");
-    }
-    const long first = request->first_point();
-    const long count = request->max_runs() == 0
-                           ? total - first
-                           : std::min<long>(request->max_runs(), total - first);
-    // The first slice expands every point, so that a value of the wrong type or path fails
-    // the sweep before any run starts; later slices only their own.
-    if (first == 0) ExpandSweep(request->base(), sweep, "sweep");
-    google::protobuf::RepeatedPtrField<v1::RunSpec> slice;
-    for (v1::RunSpec& spec : ExpandSweep(request->base(), sweep, "sweep", first, count)) {
-      *slice.Add() = std::move(spec);
-    }
-    const std::string& given = request->sweep_id();
-    if (!given.empty() &&
-        (given.size() > 64 || given.rfind("s-", 0) != 0 ||
-         given.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-") != std::string::npos)) {
-      throw InputError("sweep_id: give the id the sweep's first StartSweep returned (s-...)");
-    }
-    if (!given.empty() && runs_->SweepCancelled(given)) {
+    // A client of before the server fed sweeps starts later slices: the server has them all.
+    if (!request->sweep_id().empty() || request->first_point() > 0) {
       throw RequestError(RequestErrorKind::kFailedPrecondition,
-                         "sweep " + given + " was cancelled (CancelSweep); start a new sweep");
+                         "the server feeds a sweep's points itself (StartSweep once, then "
+                         "follow it with GetSweep); sweep " +
+                             request->sweep_id().substr(0, 80) + " needs no later slice");
     }
-    const std::string id = given.empty() ? NewTimedId("s-") : given;
-    response->set_sweep_id(id);
-    for (const std::string& path : sweep.paths) response->add_paths(path);
-    if (count > 0) {
-      for (v1::RunInfo& info :
-           runs_->StartMany(request->model(), slice, authorizer_->CallerId(*context), id,
-                            static_cast<int>(first), static_cast<int>(total))) {
-        *response->add_runs() = std::move(info);
-      }
+    if (request->max_runs() < 0 || request->window() < 0) {
+      throw InputError("window is " +
+                       std::to_string(std::min(request->window(), request->max_runs())) +
+                       "; give the most runs of the sweep queued at once, or 0 for 32");
     }
-    for (long k = first; k < first + count; ++k) {
+    // An older client's first slice: its size is the window.
+    const int window = request->window() > 0 ? request->window() : request->max_runs();
+    RunManager::StartedSweep started = runs_->StartSweep(request->model(), DefinitionOf(*request),
+                                                         window, authorizer_->CallerId(*context));
+    response->set_sweep_id(started.id);
+    for (const std::string& path : started.paths) response->add_paths(path);
+    for (size_t i = 0; i < started.runs.size(); ++i) {
       v1::SweepPoint& point = *response->add_points();
-      for (const std::string& value : sweep.points[static_cast<size_t>(k)]) point.add_values(value);
+      for (const std::string& value : started.values[i]) point.add_values(value);
+      *response->add_runs() = std::move(started.runs[i]);
     }
-    response->set_total_points(static_cast<int32_t>(total));
-    response->set_next_point(static_cast<int32_t>(first + count));
+    response->set_total_points(started.total_points);
+    response->set_next_point(started.total_points);  // an older client starts no more slices
     return grpc::Status::OK;
   });
 }

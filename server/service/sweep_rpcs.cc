@@ -1,7 +1,8 @@
-// GetSweep and CancelSweep: a sweep as a whole, from the runs the store holds under its id
-// (RunManager::SweepRuns), so that any replica of a cluster answers for every replica's runs.
+// GetSweep and CancelSweep: a sweep as a whole, from the store (RunManager::ViewSweep), so
+// that any replica of a cluster answers for every replica's runs.
 #include <chrono>
 
+#include "common/check.h"
 #include "server/runs/request_error.h"
 #include "server/service/simulation_service.h"
 #include "server/service/sweep_progress.h"
@@ -14,16 +15,6 @@ namespace {
 // How long CancelSweep waits for the sweep's runs to end (a cancelled run ends at its next
 // step; a run on an unreachable replica may not).
 constexpr auto kCancelWait = std::chrono::seconds(10);
-
-std::vector<v1::RunInfo> KnownSweepRuns(const RunManager& runs, const std::string& sweep_id) {
-  std::vector<v1::RunInfo> found = runs.SweepRuns(sweep_id);
-  if (found.empty()) {
-    throw RequestError(RequestErrorKind::kNotFound,
-                       "no run belongs to sweep '" + sweep_id.substr(0, 80) +
-                           "'; give the id `mbstream sweep` printed (s-...)");
-  }
-  return found;
-}
 
 // Waits until run `run` has ended or `until` passes; a run deleted meanwhile counts as ended.
 void AwaitEnded(const RunManager& runs, v1::RunInfo run,
@@ -43,7 +34,13 @@ grpc::Status SimulationService::GetSweep(grpc::ServerContext* context,
                                          const v1::GetSweepRequest* request,
                                          v1::SweepProgress* response) {
   return Admit(*context, "GetSweep", [&]() -> grpc::Status {
-    *response = SweepProgressOf(request->sweep_id(), KnownSweepRuns(*runs_, request->sweep_id()));
+    if (request->runs_from() < 0 || request->max_runs() < 0) {
+      throw InputError("runs_from and max_runs must be 0 or more");
+    }
+    *response = SweepProgressOf(
+        request->sweep_id(),
+        runs_->ViewSweep(request->sweep_id(), request->runs_from(), request->max_runs()),
+        request->runs_from());
     return grpc::Status::OK;
   });
 }
@@ -53,19 +50,26 @@ grpc::Status SimulationService::CancelSweep(grpc::ServerContext* context,
                                             v1::SweepProgress* response) {
   return Admit(*context, "CancelSweep", [&]() -> grpc::Status {
     const std::string& id = request->sweep_id();
-    std::vector<v1::RunInfo> runs = KnownSweepRuns(*runs_, id);
+    const RunManager::SweepView view = runs_->ViewSweep(id, 0, 1);  // kNotFound when unknown
     const bool admin = authorizer_->CallerHas(*context, Role::kAdmin);
+    const std::string caller = authorizer_->CallerId(*context);
+    std::vector<v1::RunInfo> runs =
+        view.stored ? runs_->UnfinishedSweepRuns(id) : runs_->SweepRuns(id);
+    auto refuse = [&](const std::string& what) {
+      return grpc::Status(grpc::StatusCode::PERMISSION_DENIED,
+                          "sweep " + id + " was started with another token (" + what +
+                              "); only that token or an admin token may cancel it");
+    };
+    if (!admin && view.stored && !view.stored->owner.empty() && view.stored->owner != caller) {
+      return refuse("its owner");
+    }
     for (const v1::RunInfo& run : runs) {  // every run checked before any is cancelled
-      if (!admin && !run.owner().empty() && run.owner() != authorizer_->CallerId(*context)) {
-        return grpc::Status(grpc::StatusCode::PERMISSION_DENIED,
-                            "sweep " + id + " has runs started with another token (" + run.id() +
-                                "); only that token or an admin token may cancel it");
-      }
+      if (!admin && !run.owner().empty() && run.owner() != caller) return refuse(run.id());
     }
     const auto until = std::chrono::steady_clock::now() + kCancelWait;
-    // The mark first: StartSweep refuses later slices from now on. Twice: a slice that passed
-    // StartSweep's check before the mark, started while the first pass ran, is cancelled (and
-    // marked) too.
+    // The mark first: no more points are queued from now on (Store::AddSweepRuns checks it in
+    // the transaction that queues them). Twice: runs queued just before the mark are
+    // cancelled (and marked) too.
     runs_->MarkSweepCancelled(id);
     for (int pass = 0; pass < 2; ++pass) {
       for (const v1::RunInfo& run : runs) {
@@ -81,9 +85,9 @@ grpc::Status SimulationService::CancelSweep(grpc::ServerContext* context,
       }
       for (const v1::RunInfo& run : runs) AwaitEnded(*runs_, run, until);
       runs_->MarkSweepCancelled(id);
-      runs = runs_->SweepRuns(id);
+      runs = view.stored ? runs_->UnfinishedSweepRuns(id) : runs_->SweepRuns(id);
     }
-    *response = SweepProgressOf(id, runs);
+    *response = SweepProgressOf(id, runs_->ViewSweep(id, 0, 0), 0);
     response->set_cancelled(true);
     return grpc::Status::OK;
   });

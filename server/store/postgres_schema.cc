@@ -105,6 +105,26 @@ ALTER TABLE runs ADD COLUMN sweep_cancelled boolean NOT NULL DEFAULT false;
 CREATE INDEX runs_by_sweep ON runs (sweep_id, sweep_cancelled) WHERE sweep_id IS NOT NULL;
 )sql";
 
+// Version 8: the sweeps the server feeds, as in store_schema.cc; BackfillSweepPoints fills
+// the points of the sweep runs stored before it.
+constexpr const char* kSchemaV8 = R"sql(
+CREATE TABLE sweeps (
+  ord bigint GENERATED ALWAYS AS IDENTITY PRIMARY KEY,
+  id text NOT NULL UNIQUE,
+  model_id text NOT NULL,
+  owner text NOT NULL,
+  created_unix_ms bigint NOT NULL,
+  total_points integer NOT NULL,
+  next_point integer NOT NULL,
+  queue_window integer NOT NULL,
+  cancelled boolean NOT NULL DEFAULT false,
+  definition bytea NOT NULL  -- v1.SweepDefinition
+);
+ALTER TABLE runs ADD COLUMN sweep_point integer NOT NULL DEFAULT 0;
+CREATE INDEX runs_by_sweep_point ON runs (sweep_id, sweep_point) WHERE sweep_id IS NOT NULL;
+CREATE INDEX runs_by_sweep_state ON runs (sweep_id, state) WHERE sweep_id IS NOT NULL;
+)sql";
+
 // Version 7's columns of the runs stored before it (each RunInfo read once, at the upgrade).
 void BackfillSweeps(pqxx::work& tx, const std::string& location) {
   v1::RunInfo info;
@@ -115,6 +135,18 @@ void BackfillSweeps(pqxx::work& tx, const std::string& location) {
                    "run " + row[0].as<std::string>(), location);
     if (info.sweep_id().empty()) continue;
     tx.exec_params(kBackfillSweepSql, info.sweep_id(), info.sweep_cancelled(), info.id());
+  }
+}
+
+// Version 8's column of the sweep runs stored before it.
+void BackfillSweepPoints(pqxx::work& tx, const std::string& location) {
+  v1::RunInfo info;
+  pqxx::binarystring blob(nullptr, 0);
+  for (const pqxx::row& row : tx.exec(kSelectSweepRunInfosSql)) {
+    blob = pqxx::binarystring(row[1]);
+    ParseFromStore(std::string_view(blob.get(), blob.size()), info,
+                   "run " + row[0].as<std::string>(), location);
+    tx.exec_params(kBackfillSweepPointSql, info.sweep_point(), info.id());
   }
 }
 
@@ -130,7 +162,8 @@ constexpr Migration kMigrations[] = {{1, kSchemaV1},
                                      {4, kSchemaV4},
                                      {5, kSchemaV5},
                                      {6, kSchemaV6},
-                                     {7, kSchemaV7, BackfillSweeps}};
+                                     {7, kSchemaV7, BackfillSweeps},
+                                     {8, kSchemaV8, BackfillSweepPoints}};
 static_assert(sizeof(kMigrations) / sizeof(kMigrations[0]) == kPostgresSchemaVersion);
 static_assert(kPostgresSchemaVersion == kStoreSchemaVersion, "both stores, one behaviour");
 

@@ -14,7 +14,7 @@ namespace mbstream {
 // step to kMigrations in postgres_schema.cc.
 // 1: models, runs, frame chunks, probes. 2: the replays' probe sets. 3: the run queue's leases.
 // 4-6 as in store_schema.h. 7: a run's sweep (runs.sweep_id, indexed; runs.sweep_cancelled).
-inline constexpr int kPostgresSchemaVersion = 7;
+inline constexpr int kPostgresSchemaVersion = 8;
 
 // Creates the schema in an empty database, or migrates an mbstream database of an older
 // version up to `target_version` (tests migrate to an older one to make a previous-version

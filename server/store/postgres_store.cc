@@ -7,6 +7,7 @@
 #include "common/check.h"
 #include "server/store/postgres_schema.h"
 #include "server/store/postgres_store_impl.h"
+#include "server/store/sweep_sql.h"
 
 namespace mbstream {
 namespace {
@@ -29,18 +30,17 @@ constexpr std::pair<const char*, const char*> kStatements[] = {
      "SELECT m.id, octet_length(m.bundle) + COALESCE((SELECT sum(octet_length(a.data)) "
      "FROM model_assets a WHERE a.model_id = m.id), 0) FROM models m"},
     {"upsert_run",
-     "INSERT INTO runs (id, model_id, state, created_unix_ms, info, sweep_id) "
-     "VALUES ($1, $2, $3, $4, $5, NULLIF($6, '')) "
+     "INSERT INTO runs (id, model_id, state, created_unix_ms, info, sweep_id, sweep_point) "
+     "VALUES ($1, $2, $3, $4, $5, NULLIF($6, ''), $7) "
      "ON CONFLICT (id) DO UPDATE SET model_id = excluded.model_id, state = excluded.state, "
      "created_unix_ms = excluded.created_unix_ms, info = excluded.info, "
-     "sweep_id = excluded.sweep_id"},
+     "sweep_id = excluded.sweep_id, sweep_point = excluded.sweep_point"},
     {"insert_new_run",
-     "INSERT INTO runs (id, model_id, state, created_unix_ms, info, sweep_id) "
-     "VALUES ($1, $2, $3, $4, $5, NULLIF($6, '')) ON CONFLICT (id) DO NOTHING"},
+     "INSERT INTO runs (id, model_id, state, created_unix_ms, info, sweep_id, sweep_point) "
+     "VALUES ($1, $2, $3, $4, $5, NULLIF($6, ''), $7) ON CONFLICT (id) DO NOTHING"},
     {"select_run", "SELECT info, keep, sweep_cancelled FROM runs WHERE id = $1"},
     {"select_runs", "SELECT info, keep, sweep_cancelled FROM runs ORDER BY created_unix_ms, ord"},
-    {"select_unfinished_runs",
-     "SELECT info FROM runs WHERE state IN ($1, $2) ORDER BY ord FOR UPDATE"},
+    {"select_unfinished_runs", kSelectUnfinishedRunsForUpdateSql},
     {"delete_frame_chunks", "DELETE FROM frame_chunks WHERE run_id = $1"},
     {"delete_frame_chunks_after", "DELETE FROM frame_chunks WHERE run_id = $1 AND chunk > $2"},
     {"upsert_frame_chunk",
@@ -171,11 +171,12 @@ std::map<std::string, int64_t> PostgresStore::ModelBytes() const {
 
 namespace {
 
-// Runs prepared `statement` (upsert_run or insert_new_run: the same six parameters) for `info`.
+// Runs prepared `statement` (upsert_run or insert_new_run: the same seven parameters) for `info`.
 pqxx::result WriteRun(pqxx::transaction_base& tx, const char* statement, const v1::RunInfo& info) {
   const std::string bytes = SerializeForStore(info, "run " + info.id());
   return tx.exec_prepared(statement, info.id(), info.model_id(), static_cast<int>(info.state()),
-                          info.created_unix_ms(), BlobParam(bytes), info.sweep_id());
+                          info.created_unix_ms(), BlobParam(bytes), info.sweep_id(),
+                          info.sweep_point());
 }
 
 }  // namespace
@@ -191,6 +192,10 @@ void UpsertRun(pqxx::transaction_base& tx, const v1::RunInfo& info) {
   WriteRun(tx, "upsert_run", info);
 }
 
+bool InsertNewRun(pqxx::transaction_base& tx, const v1::RunInfo& info) {
+  return WriteRun(tx, "insert_new_run", info).affected_rows() > 0;
+}
+
 void PostgresStore::PutRun(const v1::RunInfo& info) {
   impl_->Transact("write run " + info.id(), [&](pqxx::work& tx) { UpsertRun(tx, info); });
 }
@@ -203,7 +208,7 @@ bool PostgresStore::AddRuns(const std::vector<v1::RunInfo>& infos) {
   try {
     impl_->Transact("write " + std::to_string(infos.size()) + " runs", [&](pqxx::work& tx) {
       for (const v1::RunInfo& info : infos) {
-        if (WriteRun(tx, "insert_new_run", info).affected_rows() == 0) throw RunIdTaken{};
+        if (!InsertNewRun(tx, info)) throw RunIdTaken{};
       }
     });
   } catch (const RunIdTaken&) {

@@ -65,6 +65,8 @@ void ReadRunRow(const pqxx::row& row, pqxx::binarystring& blob, v1::RunInfo& inf
 
 // Writes the run row (insert, or update keeping its order and its frames).
 void UpsertRun(pqxx::transaction_base& transaction, const v1::RunInfo& info);
+// Inserts a new run row; false (nothing written) when its id is taken.
+bool InsertNewRun(pqxx::transaction_base& transaction, const v1::RunInfo& info);
 
 // What the run's stored frames are (kept_frames.h); a corrupt last chunk is removed, then the
 // one before it is looked at. In the transaction that marks the run INTERRUPTED.

@@ -93,23 +93,25 @@ SqliteStore::Impl::Impl(SqliteConnection connection, const std::string& frames_p
                          "FROM model_assets a WHERE a.model_id = m.id), 0) FROM models m",
                          "read model sizes"),
       upsert_run(db,
-                 "INSERT INTO runs (id, model_id, state, created_unix_ms, info, sweep_id) "
-                 "VALUES (?1, ?2, ?3, ?4, ?5, NULLIF(?6, '')) ON CONFLICT (id) DO UPDATE SET "
-                 "model_id = excluded.model_id, state = excluded.state, "
+                 "INSERT INTO runs (id, model_id, state, created_unix_ms, info, sweep_id, "
+                 "sweep_point) VALUES (?1, ?2, ?3, ?4, ?5, NULLIF(?6, ''), ?7) ON CONFLICT (id) "
+                 "DO UPDATE SET model_id = excluded.model_id, state = excluded.state, "
                  "created_unix_ms = excluded.created_unix_ms, info = excluded.info, "
-                 "sweep_id = excluded.sweep_id",
+                 "sweep_id = excluded.sweep_id, sweep_point = excluded.sweep_point",
                  "write run"),
       insert_new_run(db,
-                     "INSERT INTO runs (id, model_id, state, created_unix_ms, info, sweep_id) "
-                     "VALUES (?1, ?2, ?3, ?4, ?5, NULLIF(?6, '')) ON CONFLICT (id) DO NOTHING",
+                     "INSERT INTO runs (id, model_id, state, created_unix_ms, info, sweep_id, "
+                     "sweep_point) VALUES (?1, ?2, ?3, ?4, ?5, NULLIF(?6, ''), ?7) "
+                     "ON CONFLICT (id) DO NOTHING",
                      "write new run"),
       select_run(db, "SELECT info, keep, sweep_cancelled FROM runs WHERE id = ?1", "read run"),
       select_runs(db, "SELECT info, keep, sweep_cancelled FROM runs ORDER BY created_unix_ms, ord",
                   "list runs"),
       select_sweep_runs(db, kSelectSweepRunsSql, "list a sweep's runs"),
+      count_sweep_runs(db, kCountSweepRunsSql, "count a sweep's runs"),
+      select_sweep(db, kSelectSweepSql, "read a sweep"),
       select_sweep_cancelled(db, kSweepCancelledSql, "read a sweep's mark"),
-      select_unfinished_runs(db, "SELECT info FROM runs WHERE state IN (?1, ?2) ORDER BY ord",
-                             "list unfinished runs"),
+      select_unfinished_runs(db, kSelectUnfinishedRunsSql, "list unfinished runs"),
       select_oldest_queued_run(
           db, "SELECT info FROM runs WHERE state = ?1 ORDER BY created_unix_ms, ord LIMIT 1",
           "claim a queued run"),

@@ -24,6 +24,7 @@
 #include "server/store/frame_chunks.h"
 #include "server/store/run_lease.h"
 #include "server/store/store_usage.h"
+#include "server/store/stored_sweep.h"
 
 namespace mbstream {
 
@@ -35,6 +36,8 @@ class Store {
 
   // Bytes by model id (ModelBytes).
   using ModelSizes = std::map<std::string, int64_t>;
+  // Runs by v1::RunState (CountSweepRuns).
+  using StateCounts = std::map<int, int>;
 
   // The SQLite store in `directory` (as --data; see SqliteStore::Open).
   static std::unique_ptr<Store> Open(const std::string& directory);
@@ -149,18 +152,46 @@ class Store {
   // when no such run is stored.
   virtual bool SetRunKeep(const std::string& run_id, bool keep) = 0;
 
-  // Sweeps (store_sweeps.cc, postgres_store_sweeps.cc; the statements in sweep_sql.h). The runs
-  // of sweep `sweep_id` (RunInfo.sweep_id), oldest first, as GetRun returns them, found by the
-  // index of sweep ids (not by reading every run). Empty for an unknown sweep. Reads only.
-  virtual std::vector<v1::RunInfo> ListSweepRuns(const std::string& sweep_id) const = 0;
-  // Marks every stored run of sweep `sweep_id` cancelled (RunInfo.sweep_cancelled), in one
-  // statement on the rows that exist: a run deleted meanwhile stays deleted. The mark is the
-  // row's own, as `keep`: PutRun and FinishRun leave it. Returns how many runs were marked now
-  // (0 when every one carried the mark already, or the sweep is unknown).
+  // Sweeps (store_sweeps.cc, postgres_store_sweeps.cc; the statements in sweep_sql.h).
+  //
+  // A sweep fed by the server (StoredSweep): stored whole by AddSweep (false, nothing
+  // written, when its id is taken), read back by GetSweep (its definition only when asked;
+  // nullopt for an unknown sweep), and those with points left to queue (not cancelled,
+  // next_point < total_points) listed oldest first without their definitions. Each read
+  // counts the sweep's runs QUEUED or RUNNING (unfinished_runs).
+  virtual bool AddSweep(const StoredSweep& sweep) = 0;
+  virtual std::optional<StoredSweep> GetSweep(const std::string& sweep_id,
+                                              bool definition) const = 0;
+  virtual std::vector<StoredSweep> ListOpenSweeps() const = 0;
+  // Queues the next points of sweep `sweep_id`: `infos` are its runs of points
+  // infos[0].sweep_point, +1, ... (QUEUED, or FAILED for a point the model refused), stored
+  // in ONE transaction that moves the sweep's next_point past them, only while next_point is
+  // infos[0].sweep_point, the sweep is not cancelled and its window has room for the QUEUED
+  // ones beside its unfinished runs (the sweep's row locked meanwhile, so that replicas
+  // feeding one sweep never queue a point twice nor overfill its window).
+  virtual SweepFeed AddSweepRuns(const std::string& sweep_id,
+                                 const std::vector<v1::RunInfo>& infos) = 0;
+  // The runs of sweep `sweep_id` (RunInfo.sweep_id) as GetRun returns them, by point
+  // (runs.sweep_point, indexed): those of points `first_point` on, at most `max_runs`
+  // (0 = all); with `unfinished_only`, only those QUEUED or RUNNING. Reads only.
+  virtual std::vector<v1::RunInfo> ListSweepRuns(const std::string& sweep_id, int first_point = 0,
+                                                 int max_runs = 0,
+                                                 bool unfinished_only = false) const = 0;
+  // How many runs of sweep `sweep_id` are in each state, from the index (no RunInfo read).
+  virtual StateCounts CountSweepRuns(const std::string& sweep_id) const = 0;
+  // Marks sweep `sweep_id` cancelled: its stored row (no more points are queued) and every
+  // stored run of it (RunInfo.sweep_cancelled), in one transaction on the rows that exist: a
+  // run deleted meanwhile stays deleted. The mark is the row's own, as `keep`: PutRun and
+  // FinishRun leave it. Returns how many runs were marked now (0 when every one carried the
+  // mark already, or the sweep is unknown).
   virtual int MarkSweepCancelled(const std::string& sweep_id) = 0;
-  // Whether a stored run of sweep `sweep_id` carries the mark, from the index alone (no
-  // RunInfo read). Reads only.
+  // Whether sweep `sweep_id` was cancelled (its row, or a stored run, carries the mark), from
+  // the indexes alone (no RunInfo read). Reads only.
   virtual bool SweepCancelled(const std::string& sweep_id) const = 0;
+  // The runs QUEUED or RUNNING of the stored sweeps not cancelled, oldest first: what a
+  // server of a private store that died left of its sweeps (RunQueue queues them again).
+  // MarkUnfinishedRunsInterrupted leaves them. Reads only.
+  virtual std::vector<v1::RunInfo> ListUnfinishedSweepRuns() const = 0;
 
   // Storage (store_usage.cc, postgres_store_usage.cc; store_usage.h). What the store holds:
   // runs by model and state, the bytes of their frames, probe reports and rows, and (SQLite)
@@ -176,8 +207,9 @@ class Store {
   // store (pg_dump: docs/cluster.md).
   virtual StoreBackup Backup(const std::string& dir) = 0;
 
-  // At server start: every run still QUEUED or RUNNING becomes INTERRUPTED with `message`
-  // and ended_unix_ms = now, its stored frames kept and counted in its row (frames, t_s,
+  // At server start: every run still QUEUED or RUNNING (but those of stored sweeps not
+  // cancelled: ListUnfinishedSweepRuns) becomes INTERRUPTED with `message` and
+  // ended_unix_ms = now, its stored frames kept and counted in its row (frames, t_s,
   // stats.t_reached_s; the message names them); returns how many.
   virtual int MarkUnfinishedRunsInterrupted(const std::string& message) = 0;
 

@@ -37,6 +37,8 @@ struct SqliteStore::Impl {
   SqliteStatement select_run;
   SqliteStatement select_runs;
   SqliteStatement select_sweep_runs;  // store_sweeps.cc
+  SqliteStatement count_sweep_runs;
+  SqliteStatement select_sweep;
   SqliteStatement select_sweep_cancelled;
   SqliteStatement select_unfinished_runs;
   // The run queue (store_queue.cc): prepared once, used for every run.
@@ -69,6 +71,9 @@ void ReadRunRowLocked(const SqliteStore::Impl& impl, const SqliteStatement& row,
 // Writes the run row (insert, or update keeping the row's order and its frames). The caller
 // holds the mutex.
 void UpsertRunLocked(SqliteStore::Impl& impl, const v1::RunInfo& info);
+// Inserts a new run row; false (nothing written) when its id is taken. The caller holds the
+// mutex.
+bool InsertNewRunLocked(SqliteStore::Impl& impl, const v1::RunInfo& info);
 
 // What the run's stored frames are (kept_frames.h); a damaged last chunk (its bytes did not
 // reach the disk) is removed, then the one before it is looked at. The caller holds the mutex,

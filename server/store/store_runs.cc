@@ -7,7 +7,7 @@ namespace mbstream {
 
 namespace {
 
-// Runs `statement` (upsert_run or insert_new_run: the same six parameters) for `info`.
+// Runs `statement` (upsert_run or insert_new_run: the same seven parameters) for `info`.
 void WriteRunLocked(SqliteStatement& statement, const v1::RunInfo& info) {
   const std::string bytes = SerializeForStore(info, "run " + info.id());
   ResetOnExit reset(statement);
@@ -17,6 +17,7 @@ void WriteRunLocked(SqliteStatement& statement, const v1::RunInfo& info) {
   statement.BindInt64(4, info.created_unix_ms());
   statement.BindBlob(5, bytes);
   statement.BindText(6, info.sweep_id());
+  statement.BindInt64(7, info.sweep_point());
   statement.Run();
 }
 
@@ -33,6 +34,11 @@ void UpsertRunLocked(SqliteStore::Impl& impl, const v1::RunInfo& info) {
   WriteRunLocked(impl.upsert_run, info);
 }
 
+bool InsertNewRunLocked(SqliteStore::Impl& impl, const v1::RunInfo& info) {
+  WriteRunLocked(impl.insert_new_run, info);
+  return impl.db.Changes() > 0;
+}
+
 void SqliteStore::PutRun(const v1::RunInfo& info) {
   std::lock_guard lock(impl_->mutex);
   UpsertRunLocked(*impl_, info);
@@ -42,8 +48,7 @@ bool SqliteStore::AddRuns(const std::vector<v1::RunInfo>& infos) {
   std::lock_guard lock(impl_->mutex);
   SqliteTransaction transaction(impl_->db, "write " + std::to_string(infos.size()) + " runs");
   for (const v1::RunInfo& info : infos) {
-    WriteRunLocked(impl_->insert_new_run, info);
-    if (impl_->db.Changes() == 0) return false;  // the id is taken: none of them is stored
+    if (!InsertNewRunLocked(*impl_, info)) return false;  // the id is taken: none is stored
   }
   transaction.Commit();
   return true;

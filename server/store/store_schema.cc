@@ -1,6 +1,7 @@
 #include "server/store/store_schema.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/check.h"
@@ -123,6 +124,28 @@ ALTER TABLE runs ADD COLUMN sweep_cancelled INTEGER NOT NULL DEFAULT 0;
 CREATE INDEX runs_by_sweep ON runs (sweep_id, sweep_cancelled) WHERE sweep_id IS NOT NULL;
 )sql";
 
+// Version 8: a sweep the server feeds (stored_sweep.h): stored whole, its points queued as its
+// window frees up. runs.sweep_point (0 for a run started alone) and the indexes of a sweep's
+// runs by point (paging) and by state (its counts, and how many of its runs are unfinished).
+// BackfillSweepPoints fills the points of the sweep runs stored before it.
+constexpr const char* kSchemaV8 = R"sql(
+CREATE TABLE sweeps (
+  ord INTEGER PRIMARY KEY,
+  id TEXT NOT NULL UNIQUE,
+  model_id TEXT NOT NULL,
+  owner TEXT NOT NULL,
+  created_unix_ms INTEGER NOT NULL,
+  total_points INTEGER NOT NULL,
+  next_point INTEGER NOT NULL,     -- the first point without a run
+  queue_window INTEGER NOT NULL,   -- most of its runs queued or running at once
+  cancelled INTEGER NOT NULL DEFAULT 0,
+  definition BLOB NOT NULL         -- v1.SweepDefinition
+);
+ALTER TABLE runs ADD COLUMN sweep_point INTEGER NOT NULL DEFAULT 0;
+CREATE INDEX runs_by_sweep_point ON runs (sweep_id, sweep_point) WHERE sweep_id IS NOT NULL;
+CREATE INDEX runs_by_sweep_state ON runs (sweep_id, state) WHERE sweep_id IS NOT NULL;
+)sql";
+
 // Version 7's columns of the runs stored before it (each RunInfo read once, at the upgrade).
 void BackfillSweeps(SqliteConnection& connection) {
   std::vector<v1::RunInfo> swept;
@@ -142,6 +165,28 @@ void BackfillSweeps(SqliteConnection& connection) {
     update.BindText(1, info.sweep_id());
     update.BindInt64(2, info.sweep_cancelled() ? 1 : 0);
     update.BindText(3, info.id());
+    update.Run();
+  }
+}
+
+// Version 8's column of the sweep runs stored before it.
+void BackfillSweepPoints(SqliteConnection& connection) {
+  std::vector<std::pair<std::string, int32_t>> points;
+  {
+    SqliteStatement select(connection, kSelectSweepRunInfosSql, "read runs for schema version 8");
+    ResetOnExit reset(select);
+    v1::RunInfo info;
+    while (select.Step()) {
+      ParseFromStore(select.ColumnBlob(1), info, "run " + std::string(select.ColumnText(0)),
+                     connection.path());
+      points.emplace_back(info.id(), info.sweep_point());
+    }
+  }
+  SqliteStatement update(connection, kBackfillSweepPointSql, "migrate schema to version 8");
+  for (const auto& [id, point] : points) {
+    ResetOnExit reset(update);
+    update.BindInt64(1, point);
+    update.BindText(2, id);
     update.Run();
   }
 }
@@ -175,6 +220,7 @@ void EnsureStoreSchema(SqliteConnection& connection) {
     connection.Exec(kSchemaV5, "create schema version 5");
     connection.Exec(kSchemaV6, "create schema version 6");
     connection.Exec(kSchemaV7, "create schema version 7");
+    connection.Exec(kSchemaV8, "create schema version 8");
     WriteVersion(connection);
     transaction.Commit();
     return;
@@ -212,6 +258,10 @@ void EnsureStoreSchema(SqliteConnection& connection) {
   if (version < 7) {  // the sweep columns
     connection.Exec(kSchemaV7, "migrate schema to version 7");
     BackfillSweeps(connection);
+  }
+  if (version < 8) {  // the sweeps the server feeds
+    connection.Exec(kSchemaV8, "migrate schema to version 8");
+    BackfillSweepPoints(connection);
   }
   if (version < kStoreSchemaVersion) WriteVersion(connection);
   transaction.Commit();

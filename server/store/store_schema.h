@@ -19,7 +19,9 @@ inline constexpr int32_t kStoreApplicationId = 0x6d627374;
 // 5: frames in the frames file (frame_chunks.file_offset, file_bytes, file_crc32c).
 // 6: the keep mark (runs.keep).
 // 7: a run's sweep (runs.sweep_id, indexed by runs_by_sweep; runs.sweep_cancelled).
-inline constexpr int32_t kStoreSchemaVersion = 7;
+// 8: the sweeps the server feeds (sweeps; runs.sweep_point, runs_by_sweep_point,
+//    runs_by_sweep_state).
+inline constexpr int32_t kStoreSchemaVersion = 8;
 
 // Creates the schema in a new (empty) database, or checks that an existing one is an mbstream
 // database this build can use. Throws InputError naming the file and what to do when it is

@@ -525,6 +525,70 @@ TEST_F(ClusterE2eTest, ASweepIsFollowedAndCancelledThroughEitherReplica) {
   EXPECT_EQ(later.error_code(), grpc::StatusCode::FAILED_PRECONDITION) << later.error_message();
 }
 
+// A sweep the server feeds, across two replicas on one store (issue 42): both integrate its
+// points, each point is queued exactly once (the feeders of both replicas claim the next
+// points in one transaction each), at most its window at once; replica a, where it was
+// started, killed mid-sweep: b goes on feeding it (a's run is queued again: retries 1) and
+// the sweep completes.
+TEST_F(ClusterE2eTest, ASweepIsFedByBothReplicasAndOutlivesTheOneThatStartedIt) {
+  auto a = NewReplica("a");
+  auto b = NewReplica("b");
+  v1::StartSweepRequest start;
+  start.set_model("single_pendulum");
+  *start.mutable_base() = Paced(0.3, 1);
+  v1::SweepAxis& axis = *start.add_grid();
+  axis.set_path("duration_s");
+  for (int k = 0; k < 12; ++k) axis.add_values(std::to_string(0.3 + 0.02 * k));
+  start.set_window(3);
+  v1::StartSweepResponse started;
+  {
+    grpc::ClientContext context;
+    const grpc::Status status = a->stub().StartSweep(&context, start, &started);
+    ASSERT_TRUE(status.ok()) << status.error_message();
+  }
+  const auto sweep_on = [&](Replica& replica) {
+    grpc::ClientContext context;
+    v1::GetSweepRequest request;
+    request.set_sweep_id(started.sweep_id());
+    v1::SweepProgress progress;
+    const grpc::Status status = replica.stub().GetSweep(&context, request, &progress);
+    EXPECT_TRUE(status.ok()) << status.error_message();
+    return progress;
+  };
+  const auto await_sweep = [&](Replica& replica,
+                               const std::function<bool(const v1::SweepProgress&)>& done) {
+    const auto guard = std::chrono::steady_clock::now() + kGuard;
+    for (;;) {
+      v1::SweepProgress progress = sweep_on(replica);
+      EXPECT_LE(progress.started_runs() - progress.ended_runs(), 3) << "more than its window";
+      if (done(progress) || std::chrono::steady_clock::now() > guard) return progress;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  };
+  // Mid-sweep, through b: some points ended.
+  const v1::SweepProgress before =
+      await_sweep(*b, [](const v1::SweepProgress& p) { return p.ended_runs() >= 4; });
+  ASSERT_GE(before.ended_runs(), 4);
+  ASSERT_LT(before.started_runs(), 12);
+  a->process().Kill();
+
+  const v1::SweepProgress done = await_sweep(
+      *b, [](const v1::SweepProgress& p) { return p.ended_runs() == p.total_points(); });
+  EXPECT_EQ(done.total_points(), 12);
+  EXPECT_EQ(done.started_runs(), 12);
+  ASSERT_EQ(done.run_ids_size(), 12);  // each point once
+  EXPECT_EQ(std::set<std::string>(done.run_ids().begin(), done.run_ids().end()).size(), 12u);
+  std::set<std::string> owners;
+  for (int k = 0; k < done.run_ids_size(); ++k) {
+    const v1::RunInfo run = b->Get(done.run_ids(k));
+    EXPECT_EQ(run.state(), v1::FINISHED) << run.id() << ": " << run.message();
+    EXPECT_EQ(run.sweep_point(), k);
+    owners.insert(run.replica_address());
+  }
+  EXPECT_TRUE(owners.count(a->address()) && owners.count(b->address()))
+      << "both replicas integrate the sweep's points";
+}
+
 TEST_F(ClusterE2eTest, ModelsSubmittedToOneReplicaAreListedAndReadByTheOther) {
   auto a = NewReplica("a");
   auto b = NewReplica("b");

@@ -30,12 +30,13 @@ from .result import Result
 from .run import FINAL_STATES, Frame, ProgressBar, Run, RunInfo
 from .server_check import ServerCheck
 from .spec import load_spec, spec_to_dict
+from .sweep import Sweep
 from .sweep_plot import plot_sweep
 
 __all__ = [
     "__version__", "WIRE_MAJOR", "connect", "Client", "Run", "Result", "RunInfo", "Frame",
     "ProgressBar", "ServerCheck", "load_spec", "spec_to_dict", "read_model_bundle",
-    "FINAL_STATES", "Comparison", "compare_results", "plot_sweep",
+    "FINAL_STATES", "Comparison", "compare_results", "plot_sweep", "Sweep",
     # errors
     "MbstreamError", "BadRequest", "NotFound", "AlreadyExists", "FailedPrecondition",
     "OutOfRange", "Unauthenticated", "PermissionDenied", "ResourceExhausted", "Unavailable",

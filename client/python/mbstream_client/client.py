@@ -16,7 +16,7 @@ from .result import Result, result_from_chunks
 from .run import Run
 from .server_check import ServerCheck, check_server
 from .spec import SpecLike, load_spec
-from .sweep import run_sweep, sweep_request
+from .sweep import Sweep, start_sweep, sweep_request
 
 
 def _check_model(model: Any) -> None:
@@ -156,38 +156,45 @@ class Client:
         """A parameter sweep as one job, its table as a pandas DataFrame (a row per run, in
         point order: run_id, the swept values, state, trust, cost, accuracy and, per joint,
         tracking_error_max:JOINT, effort_peak:JOINT, effort_rms:JOINT, q_final:JOINT; the
-        columns of `mbstream sweep`'s sweep.csv).
+        columns of `mbstream sweep`'s sweep.csv): start_sweep(...).wait(progress).
 
         grid: {path: values} (every combination, the first path varying slowest) or points:
         [{path: value, ...}, ...]; a path names a RunSpec field as in its JSON, e.g. "rtol",
         "drives[1].pd_servo.kp", "drives[joint=joint2].pd_servo.kd", "initial_q[0]".
         keep: what each run keeps ("summary": no frames, the default; "final", "every:N",
-        "all": fetch them with result(run_id)). The server queues at most `window` runs at a
-        time. progress=True shows the server's count of the sweep on stderr. The table's
+        "all": fetch them with result(run_id)). The server stores the sweep and queues at most
+        `window` of its runs at a time, whether or not this client follows it (Ctrl-C stops
+        following only: Sweep(client, attrs["sweep_id"]).wait() picks it up again).
+        progress=True shows the server's count of the sweep on stderr. The table's
         attrs["sweep_id"] names the sweep (sweep_progress, cancel_sweep); attrs["cancelled"]
-        says it was cancelled before every point started. spec and overrides as in run().
+        says it was cancelled before every point ran. spec and overrides as in run().
         Needs pandas."""
+        return self.start_sweep(model, spec, grid, points, keep, window,
+                                **overrides).wait(progress)
+
+    def start_sweep(self, model: str, spec: SpecLike = None,
+                    grid: Optional[Mapping[str, Iterable[Any]]] = None,
+                    points: Optional[Sequence[Mapping[str, Any]]] = None, keep: str = "summary",
+                    window: int = 32, **overrides: Any) -> Sweep:
+        """Starts a sweep (as sweep()) and returns at once: a Sweep, whose wait() returns the
+        table and whose id any client can follow with Sweep(client, id).wait()."""
         _check_model(model)
-        try:
-            import pandas as pd
-        except ImportError:
-            raise ImportError("Client.sweep needs pandas (Debian: apt-get install "
-                              "python3-pandas)") from None
         request = sweep_request(model, load_spec(spec, keep=keep, **overrides), grid, points)
-        rows, cancelled = run_sweep(self, request, window, progress)
-        table = pd.DataFrame(rows)
-        table.attrs.update(sweep_id=request.sweep_id, cancelled=cancelled)
-        return table
+        return start_sweep(self, request, window)
+
+    def sweep_handle(self, sweep_id: str) -> Sweep:
+        """The Sweep of id `sweep_id` (started by any client), to wait() for or cancel()."""
+        return Sweep(self, sweep_id)
 
     def sweep_progress(self, sweep_id: str) -> service_pb2.SweepProgress:
         """A sweep's progress as the server counts it (any replica of a cluster): total_points,
-        started_runs, ended_runs, states (a SweepStateCount per state), cancelled, run_ids in
-        point order. NotFound for an unknown id."""
+        started_runs, ended_runs, states (a SweepStateCount per state), cancelled, window, and
+        the first 1,000 run_ids in point order with their points. NotFound for an unknown id."""
         with rpc_errors():
             return self.stub.GetSweep(service_pb2.GetSweepRequest(sweep_id=sweep_id))
 
     def cancel_sweep(self, sweep_id: str) -> service_pb2.SweepProgress:
-        """Cancels a sweep: its queued and running runs, and the points not started yet (the
+        """Cancels a sweep: its queued and running runs, and the points not queued yet (the
         sweep() filling its table stops there; its table's attrs["cancelled"] is True). Returns
         once its runs have ended, with its progress then."""
         with rpc_errors():

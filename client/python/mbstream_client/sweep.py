@@ -1,6 +1,9 @@
-"""A parameter sweep as one job: the server expands a base spec and a grid (or a list of
-points) into runs (StartSweep), and the client gathers each run's summary into one table,
-the same columns as `mbstream sweep`'s sweep.csv."""
+"""A parameter sweep as one job: the server stores a base spec and a grid (or a list of
+points) and feeds its runs itself, a window at a time (StartSweep); a client follows it
+(GetSweep, GetResult) and gathers each run's summary into one table, the same columns as
+`mbstream sweep`'s sweep.csv. Following is reading only: a client that stops (Ctrl-C, a
+lost connection) leaves the sweep going, and Sweep(client, sweep_id).wait() picks it up
+again from any client."""
 import json
 import sys
 import time
@@ -8,7 +11,7 @@ from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
 
 from ._stubs import run_pb2
 from ._stubs import simulation_service_pb2 as service_pb2
-from .errors import FailedPrecondition, rpc_errors
+from .errors import rpc_errors
 from .result import Result
 
 
@@ -123,44 +126,73 @@ class _Progress:
         sys.stderr.flush()
 
 
-def run_sweep(client: Any, request: Any, window: int,
-              progress: bool) -> Tuple[List[Dict[str, Any]], bool]:
-    """Starts the sweep a window of runs at a time and returns its rows in point order, and
-    whether it was cancelled meanwhile (CancelSweep: the points not started yet have no row).
-    Interrupted (Ctrl-C), it cancels the sweep's runs before raising."""
+# Runs asked of GetSweep at a time while following.
+_PAGE = 64
+
+
+class Sweep:
+    """A sweep on the server, by its id (Client.start_sweep, or Sweep(client, "s-...") for one
+    started anywhere). The server feeds it whether or not anyone follows it."""
+
+    def __init__(self, client: Any, sweep_id: str):
+        self.client, self.id = client, sweep_id
+
+    def __repr__(self) -> str:
+        return "Sweep(%r)" % self.id
+
+    def progress(self) -> Any:
+        """Its progress as the server counts it (SweepProgress)."""
+        return self.client.sweep_progress(self.id)
+
+    def cancel(self) -> Any:
+        """Cancels it (Client.cancel_sweep)."""
+        return self.client.cancel_sweep(self.id)
+
+    def rows(self, progress: bool = False) -> Tuple[List[Dict[str, Any]], bool]:
+        """Follows it to its end: each run's row (sweep_row) in point order as the run ends,
+        and whether it was cancelled (the points never queued then have no row)."""
+        rows: List[Dict[str, Any]] = []
+        shown = _Progress(self.client, progress)
+        cancelled = False
+        while True:
+            with rpc_errors():
+                page = self.client.stub.GetSweep(service_pb2.GetSweepRequest(
+                    sweep_id=self.id, runs_from=len(rows), max_runs=_PAGE))
+            cancelled = cancelled or page.cancelled
+            if not page.run_ids:
+                if cancelled or len(rows) >= page.total_points:
+                    break
+                time.sleep(0.1)  # the next point is not queued yet
+                continue
+            paths = list(page.paths)
+            for run_id, point in zip(page.run_ids, page.points):
+                result = self.client.result(run_id, wait=True)
+                rows.append(sweep_row(result, paths, list(point.values)))
+                shown.show(self.id, False)
+            if len(rows) >= page.total_points:
+                break
+        shown.show(self.id, True)
+        return rows, cancelled
+
+    def wait(self, progress: bool = False) -> Any:
+        """Follows it to its end and returns its table (as Client.sweep). Interrupted
+        (Ctrl-C), it stops following; the sweep goes on on the server."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("Sweep.wait needs pandas (Debian: apt-get install "
+                              "python3-pandas)") from None
+        rows, cancelled = self.rows(progress)
+        table = pd.DataFrame(rows)
+        table.attrs.update(sweep_id=self.id, cancelled=cancelled)
+        return table
+
+
+def start_sweep(client: Any, request: Any, window: int) -> Sweep:
+    """Starts the sweep on the server (it queues at most `window` of its runs at a time)."""
     if window < 1:
         raise ValueError("window must be at least 1, not %r" % (window,))
-    pending: List[Any] = []
-    rows: List[Dict[str, Any]] = []
-    paths: List[str] = []
-    total = 0
-    cancelled = False
-
-    def start(count: int) -> None:
-        nonlocal total, paths
-        request.max_runs = count
-        with rpc_errors():
-            response = client.stub.StartSweep(request)
-        request.sweep_id, request.first_point = response.sweep_id, response.next_point
-        total, paths = response.total_points, list(response.paths)
-        pending.extend(zip([r.id for r in response.runs], [list(p.values) for p in response.points]))
-
-    start(window)
-    shown = _Progress(client, progress)
-    try:
-        while pending:
-            run_id, values = pending.pop(0)
-            result = client.result(run_id, wait=True)
-            rows.append(sweep_row(result, paths, values))
-            room = window - len(pending)
-            if not cancelled and request.first_point < total and room >= max(1, window // 2):
-                try:
-                    start(room)
-                except FailedPrecondition:  # the sweep was cancelled (CancelSweep)
-                    cancelled = True
-            shown.show(request.sweep_id, not pending)
-    except KeyboardInterrupt:
-        client.cancel_sweep(request.sweep_id)
-        raise
-    # Cancelled after its last slice started: the server says so.
-    return rows, cancelled or client.sweep_progress(request.sweep_id).cancelled
+    request.window = window
+    with rpc_errors():
+        response = client.stub.StartSweep(request)
+    return Sweep(client, response.sweep_id)

@@ -348,6 +348,21 @@ class ClientTest(unittest.TestCase):
         self.assertLessEqual(len(table), 4)
         self.assertEqual(self.client.sweep_progress(table.attrs["sweep_id"]).total_points, 4)
 
+    def test_a_sweep_started_by_one_client_is_waited_for_by_another(self):
+        sweep = self.client.start_sweep("irb1600", SEED_SERVO, duration=0.1, window=2,
+                                        grid={"drives[1].pd_servo.kp": [100, 200, 400, 800, 1600]})
+        self.assertTrue(sweep.id.startswith("s-"), sweep.id)
+        with mb.connect(self.address) as other:  # the server feeds it: anyone may follow it
+            table = mb.Sweep(other, sweep.id).wait()
+        self.assertEqual(table["drives[1].pd_servo.kp"].tolist(), [100, 200, 400, 800, 1600])
+        self.assertEqual(set(table["state"]), {"FINISHED"})
+        self.assertEqual(table.attrs["sweep_id"], sweep.id)
+        done = sweep.progress()
+        self.assertEqual((done.total_points, done.started_runs, done.ended_runs, done.window),
+                         (5, 5, 5, 2))
+        again = self.client.sweep_handle(sweep.id).wait()  # a finished sweep: its whole table
+        self.assertEqual(again["run_id"].tolist(), table["run_id"].tolist())
+
     def test_run_many_and_results_in_one_call_each(self):
         durations = [0.5, 1.0, 0.25]
         runs = self.client.run_many(

@@ -15,9 +15,19 @@
 #include "mbstream/v1/run.pb.h"
 #include "server/store/store.h"
 
+// SQL that turns the tables of a new store back into what version 7 created (before the sweeps
+// table of version 8), for tests that make an older store from a new one.
+#define MBSTREAM_DROP_SWEEPS_TABLE_SQL \
+  "DROP INDEX runs_by_sweep_point; "   \
+  "DROP INDEX runs_by_sweep_state; "   \
+  "DROP TABLE sweeps; "                \
+  "ALTER TABLE runs DROP COLUMN sweep_point; "
+inline constexpr const char* kDropSweepsTable = MBSTREAM_DROP_SWEEPS_TABLE_SQL;
+
 // SQL that turns the tables of a new store back into what version 6 created (before the sweep
 // columns of version 7), for tests that make an older store from a new one.
 #define MBSTREAM_DROP_SWEEP_COLUMNS_SQL     \
+  MBSTREAM_DROP_SWEEPS_TABLE_SQL            \
   "DROP INDEX runs_by_sweep; "              \
   "ALTER TABLE runs DROP COLUMN sweep_id; " \
   "ALTER TABLE runs DROP COLUMN sweep_cancelled; "
