@@ -7,18 +7,17 @@
 #pragma once
 
 #include <functional>
+#include <stdexcept>
 #include <string>
-
-#include "server/runs/request_error.h"
 
 namespace mbstream {
 
-// Thrown by ThrowIfImportCancelled: the service answers UNAVAILABLE (RequestError), nothing
-// of the model is stored.
-class ImportCancelled : public RequestError {
+// Thrown by ThrowIfImportCancelled: the service answers UNAVAILABLE
+// (server/service/status_from_exception.cc), nothing of the model is stored. Its own type,
+// not a RequestError: the import layer sits below the run manager that defines those.
+class ImportCancelled : public std::runtime_error {
  public:
-  explicit ImportCancelled(const std::string& why)
-      : RequestError(RequestErrorKind::kUnavailable, why) {}
+  explicit ImportCancelled(const std::string& why) : std::runtime_error(why) {}
 };
 
 // While alive, `cancelled` (called from this thread only, by its checks) cancels this

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/check.h"
+#include "server/parse/import_cancel.h"
 #include "server/runs/request_error.h"
 
 namespace mbstream {
@@ -14,6 +15,8 @@ grpc::Status StatusFromException(std::exception_ptr error) {
     return grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED, e.what());
   } catch (const InputError& e) {
     return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, e.what());
+  } catch (const ImportCancelled& e) {
+    return grpc::Status(grpc::StatusCode::UNAVAILABLE, e.what());
   } catch (const RequestError& e) {
     switch (e.kind()) {
       case RequestErrorKind::kNotFound:
