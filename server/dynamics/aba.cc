@@ -2,6 +2,7 @@
 
 #include "common/check.h"
 #include "server/dynamics/aba_passes.h"
+#include "server/dynamics/free_tree.h"
 
 namespace mbstream {
 
@@ -12,7 +13,11 @@ const Eigen::VectorXd& Aba(const Model& model, Data& data,
                            const Eigen::Ref<const Eigen::VectorXd>& q,
                            const Eigen::Ref<const Eigen::VectorXd>& qd,
                            const Eigen::Ref<const Eigen::VectorXd>& tau) {
-  const int n = model.num_dofs();
+  if (model.has_free_bodies()) {
+    MBSTREAM_CHECK(q.size() == model.nq() && qd.size() == model.nv() && tau.size() == model.nv());
+    return free_tree::HybridAba(model, data, q, qd, tau, data.zeros, nullptr);
+  }
+  const int n = model.num_bodies();
   MBSTREAM_CHECK(q.size() == n && qd.size() == n && tau.size() == n);
   aba_passes::ForwardPasses(model, q, qd, data);
   for (int i = n - 1; i >= 0; --i) {

@@ -227,7 +227,7 @@ template <typename FAxis, typename FOther>
 // Pass 1 over every body.
 inline void ForwardPasses(const Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
                           const Eigen::Ref<const Eigen::VectorXd>& qd, Data& data) {
-  for (int i = 0; i < model.num_dofs(); ++i) {
+  for (int i = 0; i < model.num_bodies(); ++i) {
     const Body& body = model.bodies[i];
     DispatchStep(
         body.joint,

@@ -1,6 +1,7 @@
 #include "server/dynamics/crba.h"
 
 #include "common/check.h"
+#include "server/dynamics/free_tree.h"
 #include "server/kinematics/joint_inertia_transform.h"
 #include "server/kinematics/joint_transform.h"
 
@@ -8,7 +9,11 @@ namespace mbstream {
 
 const Eigen::MatrixXd& Crba(const Model& model, Data& data,
                             const Eigen::Ref<const Eigen::VectorXd>& q) {
-  const int n = model.num_dofs();
+  if (model.has_free_bodies()) {
+    MBSTREAM_CHECK(q.size() == model.nq());
+    return free_tree::Crba(model, data, q);
+  }
+  const int n = model.num_bodies();
   MBSTREAM_CHECK(q.size() == n);
   for (int i = 0; i < n; ++i) {
     JointTransform(model.bodies[i].joint, q(i), &data.X_parent[i]);

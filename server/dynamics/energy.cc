@@ -1,13 +1,20 @@
 #include "server/dynamics/energy.h"
 
 #include "common/check.h"
+#include "server/dynamics/free_tree.h"
+#include "server/kinematics/forward_kinematics.h"
 #include "server/kinematics/joint_transform.h"
 
 namespace mbstream {
 
 double KineticEnergy(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& q,
                      const Eigen::Ref<const Eigen::VectorXd>& qd) {
-  const int n = model.num_dofs();
+  if (model.has_free_bodies()) {
+    MBSTREAM_CHECK(q.size() == model.nq());
+    BodyKinematics(model, data, q);
+    return KineticEnergyAfterKinematics(model, data, qd);
+  }
+  const int n = model.num_bodies();
   MBSTREAM_CHECK(q.size() == n);
   for (int i = 0; i < n; ++i) JointTransform(model.bodies[i].joint, q(i), &data.X_parent[i]);
   return KineticEnergyAfterKinematics(model, data, qd);
@@ -15,7 +22,11 @@ double KineticEnergy(const Model& model, Data& data, const Eigen::Ref<const Eige
 
 double KineticEnergyAfterKinematics(const Model& model, Data& data,
                                     const Eigen::Ref<const Eigen::VectorXd>& qd) {
-  const int n = model.num_dofs();
+  if (model.has_free_bodies()) {
+    MBSTREAM_CHECK(qd.size() == model.nv());
+    return free_tree::KineticEnergy(model, data, qd);
+  }
+  const int n = model.num_bodies();
   MBSTREAM_CHECK(qd.size() == n);
   double energy = 0.0;
   for (int i = 0; i < n; ++i) {
@@ -30,7 +41,7 @@ double KineticEnergyAfterKinematics(const Model& model, Data& data,
 
 double PotentialEnergy(const Model& model, const Data& data) {
   double energy = 0.0;
-  for (int i = 0; i < model.num_dofs(); ++i) {
+  for (int i = 0; i < model.num_bodies(); ++i) {
     const RigidInertia& inertia = model.bodies[i].inertia;
     energy -= inertia.mass * model.gravity.dot(data.X_world[i].Apply(inertia.com));
   }

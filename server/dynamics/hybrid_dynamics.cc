@@ -2,6 +2,7 @@
 
 #include "common/check.h"
 #include "server/dynamics/aba_passes.h"
+#include "server/dynamics/free_tree.h"
 
 namespace mbstream {
 
@@ -56,7 +57,13 @@ const Eigen::VectorXd& HybridAba(const Model& model, Data& data,
                                  const Eigen::Ref<const Eigen::VectorXd>& tau,
                                  const Eigen::Ref<const Eigen::VectorXd>& qdd,
                                  const std::vector<unsigned char>& prescribed) {
-  const int n = model.num_dofs();
+  if (model.has_free_bodies()) {
+    const int nv = model.nv();
+    MBSTREAM_CHECK(q.size() == model.nq() && qd.size() == nv && tau.size() == nv &&
+                   qdd.size() == nv && static_cast<int>(prescribed.size()) == nv);
+    return free_tree::HybridAba(model, data, q, qd, tau, qdd, &prescribed);
+  }
+  const int n = model.num_bodies();
   MBSTREAM_CHECK(q.size() == n && qd.size() == n && tau.size() == n && qdd.size() == n &&
                  static_cast<int>(prescribed.size()) == n);
   for (int i = 0; i < n; ++i) {

@@ -2,6 +2,7 @@
 
 #include "common/check.h"
 #include "server/dynamics/axis_joint_steps.h"
+#include "server/dynamics/free_tree.h"
 #include "server/kinematics/joint_spatial_transform.h"
 #include "server/kinematics/joint_transform.h"
 
@@ -62,7 +63,11 @@ void ForwardPassAboutAxis(const Body& body, int i, double q, double qd, double q
 
 const Eigen::VectorXd& Rnea(const Model& model, Data& data, ConstVectorRef q, ConstVectorRef qd,
                             ConstVectorRef qdd) {
-  const int n = model.num_dofs();
+  if (model.has_free_bodies()) {
+    MBSTREAM_CHECK(q.size() == model.nq() && qd.size() == model.nv() && qdd.size() == model.nv());
+    return free_tree::Rnea(model, data, q, qd, qdd);
+  }
+  const int n = model.num_bodies();
   MBSTREAM_CHECK(q.size() == n && qd.size() == n && qdd.size() == n);
   Vector6d a_base = Vector6d::Zero();
   a_base.tail<3>() = -model.gravity;  // gravity as an upward acceleration of the base

@@ -23,7 +23,7 @@ void KeepOnly(const std::vector<long>& kept, RunResult* result) {
     series.resize(to);
   };
   const size_t n = static_cast<size_t>(result->num_dofs);
-  compact(result->q, n);
+  compact(result->q, static_cast<size_t>(result->positions()));
   compact(result->qd, n);
   compact(result->tcp, 3);
   if (result->has_torques) compact(result->tau, n);
@@ -55,7 +55,7 @@ SummarySink::SummarySink(const RunConfig& config, FrameSink* inner)
 
 void SummarySink::StartSummary(const RunResult& result) {
   const size_t n = static_cast<size_t>(result.num_dofs);
-  summary_.q_final.assign(n, 0.0);
+  summary_.q_final.assign(static_cast<size_t>(result.positions()), 0.0);
   summary_.qd_final.assign(n, 0.0);
   summary_.joints.assign(n, JointSummary{});
   effort_square_sum_.assign(n, 0.0);
@@ -70,9 +70,11 @@ void SummarySink::AddToSummary(const RunResult& result, int frame) {
   const size_t n = static_cast<size_t>(result.num_dofs);
   MBSTREAM_CHECK_MSG(summary_.joints.size() == n, "a run changed its joint count");
   const size_t at = static_cast<size_t>(frame) * n;
+  const size_t nq = static_cast<size_t>(result.positions());
+  const size_t q_at = static_cast<size_t>(frame) * nq;
   const double t = result.t[static_cast<size_t>(frame)];
   summary_.t_final = t;
-  std::copy_n(result.q.begin() + at, n, summary_.q_final.begin());
+  std::copy_n(result.q.begin() + q_at, nq, summary_.q_final.begin());
   std::copy_n(result.qd.begin() + at, n, summary_.qd_final.begin());
   for (size_t j = 0; j < n; ++j) {
     JointSummary& joint = summary_.joints[j];
@@ -82,7 +84,9 @@ void SummarySink::AddToSummary(const RunResult& result, int frame) {
       effort_square_sum_[j] += effort * effort;
     }
     if (j < references_.size() && references_[j]) {
-      const double error = std::abs(references_[j]->At(t).q - result.q[at + j]);
+      // A driven joint's position (never a free joint's: its coordinates are passive).
+      const size_t position = result.num_positions > 0 ? result.position_index[j] : j;
+      const double error = std::abs(references_[j]->At(t).q - result.q[q_at + position]);
       joint.tracking_error_max = std::max(joint.tracking_error_max, error);
     }
   }

@@ -6,12 +6,18 @@ namespace mbstream {
 
 AppendedQuadratureOde::AppendedQuadratureOde(OdeSystem& system)
     : system_(system),
+      projection_(EveryStepProjectionOf(system)),
       n_(system.size()),
       nq_(system.num_quadratures()),
       jacobian_(system.HasJacobian() ? static_cast<size_t>(n_) * n_ : 0) {}
 
 int AppendedQuadratureOde::Rhs(double t, const double* z, double* zdot) {
   return system_.RhsAndQuadrature(t, z, zdot, zdot + n_);
+}
+
+int AppendedQuadratureOde::Project(double t, const double* z, double* correction) {
+  std::fill(correction + n_, correction + n_ + nq_, 0.0);
+  return projection_->Project(t, z, correction);
 }
 
 int AppendedQuadratureOde::Jacobian(double t, const double* z, const double* fz,

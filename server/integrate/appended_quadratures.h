@@ -14,13 +14,18 @@
 #include <vector>
 
 #include "server/integrate/integrator.h"
+#include "server/integrate/manifold_projection.h"
 
 namespace mbstream {
 
 // [y; Q] as one ODE. Its Jacobian, when the system has one, is the system's with zero rows
 // and columns for Q (Q feeds nothing back; a zero row only lags Q's Newton update by one
 // iteration inside DIRK's stage solves). Keeps a reference to `system`.
-class AppendedQuadratureOde : public OdeSystem {
+//
+// It passes on the system's own position rate (OdeSystem::PositionRate) and, when the system
+// projects with every method (ManifoldProjection::ProjectsEveryMethod: unit quaternions), its
+// projection, Q untouched.
+class AppendedQuadratureOde : public OdeSystem, public ManifoldProjection {
  public:
   explicit AppendedQuadratureOde(OdeSystem& system);
 
@@ -29,9 +34,19 @@ class AppendedQuadratureOde : public OdeSystem {
   bool HasJacobian() const override { return system_.HasJacobian(); }
   int Jacobian(double t, const double* z, const double* fz, double* jac_col_major) override;
   int num_positions() const override { return system_.num_positions(); }
+  int num_velocities() const override { return system_.num_velocities(); }
+  void PositionRate(const double* x, const double* v, double* x_rate) override {
+    system_.PositionRate(x, v, x_rate);
+  }
+
+  bool Projects() const override { return projection_ != nullptr; }
+  bool ProjectsEveryMethod() const override { return projection_ != nullptr; }
+  int Project(double t, const double* z, double* correction) override;
+  int ProjectInPlace(double t, double* z) override { return projection_->ProjectInPlace(t, z); }
 
  private:
   OdeSystem& system_;
+  ManifoldProjection* const projection_;  // EveryStepProjectionOf(system_)
   const int n_, nq_;
   std::vector<double> jacobian_;  // n x n workspace for the system's own Jacobian
 };

@@ -6,6 +6,10 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include <exception>
+
+#include "server/integrate/manifold_projection.h"
+
 namespace mbstream::sundials {
 
 namespace {
@@ -21,6 +25,17 @@ void* CreateArkStep(ArkStepIntegrator::Variant variant, double t0, N_Vector y0,
   const bool implicit = variant == ArkStepIntegrator::Variant::kDirk;
   return ARKStepCreate(implicit ? nullptr : RhsCallback, implicit ? RhsCallback : nullptr, t0, y0,
                        context);
+}
+
+// ARKPostProcessFn: the system's in-place projection after each step (one-step methods start
+// the next step from the projected state).
+int ProjectStepCallback(sunrealtype t, N_Vector y, void* user_data) noexcept {
+  auto* data = static_cast<CallbackData*>(user_data);
+  try {
+    return EveryStepProjectionOf(data->rhs->system())->ProjectInPlace(t, N_VGetArrayPointer(y));
+  } catch (const std::exception& error) {
+    return data->rhs->RecordException(t, error.what());
+  }
 }
 
 }  // namespace
@@ -54,6 +69,10 @@ ArkStepIntegrator::ArkStepIntegrator(Variant variant, OdeSystem& system, double 
   }
   if (std::isfinite(options.t_final)) {
     CheckSetup(ARKStepSetStopTime(ark, options.t_final), "ARKStepSetStopTime");
+  }
+  if (EveryStepProjectionOf(system) != nullptr) {
+    CheckSetup(ARKStepSetPostprocessStepFn(ark, ProjectStepCallback),
+               "ARKStepSetPostprocessStepFn");
   }
   if (variant == Variant::kDirk) {
     const int n = system.size();

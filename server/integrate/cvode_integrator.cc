@@ -25,7 +25,7 @@ int ProjectionCallback(sunrealtype t, N_Vector y, N_Vector correction, sunrealty
   double* c = N_VGetArrayPointer(correction);
   for (sunindextype i = system.size(); i < N_VGetLength(correction); ++i) c[i] = 0.0;
   try {
-    return dynamic_cast<ManifoldProjection&>(system).Project(t, N_VGetArrayPointer(y), c);
+    return ProjectionOf(system)->Project(t, N_VGetArrayPointer(y), c);
   } catch (const std::exception& error) {
     return data->rhs->RecordException(t, error.what());
   }
@@ -64,7 +64,7 @@ CvodeIntegrator::CvodeIntegrator(Variant variant, OdeSystem& system, double t0, 
     CheckSetup(CVodeSetLinearSolver(cvode, linear_solver_.get(), matrix_.get()),
                "CVodeSetLinearSolver");
     CheckSetup(CVodeSetJacFn(cvode, DenseJacobianCallback), "CVodeSetJacFn");
-    if (dynamic_cast<ManifoldProjection*>(&system) != nullptr) {  // CVODE projects with BDF only
+    if (ProjectionOf(system) != nullptr) {  // CVODE projects with BDF only
       CheckSetup(CVodeSetProjFn(cvode, ProjectionCallback), "CVodeSetProjFn");
       CheckSetup(CVodeSetProjErrEst(cvode, SUNFALSE), "CVodeSetProjErrEst");
     }

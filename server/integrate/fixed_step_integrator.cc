@@ -1,6 +1,7 @@
 #include "server/integrate/fixed_step_integrator.h"
 
 #include <algorithm>
+#include <exception>
 #include <utility>
 
 #include "common/format.h"
@@ -13,11 +14,21 @@ FixedStepIntegrator::FixedStepIntegrator(OdeSystem& system, double t0, const dou
                                          const IntegratorOptions& options, int order)
     : IntegratorBase(system.size(), t0, y0, options),
       rhs_(system, options.divergence_limit, options.error_states),
+      projection_(EveryStepProjectionOf(system)),
       t0_(t0),
       step_(options.fixed_step),
       order_(order),
       y_grid_(y0, y0 + system.size()),
       y_next_(system.size()) {}
+
+int FixedStepIntegrator::ProjectStep(double t, double* y_next) {
+  if (projection_ == nullptr) return 0;
+  try {
+    return projection_->ProjectInPlace(t, y_next);
+  } catch (const std::exception& error) {
+    return rhs_.RecordException(t, error.what());
+  }
+}
 
 AdvanceResult FixedStepIntegrator::StepFailure(int code, double t, double h, double* y) {
   std::copy(y_grid_.begin(), y_grid_.end(), y);
@@ -60,7 +71,8 @@ AdvanceResult FixedStepIntegrator::DoAdvance(double t_out, double* y) {
     }
     // The last grid point may lie a rounding error beyond t_final: never step past it.
     const double h = std::min(GridTime(k_ + 1), options().t_final) - t;
-    const int code = Step(t, h, y_grid_.data(), y_next_.data());
+    int code = Step(t, h, y_grid_.data(), y_next_.data());
+    if (code == 0) code = ProjectStep(t + h, y_next_.data());
     if (code != 0 ||
         !IsHealthyState(y_next_.data(), n, LimitedStates(n, options().error_states), limit)) {
       return StepFailure(code, t, h, y);
@@ -77,7 +89,8 @@ AdvanceResult FixedStepIntegrator::DoAdvance(double t_out, double* y) {
     return {IntegratorStatus::kOk, t_out, {}};
   }
   // A partial step to the output time, from the grid point before it.
-  const int code = Step(t_grid, t_out - t_grid, y_grid_.data(), y);
+  int code = Step(t_grid, t_out - t_grid, y_grid_.data(), y);
+  if (code == 0) code = ProjectStep(t_out, y);
   if (code != 0) return StepFailure(code, t_grid, t_out - t_grid, y);
   return {IntegratorStatus::kOk, t_out, {}};
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "server/integrate/integrator_base.h"
+#include "server/integrate/manifold_projection.h"
 #include "server/integrate/rhs_adapter.h"
 
 namespace mbstream {
@@ -32,7 +33,11 @@ class FixedStepIntegrator : public IntegratorBase {
   // The result of a failed step from grid point k (y = the state there).
   AdvanceResult StepFailure(int code, double t, double h, double* y);
 
+  // Projects y_next after a step (EveryStepProjectionOf the system); 0 or its failing code.
+  int ProjectStep(double t, double* y_next);
+
   RhsAdapter rhs_;
+  ManifoldProjection* const projection_;  // null: nothing to project
   double t0_;
   double step_;
   int order_;

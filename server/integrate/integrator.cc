@@ -134,8 +134,8 @@ std::unique_ptr<Integrator> MakeIntegrator(OdeSystem& system, double t0, const d
             "x' = v, and this one is not (num_positions() == 0): use rk4 or an adaptive "
             "method (bdf, adams, erk, dirk)");
       }
-      MBSTREAM_CHECK_MSG(2 * np <= system.size(),
-                         "num_positions() is more than half of the state size");
+      MBSTREAM_CHECK_MSG(np + system.num_velocities() <= system.size(),
+                         "num_positions() + num_velocities() is more than the state size");
       return std::make_unique<SemiImplicitEulerIntegrator>(system, t0, y0, options);
     }
     case Method::kIda:

@@ -30,6 +30,15 @@ class OdeSystem {
   // 0 = not second order (the method is then refused with a clear error).
   virtual int num_positions() const { return 0; }
 
+  // With num_positions() > 0: the number of velocity states v after the positions x, and the
+  // positions' rate x' for (x, v). The defaults are x' = v (as many velocities as positions);
+  // a system whose positions are not its velocities' integrals (quaternions) overrides both.
+  // PositionRate must not allocate.
+  virtual int num_velocities() const { return num_positions(); }
+  virtual void PositionRate(const double* /*x*/, const double* v, double* x_rate) {
+    for (int i = 0; i < num_positions(); ++i) x_rate[i] = v[i];
+  }
+
   // Optional quadratures: integrals Q(t) = int g(s, y(s)) ds from t0 (Q(t0) = 0) whose
   // integrand g does not feed back into f (the work of drives and damping, say). The
   // integrators append them to the state with a zero error weight, so they never shorten a

@@ -1,9 +1,29 @@
 #include "server/kinematics/forward_kinematics.h"
 
 #include "common/check.h"
+#include "server/kinematics/free_joint.h"
 #include "server/kinematics/joint_transform.h"
 
 namespace mbstream {
+
+namespace {
+
+// BodyKinematics for a model with free bodies (q indexed by Body::q_index).
+void FreeBodyKinematics(const Model& model, Data& data,
+                        const Eigen::Ref<const Eigen::VectorXd>& q) {
+  for (int i = 0; i < model.num_bodies(); ++i) {
+    const Body& body = model.bodies[i];
+    if (body.free()) {
+      free_joint::Transform(q.data() + body.q_index, &data.X_parent[i]);
+    } else {
+      JointTransform(body.joint, q(body.q_index), &data.X_parent[i]);
+    }
+    data.X_world[i] =
+        body.parent == kBase ? data.X_parent[i] : data.X_world[body.parent] * data.X_parent[i];
+  }
+}
+
+}  // namespace
 
 void ForwardKinematics(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& q) {
   BodyKinematics(model, data, q);
@@ -14,8 +34,12 @@ void ForwardKinematics(const Model& model, Data& data, const Eigen::Ref<const Ei
 }
 
 void BodyKinematics(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& q) {
-  MBSTREAM_CHECK(q.size() == model.num_dofs());
-  for (int i = 0; i < model.num_dofs(); ++i) {
+  MBSTREAM_CHECK(q.size() == model.nq());
+  if (model.has_free_bodies()) {
+    FreeBodyKinematics(model, data, q);
+    return;
+  }
+  for (int i = 0; i < model.num_bodies(); ++i) {
     const Body& body = model.bodies[i];
     JointTransform(body.joint, q(i), &data.X_parent[i]);
     data.X_world[i] =

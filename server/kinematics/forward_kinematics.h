@@ -9,7 +9,7 @@
 namespace mbstream {
 
 // Fills data.X_parent, data.X_world and data.frame_world for joint positions q
-// (size num_dofs; rad or m). Allocates nothing.
+// (model.nq() values: rad or m, a free body's pose as model.h says). Allocates nothing.
 void ForwardKinematics(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& q);
 
 // Position of frame `frame` in the world frame (m); ForwardKinematics must have run.

@@ -10,13 +10,25 @@ void PointJacobian(const Model& model, const Data& data, int frame, Eigen::Ref<E
   J.setZero();
   const Vector3d& p = data.frame_world[frame].p;
   for (int j = model.frames[frame].body; j != kBase; j = model.bodies[j].parent) {
-    const Joint& joint = model.bodies[j].joint;
+    const Body& body = model.bodies[j];
+    const Joint& joint = body.joint;
+    const int col = model.has_free_bodies() ? body.v_index : j;  // equal when built
+    if (joint.type == JointType::kFree) {                        // [v_WB; w_B] (model.h)
+      const Matrix3d& R = data.X_world[j].R;
+      const Vector3d r = p - data.X_world[j].p;
+      for (int k = 0; k < 3; ++k) {
+        J(3 + k, col + k) = 1.0;
+        J.col(col + 3 + k).head<3>() = R.col(k);
+        J.col(col + 3 + k).tail<3>() = R.col(k).cross(r);
+      }
+      continue;
+    }
     const Vector3d axis = data.X_world[j].R * joint.axis;
     if (joint.type == JointType::kRevolute) {
-      J.col(j).head<3>() = axis;
-      J.col(j).tail<3>() = axis.cross(p - data.X_world[j].p);
+      J.col(col).head<3>() = axis;
+      J.col(col).tail<3>() = axis.cross(p - data.X_world[j].p);
     } else {
-      J.col(j).tail<3>() = axis;
+      J.col(col).tail<3>() = axis;
     }
   }
 }

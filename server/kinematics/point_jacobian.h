@@ -8,7 +8,7 @@
 
 namespace mbstream {
 
-// Writes into J (6 x num_dofs) the geometric Jacobian of frame `frame`'s origin, both in
+// Writes into J (6 x nv, model.h) the geometric Jacobian of frame `frame`'s origin, both in
 // the world frame: rows 0..2 angular velocity (rad/s), rows 3..5 the origin's linear
 // velocity (m/s), per unit joint velocity. ForwardKinematics must have run for the same q.
 // Allocates nothing.

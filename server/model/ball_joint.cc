@@ -22,12 +22,18 @@ std::string LockMessage(const BallJoint& ball, const std::string& when, double y
       name, ball.where.c_str(), when.c_str(), name, y * kDeg, name, name, name);
 }
 
+// The index in q of the ball joint's middle (y) angle.
+int MiddleAngle(const Model& model, const BallJoint& ball) {
+  const int body = ball.first_body + 1;
+  return model.has_free_bodies() ? model.bodies[body].q_index : body;
+}
+
 }  // namespace
 
 std::optional<std::string> GimbalLockMessage(const Model& model, const double* q, double t,
                                              double margin) {
   for (const BallJoint& ball : model.ball_joints) {
-    const double y = q[ball.first_body + 1];
+    const double y = q[MiddleAngle(model, ball)];
     if (std::abs(std::cos(y)) <= std::sin(margin)) {
       return LockMessage(ball, FormatString("at t = %g s", t), y);
     }
@@ -42,14 +48,14 @@ std::optional<std::string> GimbalWatch::Check(const double* q, double t) {
   std::optional<std::string> message = GimbalLockMessage(model_, q, t);
   for (size_t b = 0; b < model_.ball_joints.size() && !message; ++b) {
     const BallJoint& ball = model_.ball_joints[b];
-    const double c = std::cos(q[ball.first_body + 1]);
+    const double c = std::cos(q[MiddleAngle(model_, ball)]);
     if (!first_ && (c > 0.0) != (last_cos_[b] > 0.0)) {
       message = LockMessage(ball, FormatString("between t = %g s and t = %g s", last_t_, t),
-                            q[ball.first_body + 1]);
+                            q[MiddleAngle(model_, ball)]);
     }
   }
   for (size_t b = 0; b < model_.ball_joints.size(); ++b) {
-    const double y = q[model_.ball_joints[b].first_body + 1];
+    const double y = q[MiddleAngle(model_, model_.ball_joints[b])];
     last_cos_[b] = std::cos(y);
     if (std::abs(last_cos_[b]) < closest_) {
       closest_ = std::abs(last_cos_[b]);

@@ -23,6 +23,9 @@ Data::Data(const Model& model) {
   for (size_t i = 0; i < n; ++i) {
     I[i] = model.bodies[i].inertia.ToMatrix();
     const Joint& joint = model.bodies[i].joint;
+    if (joint.type == JointType::kFree) {
+      continue;  // six columns, a function of q (server/kinematics/free_joint.h); S stays 0
+    }
     if (joint.type == JointType::kRevolute) {
       S[i].head<3>() = joint.axis;
     } else {
@@ -32,7 +35,7 @@ Data::Data(const Model& model) {
       if (S[i] == Vector6d::Unit(k)) S_index[i] = k;
     }
   }
-  const auto dofs = static_cast<Eigen::Index>(n);
+  const auto dofs = static_cast<Eigen::Index>(model.nv());
   zeros = Eigen::VectorXd::Zero(dofs);
   tau = Eigen::VectorXd::Zero(dofs);
   qdd = Eigen::VectorXd::Zero(dofs);

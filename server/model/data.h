@@ -23,7 +23,7 @@ struct Data {
   std::vector<Vector6d> a;    // spatial acceleration (gravity included as a base accel.)
   std::vector<Vector6d> f;    // force transmitted by the body's joint
   std::vector<Vector6d> c;    // velocity-product acceleration v x S qd
-  std::vector<Vector6d> S;    // joint motion subspace (axis), constant
+  std::vector<Vector6d> S;    // joint motion subspace (axis), constant; 0 for a free joint
   std::vector<int> S_index;   // k when S is the unit vector e_k (a coordinate axis), else -1
   std::vector<Matrix6d> I;    // body spatial inertia about its origin, constant
   std::vector<Matrix6d> IA;   // articulated-body (ABA) or composite (CRBA) inertia
@@ -33,14 +33,15 @@ struct Data {
   std::vector<double> inv_D;  // 1 / D (ABA's pass 3 for an axis joint multiplies by it)
   std::vector<double> u;      // tau - S^T pA
 
-  Eigen::VectorXd zeros;  // num_dofs zeros, for calls with qd = 0 or qdd = 0
+  // Per velocity coordinate (nv; num_dofs):
+  Eigen::VectorXd zeros;  // zeros, for calls with qd = 0 or qdd = 0
 
   // Results.
   Eigen::VectorXd tau;             // Rnea: joint forces (N*m or N)
   Eigen::VectorXd qdd;             // Aba: joint accelerations (rad/s^2 or m/s^2)
   Eigen::VectorXd gravity_torque;  // GravityVector: g(q)
   Eigen::MatrixXd M;               // Crba: joint-space mass matrix, symmetric (both halves)
-  Eigen::MatrixXd J;               // PointJacobian scratch/result, 6 x n
+  Eigen::MatrixXd J;               // PointJacobian scratch/result, 6 x nv
 };
 
 }  // namespace mbstream

@@ -8,11 +8,20 @@ const char* JointTypeName(JointType type) {
       return "revolute";
     case JointType::kPrismatic:
       return "prismatic";
+    case JointType::kFree:
+      return "free";
   }
   return "unknown";
 }
 
 void DeriveJointShape(Joint& joint) {
+  if (joint.type == JointType::kFree) {  // no axis: never one of the kernels' shapes
+    joint.axis_index = -1;
+    joint.origin_rotation_identity = false;
+    joint.offset_axis = kAnyOffset;
+    joint.axis_kernel = -1;
+    return;
+  }
   joint.axis_index = -1;
   for (int k = 0; k < 3; ++k) {
     if (joint.axis == Vector3d::Unit(k)) joint.axis_index = k;

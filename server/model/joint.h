@@ -8,9 +8,11 @@
 
 namespace mbstream {
 
-enum class JointType { kRevolute, kPrismatic };
+// kFree: six degrees of freedom, the body's pose in the world (model.h: free bodies). Only a
+// root body (parent kBase) has one; its axis, origin, limits, damping and armature are unused.
+enum class JointType { kRevolute, kPrismatic, kFree };
 
-// "revolute" or "prismatic".
+// "revolute", "prismatic" or "free".
 const char* JointTypeName(JointType type);
 
 struct JointLimits {

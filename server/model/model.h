@@ -1,11 +1,27 @@
-// The constant description of a mechanism: a tree of rigid bodies, one joint each.
+// The constant description of a mechanism: a forest of rigid bodies, one joint each.
 //
-// Bodies are the links that move: each has exactly one revolute or prismatic joint to its
-// parent (a ball joint is three such bodies, ball_joint.h), so body i is also degree of freedom i
-// (q(i), qd(i), tau(i)). Links attached by fixed joints are merged into the body they hang from
-// (their inertia added) and survive as frames. Bodies are in topological order: a parent's index is
-// below its children's. A Model is built once by ModelBuilder and never changes; per-run workspaces
-// are Data.
+// Bodies are the links that move: each has exactly one joint to its parent. A revolute or
+// prismatic joint has one coordinate (a ball joint is three such bodies, ball_joint.h); a free
+// joint (JointType::kFree) moves a root body (parent kBase) in all six directions. Links
+// attached by fixed joints are merged into the body they hang from (their inertia added) and
+// survive as frames. Bodies are in topological order: a parent's index is below its
+// children's. A Model is built once by ModelBuilder and never changes; per-run workspaces are
+// Data.
+//
+// Coordinates. A model without free bodies has one position and one velocity coordinate per
+// body: body i is q(i), qd(i), tau(i), and nq() == nv() == num_bodies(). A free body has 7
+// position coordinates at q_index, MuJoCo's layout,
+//   x y z qw qx qy qz: p_WB, the body frame's origin in the world (m), then the unit
+//                      quaternion of R_WB (world <- body), scalar first;
+// and 6 velocity coordinates at v_index, also MuJoCo's,
+//   vx vy vz wx wy wz: v_WB, the velocity of the body frame's origin in the WORLD frame (m/s),
+//                      then w_B, the angular velocity in the BODY frame (rad/s);
+// so that q' = G(q) v is p' = v_WB, quat' = 1/2 quat (x) (0, w_B). Its generalised forces
+// (tau at v_index) are the force on the body in the world frame (N) then the moment about the
+// body origin in the body frame (N*m). The algorithms' spatial velocities (Data::v) stay in
+// each body's frame (server/math/spatial.h). Free joints exist only at the root of a tree, as in
+// MuJoCo: a free body's children hang from it through revolute, prismatic, ball and fixed
+// joints. docs/free_bodies.md has the details.
 #pragma once
 
 #include <string>
@@ -25,7 +41,18 @@ struct Body {
   int parent = kBase;    // index of the parent body, or kBase
   Joint joint;           // joint from the parent body's frame to this body's frame
   RigidInertia inertia;  // in this body's frame, merged fixed links included
+  // First position and velocity coordinate (set by ModelBuilder; equal to the body's index in a
+  // model without free bodies, where the algorithms index by body and never read them).
+  int q_index = 0;
+  int v_index = 0;
+  // A free body's default pose in the world, X_WB (its q when the run gives no initial_q).
+  Pose X_W0;
+  bool free() const { return joint.type == JointType::kFree; }
 };
+
+// A free joint's coordinate counts.
+inline constexpr int kFreeNq = 7;
+inline constexpr int kFreeNv = 6;
 
 // A frame fixed in a body (or in the base): every link, the TCP and probes.
 struct Frame {
@@ -43,13 +70,32 @@ struct Model {
   int tcp_frame = -1;                 // index into frames of the tool centre point, or -1
   // Ball joints inside the tree, each three revolute bodies (ball_joint.h).
   std::vector<BallJoint> ball_joints;
+  // The free bodies' indices, ascending; empty for a fixed-base model (the algorithms' fast
+  // paths test this once per call).
+  std::vector<int> free_bodies;
 
-  int num_dofs() const { return static_cast<int>(bodies.size()); }
+  int num_bodies() const { return static_cast<int>(bodies.size()); }
+  // Position and velocity coordinates: num_bodies() plus 6 and 5 per free body.
+  int nq() const { return num_bodies() + (kFreeNq - 1) * static_cast<int>(free_bodies.size()); }
+  int nv() const { return num_bodies() + (kFreeNv - 1) * static_cast<int>(free_bodies.size()); }
+  bool has_free_bodies() const { return !free_bodies.empty(); }
+  // Degrees of freedom: nv(). The name predates free bodies; code that indexes q by body must
+  // use num_bodies() (equal when has_free_bodies() is false).
+  int num_dofs() const { return nv(); }
   // Index of the frame (or body) with this name, or -1.
   int FindFrame(const std::string& frame_name) const;
   int FindBody(const std::string& body_name) const;
+  // The body whose joint has velocity coordinate v (v itself without free bodies).
+  int BodyOfVelocity(int v) const;
   // Sum of all body masses (kg), merged fixed links included, the base excluded.
   double TotalMass() const;
 };
+
+// Sets q_index, v_index and free_bodies from the bodies' joints (ModelBuilder::Build calls it).
+void IndexCoordinates(Model* model);
+
+// The positions a run starts from when it gives none: 0 for every revolute and prismatic
+// coordinate, each free body's default pose X_W0. `q` has model.nq() values.
+void NeutralPositions(const Model& model, double* q);
 
 }  // namespace mbstream

@@ -126,6 +126,35 @@ void ModelBuilder::AddBody(const std::string& link, const std::string& parent_li
   model_.frames.push_back(Frame{link, index, Pose::Identity()});
 }
 
+void ModelBuilder::AddFreeLink(const std::string& link, const std::string& joint_name,
+                               const Pose& X_WL, const RigidInertia& inertia) {
+  const std::string what = "free joint '" + joint_name + "' (link '" + link + "')";
+  CheckNewName(link);
+  if (!X_WL.p.allFinite() || !X_WL.R.allFinite()) {
+    throw InputError(what + ": its pose is not finite; give finite numbers");
+  }
+  const double orthogonality = (X_WL.R.transpose() * X_WL.R - Matrix3d::Identity()).norm();
+  if (!(orthogonality < 1e-9) || !(X_WL.R.determinant() > 0.0)) {
+    throw InputError(what + ": its pose's rotation is not a rotation (|R^T R - 1| = " +
+                     std::to_string(orthogonality) +
+                     ", det R = " + std::to_string(X_WL.R.determinant()) + ")");
+  }
+  ValidateRigidInertia(inertia, "link '" + link + "'");
+  Body body;
+  body.name = link;
+  body.parent = kBase;
+  body.joint.name = joint_name;
+  body.joint.type = JointType::kFree;
+  DeriveJointShape(body.joint);
+  body.inertia = inertia;
+  body.X_W0 = X_WL;
+  const int index = static_cast<int>(model_.bodies.size());
+  model_.bodies.push_back(std::move(body));
+  links_.emplace(link, LinkPlace{index, Pose::Identity()});
+  names_.emplace(link, static_cast<int>(model_.frames.size()));
+  model_.frames.push_back(Frame{link, index, Pose::Identity()});
+}
+
 void ModelBuilder::AddFixedLink(const std::string& link, const std::string& parent_link,
                                 const Pose& X_PL, const RigidInertia& inertia) {
   CheckNewName(link);
@@ -162,6 +191,7 @@ Model ModelBuilder::Build() {
   for (size_t i = 0; i < model_.bodies.size(); ++i) {
     MBSTREAM_CHECK(model_.bodies[i].parent < static_cast<int>(i));
   }
+  IndexCoordinates(&model_);
   return std::move(model_);
 }
 

@@ -28,6 +28,14 @@ class ModelBuilder {
                    const std::string& joint_name, const std::string& where, const Pose& X_PJ,
                    const std::string (&axis_names)[3], const RigidInertia& inertia);
 
+  // Adds `link` as a free body: moved by a free joint named `joint_name` (6 degrees of freedom,
+  // model.h) relative to the world, at the pose X_WL by default (its q when a run gives no
+  // initial_q). A free joint exists only at the root of a tree, as in MuJoCo, hence no parent;
+  // children hang from `link` through AddMovingLink, AddBallLink and AddFixedLink as usual.
+  // `joint_name` may equal `link` (a model file's free link, which has no joint of its own).
+  void AddFreeLink(const std::string& link, const std::string& joint_name, const Pose& X_WL,
+                   const RigidInertia& inertia);
+
   // Adds `link` rigidly attached to `parent_link` at X_PL. Its inertia (which may be zero
   // mass) is merged into the body it hangs from; the link stays available as a frame.
   void AddFixedLink(const std::string& link, const std::string& parent_link, const Pose& X_PL,

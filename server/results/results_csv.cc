@@ -52,6 +52,9 @@ void AppendRow(std::string& out, double t, const double* values, int width) {
 
 std::vector<Series> SeriesOf(const RunResult& result) {
   const int n = result.num_dofs;
+  const int nq = result.positions();  // n without free bodies
+  const std::vector<std::string>& position_names =
+      result.num_positions > 0 ? result.position_names : result.joint_names;
   const auto slice = [](const std::vector<double> RunResult::*array, int width) {
     return [array, width](const RunResult& r, int k, double* row) {
       const double* from = (r.*array).data() + static_cast<size_t>(k) * width;
@@ -59,7 +62,7 @@ std::vector<Series> SeriesOf(const RunResult& result) {
     };
   };
   std::vector<Series> series = {
-      {"joints.csv", JointHeader(result.joint_names, "q", n), n, slice(&RunResult::q, n)},
+      {"joints.csv", JointHeader(position_names, "q", nq), nq, slice(&RunResult::q, nq)},
       {"velocities.csv", JointHeader(result.joint_names, "qd", n), n, slice(&RunResult::qd, n)},
       {"tcp.csv", "t,x,y,z", 3, slice(&RunResult::tcp, 3)},
   };

@@ -103,6 +103,7 @@ std::string StatsJson(const RunResult& result, const RunProvenance& provenance, 
   j["warnings"] = s.warnings;
   j["budget"] = {{"max_steps", s.max_steps}, {"max_cpu_s", s.max_cpu_s}};
   j["joints"] = result.joint_names;
+  if (result.num_positions > 0) j["positions"] = result.position_names;  // free bodies
   j["reproduce"] = {
       {"mbstream_version", MBSTREAM_VERSION},
       {"model", provenance.model_name},

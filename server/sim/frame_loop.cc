@@ -8,7 +8,7 @@ namespace mbstream {
 namespace {
 
 const double* LatestQ(const RunResult& result) {
-  return result.q.data() + static_cast<size_t>(result.num_frames() - 1) * result.num_dofs;
+  return result.q.data() + static_cast<size_t>(result.num_frames() - 1) * result.positions();
 }
 
 // A ball joint of the tree within `margin` of its gimbal lock at the latest recorded frame.

@@ -20,7 +20,7 @@ FrameRecorder::FrameRecorder(const Model& model, const DriveSet& drives, RunResu
   const size_t n = static_cast<size_t>(model.num_dofs());
   if (latest_only_) frames = 1;
   result_.t.reserve(frames);
-  result_.q.reserve(frames * n);
+  result_.q.reserve(frames * static_cast<size_t>(model.nq()));
   result_.qd.reserve(frames * n);
   result_.tcp.reserve(frames * 3);
   if (result_.has_torques) result_.tau.reserve(frames * n);

@@ -1,5 +1,7 @@
 #include "server/sim/initial_state.h"
 
+#include "server/kinematics/free_joint.h"
+
 namespace mbstream {
 
 Eigen::VectorXd InitialJointState(const RunConfig& config, const DriveSet& drives, int n) {
@@ -11,6 +13,31 @@ Eigen::VectorXd InitialJointState(const RunConfig& config, const DriveSet& drive
     const TrajectoryPoint ref = drives.Reference(i, 0.0);
     if (!drives.velocity_source(i) || config.q0.size() != n) y(i) = ref.q;
     y(n + i) = ref.qd;
+  }
+  return y;
+}
+
+Eigen::VectorXd InitialJointState(const RunConfig& config, const DriveSet& drives,
+                                  const Model& model) {
+  if (!model.has_free_bodies()) return InitialJointState(config, drives, model.nv());
+  const int nq = model.nq(), nv = model.nv();
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(nq + nv);
+  if (config.q0.size() == nq) {
+    y.head(nq) = config.q0;
+  } else {
+    NeutralPositions(model, y.data());
+  }
+  if (config.qd0.size() == nv) y.tail(nv) = config.qd0;
+  for (const Body& body : model.bodies) {
+    if (body.free()) {
+      free_joint::NormaliseQuaternion(y.data() + body.q_index);
+      continue;
+    }
+    const int i = body.v_index;
+    if (!drives.prescribed(i)) continue;
+    const TrajectoryPoint ref = drives.Reference(i, 0.0);
+    if (!drives.velocity_source(i) || config.q0.size() != nq) y(body.q_index) = ref.q;
+    y(nq + i) = ref.qd;
   }
   return y;
 }

@@ -21,12 +21,14 @@ double Median(std::vector<double> values) {
   return values[mid];
 }
 
+// Joint i (a velocity coordinate).
 std::string JointLabel(const Model& model, int i) {
-  return FormatString("joint %d '%s'", i + 1, model.bodies[i].joint.name.c_str());
+  return FormatString("joint %d '%s'", i + 1,
+                      model.bodies[model.BodyOfVelocity(i)].joint.name.c_str());
 }
 
 const char* InertiaUnit(const Model& model, int i) {
-  return model.bodies[i].joint.type == JointType::kRevolute ? "kg*m^2" : "kg";
+  return model.bodies[model.BodyOfVelocity(i)].joint.type == JointType::kRevolute ? "kg*m^2" : "kg";
 }
 
 void CheckServo(const Model& model, int i, const DriveConfig& drive, double inertia,
@@ -87,9 +89,9 @@ void CheckDrives(const Model& model, const RunConfig& config, std::vector<InputW
   Eigen::VectorXd inertia = Eigen::VectorXd::Zero(n);
   if (any_servo) {
     const DriveSet drives(model, config.drives);
-    const Eigen::VectorXd y0 = InitialJointState(config, drives, n);
+    const Eigen::VectorXd y0 = InitialJointState(config, drives, model);
     Data data(model);
-    const Eigen::VectorXd q0 = y0.head(n);
+    const Eigen::VectorXd q0 = y0.head(model.nq());
     inertia = Crba(model, data, q0).diagonal();
   }
   for (int i = 0; i < n; ++i) {

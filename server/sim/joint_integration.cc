@@ -10,7 +10,7 @@ JointIntegration::JointIntegration(const Model& model_in, const RunConfig& confi
       drives(model, config.drives),
       ode(model, drives, track_work_in),
       track_work(track_work_in),
-      y(InitialJointState(config, drives, model.num_dofs())),
+      y(InitialJointState(config, drives, model)),
       integrator(MakeIntegrator(ode, 0.0, y.data(), options)) {}
 
 SolverStats StatsSince(const SolverStats& now, const SolverStats& before) {

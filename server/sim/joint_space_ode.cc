@@ -8,16 +8,19 @@
 #include "server/dynamics/crba.h"
 #include "server/dynamics/hybrid_dynamics.h"
 #include "server/dynamics/rnea.h"
+#include "server/kinematics/free_joint.h"
 
 namespace mbstream {
 
 JointSpaceOde::JointSpaceOde(const Model& model, const DriveSet& drives, bool track_work)
     : model_(model),
       drives_(drives),
-      n_(model.num_dofs()),
+      n_(model.nv()),
+      nq_(model.nq()),
+      free_bodies_(model.has_free_bodies()),
       track_work_(track_work),
       data_(model),
-      q_(Eigen::VectorXd::Zero(n_)),
+      q_(Eigen::VectorXd::Zero(nq_)),
       qd_(Eigen::VectorXd::Zero(n_)),
       qdd_(Eigen::VectorXd::Zero(n_)),
       effort_(Eigen::VectorXd::Zero(n_)),
@@ -40,6 +43,13 @@ JointSpaceOde::JointSpaceOde(const Model& model, const DriveSet& drives, bool tr
   id0_ = Eigen::VectorXd::Zero(n_);
   dqdd_ = Eigen::MatrixXd::Zero(n_, 2 * n_);
   mass_llt_ = Eigen::LLT<Eigen::MatrixXd>(n_);
+  if (free_bodies_) {
+    q_of_v_.assign(n_, -1);
+    for (const Body& body : model.bodies) {
+      if (!body.free()) q_of_v_[body.v_index] = body.q_index;
+    }
+    drive_q_ = Eigen::VectorXd::Zero(n_);
+  }
 }
 
 int JointSpaceOde::JacobianNonZeros() const { return n_ + static_cast<int>(free_.size()) * 2 * n_; }
@@ -49,7 +59,29 @@ bool JointSpaceOde::Evaluate(double t, const double* y) {
   return EvaluateAccelerations();
 }
 
+void JointSpaceOde::EvaluateFreeState(double t, const double* y) {
+  for (int i = 0; i < nq_; ++i) q_(i) = y[i];
+  for (int i = 0; i < n_; ++i) qd_(i) = y[nq_ + i];
+  // The dynamics, the quaternions' rates and the outputs from unit quaternions (the rate
+  // 1/2 quat (x) (0, w) is orthogonal to quat: the state's norm still does not change).
+  for (const int b : model_.free_bodies)
+    free_joint::NormaliseQuaternion(&q_(model_.bodies[b].q_index));
+  for (int i : prescribed_) {  // never a free joint's coordinate (ValidateRun)
+    const TrajectoryPoint ref = drives_.Reference(i, t);
+    if (!drives_.velocity_source(i)) q_(q_of_v_[i]) = ref.q;
+    qd_(i) = ref.qd;
+    qdd_(i) = ref.qdd;
+  }
+  for (int i = 0; i < n_; ++i) drive_q_(i) = q_of_v_[i] >= 0 ? q_(q_of_v_[i]) : 0.0;
+  drives_.ActuatorEfforts(t, drive_q_.data(), qd_.data(), drive_workspace_, effort_.data());
+  for (int i : free_) tau_(i) = effort_(i) - drives_.damping(i) * qd_(i);
+}
+
 void JointSpaceOde::EvaluateState(double t, const double* y) {
+  if (free_bodies_) {
+    EvaluateFreeState(t, y);
+    return;
+  }
   double* const q = q_.data();
   double* const qd = qd_.data();
   for (int i = 0; i < n_; ++i) {
@@ -94,8 +126,45 @@ void JointSpaceOde::ComputePrescribedEfforts() {
   for (int i : prescribed_) effort_(i) = prescribed_force_(i) + drives_.damping(i) * qd_(i);
 }
 
+void JointSpaceOde::PositionRate(const double* q, const double* qd, double* q_rate) {
+  if (!free_bodies_) {
+    for (int i = 0; i < n_; ++i) q_rate[i] = qd[i];
+    return;
+  }
+  for (const Body& body : model_.bodies) {
+    if (body.free()) {
+      free_joint::PositionRate(q + body.q_index, qd + body.v_index, q_rate + body.q_index);
+    } else {
+      q_rate[body.q_index] = qd[body.v_index];
+    }
+  }
+}
+
+int JointSpaceOde::Project(double /*t*/, const double* y, double* correction) {
+  for (int i = 0; i < size(); ++i) correction[i] = 0.0;
+  for (const int b : model_.free_bodies) {
+    const int k = model_.bodies[b].q_index;
+    double quat[7];
+    for (int e = 3; e < 7; ++e) quat[e] = y[k + e];
+    free_joint::NormaliseQuaternion(quat);
+    for (int e = 3; e < 7; ++e) correction[k + e] = quat[e] - y[k + e];
+  }
+  return 0;
+}
+
+int JointSpaceOde::ProjectInPlace(double /*t*/, double* y) {
+  for (const int b : model_.free_bodies)
+    free_joint::NormaliseQuaternion(y + model_.bodies[b].q_index);
+  return 0;
+}
+
 int JointSpaceOde::Rhs(double t, const double* y, double* ydot) {
   if (!Evaluate(t, y)) return 1;  // recoverable: the solver retries with a smaller step
+  if (free_bodies_) {
+    PositionRate(q_.data(), qd_.data(), ydot);
+    for (int i = 0; i < n_; ++i) ydot[nq_ + i] = qdd_(i);
+    return 0;
+  }
   for (int i = 0; i < n_; ++i) {
     ydot[i] = qd_(i);
     ydot[n_ + i] = qdd_(i);

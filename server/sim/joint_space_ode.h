@@ -1,6 +1,15 @@
 // The joint-space formulation: minimal coordinates, y = [q; qd] (2n states), with
 // M(q) qdd + h(q, qd) = tau_drive - damping * qd.
 //
+// With free bodies (model.h) y = [q (nq); qd (nv)] and q' = G(q) qd: a free body's quaternion
+// rate is 1/2 quat (x) (0, w_B). The quaternions are kept unit by projection (normalising
+// them) after each step: CVODE BDF through its projection, ARKODE, RK4 and semi-implicit
+// Euler after each step (ManifoldProjection::ProjectsEveryMethod); CVODE Adams does not project
+// (docs/free_bodies.md gives its drift). The right-hand side and the outputs (q()) normalise the
+// quaternions they read, so a frame's quaternion is unit to round-off with every method. Drive
+// laws see each one-coordinate joint's position at its velocity index (a free joint's
+// coordinates are passive). The own Jacobian is for fixed-base models only.
+//
 // Prescribed joints impose q_ref(t) (or, as velocity sources, impose qd_ref(t) and take q
 // from the state); the dynamics then solves for the free joints' accelerations and the
 // prescribed joints' drive efforts together, in O(n) by Featherstone's hybrid dynamics
@@ -13,21 +22,31 @@
 #include <Eigen/Core>
 
 #include "server/drives/drive_set.h"
+#include "server/integrate/manifold_projection.h"
 #include "server/integrate/ode_system.h"
 #include "server/model/data.h"
 #include "server/model/model.h"
 
 namespace mbstream {
 
-class JointSpaceOde : public OdeSystem {
+class JointSpaceOde : public OdeSystem, public ManifoldProjection {
  public:
   // Keeps references to model and drives, which must outlive it. `track_work`: one
   // quadrature, the work W(t) of the drives and the joint damping (see Quadrature).
   JointSpaceOde(const Model& model, const DriveSet& drives, bool track_work = false);
 
-  int size() const override { return 2 * n_; }
+  int size() const override { return nq_ + n_; }
   int Rhs(double t, const double* y, double* ydot) override;
-  int num_positions() const override { return n_; }
+  int num_positions() const override { return nq_; }
+  int num_velocities() const override { return n_; }
+  // q' = G(q) qd: qd itself without free bodies.
+  void PositionRate(const double* q, const double* qd, double* q_rate) override;
+
+  // The free bodies' quaternions normalised (nothing to do without free bodies).
+  bool Projects() const override { return free_bodies_; }
+  bool ProjectsEveryMethod() const override { return free_bodies_; }
+  int Project(double t, const double* y, double* correction) override;
+  int ProjectInPlace(double t, double* y) override;
 
   // df/dy = [0 I; dqdd/dq dqdd/dqd] when no joint is prescribed. From M qdd + h(q, qd) =
   // tau(t, q, qd) at fixed qdd: dqdd/dx = M^-1 (dtau/dx - dID/dx), x = q or qd, where ID =
@@ -35,7 +54,9 @@ class JointSpaceOde : public OdeSystem {
   // drive laws are affine in q and qd: -kp, -kd - damping), dID/dx by forward differences
   // of RNEA: 2n + 1 RNEA calls and one CRBA instead of the 2n ABA calls and 2n drive
   // evaluations of differencing f. Allocates nothing.
-  bool HasJacobian() const override { return free_.size() == static_cast<size_t>(n_); }
+  bool HasJacobian() const override {
+    return !free_bodies_ && free_.size() == static_cast<size_t>(n_);
+  }
   int Jacobian(double t, const double* y, const double* fy, double* jac_col_major) override;
 
   // W' = sum_i (effort_i - damping_i qd_i) qd_i, J/s: the power of the drives (the
@@ -75,15 +96,22 @@ class JointSpaceOde : public OdeSystem {
   Data& data() { return data_; }
 
  private:
-  void EvaluateState(double t, const double* y);  // q_, qd_, reference qdd_, efforts, tau_
-  bool EvaluateAccelerations();                   // qdd_ of the free joints, prescribed_force_
-  void WritePower(double* qdot) const;            // W' from effort_ and qd_
+  void EvaluateState(double t, const double* y);      // q_, qd_, reference qdd_, efforts, tau_
+  void EvaluateFreeState(double t, const double* y);  // EvaluateState with free bodies
+  bool EvaluateAccelerations();                       // qdd_ of the free joints, prescribed_force_
+  void WritePower(double* qdot) const;                // W' from effort_ and qd_
   const Model& model_;
   const DriveSet& drives_;
-  const int n_;
+  const int n_;             // velocity coordinates (nv)
+  const int nq_;            // position coordinates (nq; n_ without free bodies)
+  const bool free_bodies_;  // the model has free bodies
   const bool track_work_;
   Data data_;
   Eigen::VectorXd q_, qd_, qdd_, effort_, tau_;
+  // With free bodies: each velocity coordinate's position index (-1 for a free joint's) and
+  // the positions by velocity coordinate that the drive laws read (0 for a free joint's).
+  std::vector<int> q_of_v_;
+  Eigen::VectorXd drive_q_;
   std::vector<int> free_;                       // indices of non-prescribed joints
   std::vector<int> prescribed_;                 // indices of prescribed joints
   std::vector<unsigned char> prescribed_mask_;  // per joint: 1 = prescribed (HybridAba)

@@ -388,6 +388,9 @@ void RunLoopOde(const Model& model, const std::vector<LoopClosure>& loops, const
 FormulationChoice ValidateLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
                                   const RunConfig& config) {
   if (loops.empty()) return ValidateRun(model, config);
+  RefuseFreeBodies(model,
+                   "a mechanism with closed loops does not simulate free bodies yet; "
+                   "attach the link to the world or open the loop");
   const DriveSet drives(model, config.drives);
   const LoopPlan plan = PlanLoopRun(model, loops, config, drives);
   ValidateRun(model, TreeConfigOf(config), drives);

@@ -113,10 +113,20 @@ struct RunStats {
   std::string choice_json;
 };
 
-// Frame-major arrays; frame k has time t[k], joints q[k*n .. k*n+n-1], and so on.
+// Frame-major arrays; frame k has time t[k], joints q[k*n .. k*n+n-1], and so on. With free
+// bodies (model.h) q has positions() = num_positions values per frame (a free joint's 7), qd and
+// tau num_dofs (its 6).
 struct RunResult {
-  int num_dofs = 0;
+  int num_dofs = 0;       // velocity coordinates (nv), with closed loops the cut joints' too
+  int num_positions = 0;  // position coordinates per frame when not num_dofs (0: num_dofs)
+  int positions() const { return num_positions > 0 ? num_positions : num_dofs; }
+  // One per velocity coordinate (num_dofs; coordinate_names.h: a free joint's NAME.vx ...).
   std::vector<std::string> joint_names;
+  // When num_positions > 0: one name per position coordinate (NAME.x ... NAME.qz), and per
+  // velocity coordinate the index of its joint's position in q (-1 for a free joint's). Else
+  // empty.
+  std::vector<std::string> position_names;
+  std::vector<int> position_index;
   bool has_torques = false;
   bool has_energy = false;
   std::vector<double> t;                   // s

@@ -56,6 +56,73 @@ void CheckMethodFor(const RunConfig& config, const FormulationChoice& choice) {
 
 }  // namespace
 
+namespace {
+
+std::string FreeJointLabel(const Body& body) {
+  return "free joint '" + body.joint.name + "' (link '" + body.name + "')";
+}
+
+}  // namespace
+
+void RefuseFreeBodies(const Model& model, const std::string& what) {
+  if (!model.has_free_bodies()) return;
+  const Body& body = model.bodies[model.free_bodies.front()];
+  throw InputError(FreeJointLabel(body) +
+                   (model.free_bodies.size() > 1
+                        ? " and " + std::to_string(model.free_bodies.size() - 1) + " more"
+                        : std::string()) +
+                   ": " + what);
+}
+
+void CheckFreeBodies(const Model& model, const RunConfig& config) {
+  if (!model.has_free_bodies()) return;
+  if (IsBodyFormulation(config.formulation)) {
+    RefuseFreeBodies(model, std::string("formulation ") + FormulationName(config.formulation) +
+                                " does not simulate free bodies yet; use formulation joint "
+                                "(or auto)");
+  }
+  if (config.target.any()) {
+    RefuseFreeBodies(model,
+                     "an accuracy target does not choose the method for free bodies yet; give "
+                     "method and tolerances (e.g. bdf, rtol 1e-8)");
+  }
+  const int nq = model.nq(), nv = model.nv();
+  if (config.q0.size() != 0 && config.q0.size() != nq) {
+    throw InputError(FormatString(
+        "initial_q has %d values and the model has %d position coordinates: give none or one "
+        "per coordinate, a free joint's 7 as x y z qw qx qy qz (docs/free_bodies.md)",
+        static_cast<int>(config.q0.size()), nq));
+  }
+  if (config.qd0.size() != 0 && config.qd0.size() != nv) {
+    throw InputError(FormatString(
+        "initial_qd has %d values and the model has %d velocity coordinates: give none or one "
+        "per coordinate, a free joint's 6 as vx vy vz (world) wx wy wz (body frame)",
+        static_cast<int>(config.qd0.size()), nv));
+  }
+  for (const int i : model.free_bodies) {
+    const Body& body = model.bodies[i];
+    for (int k = 0; k < kFreeNv; ++k) {
+      if (config.drives[static_cast<size_t>(body.v_index + k)].kind !=
+          DriveConfig::Kind::kPassive) {
+        throw InputError(FreeJointLabel(body) + " has a drive on its coordinate " +
+                         std::to_string(k + 1) +
+                         ": a free joint has no actuator; leave its drives out (passive)");
+      }
+    }
+    if (config.q0.size() == nq) {
+      const double* quat = config.q0.data() + body.q_index + 3;
+      const double norm =
+          std::sqrt(quat[0] * quat[0] + quat[1] * quat[1] + quat[2] * quat[2] + quat[3] * quat[3]);
+      if (!(std::abs(norm - 1.0) <= 1e-6)) {
+        throw InputError(FormatString(
+            "%s: initial_q's quaternion (qw qx qy qz) = (%g, %g, %g, %g) has norm %.9g; give a "
+            "unit quaternion (norm 1 within 1e-6)",
+            FreeJointLabel(body).c_str(), quat[0], quat[1], quat[2], quat[3], norm));
+      }
+    }
+  }
+}
+
 void CheckValidatedShape(const Model& model, const RunConfig& config) {
   MBSTREAM_CHECK_MSG(static_cast<int>(config.drives.size()) == model.num_dofs(),
                      "one drive per joint: ValidateRun first");
@@ -73,11 +140,13 @@ FormulationChoice ValidatedFormulation(const Model& model, const RunConfig& conf
 
 FormulationChoice ValidateRun(const Model& model, const RunConfig& config) {
   CheckShape(model, config);
+  CheckFreeBodies(model, config);
   return ValidateRun(model, config, DriveSet(model, config.drives));
 }
 
 FormulationChoice ValidateRun(const Model& model, const RunConfig& config, const DriveSet& drives) {
   CheckShape(model, config);
+  CheckFreeBodies(model, config);
   const FormulationChoice choice = ChooseFormulation(config, drives);
   if (config.target.any() && IsBodyFormulation(choice.formulation)) {
     throw InputError(std::string("an accuracy target is met with formulation auto, kinematic or "

@@ -7,6 +7,8 @@
 // not fail with an InputError inside a worker.
 #pragma once
 
+#include <string>
+
 #include "server/drives/drive_set.h"
 #include "server/model/model.h"
 #include "server/sim/formulation_choice.h"
@@ -27,6 +29,17 @@ FormulationChoice ValidateRun(const Model& model, const RunConfig& config, const
 // failure is a caller that skipped ValidateRun, a bug (InternalError), not a user's error.
 FormulationChoice ValidatedFormulation(const Model& model, const RunConfig& config,
                                        const DriveSet& drives);
+
+// Throws InputError "free joint 'NAME' (link 'LINK') [and N more]: <what>" when `model` has
+// free bodies (JointType::kFree); nothing otherwise.
+void RefuseFreeBodies(const Model& model, const std::string& what);
+
+// A run of a model with free bodies: refuses what does not simulate them yet (the body
+// formulations, accuracy targets), a drive on a free joint's coordinate, initial_q or
+// initial_qd of the wrong length (nq and nv values: model.h) and an initial quaternion whose
+// norm is not 1 within 1e-6, naming the norm. ValidateRun calls it; closed loops refuse free
+// bodies in ValidateLoopRun.
+void CheckFreeBodies(const Model& model, const RunConfig& config);
 
 // ValidatedFormulation's CHECKs alone.
 void CheckValidatedShape(const Model& model, const RunConfig& config);

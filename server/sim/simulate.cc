@@ -11,6 +11,7 @@
 #include "server/drives/drive_set.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/thread_cpu_clock.h"
+#include "server/model/coordinate_names.h"
 #include "server/sim/body_run.h"
 #include "server/sim/frame_recorder.h"
 #include "server/sim/input_sanity.h"
@@ -93,7 +94,15 @@ RunResult SimulateTree(const Model& model_in, const RunConfig& config_in, FrameS
 
   RunResult result;
   result.num_dofs = model.num_dofs();
-  for (const Body& body : model.bodies) result.joint_names.push_back(body.joint.name);
+  result.joint_names = VelocityNames(model);  // one per body without free bodies
+  if (model.has_free_bodies()) {
+    result.num_positions = model.nq();
+    result.position_names = PositionNames(model);
+    result.position_index.assign(static_cast<size_t>(model.nv()), -1);
+    for (const Body& body : model.bodies) {
+      if (!body.free()) result.position_index[static_cast<size_t>(body.v_index)] = body.q_index;
+    }
+  }
   const bool kinematic = choice.formulation == Formulation::kKinematic;
   result.has_torques = config.want_torques;
   result.has_energy = !kinematic;

@@ -36,10 +36,11 @@ std::vector<std::string> LoopForceNames(const v1::RunInfo& info) {
 
 void FrameToProto(const RunResult& result, int k, v1::Frame* frame) {
   const int n = result.num_dofs;
+  const int nq = result.positions();
   MBSTREAM_CHECK(k >= 0 && k < result.num_frames());
   frame->set_seq(result.first_seq + k);
   frame->set_t_s(result.t[k]);
-  CopyFinite(&result.q[k * n], n, frame->mutable_q());
+  CopyFinite(&result.q[k * nq], nq, frame->mutable_q());
   CopyFinite(&result.qd[k * n], n, frame->mutable_qd());
   const double* p = &result.tcp[3 * k];
   MBSTREAM_CHECK_MSG(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]),
@@ -67,10 +68,13 @@ RunResult ResultFromFrames(const v1::RunInfo& info, const std::vector<v1::Frame>
   RunResult result;
   result.num_dofs = info.num_dofs();
   result.joint_names.assign(info.joint_names().begin(), info.joint_names().end());
+  result.num_positions = info.num_positions();
+  result.position_names.assign(info.position_names().begin(), info.position_names().end());
   result.has_energy = info.has_energy();
   result.stats = StatsFromProto(info);
   result.loop_force_names = LoopForceNames(info);
   const int n = result.num_dofs;
+  const int nq = result.positions();
   const int forces = 6 * static_cast<int>(result.loop_force_names.size());
   // A run recovered from its stored frames guesses has_torques from a non-empty tau
   // (kept_frames.h), which the reactions alone also fill: the frames' width decides.
@@ -79,16 +83,16 @@ RunResult ResultFromFrames(const v1::RunInfo& info, const std::vector<v1::Frame>
   const int efforts = result.has_torques ? n : 0;
   const size_t count = frames.size();
   result.t.reserve(count);
-  result.q.reserve(count * n);
+  result.q.reserve(count * nq);
   result.qd.reserve(count * n);
   result.tcp.reserve(count * 3);
   result.loop_forces.reserve(count * forces);
   for (const v1::Frame& frame : frames) {
-    if (frame.q_size() != n || frame.qd_size() != n || frame.tau_size() != efforts + forces) {
+    if (frame.q_size() != nq || frame.qd_size() != n || frame.tau_size() != efforts + forces) {
       throw InputError("run " + info.id() + ": frame " + std::to_string(frame.seq()) + " has " +
                        std::to_string(frame.q_size()) + " joint values and " +
                        std::to_string(frame.tau_size()) + " efforts and reactions, expected " +
-                       std::to_string(n) + " and " + std::to_string(efforts + forces) +
+                       std::to_string(nq) + " and " + std::to_string(efforts + forces) +
                        "; the result is corrupt, run it again");
     }
     result.t.push_back(frame.t_s());

@@ -10,7 +10,8 @@
 namespace mbstream {
 
 // Frame `k` of `result` as a message with sequence number k. Frame.tau holds the drive
-// efforts (num_dofs values, when the run computes them), then, for a run with closed loops
+// efforts (num_dofs values, when the run computes them; Frame.q has RunResult::positions()),
+// then, for a run with closed loops
 // that reports them (RunSpec.report_loop_forces), the cut joints' reactions (6 each,
 // RunResult::loop_forces). Every number must be finite
 // (the engine only keeps good frames); a non-finite one is a bug and throws InternalError,

@@ -9,12 +9,14 @@
 
 namespace mbstream {
 
-// Fills dofs, joints (unlimited ranges as 0: the wire carries no infinities), TCP, links,
-// mass and the sizes of the formulations. Leaves id, name, bundle-derived and time fields.
+// Fills dofs, positions and the coordinates' names (coordinate_names.h), joints (unlimited
+// ranges as 0: the wire carries no infinities), TCP, links, mass and the sizes of the
+// formulations. Leaves id, name, bundle-derived and time fields.
 void DescribeModel(const Model& model, const std::vector<std::string>& warnings,
                    v1::ModelInfo* info);
 
-// The model's joint names in its joint order (the order of q on the wire).
+// The model's joint names in its joint order (the order of q on the wire): VelocityNames, one
+// per velocity coordinate (the order of qd; of q too without free bodies).
 std::vector<std::string> JointNames(const Model& model);
 
 }  // namespace mbstream

@@ -1,0 +1,148 @@
+// The algorithms with free bodies against each other (ABA against CRBA + RNEA, hybrid dynamics
+// against ABA, the energy against the mass matrix), the point Jacobian against differences of
+// forward kinematics, and a lone free body against the Newton-Euler equations.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "server/dynamics/aba.h"
+#include "server/dynamics/crba.h"
+#include "server/dynamics/energy.h"
+#include "server/dynamics/hybrid_dynamics.h"
+#include "server/dynamics/rnea.h"
+#include "server/kinematics/forward_kinematics.h"
+#include "server/kinematics/point_jacobian.h"
+#include "tests/server/free/free_tree_model.h"
+
+namespace mbstream {
+namespace {
+
+using testing::FloatingTree;
+using testing::RandomPositions;
+using testing::RandomVelocities;
+
+double Relative(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  return (a - b).norm() / std::max(1.0, b.norm());
+}
+
+TEST(FreeDynamicsTest, AbaSolvesTheMassMatrixEquation) {
+  std::mt19937 rng(3);
+  const Model model = FloatingTree(rng);
+  ASSERT_EQ(model.nq(), 6 + 14);
+  ASSERT_EQ(model.nv(), 6 + 12);
+  Data data(model);
+  double worst = 0.0;
+  for (int trial = 0; trial < 50; ++trial) {
+    const Eigen::VectorXd q = RandomPositions(model, rng);
+    const Eigen::VectorXd qd = RandomVelocities(model, rng, 2.0);
+    const Eigen::VectorXd tau = RandomVelocities(model, rng, 5.0);
+    const Eigen::VectorXd qdd = Aba(model, data, q, qd, tau);
+    const Eigen::MatrixXd M = Crba(model, data, q);
+    EXPECT_LT((M - M.transpose()).norm(), 1e-14 * M.norm());
+    const Eigen::VectorXd h = NonlinearEffects(model, data, q, qd);
+    worst = std::max(worst, Relative(M * qdd + h, tau));
+    // And RNEA of ABA's accelerations gives the forces back.
+    worst = std::max(worst, Relative(Rnea(model, data, q, qd, qdd), tau));
+    // Kinetic energy = qd^T M qd / 2.
+    const double T = KineticEnergy(model, data, q, qd);
+    EXPECT_NEAR(T, 0.5 * qd.dot(M * qd), 1e-12 * T);
+  }
+  EXPECT_LT(worst, 1e-12);
+}
+
+TEST(FreeDynamicsTest, HybridDynamicsMatchesAba) {
+  std::mt19937 rng(4);
+  const Model model = FloatingTree(rng);
+  Data data(model);
+  std::vector<unsigned char> prescribed(model.nv(), 0);
+  for (const Body& body : model.bodies) {
+    if (!body.free() && body.v_index % 2 == 0) prescribed[body.v_index] = 1;
+  }
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::VectorXd q = RandomPositions(model, rng);
+    const Eigen::VectorXd qd = RandomVelocities(model, rng, 2.0);
+    const Eigen::VectorXd tau = RandomVelocities(model, rng, 5.0);
+    const Eigen::VectorXd qdd = Aba(model, data, q, qd, tau);
+    // Prescribing ABA's own accelerations gives ABA's other accelerations and the given forces.
+    const Eigen::VectorXd hybrid = HybridAba(model, data, q, qd, tau, qdd, prescribed);
+    EXPECT_LT(Relative(hybrid, qdd), 1e-12);
+    for (int v = 0; v < model.nv(); ++v) {
+      if (prescribed[v]) {
+        EXPECT_NEAR(data.tau(v), tau(v), 1e-10 * (1.0 + std::abs(tau(v))));
+      }
+    }
+  }
+}
+
+TEST(FreeDynamicsTest, PointJacobianMatchesDifferencesOfKinematics) {
+  std::mt19937 rng(5);
+  const Model model = FloatingTree(rng);
+  Data data(model);
+  const int tip = model.FindFrame("tip");
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd q = RandomPositions(model, rng);
+    const Eigen::VectorXd qd = RandomVelocities(model, rng, 1.0);
+    ForwardKinematics(model, data, q);
+    Eigen::MatrixXd J(6, model.nv());
+    PointJacobian(model, data, tip, J);
+    const Vector6d twist = J * qd;
+    // q(+-h) by q' = G(q) qd, to second order in h (central differences).
+    const double h = 1e-6;
+    auto step = [&](double dt) {
+      Eigen::VectorXd moved = q;
+      for (const Body& body : model.bodies) {
+        if (!body.free()) {
+          moved(body.q_index) += dt * qd(body.v_index);
+          continue;
+        }
+        double rate[7];
+        free_joint::PositionRate(&q(body.q_index), &qd(body.v_index), rate);
+        double half[7];
+        for (int k = 0; k < 7; ++k) half[k] = q(body.q_index + k) + 0.5 * dt * rate[k];
+        free_joint::PositionRate(half, &qd(body.v_index), rate);  // midpoint
+        for (int k = 0; k < 7; ++k) moved(body.q_index + k) += dt * rate[k];
+      }
+      ForwardKinematics(model, data, moved);
+      return data.frame_world[tip];
+    };
+    const Pose plus = step(h), minus = step(-h);
+    const Vector3d velocity = (plus.p - minus.p) / (2 * h);
+    const Matrix3d dR = (plus.R - minus.R) / (2 * h);
+    ForwardKinematics(model, data, q);
+    const Matrix3d W = dR * data.frame_world[tip].R.transpose();  // [w]x
+    const Vector3d w(W(2, 1), W(0, 2), W(1, 0));
+    EXPECT_LT((twist.head<3>() - w).norm(), 1e-7);
+    EXPECT_LT((twist.tail<3>() - velocity).norm(), 1e-7);
+  }
+}
+
+TEST(FreeDynamicsTest, ALoneFreeBodyFollowsNewtonAndEuler) {
+  std::mt19937 rng(6);
+  ModelBuilder builder("body", "world");
+  const RigidInertia inertia = testing::RandomInertia(rng);
+  builder.AddFreeLink("b", "b", Pose::Identity(), inertia);
+  const Model model = builder.Build();
+  Data data(model);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::VectorXd q = RandomPositions(model, rng);
+    const Eigen::VectorXd qd = RandomVelocities(model, rng, 3.0);
+    const Eigen::VectorXd tau = RandomVelocities(model, rng, 2.0);  // [f_W; n_B about Bo]
+    const Eigen::VectorXd qdd = Aba(model, data, q, qd, tau);
+    const Matrix3d R = free_joint::Rotation(&q(3));
+    const Vector3d w = qd.tail<3>(), dw = qdd.tail<3>();
+    const Vector3d c = inertia.com;
+    const double m = inertia.mass;
+    // The centre of mass: p_cm = p + R c, so a_cm = a + R (dw x c + w x (w x c)) = g + f / m.
+    const Vector3d a_cm = qdd.head<3>() + R * (dw.cross(c) + w.cross(w.cross(c)));
+    const Vector3d f = tau.head<3>();
+    EXPECT_LT((a_cm - (model.gravity + f / m)).norm(), 1e-12 * (1.0 + a_cm.norm()));
+    // Euler about the centre of mass, body frame: I dw + w x I w = n_cm.
+    const Vector3d n_cm = tau.tail<3>() - c.cross(R.transpose() * f);
+    const Matrix3d& I = inertia.inertia_com;
+    EXPECT_LT((I * dw + w.cross(I * w) - n_cm).norm(), 1e-12 * (1.0 + n_cm.norm()));
+  }
+}
+
+}  // namespace
+}  // namespace mbstream
