@@ -138,11 +138,10 @@ class SdfReader {
     }
   }
 
-  // A model's canonical link with no joint to the world: a free body at its pose.
-  void AddFreeBody(ModelBuilder&, const JointInfo& info, const Pose&) {
-    throw InputError(info.where + ": model '" + file_.models()[info.model].model->Name() +
-                     "' has no joint to the world (a free body), which this build does not "
-                     "simulate yet; give it a joint to the world or make it <static>");
+  // A model's canonical link with no joint to the world: a free body at its pose, its free
+  // joint named after the link.
+  void AddFreeBody(ModelBuilder& builder, const JointInfo& info, const Pose& X_WL) {
+    builder.AddFreeLink(info.child, info.name, X_WL, InertiaIn(info.child, X_WL));
   }
 
   void SetTcpIfNamed(ModelBuilder& builder) const {

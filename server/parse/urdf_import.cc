@@ -73,6 +73,39 @@ void Guarded(const std::string& source, Call call) {
   }
 }
 
+// The world a --floating-base model's root moves in.
+constexpr char kFloatingBaseWorld[] = "world";
+
+// --floating-base: the root link moves freely, by a free joint named after it.
+void AddFloatingRoot(const urdf::Link& root, const UrdfDiagnostics& diagnostics,
+                     ModelBuilder* builder) {
+  if (root.name == kFloatingBaseWorld) {
+    throw InputError(diagnostics.Link(root.name) +
+                     ": --floating-base: the root link is 'world' already (a 'floating' joint "
+                     "from it frees the base); drop --floating-base");
+  }
+  const RigidInertia inertia = ConvertInertia(root, root.name, diagnostics);
+  Guarded(diagnostics.source(),
+          [&] { builder->AddFreeLink(root.name, root.name, Pose::Identity(), inertia); });
+}
+
+// A 'floating' joint: a free joint of its child, which starts at the joint's <origin>; only
+// from the root link (the world), as a free joint exists only at the root of a tree.
+void AddFloatingJoint(const urdf::Joint& joint, const urdf::Link& child, const std::string& root,
+                      bool floating_base, const UrdfDiagnostics& diagnostics,
+                      ModelBuilder* builder) {
+  if (joint.parent_link_name != root || floating_base) {
+    throw InputError(diagnostics.Joint(joint.name) + ": a 'floating' joint's parent must be the " +
+                     "root link '" + root + "' (the world), not '" + joint.parent_link_name +
+                     (floating_base ? "' (with --floating-base the root moves itself)" : "'") +
+                     "; make it fixed, revolute or prismatic, or give it the root as parent");
+  }
+  const RigidInertia inertia = ConvertInertia(child, joint.name, diagnostics);
+  const Pose X_WL = ToPose(joint.parent_to_joint_origin_transform);
+  Guarded(diagnostics.source(),
+          [&] { builder->AddFreeLink(child.name, joint.name, X_WL, inertia); });
+}
+
 }  // namespace
 
 UrdfImport ImportUrdf(const std::string& text, const std::string& source,
@@ -91,12 +124,16 @@ UrdfImport ImportUrdf(const std::string& text, const std::string& source,
 
   MissingMeshes missing_meshes;
   CheckMeshes(*urdf->getRoot(), assets, diagnostics, &missing_meshes);
-  ModelBuilder builder(urdf->getName(), urdf->getRoot()->name);
+  const std::string& root = urdf->getRoot()->name;
+  ModelBuilder builder(urdf->getName(), options.floating_base ? kFloatingBaseWorld : root);
+  if (options.floating_base) AddFloatingRoot(*urdf->getRoot(), diagnostics, &builder);
   for (const auto& joint : joints) {
     poll.Tick();
     const urdf::Link& child = *urdf->getLink(joint->child_link_name);
     CheckMeshes(child, assets, diagnostics, &missing_meshes);
-    if (joint->type == urdf::Joint::FIXED) {
+    if (joint->type == urdf::Joint::FLOATING) {
+      AddFloatingJoint(*joint, child, root, options.floating_base, diagnostics, &builder);
+    } else if (joint->type == urdf::Joint::FIXED) {
       const Pose X_PL = ToPose(joint->parent_to_joint_origin_transform);
       const RigidInertia inertia = ConvertInertia(child, "", diagnostics);
       Guarded(source,

@@ -1,9 +1,11 @@
 // Imports a URDF robot description into a Model.
 //
-// Supported: a fixed-base tree of revolute, continuous (revolute without limits),
-// prismatic and fixed joints; <limit> (position, velocity, effort), <dynamics damping>;
-// <inertial> (origin xyz + rpy, mass, inertia) in SI units. Links on fixed joints are
-// merged into the body they hang from and stay available as frames. mbstream extension:
+// Supported: a tree of revolute, continuous (revolute without limits), prismatic and fixed
+// joints, with a fixed base, or a free one: a 'floating' joint from the root link (a free
+// joint, 7 position and 6 velocity coordinates; its child starts at the joint's <origin>), or
+// UrdfImportOptions::floating_base (docs/worlds.md); <limit> (position, velocity, effort),
+// <dynamics damping>; <inertial> (origin xyz + rpy, mass, inertia) in SI units. Links on fixed
+// joints are merged into the body they hang from and stay available as frames. mbstream extension:
 // <mbstream:rotor_inertia value="..."/> inside a <joint> gives the rotor (reflected)
 // inertia, kg*m^2 for revolute and kg for prismatic joints (declare
 // xmlns:mbstream="urn:mbstream" on <robot> for namespace-aware tools).
@@ -14,15 +16,14 @@
 // Bad input throws InputError with a message "FILE:LINE: joint 'NAME': what is wrong;
 // what to do" (or link 'NAME'; LINE when known): XML or URDF that TinyXML or urdfdom
 // cannot parse (urdfdom's own words quoted), a duplicate link or joint name, a link with
-// two parents or a closed loop, a floating or planar joint, a moving link without positive
-// mass, an unphysical inertia, a zero axis, lower limit > upper, negative limits or
-// damping. Input that is merely odd imports with
-// a warning in the same form: a non-unit axis (normalised), a revolute joint without
-// <limit> (unlimited), zero effort or velocity limits (read as none), an empty position
-// range, a mass below 1e-6 kg, a scaled mesh, a visual mesh that is not supplied (collision
-// meshes not supplied: one warning), ignored features (friction, <mimic> unless coupled,
-// limits of a continuous joint), no TCP, no moving joint. A <mimic> is a coupling of two
-// joints with couple_mimic (urdf_mimic.h).
+// two parents or a closed loop, a planar joint, a floating joint whose parent is not the root, a
+// moving link without positive mass, an unphysical inertia, a zero axis, lower limit > upper,
+// negative limits or damping. Input that is merely odd imports with a warning in the same form: a
+// non-unit axis (normalised), a revolute joint without <limit> (unlimited), zero effort or velocity
+// limits (read as none), an empty position range, a mass below 1e-6 kg, a scaled mesh, a visual
+// mesh that is not supplied (collision meshes not supplied: one warning), ignored features
+// (friction, <mimic> unless coupled, limits of a continuous joint), no TCP, no moving joint. A
+// <mimic> is a coupling of two joints with couple_mimic (urdf_mimic.h).
 #pragma once
 
 #include <set>

@@ -74,10 +74,13 @@ SceneDescription SceneFromBundle(const v1::ModelInfo& model, const v1::ModelBund
 }
 
 void CheckJointCount(const SceneDescription& scene, const v1::ModelInfo& model) {
-  if (scene.chain.dof() != model.dofs()) {
+  // The chain takes q: one value a joint, seven a free joint (a server before free bodies
+  // sends no `positions`: q is then dofs long).
+  const int positions = model.positions() > 0 ? model.positions() : model.dofs();
+  if (scene.chain.dof() != positions) {
     throw InputError("scene '" + scene.title + "' has " + std::to_string(scene.chain.dof()) +
                      " joints but model '" + model.name() + "' (" + model.id() + ") has " +
-                     std::to_string(model.dofs()) +
+                     std::to_string(positions) +
                      "; use a scene whose Device matches the model's joints");
   }
 }

@@ -456,6 +456,16 @@ class ClientTest(unittest.TestCase):
         self.assertGreater(float(np.max(np.abs(q[:, 3]))), 0.01)  # the cut joint turned
         self.assertEqual(list(result.info.stats.loops.cut_joints), ["loop_joint (revolute)"])
 
+    def test_a_world_folder_is_submitted_with_its_included_models(self):
+        # issue 43: the client writes the includes into the world; three boxes move freely.
+        info = self.client.submit("models/worlds/irb1600_table", name="world_py")
+        self.assertEqual(info.name, "world_py")
+        self.assertEqual(info.dofs, 6 + 3 * 6)
+        self.assertEqual(info.positions, 6 + 3 * 7)
+        self.assertEqual(list(info.position_names[6:13]),
+                         ["box_a::link." + c for c in ("x", "y", "z", "qw", "qx", "qy", "qz")])
+        self.assertEqual(info.tcp_frame, "irb1600::tcp")
+
     def test_result_carries_the_models_joint_names(self):
         result = self.client.run("irb1600", SEED_SERVO, duration=1).result(check=True)
         model = self.client.model("irb1600")

@@ -11,6 +11,7 @@
 
 #include "common/check.h"
 #include "server/parse/sdf_import.h"
+#include "server/parse/urdf_import.h"
 
 namespace mbstream {
 namespace {
@@ -93,6 +94,71 @@ TEST(SdfWorldTest, ANestedModelsNamesAreScopedAndItsPoseComposes) {
   EXPECT_EQ(JointNamesOf(sdf.model), (std::vector<std::string>{"cell::arm::hinge"}));
   const Body& bob = sdf.model.bodies[0];
   EXPECT_LT((bob.joint.X_PJ.p - Vector3d(2, 0, 1.5)).norm(), 1e-12);
+}
+
+// A model with no joint to the world moves freely: its canonical link on a free joint named
+// after the link, starting at its pose; its other links hang from it by their joints.
+TEST(SdfWorldTest, AModelWithNoJointToTheWorldIsAFreeBody) {
+  const std::string box =
+      "<model name=\"box\"><pose>1 2 3 0 0 1.5707963267948966</pose>"
+      "<link name=\"link\"><inertial><mass>1</mass></inertial></link>"
+      "<link name=\"lid\"><pose>0 0 0.1 0 0 0</pose><inertial><mass>0.5</mass></inertial></link>"
+      "<joint name=\"hinge\" type=\"revolute\"><parent>link</parent><child>lid</child>"
+      "<axis><xyz>1 0 0</xyz></axis></joint></model>";
+  const SdfImport sdf = ImportSdf(World(box + kTable), "w.sdf");
+  const Model& model = sdf.model;
+  EXPECT_EQ(JointNamesOf(model), (std::vector<std::string>{"box::link", "box::hinge"}));
+  const Body& free = model.bodies[0];
+  EXPECT_TRUE(free.free());
+  EXPECT_LT((free.X_W0.p - Vector3d(1, 2, 3)).norm(), 1e-12);
+  EXPECT_LT((free.X_W0.R * Vector3d::UnitX() - Vector3d::UnitY()).norm(), 1e-12);
+  EXPECT_EQ(model.bodies[1].parent, 0);
+  EXPECT_LT((model.bodies[1].joint.X_PJ.p - Vector3d(0, 0, 0.1)).norm(), 1e-12);
+  EXPECT_EQ(model.nq(), 7 + 1);
+  EXPECT_EQ(model.nv(), 6 + 1);
+  // A top-level model with no joint to the world is free too (the SDFormat specification).
+  const SdfImport alone =
+      ImportSdf("<?xml version=\"1.0\"?>\n<sdf version=\"1.8\">\n" + box + "\n</sdf>\n", "box.sdf");
+  EXPECT_EQ(JointNamesOf(alone.model), (std::vector<std::string>{"link", "hinge"}));
+  EXPECT_TRUE(alone.model.bodies[0].free());
+}
+
+// The example world (models/worlds/irb1600_table/): the robot's six joints, then the three
+// boxes' free joints; the table a frame of the world.
+TEST(SdfWorldTest, TheExampleWorldHoldsTheRobotTheTableAndThreeFreeBoxes) {
+  const SdfImport sdf =
+      ImportSdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/models/worlds/irb1600_table/world.sdf");
+  const Model& model = sdf.model;
+  EXPECT_EQ(model.name, "irb1600_table");
+  EXPECT_EQ(JointNamesOf(model),
+            (std::vector<std::string>{"irb1600::joint1", "irb1600::joint2", "irb1600::joint3",
+                                      "irb1600::joint4", "irb1600::joint5", "irb1600::joint6",
+                                      "box_a::link", "box_b::link", "box_c::link"}));
+  EXPECT_EQ(model.nq(), 6 + 3 * 7);
+  EXPECT_EQ(model.nv(), 6 + 3 * 6);
+  EXPECT_DOUBLE_EQ(model.TotalMass(), 250.0 + 3.0);  // the robot's moving links and the boxes
+  ASSERT_GE(model.tcp_frame, 0);
+  EXPECT_EQ(model.frames[model.tcp_frame].name, "irb1600::tcp");
+  EXPECT_EQ(model.frames[model.FindFrame("table::top")].body, kBase);
+  EXPECT_TRUE(sdf.warnings.empty()) << sdf.warnings.front();
+  // The robot is models/irb1600/irb1600.urdf's, frame for frame (generate.py writes it).
+  const UrdfImport urdf =
+      ImportUrdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/models/irb1600/irb1600.urdf");
+  for (int i = 0; i < 6; ++i) {
+    const Body& a = model.bodies[i];
+    const Body& b = urdf.model.bodies[i];
+    EXPECT_EQ(a.joint.name, "irb1600::" + b.joint.name);
+    EXPECT_LT((a.joint.X_PJ.p - b.joint.X_PJ.p).norm(), 1e-12) << i;
+    EXPECT_LT((a.joint.X_PJ.R - b.joint.X_PJ.R).norm(), 1e-12) << i;
+    EXPECT_LT((a.joint.axis - b.joint.axis).norm(), 1e-12) << i;
+    EXPECT_DOUBLE_EQ(a.inertia.mass, b.inertia.mass) << i;
+    EXPECT_LT((a.inertia.com - b.inertia.com).norm(), 1e-12) << i;
+    EXPECT_LT((a.inertia.inertia_com - b.inertia.inertia_com).norm(), 1e-12) << i;
+    EXPECT_DOUBLE_EQ(a.joint.limits.upper, b.joint.limits.upper) << i;
+  }
+  const Frame& tcp = model.frames[model.tcp_frame];
+  const Frame& urdf_tcp = urdf.model.frames[urdf.model.tcp_frame];
+  EXPECT_LT((tcp.X_BF.p - urdf_tcp.X_BF.p).norm(), 1e-12);
 }
 
 class SdfIncludeTest : public testing::Test {
