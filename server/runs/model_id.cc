@@ -63,6 +63,7 @@ std::string ModelContentId(const v1::ModelBundle& bundle) {
   // were.
   if (bundle.repair()) hash.AddField("repair");
   if (bundle.couple_mimic()) hash.AddField("couple_mimic");
+  if (bundle.floating_base()) hash.AddField("floating_base");
   return "m-" + hash.HexDigest().substr(0, 24);
 }
 

@@ -117,7 +117,8 @@ BundleImport ImportBundle(const v1::ModelBundle& bundle, const ServerLimits& lim
   UrdfImport urdf = ImportUrdf(bundle.urdf(), source, assets,
                                UrdfImportOptions{.repair = bundle.repair(),
                                                  .max_links = limits.max_links,
-                                                 .couple_mimic = bundle.couple_mimic()});
+                                                 .couple_mimic = bundle.couple_mimic(),
+                                                 .floating_base = bundle.floating_base()});
   result.model = std::move(urdf.model);
   result.loops = std::move(urdf.loops);
   result.warnings = std::move(urdf.warnings);

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "common/check.h"
+#include "server/model/coordinate_names.h"
 #include "server/runs/cluster_follow.h"
 #include "server/runs/release_memory.h"
 #include "server/runs/replica_id.h"
@@ -181,6 +182,10 @@ std::vector<RunConfig> RunManager::PrepareRuns(
     // Every joint of the model file: a closed loop's cut joints after the tree's.
     info.set_num_dofs(static_cast<int>(model.result_joint_names.size()));
     for (const std::string& name : model.result_joint_names) info.add_joint_names(name);
+    if (model.model.has_free_bodies()) {  // Frame.q then has nq values (run.proto)
+      info.set_num_positions(model.model.nq());
+      for (const std::string& name : PositionNames(model.model)) info.add_position_names(name);
+    }
     info.set_created_unix_ms(NowUnixMs());
     info.set_mbstream_version(MBSTREAM_VERSION);
     info.set_owner(owner);

@@ -94,9 +94,9 @@ TEST_F(WorldCliTest, SimulatedBoxesFallOnTheirParabolas) {
   }
 }
 
-// The server's run of the world finishes; its results files are not compared here: a run's
-// RunInfo carries no num_positions yet (server/runs/run_manager.cc), so `run --out` of a model
-// with free bodies refuses the frames' 27 positions.
+// The server's run of the world finishes and its results, downloaded (`run --out`), name the
+// free bodies' seven coordinates (RunInfo.num_positions, position_names) and hold the same
+// falls as the simulation in the CLI.
 TEST_F(WorldCliTest, TheWorldsFolderIsSubmittedWithItsModelsAndRuns) {
   StartServer();
   const CommandOutcome submit = Cli("submit models/worlds/irb1600_table --name irb1600_table");
@@ -106,9 +106,19 @@ TEST_F(WorldCliTest, TheWorldsFolderIsSubmittedWithItsModelsAndRuns) {
   EXPECT_THAT(submit.output, HasSubstr("TCP irb1600::tcp"));
   const CommandOutcome model = Cli("models");
   EXPECT_THAT(model.output, HasSubstr("irb1600_table"));
-  const CommandOutcome run = Cli(std::string("run irb1600_table --spec ") + kSpec + " --watch");
+  const CommandOutcome run =
+      Cli(std::string("run irb1600_table --spec ") + kSpec + " --watch --out " + Out("served"));
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_THAT(run.output, HasSubstr("FINISHED t = 0.400/0.400 s"));
+  const std::vector<std::string> names = Header(dir_ / "served" / "joints.csv");
+  ASSERT_EQ(names.size(), 1u + 6 + 21) << FirstLine(ReadFile(dir_ / "served" / "joints.csv"));
+  EXPECT_EQ(names[7], "box_a::link.x");
+  EXPECT_EQ(Header(dir_ / "served" / "velocities.csv").size(), 1u + 6 + 18);
+  for (const Box& box : Boxes()) {
+    const Deviation deviation = FallDeviation(dir_ / "served", box);
+    EXPECT_LT(deviation.position_m, 1e-8) << box.name;
+    EXPECT_LT(deviation.quaternion, 1e-10) << box.name;
+  }
   // The same world as a file: its includes found beside it, the same model id.
   const CommandOutcome again = Cli(std::string("submit ") + kWorld + " --name irb1600_table");
   ASSERT_EQ(again.exit_code, 0) << again.output;

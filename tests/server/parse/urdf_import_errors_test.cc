@@ -80,13 +80,12 @@ TEST(UrdfImportErrorsTest, ClosedLoopDetachedFromTheRoot) {
                     HasSubstr("closed loop"), HasSubstr("'j2'")));
 }
 
-TEST(UrdfImportErrorsTest, FloatingAndPlanarJointsAreRefused) {
-  for (const std::string type : {"floating", "planar"}) {
-    EXPECT_THAT(
-        ImportError(OneJoint("", kInertial, type)),
-        AllOf(HasSubstr("bad.urdf:4: joint 'j1'"), HasSubstr("'" + type + "' is not supported"),
-              HasSubstr("make it 'fixed'"), HasSubstr("revolute")));
-  }
+// A floating joint from the root is a free joint now (urdf_floating_test.cc, which also checks
+// the refusal of one deeper in the tree); a planar joint is still refused.
+TEST(UrdfImportErrorsTest, PlanarJointsAreRefused) {
+  EXPECT_THAT(ImportError(OneJoint("", kInertial, "planar")),
+              AllOf(HasSubstr("bad.urdf:4: joint 'j1'"), HasSubstr("'planar' is not supported"),
+                    HasSubstr("make it 'fixed'"), HasSubstr("revolute")));
 }
 
 TEST(UrdfImportErrorsTest, MovingLinkWithoutMassIsRefused) {
