@@ -20,7 +20,10 @@ RELEASE=1 ASAN=0 TSAN=0 FUZZ=0
 while [ $# -gt 0 ]; do
   case "$1" in
     # --ci: every stage (docs/reliability.md, "CI stages"), 30 s per fuzz target.
-    --ci) TSAN=1 ASAN=1 FUZZ=1 CI_BUDGET_S=${CI_BUDGET_S:-2700} FUZZ_SECONDS=${FUZZ_SECONDS:-30} ;;
+    # MBSTREAM_CI: a cross-check whose peer library is missing fails instead of skipping
+    # (tests/server/loops/simbody_missing.cmake).
+    --ci) TSAN=1 ASAN=1 FUZZ=1 CI_BUDGET_S=${CI_BUDGET_S:-2700} FUZZ_SECONDS=${FUZZ_SECONDS:-30}
+      export MBSTREAM_CI=1 ;;
     --asan) ASAN=1 ;;
     --tsan) TSAN=1 ;;
     --fuzz) FUZZ=1 ;;
