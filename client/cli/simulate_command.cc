@@ -17,6 +17,7 @@
 #include "common/check.h"
 #include "server/engine/engine.h"
 #include "server/mcap/run_mcap.h"
+#include "server/model/coordinate_names.h"
 #include "server/parse/model_file.h"
 #include "server/results/results_stream.h"
 #include "server/sim/input_sanity.h"
@@ -122,7 +123,8 @@ int RunSimulate(const SimulateOptions& options) {
     source = options.spec_path;
   }
   options.overrides.ApplyTo(spec);
-  const RunConfig config = ToRunConfig(spec, JointNames(import.model), source);
+  const RunConfig config = ToRunConfig(
+      spec, SpecCoordinates{PositionNames(import.model), JointNames(import.model)}, source);
   // The server's validation, before anything runs.
   ValidateLoopRun(import.model, import.loops, config);
   CheckRunSize(config, spec.max_output_frames(), options.size);

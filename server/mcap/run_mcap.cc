@@ -118,7 +118,7 @@ RunMcapWriter::RunMcapWriter(std::unique_ptr<McapSink> sink, const Model& model,
                                                  .profile = "ros2",
                                                  .library = "mbstream " MBSTREAM_VERSION}),
       data_(model),
-      q_(Eigen::VectorXd::Zero(model.num_dofs())) {
+      q_(Eigen::VectorXd::Zero(model.nq())) {
   const std::uint16_t joint_state =
       writer_.AddSchema(kJointStateName, "ros2msg", kJointStateDefinition);
   const std::uint16_t tf_message =
@@ -165,18 +165,40 @@ std::uint64_t RunMcapWriter::LogTime(double t) const {
 
 void RunMcapWriter::OnFrame(const RunResult& result, int frame) {
   const std::size_t n = static_cast<std::size_t>(result.num_dofs);
+  const std::size_t positions = static_cast<std::size_t>(result.positions());
   const std::uint64_t log_time = LogTime(result.t[frame]);
   const RosTime stamp = RosTime::FromNanoseconds(log_time);
-  const double* q = result.q.data() + frame * n;
+  const double* q = result.q.data() + frame * positions;
   const double* qd = result.qd.data() + frame * n;
   const double* tau = result.has_torques ? result.tau.data() + frame * n : nullptr;
-  EncodeJointState(message_, stamp, result.joint_names, q, qd, n, tau, tau ? n : 0);
+  if (result.num_positions == 0) {
+    EncodeJointState(message_, stamp, result.joint_names, q, qd, n, tau, tau ? n : 0);
+  } else {
+    if (joint_state_names_.empty() && joint_state_velocity_.empty()) {
+      for (std::size_t k = 0; k < n; ++k) {
+        if (result.position_index[k] < 0) continue;  // a free joint's coordinate
+        joint_state_names_.push_back(result.joint_names[k]);
+        joint_state_velocity_.push_back(static_cast<int>(k));
+        joint_state_position_.push_back(result.position_index[k]);
+      }
+      joint_state_values_.resize(3 * joint_state_names_.size());
+    }
+    const std::size_t m = joint_state_names_.size();
+    double* values = joint_state_values_.data();
+    for (std::size_t j = 0; j < m; ++j) {
+      values[j] = q[joint_state_position_[j]];
+      values[m + j] = qd[joint_state_velocity_[j]];
+      values[2 * m + j] = tau ? tau[joint_state_velocity_[j]] : 0.0;
+    }
+    EncodeJointState(message_, stamp, joint_state_names_, values, values + m, m,
+                     tau ? values + 2 * m : nullptr, tau ? m : 0);
+  }
   writer_.Write(joint_states_, log_time, message_);
 
   // The tree's own coordinates come first (a closed loop's cut joints follow them).
-  for (int i = 0; i < model_.num_dofs(); ++i) q_[i] = q[i];
+  for (int i = 0; i < model_.nq(); ++i) q_[i] = q[i];
   BodyKinematics(model_, data_, q_);
-  for (int i = 0; i < model_.num_dofs(); ++i) SetPose(transforms_[i], data_.X_parent[i]);
+  for (std::size_t i = 0; i < model_.bodies.size(); ++i) SetPose(transforms_[i], data_.X_parent[i]);
   EncodeTfMessage(message_, stamp, transforms_);
   writer_.Write(tf_, log_time, message_);
   ++frames_;

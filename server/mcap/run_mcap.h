@@ -65,7 +65,13 @@ class RunMcapWriter : public FrameSink {
   McapWriter writer_;
   std::uint16_t joint_states_ = 0, tf_ = 0, probes_ = 0, stats_ = 0;
   Data data_;
-  Eigen::VectorXd q_;
+  Eigen::VectorXd q_;  // the tree's positions (model.nq())
+  // With free bodies: /joint_states holds the one-coordinate joints only (a free body's pose
+  // is in /tf, as a ROS floating base is): their names, positions, velocities and efforts,
+  // gathered per frame into these (sized at the first frame).
+  std::vector<std::string> joint_state_names_;
+  std::vector<int> joint_state_velocity_, joint_state_position_;
+  std::vector<double> joint_state_values_;
   std::vector<Transform> transforms_;
   std::string message_;
   long frames_ = 0;

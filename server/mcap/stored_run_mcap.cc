@@ -7,10 +7,15 @@
 namespace mbstream::mcap {
 
 RunProvenance StoredRunProvenance(const v1::RunInfo& info) {
-  const std::vector<std::string> joint_names(info.joint_names().begin(), info.joint_names().end());
+  SpecCoordinates coordinates;
+  coordinates.velocities.assign(info.joint_names().begin(), info.joint_names().end());
+  coordinates.positions =
+      info.position_names().empty()
+          ? coordinates.velocities
+          : std::vector<std::string>(info.position_names().begin(), info.position_names().end());
   std::string spec_json;
   try {
-    spec_json = RunSpecToJson(ToRunSpec(ToRunConfig(info.spec(), joint_names, "spec")));
+    spec_json = RunSpecToJson(ToRunSpec(ToRunConfig(info.spec(), coordinates, "spec")));
   } catch (const std::exception&) {
     spec_json = RunSpecToJson(info.spec());
   }

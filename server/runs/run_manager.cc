@@ -89,7 +89,8 @@ std::string RunManager::NewRunId() const {
 
 RunConfig RunManager::PrepareConfig(const CompiledModel& model, const v1::RunSpec& spec,
                                     std::vector<std::string>* warnings) const {
-  RunConfig config = ToRunConfig(spec, model.joint_names, "spec");
+  RunConfig config =
+      ToRunConfig(spec, SpecCoordinates{PositionNames(model.model), model.joint_names}, "spec");
   ValidateLoopRun(model.model, model.loops, config);  // the one validation; throws InputError
   CheckRunSize(config, spec.max_output_frames(),
                RunSizeLimits{limits_.max_duration_s, limits_.max_output_frames});

@@ -134,19 +134,30 @@ class Checker {
 
 constexpr char kJointUnit[] = "rad or m";
 
+// One value per coordinate named in `names` (or none), each finite. `kind` names the
+// coordinates in the message: "joints" for a tree's, "position coordinates" where free joints
+// make positions and velocities differ.
 Eigen::VectorXd JointVector(const google::protobuf::RepeatedField<double>& values,
-                            const std::vector<std::string>& joint_names, const std::string& field,
-                            const std::string& unit, const Checker& check) {
-  const int n = static_cast<int>(joint_names.size());
+                            const std::vector<std::string>& names, const char* kind,
+                            const std::string& field, const std::string& unit,
+                            const Checker& check) {
+  const int n = static_cast<int>(names.size());
   if (!values.empty() && values.size() != n) {
-    check.Fail(field, "has " + std::to_string(values.size()) + " values but the model has " +
-                          std::to_string(n) + " joints (" + JoinNames(joint_names) +
-                          "); give none or one per joint (" + unit +
-                          ") in the model's joint order");
+    const bool joints = std::string(kind) == "joints";
+    check.Fail(field,
+               "has " + std::to_string(values.size()) + " values but the model has " +
+                   std::to_string(n) + " " + kind + " (" + JoinNames(names) + "); give none or " +
+                   (joints ? "one per joint (" + unit + ") in the model's joint order"
+                           : "one per coordinate (" + unit +
+                                 ") in the model's order; a free joint's are x y z qw qx qy qz "
+                                 "(positions) and vx vy vz wx wy wz (velocities), "
+                                 "docs/free_bodies.md"));
   }
   Eigen::VectorXd vector(values.size());
   for (int i = 0; i < values.size(); ++i) {
-    vector[i] = check.Finite(values[i], field + "[" + std::to_string(i) + "]", unit);
+    vector[i] = check.Finite(
+        values[i], field + "[" + std::to_string(i) + "] (" + names[static_cast<size_t>(i)] + ")",
+        unit);
   }
   return vector;
 }
@@ -371,8 +382,10 @@ void ReadSolver(const v1::RunSpec& spec, const Checker& check, RunConfig* config
 }
 
 // gravity, initial state, drives, torques, Baumgarte gains.
-void ReadPhysics(const v1::RunSpec& spec, const std::vector<std::string>& joint_names,
-                 const Checker& check, RunConfig* config) {
+void ReadPhysics(const v1::RunSpec& spec, const SpecCoordinates& coordinates, const Checker& check,
+                 RunConfig* config) {
+  const std::vector<std::string>& joint_names = coordinates.velocities;
+  const bool free = coordinates.positions.size() != coordinates.velocities.size();
   if (spec.has_gravity()) {
     config->gravity = {check.Finite(spec.gravity().x(), "gravity.x", "m/s^2"),
                        check.Finite(spec.gravity().y(), "gravity.y", "m/s^2"),
@@ -386,8 +399,12 @@ void ReadPhysics(const v1::RunSpec& spec, const std::vector<std::string>& joint_
       }
     }
   }
-  config->q0 = JointVector(spec.initial_q(), joint_names, "initial_q", kJointUnit, check);
-  config->qd0 = JointVector(spec.initial_qd(), joint_names, "initial_qd", "rad/s or m/s", check);
+  config->q0 =
+      JointVector(spec.initial_q(), coordinates.positions, free ? "position coordinates" : "joints",
+                  "initial_q", free ? "rad, m or a quaternion's components" : kJointUnit, check);
+  config->qd0 =
+      JointVector(spec.initial_qd(), joint_names, free ? "velocity coordinates" : "joints",
+                  "initial_qd", "rad/s or m/s", check);
   config->drives = ToDrives(spec, joint_names, check);
   config->want_torques = spec.has_want_torques() ? spec.want_torques() : true;
   config->want_loop_forces = spec.report_loop_forces();
@@ -491,6 +508,11 @@ void CheckServerFields(const v1::RunSpec& spec, const Checker& check) {
 
 RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& joint_names,
                       const std::string& source) {
+  return ToRunConfig(spec, SpecCoordinates{joint_names, joint_names}, source);
+}
+
+RunConfig ToRunConfig(const v1::RunSpec& spec, const SpecCoordinates& coordinates,
+                      const std::string& source) {
   const Checker check(source);
   if (const size_t bytes = spec.ByteSizeLong(); bytes > kMaxSpecBytes) {
     check.Fail("(spec)", "is " + std::to_string(bytes) + " bytes encoded, more than " +
@@ -499,7 +521,7 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& j
   RunConfig config;
   ReadTimes(spec, check, &config);
   ReadSolver(spec, check, &config);
-  ReadPhysics(spec, joint_names, check, &config);
+  ReadPhysics(spec, coordinates, check, &config);
   ReadBudget(spec, check, &config);
   ReadTarget(spec, check, &config);
   ReadKeep(spec, check, &config);

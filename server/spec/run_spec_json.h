@@ -30,6 +30,17 @@ v1::RunSpec LoadRunSpecFile(const std::string& path);
 RunConfig ToRunConfig(const v1::RunSpec& spec, const std::vector<std::string>& joint_names,
                       const std::string& source);
 
+// The coordinates a spec's vectors refer to: initial_q has one value per position, initial_qd
+// and the drives one per velocity. They differ only for a model with free joints (7 positions,
+// 6 velocities each: server/model/coordinate_names.h); the overload above gives joint_names
+// for both.
+struct SpecCoordinates {
+  std::vector<std::string> positions;
+  std::vector<std::string> velocities;
+};
+RunConfig ToRunConfig(const v1::RunSpec& spec, const SpecCoordinates& coordinates,
+                      const std::string& source);
+
 // The reverse, for recording the spec a run used: every field set explicitly, drives by
 // position (no joint names), one per entry of config.drives.
 v1::RunSpec ToRunSpec(const RunConfig& config);

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -123,6 +124,54 @@ TEST_F(WorldCliTest, TheWorldsFolderIsSubmittedWithItsModelsAndRuns) {
   const CommandOutcome again = Cli(std::string("submit ") + kWorld + " --name irb1600_table");
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_EQ(FirstLine(again.output), FirstLine(submit.output));
+}
+
+// A thrown box through a live server: the spec's initial_q has the model's 27 position
+// coordinates (a free joint's 7 each) and initial_qd its 24 velocities; box_a leaves at
+// 1 m/s along x (world frame) spinning at 2 rad/s about its own z axis.
+TEST_F(WorldCliTest, AServedRunTakesEachFreeBodysPoseAndTwist) {
+  StartServer();
+  ASSERT_EQ(Cli("submit models/worlds/irb1600_table --name irb1600_table").exit_code, 0);
+  std::string q = "0, 0, 0, 0, 0, 0";
+  for (const Box& box : Boxes()) {
+    q += ", " + std::to_string(box.x) + ", " + std::to_string(box.y) + ", " +
+         std::to_string(box.z) + ", " + std::to_string(box.qw) + ", " + std::to_string(box.qx) +
+         ", " + std::to_string(box.qy) + ", " + std::to_string(box.qz);
+  }
+  std::string qd = "0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 2";
+  for (int k = 0; k < 12; ++k) qd += ", 0";
+  const fs::path spec = dir_ / "thrown.json";
+  std::ofstream(spec) << R"({"duration_s": 0.4, "output_interval_s": 0.02, "formulation": "joint",
+    "method": "bdf", "rtol": 1e-10, "atol": 1e-12, "gravity": {"z": -9.81},
+    "initial_q": [)" << q
+                      << R"(], "initial_qd": [)" << qd << "]}";
+  const CommandOutcome run =
+      Cli("run irb1600_table --spec " + spec.string() + " --watch --out " + Out("thrown"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::vector<std::string> names = Header(dir_ / "thrown" / "joints.csv");
+  std::map<std::string, size_t> column;
+  for (size_t k = 0; k < names.size(); ++k) column[names[k]] = k;
+  const std::vector<std::vector<std::string>> rows = ReadCsv(dir_ / "thrown" / "joints.csv");
+  ASSERT_EQ(rows.size(), 21u);
+  double off_line = 0, off_spin = 0;
+  for (const auto& row : rows) {
+    const double t = std::stod(row[0]);
+    const auto at = [&](const char* name) { return std::stod(row.at(column.at(name))); };
+    off_line = std::max(off_line, std::abs(at("box_a::link.x") - (1.0 + t)));
+    // A spin about the body's z axis, from the identity: q = (cos t, 0, 0, sin t).
+    off_spin = std::max({off_spin, std::abs(at("box_a::link.qw") - std::cos(t)),
+                         std::abs(at("box_a::link.qz") - std::sin(t))});
+  }
+  EXPECT_LT(off_line, 1e-8);
+  EXPECT_LT(off_spin, 1e-7);
+  // A quaternion that is not unit is refused at the edge, with the norm it has.
+  std::string bad_q = "0, 0, 0, 0, 0, 0, 1, 0, 1, 1, 1, 0, 0";  // box_a's qw = qx = 1
+  for (int k = 0; k < 14; ++k) bad_q += ", 0";
+  std::ofstream(dir_ / "bad.json") << R"({"initial_q": [)" << bad_q << "]}";
+  const CommandOutcome bad = Cli("run irb1600_table --spec " + (dir_ / "bad.json").string());
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_THAT(bad.output, HasSubstr("free joint 'box_a::link'"));
+  EXPECT_THAT(bad.output, HasSubstr("has norm 1.41421356"));
 }
 
 }  // namespace

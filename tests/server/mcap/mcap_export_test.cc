@@ -142,6 +142,21 @@ TEST(McapExportTest, DrivenFourBarUncompressedNamesItsCutJoint) {
             nlohmann::json::array({"crank_joint", "rocker_joint", "coupler_joint", "loop_joint"}));
 }
 
+// A world of a robot and three free boxes (docs/worlds.md): /joint_states holds the robot's
+// joints only; each box's pose is its /tf transform, equal to its seven joints.csv columns.
+TEST(McapExportTest, WorldsFreeBodiesAreTheirTfPoses) {
+  const nlohmann::json read = SimulateAndRead("models/worlds/irb1600_table/world.sdf",
+                                              "models/worlds/irb1600_table/boxes-fall.json",
+                                              "--mcap-compression zstd", "world");
+  ASSERT_FALSE(read.is_null());
+  EXPECT_EQ(read["names"].size(), 6u);
+  EXPECT_EQ(read["names"][0], "irb1600::joint1");
+  EXPECT_EQ(read["free_bodies"],
+            nlohmann::json::array({"box_a::link", "box_b::link", "box_c::link"}));
+  EXPECT_LT(read["free_pose_error_max"].get<double>(), 1e-12);
+  EXPECT_GT(read["frames"].get<int>(), 5);
+}
+
 // A million frames of the single pendulum, with and without --mcap: the export's memory is its
 // chunk (1 MiB of records, its compressed copy, zstd's context), not the run's 47 MB file.
 // docs/performance.md, "MCAP export", quotes these figures.

@@ -12,6 +12,7 @@
 namespace mbstream {
 namespace {
 
+using ::testing::AllOf;
 using ::testing::HasSubstr;
 
 const std::vector<std::string> kJoints = {"joint1", "joint2", "joint3",
@@ -221,10 +222,10 @@ INSTANTIATE_TEST_SUITE_P(
                     "test.json: gravity.z: is -inf, not a finite number",
                     "give a finite value (m/s^2)"},
         InvalidSpec{"InitialQ", R"({"initial_q": [0, 0, 0, "NaN", 0, 0]})",
-                    "test.json: initial_q[3]: is nan, not a finite number",
+                    "test.json: initial_q[3] (joint4): is nan, not a finite number",
                     "give a finite value (rad or m)"},
         InvalidSpec{"InitialQd", R"({"initial_qd": [0, 0, 0, 0, 0, "Infinity"]})",
-                    "test.json: initial_qd[5]: is inf, not a finite number",
+                    "test.json: initial_qd[5] (joint6): is inf, not a finite number",
                     "give a finite value (rad/s or m/s)"},
         InvalidSpec{"SineOffset",
                     Drive(R"({"prescribed": {"trajectory": {"sum_of_sines": {"offset": "NaN"}}}})"),
@@ -292,6 +293,39 @@ TEST(RunSpecValidationEdgeTest, MessagesNameTheSource) {
   } catch (const InputError& error) {
     EXPECT_THAT(error.what(), HasSubstr("scenes/mine.json: duration_s: "));
   }
+}
+
+// A model with a free joint: initial_q takes its 7 position coordinates, initial_qd its 6
+// velocities; the messages count and name coordinates, not joints.
+TEST(RunSpecValidationEdgeTest, FreeJointsTakePositionsAndVelocitiesApart) {
+  const SpecCoordinates box{
+      {"arm", "box.x", "box.y", "box.z", "box.qw", "box.qx", "box.qy", "box.qz"},
+      {"arm", "box.vx", "box.vy", "box.vz", "box.wx", "box.wy", "box.wz"}};
+  const RunConfig config = ToRunConfig(ParseRunSpecJson(R"({"initial_q": [0.1, 1, 2, 3, 1, 0, 0, 0],
+                           "initial_qd": [0, 0, 0, -1, 0, 0, 2]})",
+                                                        "free.json"),
+                                       box, "free.json");
+  ASSERT_EQ(config.q0.size(), 8);
+  ASSERT_EQ(config.qd0.size(), 7);
+  EXPECT_EQ(config.q0[3], 3.0);
+  EXPECT_EQ(config.qd0[6], 2.0);
+  EXPECT_EQ(config.drives.size(), 7u);
+  const auto refusal = [&](const std::string& json) {
+    try {
+      ToRunConfig(ParseRunSpecJson(json, "free.json"), box, "free.json");
+    } catch (const InputError& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  EXPECT_THAT(refusal(R"({"initial_q": [0, 0, 0, 0, 1, 0, 0]})"),
+              AllOf(HasSubstr("free.json: initial_q: has 7 values but the model has 8 position "
+                              "coordinates (arm, box.x"),
+                    HasSubstr("x y z qw qx qy qz")));
+  EXPECT_THAT(refusal(R"({"initial_qd": [0, 0, 0, 0, 0, 0, 0, 0]})"),
+              HasSubstr("initial_qd: has 8 values but the model has 7 velocity coordinates"));
+  EXPECT_THAT(refusal(R"({"initial_q": [0, 0, 0, 0, "NaN", 0, 0, 0]})"),
+              HasSubstr("initial_q[4] (box.qw): is nan"));
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -138,7 +138,15 @@ async function main() {
   const tcp = readCsv(path.join(resultsDir, "tcp.csv"));
   const poses = new Map();  // child -> {parent, t, q}, /tf_static's and the latest /tf's
   let tcpErrorMax = tcpFrame ? 0 : null;
-  const names = joints.header.slice(1);
+  // JointState carries the one-coordinate joints: joints.csv's columns that velocities.csv has
+  // too. A free body's NAME.x .y .z .qw .qx .qy .qz are its /tf pose (a ROS floating base).
+  const velocityColumns = new Set(velocities.header.slice(1));
+  const names = joints.header.slice(1).filter((name) => velocityColumns.has(name));
+  const columnOf = (csv) => new Map(csv.header.map((name, k) => [name, k]));
+  const jointColumn = columnOf(joints), velocityColumn = columnOf(velocities);
+  const torqueColumn = torques ? columnOf(torques) : null;
+  const freeBodies = joints.header.filter((name) => name.endsWith(".qz")).map((name) => name.slice(0, -3));
+  let freeErrorMax = freeBodies.length ? 0 : null;
   const topicOf = (id) => reader.channelsById.get(id).topic;
   let frame = 0, tfFrame = 0, lastLogTime = -1n;
   const seen = {};
@@ -169,10 +177,12 @@ async function main() {
       }
       if (msg.name.join(",") !== names.join(",")) fail(`names ${msg.name} != ${names}`);
       for (let j = 0; j < names.length; j++) {
-        if (!same(msg.position[j], row[j + 1])) fail(`frame ${frame} position[${j}] ${msg.position[j]} != ${row[j + 1]}`);
-        if (!same(msg.velocity[j], velocities.rows[frame][j + 1])) fail(`frame ${frame} velocity[${j}]`);
+        const position = row[jointColumn.get(names[j])];
+        if (!same(msg.position[j], position)) fail(`frame ${frame} position[${j}] ${msg.position[j]} != ${position}`);
+        if (!same(msg.velocity[j], velocities.rows[frame][velocityColumn.get(names[j])])) fail(`frame ${frame} velocity[${j}]`);
         if (torques) {
-          if (!same(msg.effort[j], torques.rows[frame][j + 1])) fail(`frame ${frame} effort[${j}] ${msg.effort[j]} != ${torques.rows[frame][j + 1]}`);
+          const effort = torques.rows[frame][torqueColumn.get(names[j])];
+          if (!same(msg.effort[j], effort)) fail(`frame ${frame} effort[${j}] ${msg.effort[j]} != ${effort}`);
         }
       }
       if (!torques && msg.effort.length !== 0) fail("effort without torques.csv");
@@ -204,6 +214,20 @@ async function main() {
       }
       cdr.end();
       if (topic === "/tf") {
+        // A free body's /tf pose is its seven coordinates (the quaternion up to its sign).
+        for (const body of freeBodies) {
+          const pose = poses.get(body);
+          if (!pose) fail(`/tf has no transform of the free body ${body}`);
+          const row = joints.rows[tfFrame];
+          const at = (suffix) => row[jointColumn.get(body + suffix)];
+          const [x, y, z, w] = pose.q;
+          const sign = Math.sign(w * at(".qw") + x * at(".qx") + y * at(".qy") + z * at(".qz")) || 1;
+          const error = Math.max(Math.abs(pose.t[0] - at(".x")), Math.abs(pose.t[1] - at(".y")),
+            Math.abs(pose.t[2] - at(".z")), Math.abs(sign * w - at(".qw")), Math.abs(sign * x - at(".qx")),
+            Math.abs(sign * y - at(".qy")), Math.abs(sign * z - at(".qz")));
+          freeErrorMax = Math.max(freeErrorMax, error);
+          if (!(error < 1e-12)) fail(`frame ${tfFrame}: /tf's pose of ${body} is ${pose.t} ${pose.q}, joints.csv's differs by ${error}`);
+        }
         if (tcpFrame) {
           // p_parent = R(q) p_child + t, from the TCP frame up to the root.
           let p = [0, 0, 0];
@@ -251,6 +275,8 @@ async function main() {
     tcp_error_max_m: tcpErrorMax,
     foxglove_decoders: foxglove.size,
     names,
+    free_bodies: freeBodies,
+    free_pose_error_max: freeErrorMax,
   }));
 }
 
