@@ -1,5 +1,7 @@
 #include "server/wire/frame_conversion.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <string>
 #include <vector>
@@ -70,6 +72,14 @@ RunResult ResultFromFrames(const v1::RunInfo& info, const std::vector<v1::Frame>
   result.joint_names.assign(info.joint_names().begin(), info.joint_names().end());
   result.num_positions = info.num_positions();
   result.position_names.assign(info.position_names().begin(), info.position_names().end());
+  if (result.num_positions > 0) {  // a one-coordinate joint's position has its own name
+    for (const std::string& name : result.joint_names) {
+      const auto at = std::find(result.position_names.begin(), result.position_names.end(), name);
+      result.position_index.push_back(at == result.position_names.end()
+                                          ? -1
+                                          : static_cast<int>(at - result.position_names.begin()));
+    }
+  }
   result.has_energy = info.has_energy();
   result.stats = StatsFromProto(info);
   result.loop_force_names = LoopForceNames(info);

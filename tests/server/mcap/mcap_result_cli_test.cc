@@ -69,6 +69,31 @@ TEST_F(McapResultCliTest, StoredServoRunExportsWithEffortsBitForBit) {
   EXPECT_LT(summary["tcp_error_max_m"].get<double>(), 1e-12);
 }
 
+// A stored run of a world with free bodies (docs/worlds.md): its /tf holds each box's pose,
+// equal to its seven joints.csv columns; /joint_states the robot's joints.
+TEST_F(McapResultCliTest, StoredWorldRunExportsItsFreeBodiesAsTfPoses) {
+  ASSERT_EQ(Cli("submit models/worlds/irb1600_table --name irb1600_table").exit_code, 0);
+  const CommandOutcome run =
+      Cli("run irb1600_table --spec models/worlds/irb1600_table/boxes-fall.json --watch --out " +
+          Out("world"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string run_id = run.output.substr(0, run.output.find('\n'));
+  const CommandOutcome result =
+      Cli("result " + run_id + " --mcap " + Out("world.mcap") + " --mcap-start 1795694400.25");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  // The model the server sends back is the world with its includes written in: the reader
+  // compares /robot_description with that text (`mbstream model ... --save`'s file).
+  const CommandOutcome read =
+      RunCommand("node tests/server/mcap/reader/read_mcap.js " + Out("world.mcap") + " " +
+                 Out("world") + " 1795694400250000000 -");
+  ASSERT_EQ(read.exit_code, 0) << read.output;
+  const nlohmann::json summary = nlohmann::json::parse(read.output);
+  EXPECT_EQ(summary["frames"], 21);
+  EXPECT_EQ(summary["names"].size(), 6u);
+  EXPECT_EQ(summary["free_bodies"].size(), 3u);
+  EXPECT_LT(summary["free_pose_error_max"].get<double>(), 1e-12);
+}
+
 // A stored run of a million frames exported: the server reads it one stored chunk at a time into
 // the writer and sends each MiB of the file as it is written; the CLI appends it to the file.
 // Neither holds the run. docs/performance.md, "MCAP export", quotes these figures.

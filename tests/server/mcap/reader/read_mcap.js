@@ -7,7 +7,7 @@
 // results directory's CSV files.
 // With TCP_FRAME, each frame's /tf and /tf_static composed from the base to that frame must
 // put it where tcp.csv says (to 1e-9 m): the transforms' direction and parents are right.
-//   node read_mcap.js FILE.mcap RESULTS_DIR START_NS MODEL_FILE [TCP_FRAME]
+//   node read_mcap.js FILE.mcap RESULTS_DIR START_NS MODEL_FILE|- [TCP_FRAME]
 // Prints one JSON object (what was read) and exits 0, or prints the first difference and
 // exits 1.
 "use strict";
@@ -257,7 +257,10 @@ async function main() {
   }
   if (frame !== joints.rows.length) fail(`${frame} JointState messages, ${joints.rows.length} rows in joints.csv`);
   if (tfFrame !== frame) fail(`${tfFrame} /tf messages for ${frame} frames`);
-  if (robotDescription !== fs.readFileSync(modelFile, "utf8")) fail("/robot_description differs from the model file");
+  // MODEL_FILE "-": the model's text is not at hand (a stored world's, includes written in).
+  if (modelFile === "-" ? !robotDescription : robotDescription !== fs.readFileSync(modelFile, "utf8")) {
+    fail("/robot_description differs from the model file");
+  }
   const statsFile = JSON.parse(fs.readFileSync(path.join(resultsDir, "stats.json"), "utf8"));
   if (JSON.stringify(stats) !== JSON.stringify(statsFile)) fail("/mbstream/stats differs from stats.json");
   const statistics = reader.statistics;
