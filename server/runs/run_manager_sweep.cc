@@ -12,6 +12,7 @@
 #include "server/runs/request_error.h"
 #include "server/runs/run.h"
 #include "server/runs/run_manager.h"
+#include "server/runs/sweep_coordinates.h"
 #include "server/runs/timed_id.h"
 #include "server/runs/unix_time.h"
 #include "server/store/store.h"
@@ -36,6 +37,7 @@ RunManager::StartedSweep RunManager::StartSweep(const std::string& model_ref,
                      " (this server's run queue), or 0 for 32");
   }
   if (window == 0) window = std::min(32, limits_.max_queued_runs);
+  ResolveCoordinatePaths(model->model, &definition);  // initial_q[box::link.z]
   auto plan = std::make_shared<const SweepPlan>(std::move(definition));
   const long total = plan->size();
   // Every point's values against the spec's fields (a bad value fails the sweep before any

@@ -5,6 +5,7 @@
 // same files.
 #include <gmock/gmock.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -172,6 +173,41 @@ TEST_F(WorldCliTest, AServedRunTakesEachFreeBodysPoseAndTwist) {
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_THAT(bad.output, HasSubstr("free joint 'box_a::link'"));
   EXPECT_THAT(bad.output, HasSubstr("has norm 1.41421356"));
+}
+
+// A sweep of a free body's initial pose by its coordinate's name (sweep_coordinates.h): the
+// base spec has no initial_q, so every other coordinate keeps the world's own pose; each
+// run's box_a starts at its swept height and falls from there.
+TEST_F(WorldCliTest, ASweepMovesOneFreeBodyByItsCoordinatesName) {
+  StartServer();
+  ASSERT_EQ(Cli("submit models/worlds/irb1600_table --name irb1600_table").exit_code, 0);
+  const CommandOutcome sweep =
+      Cli(std::string("sweep irb1600_table --spec ") + kSpec +
+          " --grid 'initial_q[box_a::link.z]=0.5,2' --keep all --out " + Out("heights"));
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.output;
+  int runs = 0;
+  std::vector<double> heights;
+  for (const fs::directory_entry& run : fs::directory_iterator(dir_ / "heights" / "runs")) {
+    ++runs;
+    const std::vector<std::string> names = Header(run.path() / "joints.csv");
+    const size_t z =
+        static_cast<size_t>(std::find(names.begin(), names.end(), "box_a::link.z") - names.begin());
+    const size_t other =
+        static_cast<size_t>(std::find(names.begin(), names.end(), "box_b::link.z") - names.begin());
+    ASSERT_LT(z, names.size());
+    const std::vector<std::vector<std::string>> rows = ReadCsv(run.path() / "joints.csv");
+    heights.push_back(std::stod(rows.front().at(z)));
+    EXPECT_NEAR(std::stod(rows.front().at(other)), 1.0, 1e-12);  // box_b's own pose
+    const double t = std::stod(rows.back()[0]);
+    EXPECT_NEAR(std::stod(rows.back().at(z)), heights.back() - 0.5 * kG * t * t, 1e-8);
+  }
+  EXPECT_EQ(runs, 2);
+  std::sort(heights.begin(), heights.end());
+  EXPECT_EQ(heights, std::vector<double>({0.5, 2.0}));
+  const CommandOutcome bad = Cli(std::string("sweep irb1600_table --spec ") + kSpec +
+                                 " --grid 'initial_q[box_a::link.zz]=1' --out " + Out("bad"));
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_THAT(bad.output, HasSubstr("did you mean 'box_a::link.z'?"));
 }
 
 }  // namespace
