@@ -126,6 +126,18 @@ SdfFile::SdfFile(const std::string& text, std::string source, const SdfLoadOptio
       throw InputError(Where(world.Element()) + ": world '" + world.Name() +
                        "' has no model; give it a <model> or an <include>");
     }
+    if (const sdf::ElementPtr element = world.Element();
+        element->HasElement("gravity") && element->GetElement("gravity")->GetExplicitlySetInFile()) {
+      const ignition::math::Vector3d g = world.Gravity();
+      gravity_ = Eigen::Vector3d(g.X(), g.Y(), g.Z());
+      if (!gravity_->allFinite() || gravity_->cwiseAbs().maxCoeff() > 1e4) {
+        throw InputError(Where(element->GetElement("gravity")) + ": world '" + world.Name() +
+                         "': <gravity> is (" + std::to_string(g.X()) + ", " +
+                         std::to_string(g.Y()) + ", " + std::to_string(g.Z()) +
+                         ") m/s^2; give finite components within +-1e4 m/s^2 (1,000 g), e.g. "
+                         "0 0 -9.81");
+      }
+    }
     const bool several = world.ModelCount() > 1;
     title_ = several ? world.Name() : world.ModelByIndex(0)->Name();
     for (uint64_t k = 0; k < world.ModelCount(); ++k) {

@@ -62,6 +62,9 @@ class SdfFile {
   // The world's name for a world of several models, else the one model's.
   const std::string& title() const { return title_; }
   const std::string& source() const { return source_; }
+  // The world's <gravity> (m/s^2, world frame) when the file sets it; libsdformat's default
+  // (0 0 -9.8) is not taken for a world that leaves it out. Empty for a top-level <model>.
+  const std::optional<Eigen::Vector3d>& gravity() const { return gravity_; }
   // The file as SDFormat text with each <include> replaced by the model it names (what
   // libsdformat read, written back; default values left out), as `mbstream submit` sends a
   // world: the server then reads one file.
@@ -78,6 +81,7 @@ class SdfFile {
   std::vector<SdfModelEntry> models_;
   std::string title_;
   std::string source_;
+  std::optional<Eigen::Vector3d> gravity_;
 };
 
 // How a joint of the tree came to be.

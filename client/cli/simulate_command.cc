@@ -123,8 +123,9 @@ int RunSimulate(const SimulateOptions& options) {
     source = options.spec_path;
   }
   options.overrides.ApplyTo(spec);
-  const RunConfig config = ToRunConfig(
+  RunConfig config = ToRunConfig(
       spec, SpecCoordinates{PositionNames(import.model), JointNames(import.model)}, source);
+  if (!spec.has_gravity()) config.gravity = import.model.gravity;  // an SDF world's <gravity>
   // The server's validation, before anything runs.
   ValidateLoopRun(import.model, import.loops, config);
   CheckRunSize(config, spec.max_output_frames(), options.size);

@@ -60,6 +60,7 @@ class SdfReader {
     }
     SetTcpIfNamed(builder);
     result_.model = builder.Build();
+    if (file_.gravity()) result_.model.gravity = *file_.gravity();  // a run spec's gravity wins
     for (const size_t j : tree.cut) result_.loops.push_back(LoopOf(tree.joints[j]));
     return std::move(result_);
   }

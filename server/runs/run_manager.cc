@@ -91,6 +91,7 @@ RunConfig RunManager::PrepareConfig(const CompiledModel& model, const v1::RunSpe
                                     std::vector<std::string>* warnings) const {
   RunConfig config =
       ToRunConfig(spec, SpecCoordinates{PositionNames(model.model), model.joint_names}, "spec");
+  if (!spec.has_gravity()) config.gravity = model.model.gravity;  // an SDF world's <gravity>
   ValidateLoopRun(model.model, model.loops, config);  // the one validation; throws InputError
   CheckRunSize(config, spec.max_output_frames(),
                RunSizeLimits{limits_.max_duration_s, limits_.max_output_frames});

@@ -23,7 +23,8 @@ v1::RunSpec LoadRunSpecFile(const std::string& path);
 
 // Validates `spec` for a model whose joints are `joint_names` (in the model's order) and
 // converts it to the core's RunConfig, applying the defaults of absent fields (duration
-// 20 s, output interval 0.05 s, rtol 1e-6, atol 1e-8, gravity (0, 0, -9.81) m/s^2, fixed
+// 20 s, output interval 0.05 s, rtol 1e-6, atol 1e-8, gravity (0, 0, -9.81) m/s^2 (callers
+// take an SDF world's <gravity> instead when the spec gives none), fixed
 // step 1e-3 s, want_torques true). The result has one drive per joint; joints without a
 // Drive are passive. Throws InputError "<source>: <field path>: <problem>; <what to do>".
 // RunSpec.realtime and RunSpec.max_output_frames are checked but are not part of RunConfig.

@@ -210,5 +210,57 @@ TEST_F(WorldCliTest, ASweepMovesOneFreeBodyByItsCoordinatesName) {
   EXPECT_THAT(bad.output, HasSubstr("did you mean 'box_a::link.z'?"));
 }
 
+// A world's <gravity> (the Moon's) is the run's when the spec gives none, in `simulate` and on
+// a server; a spec's gravity wins. The box's centre of mass falls on the Moon's parabola.
+TEST_F(WorldCliTest, AWorldsGravityIsTheRunsUnlessTheSpecGivesOne) {
+  const fs::path world = dir_ / "moon.sdf";
+  std::ofstream(world) << R"(<?xml version="1.0"?>
+<sdf version="1.8">
+  <world name="moon">
+    <gravity>0 0 -1.62</gravity>
+    <model name="probe">
+      <pose>0 0 2 0 0 0</pose>
+      <link name="body">
+        <inertial><mass>3</mass>
+          <inertia><ixx>0.1</ixx><iyy>0.2</iyy><izz>0.3</izz></inertia></inertial>
+      </link>
+    </model>
+  </world>
+</sdf>
+)";
+  const fs::path spec = dir_ / "drop.json";
+  std::ofstream(spec) << R"({"duration_s": 1, "output_interval_s": 0.1, "rtol": 1e-10,
+    "atol": 1e-12})";
+  const auto largest_fall_error = [&](const std::string& out, double g) {
+    const std::vector<std::string> names = Header(dir_ / out / "joints.csv");
+    const size_t z =
+        static_cast<size_t>(std::find(names.begin(), names.end(), "body.z") - names.begin());
+    EXPECT_LT(z, names.size()) << FirstLine(ReadFile(dir_ / out / "joints.csv"));
+    double error = 0;
+    for (const auto& row : ReadCsv(dir_ / out / "joints.csv")) {
+      const double t = std::stod(row[0]);
+      error = std::max(error, std::abs(std::stod(row.at(z)) - (2.0 - 0.5 * g * t * t)));
+    }
+    return error;
+  };
+  const CommandOutcome local =
+      RunCommand(std::string(MBSTREAM_CLI) + " simulate " + world.string() + " --spec " +
+                 spec.string() + " --out " + Out("local"));
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+  EXPECT_LT(largest_fall_error("local", 1.62), 1e-9);
+  StartServer();
+  ASSERT_EQ(Cli("submit " + world.string() + " --name moon").exit_code, 0);
+  const CommandOutcome served =
+      Cli("run moon --spec " + spec.string() + " --watch --out " + Out("served"));
+  ASSERT_EQ(served.exit_code, 0) << served.output;
+  EXPECT_LT(largest_fall_error("served", 1.62), 1e-9);
+  std::ofstream(spec) << R"({"duration_s": 1, "output_interval_s": 0.1, "rtol": 1e-10,
+    "atol": 1e-12, "gravity": {"z": -9.81}})";
+  const CommandOutcome earth =
+      Cli("run moon --spec " + spec.string() + " --watch --out " + Out("earth"));
+  ASSERT_EQ(earth.exit_code, 0) << earth.output;
+  EXPECT_LT(largest_fall_error("earth", 9.81), 1e-9);
+}
+
 }  // namespace
 }  // namespace mbstream::testing
