@@ -15,7 +15,7 @@ const Eigen::VectorXd& Aba(const Model& model, Data& data,
                            const Eigen::Ref<const Eigen::VectorXd>& tau) {
   if (model.has_free_bodies()) {
     MBSTREAM_CHECK(q.size() == model.nq() && qd.size() == model.nv() && tau.size() == model.nv());
-    return free_tree::HybridAba(model, data, q, qd, tau, data.zeros, nullptr);
+    return free_tree::Aba(model, data, q, qd, tau);
   }
   const int n = model.num_bodies();
   MBSTREAM_CHECK(q.size() == n && qd.size() == n && tau.size() == n);

@@ -104,8 +104,10 @@ void BackwardPassAboutAxis(const Body& body, int i, double tau, Data& data) {
   AddForceToParent<K, L>(r, X.p.data(), pa, data.pA[body.parent].data());
 }
 
+// The joint's acceleration goes to data.qdd(v): v = i in a fixed-base tree, Body::v_index with
+// free bodies (free_aba.cc).
 template <int K, int L>
-void AccelerationPassAboutAxis(const Vector6d& a_parent, int i, Data& data) {
+void AccelerationPassAboutAxis(const Vector6d& a_parent, int i, int v, Data& data) {
   using namespace axis_joint;
   const Pose& X = data.X_parent[i];
   double* a = data.a[i].data();
@@ -122,9 +124,14 @@ void AccelerationPassAboutAxis(const Vector6d& a_parent, int i, Data& data) {
   const double Ua =
       ((U[0] * x[0] + U[1] * x[1]) + (U[2] * x[2] + U[3] * x[3])) + (U[4] * x[4] + U[5] * x[5]);
   const double qdd = (data.u[i] - Ua) * data.inv_D[i];
-  data.qdd(i) = qdd;
+  data.qdd(v) = qdd;
   x[K] += qdd;
   for (int e = 0; e < 6; ++e) a[e] = x[e];
+}
+
+template <int K, int L>
+void AccelerationPassAboutAxis(const Vector6d& a_parent, int i, Data& data) {
+  AccelerationPassAboutAxis<K, L>(a_parent, i, i, data);
 }
 
 // The three passes' work for body i, specialised on its joint's Shape (see
@@ -188,21 +195,26 @@ void BackwardPass(const Body& body, int i, double tau, Data& data) {
 
 // Pass 3 (base to tips): the joint's acceleration and the body's.
 template <int Shape>
-void AccelerationPass(const Vector6d& a_parent, int i, Data& data) {
+void AccelerationPass(const Vector6d& a_parent, int i, int v, Data& data) {
   if constexpr (Shape >= 0) {
     AccelerationPassAboutAxis<Shape, kAnyOffset>(
-        a_parent, i, data);  // any offset: also right without Joint::axis_kernel
+        a_parent, i, v, data);  // any offset: also right without Joint::axis_kernel
     return;
   }
   Vector6d& a = data.a[i];
   a = MotionToChildAcross<Shape>(data.X_parent[i], a_parent) + data.c[i];
-  data.qdd(i) = (data.u[i] - data.U[i].dot(a)) / data.D[i];
+  data.qdd(v) = (data.u[i] - data.U[i].dot(a)) / data.D[i];
   const int k = data.S_index[i];
   if (k >= 0) {
-    a(k) += data.qdd(i);
+    a(k) += data.qdd(v);
   } else {
-    a += data.S[i] * data.qdd(i);
+    a += data.S[i] * data.qdd(v);
   }
+}
+
+template <int Shape>
+void AccelerationPass(const Vector6d& a_parent, int i, Data& data) {
+  AccelerationPass<Shape>(a_parent, i, i, data);
 }
 
 // Joint::axis_kernel C = 5 K + (L, or 4 for kAnyOffset) as the constants K and L.

@@ -25,6 +25,11 @@ void Velocities(const Model& model, Data& data, ConstVector q, ConstVector qd);
 const Eigen::VectorXd& Rnea(const Model& model, Data& data, ConstVector q, ConstVector qd,
                             ConstVector qdd);
 
+// Aba (aba.h) into data.qdd: the fixed-base trees' specialised passes for every body but the
+// free roots (free_aba.cc).
+const Eigen::VectorXd& Aba(const Model& model, Data& data, ConstVector q, ConstVector qd,
+                           ConstVector tau);
+
 // HybridAba (hybrid_dynamics.h); `prescribed` null (no velocity coordinate prescribed: Aba)
 // or nv flags. A free joint's coordinates are never prescribed (the run's validation refuses
 // drives on them): CHECKed.
