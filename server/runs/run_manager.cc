@@ -259,7 +259,8 @@ RunManager::RunPage RunManager::List(const std::string& model, int limit, int pa
     if (static_cast<int64_t>(page.runs.size()) == size) break;
     std::shared_ptr<Run> run = FindActive(it->id());
     v1::RunInfo info = run ? run->Info() : *it;
-    if (info.ByteSizeLong() > kMaxPageBytes / 4) {  // stored by an older server: spec unbounded
+    if (!run) pending_finals_.Find(it->id(), info);  // ended, its row not written yet (full disk)
+    if (info.ByteSizeLong() > kMaxPageBytes / 4) {   // stored by an older server: spec unbounded
       info.clear_spec();
       info.set_message(info.message() + " [spec omitted from the list: too large; GetRun has it]");
     }

@@ -12,6 +12,7 @@
 #include <sys/mount.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
@@ -153,6 +154,16 @@ TEST(DiskFullE2eTest, AFullDataDiskRefusesRunsUntilSpaceIsFreed) {
     EXPECT_NE(watched.message().find("disk holding the data directory is full"), std::string::npos)
         << watched.message();
     EXPECT_EQ(GetRun(*stub, big.id()).state(), v1::FAILED);
+    {  // `mbstream runs` too shows it ended, not the QUEUED row the store still has
+      grpc::ClientContext context;
+      v1::ListRunsRequest request;
+      v1::ListRunsResponse listed;
+      ASSERT_TRUE(stub->ListRuns(&context, request, &listed).ok());
+      const auto it = std::find_if(listed.runs().begin(), listed.runs().end(),
+                                   [&](const v1::RunInfo& run) { return run.id() == big.id(); });
+      ASSERT_NE(it, listed.runs().end());
+      EXPECT_EQ(it->state(), v1::FAILED) << it->message();
+    }
     EXPECT_EQ(AwaitEnd(*stub, big.id()).state(), v1::FAILED);  // result --wait, .result()
     EXPECT_EQ(AwaitEnd(*stub, first.id()).state(), v1::FINISHED);
 
