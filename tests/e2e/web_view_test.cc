@@ -375,6 +375,32 @@ TEST_F(WebViewTest, AViewOnlyPageCannotSteerTheSharedReplayARunTokenCan) {
 // A robot whose every visual is a Collada mesh, as published ROS descriptions ship them (the
 // meshes written by the test: no third-party files), submitted with its meshes and run: the
 // page draws the viewer's triangles of each mesh in its Collada material's colour.
+// A world (docs/worlds.md): the IRB 1600 included, a static table and three free boxes. The
+// page draws every model's links (a part per visual on at least twelve frames: the robot's
+// seven, the table's two, the boxes' three) from a run whose frames carry the boxes' seven
+// coordinates each, and its probe is where the server put the robot's TCP.
+TEST_F(WebViewTest, AWorldsModelsAreAllDrawnAndItsTcpProbedFromThePage) {
+  const CommandOutcome submitted =
+      Cli("submit " MBSTREAM_SOURCE_DIR "/models/worlds/irb1600_table --name irb1600_table");
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
+  const std::string url = StartViewer("--follow --exit-after-runs 1");
+  const CommandOutcome started =
+      Cli("run irb1600_table --duration 600 --output-interval 0.05 --realtime 1");
+  ASSERT_EQ(started.exit_code, 0) << started.output;
+  const std::string run = started.output.substr(0, started.output.find('\n'));
+  const nlohmann::json seen = Browse(url);
+  Cli("cancel " + run);
+  EXPECT_TRUE(seen["errors"].empty()) << seen["errors"];
+  EXPECT_EQ(seen.value("run", ""), run);
+  EXPECT_GT(seen.value("drawn_fraction", 0.0), 0.005) << "the screenshot shows nothing";
+  ASSERT_TRUE(seen.contains("parts") && seen["parts"].is_array()) << seen.dump().substr(0, 2000);
+  std::set<int> frames;
+  for (const auto& part : seen["parts"]) frames.insert(part["frame"].get<int>());
+  EXPECT_GE(frames.size(), 12u) << seen["parts"];
+  ExpectProbesAtTcp(seen, run);
+  ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
+}
+
 TEST_F(WebViewTest, AColladaMeshedRobotIsDrawnWithItsMaterialColours) {
   const fs::path robot = dir_ / "colladabot";
   fs::create_directories(robot / "meshes");

@@ -105,9 +105,9 @@ struct SubscriberLink::StreamState {
   v1::SubscribeRequest reply;  // reused for every probe report
   std::vector<ProbeReport> probes;
   std::vector<double> q, ghost_q;
-  // The model's joints: a frame's values beyond them are the columns of the joints cut to
-  // close loops (the server's results order: the tree's joints, then the cut joints'), which
-  // pose nothing.
+  // The model's position coordinates (ModelInfo.positions, else dofs): a frame's values beyond
+  // them are the columns of the joints cut to close loops (the server's results order: the tree's
+  // joints, then the cut joints'), which pose nothing.
   int model_dofs = 0;
   bool probes_logged = false;  // "first probe reports" said for this run
 };
@@ -233,7 +233,9 @@ std::string SubscriberLink::ShowRun(const v1::SubscribeEvent::RunStarted& starte
 void SubscriberLink::OnRunStarted(const v1::SubscribeEvent::RunStarted& started,
                                   StreamState* state) {
   state->run_id = started.run().id();
-  state->model_dofs = started.model().dofs();
+  // With free bodies q has `positions` values (a free joint's 7), more than its dofs.
+  state->model_dofs =
+      started.model().positions() > 0 ? started.model().positions() : started.model().dofs();
   state->probes_logged = false;
   const std::string error = ShowRun(started);
   state->showing = error.empty();
