@@ -221,7 +221,9 @@ std::string SubscriberLink::ShowRun(const v1::SubscribeEvent::RunStarted& starte
   const std::string title = scene.title;
   if (std::string error = slot_->Replace(std::move(scene)); !error.empty()) return error;
   const v1::RunInfo& run = started.run();
-  status_->StartRun(run.id(), started.model().id(), title, started.model().dofs());
+  const v1::ModelInfo& model = started.model();  // ViewerStatus.dofs: q's length
+  status_->StartRun(run.id(), model.id(), title,
+                    model.positions() > 0 ? model.positions() : model.dofs());
   status_->SetMethod(
       run.stats().formulation().empty() ? run.spec().formulation() : run.stats().formulation(),
       run.stats().method().empty() ? run.spec().method() : run.stats().method());
