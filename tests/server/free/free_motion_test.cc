@@ -14,38 +14,13 @@
 #include "server/integrate/integrator.h"
 #include "server/kinematics/forward_kinematics.h"
 #include "server/sim/joint_space_ode.h"
+#include "tests/server/free/free_run.h"
 #include "tests/server/free/free_tree_model.h"
 
 namespace mbstream {
 namespace {
 
-// A model, its passive drives and its ODE, integrated by `method` from y0.
-struct FreeRun {
-  FreeRun(Model model_in, const std::vector<DriveConfig>& drive_configs)
-      : model(std::move(model_in)), drives(model, drive_configs), ode(model, drives) {}
-  explicit FreeRun(Model model_in) : FreeRun(model_in, std::vector<DriveConfig>(model_in.nv())) {}
-
-  void Start(const Eigen::VectorXd& y0, Method method, double rtol, double step = 1e-3) {
-    y = y0;
-    IntegratorOptions options;
-    options.method = method;
-    options.rtol = rtol;
-    options.atol = rtol * 1e-2;
-    options.fixed_step = step;
-    integrator = MakeIntegrator(ode, 0.0, y.data(), options);
-  }
-  void AdvanceTo(double t) {
-    const AdvanceResult result = integrator->AdvanceTo(t, y.data());
-    ASSERT_EQ(result.status, IntegratorStatus::kOk) << result.message;
-    ASSERT_TRUE(ode.EvaluateOutputs(t, y.data(), false));
-  }
-
-  Model model;
-  DriveSet drives;
-  JointSpaceOde ode;
-  Eigen::VectorXd y;
-  std::unique_ptr<Integrator> integrator;
-};
+using testing::FreeRun;
 
 RigidInertia Principal(double mass, const Vector3d& moments) {
   RigidInertia inertia;
@@ -242,15 +217,9 @@ TEST(FreeMotionTest, DrivenFloatingTreeConservesMomentumInZeroGravity) {
   y0.tail(model.nv()) = testing::RandomVelocities(model, rng, 1.0);
   run.Start(y0, Method::kErk, 1e-10);
   Data data(model);
-  auto momentum = [&](const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
-    ForwardKinematics(model, data, q);
-    KineticEnergyAfterKinematics(model, data, qd);
-    Vector6d h = Vector6d::Zero();
-    for (int i = 0; i < model.num_bodies(); ++i) {
-      if (model.bodies[i].name == "arm1" || model.bodies[i].name == "arm2") continue;
-      h += ForceToParent(data.X_world[i], model.bodies[i].inertia.Apply(data.v[i]));
-    }
-    return h;
+  // The fixed-base arm (arm1, arm2) exchanges no force with the free bodies: counted out.
+  const auto momentum = [&](const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+    return testing::SpatialMomentum(model, data, q, qd, {"arm1", "arm2"});
   };
   Eigen::VectorXd q0 = y0.head(model.nq()), qd0 = y0.tail(model.nv());
   const Vector6d h0 = momentum(q0, qd0);

@@ -36,6 +36,26 @@ inline std::string Inertial(const RigidInertia& inertia) {
   return out.str();
 }
 
+// Body i and its subtree, depth first (MJCF nests a body's children inside it; the model's
+// topological order need not be depth first).
+inline void MjcfBody(const Model& model, int i, const std::vector<std::vector<int>>& children,
+                     std::ostringstream& out) {
+  const Body& body = model.bodies[i];
+  if (body.free()) {
+    out << "<body name=\"" << body.name << "\"><freejoint name=\"" << body.joint.name << "\"/>";
+  } else {
+    const Eigen::Quaterniond quat(body.joint.X_PJ.R);
+    out << "<body name=\"" << body.name << "\" pos=\"" << Numbers(body.joint.X_PJ.p) << "\" quat=\""
+        << quat.w() << ' ' << quat.x() << ' ' << quat.y() << ' ' << quat.z() << "\"><joint name=\""
+        << body.joint.name << "\" type=\""
+        << (body.joint.type == JointType::kRevolute ? "hinge" : "slide") << "\" axis=\""
+        << Numbers(body.joint.axis) << "\"/>";
+  }
+  out << Inertial(body.inertia);
+  for (const int child : children[static_cast<size_t>(i)]) MjcfBody(model, child, children, out);
+  out << "</body>";
+}
+
 // `model` (free roots and one-coordinate joints, no armature, no fixed-base bodies) as MJCF.
 inline std::string Mjcf(const Model& model) {
   std::ostringstream out;
@@ -43,28 +63,14 @@ inline std::string Mjcf(const Model& model) {
   out << "<mujoco><option gravity=\"" << Numbers(model.gravity)
       << "\"><flag contact=\"disable\" constraint=\"disable\" passive=\"disable\"/></option>"
       << "<worldbody>";
-  // Bodies in topological order: close each subtree before the next sibling.
-  std::vector<int> open;
+  std::vector<std::vector<int>> children(static_cast<size_t>(model.num_bodies()));
   for (int i = 0; i < model.num_bodies(); ++i) {
-    const Body& body = model.bodies[i];
-    while (!open.empty() && open.back() != body.parent) {
-      out << "</body>";
-      open.pop_back();
-    }
-    if (body.free()) {
-      out << "<body name=\"" << body.name << "\"><freejoint name=\"" << body.joint.name << "\"/>";
-    } else {
-      const Eigen::Quaterniond quat(body.joint.X_PJ.R);
-      out << "<body name=\"" << body.name << "\" pos=\"" << Numbers(body.joint.X_PJ.p)
-          << "\" quat=\"" << quat.w() << ' ' << quat.x() << ' ' << quat.y() << ' ' << quat.z()
-          << "\"><joint name=\"" << body.joint.name << "\" type=\""
-          << (body.joint.type == JointType::kRevolute ? "hinge" : "slide") << "\" axis=\""
-          << Numbers(body.joint.axis) << "\"/>";
-    }
-    out << Inertial(body.inertia);
-    open.push_back(i);
+    if (model.bodies[i].parent != kBase)
+      children[static_cast<size_t>(model.bodies[i].parent)].push_back(i);
   }
-  for (size_t k = 0; k < open.size(); ++k) out << "</body>";
+  for (int i = 0; i < model.num_bodies(); ++i) {
+    if (model.bodies[i].parent == kBase) MjcfBody(model, i, children, out);
+  }
   out << "</worldbody></mujoco>";
   return out.str();
 }
