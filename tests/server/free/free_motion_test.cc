@@ -202,14 +202,7 @@ TEST(FreeMotionTest, DrivenFloatingTreeConservesMomentumInZeroGravity) {
   std::vector<DriveConfig> drives(model.nv());
   for (const Body& body : model.bodies) {
     if (body.free() || body.parent == kBase) continue;
-    DriveConfig& drive = drives[body.v_index];
-    drive.kind = DriveConfig::Kind::kPdServo;
-    drive.kp = 20.0;
-    drive.kd = 1.0;
-    drive.trajectory.offset = 0.2;
-    drive.trajectory.amplitude = {0.5};
-    drive.trajectory.omega = {3.0};
-    drive.trajectory.phase = {0.0};
+    drives[body.v_index] = testing::SineServo(20.0, 1.0, 0.2, 0.5, 3.0);
   }
   FreeRun run(model, drives);
   Eigen::VectorXd y0(model.nq() + model.nv());

@@ -45,6 +45,19 @@ struct FreeRun {
   std::unique_ptr<Integrator> integrator;
 };
 
+// A servo along offset + amplitude sin(omega t) (rad or m), gains kp and kd.
+inline DriveConfig SineServo(double kp, double kd, double offset, double amplitude, double omega) {
+  DriveConfig drive;
+  drive.kind = DriveConfig::Kind::kPdServo;
+  drive.kp = kp;
+  drive.kd = kd;
+  drive.trajectory.offset = offset;
+  drive.trajectory.amplitude = {amplitude};
+  drive.trajectory.omega = {omega};
+  drive.trajectory.phase = {0.0};
+  return drive;
+}
+
 // The bodies' total spatial momentum (angular about the world origin, then linear), in the
 // world frame, leaving out the bodies named in `without`.
 inline Vector6d SpatialMomentum(const Model& model, Data& data, const Eigen::VectorXd& q,

@@ -34,14 +34,7 @@ TEST(PublishedFloatingTest, AtlasDrivenInZeroGravityConservesItsMomentum) {
   for (const Body& body : model.bodies) {
     if (body.free()) continue;
     EXPECT_EQ(body.joint.armature, 0.0) << body.joint.name;  // a rotor would carry momentum
-    DriveConfig& drive = drives[body.v_index];
-    drive.kind = DriveConfig::Kind::kPdServo;
-    drive.kp = 200.0;
-    drive.kd = 5.0;
-    drive.trajectory.offset = 0.0;
-    drive.trajectory.amplitude = {0.3};
-    drive.trajectory.omega = {2.0 + 0.25 * k++};
-    drive.trajectory.phase = {0.0};
+    drives[body.v_index] = testing::SineServo(200.0, 5.0, 0.0, 0.3, 2.0 + 0.25 * k++);
   }
   testing::FreeRun run(model, drives);
   std::mt19937 rng(3);
