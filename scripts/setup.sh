@@ -10,6 +10,8 @@ PACKAGES=(
   lld  # the linker CMake picks when present (cmake/MbstreamCompilerSettings.cmake)
   # core numerics
   libeigen3-dev libsundials-dev libsuitesparse-dev
+  # contact (server/contact): FCL narrow and broad phase, with libccd
+  libfcl-dev libccd-dev
   # model import, logging, command line, persistence
   liburdfdom-dev libsdformat-dev libsimbody-dev libspdlog-dev libfmt-dev libcli11-dev libsqlite3-dev nlohmann-json3-dev
   # the shared store for several servers (--store postgresql://...); the tests start their own

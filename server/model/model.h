@@ -29,6 +29,7 @@
 
 #include "server/math/rigid_inertia.h"
 #include "server/model/ball_joint.h"
+#include "server/model/collision_geometry.h"
 #include "server/model/joint.h"
 
 namespace mbstream {
@@ -73,6 +74,8 @@ struct Model {
   // The free bodies' indices, ascending; empty for a fixed-base model (the algorithms' fast
   // paths test this once per call).
   std::vector<int> free_bodies;
+  // The <collision> shapes (collision_geometry.h), in file order; empty: no contact.
+  std::vector<CollisionGeometry> collisions;
 
   int num_bodies() const { return static_cast<int>(bodies.size()); }
   // Position and velocity coordinates: num_bodies() plus 6 and 5 per free body.

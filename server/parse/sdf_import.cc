@@ -13,6 +13,7 @@
 
 #include "common/check.h"
 #include "server/model/model_builder.h"
+#include "server/parse/collision_reading.h"
 #include "server/parse/import_cancel.h"
 #include "urdf_reading/mesh_file_search.h"
 #include "urdf_reading/sdf_reading.h"
@@ -61,6 +62,7 @@ class SdfReader {
     SetTcpIfNamed(builder);
     result_.model = builder.Build();
     if (file_.gravity()) result_.model.gravity = *file_.gravity();  // a run spec's gravity wins
+    ReadSdfCollisions(file_, frame_of_, &result_.model, &result_.warnings);
     for (const size_t j : tree.cut) result_.loops.push_back(LoopOf(tree.joints[j]));
     return std::move(result_);
   }

@@ -11,6 +11,7 @@
 
 #include "common/check.h"
 #include "server/model/model_builder.h"
+#include "server/parse/collision_reading.h"
 #include "server/parse/import_cancel.h"
 #include "server/parse/urdf_convert.h"
 #include "server/parse/urdf_diagnostics.h"
@@ -153,6 +154,7 @@ UrdfImport ImportUrdf(const std::string& text, const std::string& source,
   if (!tcp.empty()) Guarded(source, [&] { builder.SetTcp(tcp); });
   ThrowIfImportCancelled();
   result.model = builder.Build();
+  ReadUrdfCollisions(text, source, &result.model, &result.warnings);
   result.loops = MimicCouplings(joints, result.model, options.couple_mimic, diagnostics);
   const int links = static_cast<int>(result.model.frames.size());
   if (options.max_links > 0 && links > options.max_links) {
