@@ -4,11 +4,20 @@
 
 namespace mbstream {
 
+std::unique_ptr<ContactForces> MakeContactForces(const Model& model,
+                                                 const ContactSettings& settings) {
+  if (!MayTouch(model, settings)) return nullptr;
+  auto contact = std::make_unique<ContactForces>(model, settings);
+  if (!contact->active()) return nullptr;
+  return contact;
+}
+
 JointIntegration::JointIntegration(const Model& model_in, const RunConfig& config,
                                    bool track_work_in, const IntegratorOptions& options)
     : model(model_in),
       drives(model, config.drives),
-      ode(model, drives, track_work_in),
+      contact(MakeContactForces(model, config.contact)),
+      ode(model, drives, track_work_in, contact.get()),
       track_work(track_work_in),
       y(InitialJointState(config, drives, model)),
       integrator(MakeIntegrator(ode, 0.0, y.data(), options)) {}

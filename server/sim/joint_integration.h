@@ -26,12 +26,24 @@ struct JointIntegration {
 
   const Model model;
   const DriveSet drives;
+  // The run's contact forces, or null when nothing may touch (contact_forces.h).
+  const std::unique_ptr<ContactForces> contact;
   JointSpaceOde ode;
   const bool track_work;
   Eigen::VectorXd y;  // [q; qd] at the last output
   std::unique_ptr<Integrator> integrator;
   SolverStats before;  // the integrator's statistics when the current run took it over
 };
+
+// Whether a run of `model` under `settings` may have contact forces: contact on and two or more
+// collision geometries (the pairs allowed decide: MakeContactForces).
+inline bool MayTouch(const Model& model, const ContactSettings& settings) {
+  return settings.enabled && model.collisions.size() >= 2;
+}
+
+// The contact forces of a run, or null when no pair may touch.
+std::unique_ptr<ContactForces> MakeContactForces(const Model& model,
+                                                 const ContactSettings& settings);
 
 // `now` less `before` (the counts; the last step and order of `now`).
 SolverStats StatsSince(const SolverStats& now, const SolverStats& before);

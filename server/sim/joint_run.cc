@@ -1,5 +1,6 @@
 #include "server/sim/joint_run.h"
 
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -122,9 +123,15 @@ void RunJointSpace(const Model& model, const RunConfig& config, const PilotLink&
   // rule over the output frames would measure the output interval, not the integrator. The
   // appended state takes no part in the error control, so q and qd are those of the ODE
   // alone, bit for bit (appended_quadratures.h).
-  const bool track_work = result.has_energy && drives.any_work();
-  const IntegratorOptions options =
-      IntegratorOptionsFrom(config, times.back(), budget->cpu_deadline_s);
+  const bool track_work =
+      result.has_energy && (drives.any_work() || MayTouch(model, config.contact));
+  IntegratorOptions options = IntegratorOptionsFrom(config, times.back(), budget->cpu_deadline_s);
+  if (MayTouch(model, config.contact)) {  // no step from free flight deep into a surface
+    const double cap = ContactPeriod(model, config.contact) / kContactStepsPerPeriod;
+    if (std::isfinite(cap) && (options.max_step <= 0.0 || cap < options.max_step)) {
+      options.max_step = cap;
+    }
+  }
   size_t prefix_frames = 0;
   std::shared_ptr<JointIntegration> live =
       TakeOverPrefix(pilot.prefix.get(), times, n, track_work, options, &prefix_frames);

@@ -8,11 +8,13 @@
 #include "server/dynamics/crba.h"
 #include "server/dynamics/hybrid_dynamics.h"
 #include "server/dynamics/rnea.h"
+#include "server/kinematics/forward_kinematics.h"
 #include "server/kinematics/free_joint.h"
 
 namespace mbstream {
 
-JointSpaceOde::JointSpaceOde(const Model& model, const DriveSet& drives, bool track_work)
+JointSpaceOde::JointSpaceOde(const Model& model, const DriveSet& drives, bool track_work,
+                             ContactForces* contact)
     : model_(model),
       drives_(drives),
       n_(model.nv()),
@@ -26,7 +28,9 @@ JointSpaceOde::JointSpaceOde(const Model& model, const DriveSet& drives, bool tr
       effort_(Eigen::VectorXd::Zero(n_)),
       tau_(Eigen::VectorXd::Zero(n_)),
       prescribed_force_(Eigen::VectorXd::Zero(n_)),
-      drive_workspace_(drives.MakeWorkspace()) {
+      drive_workspace_(drives.MakeWorkspace()),
+      contact_(contact),
+      contact_tau_(Eigen::VectorXd::Zero(n_)) {
   for (int i = 0; i < n_; ++i) {
     (drives.prescribed(i) ? prescribed_ : free_).push_back(i);
     prescribed_mask_.push_back(drives.prescribed(i) ? 1 : 0);
@@ -75,6 +79,14 @@ void JointSpaceOde::EvaluateFreeState(double t, const double* y) {
   for (int i = 0; i < n_; ++i) drive_q_(i) = q_of_v_[i] >= 0 ? q_(q_of_v_[i]) : 0.0;
   drives_.ActuatorEfforts(t, drive_q_.data(), qd_.data(), drive_workspace_, effort_.data());
   for (int i : free_) tau_(i) = effort_(i) - drives_.damping(i) * qd_(i);
+  if (contact_ != nullptr) AddContactForces();
+}
+
+void JointSpaceOde::AddContactForces() {
+  BodyKinematics(model_, data_, q_);
+  contact_tau_.setZero();
+  contact_finite_ = contact_->AddForces(data_, qd_, &contact_tau_);
+  for (int i : free_) tau_(i) += contact_tau_(i);
 }
 
 void JointSpaceOde::EvaluateState(double t, const double* y) {
@@ -98,6 +110,7 @@ void JointSpaceOde::EvaluateState(double t, const double* y) {
   // entries become 0 here; ComputePrescribedEfforts fills them when asked.
   drives_.ActuatorEfforts(t, q_.data(), qd_.data(), drive_workspace_, effort_.data());
   for (int i : free_) tau_(i) = effort_(i) - drives_.damping(i) * qd_(i);
+  if (contact_ != nullptr) AddContactForces();
 }
 
 bool JointSpaceOde::EvaluateAccelerations() {
@@ -108,9 +121,10 @@ bool JointSpaceOde::EvaluateAccelerations() {
     // Hybrid dynamics: the free joints' accelerations and the prescribed joints' forces in
     // one O(n) pass (tau_'s prescribed entries and qdd_'s free ones are not read).
     qdd_ = HybridAba(model_, data_, q_, qd_, tau_, qdd_, prescribed_mask_);
-    for (int i : prescribed_) prescribed_force_(i) = data_.tau(i);
+    // The drives deliver what the contacts do not (their J^T f acts on these joints too).
+    for (int i : prescribed_) prescribed_force_(i) = data_.tau(i) - contact_tau_(i);
   }
-  return qdd_.allFinite();
+  return contact_finite_ && qdd_.allFinite();
 }
 
 bool JointSpaceOde::EvaluateOutputs(double t, const double* y, bool want_efforts) {
@@ -197,6 +211,7 @@ int JointSpaceOde::RhsAndQuadrature(double t, const double* y, double* ydot, dou
 void JointSpaceOde::WritePower(double* qdot) const {
   double power = 0.0;
   for (int i = 0; i < n_; ++i) power += (effort_(i) - drives_.damping(i) * qd_(i)) * qd_(i);
+  if (contact_ != nullptr) power += contact_tau_.dot(qd_);  // the contacts' power
   qdot[0] = power;
 }
 

@@ -21,6 +21,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
+#include "server/contact/contact_forces.h"
 #include "server/drives/drive_set.h"
 #include "server/integrate/manifold_projection.h"
 #include "server/integrate/ode_system.h"
@@ -31,9 +32,13 @@ namespace mbstream {
 
 class JointSpaceOde : public OdeSystem, public ManifoldProjection {
  public:
-  // Keeps references to model and drives, which must outlive it. `track_work`: one
-  // quadrature, the work W(t) of the drives and the joint damping (see Quadrature).
-  JointSpaceOde(const Model& model, const DriveSet& drives, bool track_work = false);
+  // Keeps references to model and drives, which must outlive it; `contact`, when given (not
+  // owned, outlives it), adds the contact forces' J^T f to the applied forces at every
+  // evaluation (server/contact/contact_forces.h), and their power to the work quadrature.
+  // `track_work`: one quadrature, the work W(t) of the drives and the joint damping (see
+  // Quadrature).
+  JointSpaceOde(const Model& model, const DriveSet& drives, bool track_work = false,
+                ContactForces* contact = nullptr);
 
   int size() const override { return nq_ + n_; }
   int Rhs(double t, const double* y, double* ydot) override;
@@ -55,7 +60,7 @@ class JointSpaceOde : public OdeSystem, public ManifoldProjection {
   // of RNEA: 2n + 1 RNEA calls and one CRBA instead of the 2n ABA calls and 2n drive
   // evaluations of differencing f. Allocates nothing.
   bool HasJacobian() const override {
-    return !free_bodies_ && free_.size() == static_cast<size_t>(n_);
+    return !free_bodies_ && contact_ == nullptr && free_.size() == static_cast<size_t>(n_);
   }
   int Jacobian(double t, const double* y, const double* fy, double* jac_col_major) override;
 
@@ -94,12 +99,17 @@ class JointSpaceOde : public OdeSystem, public ManifoldProjection {
   const Eigen::VectorXd& qdd() const { return qdd_; }
   const Eigen::VectorXd& drive_effort() const { return effort_; }
   Data& data() { return data_; }
+  // The contacts of the last evaluation (null without contact).
+  const ContactForces* contact() const { return contact_; }
+  // The generalised contact forces of the last evaluation (zeros without contact).
+  const Eigen::VectorXd& contact_force() const { return contact_tau_; }
 
  private:
   void EvaluateState(double t, const double* y);      // q_, qd_, reference qdd_, efforts, tau_
   void EvaluateFreeState(double t, const double* y);  // EvaluateState with free bodies
   bool EvaluateAccelerations();                       // qdd_ of the free joints, prescribed_force_
   void WritePower(double* qdot) const;                // W' from effort_ and qd_
+  void AddContactForces();                            // contact_tau_ into tau_
   const Model& model_;
   const DriveSet& drives_;
   const int n_;             // velocity coordinates (nv)
@@ -118,6 +128,9 @@ class JointSpaceOde : public OdeSystem, public ManifoldProjection {
   Eigen::VectorXd prescribed_force_;            // the prescribed joints' forces from HybridAba
   DriveSet::Workspace drive_workspace_;         // for DriveSet::ActuatorEfforts
   long dynamics_evaluations_ = 0;
+  ContactForces* const contact_;  // null without contact
+  Eigen::VectorXd contact_tau_;   // J^T f of the contacts (nv)
+  bool contact_finite_ = true;
   // For Jacobian(): the drive laws' slopes d(effort)/dq and d(effort)/dqd, workspaces.
   Eigen::VectorXd effort_dq_, effort_dqd_;
   Eigen::VectorXd id0_;

@@ -17,6 +17,7 @@
 #include "server/sim/body_run.h"
 #include "server/sim/closed_loop_dae.h"
 #include "server/sim/closed_loop_ode.h"
+#include "server/sim/contact_validation.h"
 #include "server/sim/frame_loop.h"
 #include "server/sim/frame_recorder.h"
 #include "server/sim/input_sanity.h"
@@ -388,6 +389,7 @@ void RunLoopOde(const Model& model, const std::vector<LoopClosure>& loops, const
 FormulationChoice ValidateLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
                                   const RunConfig& config) {
   if (loops.empty()) return ValidateRun(model, config);
+  CheckContact(model, config, loops);
   RefuseFreeBodies(model,
                    "a mechanism with closed loops does not simulate free bodies yet; "
                    "attach the link to the world or open the loop");

@@ -30,7 +30,8 @@ bool RunConfig::operator==(const RunConfig& other) const {
          want_torques == other.want_torques && want_loop_forces == other.want_loop_forces &&
          baumgarte == other.baumgarte && max_steps == other.max_steps &&
          max_cpu_s == other.max_cpu_s && target == other.target &&
-         method_auto == other.method_auto && verify == other.verify && keep == other.keep;
+         method_auto == other.method_auto && verify == other.verify && keep == other.keep &&
+         contact == other.contact;
 }
 
 const char* FormulationName(Formulation formulation) { return NameOf(kFormulations, formulation); }

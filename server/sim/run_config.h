@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "server/body/baumgarte_parameters.h"
+#include "server/contact/contact_settings.h"
 #include "server/drives/drive_config.h"
 #include "server/integrate/method.h"
 #include "server/sim/frame_keep.h"
@@ -65,6 +66,7 @@ struct RunConfig {
   bool method_auto = false;  // method "auto": chosen for the target (needs one)
   bool verify = true;        // check the achieved error after a target run
   FrameKeep keep;            // which output frames the run keeps (the engine drops the rest)
+  ContactSettings contact;   // contact forces (joint formulation; docs/contact.md)
 
   // Field by field, exactly (doubles bit for bit but for -0 == 0; q0 and qd0 of another
   // size differ).

@@ -9,6 +9,7 @@
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/integrator.h"
 #include "server/sim/body_run.h"
+#include "server/sim/contact_validation.h"
 #include "server/sim/integrator_options_from.h"
 
 namespace mbstream {
@@ -147,6 +148,7 @@ FormulationChoice ValidateRun(const Model& model, const RunConfig& config) {
 FormulationChoice ValidateRun(const Model& model, const RunConfig& config, const DriveSet& drives) {
   CheckShape(model, config);
   CheckFreeBodies(model, config);
+  CheckContact(model, config);
   const FormulationChoice choice = ChooseFormulation(config, drives);
   if (config.target.any() && IsBodyFormulation(choice.formulation)) {
     throw InputError(std::string("an accuracy target is met with formulation auto, kinematic or "

@@ -1,0 +1,243 @@
+#include "server/contact/contact_forces.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision_object.h>
+
+#include "server/contact/contact_law.h"
+#include "server/contact/point_forces.h"
+
+namespace mbstream {
+
+namespace {
+
+// The broad phase's boxes are the shapes grown by this much (m), so that pairs about to touch
+// are candidates too.
+constexpr double kBroadMargin = 1e-3;
+
+std::shared_ptr<fcl::CollisionGeometryd> GrownShape(const CollisionShape& s) {
+  const double m = kBroadMargin;
+  switch (s.type) {
+    case ShapeType::kSphere:
+      return std::make_shared<fcl::Sphered>(s.radius + m);
+    case ShapeType::kBox:
+      return std::make_shared<fcl::Boxd>(s.size + Vector3d::Constant(2 * m));
+    case ShapeType::kCylinder:
+      return std::make_shared<fcl::Cylinderd>(s.radius + m, s.length + 2 * m);
+    case ShapeType::kCapsule:
+      return std::make_shared<fcl::Capsuled>(s.radius + m, s.length);
+    case ShapeType::kPlane:
+      return nullptr;
+  }
+  return nullptr;
+}
+
+double Or(double value, double fallback) { return std::isnan(value) ? fallback : value; }
+
+// The body a body hangs from in the model file: its parent, or for the last of a ball
+// joint's three bodies the body the ball joint hangs from.
+std::vector<int> FileParents(const Model& model) {
+  std::vector<int> parent(model.bodies.size());
+  for (size_t b = 0; b < model.bodies.size(); ++b) parent[b] = model.bodies[b].parent;
+  for (const BallJoint& ball : model.ball_joints) {
+    for (int k = 1; k < 3; ++k) parent[ball.first_body + k] = model.bodies[ball.first_body].parent;
+  }
+  return parent;
+}
+
+bool Adjacent(const Model& model, const std::vector<int>& parent, int a, int b) {
+  if (a != kBase && parent[a] == b && !model.bodies[a].free()) return true;
+  if (b != kBase && parent[b] == a && !model.bodies[b].free()) return true;
+  return false;
+}
+
+bool Filtered(const ContactSettings& settings, const CollisionGeometry& a,
+              const CollisionGeometry& b) {
+  auto names = [](const CollisionGeometry& g, const std::string& name) {
+    return name == g.link || (!g.name.empty() && name == g.name);
+  };
+  for (const auto& [first, second] : settings.filter) {
+    if ((names(a, first) && names(b, second)) || (names(a, second) && names(b, first))) return true;
+  }
+  return false;
+}
+
+fcl::Transform3d ToFcl(const Pose& X) {
+  fcl::Transform3d T = fcl::Transform3d::Identity();
+  T.linear() = X.R;
+  T.translation() = X.p;
+  return T;
+}
+
+}  // namespace
+
+double ContactPeriod(const Model& model, const ContactSettings& settings) {
+  double mass = std::numeric_limits<double>::infinity();
+  double stiffness = 0.0;
+  for (const CollisionGeometry& g : model.collisions) {
+    stiffness = std::max(stiffness, Or(g.surface.stiffness, settings.stiffness));
+    if (g.body != kBase) mass = std::min(mass, model.bodies[g.body].inertia.mass);
+  }
+  if (!(stiffness > 0.0) || !std::isfinite(mass) || !(mass > 0.0)) {
+    return std::numeric_limits<double>::infinity();
+  }
+  return M_PI * std::sqrt(mass / stiffness);
+}
+
+struct ContactForces::Broad {
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;  // one per entry of others_
+  fcl::DynamicAABBTreeCollisionManagerd manager;
+};
+
+ContactForces::ContactForces(const Model& model, const ContactSettings& settings)
+    : model_(model),
+      settings_(settings),
+      n_(static_cast<int>(model.collisions.size())),
+      allowed_(static_cast<size_t>(n_) * n_, 0),
+      X_W_(n_),
+      narrow_(model.collisions),
+      broad_(std::make_unique<Broad>()) {
+  const std::vector<CollisionGeometry>& geometries = model.collisions;
+  for (const CollisionGeometry& g : geometries) {
+    surfaces_.push_back({Or(g.surface.stiffness, settings.stiffness),
+                         Or(g.surface.dissipation, settings.dissipation),
+                         Or(g.surface.mu_static, settings.mu_static),
+                         Or(g.surface.mu_dynamic, settings.mu_dynamic)});
+  }
+  if (!settings.enabled || n_ < 2) return;
+  const std::vector<int> parent = FileParents(model);
+  for (int a = 0; a < n_; ++a) {
+    for (int b = a + 1; b < n_; ++b) {
+      const CollisionGeometry& ga = geometries[a];
+      const CollisionGeometry& gb = geometries[b];
+      const bool ok = ga.body != gb.body && !Adjacent(model, parent, ga.body, gb.body) &&
+                      (ga.collide_bitmask & gb.collide_bitmask) != 0 &&
+                      !(ga.shape.type == ShapeType::kPlane && gb.shape.type == ShapeType::kPlane) &&
+                      !Filtered(settings, ga, gb);
+      allowed_[a * n_ + b] = allowed_[b * n_ + a] = ok ? 1 : 0;
+      num_allowed_ += ok ? 1 : 0;
+    }
+  }
+  active_ = num_allowed_ > 0;
+  if (!active_) return;
+  for (int g = 0; g < n_; ++g) {
+    const Pose X_WG =
+        geometries[g].body == kBase ? geometries[g].X_BG : Pose::Identity() * geometries[g].X_BG;
+    X_W_[g] = X_WG;
+    if (geometries[g].shape.type == ShapeType::kPlane) {
+      planes_.push_back(g);
+      continue;
+    }
+    others_.push_back(g);
+    auto object =
+        std::make_unique<fcl::CollisionObjectd>(GrownShape(geometries[g].shape), ToFcl(X_WG));
+    object->setUserData(reinterpret_cast<void*>(static_cast<intptr_t>(g)));
+    broad_->manager.registerObject(object.get());
+    broad_->objects.push_back(std::move(object));
+  }
+  broad_->manager.setup();
+  pairs_.reserve(static_cast<size_t>(num_allowed_));
+  contacts_.reserve(8 * static_cast<size_t>(n_) + 16);
+}
+
+ContactForces::~ContactForces() = default;
+
+void ContactForces::UpdatePoses(const Data& data) {
+  for (size_t k = 0; k < others_.size(); ++k) {
+    const int g = others_[k];
+    const CollisionGeometry& geometry = model_.collisions[g];
+    if (geometry.body == kBase) continue;
+    X_W_[g] = data.X_world[geometry.body] * geometry.X_BG;
+    broad_->objects[k]->setTransform(ToFcl(X_W_[g]));
+    broad_->objects[k]->computeAABB();
+  }
+  for (const int g : planes_) {
+    const CollisionGeometry& geometry = model_.collisions[g];
+    if (geometry.body != kBase) X_W_[g] = data.X_world[geometry.body] * geometry.X_BG;
+  }
+  broad_->manager.update();
+}
+
+bool ContactForces::OnPair(void* o1, void* o2, void* self) {
+  auto* forces = static_cast<ContactForces*>(self);
+  const int a = static_cast<int>(
+      reinterpret_cast<intptr_t>(static_cast<fcl::CollisionObjectd*>(o1)->getUserData()));
+  const int b = static_cast<int>(
+      reinterpret_cast<intptr_t>(static_cast<fcl::CollisionObjectd*>(o2)->getUserData()));
+  if (forces->Allowed(a, b) && forces->pairs_.size() < forces->pairs_.capacity()) {
+    forces->pairs_.emplace_back(std::min(a, b), std::max(a, b));
+  }
+  return false;  // go on
+}
+
+void ContactForces::Candidates() {
+  pairs_.clear();
+  broad_->manager.collide(static_cast<void*>(this),
+                          [](fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* self) {
+                            return OnPair(o1, o2, self);
+                          });
+  for (const int p : planes_) {
+    for (const int g : others_) {
+      if (Allowed(p, g) && pairs_.size() < pairs_.capacity()) {
+        pairs_.emplace_back(std::min(p, g), std::max(p, g));
+      }
+    }
+  }
+  // The broad phase's order depends on its tree: sort, so that the forces are summed in one
+  // order whatever the tree did (bit-for-bit repeatable runs).
+  std::sort(pairs_.begin(), pairs_.end());
+}
+
+bool ContactForces::AddForces(const Data& data, const Eigen::VectorXd& qd, Eigen::VectorXd* tau) {
+  contacts_.clear();
+  if (!active_) return true;
+  UpdatePoses(data);
+  Candidates();
+  // Each pair's points, and the share of the pair's stiffness each takes: delta_i / sum delta.
+  for (const auto& [a, b] : pairs_) {
+    const size_t first = contacts_.size();
+    narrow_.Collide(a, X_W_[a], b, X_W_[b], &contacts_);
+    double sum = 0.0;
+    for (size_t k = first; k < contacts_.size(); ++k) sum += contacts_[k].depth;
+    for (size_t k = first; k < contacts_.size(); ++k) contacts_[k].share = contacts_[k].depth / sum;
+  }
+  const double v_s = settings_.stiction_tolerance;
+  bool finite = true;
+  for (ContactPoint& c : contacts_) {
+    const ResolvedSurface& sa = surfaces_[c.geometry_a];
+    const ResolvedSurface& sb = surfaces_[c.geometry_b];
+    const double k = contact_law::CombineStiffness(sa.stiffness, sb.stiffness);
+    const double d =
+        contact_law::CombineDissipation(sa.stiffness, sa.dissipation, sb.stiffness, sb.dissipation);
+    const double mu_s = contact_law::CombineFriction(sa.mu_static, sb.mu_static);
+    const double mu_d = contact_law::CombineFriction(sa.mu_dynamic, sb.mu_dynamic);
+    const int body_a = model_.collisions[c.geometry_a].body;
+    const int body_b = model_.collisions[c.geometry_b].body;
+    const Vector3d v = PointVelocity(model_, data, body_a, c.point, qd) -
+                       PointVelocity(model_, data, body_b, c.point, qd);  // a relative to b
+    const double vn = v.dot(c.normal);
+    c.normal_force = contact_law::NormalForce(c.share * k, d, c.depth, -vn);
+    const Vector3d vt = v - vn * c.normal;
+    const double speed = vt.norm();
+    c.friction_force.setZero();
+    if (speed > 1e-14) {
+      c.friction_force =
+          -(contact_law::StribeckMu(speed, mu_s, mu_d, v_s) * c.normal_force / speed) * vt;
+    }
+    const Vector3d f = c.normal_force * c.normal + c.friction_force;
+    finite = finite && f.allFinite();
+    AddPointForce(model_, data, body_a, c.point, f, tau);
+    AddPointForce(model_, data, body_b, c.point, -f, tau);
+  }
+  return finite;
+}
+
+}  // namespace mbstream

@@ -1,0 +1,21 @@
+// One point of contact between two collision geometries, as the narrow phase finds it and the
+// contact law fills it (docs/contact.md). Every vector is in the world frame.
+#pragma once
+
+#include "server/math/spatial.h"
+
+namespace mbstream {
+
+struct ContactPoint {
+  int geometry_a = 0, geometry_b = 0;   // indices into Model::collisions
+  Vector3d point = Vector3d::Zero();    // m: midway between the two surfaces
+  Vector3d normal = Vector3d::UnitZ();  // unit, from b toward a: the direction that pushes a off b
+  double depth = 0.0;                   // m: the penetration (> 0 when the surfaces overlap)
+  // The share of the pair's stiffness this point takes: its depth over the sum of the depths of
+  // the pair's points (1 for a pair with one point; 1/4 each for a box resting flat).
+  double share = 1.0;
+  double normal_force = 0.0;  // N, >= 0: the normal force on a (b gets the opposite)
+  Vector3d friction_force = Vector3d::Zero();  // N: the friction force on a (b: the opposite)
+};
+
+}  // namespace mbstream

@@ -1,0 +1,254 @@
+#include "server/contact/narrow_phase.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/box_box.h>
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/capsule_capsule.h>
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/sphere_box.h>
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/sphere_capsule.h>
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/sphere_cylinder.h>
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/sphere_sphere.h>
+
+#include "common/check.h"
+
+namespace mbstream {
+
+namespace {
+
+fcl::Transform3d ToFcl(const Pose& X) {
+  fcl::Transform3d T = fcl::Transform3d::Identity();
+  T.linear() = X.R;
+  T.translation() = X.p;
+  return T;
+}
+
+std::shared_ptr<fcl::CollisionGeometryd> FclShape(const CollisionShape& s) {
+  switch (s.type) {
+    case ShapeType::kSphere:
+      return std::make_shared<fcl::Sphered>(s.radius);
+    case ShapeType::kBox:
+      return std::make_shared<fcl::Boxd>(s.size);
+    case ShapeType::kCylinder:
+      return std::make_shared<fcl::Cylinderd>(s.radius, s.length);
+    case ShapeType::kCapsule:
+      return std::make_shared<fcl::Capsuled>(s.radius, s.length);
+    case ShapeType::kPlane:
+      return nullptr;  // closed forms only (narrow_phase.h)
+  }
+  return nullptr;
+}
+
+// A point of a shape at depth `depth` below the plane (normal n, world): the contact midway.
+void AddPlanePoint(int a, int b, const Vector3d& x, const Vector3d& n, double depth,
+                   std::vector<ContactPoint>* out) {
+  if (!(depth > 0.0)) return;
+  ContactPoint c;
+  c.geometry_a = a;
+  c.geometry_b = b;
+  c.normal = n;
+  c.depth = depth;
+  c.point = x + 0.5 * depth * n;
+  out->push_back(c);
+}
+
+// The points of shape a (pose X_WA) that a plane (pose X_WP, normal its z) tests: calls
+// point(x) for each candidate surface point x (world). Returns how many.
+template <typename PointFn>
+void PlaneCandidates(const CollisionShape& s, const Pose& X_WA, const Vector3d& n, PointFn point) {
+  switch (s.type) {
+    case ShapeType::kSphere:
+      point(X_WA.p - s.radius * n);
+      return;
+    case ShapeType::kBox:
+      for (int k = 0; k < 8; ++k) {
+        const Vector3d corner(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, k & 4 ? 0.5 : -0.5);
+        point(X_WA.Apply(corner.cwiseProduct(s.size)));
+      }
+      return;
+    case ShapeType::kCapsule:
+      for (const double e : {-0.5, 0.5}) {
+        point(X_WA.Apply(Vector3d(0, 0, e * s.length)) - s.radius * n);
+      }
+      return;
+    case ShapeType::kCylinder: {
+      const Vector3d axis = X_WA.R.col(2);
+      const Vector3d radial = n - n.dot(axis) * axis;  // toward the plane's outside, in the cap
+      const double norm = radial.norm();
+      for (const double e : {-0.5, 0.5}) {
+        const Vector3d centre = X_WA.Apply(Vector3d(0, 0, e * s.length));
+        if (norm > 1e-9) {
+          point(centre - s.radius * radial / norm);
+        } else {  // the cap parallel to the plane: four rim points
+          for (int k = 0; k < 4; ++k) {
+            point(centre + s.radius * X_WA.R.col(k % 2) * (k < 2 ? 1.0 : -1.0));
+          }
+        }
+      }
+      return;
+    }
+    case ShapeType::kPlane:
+      return;
+  }
+}
+
+}  // namespace
+
+struct NarrowPhase::Fcl {
+  std::vector<std::shared_ptr<fcl::CollisionGeometryd>> shapes;  // null for planes
+  std::vector<fcl::ContactPointd> points;
+  fcl::CollisionRequestd request{8, true};
+  fcl::CollisionResultd result;
+};
+
+NarrowPhase::NarrowPhase(const std::vector<CollisionGeometry>& geometries)
+    : geometries_(geometries), fcl_(std::make_unique<Fcl>()) {
+  for (const CollisionGeometry& g : geometries) fcl_->shapes.push_back(FclShape(g.shape));
+  fcl_->points.reserve(16);
+  scratch_.reserve(16);
+}
+
+NarrowPhase::~NarrowPhase() = default;
+
+void NarrowPhase::Collide(int a, const Pose& X_WA, int b, const Pose& X_WB,
+                          std::vector<ContactPoint>* out) {
+  ShapeType ta = geometries_[a].shape.type;
+  ShapeType tb = geometries_[b].shape.type;
+  if (ta == ShapeType::kPlane && tb == ShapeType::kPlane) return;
+  // Order the pair so that a's type is the lesser (sphere < box < cylinder < capsule <
+  // plane); the normals are flipped back at the end.
+  const bool swapped = static_cast<int>(ta) > static_cast<int>(tb);
+  const int i = swapped ? b : a;
+  const int j = swapped ? a : b;
+  const Pose& X_WI = swapped ? X_WB : X_WA;
+  const Pose& X_WJ = swapped ? X_WA : X_WB;
+  ta = geometries_[i].shape.type;
+  tb = geometries_[j].shape.type;
+  const size_t first = out->size();
+  if (tb == ShapeType::kPlane) {
+    const Vector3d n = X_WJ.R.col(2);
+    PlaneCandidates(geometries_[i].shape, X_WI, n,
+                    [&](const Vector3d& x) { AddPlanePoint(i, j, x, n, -n.dot(x - X_WJ.p), out); });
+  } else if (ta == ShapeType::kCapsule && tb == ShapeType::kCapsule) {
+    const CollisionShape& si = geometries_[i].shape;
+    const CollisionShape& sj = geometries_[j].shape;
+    const Vector3d hi = 0.5 * si.length * X_WI.R.col(2);
+    const Vector3d hj = 0.5 * sj.length * X_WJ.R.col(2);
+    double s = 0.0, t = 0.0;
+    Vector3d ci, cj;
+    fcl::detail::closestPtSegmentSegment<double>(X_WI.p - hi, X_WI.p + hi, X_WJ.p - hj, X_WJ.p + hj,
+                                                 &s, &t, &ci, &cj);
+    const Vector3d d = ci - cj;
+    const double distance = d.norm();
+    const double depth = si.radius + sj.radius - distance;
+    if (depth > 0.0 && distance > 1e-12) {
+      ContactPoint c;
+      c.geometry_a = i;
+      c.geometry_b = j;
+      c.normal = d / distance;
+      c.depth = depth;
+      c.point = cj + (sj.radius - 0.5 * depth) * c.normal;
+      out->push_back(c);
+    }
+  } else {
+    const fcl::Transform3d Ti = ToFcl(X_WI), Tj = ToFcl(X_WJ);
+    const fcl::CollisionGeometryd& gi = *fcl_->shapes[i];
+    const fcl::CollisionGeometryd& gj = *fcl_->shapes[j];
+    std::vector<fcl::ContactPointd>& points = fcl_->points;
+    points.clear();
+    using namespace fcl::detail;
+    const auto sphere = [&gi]() -> const fcl::Sphered& {
+      return static_cast<const fcl::Sphered&>(gi);
+    };
+    if (ta == ShapeType::kSphere && tb == ShapeType::kSphere) {
+      sphereSphereIntersect(sphere(), Ti, static_cast<const fcl::Sphered&>(gj), Tj, &points);
+    } else if (ta == ShapeType::kSphere && tb == ShapeType::kBox) {
+      sphereBoxIntersect(sphere(), Ti, static_cast<const fcl::Boxd&>(gj), Tj, &points);
+    } else if (ta == ShapeType::kSphere && tb == ShapeType::kCylinder) {
+      sphereCylinderIntersect(sphere(), Ti, static_cast<const fcl::Cylinderd&>(gj), Tj, &points);
+    } else if (ta == ShapeType::kSphere && tb == ShapeType::kCapsule) {
+      sphereCapsuleIntersect(sphere(), Ti, static_cast<const fcl::Capsuled&>(gj), Tj, &points);
+    } else if (ta == ShapeType::kBox && tb == ShapeType::kBox) {
+      // boxBox2 itself: boxBoxIntersect copies through a vector of its own (allocates).
+      Vector3d normal;
+      double depth = 0.0;
+      int code = 0;
+      boxBox2(static_cast<const fcl::Boxd&>(gi).side, Ti, static_cast<const fcl::Boxd&>(gj).side,
+              Tj, normal, &depth, &code, 4, points);
+    } else {  // GJK/EPA (libccd): allocates
+      const fcl::CollisionObjectd oi(fcl_->shapes[i], Ti), oj(fcl_->shapes[j], Tj);
+      fcl_->result.clear();
+      fcl::collide(&oi, &oj, fcl_->request, fcl_->result);
+      for (size_t k = 0; k < fcl_->result.numContacts(); ++k) {
+        const fcl::Contactd& contact = fcl_->result.getContact(k);
+        points.push_back(
+            fcl::ContactPointd(contact.normal, contact.pos, contact.penetration_depth));
+      }
+    }
+    for (const fcl::ContactPointd& p : points) {
+      if (!(p.penetration_depth > 0.0)) continue;
+      ContactPoint c;
+      c.geometry_a = i;
+      c.geometry_b = j;
+      c.normal = -p.normal;  // FCL's points from the first object to the second
+      c.depth = p.penetration_depth;
+      c.point = p.pos;
+      out->push_back(c);
+    }
+  }
+  if (swapped) {
+    for (size_t k = first; k < out->size(); ++k) {
+      ContactPoint& c = (*out)[k];
+      std::swap(c.geometry_a, c.geometry_b);
+      c.normal = -c.normal;
+    }
+  }
+}
+
+double NarrowPhase::SignedDistance(int a, const Pose& X_WA, int b, const Pose& X_WB,
+                                   double margin) {
+  ShapeType ta = geometries_[a].shape.type;
+  ShapeType tb = geometries_[b].shape.type;
+  if (ta == ShapeType::kPlane && tb == ShapeType::kPlane) return margin;
+  if (static_cast<int>(ta) > static_cast<int>(tb)) {
+    std::swap(a, b);
+    std::swap(ta, tb);
+    return SignedDistance(a, X_WB, b, X_WA, margin);
+  }
+  if (tb == ShapeType::kPlane) {
+    const Vector3d n = X_WB.R.col(2);
+    double lowest = std::numeric_limits<double>::infinity();
+    PlaneCandidates(geometries_[a].shape, X_WA, n,
+                    [&](const Vector3d& x) { lowest = std::min(lowest, n.dot(x - X_WB.p)); });
+    return lowest;
+  }
+  const CollisionShape& sa = geometries_[a].shape;
+  const CollisionShape& sb = geometries_[b].shape;
+  const bool round_a = ta == ShapeType::kSphere || ta == ShapeType::kCapsule;
+  const bool round_b = tb == ShapeType::kSphere || tb == ShapeType::kCapsule;
+  if (round_a && round_b) {  // segments (a sphere's of length 0) less the radii
+    const double la = ta == ShapeType::kCapsule ? sa.length : 0.0;
+    const double lb = tb == ShapeType::kCapsule ? sb.length : 0.0;
+    const Vector3d ha = 0.5 * la * X_WA.R.col(2), hb = 0.5 * lb * X_WB.R.col(2);
+    double s = 0.0, t = 0.0;
+    Vector3d ca, cb;
+    fcl::detail::closestPtSegmentSegment<double>(X_WA.p - ha, X_WA.p + ha, X_WB.p - hb, X_WB.p + hb,
+                                                 &s, &t, &ca, &cb);
+    return (ca - cb).norm() - sa.radius - sb.radius;
+  }
+  scratch_.clear();
+  Collide(a, X_WA, b, X_WB, &scratch_);
+  double deepest = 0.0;
+  for (const ContactPoint& c : scratch_) deepest = std::max(deepest, c.depth);
+  return scratch_.empty() ? margin : -deepest;
+}
+
+}  // namespace mbstream

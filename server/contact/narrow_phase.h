@@ -1,0 +1,44 @@
+// The narrow phase: the contact points of two collision geometries at their poses in the world.
+//
+// Against a plane (the half-space below it) closed forms: a sphere's deepest point; a box's
+// penetrating vertices, each a contact (so a box resting flat stands on four points); a
+// capsule's two end spheres; a cylinder's deepest rim point at each end (four rim points per
+// end when its axis is along the normal). Between other shapes FCL's primitive routines
+// (sphere-sphere, sphere-box, sphere-cylinder, sphere-capsule, box-box with up to four points;
+// capsule-capsule as the spheres at the segments' closest points); the remaining pairs (box,
+// cylinder or capsule against box, cylinder or capsule) by FCL's GJK/EPA through libccd, which
+// allocates on the heap. Allocates nothing otherwise once the scratch has grown.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "server/contact/contact_point.h"
+#include "server/model/collision_geometry.h"
+
+namespace mbstream {
+
+class NarrowPhase {
+ public:
+  explicit NarrowPhase(const std::vector<CollisionGeometry>& geometries);
+  ~NarrowPhase();
+  NarrowPhase(const NarrowPhase&) = delete;
+  NarrowPhase& operator=(const NarrowPhase&) = delete;
+
+  // Appends to *out the contacts of geometries a and b (indices) at poses X_WA and X_WB; the
+  // normals point from b toward a. Only overlapping points (depth > 0) are appended.
+  void Collide(int a, const Pose& X_WA, int b, const Pose& X_WB, std::vector<ContactPoint>* out);
+
+  // The signed distance of a and b (m, < 0 when they overlap: minus the largest depth), for
+  // pairs of which one is a plane or both are spheres or capsules; other pairs: their largest
+  // depth when they overlap, else `margin` (unknown but positive).
+  double SignedDistance(int a, const Pose& X_WA, int b, const Pose& X_WB, double margin);
+
+ private:
+  struct Fcl;
+  const std::vector<CollisionGeometry>& geometries_;
+  std::unique_ptr<Fcl> fcl_;
+  std::vector<ContactPoint> scratch_;
+};
+
+}  // namespace mbstream

@@ -1,0 +1,193 @@
+// Contact runs against closed forms (issue 44, "Checks"; docs/contact.md): the elastic bounce,
+// a box resting on a plane, a box sliding down an incline and one held by static friction.
+// The scenes are SDFormat worlds in tests/data/contact/; the incline is the run's gravity
+// turned by the incline's angle about y, so that the plane stays z = 0.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "common/check.h"
+#include "server/contact/contact_law.h"
+#include "server/engine/engine.h"
+#include "server/parse/sdf_import.h"
+#include "server/sim/run_validation.h"
+
+namespace mbstream {
+namespace {
+
+constexpr double kG = 9.81;
+
+Model Scene(const std::string& name) {
+  return ImportSdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/tests/data/contact/" + name).model;
+}
+
+RunConfig Config(double duration, double interval) {
+  RunConfig config;
+  config.formulation = Formulation::kJoint;
+  config.duration = duration;
+  config.output_interval = interval;
+  config.rtol = 1e-10;
+  config.atol = 1e-12;
+  config.want_torques = false;
+  config.contact.stiffness = 1e5;  // each surface: k = 5e4 N/m for the pair
+  return config;
+}
+
+RunResult RunScene(const Model& model, RunConfig config) {
+  config.drives.resize(static_cast<size_t>(model.nv()));  // passive
+  ValidateRun(model, config);
+  RunResult result = Simulate(model, config);
+  EXPECT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  return result;
+}
+
+double Q(const RunResult& r, size_t frame, int k) { return r.q[frame * r.num_positions + k]; }
+double Qd(const RunResult& r, size_t frame, int k) { return r.qd[frame * r.num_dofs + k]; }
+
+// The apexes of z (position 2) between bounces: each the vertex of the parabola through a
+// frame that is a local maximum and its neighbours (exact in free flight).
+std::vector<double> Apexes(const RunResult& r) {
+  std::vector<double> apexes;
+  for (size_t k = 1; k + 1 < r.t.size(); ++k) {
+    const double z0 = Q(r, k - 1, 2), z1 = Q(r, k, 2), z2 = Q(r, k + 1, 2);
+    if (!(z1 > z0 && z1 >= z2)) continue;
+    const double h = r.t[k] - r.t[k - 1];
+    const double a = (z0 - 2 * z1 + z2) / (2 * h * h);  // z = a s^2 + b s + z1 about t[k]
+    const double b = (z2 - z0) / (2 * h);
+    apexes.push_back(z1 - b * b / (4 * a));
+  }
+  return apexes;
+}
+
+TEST(ContactChecksTest, ElasticBallBouncesBackToItsDropHeightTenTimes) {
+  const Model model = Scene("ball_on_plane.sdf");
+  ASSERT_EQ(model.collisions.size(), 2u);
+  RunConfig config = Config(9.0, 1e-3);
+  config.method = Method::kErk;
+  config.contact.dissipation = 0.0;
+  const RunResult r = RunScene(model, config);
+  const std::vector<double> apexes = Apexes(r);
+  ASSERT_GE(apexes.size(), 10u);
+  double worst = 0.0;
+  for (size_t k = 0; k < 10; ++k) worst = std::max(worst, std::abs(apexes[k] - 1.0));
+  printf("RESULT apex error %.3g\n", worst);
+  EXPECT_LT(worst, 1e-6);
+}
+
+// The box's penetration at rest: m g / k of the pair (stiffness in series), shared by its
+// four bottom corners.
+TEST(ContactChecksTest, RestingBoxSinksByWeightOverStiffnessAndStaysStill) {
+  const Model model = Scene("box_on_plane.sdf");
+  RunConfig config = Config(10.0, 0.01);
+  config.contact.dissipation = 20.0;
+  const RunResult r = RunScene(model, config);
+  const double k = contact_law::CombineStiffness(1e5, 1e5);
+  const double expected = 2.0 * kG / k;
+  const size_t last = r.t.size() - 1;
+  const double depth = 0.1 - Q(r, last, 2);
+  printf("RESULT penetration %.12g expected %.12g rel %.3g\n", depth, expected,
+         depth / expected - 1);
+  EXPECT_NEAR(depth / expected, 1.0, 1e-6) << depth;
+  double fastest = 0.0;
+  for (size_t f = 0; f < r.t.size(); ++f) {
+    if (r.t[f] < 5.0) continue;
+    for (int j = 0; j < 6; ++j) fastest = std::max(fastest, std::abs(Qd(r, f, j)));
+  }
+  EXPECT_LE(fastest, config.contact.stiction_tolerance);
+}
+
+// A box on a plane tilted by theta (gravity turned about y): it slides with
+// a = g (sin theta - mu_d cos theta) above the friction angle.
+TEST(ContactChecksTest, BoxSlidesDownASteepInclineWithCoulombsAcceleration) {
+  const Model model = Scene("box_on_plane.sdf");
+  const double theta = 30.0 * M_PI / 180.0;
+  RunConfig config = Config(2.0, 0.01);
+  config.gravity = Eigen::Vector3d(kG * std::sin(theta), 0.0, -kG * std::cos(theta));
+  config.contact.dissipation = 20.0;
+  config.contact.mu_static = 0.4;
+  config.contact.mu_dynamic = 0.3;
+  const RunResult r = RunScene(model, config);
+  const double expected = kG * (std::sin(theta) - 0.3 * std::cos(theta));
+  const size_t a = r.t.size() / 2, b = r.t.size() - 1;
+  const double measured = (Qd(r, b, 0) - Qd(r, a, 0)) / (r.t[b] - r.t[a]);
+  printf("RESULT acceleration %.12g expected %.12g rel %.3g\n", measured, expected,
+         measured / expected - 1);
+  EXPECT_NEAR(measured / expected, 1.0, 1e-6) << measured << " against " << expected;
+}
+
+// Below the friction angle the box holds: it creeps no faster than the stiction tolerance.
+TEST(ContactChecksTest, BoxHoldsOnAnInclineBelowTheFrictionAngle) {
+  const Model model = Scene("box_on_plane.sdf");
+  const double theta = 15.0 * M_PI / 180.0;
+  RunConfig config = Config(5.0, 0.05);
+  config.gravity = Eigen::Vector3d(kG * std::sin(theta), 0.0, -kG * std::cos(theta));
+  config.contact.dissipation = 20.0;
+  config.contact.mu_static = 0.4;
+  config.contact.mu_dynamic = 0.3;
+  const RunResult r = RunScene(model, config);
+  const size_t last = r.t.size() - 1;
+  const double drift = Q(r, last, 0) - Q(r, 0, 0);
+  printf("RESULT drift %.6g bound %.6g\n", drift,
+         config.contact.stiction_tolerance * config.duration);
+  EXPECT_LE(std::abs(drift), config.contact.stiction_tolerance * config.duration);
+}
+
+TEST(ContactChecksTest, ContactOffLetsTheBallFallThrough) {
+  const Model model = Scene("ball_on_plane.sdf");
+  RunConfig config = Config(1.0, 0.1);
+  config.contact.enabled = false;
+  const RunResult r = RunScene(model, config);
+  const double t = r.t.back();
+  EXPECT_NEAR(Q(r, r.t.size() - 1, 2), 1.0 - 0.5 * kG * t * t, 1e-9);
+}
+
+TEST(ContactChecksTest, AFilteredPairNeverTouches) {
+  const Model model = Scene("ball_on_plane.sdf");
+  RunConfig config = Config(1.0, 0.1);
+  config.contact.filter = {{"ball::body", "plane"}};  // a link and a collision name
+  const RunResult r = RunScene(model, config);
+  const double t = r.t.back();
+  EXPECT_NEAR(Q(r, r.t.size() - 1, 2), 1.0 - 0.5 * kG * t * t, 1e-9);
+}
+
+// Bad settings are refused at the door, naming the field.
+TEST(ContactChecksTest, AbsurdOrNonFiniteSettingsAreRefusedByName) {
+  const Model model = Scene("ball_on_plane.sdf");
+  auto refused = [&](void (*change)(RunConfig*), const std::string& field) {
+    RunConfig config = Config(1.0, 0.1);
+    config.drives.resize(static_cast<size_t>(model.nv()));
+    change(&config);
+    try {
+      ValidateRun(model, config);
+      ADD_FAILURE() << field << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  };
+  refused([](RunConfig* c) { c->contact.stiffness = -1.0; }, "contact.stiffness_n_per_m");
+  refused([](RunConfig* c) { c->contact.stiffness = 1e20; }, "contact.stiffness_n_per_m");
+  refused([](RunConfig* c) { c->contact.dissipation = NAN; }, "contact.dissipation_s_per_m");
+  refused([](RunConfig* c) { c->contact.mu_static = -0.1; }, "contact.mu_static");
+  refused([](RunConfig* c) { c->contact.mu_dynamic = INFINITY; }, "contact.mu_dynamic");
+  refused([](RunConfig* c) { c->contact.mu_dynamic = 0.9; }, "contact.mu_dynamic");
+  refused([](RunConfig* c) { c->contact.stiction_tolerance = 0.0; },
+          "contact.stiction_tolerance_m_per_s");
+  refused(
+      [](RunConfig* c) {
+        c->contact.filter = {{"ball::body", "nothing"}};
+      },
+      "contact.collision_filter: 'nothing'");
+  refused(
+      [](RunConfig* c) {
+        c->formulation = Formulation::kBodyBaumgarte;
+        c->contact.filter.clear();
+      },
+      "formulation body-baumgarte");
+}
+
+}  // namespace
+}  // namespace mbstream

@@ -1,0 +1,82 @@
+// A contact run's time steps allocate nothing on the heap (tests/common/allocation_counter.h
+// counts malloc too): the joint-space ODE's right-hand side with box-plane, box-box and
+// sphere-box contacts (FCL's broad phase and primitive routines), and CVODE BDF and ARKODE
+// ERK stepping through the bounces, after a first call has grown the buffers.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "server/drives/drive_set.h"
+#include "server/integrate/integrator.h"
+#include "server/parse/sdf_import.h"
+#include "server/sim/joint_integration.h"
+#include "server/sim/joint_space_ode.h"
+#include "tests/common/allocation_counter.h"
+
+namespace mbstream {
+namespace {
+
+Model Scene(const std::string& name) {
+  return ImportSdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/tests/data/contact/" + name).model;
+}
+
+Eigen::VectorXd InitialState(const Model& model) {
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(model.nq() + model.nv());
+  NeutralPositions(model, y.data());
+  return y;
+}
+
+TEST(ContactNoAllocationTest, RightHandSideWithContactsAllocatesNothing) {
+  const Model model = Scene("stacked_boxes.sdf");
+  ASSERT_EQ(model.collisions.size(), 4u);
+  const DriveSet drives(model, std::vector<DriveConfig>(static_cast<size_t>(model.nv())));
+  ContactSettings settings;
+  ContactForces contact(model, settings);
+  ASSERT_TRUE(contact.active());
+  JointSpaceOde ode(model, drives, /*track_work=*/true, &contact);
+  Eigen::VectorXd y = InitialState(model);
+  double sink = 0.0;  // each body 0.1 mm into the one below
+  for (const int b : model.free_bodies) y(model.bodies[b].q_index + 2) -= (sink += 1e-4);
+  Eigen::VectorXd ydot(y.size());
+  double work = 0.0;
+  ASSERT_EQ(ode.RhsAndQuadrature(0.0, y.data(), ydot.data(), &work), 0);  // grows the buffers
+  ASSERT_GE(contact.contacts().size(), 9u);  // 4 box-plane, 4 box-box, 1 sphere-box
+  const long before = testing::AllocationCount();
+  for (int k = 0; k < 20; ++k) {
+    y(model.nq()) = 1e-3 * k;  // a sliding speed
+    ode.RhsAndQuadrature(0.01 * k, y.data(), ydot.data(), &work);
+  }
+  EXPECT_EQ(testing::AllocationCount() - before, 0);
+  EXPECT_TRUE(ydot.allFinite());
+}
+
+TEST(ContactNoAllocationTest, StepsThroughBouncesAllocateNothing) {
+  const Model model = Scene("ball_on_plane.sdf");
+  for (const Method method : {Method::kBdf, Method::kErk}) {
+    RunConfig config;
+    config.method = method;
+    config.drives.resize(static_cast<size_t>(model.nv()));
+    config.contact.dissipation = 0.5;
+    IntegratorOptions options;
+    options.method = method;
+    options.rtol = 1e-8;
+    options.atol = 1e-10;
+    options.t_final = 3.0;
+    options.max_step = ContactPeriod(model, config.contact) / kContactStepsPerPeriod;
+    JointIntegration live(model, config, /*track_work=*/false, options);
+    ASSERT_NE(live.contact, nullptr);
+    Eigen::VectorXd& y = live.y;
+    ASSERT_EQ(live.integrator->AdvanceTo(0.1, y.data()).status, IntegratorStatus::kOk);
+    const long before = testing::AllocationCount();
+    bool ok = true;
+    for (int k = 2; k <= 30; ++k) {  // through the first bounce (t = 0.43 s) and beyond
+      ok = ok && live.integrator->AdvanceTo(0.1 * k, y.data()).status == IntegratorStatus::kOk;
+    }
+    EXPECT_TRUE(ok) << MethodName(method);
+    EXPECT_EQ(testing::AllocationCount() - before, 0) << MethodName(method);
+    EXPECT_GT(y(2), 0.0);  // above the plane
+  }
+}
+
+}  // namespace
+}  // namespace mbstream
