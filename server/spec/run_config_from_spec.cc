@@ -7,6 +7,7 @@
 
 #include "common/check.h"
 #include "common/did_you_mean.h"
+#include "server/spec/contact_spec.h"
 #include "server/spec/run_spec_json.h"
 
 namespace mbstream {
@@ -525,6 +526,7 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const SpecCoordinates& coordinate
   ReadBudget(spec, check, &config);
   ReadTarget(spec, check, &config);
   ReadKeep(spec, check, &config);
+  if (spec.has_contact()) config.contact = ToContactSettings(spec.contact(), source);
   CheckServerFields(spec, check);
   return config;
 }

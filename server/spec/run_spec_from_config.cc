@@ -2,6 +2,7 @@
 #include <cstdint>
 
 #include "common/check.h"
+#include "server/spec/contact_spec.h"
 #include "server/spec/run_spec_json.h"
 
 namespace mbstream {
@@ -95,6 +96,7 @@ v1::RunSpec ToRunSpec(const RunConfig& config) {
   spec.set_report_loop_forces(config.want_loop_forces);
   spec.mutable_baumgarte()->set_alpha(config.baumgarte.alpha);
   spec.mutable_baumgarte()->set_beta(config.baumgarte.beta);
+  ToContactSpec(config.contact, spec.mutable_contact());
   // 0 = the default budget: the fields stay absent.
   MBSTREAM_CHECK_MSG(config.max_steps >= 0 && config.max_steps <= INT32_MAX,
                      "RunConfig::max_steps must fit RunSpec.max_internal_steps (int32)");
