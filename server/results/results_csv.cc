@@ -114,4 +114,20 @@ void CommitFile(const fs::path& path) {
   if (error) throw InputError("cannot rename " + temporary.string() + ": " + error.message());
 }
 
+void AppendContactRows(std::string& out, const ContactLog& log) {
+  for (const ContactRecord& r : log.records) {
+    AppendNumber(out, r.t);
+    for (const int g : {r.geometry_a, r.geometry_b}) {
+      out += ',' + CsvField(log.link[g]) + ',' + CsvField(log.collision[g]);
+    }
+    for (const double x :
+         {r.point[0], r.point[1], r.point[2], r.normal[0], r.normal[1], r.normal[2], r.depth,
+          r.normal_force, r.friction[0], r.friction[1], r.friction[2]}) {
+      out += ',';
+      AppendNumber(out, x + 0.0);  // -0 as 0
+    }
+    out += '\n';
+  }
+}
+
 }  // namespace mbstream::results_csv

@@ -42,7 +42,13 @@ std::vector<Series> SeriesOf(const RunResult& result);
 
 // The series files that may be absent from a result (removed when stale).
 inline const char* const kOptionalFiles[] = {"torques.csv", "energy.csv", "probes.csv",
-                                             "loop_forces.csv"};
+                                             "loop_forces.csv", "contacts.csv"};
+
+// contacts.csv (docs/contact.md): its header, and one row per record of `log` appended to `out`.
+inline constexpr char kContactsHeader[] =
+    "t,link_a,collision_a,link_b,collision_b,px,py,pz,nx,ny,nz,depth,normal_force,friction_x,"
+    "friction_y,friction_z";
+void AppendContactRows(std::string& out, const ContactLog& log);
 
 // Writes path atomically: to path.tmp, then rename. Throws InputError naming the path.
 void WriteFile(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);

@@ -22,6 +22,15 @@ namespace {
 namespace fs = std::filesystem;
 using results_csv::Number;
 
+// contacts.csv: one row per contact per output frame (docs/contact.md), world frame.
+void WriteContactsCsv(const ContactLog& log, const fs::path& path) {
+  results_csv::WriteFile(path, [&](std::ostream& out) {
+    std::string text = std::string(results_csv::kContactsHeader) + '\n';
+    results_csv::AppendContactRows(text, log);
+    out << text;
+  });
+}
+
 nlohmann::json NumberOrNull(double value) {
   return value >= 0.0 ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
@@ -102,6 +111,10 @@ std::string StatsJson(const RunResult& result, const RunProvenance& provenance, 
   j["summary"] = SummaryJson(s.summary, result.joint_names);
   j["warnings"] = s.warnings;
   j["budget"] = {{"max_steps", s.max_steps}, {"max_cpu_s", s.max_cpu_s}};
+  if (result.contacts.active && result.contacts.keep_records) {  // docs/contact.md
+    j["contact"] = {{"penetration_max_m", result.contacts.depth_max},
+                    {"contacts_peak", result.contacts.count_peak}};
+  }
   j["joints"] = result.joint_names;
   if (result.num_positions > 0) j["positions"] = result.position_names;  // free bodies
   j["reproduce"] = {
@@ -142,6 +155,11 @@ void WriteResultsDirectory(const RunResult& result, const RunProvenance& provena
   if (!result.has_torques) fs::remove(dir / "torques.csv", error);  // never leave a stale file
   if (!result.has_energy) fs::remove(dir / "energy.csv", error);
   if (result.loop_force_names.empty()) fs::remove(dir / "loop_forces.csv", error);
+  if (result.contacts.active) {
+    WriteContactsCsv(result.contacts, dir / "contacts.csv");
+  } else {
+    fs::remove(dir / "contacts.csv", error);
+  }
   if (!probes.empty()) {
     results_csv::WriteFile(dir / "probes.csv", [&](std::ostream& out) {
       out << "seq,t,name,x,y,z,latency_us\n";

@@ -49,6 +49,18 @@ void ResultsStreamWriter::OnFrame(const RunResult& result, int frame) {
     open->out << text_;
     Check(*open);
   }
+  if (result.contacts.active) {  // the latest frame's contacts (ContactLog::keep_records off)
+    const fs::path temporary = directory_ / "contacts.csv.tmp";
+    if (!contacts_.is_open()) {
+      contacts_.open(temporary, std::ios::binary | std::ios::trunc);
+      contacts_ << results_csv::kContactsHeader << '\n';
+    }
+    text_.clear();
+    results_csv::AppendContactRows(text_, result.contacts);
+    contacts_ << text_;
+    if (!contacts_)
+      throw InputError("writing " + temporary.string() + " failed: is the disk full?");
+  }
   ++frames_;
 }
 
@@ -61,6 +73,10 @@ void ResultsStreamWriter::Finish(const RunResult& result, const RunProvenance& p
     Check(*open);
     open->out.close();
     results_csv::CommitFile(directory_ / open->series.file);
+  }
+  if (contacts_.is_open()) {
+    contacts_.close();
+    results_csv::CommitFile(directory_ / "contacts.csv");
   }
   results_csv::WriteFile(directory_ / "stats.json",
                          [&](std::ostream& out) { out << StatsJson(result, provenance, frames_); });

@@ -42,6 +42,7 @@ class ResultsStreamWriter : public FrameSink {
 
   std::filesystem::path directory_;
   std::vector<std::unique_ptr<OpenSeries>> files_;
+  std::ofstream contacts_;  // contacts.csv.tmp, once a frame of a run with contact came
   std::vector<double> row_;
   std::string text_;
   long frames_ = 0;

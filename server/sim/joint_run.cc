@@ -22,14 +22,15 @@ namespace {
 class JointSpaceSource : public FrameSource {
  public:
   JointSpaceSource(JointIntegration& live, bool need_effort, BudgetTracking* budget,
-                   const RunPrefix* prefix, size_t prefix_frames)
+                   const RunPrefix* prefix, size_t prefix_frames, ContactLog* contacts)
       : ode_(live.ode),
         integrator_(*live.integrator),
         y_(live.y),
         need_effort_(need_effort),
         budget_(budget),
         prefix_(prefix),
-        prefix_frames_(prefix_frames) {}
+        prefix_frames_(prefix_frames),
+        contacts_(contacts) {}
 
   bool Advance(const std::vector<double>& times, size_t k, RunStats* stats) override {
     frame_ = k;
@@ -54,6 +55,9 @@ class JointSpaceSource : public FrameSource {
       }
     }
     const bool finite = ode_.EvaluateOutputs(t, y_.data(), need_effort_);
+    if (finite && contacts_ != nullptr && ode_.contact() != nullptr) {
+      contacts_->Record(t, *ode_.contact());
+    }
     return finite &&
            recorder.Record(t, ode_.q(), ode_.qd(), need_effort_ ? &ode_.drive_effort() : nullptr);
   }
@@ -80,6 +84,7 @@ class JointSpaceSource : public FrameSource {
   BudgetTracking* budget_;
   const RunPrefix* prefix_;     // null without one
   const size_t prefix_frames_;  // frames taken from the prefix (0: none)
+  ContactLog* contacts_;        // null: the frames' contacts are not kept
   size_t frame_ = 0;            // the frame being advanced to and recorded
   double work_ = 0.0;  // J, the integrated work of drives and damping since t = 0 (when tracked)
 };
@@ -142,8 +147,13 @@ void RunJointSpace(const Model& model, const RunConfig& config, const PilotLink&
   result.stats.jacobian_nnz = live->ode.JacobianNonZeros();
   result.stats.integrator = live->integrator->name();
   result.stats.continued_from_s = prefix_frames > 0 ? times[prefix_frames - 1] : 0.0;
+  if (live->contact != nullptr) {
+    result.contacts.Start(*live->contact);
+    result.contacts.keep_records = sink == nullptr || !sink->KeepsFrames();
+  }
   JointSpaceSource source(*live, result.has_torques || result.has_energy, budget,
-                          pilot.prefix.get(), prefix_frames);
+                          pilot.prefix.get(), prefix_frames,
+                          live->contact != nullptr ? &result.contacts : nullptr);
   RunFrames(times, source, recorder, result, sink, cancel);
   result.stats.solver = StatsSince(live->integrator->stats(), live->before);
   if (pilot.keep_integration && result.stats.status == RunStatus::kFinished) {

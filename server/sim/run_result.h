@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "server/integrate/integrator.h"
+#include "server/sim/contact_log.h"
 #include "server/sim/run_summary.h"
 
 namespace mbstream {
@@ -143,6 +144,8 @@ struct RunResult {
   // J, the work of drives and damping since t = 0 at each frame, when the run integrates it
   // (RunStats::energy_work is kEnergyWorkIntegrated); empty otherwise.
   std::vector<double> work;
+  // The contacts at the output frames and their summary (contact_log.h; inactive without).
+  ContactLog contacts;
   // Seq of frame 0: the frames dropped before it. Nonzero only when the FrameSink keeps the
   // frames itself (FrameSink::KeepsFrames) and the arrays hold just the latest frame.
   long first_seq = 0;
