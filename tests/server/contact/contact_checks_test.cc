@@ -136,6 +136,35 @@ TEST(ContactChecksTest, BoxHoldsOnAnInclineBelowTheFrictionAngle) {
   EXPECT_LE(std::abs(drift), config.contact.stiction_tolerance * config.duration);
 }
 
+// A ball thrown at 20 m/s onto a plate 1 cm thick does not pass through it: it comes back up,
+// with every method (the step cap, contact_forces.h, keeps a step from jumping over it).
+TEST(ContactChecksTest, AFastBallDoesNotTunnelThroughAThinPlate) {
+  const Model model = Scene("thin_plate.sdf");
+  for (const Method method : {Method::kBdf, Method::kErk, Method::kDirk}) {
+    RunConfig config = Config(0.1, 2e-4);
+    config.method = method;
+    config.rtol = 1e-6;
+    config.atol = 1e-9;
+    config.gravity.setZero();
+    config.contact.dissipation = 0.0;
+    config.qd0 = Eigen::VectorXd::Zero(model.nv());
+    config.qd0(2) = -20.0;
+    const RunResult r = RunScene(model, config);
+    double lowest = 1.0;
+    for (size_t f = 0; f < r.t.size(); ++f) lowest = std::min(lowest, Q(r, f, 2));
+    const size_t last = r.t.size() - 1;
+    printf("RESULT %s lowest centre %.6g m, final vz %.6g m/s\n", MethodName(method), lowest,
+           Qd(r, last, 2));
+    EXPECT_GT(lowest, 0.0) << MethodName(method);  // the centre stayed above the plate's middle
+    // Elastic and without gravity the deepest point is delta = v sqrt(m / k) below contact
+    // (sampled at the output frames, so a little above it).
+    const double deepest = 0.055 - 20.0 * std::sqrt(1.0 / contact_law::CombineStiffness(1e6, 1e6));
+    EXPECT_NEAR(lowest, deepest, 1e-4) << MethodName(method);
+    EXPECT_NEAR(Qd(r, last, 2), 20.0, 1e-2) << MethodName(method);  // back up, elastic
+    EXPECT_GT(Q(r, last, 2), 0.05) << MethodName(method);
+  }
+}
+
 TEST(ContactChecksTest, ContactOffLetsTheBallFallThrough) {
   const Model model = Scene("ball_on_plane.sdf");
   RunConfig config = Config(1.0, 0.1);
