@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "common/format.h"
 #include "server/integrate/stiffness_estimate.h"
 #include "server/sim/advance_to_frame.h"
 #include "server/sim/frame_loop.h"
@@ -147,6 +148,18 @@ void RunJointSpace(const Model& model, const RunConfig& config, const PilotLink&
   result.stats.jacobian_nnz = live->ode.JacobianNonZeros();
   result.stats.integrator = live->integrator->name();
   result.stats.continued_from_s = prefix_frames > 0 ? times[prefix_frames - 1] : 0.0;
+  // Why contact is on or off (docs/contact.md), after the formulation's reason.
+  if (live->contact != nullptr) {
+    result.stats.formulation_reason += FormatString(
+        "; contact on: %d geometry pair(s) may touch (compliant point contact), adaptive steps "
+        "at most %g s",
+        live->contact->num_allowed_pairs(), options.max_step);
+  } else if (!model.collisions.empty()) {
+    result.stats.formulation_reason +=
+        config.contact.enabled ? "; contact off: no pair of the model's collision geometries may "
+                                 "touch (same or adjacent bodies, bitmasks, filter)"
+                               : "; contact off (contact.enabled false)";
+  }
   if (live->contact != nullptr) {
     result.contacts.Start(*live->contact);
     result.contacts.keep_records = sink == nullptr || !sink->KeepsFrames();

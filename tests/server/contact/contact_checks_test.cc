@@ -172,6 +172,12 @@ TEST(ContactChecksTest, ContactOffLetsTheBallFallThrough) {
   const RunResult r = RunScene(model, config);
   const double t = r.t.back();
   EXPECT_NEAR(Q(r, r.t.size() - 1, 2), 1.0 - 0.5 * kG * t * t, 1e-9);
+  EXPECT_NE(r.stats.formulation_reason.find("contact off (contact.enabled false)"),
+            std::string::npos)
+      << r.stats.formulation_reason;
+  config.contact.enabled = true;
+  EXPECT_NE(RunScene(model, config).stats.formulation_reason.find("contact on: 1 geometry pair"),
+            std::string::npos);
 }
 
 TEST(ContactChecksTest, AFilteredPairNeverTouches) {
