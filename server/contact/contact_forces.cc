@@ -124,6 +124,8 @@ ContactForces::ContactForces(const Model& model, const ContactSettings& settings
                       !Filtered(settings, ga, gb);
       allowed_[a * n_ + b] = allowed_[b * n_ + a] = ok ? 1 : 0;
       num_allowed_ += ok ? 1 : 0;
+      if (ok && static_cast<int>(root_pairs_.size()) < kMaxRootPairs)
+        root_pairs_.emplace_back(a, b);
     }
   }
   active_ = num_allowed_ > 0;
@@ -194,6 +196,19 @@ void ContactForces::Candidates() {
   // The broad phase's order depends on its tree: sort, so that the forces are summed in one
   // order whatever the tree did (bit-for-bit repeatable runs).
   std::sort(pairs_.begin(), pairs_.end());
+}
+
+void ContactForces::SignedDistances(const Data& data, double* g) {
+  for (int k = 0; k < n_; ++k) {
+    const CollisionGeometry& geometry = model_.collisions[k];
+    if (geometry.body != kBase) X_W_[k] = data.X_world[geometry.body] * geometry.X_BG;
+  }
+  // Far pairs: their distance, or 1 m when the narrow phase has none (then the sign changes
+  // only at contact: CVODE and ARKODE still find the time).
+  for (size_t k = 0; k < root_pairs_.size(); ++k) {
+    const auto [a, b] = root_pairs_[k];
+    g[k] = narrow_.SignedDistance(a, X_W_[a], b, X_W_[b], 1.0);
+  }
 }
 
 bool ContactForces::AddForces(const Data& data, const Eigen::VectorXd& qd, Eigen::VectorXd* tau) {

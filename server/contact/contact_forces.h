@@ -56,6 +56,15 @@ class ContactForces {
   // finite. Allocates nothing (see above).
   bool AddForces(const Data& data, const Eigen::VectorXd& qd, Eigen::VectorXd* tau);
 
+  // The pairs whose signed distances are root functions of the integration (CVODE, ARKODE:
+  // a step ends where a contact begins or ends): every allowed pair, at most kMaxRootPairs
+  // (the first in geometry order beyond that).
+  static constexpr int kMaxRootPairs = 256;
+  int num_root_pairs() const { return static_cast<int>(root_pairs_.size()); }
+  // After BodyKinematics for q: g[k] = the signed distance of root pair k (m, < 0 when they
+  // overlap; narrow_phase.h says for which shapes it is exact). Allocates nothing.
+  void SignedDistances(const Data& data, double* g);
+
   // The contacts of the last AddForces.
   const std::vector<ContactPoint>& contacts() const { return contacts_; }
   const ResolvedSurface& surface(int geometry) const { return surfaces_[geometry]; }
@@ -78,6 +87,7 @@ class ContactForces {
   std::vector<int> planes_, others_;        // geometry indices
   std::vector<Pose> X_W_;                   // each geometry's pose in the world
   std::vector<std::pair<int, int>> pairs_;  // the broad phase's candidates
+  std::vector<std::pair<int, int>> root_pairs_;
   std::vector<ContactPoint> contacts_;
   NarrowPhase narrow_;
   std::unique_ptr<Broad> broad_;

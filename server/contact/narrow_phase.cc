@@ -244,6 +244,19 @@ double NarrowPhase::SignedDistance(int a, const Pose& X_WA, int b, const Pose& X
                                                  &s, &t, &ca, &cb);
     return (ca - cb).norm() - sa.radius - sb.radius;
   }
+  if (ta == ShapeType::kSphere && (tb == ShapeType::kBox || tb == ShapeType::kCylinder)) {
+    const auto& sphere = static_cast<const fcl::Sphered&>(*fcl_->shapes[a]);
+    double distance = -1.0;
+    const bool apart =
+        tb == ShapeType::kBox
+            ? fcl::detail::sphereBoxDistance<double>(
+                  sphere, ToFcl(X_WA), static_cast<const fcl::Boxd&>(*fcl_->shapes[b]), ToFcl(X_WB),
+                  &distance, nullptr, nullptr)
+            : fcl::detail::sphereCylinderDistance<double>(
+                  sphere, ToFcl(X_WA), static_cast<const fcl::Cylinderd&>(*fcl_->shapes[b]),
+                  ToFcl(X_WB), &distance, nullptr, nullptr);
+    if (apart && distance >= 0.0) return distance;
+  }
   scratch_.clear();
   Collide(a, X_WA, b, X_WB, &scratch_);
   double deepest = 0.0;

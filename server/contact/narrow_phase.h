@@ -30,8 +30,10 @@ class NarrowPhase {
   void Collide(int a, const Pose& X_WA, int b, const Pose& X_WB, std::vector<ContactPoint>* out);
 
   // The signed distance of a and b (m, < 0 when they overlap: minus the largest depth), for
-  // pairs of which one is a plane or both are spheres or capsules; other pairs: their largest
-  // depth when they overlap, else `margin` (unknown but positive).
+  // pairs of which one is a plane, both are spheres or capsules, or a sphere and a box or
+  // cylinder (FCL's distance routines); other pairs: minus their largest depth when they
+  // overlap, else `margin` (unknown but positive). Allocates nothing but for the pairs Collide
+  // hands to libccd.
   double SignedDistance(int a, const Pose& X_WA, int b, const Pose& X_WB, double margin);
 
  private:

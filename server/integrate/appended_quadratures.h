@@ -39,6 +39,9 @@ class AppendedQuadratureOde : public OdeSystem, public ManifoldProjection {
     system_.PositionRate(x, v, x_rate);
   }
 
+  // The system's root functions, of its own states (the leading n of z).
+  int num_roots() const override { return system_.num_roots(); }
+  int Roots(double t, const double* z, double* g) override { return system_.Roots(t, z, g); }
   bool Projects() const override { return projection_ != nullptr; }
   bool ProjectsEveryMethod() const override { return projection_ != nullptr; }
   int Project(double t, const double* z, double* correction) override;

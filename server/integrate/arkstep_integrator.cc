@@ -70,6 +70,10 @@ ArkStepIntegrator::ArkStepIntegrator(Variant variant, OdeSystem& system, double 
   if (std::isfinite(options.t_final)) {
     CheckSetup(ARKStepSetStopTime(ark, options.t_final), "ARKStepSetStopTime");
   }
+  if (system.num_roots() > 0) {
+    CheckSetup(ARKStepRootInit(ark, system.num_roots(), RootCallback), "ARKStepRootInit");
+    CheckSetup(ARKStepSetNoInactiveRootWarn(ark), "ARKStepSetNoInactiveRootWarn");
+  }
   if (EveryStepProjectionOf(system) != nullptr) {
     CheckSetup(ARKStepSetPostprocessStepFn(ark, ProjectStepCallback),
                "ARKStepSetPostprocessStepFn");
@@ -104,7 +108,12 @@ int ArkStepIntegrator::SetMaxNumSteps(long steps) {
 }
 
 int ArkStepIntegrator::Evolve(double t_out, N_Vector y, double* t_reached) {
-  return ARKStepEvolve(memory_.get(), t_out, y, t_reached, ARK_NORMAL);
+  int flag = ARK_ROOT_RETURN;
+  while (flag == ARK_ROOT_RETURN) {  // a root ends the step there; go on to t_out
+    flag = ARKStepEvolve(memory_.get(), t_out, y, t_reached, ARK_NORMAL);
+    if (flag == ARK_ROOT_RETURN) ++roots_found_;
+  }
+  return flag;
 }
 
 int ArkStepIntegrator::SetStopTime(double t_final) {
@@ -119,6 +128,7 @@ SolverStats ArkStepIntegrator::stats() const {
   ARKStepGetNumErrTestFails(ark, &stats.error_test_failures);
   ARKStepGetLastStep(ark, &stats.last_step);
   stats.last_order = table_.order;
+  stats.roots_found = roots_found_;
   if (variant_ == Variant::kDirk) {
     ARKStepGetNumJacEvals(ark, &stats.jac_evals);
     ARKStepGetNumNonlinSolvIters(ark, &stats.nonlinear_iterations);

@@ -39,6 +39,7 @@ class ArkStepIntegrator final : public SundialsIntegrator {
   int SetStopTime(double t_final) override;
 
   Variant variant_;
+  long roots_found_ = 0;  // root returns of Evolve
   const ButcherTableInfo& table_;
   std::string name_;
   // Destroyed in reverse order: the solver memory before the solvers it uses.

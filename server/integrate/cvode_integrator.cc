@@ -53,6 +53,10 @@ CvodeIntegrator::CvodeIntegrator(Variant variant, OdeSystem& system, double t0, 
   if (std::isfinite(options.t_final)) {
     CheckSetup(CVodeSetStopTime(cvode, options.t_final), "CVodeSetStopTime");
   }
+  if (system.num_roots() > 0) {
+    CheckSetup(CVodeRootInit(cvode, system.num_roots(), RootCallback), "CVodeRootInit");
+    CheckSetup(CVodeSetNoInactiveRootWarn(cvode), "CVodeSetNoInactiveRootWarn");
+  }
   const int n = system.size();
   if (variant == Variant::kBdf) {
     matrix_.reset(SUNDenseMatrix(n, n, context()));
@@ -96,7 +100,12 @@ int CvodeIntegrator::SetMaxNumSteps(long steps) {
 }
 
 int CvodeIntegrator::Evolve(double t_out, N_Vector y, double* t_reached) {
-  return CVode(memory_.get(), t_out, y, t_reached, CV_NORMAL);
+  int flag = CV_ROOT_RETURN;
+  while (flag == CV_ROOT_RETURN) {  // a root ends the step there; go on to t_out
+    flag = CVode(memory_.get(), t_out, y, t_reached, CV_NORMAL);
+    if (flag == CV_ROOT_RETURN) ++roots_found_;
+  }
+  return flag;
 }
 
 int CvodeIntegrator::SetStopTime(double t_final) {
@@ -114,6 +123,7 @@ SolverStats CvodeIntegrator::stats() const {
   CVodeGetNumNonlinSolvConvFails(cvode, &stats.convergence_failures);
   CVodeGetLastStep(cvode, &stats.last_step);
   CVodeGetLastOrder(cvode, &stats.last_order);
+  stats.roots_found = roots_found_;
   return stats;
 }
 

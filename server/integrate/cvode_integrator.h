@@ -27,6 +27,7 @@ class CvodeIntegrator final : public SundialsIntegrator {
   int SetStopTime(double t_final) override;
 
   Variant variant_;
+  long roots_found_ = 0;  // root returns of Evolve
   // Destroyed in reverse order: the solver memory before the solvers it uses.
   Matrix matrix_;
   LinearSolver linear_solver_;

@@ -52,6 +52,7 @@ struct SolverStats {
   long convergence_failures = 0;  // nonlinear solver convergence failures
   double last_step = 0.0;         // s, the last internal step size taken
   int last_order = 0;             // method order used on the last step
+  long roots_found = 0;           // root returns (OdeSystem::Roots changed sign; CVODE, ARKODE)
 };
 
 enum class IntegratorStatus {

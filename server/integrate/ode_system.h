@@ -47,6 +47,13 @@ class OdeSystem {
   virtual int num_quadratures() const { return 0; }
   virtual int Quadrature(double /*t*/, const double* /*y*/, double* /*qdot*/) { return -1; }
 
+  // Optional root functions g(t, y), num_roots() of them: CVODE and ARKODE end a step where
+  // one changes sign and go on from there (the fixed-step methods ignore them), so that no
+  // step steps over the event (a contact beginning or ending). Roots writes g (num_roots()
+  // doubles); codes as Rhs. Must not allocate.
+  virtual int num_roots() const { return 0; }
+  virtual int Roots(double /*t*/, const double* /*y*/, double* /*g*/) { return -1; }
+
   // f and g at the same (t, y), as the appended quadratures ask for them on every
   // right-hand side: a system whose g needs what f computes (the joint-space ODE's drive
   // efforts need its accelerations) overrides this to evaluate once. The result must equal

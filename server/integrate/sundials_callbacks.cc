@@ -67,6 +67,15 @@ int RhsCallback(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) noexc
   return data->rhs->Evaluate(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
 }
 
+int RootCallback(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data) noexcept {
+  const auto* data = static_cast<const CallbackData*>(user_data);
+  try {
+    return data->rhs->system().Roots(t, N_VGetArrayPointer(y), g);
+  } catch (const std::exception& error) {
+    return data->rhs->RecordException(t, error.what());
+  }
+}
+
 int ErrorWeightCallback(N_Vector y, N_Vector ewt, void* user_data) noexcept {
   const auto* data = static_cast<const CallbackData*>(user_data);
   const double* values = N_VGetArrayPointer(y);

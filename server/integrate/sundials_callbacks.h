@@ -26,6 +26,9 @@ struct CallbackData {
 // RhsAdapter turns one into an unrecoverable failure that keeps its message.
 int RhsCallback(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) noexcept;
 
+// CVRootFn / ARKRootFn: the system's root functions (OdeSystem::Roots).
+int RootCallback(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data) noexcept;
+
 // CVEwtFn / ARKEwtFn: SUNDIALS' scalar-tolerance weights 1 / (rtol |y_i| + atol) for the first
 // error_states states, 0 for the rest (they take no part in the error control).
 int ErrorWeightCallback(N_Vector y, N_Vector ewt, void* user_data) noexcept;

@@ -30,6 +30,7 @@ SolverStats StatsSince(const SolverStats& now, const SolverStats& before) {
   s.nonlinear_iterations -= before.nonlinear_iterations;
   s.error_test_failures -= before.error_test_failures;
   s.convergence_failures -= before.convergence_failures;
+  s.roots_found -= before.roots_found;
   return s;
 }
 

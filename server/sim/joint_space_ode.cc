@@ -186,6 +186,22 @@ int JointSpaceOde::Rhs(double t, const double* y, double* ydot) {
   return 0;
 }
 
+int JointSpaceOde::Roots(double t, const double* y, double* g) {
+  if (contact_ == nullptr) return -1;
+  for (int i = 0; i < nq_; ++i) q_(i) = y[i];
+  for (int i : prescribed_) {  // never a free joint's coordinate (ValidateRun)
+    if (!drives_.velocity_source(i)) q_(free_bodies_ ? q_of_v_[i] : i) = drives_.Reference(i, t).q;
+  }
+  for (const int b : model_.free_bodies)
+    free_joint::NormaliseQuaternion(&q_(model_.bodies[b].q_index));
+  BodyKinematics(model_, data_, q_);
+  contact_->SignedDistances(data_, g);
+  for (int k = 0; k < contact_->num_root_pairs(); ++k) {
+    if (!std::isfinite(g[k])) return 1;
+  }
+  return 0;
+}
+
 int JointSpaceOde::Quadrature(double t, const double* y, double* qdot) {
   if (!track_work_) return -1;
   if (drives_.num_prescribed() > 0) {  // their efforts need the dynamics

@@ -68,6 +68,12 @@ class JointSpaceOde : public OdeSystem, public ManifoldProjection {
   // prescribed joints' by inverse dynamics) less the joint damping's. Integrated with the
   // ODE, W makes the energy balance E(t) - E(0) - W(t) a measure of the integrator's error,
   // not of a quadrature over the output frames. Allocates nothing.
+  // With contact: the signed distances of the contact's root pairs
+  // (ContactForces::SignedDistances), so that CVODE and ARKODE end a step where a contact
+  // begins or ends. Allocates nothing.
+  int num_roots() const override { return contact_ != nullptr ? contact_->num_root_pairs() : 0; }
+  int Roots(double t, const double* y, double* g) override;
+
   int num_quadratures() const override { return track_work_ ? 1 : 0; }
   int Quadrature(double t, const double* y, double* qdot) override;
   // Rhs and Quadrature at one (t, y) with one evaluation of the dynamics (the appended

@@ -78,6 +78,28 @@ TEST(ContactChecksTest, ElasticBallBouncesBackToItsDropHeightTenTimes) {
   EXPECT_LT(worst, 1e-6);
 }
 
+// CVODE and ARKODE end a step at each contact's beginning and end (the pair's signed distance
+// is a root function), so no step straddles an impact: two roots per bounce.
+TEST(ContactChecksTest, TheIntegratorStopsWhereEachBounceBeginsAndEnds) {
+  const Model model = Scene("ball_on_plane.sdf");
+  for (const Method method : {Method::kBdf, Method::kErk, Method::kDirk}) {
+    RunConfig config = Config(4.0, 0.01);
+    config.method = method;
+    config.rtol = 1e-8;
+    config.atol = 1e-10;
+    config.contact.dissipation = 0.0;
+    const RunResult r = RunScene(model, config);
+    // Impacts at t0 = sqrt(2 h / g) (h = 0.9 m) and every 2 t0 + the contact time after.
+    const double t0 = std::sqrt(2 * 0.9 / kG);
+    printf("RESULT %s roots %ld steps %ld\n", MethodName(method), r.stats.solver.roots_found,
+           r.stats.solver.steps);
+    EXPECT_GE(r.stats.solver.roots_found, 2 * static_cast<long>((4.0 - t0) / (2 * t0 + 0.02)))
+        << MethodName(method);
+    EXPECT_LE(r.stats.solver.roots_found, 2 * static_cast<long>((4.0 - t0) / (2 * t0) + 1))
+        << MethodName(method);
+  }
+}
+
 // The box's penetration at rest: m g / k of the pair (stiffness in series), shared by its
 // four bottom corners.
 TEST(ContactChecksTest, RestingBoxSinksByWeightOverStiffnessAndStaysStill) {
