@@ -1,0 +1,183 @@
+// Contact scenes against closed forms and a separate integration (issue 44, "Checks";
+// docs/contact.md): a dissipative bounce against the 1-D Hunt-Crossley ODE, a solid cylinder
+// rolling down an incline, five stacked boxes standing. Scenes in tests/data/contact/.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "server/contact/contact_law.h"
+#include "server/engine/engine.h"
+#include "server/parse/sdf_import.h"
+#include "server/sim/run_validation.h"
+
+namespace mbstream {
+namespace {
+
+constexpr double kG = 9.81;
+
+Model Scene(const std::string& name) {
+  return ImportSdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/tests/data/contact/" + name).model;
+}
+
+RunResult RunScene(const Model& model, RunConfig config) {
+  config.formulation = Formulation::kJoint;
+  config.want_torques = false;
+  config.drives.resize(static_cast<size_t>(model.nv()));
+  ValidateRun(model, config);
+  RunResult result = Simulate(model, config);
+  EXPECT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  return result;
+}
+
+double Q(const RunResult& r, size_t frame, int k) { return r.q[frame * r.num_positions + k]; }
+double Qd(const RunResult& r, size_t frame, int k) { return r.qd[frame * r.num_dofs + k]; }
+
+// The 1-D Hunt-Crossley bounce of a ball of radius r on a floor: from an apex at height z
+// (its centre), the next apex. Free flight in closed form; the contact, m z'' = -m g +
+// k delta (1 + d delta') with delta = r - z, by RK4 at 1e-7 s, its end found by cubic Hermite
+// interpolation of delta between the steps that bracket it.
+double NextApex(double apex, double r, double k, double d, double m) {
+  double z = r, v = -std::sqrt(2.0 * kG * (apex - r));
+  auto accel = [&](double zz, double vv) {
+    const double delta = r - zz;
+    return -kG + (delta > 0.0 ? contact_law::NormalForce(k, d, delta, -vv) / m : 0.0);
+  };
+  const double h = 1e-7;
+  for (;;) {
+    const double k1z = v, k1v = accel(z, v);
+    const double k2z = v + 0.5 * h * k1v, k2v = accel(z + 0.5 * h * k1z, v + 0.5 * h * k1v);
+    const double k3z = v + 0.5 * h * k2v, k3v = accel(z + 0.5 * h * k2z, v + 0.5 * h * k2v);
+    const double k4z = v + h * k3v, k4v = accel(z + h * k3z, v + h * k3v);
+    const double z1 = z + h / 6 * (k1z + 2 * k2z + 2 * k3z + k4z);
+    const double v1 = v + h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+    if (v1 > 0.0 && z1 >= r) {  // left the floor within this step: Hermite for z(s) = r
+      double lo = 0.0, hi = 1.0;
+      auto zs = [&](double s) {  // cubic Hermite of z on [0, h]
+        const double s2 = s * s, s3 = s2 * s;
+        return (2 * s3 - 3 * s2 + 1) * z + (s3 - 2 * s2 + s) * h * v + (-2 * s3 + 3 * s2) * z1 +
+               (s3 - s2) * h * v1;
+      };
+      auto vs = [&](double s) {
+        const double s2 = s * s;
+        return ((6 * s2 - 6 * s) * z + (3 * s2 - 4 * s + 1) * h * v + (-6 * s2 + 6 * s) * z1 +
+                (3 * s2 - 2 * s) * h * v1) /
+               h;
+      };
+      for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (zs(mid) < r ? lo : hi) = mid;
+      }
+      const double out = vs(hi);
+      return r + out * out / (2.0 * kG);
+    }
+    z = z1;
+    v = v1;
+  }
+}
+
+std::vector<double> Apexes(const RunResult& r) {
+  std::vector<double> apexes;
+  for (size_t k = 1; k + 1 < r.t.size(); ++k) {
+    const double z0 = Q(r, k - 1, 2), z1 = Q(r, k, 2), z2 = Q(r, k + 1, 2);
+    if (!(z1 > z0 && z1 >= z2)) continue;
+    const double h = r.t[k] - r.t[k - 1];
+    const double a = (z0 - 2 * z1 + z2) / (2 * h * h);
+    const double b = (z2 - z0) / (2 * h);
+    apexes.push_back(z1 - b * b / (4 * a));
+  }
+  return apexes;
+}
+
+TEST(ContactScenesTest, DissipativeBounceMatchesTheOneDimensionalHuntCrossleyOde) {
+  const Model model = Scene("ball_on_plane.sdf");
+  RunConfig config;
+  config.method = Method::kErk;
+  config.rtol = 1e-10;
+  config.atol = 1e-12;
+  config.duration = 3.0;
+  config.output_interval = 1e-3;
+  config.contact.stiffness = 1e5;
+  config.contact.dissipation = 0.3;
+  const RunResult r = RunScene(model, config);
+  const std::vector<double> apexes = Apexes(r);
+  ASSERT_GE(apexes.size(), 4u);
+  const double k = contact_law::CombineStiffness(1e5, 1e5);
+  const double d = contact_law::CombineDissipation(1e5, 0.3, 1e5, 0.3);
+  double worst = 0.0;
+  double previous = 1.0;  // the drop height
+  for (size_t n = 0; n < 4; ++n) {
+    const double expected = NextApex(previous, 0.1, k, d, 1.0) - 0.1;
+    const double ratio = (apexes[n] - 0.1) / (previous - 0.1);
+    const double expected_ratio = expected / (previous - 0.1);
+    worst = std::max(worst, std::abs(ratio / expected_ratio - 1.0));
+    printf("RESULT bounce %zu ratio %.10f expected %.10f\n", n + 1, ratio, expected_ratio);
+    previous = apexes[n];
+  }
+  EXPECT_LT(worst, 1e-6);
+}
+
+// A solid cylinder rolls down a 20 degree incline without slipping: a = (2/3) g sin theta.
+TEST(ContactScenesTest, SolidCylinderRollsWithTwoThirdsOfGSinTheta) {
+  const Model model = Scene("cylinder_on_plane.sdf");
+  const double theta = 20.0 * M_PI / 180.0;
+  RunConfig config;
+  config.rtol = 1e-10;
+  config.atol = 1e-12;
+  config.duration = 0.5;
+  config.output_interval = 0.01;
+  config.max_steps = 2'000'000;
+  config.gravity = Eigen::Vector3d(kG * std::sin(theta), 0.0, -kG * std::cos(theta));
+  // Stiff, so that the rolling radius r - delta / 2 (the force acts midway into the overlap)
+  // is r to 2e-6.
+  config.contact.stiffness = 1e8;
+  config.contact.stiction_tolerance = 1e-3;
+  config.contact.dissipation = 20.0;
+  config.contact.mu_static = 0.8;
+  config.contact.mu_dynamic = 0.8;
+  const RunResult r = RunScene(model, config);
+  const size_t a = r.t.size() / 2, b = r.t.size() - 1;
+  const double measured = (Qd(r, b, 0) - Qd(r, a, 0)) / (r.t[b] - r.t[a]);
+  const double expected = 2.0 / 3.0 * kG * std::sin(theta);
+  printf("RESULT rolling %.12g expected %.12g rel %.3g\n", measured, expected,
+         measured / expected - 1);
+  EXPECT_NEAR(measured / expected, 1.0, 1e-5);
+}
+
+// Five stacked boxes stand for 10 s: no box moves sideways by more than 1 micrometre or turns,
+// and the top one sinks by the stack's penetrations (4, 3, 2 and 1 boxes' weight over k).
+TEST(ContactScenesTest, FiveStackedBoxesStandForTenSeconds) {
+  const Model model = Scene("box_stack.sdf");
+  RunConfig config;
+  config.rtol = 1e-8;
+  config.atol = 1e-10;
+  config.duration = 10.0;
+  config.output_interval = 0.1;
+  config.contact.stiffness = 1e6;
+  config.contact.dissipation = 20.0;
+  const RunResult r = RunScene(model, config);
+  ASSERT_EQ(r.t.size(), 101u);
+  const size_t last = r.t.size() - 1;
+  double sideways = 0.0, turn = 0.0;
+  for (int b = 0; b < 5; ++b) {
+    const int i = 7 * b;
+    sideways = std::max({sideways, std::abs(Q(r, last, i) - Q(r, 0, i)),
+                         std::abs(Q(r, last, i + 1) - Q(r, 0, i + 1))});
+    turn = std::max({turn, std::abs(Q(r, last, i + 4)), std::abs(Q(r, last, i + 5)),
+                     std::abs(Q(r, last, i + 6))});
+  }
+  const double k = contact_law::CombineStiffness(1e6, 1e6);
+  const double sink = 2.0 * kG * (5 + 4 + 3 + 2 + 1) / k;  // each interface carries the boxes above
+  const double top = Q(r, last, 7 * 4 + 2);
+  printf("RESULT stack sideways %.3g m turn %.3g top sink %.9g expected %.9g\n", sideways, turn,
+         0.9 - top, sink);
+  EXPECT_LT(sideways, 1e-6);
+  EXPECT_LT(turn, 1e-6);
+  EXPECT_NEAR((0.9 - top) / sink, 1.0, 1e-4);
+}
+
+}  // namespace
+}  // namespace mbstream
