@@ -1,6 +1,9 @@
 #include "server/sim/contact_log.h"
 
 #include <algorithm>
+#include <limits>
+
+#include "common/format.h"
 
 namespace mbstream {
 
@@ -11,6 +14,10 @@ void ContactLog::Start(const ContactForces& forces) {
   for (const CollisionGeometry& g : forces.model().collisions) {
     link.push_back(g.link);
     collision.push_back(g.name);
+    const CollisionShape& s = g.shape;
+    size.push_back(s.type == ShapeType::kPlane ? std::numeric_limits<double>::infinity()
+                   : s.type == ShapeType::kBox ? 0.5 * s.size.minCoeff()
+                                               : s.radius);
   }
 }
 
@@ -20,6 +27,13 @@ void ContactLog::Record(double t, const ContactForces& forces) {
   if (!keep_records) records.clear();  // the latest frame's only (capacity kept)
   for (const ContactPoint& c : contacts) {
     depth_max = std::max(depth_max, c.depth);
+    const double relative = c.depth / std::min(size[c.geometry_a], size[c.geometry_b]);
+    if (relative > relative_max) {
+      relative_max = relative;
+      relative_t = t;
+      relative_a = c.geometry_a;
+      relative_b = c.geometry_b;
+    }
     ContactRecord r;
     r.t = t;
     r.geometry_a = c.geometry_a;
@@ -33,6 +47,20 @@ void ContactLog::Record(double t, const ContactForces& forces) {
     r.normal_force = c.normal_force;
     records.push_back(r);
   }
+}
+
+std::string ContactLog::DeepContactWarning() const {
+  if (!(relative_max > kDeepContact) || relative_a < 0) return "";
+  const auto name = [&](int g) {
+    return "'" + link[g] + (collision[g].empty() ? "" : "' ('" + collision[g] + "')") +
+           (collision[g].empty() ? "'" : "");
+  };
+  return FormatString(
+      "contact: the penetration between %s and %s reached %.3g %% of the smaller geometry's size "
+      "(%g m) at t = %g s, more than %g %%: the compliant contact is too soft for this load; "
+      "raise the stiffness (contact.stiffness_n_per_m, drake:point_contact_stiffness)",
+      name(relative_a).c_str(), name(relative_b).c_str(), 100.0 * relative_max,
+      std::min(size[relative_a], size[relative_b]), relative_t, 100.0 * kDeepContact);
 }
 
 }  // namespace mbstream

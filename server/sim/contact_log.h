@@ -31,6 +31,17 @@ struct ContactLog {
   std::vector<ContactRecord> records;  // every output frame's contacts, in frame order
   double depth_max = 0.0;              // m, the largest penetration over the output frames
   int count_peak = 0;                  // the most contacts at one output frame
+  // The largest penetration relative to the size of the smaller geometry of its pair (a
+  // sphere's, cylinder's or capsule's radius, half a box's shortest edge), where and when.
+  std::vector<double> size;  // per geometry, m (infinity for a plane)
+  double relative_max = 0.0;
+  double relative_t = 0.0;
+  int relative_a = -1, relative_b = -1;
+
+  // "contact: ..." when relative_max exceeds kDeepContact, naming the pair, the time and what
+  // to do; "" otherwise.
+  static constexpr double kDeepContact = 0.1;
+  std::string DeepContactWarning() const;
 
   // Starts the log for the geometries of `forces`' model.
   void Start(const ContactForces& forces);

@@ -168,6 +168,9 @@ void RunJointSpace(const Model& model, const RunConfig& config, const PilotLink&
                           pilot.prefix.get(), prefix_frames,
                           live->contact != nullptr ? &result.contacts : nullptr);
   RunFrames(times, source, recorder, result, sink, cancel);
+  if (const std::string deep = result.contacts.DeepContactWarning(); !deep.empty()) {
+    result.stats.warnings.push_back(deep);
+  }
   result.stats.solver = StatsSince(live->integrator->stats(), live->before);
   if (pilot.keep_integration && result.stats.status == RunStatus::kFinished) {
     result.integration = std::move(live);

@@ -75,6 +75,10 @@ TEST(ContactChecksTest, ElasticBallBouncesBackToItsDropHeightTenTimes) {
   double worst = 0.0;
   for (size_t k = 0; k < 10; ++k) worst = std::max(worst, std::abs(apexes[k] - 1.0));
   printf("RESULT apex error %.3g\n", worst);
+  // The contact forces' work is in the integrated work: the energy balance is the integrator's.
+  printf("RESULT energy balance %.3g\n", r.stats.energy_error_max);
+  EXPECT_LT(r.stats.energy_error_max, 1e-8);
+  EXPECT_EQ(r.stats.trust, Trust::kOk) << r.stats.trust_reason;
   EXPECT_LT(worst, 1e-6);
 }
 
@@ -184,6 +188,24 @@ TEST(ContactChecksTest, AFastBallDoesNotTunnelThroughAThinPlate) {
     EXPECT_NEAR(lowest, deepest, 1e-4) << MethodName(method);
     EXPECT_NEAR(Qd(r, last, 2), 20.0, 1e-2) << MethodName(method);  // back up, elastic
     EXPECT_GT(Q(r, last, 2), 0.05) << MethodName(method);
+  }
+}
+
+// A contact too soft for its load is named in the run's warnings.
+TEST(ContactChecksTest, ATooSoftContactIsWarnedAbout) {
+  const Model model = Scene("box_on_plane.sdf");
+  RunConfig config = Config(1.0, 0.05);
+  config.contact.stiffness = 2e3;  // 2 kg sinks 2 g m / k = 2 cm of the 0.1 m half-size
+  config.contact.dissipation = 20.0;
+  const RunResult r = RunScene(model, config);
+  ASSERT_FALSE(r.stats.warnings.empty());
+  printf("RESULT %s\n", r.stats.warnings.back().c_str());
+  EXPECT_NE(r.stats.warnings.back().find("'box::body' ('cube')"), std::string::npos)
+      << r.stats.warnings.back();
+  EXPECT_NE(r.stats.warnings.back().find("contact.stiffness_n_per_m"), std::string::npos);
+  config.contact.stiffness = 1e5;
+  for (const std::string& w : RunScene(model, config).stats.warnings) {
+    EXPECT_EQ(w.find("contact:"), std::string::npos) << w;
   }
 }
 

@@ -118,6 +118,12 @@ TEST(ContactScenesTest, DissipativeBounceMatchesTheOneDimensionalHuntCrossleyOde
     previous = apexes[n];
   }
   EXPECT_LT(worst, 1e-6);
+  // The dissipated work is in the integrated work (the contacts' power qd . J^T f), so the
+  // energy balance E - E0 - W measures the integrator alone.
+  printf("RESULT dissipative energy balance %.3g, dissipated %.6g J of %.6g J\n",
+         r.stats.energy_error_max, r.work.empty() ? 0.0 : -r.work.back(), 0.9 * kG);
+  EXPECT_LT(r.stats.energy_error_max, 1e-8);
+  EXPECT_EQ(r.stats.trust, Trust::kOk) << r.stats.trust_reason;
 }
 
 // A solid cylinder rolls down a 20 degree incline without slipping: a = (2/3) g sin theta.
