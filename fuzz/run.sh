@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (ASan + UBSan) and runs each for a bounded time.
 #   fuzz/run.sh [--seconds N] [--no-build] [TARGET...]    default: 60 s each, every target
-# Environment: FUZZ_BUILD_DIR (default build-fuzz; CI: build-asan), JOBS (default 2). The corpus each
-# target grows is kept in $FUZZ_BUILD_DIR/fuzz/corpus/TARGET, so a later run goes on from
-# it; crashing inputs go to $FUZZ_BUILD_DIR/fuzz/artifacts/. Prints, per target, the time
+# Environment: FUZZ_SECONDS (the default of --seconds), FUZZ_BUILD_DIR (default build-fuzz;
+# CI: build-asan, where each target is also a ctest test, fuzz.TARGET), JOBS (default 2).
+# The corpus each target grows is kept in $FUZZ_BUILD_DIR/fuzz/corpus/TARGET, so a later run
+# goes on from it; crashing inputs go to $FUZZ_BUILD_DIR/fuzz/artifacts/. Prints, per target, the time
 # run, the executions and executions per second; exits 1 if any target found a crash.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-SECONDS_PER_TARGET=60
+SECONDS_PER_TARGET=${FUZZ_SECONDS:-60}
 TARGETS=()
 BUILD_STEP=1
 while [ $# -gt 0 ]; do
@@ -54,38 +55,46 @@ if [ "$BUILD_STEP" = 1 ]; then
   cmake --build "$BUILD" --parallel "$JOBS" --target "${TARGETS[@]}"
 fi
 
-# Seed corpora: the shipped models and the tests' data, plus fuzz/seeds/ (small, checked in).
+# Seed corpora: the shipped models and the tests' data, plus fuzz/seeds/ (small, checked in),
+# written per target (ctest runs two targets at once, each its own fuzz/run.sh).
 OUT=$BUILD/fuzz
 SEEDS=$OUT/seeds
-rm -rf "$SEEDS"
-mkdir -p "$SEEDS"/{urdf_import_fuzzer,sdf_import_fuzzer,scene_script_fuzzer,run_spec_json_fuzzer,start_run_fuzzer} \
-  "$OUT/artifacts" "$OUT/logs"
-cp models/*/*.urdf fuzz/seeds/urdf/* "$SEEDS/urdf_import_fuzzer/"
-cp models/*/*.sdf tests/data/*.sdf fuzz/seeds/sdf/* "$SEEDS/sdf_import_fuzzer/"
-cp models/*/*.scene tests/viewer/data/*.txt fuzz/seeds/scene/* "$SEEDS/scene_script_fuzzer/"
-cp models/*/*.json fuzz/seeds/run_spec/* "$SEEDS/run_spec_json_fuzzer/"
-# Whole requests: each shipped model with each spec, shortened to fit the fuzzer's limits
-# (start_run_fuzzer.cc: 0.2 s, 200 frames), plus the checked-in ones. Not models/big/: the
-# first step of the 100-link chain with six prescribed joints (its sanity check and a
-# 200-column Jacobian) costs 0.2 s of CPU in a release build and over 20 s under ASan, close
-# to libFuzzer's 30 s timeout; those files seed urdf_import_fuzzer above, and what the
-# fuzzer tests here (a request's validation) they would not exercise any further.
-n=0
-# The linkages (SDFormat, closed loops) each with their own specs.
-for urdf in models/*/*.urdf models/linkages/*.sdf; do
-  case "$urdf" in
-    models/big/*) continue ;;
-    models/linkages/*) specs=("${urdf%.sdf}"-*.json) ;;
-    *) specs=(models/*/*.json fuzz/seeds/run_spec/*) ;;
+mkdir -p "$OUT/artifacts" "$OUT/logs"
+write_seeds() {  # write_seeds TARGET: fills $SEEDS/TARGET afresh
+  local dir=$SEEDS/$1 n=0 urdf spec specs
+  rm -rf "$dir"
+  mkdir -p "$dir"
+  case "$1" in
+    urdf_import_fuzzer) cp models/*/*.urdf fuzz/seeds/urdf/* "$dir/" ;;
+    sdf_import_fuzzer) cp models/*/*.sdf tests/data/*.sdf fuzz/seeds/sdf/* "$dir/" ;;
+    scene_script_fuzzer) cp models/*/*.scene tests/viewer/data/*.txt fuzz/seeds/scene/* "$dir/" ;;
+    run_spec_json_fuzzer) cp models/*/*.json fuzz/seeds/run_spec/* "$dir/" ;;
+    start_run_fuzzer)
+      # Whole requests: each shipped model with each spec, shortened to fit the fuzzer's
+      # limits (start_run_fuzzer.cc: 0.2 s, 200 frames), plus the checked-in ones. Not
+      # models/big/: the first step of the 100-link chain with six prescribed joints (its
+      # sanity check and a 200-column Jacobian) costs 0.2 s of CPU in a release build and over
+      # 20 s under ASan, close to libFuzzer's 30 s timeout; those files seed
+      # urdf_import_fuzzer above, and what the fuzzer tests here (a request's validation) they
+      # would not exercise any further. The linkages (SDFormat, closed loops) each with their
+      # own specs.
+      for urdf in models/*/*.urdf models/linkages/*.sdf; do
+        case "$urdf" in
+          models/big/*) continue ;;
+          models/linkages/*) specs=("${urdf%.sdf}"-*.json) ;;
+          *) specs=(models/*/*.json fuzz/seeds/run_spec/*) ;;
+        esac
+        for spec in "${specs[@]}"; do
+          n=$((n + 1))
+          { cat "$urdf"; printf '\n@@spec\n'
+            sed -E 's/"duration_s": *[0-9.eE+-]+/"duration_s": 0.1/' "$spec"; } \
+            >"$dir/model-spec-$n"
+        done
+      done
+      cp fuzz/seeds/start_run/* "$dir/"
+      ;;
   esac
-  for spec in "${specs[@]}"; do
-    n=$((n + 1))
-    { cat "$urdf"; printf '\n@@spec\n'
-      sed -E 's/"duration_s": *[0-9.eE+-]+/"duration_s": 0.1/' "$spec"; } \
-      >"$SEEDS/start_run_fuzzer/model-spec-$n"
-  done
-done
-cp fuzz/seeds/start_run/* "$SEEDS/start_run_fuzzer/"
+}
 
 # The fuzzer reports on its own output (scripts/test.sh's options send reports to files).
 export ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1
@@ -94,8 +103,10 @@ export LSAN_OPTIONS=suppressions=$PWD/cmake/sanitizers/lsan.supp:print_suppressi
 declare -A DICT=([urdf_import_fuzzer]=urdf [sdf_import_fuzzer]=sdf [scene_script_fuzzer]=scene_script
                  [run_spec_json_fuzzer]=run_spec [start_run_fuzzer]=start_run)
 failed=0
-printf '%-22s %8s %12s %10s %8s\n' target seconds executions exec/s corpus | tee "$OUT/summary.txt"
+header=$(printf '%-22s %8s %12s %10s %8s' target seconds executions exec/s corpus)
+echo "$header"
 for target in "${TARGETS[@]}"; do
+  write_seeds "$target"
   corpus=$OUT/corpus/$target
   mkdir -p "$corpus"
   log=$OUT/logs/$target.log
@@ -108,11 +119,13 @@ for target in "${TARGETS[@]}"; do
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
   files=$(find "$corpus" -type f | wc -l)
   printf '%-22s %8s %12s %10s %8s\n' "$target" "$SECONDS_PER_TARGET" "${execs:-?}" "${rate:-?}" \
-    "$files" | tee -a "$OUT/summary.txt"
+    "$files" | tee "$OUT/logs/$target.summary"
   if [ "$status" -ne 0 ]; then
     failed=1
     echo "fuzz: $target FAILED (exit $status); the end of $log:"
     tail -n 60 "$log"
   fi
 done
+# Every target's last run, in one table.
+{ echo "$header"; cat "$OUT"/logs/*.summary; } >"$OUT/summary.txt"
 exit "$failed"

@@ -163,7 +163,8 @@ void ServerHost::BuildParts(const ServerConfig& config) {
   models_ = std::make_unique<ModelRegistry>(store_.get(), config.limits);
   const int stored = models_->LoadStored();
   const int builtin = config.models_dir.empty() ? 0 : models_->LoadBuiltins(config.models_dir);
-  spdlog::info("{} stored and {} built-in models loaded", stored, builtin);
+  spdlog::info("{} stored and {} built-in models listed (each compiled when first asked for)",
+               stored, builtin);
   ReplicaOptions replica;
   replica.address = config.advertise;
   replica.lease_timeout_s = config.lease_timeout_s;

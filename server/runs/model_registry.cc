@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <set>
@@ -196,6 +197,13 @@ Prepared Prepare(const v1::ModelBundle& submitted, bool builtin, const ServerLim
   return prepared;
 }
 
+// "m-" and 24 hex digits (ModelContentId).
+bool LooksLikeModelId(const std::string& text) {
+  return text.size() == 26 && text.rfind("m-", 0) == 0 &&
+         std::all_of(text.begin() + 2, text.end(),
+                     [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) != 0; });
+}
+
 std::string MiB(int64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB"; }
 
 }  // namespace
@@ -203,6 +211,42 @@ std::string MiB(int64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >
 ModelRegistry::ModelRegistry(Store* store, const ServerLimits& limits)
     : store_(store), limits_(limits) {
   MBSTREAM_CHECK(store_ != nullptr);
+}
+
+template <typename Wanted>
+int ModelRegistry::LoadPending(const Wanted& wanted) const {
+  int submitted = 0;
+  std::unique_lock<std::mutex> lock(pending_mutex_);
+  for (;;) {
+    PendingBuiltin* next = nullptr;
+    bool busy = false;  // a wanted one is being submitted by another thread
+    for (PendingBuiltin& pending : pending_) {
+      if (pending.done || !wanted(pending)) continue;
+      if (!pending.compiling) {
+        next = &pending;
+        break;
+      }
+      busy = true;
+    }
+    if (next == nullptr) {
+      if (!busy) return submitted;
+      pending_done_.wait(lock);
+      continue;
+    }
+    next->compiling = true;
+    lock.unlock();
+    try {
+      // Known to the store already (an earlier start stored it): listed, not compiled.
+      Register(ReadModelBundle(next->path, next->scene, {}, next->name), true);
+      ++submitted;
+    } catch (const std::exception& e) {
+      spdlog::warn("built-in model {} skipped: {}", next->path, e.what());
+    }
+    lock.lock();
+    next->compiling = false;
+    next->done = true;
+    pending_done_.notify_all();
+  }
 }
 
 void ModelRegistry::CheckCapacityLocked(int64_t bytes) const {
@@ -229,6 +273,13 @@ void ModelRegistry::CheckCapacityLocked(int64_t bytes) const {
 }
 
 v1::ModelInfo ModelRegistry::Submit(const v1::ModelBundle& bundle, bool builtin) {
+  return Register(bundle, builtin);
+}
+
+v1::ModelInfo ModelRegistry::Register(const v1::ModelBundle& bundle, bool builtin) const {
+  // The built-in models first, as at start: one of them may be this model (scripts/demo.sh
+  // submits models/irb1600), or have its name (the newest model has it: see below).
+  if (!builtin) LoadPendingBuiltins();
   {
     std::lock_guard<std::mutex> lock(mutex_);
     auto found = by_id_.find(ModelContentId(bundle));
@@ -324,15 +375,31 @@ int ModelRegistry::LoadBuiltins(const std::string& directory) {
       }
     }
     for (const auto& [path, name, scene] : models) {
-      try {
-        Submit(ReadModelBundle(path, scene, {}, name), true);
-        ++loaded;
-      } catch (const std::exception& e) {
-        spdlog::warn("built-in model {} skipped: {}", path, e.what());
-      }
+      std::lock_guard<std::mutex> lock(pending_mutex_);
+      pending_.push_back(PendingBuiltin{path, name, scene});
+      ++loaded;
     }
   }
   return loaded;
+}
+
+int ModelRegistry::LoadPendingBuiltins() const {
+  return LoadPending([](const PendingBuiltin&) { return true; });
+}
+
+void ModelRegistry::LoadPendingMatching(const std::string& id_or_name) const {
+  LoadPending([&](const PendingBuiltin& p) { return p.name == id_or_name; });
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (by_id_.count(id_or_name) != 0) return;
+    for (const std::string& id : order_) {
+      if (by_id_.at(id).info.name() == id_or_name) return;
+    }
+  }
+  // A model id (a client learns one only from a model registered, and so stored, by this
+  // server or a replica of its store: RunManager::FindModel lists the store then) needs none;
+  // a name nobody has gets the not-found error's list of every model, built-ins included.
+  if (!LooksLikeModelId(id_or_name)) LoadPendingBuiltins();
 }
 
 const std::string& ModelRegistry::FindIdLocked(const std::string& id_or_name) const {
@@ -370,6 +437,7 @@ std::shared_ptr<const CompiledModel> ModelRegistry::CacheLocked(
 }
 
 std::shared_ptr<const CompiledModel> ModelRegistry::Find(const std::string& id_or_name) const {
+  LoadPendingMatching(id_or_name);
   v1::ModelInfo info;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -405,6 +473,7 @@ std::shared_ptr<const CompiledModel> ModelRegistry::Find(const std::string& id_o
 }
 
 v1::ModelInfo ModelRegistry::Info(const std::string& id_or_name) const {
+  LoadPendingMatching(id_or_name);
   std::lock_guard<std::mutex> lock(mutex_);
   return by_id_.at(FindIdLocked(id_or_name)).info;
 }
@@ -421,6 +490,7 @@ v1::ModelBundle ModelRegistry::Bundle(const std::string& model_id) const {
 }
 
 std::vector<v1::ModelInfo> ModelRegistry::List() const {
+  LoadPendingBuiltins();
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<v1::ModelInfo> list;
   for (const std::string& id : order_) list.push_back(by_id_.at(id).info);

@@ -3,9 +3,13 @@
 // The registry keeps every model's ModelInfo; a model's bundle (URDF, scene, assets) stays in
 // the store. A model is compiled from its stored URDF when a run first needs it (not at
 // start), and a bounded number of compiled models is cached (runs keep theirs alive).
+// Built-in models the store does not know yet are read at start but compiled and stored when
+// first asked for (by name, by id, or by a listing), so the server listens at once.
 #pragma once
 
+#include <condition_variable>
 #include <cstdint>
+#include <list>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -50,10 +54,15 @@ class ModelRegistry {
   // Lists the models of the store (at start) without compiling them; returns how many.
   int LoadStored();
 
-  // Submits every model directory below `directory` (a folder with one .urdf or .sdf; see
-  // ReadModelBundle; a folder with several: each file a model named after it) as built-in. Returns
-  // how many; logs and skips ones that fail.
+  // Finds every model directory below `directory` (a folder with one .urdf or .sdf; see
+  // ReadModelBundle; a folder with several: each file a model named after it): built-in
+  // models, each read and submitted (compiled, unless the store has it from an earlier start)
+  // when first asked for: by its name (Find, Info), by any listing, id or unknown name (List,
+  // Find, Info), or by the first Submit, on the thread that asks. Returns how many were
+  // found; a model that cannot be read or compiled is logged and skipped then.
   int LoadBuiltins(const std::string& directory);
+  // Compiles and stores every built-in model still waiting (LoadBuiltins). Returns how many.
+  int LoadPendingBuiltins() const;
 
   // By id, or by name (the newest with that name), compiled (from the store on first use).
   // Throws RequestError: kNotFound naming the known models, kFailedPrecondition when a
@@ -76,6 +85,24 @@ class ModelRegistry {
   int compiled_count() const;
 
  private:
+  // A built-in model found at start, not yet read or compiled (LoadBuiltins).
+  struct PendingBuiltin {
+    std::string path;        // the model file or folder
+    std::string name;        // the folder's or the file's name
+    std::string scene;       // NAME.scene beside a one-file model, or ""
+    bool compiling = false;  // a thread is submitting it (pending_mutex_)
+    bool done = false;       // submitted, or failed and logged
+  };
+  // Submits the waiting built-in models for which `wanted` is true, on this thread; waits for
+  // those another thread is submitting. Neither mutex may be held by the caller.
+  template <typename Wanted>
+  int LoadPending(const Wanted& wanted) const;
+  // The waiting built-in model named `id_or_name`; all of them when no model has that name
+  // or id then.
+  void LoadPendingMatching(const std::string& id_or_name) const;
+  // Submit's body (mutable state only: a lazily loaded built-in is registered from const
+  // lookups, as if it had been loaded at start).
+  v1::ModelInfo Register(const v1::ModelBundle& bundle, bool builtin) const;
   struct Entry {
     v1::ModelInfo info;
     int64_t bytes = 0;                              // stored size (URDF, scene, assets)
@@ -96,8 +123,12 @@ class ModelRegistry {
   ServerLimits limits_;
   mutable std::mutex mutex_;
   mutable std::map<std::string, Entry> by_id_;
-  std::vector<std::string> order_;  // ids, oldest first
+  mutable std::vector<std::string> order_;  // ids, oldest first
   mutable uint64_t use_clock_ = 0;
+  // Never locked while mutex_ is held.
+  mutable std::mutex pending_mutex_;
+  mutable std::condition_variable pending_done_;
+  mutable std::list<PendingBuiltin> pending_;  // stable addresses; entries are never erased
 };
 
 }  // namespace mbstream
