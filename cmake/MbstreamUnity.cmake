@@ -12,6 +12,15 @@
 # Not batched: generated files (protobuf), files with their own compile options, files outside
 # the source tree, and the files of cmake/unity_alone.txt (names that clash with a
 # neighbour's in an anonymous namespace; each line says which).
+#
+# A batch must compile to what its files compile to alone. Before any batched target compiles,
+# cmake/unity_check.py (the target mbstream_unity_check, run again whenever a batched file
+# changes) reads every batch and stops the build when two of its files declare one name with
+# internal linkage (an anonymous namespace, static, a const variable: a redefinition error, or
+# an overload set that could change which helper a call picks), define a function of one name
+# in nested namespaces, or when a file's using-directive or macro reaches the files after it.
+# Its message names the files and the fix: a rename, or a line in cmake/unity_alone.txt
+# (docs/contributing.md, "Unity builds").
 
 option(MBSTREAM_UNITY_BUILD "Compile each target's files in batches (faster cold builds)" ON)
 set(MBSTREAM_UNITY_BATCH 8 CACHE STRING "Files per unity batch (MBSTREAM_UNITY_BUILD)")
@@ -81,14 +90,50 @@ function(mbstream_unity_target TARGET)
   endif()
   set_property(TARGET ${TARGET} PROPERTY SOURCES ${kept} ${units})
   target_include_directories(${TARGET} PRIVATE ${PROJECT_SOURCE_DIR})
+  list(TRANSFORM batched PREPEND ${PROJECT_SOURCE_DIR}/)
+  set_property(GLOBAL APPEND PROPERTY MBSTREAM_UNITY_TARGETS ${TARGET})
+  set_property(GLOBAL APPEND PROPERTY MBSTREAM_UNITY_UNITS ${units})
+  set_property(GLOBAL APPEND PROPERTY MBSTREAM_UNITY_SOURCES ${batched})
+endfunction()
+
+# The check of every batch (see above): one step that the batched targets wait for.
+function(mbstream_unity_check)
+  get_property(targets GLOBAL PROPERTY MBSTREAM_UNITY_TARGETS)
+  get_property(units GLOBAL PROPERTY MBSTREAM_UNITY_UNITS)
+  get_property(sources GLOBAL PROPERTY MBSTREAM_UNITY_SOURCES)
+  if(NOT units)
+    return()
+  endif()
+  find_package(Python3 COMPONENTS Interpreter)
+  if(NOT Python3_Interpreter_FOUND)
+    message(WARNING "No Python 3: the unity batches are not checked for shared names "
+                    "(cmake/unity_check.py); scripts/setup.sh installs python3")
+    return()
+  endif()
+  set(stamp ${CMAKE_BINARY_DIR}/unity/unity_check.stamp)
+  add_custom_command(OUTPUT ${stamp}
+    COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/cmake/unity_check.py
+      ${PROJECT_SOURCE_DIR} ${stamp} ${units}
+    DEPENDS ${PROJECT_SOURCE_DIR}/cmake/unity_check.py ${units} ${sources}
+    COMMENT "Checking the unity batches for names their files would share (cmake/unity_check.py)"
+    VERBATIM)
+  add_custom_target(mbstream_unity_check ALL DEPENDS ${stamp})
+  foreach(target IN LISTS targets)
+    add_dependencies(${target} mbstream_unity_check)
+  endforeach()
 endfunction()
 
 # Batches every target defined in DIRECTORY and below (called once, at the end of the top-level
-# CMakeLists.txt, when every target has its sources).
+# CMakeLists.txt, when every target has its sources), then checks the batches.
 function(mbstream_unity_directory DIRECTORY)
   if(NOT MBSTREAM_UNITY_BUILD)
     return()
   endif()
+  mbstream_unity_walk(${DIRECTORY})
+  mbstream_unity_check()
+endfunction()
+
+function(mbstream_unity_walk DIRECTORY)
   if(NOT DEFINED MBSTREAM_UNITY_ALONE)
     # An edit of the list configures again.
     set_property(DIRECTORY ${PROJECT_SOURCE_DIR} APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
@@ -109,6 +154,6 @@ function(mbstream_unity_directory DIRECTORY)
   endforeach()
   get_property(subdirectories DIRECTORY ${DIRECTORY} PROPERTY SUBDIRECTORIES)
   foreach(subdirectory IN LISTS subdirectories)
-    mbstream_unity_directory(${subdirectory})
+    mbstream_unity_walk(${subdirectory})
   endforeach()
 endfunction()

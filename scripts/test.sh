@@ -144,10 +144,17 @@ TSAN_EXES=(service_test runs_test cluster_e2e_test)
 tsan_build() {
   configure build-tsan "${CLANG[@]}" -DMBSTREAM_SANITIZE=thread -DMBSTREAM_BUILD_BENCH=OFF
   local available targets=()
-  available=$(cmake --build build-tsan --target help | sed -n 's/^\.\.\. \([^ ]*\).*/\1/p')
+  # `help` lists targets as "... NAME" (Makefiles) or "NAME: phony" (Ninja); a list read
+  # wrongly was empty, and the stage then built the whole TSan tree (fixed 2026-12-02).
+  available=$(cmake --build build-tsan --target help |
+    sed -n -e 's/^\.\.\. \([^ ]*\).*/\1/p' -e 's/^\([A-Za-z0-9_.+-]*\): .*/\1/p')
   for t in "${TSAN_EXES[@]}"; do
     if grep -qx "$t" <<<"$available"; then targets+=("$t"); fi
   done
+  if [ ${#targets[@]} -eq 0 ]; then
+    echo "test.sh: none of ${TSAN_EXES[*]} is a target of build-tsan" >&2
+    return 1
+  fi
   build build-tsan "${targets[@]}"
 }
 tsan_ctest() {
