@@ -8,6 +8,10 @@ if ! command -v docker-compose >/dev/null; then
   echo "check_compose: SKIPPED: docker-compose is not installed (scripts/setup.sh installs it)"
   exit 77
 fi
+# The build context is staged (deploy/stage.sh) only before a build: an empty stand-in here.
+context=$(mktemp -d)
+trap 'rm -rf "$context"' EXIT
+export MBSTREAM_DEMO_STAGE=$context
 docker-compose -f "$here/docker-compose.yml" config -q
 services=$(docker-compose -f "$here/docker-compose.yml" config --services | tr '\n' ' ')
 echo "check_compose: OK: deploy/docker-compose.yml is valid ($(docker-compose version --short)); services: $services"

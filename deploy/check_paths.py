@@ -4,9 +4,11 @@
     check_paths.py [REPO_ROOT]
 
 No Docker engine runs on our machines, so this stands in for building the images:
-- deploy/Dockerfile: every COPY source and every repo script a RUN line names exists;
-  every binary the build stage copies from /build/<dir>/ is an add_executable of
-  <dir>/CMakeLists.txt; the stages the compose file asks for exist.
+- deploy/Dockerfile: its build context is what deploy/stage.sh stages: every COPY source is
+  a file stage.sh puts there, from a repo path that exists, or one of the programs stage.sh
+  copies from the build (each an add_executable of its folder's CMakeLists.txt) or the
+  package lists it writes; every repo script a RUN line names exists; the stages the compose
+  file asks for exist.
 - deploy/docker-compose.yml: each service's command starts with a program its image
   installs; every /opt/mbstream path it names maps to a repo path through a COPY (or to
   one a build stage made, COPY --from); every
@@ -85,6 +87,43 @@ def declared_options(program):
     return set(re.findall(r'"(--[a-z][a-z0-9-]*)"', text))
 
 
+# ---- the staged build context (deploy/stage.sh) ------------------------------------------
+with open(os.path.join(DEPLOY, "stage.sh")) as f:
+    stage_script = f.read()
+# Staged path -> repo path, for what stage.sh copies from the checkout.
+STAGED = {"web": "viewer/web", "demo-client.sh": "deploy/demo-client.sh",
+          "models/irb1600": "models/irb1600", "Dockerfile": "deploy/Dockerfile"}
+for staged, source in STAGED.items():
+    check(os.path.exists(repo(source)), f"stage.sh: {source} is not in the repo")
+    check(os.path.basename(source) in stage_script, f"stage.sh does not stage {source} (as {staged})")
+# The programs stage.sh copies from the build: BUILD_DIR/<dir>/<name>.
+staged_programs = {}
+for d, exe in re.findall(r"(?<![\w$/])((?:server|client|viewer)(?:/\w+)*)/(mbstream[\w-]*)", stage_script):
+    staged_programs[exe] = d
+for exe, d in staged_programs.items():
+    cmake = repo(os.path.join(d, "CMakeLists.txt"))
+    ok = os.path.isfile(cmake) and re.search(
+        r"add_executable\(\s*" + re.escape(exe) + r"[\s)]", open(cmake).read())
+    check(bool(ok), f"stage.sh: {d}/{exe}: {d}/CMakeLists.txt has no add_executable({exe})")
+
+
+def staged_source(src):
+    """The repo path a staged COPY source comes from; "" for a build product; None if unstaged."""
+    src = src.rstrip("/")
+    if src in STAGED:
+        return STAGED[src]
+    if src.startswith("bin/") and os.path.basename(src) in staged_programs:
+        return ""
+    if src.endswith(".packages") and f'"$stage/{src}"' in stage_script:
+        return ""
+    return None
+
+
+def default_of(value):
+    """A compose value with ${VAR:-default} or ${VAR-default} substitutions, as defaulted."""
+    return re.sub(r"\$\{\w+:?-([^}]*)\}", r"\1", str(value))
+
+
 # ---- Dockerfile --------------------------------------------------------------------------
 dockerfile = os.path.join(DEPLOY, "Dockerfile")
 with open(dockerfile) as f:
@@ -122,14 +161,18 @@ for line in docker_lines:
                 elif dest.startswith("/opt/mbstream/"):
                     stage["paths"][dest.rstrip("/")] = None  # made by that stage's RUN
                 continue
-            check(os.path.exists(repo(src)), f"Dockerfile: COPY source {src} is not in the repo")
-            if src == ".":
+            source = staged_source(src)
+            check(source is not None, f"Dockerfile: COPY source {src} is not something deploy/stage.sh stages")
+            if source is None:
                 continue
+            check(source == "" or os.path.exists(repo(source)),
+                  f"Dockerfile: COPY source {src} ({source}) is not in the repo")
             target = dest if not dest.endswith("/") else os.path.join(dest, os.path.basename(src))
-            stage["paths"][target.rstrip("/")] = src.rstrip("/")
+            stage["paths"][target.rstrip("/")] = source or None
             if target.startswith("/usr/local/bin/"):
                 stage["programs"].add(os.path.basename(target))
-                check(os.access(repo(src), os.X_OK), f"Dockerfile: {src} is not executable")
+                check(source == "" or os.access(repo(source), os.X_OK),
+                      f"Dockerfile: {src} ({source}) is not executable")
     elif word == "RUN":
         for script in re.findall(r"(?<![\w/])((?:scripts|deploy)/[\w./-]+\.(?:sh|py))", rest):
             check(os.path.isfile(repo(script)), f"Dockerfile: RUN names {script}, not in the repo")
@@ -151,7 +194,7 @@ with open(os.path.join(DEPLOY, "make-secrets.sh")) as f:
     make_secrets = f.read()
 
 for name, spec in (compose.get("secrets") or {}).items():
-    path = spec.get("file", "")
+    path = default_of(spec.get("file", ""))
     check(path.startswith("./secrets/"), f"compose: secret {name} is not under ./secrets/")
     check(re.search(r'"\$out/' + re.escape(os.path.basename(path)) + '"', make_secrets) is not None,
           f"compose: secret {name} ({path}) is not a file make-secrets.sh writes")
@@ -159,10 +202,11 @@ for name, spec in (compose.get("secrets") or {}).items():
 compose_commands = {}  # program -> (options, env)
 for service, spec in compose["services"].items():
     build = spec.get("build") or {}
-    context = os.path.normpath(os.path.join(DEPLOY, build.get("context", ".")))
-    check(context == ROOT, f"compose: {service}: build context is not the repository root")
-    check(os.path.isfile(os.path.join(context, build.get("dockerfile", "Dockerfile"))),
-          f"compose: {service}: no Dockerfile {build.get('dockerfile')}")
+    context = os.path.normpath(os.path.join(DEPLOY, default_of(build.get("context", "."))))
+    check(context == os.path.join(DEPLOY, "stage"),
+          f"compose: {service}: build context is not deploy/stage (what deploy/stage.sh stages)")
+    check(STAGED.get(build.get("dockerfile", "Dockerfile")) == "deploy/Dockerfile",
+          f"compose: {service}: Dockerfile {build.get('dockerfile')} is not the one stage.sh stages")
     target = build.get("target")
     check(target in stages, f"compose: {service}: Dockerfile has no stage {target}")
     st = stages.get(target, {"programs": set(), "paths": {}, "apt": set()})

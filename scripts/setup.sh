@@ -2,7 +2,11 @@
 # Installs every Debian package mbstream needs to build and test (idempotent).
 # Starts from a minimal Debian bookworm with only git; quiet when everything is present.
 # Then builds the optimised SUNDIALS (scripts/build_sundials.sh) unless it is cached already.
+#   scripts/setup.sh --docker   also Debian's Docker daemon and debootstrap (the docker stage of
+#                               scripts/test.sh --ci: deploy/docker-test.sh)
 set -euo pipefail
+DOCKER=0
+[ "${1:-}" = --docker ] && DOCKER=1
 
 PACKAGES=(
   # toolchain
@@ -48,6 +52,12 @@ PACKAGES=(
   curl procps util-linux coreutils
 )
 
+if [ "$DOCKER" = 1 ]; then
+  # The compose demo and the cluster run for real (label docker): a daemon started by hand
+  # (deploy/cluster/start-dockerd.sh), the base image made by debootstrap (make-base-image.sh).
+  PACKAGES+=(docker.io debootstrap)
+fi
+
 # Every command a script or test runs, with the package that provides it: after the install
 # each must be found, so a missing install step fails here, by name, and not in a test.
 COMMANDS=(
@@ -57,6 +67,7 @@ COMMANDS=(
   clang-format:clang-format ccache:ccache cmake:cmake ninja:ninja-build protoc:protobuf-compiler ld.lld:lld
   grpc_cpp_plugin:protobuf-compiler-grpc node:nodejs chromium:chromium
 )
+[ "$DOCKER" = 1 ] && COMMANDS+=(dockerd:docker.io debootstrap:debootstrap)
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
 # Builds mbstream and runs every test: the one command for a fresh Debian machine.
 #   scripts/test.sh            install what is missing, configure, build, run ctest (Release)
-#   scripts/test.sh --ci       the same, then the TSan, ASan+UBSan and fuzz stages (CI runs this):
+#   scripts/test.sh --ci       the same, then the TSan, ASan+UBSan, fuzz and docker stages (CI
+#                              runs this):
 #     --asan    AddressSanitizer + UndefinedBehaviorSanitizer build (clang, build-asan), the
 #               whole suite
 #     --tsan    ThreadSanitizer build (clang, build-tsan) of the service, runs and cluster
 #               tests
 #     --fuzz    the libFuzzer targets, FUZZ_SECONDS each (with --asan: in build-asan, each a
 #               ctest test fuzz.TARGET; alone: fuzz/run.sh in build-fuzz)
+#     --docker  the tests of label docker (the compose demo and the cluster in Docker, built
+#               from the Release tree's programs; Debian's docker.io and debootstrap installed
+#               and a daemon started as needed): never in the Release stage's ctest
 #   Each stage flag alone adds that stage; --no-release skips the Release stage.
 # Environment: BUILD_DIR (default build), JOBS (default 2), CTEST_ARGS (extra ctest flags),
 # FUZZ_SECONDS (default 60), CI_BUDGET_S (with --ci 2700: the stage table says when the run
@@ -17,19 +21,20 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-RELEASE=1 ASAN=0 TSAN=0 FUZZ=0
+RELEASE=1 ASAN=0 TSAN=0 FUZZ=0 DOCKER=0
 while [ $# -gt 0 ]; do
   case "$1" in
     # --ci: every stage (docs/reliability.md, "CI stages"), 30 s per fuzz target.
     # MBSTREAM_CI: a cross-check whose peer library is missing fails instead of skipping
     # (tests/server/loops/simbody_missing.cmake).
-    --ci) TSAN=1 ASAN=1 FUZZ=1 CI_BUDGET_S=${CI_BUDGET_S:-2700} FUZZ_SECONDS=${FUZZ_SECONDS:-30}
+    --ci) TSAN=1 ASAN=1 FUZZ=1 DOCKER=1 CI_BUDGET_S=${CI_BUDGET_S:-2700} FUZZ_SECONDS=${FUZZ_SECONDS:-30}
       export MBSTREAM_CI=1 ;;
     --asan) ASAN=1 ;;
     --tsan) TSAN=1 ;;
     --fuzz) FUZZ=1 ;;
+    --docker) DOCKER=1 ;;
     --no-release) RELEASE=0 ;;
-    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
     *) echo "test.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -101,7 +106,8 @@ run_ctest() {  # run_ctest DIR extra-ctest-args...
 
 if [ "$RELEASE" = 1 ]; then
   stage "release: configure+build" eval 'configure "$BUILD_DIR" && build "$BUILD_DIR"'
-  stage "release: ctest" run_ctest "$BUILD_DIR"
+  # The docker label has a stage of its own (below).
+  stage "release: ctest" run_ctest "$BUILD_DIR" -LE '^docker$'
 fi
 
 # Sanitizer runtime options, inherited by every process a test starts (servers, viewers,
@@ -198,4 +204,25 @@ if [ "$FUZZ" = 1 ]; then
   else
     stage "fuzz: build+run" bash fuzz/run.sh
   fi
+fi
+
+# Docker: the compose demo (deploy/docker-test.sh) and the cluster (deploy/cluster/docker-test.sh)
+# brought up for real from the Release tree's programs, on a debootstrapped base image (made
+# once, then cached by the daemon). A stage of its own: it needs root, Debian's docker.io and
+# debootstrap (setup.sh --docker) and the network for the images' Debian packages.
+# A daemon the stage started (deploy/cluster/start-dockerd.sh) is stopped after it.
+docker_stage() {
+  local status=0 pid
+  bash scripts/setup.sh --docker
+  rm -f /tmp/mbstream-dockerd.log.pid
+  run_ctest "$BUILD_DIR" -L '^docker$' || status=$?
+  if [ -f /tmp/mbstream-dockerd.log.pid ]; then
+    pid=$(cat /tmp/mbstream-dockerd.log.pid)
+    kill "$pid" 2>/dev/null && while kill -0 "$pid" 2>/dev/null; do sleep 0.2; done
+    rm -f /tmp/mbstream-dockerd.log.pid
+  fi
+  return "$status"
+}
+if [ "$DOCKER" = 1 ]; then
+  stage "docker: setup+ctest" docker_stage
 fi

@@ -2,9 +2,10 @@
 # Stages the cluster images' build context in deploy/cluster/stage/ (git-ignored): the three
 # programs from a Release build on this Debian 12 host, stripped, with the Debian packages
 # holding the libraries each loads (deploy/docker/runtime-packages.sh), the IRB 1600 model and
-# the cluster's scripts. Building from these instead of compiling inside Docker (as
-# deploy/Dockerfile does) makes an image build take minutes on a 2-core machine instead of
-# the better part of an hour; the binaries match the image, which is Debian 12 too.
+# the cluster's scripts. Building from these instead of compiling inside Docker (as the
+# demo's deploy/Dockerfile did before deploy/stage.sh) makes an image build take minutes on a
+# 2-core machine instead of the better part of an hour; the binaries match the image, which is
+# Debian 12 too.
 #
 #   deploy/cluster/stage.sh [BUILD_DIR]      (default build/)
 set -euo pipefail

@@ -4,6 +4,9 @@
 # Used by the cluster's docker test (deploy/cluster/docker-test.sh) and by hand.
 #
 #   deploy/cluster/start-dockerd.sh [LOG_FILE]    (default /tmp/mbstream-dockerd.log)
+#
+# The daemon it starts keeps running; its process id is in LOG_FILE.pid (scripts/test.sh's
+# docker stage stops it after the stage).
 set -uo pipefail
 
 log=${1:-/tmp/mbstream-dockerd.log}
@@ -11,6 +14,7 @@ if docker info >/dev/null 2>&1; then echo "dockerd: running"; exit 0; fi
 command -v dockerd >/dev/null || { echo "dockerd: not installed (Debian package docker.io)"; exit 1; }
 [ "$(id -u)" -eq 0 ] || { echo "dockerd: starting it needs root"; exit 1; }
 nohup dockerd >"$log" 2>&1 &
+echo $! >"$log.pid"
 for _ in $(seq 1 100); do
   docker info >/dev/null 2>&1 && { echo "dockerd: running"; exit 0; }
   kill -0 $! 2>/dev/null || break
