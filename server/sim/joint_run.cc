@@ -17,6 +17,24 @@ namespace mbstream {
 
 namespace {
 
+// For a run that failed: the deepest contact of the last evaluation, by pair (the failure
+// path only: it allocates).
+std::string DeepestContactNote(const ContactForces& contact) {
+  const ContactPoint* deepest = nullptr;
+  for (const ContactPoint& c : contact.contacts()) {
+    if (deepest == nullptr || !(c.depth <= deepest->depth)) deepest = &c;
+  }
+  if (deepest == nullptr) return "; no contact at the last evaluation";
+  const std::vector<CollisionGeometry>& g = contact.model().collisions;
+  return FormatString(
+      "; the deepest contact at the last evaluation: '%s' (%s) against '%s' (%s), %g m deep, "
+      "normal force %g N (a stiff contact needs an implicit method, bdf or dirk, or a lower "
+      "contact.stiffness_n_per_m)",
+      g[deepest->geometry_a].link.c_str(), g[deepest->geometry_a].name.c_str(),
+      g[deepest->geometry_b].link.c_str(), g[deepest->geometry_b].name.c_str(), deepest->depth,
+      deepest->normal_force);
+}
+
 // The integration's state as the frame loop drives it. Frames 0 .. prefix_frames - 1 are
 // a prefix's (run_prefix.h), whose integration this run has taken over: their states and
 // work are the prefix's, and the integrator goes on from the last of them.
@@ -40,6 +58,7 @@ class JointSpaceSource : public FrameSource {
       return true;
     }
     if (AdvanceToFrame(integrator_, times, k, y_.data(), stats, "", &budget_->t_stop)) return true;
+    if (ode_.contact() != nullptr) stats->message += DeepestContactNote(*ode_.contact());
     if (stats->status == RunStatus::kTooMuchWork) {
       // The failure path only (it allocates); y is the last good state.
       budget_->eigenvalue = LargestEigenvalueEstimate(ode_, budget_->t_stop, y_.data());
@@ -65,7 +84,8 @@ class JointSpaceSource : public FrameSource {
 
   std::string NonFiniteMessage(double t) const override {
     return "the state became non-finite at t = " + std::to_string(t) +
-           " s; use a smaller step or an implicit method (bdf, dirk)";
+           " s; use a smaller step or an implicit method (bdf, dirk)" +
+           (ode_.contact() != nullptr ? DeepestContactNote(*ode_.contact()) : std::string());
   }
 
  private:

@@ -209,6 +209,28 @@ TEST(ContactChecksTest, ATooSoftContactIsWarnedAbout) {
   }
 }
 
+// A stiff contact (k = 1e9 N/m) that starts 1 mm in: ERK runs until its step budget, and the
+// root finder does not refuse a signed distance of exactly 0 at a root just found (it did:
+// ARK_ILL_INPUT, "Root found at and very near t").
+TEST(ContactChecksTest, AStiffContactRunsToItsBudgetWithoutARootFailure) {
+  const Model model = Scene("ball_on_plane.sdf");
+  RunConfig config = Config(1.0, 0.01);
+  config.method = Method::kErk;
+  config.rtol = 1e-6;
+  config.atol = 1e-9;
+  config.max_steps = 500;
+  config.contact.stiffness = 1e9;
+  config.q0 = Eigen::VectorXd::Zero(model.nq());
+  config.q0(2) = 0.099;
+  config.q0(3) = 1.0;
+  config.drives.resize(static_cast<size_t>(model.nv()));
+  ValidateRun(model, config);
+  const RunResult r = Simulate(model, config);
+  EXPECT_EQ(r.stats.status, RunStatus::kTooMuchWork) << r.stats.message;
+  EXPECT_EQ(r.stats.message.find("ILL_INPUT"), std::string::npos) << r.stats.message;
+  for (size_t k = 0; k < r.q.size(); ++k) ASSERT_TRUE(std::isfinite(r.q[k]));  // no NaN kept
+}
+
 TEST(ContactChecksTest, ContactOffLetsTheBallFallThrough) {
   const Model model = Scene("ball_on_plane.sdf");
   RunConfig config = Config(1.0, 0.1);
