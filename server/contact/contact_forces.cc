@@ -70,7 +70,7 @@ bool Filtered(const ContactSettings& settings, const CollisionGeometry& a,
   return false;
 }
 
-fcl::Transform3d ToFcl(const Pose& X) {
+fcl::Transform3d BroadTransform(const Pose& X) {
   fcl::Transform3d T = fcl::Transform3d::Identity();
   T.linear() = X.R;
   T.translation() = X.p;
@@ -139,8 +139,8 @@ ContactForces::ContactForces(const Model& model, const ContactSettings& settings
       continue;
     }
     others_.push_back(g);
-    auto object =
-        std::make_unique<fcl::CollisionObjectd>(GrownShape(geometries[g].shape), ToFcl(X_WG));
+    auto object = std::make_unique<fcl::CollisionObjectd>(GrownShape(geometries[g].shape),
+                                                          BroadTransform(X_WG));
     object->setUserData(reinterpret_cast<void*>(static_cast<intptr_t>(g)));
     broad_->manager.registerObject(object.get());
     broad_->objects.push_back(std::move(object));
@@ -158,7 +158,7 @@ void ContactForces::UpdatePoses(const Data& data) {
     const CollisionGeometry& geometry = model_.collisions[g];
     if (geometry.body == kBase) continue;
     X_W_[g] = data.X_world[geometry.body] * geometry.X_BG;
-    broad_->objects[k]->setTransform(ToFcl(X_W_[g]));
+    broad_->objects[k]->setTransform(BroadTransform(X_W_[g]));
     broad_->objects[k]->computeAABB();
   }
   for (const int g : planes_) {

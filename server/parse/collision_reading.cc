@@ -27,7 +27,7 @@ namespace ur = urdf_reading;
 
 constexpr const char* kProximity = "drake:proximity_properties";
 
-Pose ToPose(const Eigen::Isometry3d& X) { return Pose{X.linear(), X.translation()}; }
+Pose PoseOf(const Eigen::Isometry3d& X) { return Pose{X.linear(), X.translation()}; }
 
 // A rotation whose z axis is the unit vector n.
 Matrix3d ZAlongNormal(const Vector3d& n) {
@@ -294,7 +294,7 @@ void ReadSdfCollisions(const ur::SdfFile& file, const std::map<std::string, Pose
         Pose X_GS;  // a plane's normal as the shape frame's z
         if (!SdfShape(collision.Geom(), &g, &X_GS, &skipped)) continue;
         ReadSdfSurface(collision, &g);
-        const Pose X_WG = ToPose(
+        const Pose X_WG = PoseOf(
             ur::WorldPose(entry, collision.SemanticPose(), "collision '" + g.name + "'", g.where));
         PlaceOnLink(*model, scoped, frame->second.Inverse() * X_WG * X_GS, &g);
         model->collisions.push_back(std::move(g));

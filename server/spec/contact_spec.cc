@@ -12,7 +12,7 @@ namespace mbstream {
 namespace {
 
 constexpr int kMaxFilterPairs = 10000;
-constexpr size_t kMaxNameBytes = 256;
+constexpr size_t kMaxFilterNameBytes = 256;
 
 double Finite(double value, const std::string& source, const char* field, const char* unit) {
   if (!std::isfinite(value)) {
@@ -28,11 +28,11 @@ const std::string& Name(const std::string& name, const std::string& source, int 
                         const char* side) {
   const bool control = std::any_of(name.begin(), name.end(),
                                    [](char c) { return static_cast<unsigned char>(c) < 0x20; });
-  if (name.empty() || name.size() > kMaxNameBytes || control) {
+  if (name.empty() || name.size() > kMaxFilterNameBytes || control) {
     throw InputError(
         FormatString("%s: contact.collision_filter[%d].%s: give a link or collision "
                      "name of the model (1 to %d bytes, no control characters)",
-                     source.c_str(), k, side, static_cast<int>(kMaxNameBytes)));
+                     source.c_str(), k, side, static_cast<int>(kMaxFilterNameBytes)));
   }
   return name;
 }
