@@ -111,7 +111,7 @@ std::string StatsJson(const RunResult& result, const RunProvenance& provenance, 
   j["summary"] = SummaryJson(s.summary, result.joint_names);
   j["warnings"] = s.warnings;
   j["budget"] = {{"max_steps", s.max_steps}, {"max_cpu_s", s.max_cpu_s}};
-  if (result.contacts.active && result.contacts.keep_records) {  // docs/contact.md
+  if (result.contacts.active) {  // docs/contact.md
     j["contact"] = {{"penetration_max_m", result.contacts.depth_max},
                     {"contacts_peak", result.contacts.count_peak}};
   }
@@ -155,7 +155,7 @@ void WriteResultsDirectory(const RunResult& result, const RunProvenance& provena
   if (!result.has_torques) fs::remove(dir / "torques.csv", error);  // never leave a stale file
   if (!result.has_energy) fs::remove(dir / "energy.csv", error);
   if (result.loop_force_names.empty()) fs::remove(dir / "loop_forces.csv", error);
-  if (result.contacts.active) {
+  if (result.contacts.active && result.contacts.keep_records) {
     WriteContactsCsv(result.contacts, dir / "contacts.csv");
   } else {
     fs::remove(dir / "contacts.csv", error);

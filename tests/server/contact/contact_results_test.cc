@@ -78,6 +78,8 @@ TEST_F(ContactResultsTest, ContactsCsvAndSummaryFromBothWriters) {
   const RunResult streamed = Simulate(model, config, &writer);
   writer.Finish(streamed, {"box_on_plane", "box_on_plane.sdf", "", "", ""});
   EXPECT_EQ(Read(dir_ / "stream" / "contacts.csv"), csv);
+  EXPECT_TRUE(streamed.contacts.active);
+  EXPECT_NE(Read(dir_ / "stream" / "stats.json").find("\"contacts_peak\": 4"), std::string::npos);
 }
 
 TEST_F(ContactResultsTest, NoContactsCsvWithoutGeometry) {
