@@ -66,11 +66,15 @@ stage() {  # stage NAME COMMAND...: runs the command, records its wall and CPU t
   TIMES+=("$(printf '%-28s %6d s wall %7d s CPU' "$name" $((SECONDS - start)) \
     $(($(cpu_seconds) - cpu)))")
 }
+# The docker stage is reported apart: its time (images, the demo and the cluster at real time)
+# is not measured against CI_BUDGET_S, which is the four test stages' target.
+DOCKER_S=0
 report_times() {
-  echo "==== test.sh: stage times (total $SECONDS s wall)"
+  local budgeted=$((SECONDS - DOCKER_S))
+  echo "==== test.sh: stage times (total $SECONDS s wall; without the docker stage $budgeted s)"
   printf '  %s\n' "${TIMES[@]}"
-  if [ "$BUDGET" -gt 0 ] && [ "$SECONDS" -gt "$BUDGET" ]; then
-    echo "==== test.sh: OVER BUDGET: $SECONDS s against CI_BUDGET_S=$BUDGET (docs/reliability.md)"
+  if [ "$BUDGET" -gt 0 ] && [ "$budgeted" -gt "$BUDGET" ]; then
+    echo "==== test.sh: OVER BUDGET: $budgeted s (without the docker stage) against CI_BUDGET_S=$BUDGET (docs/reliability.md)"
   fi
 }
 trap report_times EXIT
@@ -224,5 +228,7 @@ docker_stage() {
   return "$status"
 }
 if [ "$DOCKER" = 1 ]; then
+  docker_start=$SECONDS
   stage "docker: setup+ctest" docker_stage
+  DOCKER_S=$((SECONDS - docker_start))
 fi
