@@ -22,6 +22,21 @@ DriveSet::DriveSet(const Model& model, const std::vector<DriveConfig>& drives) :
       references_[i] = TrajectoryEvaluator(drive.trajectory);
     }
     if (drive.kind == DriveConfig::Kind::kPrescribed) ++num_prescribed_;
+    Held held = Held::kNone;
+    if (drive.kind == DriveConfig::Kind::kExternal) {
+      held = drive.command == DriveConfig::Command::kEffort     ? Held::kEffort
+             : drive.command == DriveConfig::Command::kPosition ? Held::kPosition
+                                                                : Held::kVelocity;
+      external_.push_back(static_cast<int>(i));
+    } else if (drive.kind == DriveConfig::Kind::kPdServo && drive.period > 0.0) {
+      held = Held::kEffort;
+      servos_held_.push_back(static_cast<int>(i));
+    }
+    held_.push_back(held);
+    if (held != Held::kNone) {
+      sampled_.push_back(static_cast<int>(i));
+      if (period_ == 0.0) period_ = drive.period;
+    }
     if (drive.kind != DriveConfig::Kind::kPassive || damping > 0.0) any_work_ = true;
   }
   // The sine terms of ActuatorEfforts, sharing equal arguments. Equal means the same bits,
@@ -55,6 +70,10 @@ DriveSet::DriveSet(const Model& model, const std::vector<DriveConfig>& drives) :
                           ref.amplitude[k] * ref.omega[k]});
       }
     }
+    if (drive.kind == DriveConfig::Kind::kExternal) {  // the held setpoints' PD
+      law.kp = drive.kp;
+      law.kd = drive.kd;
+    }
     law.end_term = static_cast<int>(terms_.size());
     laws_.push_back(law);
   }
@@ -86,12 +105,29 @@ double DriveSet::LawEffort(int joint, double t, double q, double qd, SinCos&& si
       return law.kp * (value - q) + law.kd * (rate - qd);
     case DriveConfig::Kind::kPassive:
     case DriveConfig::Kind::kPrescribed:
+    case DriveConfig::Kind::kExternal:
       return 0.0;
   }
   return 0.0;
 }
 
+double DriveSet::HeldEffort(int joint, double q, double qd, double held) const {
+  const EffortLaw& law = laws_[joint];
+  switch (held_[joint]) {
+    case Held::kEffort:
+      return held;
+    case Held::kPosition:
+      return law.kp * (held - q) - law.kd * qd;
+    case Held::kVelocity:
+      return law.kd * (held - qd);
+    case Held::kNone:
+      break;
+  }
+  return 0.0;
+}
+
 double DriveSet::ActuatorEffort(int joint, double t, double q, double qd) const {
+  if (sampled(joint)) return HeldEffort(joint, q, qd, 0.0);
   return LawEffort(joint, t, q, qd, [this, t](int argument, double* s, double* c) {
     ::sincos(arguments_[argument].omega * t + arguments_[argument].phase, s, c);
   });
@@ -102,6 +138,7 @@ DriveSet::Workspace DriveSet::MakeWorkspace() const {
   workspace.owner = this;
   workspace.sin.assign(arguments_.size(), 0.0);
   workspace.cos.assign(arguments_.size(), 0.0);
+  workspace.held.assign(drives_.size(), 0.0);
   return workspace;
 }
 
@@ -120,6 +157,18 @@ void DriveSet::ActuatorEfforts(double t, const double* q, const double* qd, Work
     *c = cos[argument];
   };
   for (int i = 0; i < size(); ++i) effort[i] = LawEffort(i, t, q[i], qd[i], shared);
+  for (const int i : sampled_) effort[i] = HeldEffort(i, q[i], qd[i], workspace.held[i]);
+}
+
+void DriveSet::SampleServos(double t, const double* q, const double* qd,
+                            Workspace& workspace) const {
+  MBSTREAM_CHECK_MSG(
+      workspace.owner == this,
+      "a DriveSet::Workspace of another DriveSet: make it with this DriveSet's MakeWorkspace()");
+  const auto sin_cos = [this, t](int argument, double* s, double* c) {
+    ::sincos(arguments_[argument].omega * t + arguments_[argument].phase, s, c);
+  };
+  for (const int i : servos_held_) workspace.held[i] = LawEffort(i, t, q[i], qd[i], sin_cos);
 }
 
 std::vector<int> PrescribedJoints(const DriveSet& drives) {

@@ -25,12 +25,22 @@ class DriveSet {
   bool all_prescribed() const { return num_prescribed_ == size(); }
   // True when some drive or damping does work (energy is then not conserved).
   bool any_work() const { return any_work_; }
+  // Sampled drives (zero-order hold over a control period): external ones and pd_servos
+  // with a period. Their effort between control instants comes from the value held in the
+  // Workspace (SampleServos, or the controller's command for an external drive).
+  bool sampled(int joint) const { return held_[joint] != Held::kNone; }
+  bool any_sampled() const { return !sampled_.empty(); }
+  const std::vector<int>& sampled_joints() const { return sampled_; }
+  const std::vector<int>& external_joints() const { return external_; }
+  // s, the control period of the sampled drives (validation makes them share one); 0: none.
+  double control_period() const { return period_; }
 
   // Reference motion of a prescribed or servo joint at time t (s).
   TrajectoryPoint Reference(int joint, double t) const { return references_[joint].At(t); }
 
   // Effort of the actuator of a non-prescribed joint at (t, q, qd): the torque law or the
-  // servo law, zero for passive joints (N*m or N). Damping is not included.
+  // servo law, zero for passive joints (N*m or N). Damping is not included. A sampled joint's
+  // with a held value of 0 (its slopes in q and qd are the held law's).
   double ActuatorEffort(int joint, double t, double q, double qd) const;
 
   // Scratch of ActuatorEfforts: sin and cos of each distinct sine argument at one time. The
@@ -39,6 +49,9 @@ class DriveSet {
   struct Workspace {
     const DriveSet* owner = nullptr;
     std::vector<double> sin, cos;
+    // Per joint, a sampled drive's held value since the last control instant: a sampled
+    // servo's effort or an external drive's command (N*m or N, rad or m, rad/s or m/s).
+    std::vector<double> held;
   };
   Workspace MakeWorkspace() const;  // allocates: once per run
 
@@ -49,6 +62,9 @@ class DriveSet {
   // call, however many joints share it. Allocates nothing.
   void ActuatorEfforts(double t, const double* q, const double* qd, Workspace& workspace,
                        double* effort) const;
+  // At a control instant t: each sampled pd_servo's law at (t, q, qd) into workspace.held,
+  // held until the next instant. Allocates nothing.
+  void SampleServos(double t, const double* q, const double* qd, Workspace& workspace) const;
   // How many sincos ActuatorEfforts evaluates: the distinct (omega, phase) pairs.
   int num_sine_arguments() const { return static_cast<int>(arguments_.size()); }
 
@@ -84,6 +100,14 @@ class DriveSet {
   std::vector<SineArgument> arguments_;
   std::vector<SineTerm> terms_;
   std::vector<EffortLaw> laws_;  // one per joint
+  // How a joint's effort follows from its held value (kNone: not sampled).
+  enum class Held { kNone, kEffort, kPosition, kVelocity };
+  double HeldEffort(int joint, double q, double qd, double held) const;
+  std::vector<Held> held_;        // one per joint
+  std::vector<int> sampled_;      // the sampled joints, in joint order
+  std::vector<int> external_;     // the external joints, in joint order
+  std::vector<int> servos_held_;  // the sampled pd_servos, in joint order
+  double period_ = 0.0;
   int num_prescribed_ = 0;
   bool any_work_ = false;
 };

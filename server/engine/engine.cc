@@ -11,21 +11,23 @@ namespace mbstream {
 namespace {
 
 RunResult Dispatch(const Model& model, const std::vector<LoopClosure>& loops,
-                   const RunConfig& config, FrameSink* sink, const std::atomic<bool>* cancel) {
+                   const RunConfig& config, FrameSink* sink, const std::atomic<bool>* cancel,
+                   ControlLaw* control) {
   if (!loops.empty()) {
     if (config.target.any()) return RunLoopsWithTarget(model, loops, config, sink, cancel);
     return SimulateLoops(model, loops, config, sink, cancel);
   }
   if (config.target.any()) return RunWithTarget(model, config, sink, cancel);
-  return SimulateTree(model, config, sink, cancel);
+  return SimulateTree(model, config, sink, cancel, {}, control);
 }
 
 }  // namespace
 
 RunResult Simulate(const Model& model, const std::vector<LoopClosure>& loops,
-                   const RunConfig& config, FrameSink* sink, const std::atomic<bool>* cancel) {
+                   const RunConfig& config, FrameSink* sink, const std::atomic<bool>* cancel,
+                   ControlLaw* control) {
   SummarySink summary(config, sink);
-  RunResult result = Dispatch(model, loops, config, &summary, cancel);
+  RunResult result = Dispatch(model, loops, config, &summary, cancel, control);
   summary.Finish(&result);
   return result;
 }

@@ -11,6 +11,7 @@
 
 #include "server/model/loop_closure.h"
 #include "server/model/model.h"
+#include "server/sim/control_law.h"
 #include "server/sim/run_config.h"
 #include "server/sim/run_result.h"
 
@@ -23,10 +24,11 @@ namespace mbstream {
 // again; what it relies on it CHECKs (InternalError: a bug of the caller). Numerical failure is
 // a status, not an exception: the result then holds every frame up to the last good time.
 // `sink`, if given, sees each frame as it is produced; `cancel`, if given and set, stops the
-// run (status kCancelled).
+// run (status kCancelled). `control` commands the run's external drives at each control
+// instant (control_law.h; a run with external drives and no controller fails).
 RunResult Simulate(const Model& model, const std::vector<LoopClosure>& loops,
                    const RunConfig& config, FrameSink* sink = nullptr,
-                   const std::atomic<bool>* cancel = nullptr);
+                   const std::atomic<bool>* cancel = nullptr, ControlLaw* control = nullptr);
 
 // The same for a tree (no loops).
 RunResult Simulate(const Model& model, const RunConfig& config, FrameSink* sink = nullptr,

@@ -114,6 +114,7 @@ void CheckDrives(const Model& model, const RunConfig& config, std::vector<InputW
         }
         break;
       case DriveConfig::Kind::kPassive:
+      case DriveConfig::Kind::kExternal:
         break;
     }
   }

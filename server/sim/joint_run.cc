@@ -12,6 +12,7 @@
 #include "server/sim/joint_integration.h"
 #include "server/sim/joint_space_ode.h"
 #include "server/sim/run_prefix.h"
+#include "server/sim/sampled_joint_run.h"
 
 namespace mbstream {
 
@@ -143,7 +144,12 @@ std::shared_ptr<JointIntegration> TakeOverPrefix(const RunPrefix* prefix,
 void RunJointSpace(const Model& model, const RunConfig& config, const PilotLink& pilot,
                    const DriveSet& drives, const std::vector<double>& times,
                    FrameRecorder& recorder, RunResult& result, FrameSink* sink,
-                   const std::atomic<bool>* cancel, BudgetTracking* budget) {
+                   const std::atomic<bool>* cancel, BudgetTracking* budget, ControlLaw* control) {
+  if (drives.any_sampled()) {
+    RunSampledJointSpace(model, config, drives, times, recorder, result, sink, cancel, budget,
+                         control);
+    return;
+  }
   const int n = model.num_dofs();
   // The work of drives and damping as a state of the ODE whenever there is any: a trapezoid
   // rule over the output frames would measure the output interval, not the integrator. The

@@ -109,6 +109,8 @@ class JointSpaceOde : public OdeSystem, public ManifoldProjection {
   const ContactForces* contact() const { return contact_; }
   // The generalised contact forces of the last evaluation (zeros without contact).
   const Eigen::VectorXd& contact_force() const { return contact_tau_; }
+  // The drives' scratch, with the sampled drives' held values (DriveSet::Workspace::held).
+  DriveSet::Workspace& drive_workspace() { return drive_workspace_; }
 
  private:
   void EvaluateState(double t, const double* y);      // q_, qd_, reference qdd_, efforts, tau_

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "common/check.h"
 #include "common/format.h"
 #include "server/drives/drive_set.h"
 #include "server/dynamics/rnea.h"
@@ -394,6 +395,11 @@ FormulationChoice ValidateLoopRun(const Model& model, const std::vector<LoopClos
                    "a mechanism with closed loops does not simulate free bodies yet; "
                    "attach the link to the world or open the loop");
   const DriveSet drives(model, config.drives);
+  if (drives.any_sampled()) {
+    throw InputError(
+        "a mechanism with closed loops does not run sampled drives (external, pd_servo with "
+        "period_s) yet; give continuous drives or open the loop");
+  }
   const LoopPlan plan = PlanLoopRun(model, loops, config, drives);
   ValidateRun(model, TreeConfigOf(config), drives);
   return plan.choice;

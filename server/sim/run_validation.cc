@@ -145,11 +145,35 @@ FormulationChoice ValidateRun(const Model& model, const RunConfig& config) {
   return ValidateRun(model, config, DriveSet(model, config.drives));
 }
 
+void CheckSampledDrives(const Model& model, const RunConfig& config, const DriveSet& drives,
+                        const FormulationChoice& choice) {
+  if (!drives.any_sampled()) return;
+  const int joint = drives.sampled_joints().front();
+  const std::string what =
+      "joint '" + model.bodies[static_cast<size_t>(model.BodyOfVelocity(joint))].joint.name +
+      "' has a sampled drive (" +
+      (drives.kind(joint) == DriveConfig::Kind::kExternal ? "external" : "pd_servo with period_s") +
+      ")";
+  if (choice.formulation != Formulation::kJoint) {
+    throw InputError(what + ", which formulation " + FormulationName(choice.formulation) +
+                     " does not run: give formulation joint (or auto)");
+  }
+  if (config.target.any()) {
+    throw InputError(what +
+                     ", and an accuracy target does not choose methods for sampled "
+                     "drives yet: drop the target and give method and tolerances");
+  }
+  if (model.has_free_bodies()) {
+    RefuseFreeBodies(model, what + ": sampled drives do not run with free bodies yet");
+  }
+}
+
 FormulationChoice ValidateRun(const Model& model, const RunConfig& config, const DriveSet& drives) {
   CheckShape(model, config);
   CheckFreeBodies(model, config);
   CheckContact(model, config);
   const FormulationChoice choice = ChooseFormulation(config, drives);
+  CheckSampledDrives(model, config, drives, choice);
   if (config.target.any() && IsBodyFormulation(choice.formulation)) {
     throw InputError(std::string("an accuracy target is met with formulation auto, kinematic or "
                                  "joint, not ") +

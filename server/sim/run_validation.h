@@ -41,6 +41,12 @@ void RefuseFreeBodies(const Model& model, const std::string& what);
 // bodies in ValidateLoopRun.
 void CheckFreeBodies(const Model& model, const RunConfig& config);
 
+// A run with sampled drives (external, pd_servo with a period: drive_set.h): refuses what
+// does not run them yet (formulations other than joint, accuracy targets, free bodies).
+// ValidateRun calls it; closed loops refuse sampled drives in ValidateLoopRun.
+void CheckSampledDrives(const Model& model, const RunConfig& config, const DriveSet& drives,
+                        const FormulationChoice& choice);
+
 // ValidatedFormulation's CHECKs alone.
 void CheckValidatedShape(const Model& model, const RunConfig& config);
 

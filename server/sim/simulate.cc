@@ -81,7 +81,8 @@ long OutputFrameCount(double duration, double interval) {
 }
 
 RunResult SimulateTree(const Model& model_in, const RunConfig& config_in, FrameSink* sink,
-                       const std::atomic<bool>* cancel, const PilotLink& pilot) {
+                       const std::atomic<bool>* cancel, const PilotLink& pilot,
+                       ControlLaw* control) {
   const double cpu0 = ThreadCpuSeconds();
   const auto wall0 = std::chrono::steady_clock::now();
   Model model = model_in;  // the run's own copy, with the run's gravity
@@ -125,7 +126,8 @@ RunResult SimulateTree(const Model& model_in, const RunConfig& config_in, FrameS
     RunBody(model, config, choice.formulation, drives, times, recorder, result, sink, cancel,
             &budget);
   } else {
-    RunJointSpace(model, config, pilot, drives, times, recorder, result, sink, cancel, &budget);
+    RunJointSpace(model, config, pilot, drives, times, recorder, result, sink, cancel, &budget,
+                  control);
   }
   result.stats.cpu_s = ThreadCpuSeconds() - cpu0;
   result.stats.wall_s =

@@ -220,6 +220,26 @@ Trajectory ToTrajectory(const v1::Trajectory& spec, const std::string& field,
   check.Fail(field, "missing; give a sum_of_sines or a spline");
 }
 
+constexpr double kMinControlPeriod = 1e-6;      // s: 1 MHz, beyond any controller
+constexpr double kMaxControlTimeout = 86400.0;  // s: a day
+
+// A sampled drive's period_s (s): > 0 (>= 0 when `zero_allowed`: a continuous law).
+double ControlPeriod(double period, const std::string& field, bool zero_allowed,
+                     const Checker& check) {
+  if (zero_allowed) {
+    check.NonNegative(period, field, "s", "give the control period, or 0 for a continuous law");
+    if (period == 0.0) return 0.0;
+  } else {
+    check.Positive(period, field, "s", "give the control period h, e.g. 0.001 for 1 kHz");
+  }
+  if (period < kMinControlPeriod) {
+    check.Fail(field, "is " + Format(period) + " s, below " + Format(kMinControlPeriod) +
+                          " s; give a control period of at least " + Format(kMinControlPeriod) +
+                          " s");
+  }
+  return period;
+}
+
 DriveConfig ToDrive(const v1::Drive& spec, const std::string& field, const Checker& check) {
   DriveConfig drive;
   switch (spec.kind_case()) {
@@ -251,12 +271,46 @@ DriveConfig ToDrive(const v1::Drive& spec, const std::string& field, const Check
       drive.kd = check.NonNegative(servo.kd(), where + ".kd", "N*m*s/rad or N*s/m",
                                    "give a non-negative damping gain");
       drive.trajectory = ToTrajectory(servo.trajectory(), where + ".trajectory", check);
+      drive.period = ControlPeriod(servo.period_s(), where + ".period_s", true, check);
+      return drive;
+    }
+    case v1::Drive::kExternal: {
+      const std::string where = field + ".external";
+      const v1::Drive::External& external = spec.external();
+      drive.kind = DriveConfig::Kind::kExternal;
+      const std::string& command = check.Name(external.command(), where + ".command");
+      if (command.empty() || command == "effort") {
+        drive.command = DriveConfig::Command::kEffort;
+      } else if (command == "position") {
+        drive.command = DriveConfig::Command::kPosition;
+      } else if (command == "velocity") {
+        drive.command = DriveConfig::Command::kVelocity;
+      } else {
+        check.Fail(where + ".command",
+                   "is " + Quote(command) + "; give effort, position or velocity");
+      }
+      drive.period = ControlPeriod(external.period_s(), where + ".period_s", false, check);
+      drive.kp = check.NonNegative(external.kp(), where + ".kp", "N*m/rad or N/m",
+                                   "give a non-negative stiffness gain");
+      drive.kd = check.NonNegative(external.kd(), where + ".kd", "N*m*s/rad or N*s/m",
+                                   "give a non-negative damping gain");
+      if (drive.command != DriveConfig::Command::kPosition && drive.kp != 0.0) {
+        check.Fail(where + ".kp", "is " + Format(drive.kp) + " but command " +
+                                      (command.empty() ? std::string("effort") : command) +
+                                      " has no position error to act on; give kp only with "
+                                      "command position");
+      }
+      if (drive.command == DriveConfig::Command::kEffort && drive.kd != 0.0) {
+        check.Fail(where + ".kd", "is " + Format(drive.kd) +
+                                      " but command effort applies the command as is; give kd "
+                                      "only with command position or velocity");
+      }
       return drive;
     }
     case v1::Drive::KIND_NOT_SET:
       break;
   }
-  check.Fail(field, "no drive kind; give one of prescribed, torque, pd_servo or passive");
+  check.Fail(field, "no drive kind; give one of prescribed, torque, pd_servo, external or passive");
 }
 
 std::vector<DriveConfig> ToDrives(const v1::RunSpec& spec,
@@ -308,6 +362,24 @@ std::vector<DriveConfig> ToDrives(const v1::RunSpec& spec,
     }
     driven_by[joint] = i;
     drives[joint] = ToDrive(drive, field, check);
+  }
+  // One control period per run: the sampled drives share their control instants.
+  std::optional<int> first_sampled;
+  for (int j = 0; j < n; ++j) {
+    if (drives[j].period <= 0.0) continue;
+    if (!first_sampled) {
+      first_sampled = j;
+    } else if (drives[j].period != drives[*first_sampled].period) {
+      const auto kind = [&](int joint) {
+        return std::string(drives[joint].kind == DriveConfig::Kind::kExternal ? "external"
+                                                                              : "pd_servo");
+      };
+      check.Fail("drives[" + std::to_string(*driven_by[j]) + "]." + kind(j) + ".period_s",
+                 "is " + Format(drives[j].period) + " s but drives[" +
+                     std::to_string(*driven_by[*first_sampled]) + "]." + kind(*first_sampled) +
+                     ".period_s is " + Format(drives[*first_sampled].period) +
+                     " s; give every sampled drive of a run the same control period");
+    }
   }
   return drives;
 }
@@ -497,6 +569,15 @@ void CheckServerFields(const v1::RunSpec& spec, const Checker& check) {
   if (spec.retries() < 0 || spec.retries() > kMaxRetries) {
     check.Fail("retries", "is " + std::to_string(spec.retries()) + "; give 0 (never run again) " +
                               "to " + std::to_string(kMaxRetries) + " attempts after the first");
+  }
+  if (spec.has_control_timeout_s()) {
+    check.Positive(spec.control_timeout_s(), "control_timeout_s", "s",
+                   "give how long the run waits for its controller, e.g. 10");
+    if (spec.control_timeout_s() > kMaxControlTimeout) {
+      check.Fail("control_timeout_s", "is " + Format(spec.control_timeout_s()) + " s, more than " +
+                                          Format(kMaxControlTimeout) +
+                                          " s (a day); give a shorter wait");
+    }
   }
   if (spec.max_output_frames() < 0) {
     check.Fail("max_output_frames", "must be >= 0, got " +

@@ -55,6 +55,17 @@ void ToDriveSpec(const DriveConfig& drive, v1::Drive* spec) {
       servo->set_kp(drive.kp);
       servo->set_kd(drive.kd);
       ToTrajectorySpec(drive.trajectory, servo->mutable_trajectory());
+      servo->set_period_s(drive.period);
+      return;
+    }
+    case DriveConfig::Kind::kExternal: {
+      v1::Drive::External* external = spec->mutable_external();
+      external->set_command(drive.command == DriveConfig::Command::kEffort     ? "effort"
+                            : drive.command == DriveConfig::Command::kPosition ? "position"
+                                                                               : "velocity");
+      external->set_period_s(drive.period);
+      external->set_kp(drive.kp);
+      external->set_kd(drive.kd);
       return;
     }
   }

@@ -1,0 +1,191 @@
+#include "server/sim/sampled_joint_run.h"
+
+#include <algorithm>
+#include <memory>
+#include <string>
+
+#include "server/integrate/stiffness_estimate.h"
+#include "server/kinematics/forward_kinematics.h"
+#include "server/sim/frame_loop.h"
+#include "server/sim/initial_state.h"
+#include "server/sim/integrator_options_from.h"
+#include "server/sim/joint_space_ode.h"
+#include "server/sim/run_stop.h"
+
+namespace mbstream {
+
+namespace {
+
+void AddStats(const SolverStats& more, SolverStats* total) {
+  total->steps += more.steps;
+  total->rhs_evals += more.rhs_evals;
+  total->jac_evals += more.jac_evals;
+  total->nonlinear_iterations += more.nonlinear_iterations;
+  total->error_test_failures += more.error_test_failures;
+  total->convergence_failures += more.convergence_failures;
+  total->last_step = more.last_step;
+  total->last_order = more.last_order;
+}
+
+class SampledJointSource : public FrameSource {
+ public:
+  SampledJointSource(const Model& model, const RunConfig& config, const DriveSet& drives,
+                     bool track_work, bool need_effort, const IntegratorOptions& options,
+                     BudgetTracking* budget, ControlLaw* control)
+      : model_(model),
+        drives_(drives),
+        ode_(model, drives, track_work),
+        y_(InitialJointState(config, drives, model)),
+        q_(y_.head(model.nq())),
+        qd_(y_.tail(model.nv())),
+        options_(options),
+        period_(drives.control_period()),
+        epsilon_(1e-9 * drives.control_period()),
+        duration_(config.duration),
+        need_effort_(need_effort),
+        budget_(budget),
+        control_(control),
+        kinematics_(model),
+        commands_(drives.external_joints().size(), 0.0) {}
+
+  bool Advance(const std::vector<double>& times, size_t k, RunStats* stats) override {
+    const double target = times[k];
+    for (;;) {
+      double at = static_cast<double>(step_) * period_;
+      if (at > target + epsilon_ || at >= duration_ - epsilon_) break;
+      if (at >= target - epsilon_) at = target;  // an instant on a frame: the frame's time
+      if (at > t_ && !AdvanceTo(at, stats)) return false;
+      if (!ControlInstant(at, stats)) return false;
+      ++step_;
+    }
+    if (target > t_ && !AdvanceTo(target, stats)) return false;
+    if (k + 1 == times.size() && control_ != nullptr) control_->Final(State(target));
+    return true;
+  }
+
+  bool Record(double t, FrameRecorder& recorder) override {
+    if (ode_.num_quadratures() > 0) {
+      double work = 0.0;
+      if (integrator_ != nullptr && integrator_->Quadratures(&work)) work_ = work_base_ + work;
+      recorder.SetWork(work_);
+    }
+    const bool finite = ode_.EvaluateOutputs(t, y_.data(), need_effort_);
+    return finite &&
+           recorder.Record(t, ode_.q(), ode_.qd(), need_effort_ ? &ode_.drive_effort() : nullptr);
+  }
+
+  std::string NonFiniteMessage(double t) const override {
+    return "the state became non-finite at t = " + std::to_string(t) +
+           " s; use a smaller step or an implicit method (bdf, dirk), or check the commands";
+  }
+
+  SolverStats stats() const {
+    SolverStats total = done_;
+    if (integrator_ != nullptr) AddStats(integrator_->stats(), &total);
+    return total;
+  }
+  const char* integrator_name() const { return integrator_ != nullptr ? integrator_->name() : ""; }
+  const JointSpaceOde& ode() const { return ode_; }
+
+ private:
+  bool AdvanceTo(double t, RunStats* stats) {
+    const AdvanceResult advance = integrator_->AdvanceTo(t, y_.data());
+    if (advance.status != IntegratorStatus::kOk) {
+      StopRun(stats, ToRunStatus(advance.status), advance.message);
+      budget_->t_stop = advance.t;
+      if (stats->status == RunStatus::kTooMuchWork) {  // the failure path only (it allocates)
+        budget_->eigenvalue = LargestEigenvalueEstimate(ode_, advance.t, y_.data());
+      }
+      return false;
+    }
+    t_ = t;
+    return true;
+  }
+
+  ControlState State(double t) {
+    q_ = y_.head(model_.nq());
+    qd_ = y_.tail(model_.nv());
+    ControlState state;
+    state.step = step_;
+    state.t = t;
+    state.q = &q_;
+    state.qd = &qd_;
+    if (model_.tcp_frame >= 0) {
+      BodyKinematics(model_, kinematics_, q_);
+      state.tcp = FramePositionFromBodies(model_, kinematics_, model_.tcp_frame);
+    }
+    return state;
+  }
+
+  // Control instant t: the sampled servos' laws and the controller's commands held from now
+  // on, the integrator made afresh at (t, y) up to the next instant.
+  bool ControlInstant(double t, RunStats* stats) {
+    if (integrator_ != nullptr) {
+      double work = 0.0;
+      if (integrator_->Quadratures(&work)) work_base_ += work;
+      AddStats(integrator_->stats(), &done_);
+    }
+    DriveSet::Workspace& held = ode_.drive_workspace();
+    const int n = model_.nv();
+    drives_.SampleServos(t, y_.data(), y_.data() + n, held);
+    const std::vector<int>& external = drives_.external_joints();
+    if (!external.empty()) {
+      if (control_ == nullptr) {
+        StopRun(stats, RunStatus::kFailed,
+                "the run has external drives and no controller: run it on a server and "
+                "command it over a Control stream");
+        return false;
+      }
+      if (!control_->Command(State(t), commands_.data(), stats)) return false;
+      for (size_t j = 0; j < external.size(); ++j) held.held[external[j]] = commands_[j];
+    }
+    IntegratorOptions options = options_;
+    const double next = static_cast<double>(step_ + 1) * period_ + epsilon_;
+    options.t_final = std::min(options_.t_final, next);
+    options.max_steps = std::max(1L, options_.max_steps - done_.steps);
+    integrator_ = MakeIntegrator(ode_, t, y_.data(), options);
+    return true;
+  }
+
+  const Model& model_;
+  const DriveSet& drives_;
+  JointSpaceOde ode_;
+  Eigen::VectorXd y_;       // [q; qd] at t_
+  Eigen::VectorXd q_, qd_;  // the controller's view of y_
+  const IntegratorOptions options_;
+  const double period_;    // s, h
+  const double epsilon_;   // s, an instant this near a frame is at the frame
+  const double duration_;  // s
+  const bool need_effort_;
+  BudgetTracking* budget_;
+  ControlLaw* control_;  // null: no controller
+  Data kinematics_;      // the TCP at control instants
+  std::vector<double> commands_;
+  std::unique_ptr<Integrator> integrator_;  // the current period's
+  SolverStats done_;                        // the statistics of the periods before the current one
+  double t_ = 0.0;                          // s, the time of y_
+  long step_ = 0;                           // the next control instant's k
+  double work_base_ = 0.0;                  // J, the work up to the current period's start
+  double work_ = 0.0;                       // J, at the last frame
+};
+
+}  // namespace
+
+void RunSampledJointSpace(const Model& model, const RunConfig& config, const DriveSet& drives,
+                          const std::vector<double>& times, FrameRecorder& recorder,
+                          RunResult& result, FrameSink* sink, const std::atomic<bool>* cancel,
+                          BudgetTracking* budget, ControlLaw* control) {
+  const bool track_work = result.has_energy && drives.any_work();
+  const IntegratorOptions options =
+      IntegratorOptionsFrom(config, times.back(), budget->cpu_deadline_s);
+  if (track_work) recorder.UseIntegratedWork();
+  SampledJointSource source(model, config, drives, track_work,
+                            result.has_torques || result.has_energy, options, budget, control);
+  result.stats.equations = source.ode().size();
+  result.stats.jacobian_nnz = source.ode().JacobianNonZeros();
+  RunFrames(times, source, recorder, result, sink, cancel);
+  result.stats.integrator = source.integrator_name();
+  result.stats.solver = source.stats();
+}
+
+}  // namespace mbstream
