@@ -17,6 +17,17 @@ Run::Run(const v1::RunInfo& info, const RunConfig& config,
       spool_(info.id(), info.expected_frames()),
       probes_("run " + info.id(), clock, probe_options) {
   MBSTREAM_CHECK(model_ != nullptr);
+  const auto external = std::count_if(config_.drives.begin(), config_.drives.end(), [](auto& d) {
+    return d.kind == DriveConfig::Kind::kExternal;
+  });
+  if (external > 0) {
+    const v1::RunSpec& spec = info.spec();
+    control_ = std::make_shared<ControlChannel>(
+        static_cast<int>(external),
+        std::chrono::duration<double>(spec.has_control_timeout_s() ? spec.control_timeout_s()
+                                                                   : kDefaultControlTimeoutS),
+        spec.hold_last_command(), &cancel);
+  }
 }
 
 v1::RunInfo Run::Info() const {

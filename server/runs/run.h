@@ -10,6 +10,7 @@
 
 #include "mbstream/v1/frame.pb.h"
 #include "mbstream/v1/run.pb.h"
+#include "server/runs/control_channel.h"
 #include "server/runs/frame_spool.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/probe_recorder.h"
@@ -67,6 +68,10 @@ class Run {
   // viewer (a Subscribe stream) has attached to this run. Returns at once otherwise.
   void WaitForProbes(int64_t seq, std::chrono::duration<double> timeout);
 
+  // The channel to the run's controller (control_channel.h): a run with external drives has
+  // one, made with the run; null otherwise.
+  const std::shared_ptr<ControlChannel>& control() const { return control_; }
+
   std::atomic<bool> cancel{false};       // CancelRun or shutdown: stop the integration
   std::atomic<bool> interrupted{false};  // the server is shutting down
   // The store shows this replica's lease on the run taken over (it was reaped after the
@@ -88,6 +93,7 @@ class Run {
   std::vector<std::shared_ptr<Subscription>> subscribers_;
   int viewers_ = 0;  // Subscribe streams ever attached
   bool ended_ = false;
+  std::shared_ptr<ControlChannel> control_;  // after `cancel`, which it reads
 };
 
 }  // namespace mbstream

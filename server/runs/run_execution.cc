@@ -134,7 +134,8 @@ RunManager::Outcome RunManager::Execute(const std::shared_ptr<Run>& run) {
   });
   PublishingSink sink(run.get(), store_, clock_, limits_.frame_flush_s, holder);
   const CompiledModel& model = run->model();
-  const RunResult result = Simulate(model.model, model.loops, run->config(), &sink, &run->cancel);
+  const RunResult result =
+      Simulate(model.model, model.loops, run->config(), &sink, &run->cancel, run->control().get());
   const RunStats& stats = result.stats;
   outcome.state = RunStateFromStatus(stats.status);
   outcome.message = stats.message;
@@ -234,6 +235,7 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
   run->UpdateInfo([&](v1::RunInfo& live) { live = info; });
   queue_.Release(run);
   run->End();
+  if (run->control()) run->control()->Close();  // its stream sends `ended`
   NoteStateChange();
   info = run->Info();
   spdlog::info("run {} {}: {} frames to t = {} s, {} steps, cpu {:.3f} ms, wall {:.3f} ms{}{}",

@@ -197,7 +197,13 @@ std::vector<RunConfig> RunManager::PrepareRuns(
 }
 
 v1::RunInfo RunManager::Cancel(const std::string& run_id) {
-  if (std::optional<v1::RunInfo> cancelled = queue_.Cancel(run_id)) return *cancelled;
+  if (std::optional<v1::RunInfo> cancelled = queue_.Cancel(run_id)) {
+    // A worker waiting for the run's controller looks at the cancel flag now.
+    if (const std::shared_ptr<Run> run = FindActive(run_id); run && run->control()) {
+      run->control()->Wake();
+    }
+    return *cancelled;
+  }
   v1::RunInfo info = Get(run_id);
   if (!IsFinalState(info.state())) {
     throw RequestError(RequestErrorKind::kFailedPrecondition,

@@ -121,6 +121,20 @@ class RunManager {
     free_space_source_ = std::move(source);
     data_dir_ = std::move(data_dir);
   }
+  // A Control stream attaches to run `run_id` (run_manager_control.cc): a run queued or
+  // integrating here with external drives and no controller yet, started by `caller` (or
+  // any run for an admin). Returns its channel, its info and the run's joints; `denied` says
+  // why not when the caller may not (another token's run, or controlled by another stream
+  // already: PERMISSION_DENIED). Throws RequestError: kNotFound, kFailedPrecondition (ended,
+  // elsewhere, no external drives).
+  struct ControlAttachment {
+    std::shared_ptr<ControlChannel> channel;  // null when denied
+    std::string denied;
+    v1::RunInfo info;
+    std::vector<std::string> joint_names, external_joints, commands;
+    double period_s = 0.0;
+  };
+  ControlAttachment AttachControl(const std::string& run_id, const std::string& caller, bool admin);
   // Stops a queued or running run (state CANCELLED with the frames so far); an ended run is
   // returned unchanged. Throws RequestError(kNotFound).
   v1::RunInfo Cancel(const std::string& run_id);

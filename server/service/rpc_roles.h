@@ -27,6 +27,7 @@ inline constexpr RpcRole kRpcRoles[] = {
     {"GetResults", Role::kView},     //
     {"WatchRun", Role::kView},       //
     {"Subscribe", Role::kView},      // viewers; their probe reports are checked per stream
+    {"Control", Role::kRun},         // starts (or attaches to) a run and commands it
     {"ListProbeSets", Role::kView},  //
     {"ReplayRun", Role::kRun},       // streams a stored run to every follower
     {"DeleteRuns", Role::kAdmin},    // data of every user

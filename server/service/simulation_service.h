@@ -69,6 +69,9 @@ class SimulationService final
       const v1::WatchRunRequest* request) override;  // watch_call.h
   grpc::ServerBidiReactor<v1::SubscribeRequest, v1::SubscribeEvent>* Subscribe(
       grpc::CallbackServerContext* context) override;  // subscribe_call.h
+  grpc::Status Control(grpc::ServerContext* context,
+                       grpc::ServerReaderWriter<v1::ControlResponse, v1::ControlRequest>* stream)
+      override;  // control_stream.cc
   grpc::Status DeleteRuns(grpc::ServerContext* context, const v1::DeleteRunsRequest* request,
                           v1::DeleteRunsResponse* response) override;  // data_rpcs.cc
   grpc::Status DeleteModel(grpc::ServerContext* context, const v1::DeleteModelRequest* request,
@@ -126,6 +129,19 @@ class SimulationService final
   // `sent_bytes`. export_mcap.cc.
   grpc::Status SendMcap(grpc::ServerContext& context, const v1::ExportMcapRequest& request,
                         grpc::ServerWriter<v1::McapFileChunk>& writer, size_t& sent_bytes);
+
+  // Control's body once admitted (control_stream.cc): the start, then the commands read on
+  // this thread (ReadCommands) while a thread of the stream writes the states (WriteStates).
+  grpc::Status ServeControl(
+      grpc::ServerContext& context,
+      grpc::ServerReaderWriter<v1::ControlResponse, v1::ControlRequest>& stream);
+  void WriteStates(ControlChannel& channel, const std::string& run_id,
+                   const std::atomic<bool>& reading, grpc::ServerContext& context,
+                   grpc::ServerReaderWriter<v1::ControlResponse, v1::ControlRequest>& stream);
+  grpc::Status ReadCommands(
+      ControlChannel& channel, const RunManager::ControlAttachment& attachment,
+      const std::string& run_id,
+      grpc::ServerReaderWriter<v1::ControlResponse, v1::ControlRequest>& stream);
 
   ModelRegistry* models_;
   RunManager* runs_;

@@ -198,6 +198,15 @@ class RpcGateTest : public ServerTest {
            v1::SweepProgress progress;
            return stub().CancelSweep(&context, request, &progress);
          }},
+        {"Control",
+         [&] {
+           auto stream = stub().Control(&context);
+           v1::ControlRequest start;
+           start.mutable_start();
+           stream->Write(start);
+           stream->WritesDone();
+           return finish(std::move(stream), v1::ControlResponse());
+         }},
         {"GetStorage",
          [&] {
            v1::GetStorageResponse response;

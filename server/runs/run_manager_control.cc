@@ -1,0 +1,58 @@
+// RunManager's side of the Control stream (issue 45): a stream attaches to a run with
+// external drives (control_channel.h).
+#include "server/runs/request_error.h"
+#include "server/runs/run_manager.h"
+#include "server/wire/stats_conversion.h"
+
+namespace mbstream {
+
+RunManager::ControlAttachment RunManager::AttachControl(const std::string& run_id,
+                                                        const std::string& caller, bool admin) {
+  ControlAttachment attachment;
+  const std::shared_ptr<Run> run = FindActive(run_id);
+  if (run == nullptr) {
+    const v1::RunInfo info = Get(run_id);  // NOT_FOUND first
+    throw RequestError(
+        RequestErrorKind::kFailedPrecondition,
+        "run " + run_id + " is " + v1::RunState_Name(info.state()) +
+            (IsFinalState(info.state())
+                 ? ": a controller attaches to a queued or running run"
+                 : " on replica " + info.replica() + ": attach to it on that server (" +
+                       info.replica_address() + ")"));
+  }
+  attachment.info = run->Info();
+  if (run->control() == nullptr) {
+    throw RequestError(RequestErrorKind::kFailedPrecondition,
+                       "run " + run_id +
+                           " has no external drives: nothing to control; start a run whose "
+                           "spec gives drives {\"external\": {...}}");
+  }
+  const std::string& owner = attachment.info.owner();
+  if (!owner.empty() && owner != caller && !admin) {
+    attachment.denied = "run " + run_id +
+                        " was started with another token; only that token or an admin token "
+                        "may control it";
+    return attachment;
+  }
+  if (!run->control()->Attach()) {
+    attachment.denied = "run " + run_id + " is controlled by another stream already";
+    return attachment;
+  }
+  attachment.channel = run->control();
+  const Model& model = run->model().model;
+  const RunConfig& config = run->config();
+  for (int i = 0; i < model.num_dofs(); ++i) {
+    const std::string& name = model.bodies[static_cast<size_t>(model.BodyOfVelocity(i))].joint.name;
+    attachment.joint_names.push_back(name);
+    const DriveConfig& drive = config.drives[static_cast<size_t>(i)];
+    if (drive.kind != DriveConfig::Kind::kExternal) continue;
+    attachment.external_joints.push_back(name);
+    attachment.commands.push_back(drive.command == DriveConfig::Command::kEffort     ? "effort"
+                                  : drive.command == DriveConfig::Command::kPosition ? "position"
+                                                                                     : "velocity");
+    attachment.period_s = drive.period;
+  }
+  return attachment;
+}
+
+}  // namespace mbstream
