@@ -4,6 +4,9 @@
 //   BM_BareStreamFrames      frames/s of a bare server stream of the same Frame messages
 //   BM_ProbeRoundTrip        frame out of the server -> probe back (p50_us, p99_us)
 //   BM_BarePingPong/0, /10   a bare bidi echo of one Frame, hot or paced every 10 ms
+//   BM_ControlRoundTrip      a 1 kHz controller on the IRB 1600 over Simulation.Control for
+//                            10 s of simulated time: command out -> next state back (p50_us,
+//                            p99_us) and the run's rate (x_real_time)
 //   BM_ReplayFrames/V/P      frames/s of an unpaced replay of a stored run to V viewers at
 //                            once, each answering every frame with P probes (issue 17)
 //   BM_ReplayFirstFrame/S    a 1,000,001-frame stored run: Subscribe -> first replayed frame,
@@ -13,6 +16,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <ctime>
 #include <filesystem>
 #include <map>
 #include <thread>
@@ -272,6 +277,112 @@ void BM_BarePingPong(benchmark::State& state) {
 }
 BENCHMARK(BM_BarePingPong)->Arg(0)->Iterations(2000)->Unit(benchmark::kMicrosecond)->UseRealTime();
 BENCHMARK(BM_BarePingPong)->Arg(10)->Iterations(400)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+// A PD controller at 1 kHz (h = 1 ms, one RK4 step per period) holding a sine on every joint
+// of the IRB 1600 for 10 s of simulated time (10,000 round trips): the time from a command's
+// Write to the next state's Read (one period integrated on the server between them), and the
+// whole run's simulated seconds per wall second.
+void BM_ControlRoundTrip(benchmark::State& state) {
+  constexpr double kH = 1e-3, kDuration = 10.0;
+  const double kp[6] = {400, 400, 400, 400, 400, 40}, kd[6] = {40, 40, 40, 40, 40, 2};
+  v1::ControlStart start;
+  start.set_model("irb1600");
+  v1::RunSpec& spec = *start.mutable_spec();
+  spec.set_duration_s(kDuration);
+  spec.set_output_interval_s(0.01);
+  spec.set_formulation("joint");
+  spec.set_method("rk4");
+  spec.set_fixed_step_s(kH);
+  for (int i = 0; i < 6; ++i) {
+    v1::Drive* drive = spec.add_drives();
+    drive->mutable_external()->set_command("effort");
+    drive->mutable_external()->set_period_s(kH);
+  }
+  std::vector<double> latencies;
+  double wall_s = 0.0;
+  for (auto _ : state) {
+    latencies.clear();
+    latencies.reserve(10000);
+    grpc::ClientContext context;
+    auto stream = Server().stub->Control(&context);
+    v1::ControlRequest request;
+    *request.mutable_start() = start;
+    const Clock::time_point begin = Clock::now();
+    stream->Write(request);
+    v1::ControlResponse response;
+    Clock::time_point sent;
+    bool first = true;
+    while (stream->Read(&response)) {
+      if (response.has_ended()) break;
+      if (!response.has_state()) continue;
+      const v1::ControlState& now = response.state();
+      if (!first) {
+        latencies.push_back(std::chrono::duration<double, std::micro>(Clock::now() - sent).count());
+      }
+      first = false;
+      if (now.final()) continue;
+      v1::ControlRequest command;
+      command.mutable_command()->set_step(now.step());
+      const double ref = 0.5 * std::sin(M_PI * now.t_s());
+      const double rate = 0.5 * M_PI * std::cos(M_PI * now.t_s());
+      for (int i = 0; i < 6; ++i) {
+        command.mutable_command()->add_values(kp[i] * (ref - now.q(i)) +
+                                              kd[i] * (rate - now.qd(i)));
+      }
+      sent = Clock::now();
+      stream->Write(command);
+    }
+    wall_s = std::chrono::duration<double>(Clock::now() - begin).count();
+    stream->WritesDone();
+    const grpc::Status status = stream->Finish();
+    if (!status.ok() || response.ended().state() != v1::FINISHED) {
+      state.SkipWithError(("the controlled run did not finish: " + status.error_message() +
+                           response.ended().message())
+                              .c_str());
+      return;
+    }
+  }
+  Percentiles(state, latencies);
+  state.counters["x_real_time"] = kDuration / wall_s;
+}
+BENCHMARK(BM_ControlRoundTrip)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The server's CPU while a controller sleeps: a controlled run waits for a command that comes
+// only after 2 s of wall time; the process's CPU time over that sleep (the server is this
+// process) per second of it. The worker sleeps on a condition variable (a timed wait that
+// also looks at the run's cancel flag 4 times a second), the stream's writer likewise.
+void BM_ControlIdleCpu(benchmark::State& state) {
+  v1::ControlStart start;
+  start.set_model("irb1600");
+  v1::RunSpec& spec = *start.mutable_spec();
+  spec.set_duration_s(0.01);
+  spec.set_control_timeout_s(30);
+  for (int i = 0; i < 6; ++i) spec.add_drives()->mutable_external()->set_period_s(1e-3);
+  double cpu_per_s = 0.0;
+  for (auto _ : state) {
+    grpc::ClientContext context;
+    auto stream = Server().stub->Control(&context);
+    v1::ControlRequest request;
+    *request.mutable_start() = start;
+    stream->Write(request);
+    v1::ControlResponse response;
+    while (stream->Read(&response) && !response.has_state()) {
+    }
+    const auto cpu = [] {
+      timespec t;
+      clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+      return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+    };
+    const double cpu0 = cpu();
+    const Clock::time_point wall0 = Clock::now();
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+    cpu_per_s = (cpu() - cpu0) / std::chrono::duration<double>(Clock::now() - wall0).count();
+    context.TryCancel();
+    stream->Finish();
+  }
+  state.counters["cpu_ms_per_s"] = 1e3 * cpu_per_s;
+}
+BENCHMARK(BM_ControlIdleCpu)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // An ended run of the seed kinematics with `frames` frames (stored once per length).
 std::string StoredRun(int64_t frames) {

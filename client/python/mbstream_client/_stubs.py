@@ -1,7 +1,7 @@
 """The stubs generated from proto/mbstream/v1 at build time (setup.py puts them in this
 package). A clear message when they are missing: the package was not installed."""
 try:
-    from . import (frame_pb2, model_pb2, replay_pb2, run_pb2, run_spec_pb2,  # noqa: F401
+    from . import (control_pb2, frame_pb2, model_pb2, replay_pb2, run_pb2, run_spec_pb2,  # noqa: F401
                    simulation_service_pb2, simulation_service_pb2_grpc)
 except ImportError as error:  # pragma: no cover - only from a bare source tree
     raise ImportError(

@@ -9,6 +9,7 @@ from ._stubs import simulation_service_pb2_grpc as service_grpc
 from ._version import __version__
 from .bundle import PathLike, read_model_bundle
 from .compare import Comparison, compare_results
+from .control import ControlLoop, control_start
 from .channel import make_channel
 from .errors import rpc_errors
 from .mcap import StartLike, save_mcap
@@ -134,6 +135,25 @@ class Client:
                 call = self.stub.WatchRun(service_pb2.WatchRunRequest(run_id=info.id,
                                                                       frames=True))
         return Run(self, info, call)
+
+    def control(self, model: str = "", spec: SpecLike = None, run_id: str = "",
+                **overrides: Any) -> ControlLoop:
+        """Your controller in the loop of a run, lockstep (control.py): starts a run of
+        `model` with `spec` (with drives {"external": {"command": "effort", "period_s": h}}
+        on the joints you command; overrides as for run()), or attaches to run `run_id`
+        started with external drives. Use as a context manager and iterate it:
+
+            with client.control("irb1600", spec) as loop:
+                for state in loop:                      # t_k = k h: state.t, .q, .qd, .tcp
+                    loop.send(effort=...)               # one value per loop.external_joints
+
+        Raises BadRequest for a bad spec or command, PermissionDenied without the run role."""
+        if run_id:
+            start = control_start("", run_id=run_id)
+        else:
+            _check_model(model)
+            start = control_start(model, load_spec(spec, **overrides))
+        return ControlLoop(self.stub, start)
 
     def run_many(self, model: str, specs: Iterable[SpecLike],
                  **overrides: Any) -> List[Run]:

@@ -34,6 +34,13 @@ class AuthTest(unittest.TestCase):
             with self.assertRaises(mb.Unauthenticated):
                 client.models()
 
+    def test_a_view_token_cannot_control_a_run(self):
+        spec = {"duration_s": 0.01, "drives": [{"external": {"period_s": 0.001}}]}
+        with mb.connect(self.address, token=VIEW) as client:
+            with self.assertRaises(mb.PermissionDenied) as caught:
+                client.control("irb1600", spec)
+        self.assertIn("run", caught.exception.message)
+
     def test_a_view_token_may_list_but_not_run(self):
         with mb.connect(self.address, token=VIEW) as client:
             client.models()
