@@ -39,7 +39,9 @@ int ListRuns(const ClientOptions& client, const std::string& model, int limit) {
     for (const v1::RunInfo& r : response.runs()) {
       std::printf("%-26s %-20s %-20s %9.3f %8lld %s\n", r.id().c_str(), r.model_name().c_str(),
                   v1::RunState_Name(r.state()).c_str(), r.t_s(), static_cast<long long>(r.frames()),
-                  r.message().c_str());
+                  (r.controller().empty() ? r.message()
+                                          : "[controlled by " + r.controller() + "] " + r.message())
+                      .c_str());
     }
     request.set_page_token(response.next_page_token());
   } while (!request.page_token().empty());

@@ -16,7 +16,9 @@ std::string ProgressLine(const v1::RunInfo& info, double elapsed_s) {
     std::snprintf(line + used, sizeof(line) - used, "  %.3gx real time  ETA %.1f s", rate,
                   (duration - t) / rate);
   }
-  return line;
+  std::string text = line;
+  if (!info.controller().empty()) text += "  controlled by " + info.controller();
+  return text;
 }
 
 }  // namespace mbstream::cli

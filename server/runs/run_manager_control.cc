@@ -39,6 +39,10 @@ RunManager::ControlAttachment RunManager::AttachControl(const std::string& run_i
     return attachment;
   }
   attachment.channel = run->control();
+  run->UpdateInfo([&](v1::RunInfo& info) {
+    info.set_controller(caller.empty() ? "a Control stream" : caller);
+  });
+  attachment.info = run->Info();
   const Model& model = run->model().model;
   const RunConfig& config = run->config();
   for (int i = 0; i < model.num_dofs(); ++i) {

@@ -53,6 +53,18 @@ void CheckServo(const Model& model, int i, const DriveConfig& drive, double iner
                                  InertiaUnit(model, i), kMaxServoDampingRate),
                     damping_rate});
   }
+  // A PD sampled every h (zero-order hold): its velocity term alone maps an error e to
+  // e (1 - kd h / inertia) per period, which rings beyond 1 and grows beyond 2.
+  const double sampled = damping_rate * drive.period;
+  if (drive.period > 0.0 && sampled > 1.0) {
+    out->push_back({FormatString("pd_servo.period_s = %g s on %s: kd h / inertia = %.3g for the "
+                                 "joint's inertia %.3g %s; a PD sampled every h rings beyond 1 "
+                                 "and is unstable beyond 2: give period_s below %.3g s or a "
+                                 "smaller kd",
+                                 drive.period, JointLabel(model, i).c_str(), sampled, inertia,
+                                 InertiaUnit(model, i), inertia / std::abs(drive.kd)),
+                    damping_rate});
+  }
 }
 
 void CheckTrajectory(const Model& model, int i, const char* field, const Trajectory& trajectory,

@@ -303,6 +303,7 @@ TEST_F(ControlServiceTest, AttachesToARunStartedWithExternalDrives) {
   Session session(stub(), Session::Attach(queued.id()));
   ASSERT_TRUE(session.ok());
   EXPECT_EQ(session.run_id(), queued.id());
+  EXPECT_EQ(session.started().run().controller(), "a Control stream");  // no tokens
   Session second(stub(), Session::Attach(queued.id()));
   EXPECT_FALSE(second.ok());
   const grpc::Status refused = second.Finish();
@@ -367,6 +368,8 @@ TEST_F(ControlTokensTest, AViewTokenCannotControlNorAnotherTokenAttach) {
   EXPECT_THAT(refused.error_message(), HasSubstr("was started with another token"));
   Session owner(stub(), Session::Attach(queued.id()), "run-token-0123456789");
   ASSERT_TRUE(owner.ok());
+  EXPECT_EQ(owner.started().run().controller(), queued.owner());  // the token's id: "t-..."
+  EXPECT_EQ(queued.owner().rfind("t-", 0), 0u);
   owner.Cancel();
 }
 

@@ -161,6 +161,19 @@ TEST(SampledDriveTest, PositionCommandIsTheServersPd) {
   EXPECT_LT(worst, 1e-6);  // rad: the same ODE, restarted every period (rtol 1e-10)
 }
 
+TEST(SampledDriveTest, ASampledServoTooSlowForItsJointIsWarned) {
+  RunConfig servo = SampledServo();
+  servo.duration = 0.01;
+  for (DriveConfig& drive : servo.drives) drive.period = 1e-3;  // the wrist needs < 2e-4 s
+  const RunResult result = Simulate(Irb1600(), servo);
+  bool warned = false;
+  for (const std::string& warning : result.stats.warnings) {
+    warned |= warning.find("pd_servo.period_s = 0.001 s on joint 6 'joint6': kd h / inertia") !=
+              std::string::npos;
+  }
+  EXPECT_TRUE(warned);
+}
+
 TEST(SampledDriveTest, ExternalDrivesWithoutControllerFail) {
   const RunResult result = Simulate(Irb1600(), ExternalEffort(SampledServo()));
   EXPECT_EQ(result.stats.status, RunStatus::kFailed);
