@@ -11,6 +11,7 @@
 #include "server/sim/body_run.h"
 #include "server/sim/contact_validation.h"
 #include "server/sim/integrator_options_from.h"
+#include "server/sim/joint_integration.h"
 
 namespace mbstream {
 
@@ -165,6 +166,10 @@ void CheckSampledDrives(const Model& model, const RunConfig& config, const Drive
   }
   if (model.has_free_bodies()) {
     RefuseFreeBodies(model, what + ": sampled drives do not run with free bodies yet");
+  }
+  if (MayTouch(model, config.contact)) {
+    throw InputError(what + ", and the model's collision geometries may touch: sampled drives "
+                            "do not run with contact yet; give contact.enabled false");
   }
 }
 
