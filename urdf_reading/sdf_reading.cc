@@ -127,7 +127,8 @@ SdfFile::SdfFile(const std::string& text, std::string source, const SdfLoadOptio
                        "' has no model; give it a <model> or an <include>");
     }
     if (const sdf::ElementPtr element = world.Element();
-        element->HasElement("gravity") && element->GetElement("gravity")->GetExplicitlySetInFile()) {
+        element->HasElement("gravity") &&
+        element->GetElement("gravity")->GetExplicitlySetInFile()) {
       const ignition::math::Vector3d g = world.Gravity();
       gravity_ = Eigen::Vector3d(g.X(), g.Y(), g.Z());
       if (!gravity_->allFinite() || gravity_->cwiseAbs().maxCoeff() > 1e4) {

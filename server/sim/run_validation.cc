@@ -168,8 +168,9 @@ void CheckSampledDrives(const Model& model, const RunConfig& config, const Drive
     RefuseFreeBodies(model, what + ": sampled drives do not run with free bodies yet");
   }
   if (MayTouch(model, config.contact)) {
-    throw InputError(what + ", and the model's collision geometries may touch: sampled drives "
-                            "do not run with contact yet; give contact.enabled false");
+    throw InputError(what +
+                     ", and the model's collision geometries may touch: sampled drives "
+                     "do not run with contact yet; give contact.enabled false");
   }
 }
 
