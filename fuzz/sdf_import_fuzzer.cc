@@ -22,11 +22,17 @@ bool UnitAxis(const mbstream::Vector3d& axis) {
 }
 
 void CheckImport(const mbstream::SdfImport& imported) {
-  const int bodies = imported.model.num_dofs();
+  // Bodies, not coordinates: a free body has 7 position and 6 velocity coordinates.
+  const int bodies = imported.model.num_bodies();
   for (int i = 0; i < bodies; ++i) {
     const mbstream::Body& body = imported.model.bodies[static_cast<size_t>(i)];
     if (body.parent < mbstream::kBase || body.parent >= i) std::abort();  // topological order
-    if (!Finite(body.joint.X_PJ) || !UnitAxis(body.joint.axis)) std::abort();
+    if (!Finite(body.joint.X_PJ)) std::abort();
+    if (body.joint.type == mbstream::JointType::kFree) {  // no axis; a root with a finite pose
+      if (body.parent != mbstream::kBase || !Finite(body.X_W0)) std::abort();
+    } else if (!UnitAxis(body.joint.axis)) {
+      std::abort();
+    }
     const mbstream::RigidInertia& inertia = body.inertia;
     if (!std::isfinite(inertia.mass) || inertia.mass < 0.0) std::abort();
     if (!inertia.com.allFinite() || !inertia.inertia_com.allFinite()) std::abort();

@@ -26,8 +26,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
           {.repair = repair, .max_links = repair ? 64 : 0, .couple_mimic = repair});
       if (imported.model.num_dofs() < 0) std::abort();
       for (const mbstream::LoopClosure& coupling : imported.loops) {  // <mimic>, coupled
-        if (coupling.body_a < 0 || coupling.body_a >= imported.model.num_dofs() ||
-            coupling.body_b < 0 || coupling.body_b >= imported.model.num_dofs() ||
+        if (coupling.body_a < 0 || coupling.body_a >= imported.model.num_bodies() ||
+            coupling.body_b < 0 || coupling.body_b >= imported.model.num_bodies() ||
             coupling.body_a == coupling.body_b || !std::isfinite(coupling.multiplier) ||
             !std::isfinite(coupling.offset)) {
           std::abort();
