@@ -28,11 +28,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "common/check.h"
 #include "server/choose/frame_track.h"
 #include "server/engine/engine.h"
 #include "server/parse/urdf_import.h"
 #include "server/spec/run_spec_json.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

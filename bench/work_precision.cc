@@ -54,7 +54,6 @@
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
 
-#include "common/check.h"
 #include "server/engine/engine.h"
 #include "server/parse/sdf_import.h"
 #include "server/parse/urdf_import.h"
@@ -62,6 +61,7 @@
 #include "server/sim/run_config.h"
 #include "server/sim/run_result.h"
 #include "server/spec/run_spec_json.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

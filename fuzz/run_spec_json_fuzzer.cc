@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "common/check.h"
 #include "server/spec/run_spec_json.h"
+#include "shared/common/check.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const std::vector<std::string> kJoints = {"joint1", "joint2", "joint3",

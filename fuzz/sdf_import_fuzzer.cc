@@ -10,8 +10,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "common/check.h"
 #include "server/parse/sdf_import.h"
+#include "shared/common/check.h"
 
 namespace {
 

@@ -20,12 +20,12 @@
 #include <memory>
 #include <string>
 
-#include "common/check.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/request_error.h"
 #include "server/runs/run_manager.h"
 #include "server/spec/run_spec_json.h"
 #include "server/store/store.h"
+#include "shared/common/check.h"
 
 namespace {
 

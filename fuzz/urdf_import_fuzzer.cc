@@ -10,8 +10,8 @@
 #include <set>
 #include <string>
 
-#include "common/check.h"
 #include "server/parse/urdf_import.h"
+#include "shared/common/check.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

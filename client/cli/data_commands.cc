@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "client/cli/server_commands.h"
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream::cli {
 

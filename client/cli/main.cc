@@ -9,7 +9,7 @@
 #include "client/cli/exit_codes.h"
 #include "client/cli/server_commands.h"
 #include "client/cli/simulate_command.h"
-#include "common/check.h"
+#include "shared/common/check.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"mbstream: simulate articulated mechanisms and watch them move", "mbstream"};

@@ -4,7 +4,7 @@
 #include "client/cli/exit_codes.h"
 #include "client/cli/result_download.h"
 #include "client/cli/server_commands.h"
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream::cli {
 

@@ -10,8 +10,8 @@
 #include "client/cli/run_overrides.h"
 #include "client/cli/server_commands.h"
 #include "client/cli/summary_line.h"
-#include "common/check.h"
 #include "server/spec/run_spec_json.h"
+#include "shared/common/check.h"
 
 namespace mbstream::cli {
 

@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "common/check.h"
-#include "common/did_you_mean.h"
-#include "net/tls_files.h"
+#include "shared/common/check.h"
+#include "shared/common/did_you_mean.h"
+#include "shared/net/tls_files.h"
 
 namespace mbstream::cli {
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "mbstream/v1/simulation_service.grpc.pb.h"
-#include "net/client_channel.h"
+#include "shared/net/client_channel.h"
 
 namespace mbstream::cli {
 

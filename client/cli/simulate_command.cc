@@ -14,7 +14,6 @@
 #include "client/cli/model_flags.h"
 #include "client/cli/run_overrides.h"
 #include "client/cli/summary_line.h"
-#include "common/check.h"
 #include "server/engine/engine.h"
 #include "server/mcap/run_mcap.h"
 #include "server/model/coordinate_names.h"
@@ -27,6 +26,7 @@
 #include "server/spec/run_spec_json.h"
 #include "server/wire/model_info.h"
 #include "server/wire/stats_conversion.h"
+#include "shared/common/check.h"
 
 namespace mbstream::cli {
 

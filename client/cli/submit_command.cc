@@ -5,8 +5,8 @@
 
 #include "client/cli/model_flags.h"
 #include "client/cli/server_commands.h"
-#include "common/check.h"
 #include "server/wire/model_bundle_files.h"
+#include "shared/common/check.h"
 
 namespace mbstream::cli {
 

@@ -5,8 +5,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "common/check.h"
 #include "server/results/results_csv.h"
+#include "shared/common/check.h"
 
 namespace mbstream::cli {
 

@@ -25,8 +25,8 @@
 #include "client/cli/sweep_axes.h"
 #include "client/cli/sweep_progress_line.h"
 #include "client/cli/sweep_table.h"
-#include "common/check.h"
 #include "server/spec/run_spec_json.h"
+#include "shared/common/check.h"
 
 namespace mbstream::cli {
 

@@ -2,7 +2,7 @@
 SDFormat text, as generate.py writes it: every pose relative to the model frame (links) or to
 the child link (joints, visuals), axes in the joint frame.
 
-The Device is the spanning tree the reader chooses (urdf_reading/sdf_reading.h: breadth-first
+The Device is the spanning tree the reader chooses (shared/model_files/sdf_reading.h: breadth-first
 from the world, each link's joints in file order; a joint whose child already has a parent is
 cut), its moving joints numbered in that order, which is the server's joint order: a run's
 joint values pose the script's joints one for one. Each joint turns (slides) about its axis a:

@@ -4,10 +4,10 @@
 #include <optional>
 #include <stdexcept>
 
-#include "common/check.h"
 #include "server/app/measured_store.h"
 #include "server/runs/free_space_watch.h"
 #include "server/runs/run_manager.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

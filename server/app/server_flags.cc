@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "common/check.h"
 #include "server/runs/retention.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -13,8 +13,6 @@
 #include <chrono>
 #include <limits>
 
-#include "common/check.h"
-#include "net/tls_files.h"
 #include "server/app/health_status.h"
 #include "server/app/metrics_endpoint.h"
 #include "server/runs/free_space.h"
@@ -27,6 +25,8 @@
 #include "server/service/storage_keeper.h"
 #include "server/store/store.h"
 #include "server/store/store_location.h"
+#include "shared/common/check.h"
+#include "shared/net/tls_files.h"
 
 namespace mbstream {
 

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "net/server_credentials.h"
 #include "server/runs/free_space.h"
 #include "server/runs/retention.h"
 #include "server/runs/server_limits.h"
+#include "shared/net/server_credentials.h"
 
 namespace mbstream {
 

@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <iostream>
 
-#include "common/check.h"
-#include "net/tls_files.h"
 #include "server/app/server_flags.h"
 #include "server/app/server_host.h"
 #include "server/app/server_signals.h"
 #include "server/runs/release_memory.h"
+#include "shared/common/check.h"
+#include "shared/net/tls_files.h"
 
 #ifndef MBSTREAM_DEFAULT_MODELS_DIR
 #define MBSTREAM_DEFAULT_MODELS_DIR ""

@@ -4,10 +4,10 @@
 
 #include <Eigen/QR>
 
-#include "common/check.h"
 #include "server/body/body_mechanics.h"
 #include "server/body/consistent_init.h"
 #include "server/kinematics/loop_solver.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

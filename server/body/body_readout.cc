@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/check.h"
 #include "server/body/body_cuts.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -3,14 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/check.h"
-#include "common/format.h"
 #include "server/choose/frame_track.h"
 #include "server/choose/method_choice.h"
 #include "server/choose/target_run.h"
 #include "server/choose/verification.h"
 #include "server/integrate/thread_cpu_clock.h"
 #include "server/sim/loop_run.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

@@ -5,12 +5,12 @@
 #include <limits>
 #include <utility>
 
-#include "common/check.h"
-#include "common/format.h"
 #include "server/drives/drive_set.h"
 #include "server/integrate/thread_cpu_clock.h"
 #include "server/sim/initial_state.h"
 #include "server/sim/run_validation.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

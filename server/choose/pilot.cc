@@ -5,9 +5,9 @@
 #include <limits>
 #include <memory>
 
-#include "common/format.h"
 #include "server/choose/frame_track.h"
 #include "server/sim/simulate.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

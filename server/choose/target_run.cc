@@ -1,11 +1,11 @@
 #include "server/choose/target_run.h"
 
-#include "common/check.h"
 #include "server/choose/choice_json.h"
 #include "server/choose/frame_track.h"
 #include "server/choose/method_choice.h"
 #include "server/choose/verification.h"
 #include "server/sim/simulate.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

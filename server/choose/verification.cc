@@ -2,10 +2,10 @@
 
 #include <algorithm>
 
-#include "common/format.h"
 #include "server/choose/pilot.h"
 #include "server/sim/loop_run.h"
 #include "server/sim/simulate.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

@@ -18,7 +18,7 @@
 #include <fcl/narrowphase/detail/primitive_shape_algorithm/sphere_cylinder.h>
 #include <fcl/narrowphase/detail/primitive_shape_algorithm/sphere_sphere.h>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -7,7 +7,6 @@
 #include <type_traits>
 #include <utility>
 
-#include "common/check.h"
 #include "server/dynamics/axis_inertia_move.h"
 #include "server/dynamics/axis_joint_steps.h"
 #include "server/kinematics/joint_inertia_transform.h"
@@ -15,6 +14,7 @@
 #include "server/kinematics/joint_transform.h"
 #include "server/model/data.h"
 #include "server/model/model.h"
+#include "shared/common/check.h"
 
 namespace mbstream::aba_passes {
 

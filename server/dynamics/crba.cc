@@ -1,9 +1,9 @@
 #include "server/dynamics/crba.h"
 
-#include "common/check.h"
 #include "server/dynamics/free_tree.h"
 #include "server/kinematics/joint_inertia_transform.h"
 #include "server/kinematics/joint_transform.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

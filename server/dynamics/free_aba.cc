@@ -4,10 +4,10 @@
 // root's articulated inertia is then solved for its acceleration: a_B = IA^-1 (S^-T tau - pA).
 #include <Eigen/Cholesky>
 
-#include "common/check.h"
 #include "server/dynamics/aba_passes.h"
 #include "server/dynamics/free_tree.h"
 #include "server/kinematics/free_joint.h"
+#include "shared/common/check.h"
 
 namespace mbstream::free_tree {
 

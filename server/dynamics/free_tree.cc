@@ -2,9 +2,9 @@
 
 #include <Eigen/Cholesky>
 
-#include "common/check.h"
 #include "server/kinematics/free_joint.h"
 #include "server/kinematics/joint_transform.h"
+#include "shared/common/check.h"
 
 namespace mbstream::free_tree {
 

@@ -1,8 +1,8 @@
 #include "server/dynamics/hybrid_dynamics.h"
 
-#include "common/check.h"
 #include "server/dynamics/aba_passes.h"
 #include "server/dynamics/free_tree.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

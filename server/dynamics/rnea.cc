@@ -1,10 +1,10 @@
 #include "server/dynamics/rnea.h"
 
-#include "common/check.h"
 #include "server/dynamics/axis_joint_steps.h"
 #include "server/dynamics/free_tree.h"
 #include "server/kinematics/joint_spatial_transform.h"
 #include "server/kinematics/joint_transform.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

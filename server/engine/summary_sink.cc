@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/check.h"
 #include "server/sim/simulate.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

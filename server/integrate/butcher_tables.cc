@@ -8,7 +8,7 @@
 #include <arkode/arkode_butcher_dirk.h>
 #include <arkode/arkode_butcher_erk.h>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

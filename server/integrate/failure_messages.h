@@ -4,9 +4,9 @@
 
 #include <string>
 
-#include "common/format.h"
 #include "server/integrate/integrator.h"
 #include "server/integrate/rhs_adapter.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

@@ -4,9 +4,9 @@
 #include <exception>
 #include <utility>
 
-#include "common/format.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/state_health.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

@@ -4,7 +4,7 @@
 #include <cfloat>
 #include <cmath>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

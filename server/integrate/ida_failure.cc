@@ -2,8 +2,8 @@
 
 #include <ida/ida.h>
 
-#include "common/format.h"
 #include "server/integrate/failure_messages.h"
+#include "shared/common/format.h"
 
 namespace mbstream::sundials {
 

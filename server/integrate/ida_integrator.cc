@@ -12,12 +12,12 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
-#include "common/check.h"
-#include "common/format.h"
 #include "server/integrate/c_boundary.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/ida_failure.h"
 #include "server/integrate/state_health.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

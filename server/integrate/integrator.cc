@@ -3,8 +3,6 @@
 #include <cmath>
 #include <string>
 
-#include "common/check.h"
-#include "common/format.h"
 #include "server/integrate/appended_quadratures.h"
 #include "server/integrate/arkstep_integrator.h"
 #include "server/integrate/butcher_tables.h"
@@ -12,6 +10,8 @@
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/rk4_integrator.h"
 #include "server/integrate/semi_implicit_euler_integrator.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

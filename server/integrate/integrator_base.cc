@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#include "common/check.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/state_health.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -1,6 +1,6 @@
 #include "server/integrate/method.h"
 
-#include "common/name_table.h"
+#include "shared/common/name_table.h"
 
 namespace mbstream {
 

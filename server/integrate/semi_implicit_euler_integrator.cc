@@ -1,6 +1,6 @@
 #include "server/integrate/semi_implicit_euler_integrator.h"
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -3,8 +3,8 @@
 #include <arkode/arkode.h>
 #include <cvode/cvode.h>
 
-#include "common/format.h"
 #include "server/integrate/failure_messages.h"
+#include "shared/common/format.h"
 
 namespace mbstream::sundials {
 

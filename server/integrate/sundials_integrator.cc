@@ -8,10 +8,10 @@
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 
-#include "common/check.h"
-#include "common/format.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/fast_serial_ops.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream::sundials {
 

@@ -1,8 +1,8 @@
 #include "server/kinematics/forward_kinematics.h"
 
-#include "common/check.h"
 #include "server/kinematics/free_joint.h"
 #include "server/kinematics/joint_transform.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

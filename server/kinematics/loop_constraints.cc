@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -5,8 +5,8 @@
 
 #include <Eigen/Geometry>
 
-#include "common/check.h"
 #include "server/kinematics/forward_kinematics.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <utility>
 
-#include "common/check.h"
 #include "server/kinematics/forward_kinematics.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

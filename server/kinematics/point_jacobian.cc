@@ -1,6 +1,6 @@
 #include "server/kinematics/point_jacobian.h"
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

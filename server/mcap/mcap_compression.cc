@@ -3,8 +3,8 @@
 #include <lz4frame.h>
 #include <zstd.h>
 
-#include "common/check.h"
-#include "common/format.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream::mcap {
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream::mcap {
 

@@ -4,8 +4,8 @@
 #include <cstring>
 #include <filesystem>
 
-#include "common/check.h"
-#include "common/format.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream::mcap {
 

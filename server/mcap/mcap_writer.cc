@@ -2,7 +2,7 @@
 
 #include <limits>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream::mcap {
 

@@ -9,9 +9,9 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
-#include "common/check.h"
-#include "common/format.h"
 #include "server/kinematics/forward_kinematics.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream::mcap {
 

@@ -1,8 +1,8 @@
 #include "server/mcap/stored_run_mcap.h"
 
-#include "common/check.h"
 #include "server/spec/run_spec_json.h"
 #include "server/wire/frame_conversion.h"
+#include "shared/common/check.h"
 
 namespace mbstream::mcap {
 

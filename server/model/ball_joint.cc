@@ -3,8 +3,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "common/format.h"
 #include "server/model/model.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

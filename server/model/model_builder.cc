@@ -4,7 +4,7 @@
 #include <cmath>
 #include <utility>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cctype>
 
-#include "common/ascii.h"
 #include "server/parse/mesh_dependencies.h"
-#include "urdf_reading/mesh_lookup.h"
+#include "shared/common/ascii.h"
+#include "shared/model_files/mesh_lookup.h"
 
 namespace mbstream {
 
@@ -49,7 +49,7 @@ bool IsWord(std::string_view token) {
 }  // namespace
 
 std::vector<std::string> UrdfMeshAssetNames(const std::string& filename) {
-  return urdf_reading::MeshAssetKeys(filename);
+  return model_files::MeshAssetKeys(filename);
 }
 
 std::vector<std::string> ScenePartAssetNames(const std::string& name) {

@@ -13,7 +13,7 @@ namespace mbstream {
 
 // The asset names a URDF mesh `filename` may be supplied under, best first: as written,
 // without its package:// or file:// prefix, for package://PKG/REST also REST, and its base
-// name (urdf_reading::MeshAssetKeys, which the viewer's lookup uses too).
+// name (model_files::MeshAssetKeys, which the viewer's lookup uses too).
 std::vector<std::string> UrdfMeshAssetNames(const std::string& filename);
 
 // The asset names a scene script's `Part NAME` may be supplied under, as the viewer looks

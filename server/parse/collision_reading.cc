@@ -17,13 +17,13 @@
 #include <sdf/Sphere.hh>
 #include <sdf/Surface.hh>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 
 namespace {
 
-namespace ur = urdf_reading;
+namespace mf = model_files;
 
 constexpr const char* kProximity = "drake:proximity_properties";
 
@@ -276,10 +276,10 @@ void ReadUrdfSurface(const TiXmlElement& collision, CollisionGeometry* g) {
 
 }  // namespace
 
-void ReadSdfCollisions(const ur::SdfFile& file, const std::map<std::string, Pose>& link_frames,
+void ReadSdfCollisions(const mf::SdfFile& file, const std::map<std::string, Pose>& link_frames,
                        Model* model, std::vector<std::string>* warnings) {
   std::vector<std::string> skipped;
-  for (const ur::SdfModelEntry& entry : file.models()) {
+  for (const mf::SdfModelEntry& entry : file.models()) {
     for (uint64_t l = 0; l < entry.model->LinkCount(); ++l) {
       const sdf::Link& link = *entry.model->LinkByIndex(l);
       const std::string scoped = entry.prefix + link.Name();
@@ -295,7 +295,7 @@ void ReadSdfCollisions(const ur::SdfFile& file, const std::map<std::string, Pose
         if (!SdfShape(collision.Geom(), &g, &X_GS, &skipped)) continue;
         ReadSdfSurface(collision, &g);
         const Pose X_WG = PoseOf(
-            ur::WorldPose(entry, collision.SemanticPose(), "collision '" + g.name + "'", g.where));
+            mf::WorldPose(entry, collision.SemanticPose(), "collision '" + g.name + "'", g.where));
         PlaceOnLink(*model, scoped, frame->second.Inverse() * X_WG * X_GS, &g);
         model->collisions.push_back(std::move(g));
       }

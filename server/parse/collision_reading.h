@@ -14,14 +14,14 @@
 #include <vector>
 
 #include "server/model/model.h"
-#include "urdf_reading/sdf_reading.h"
+#include "shared/model_files/sdf_reading.h"
 
 namespace mbstream {
 
 // Appends the collisions of every link of `file` to model->collisions. `link_frames` is each
 // link's frame in the Model, in the world, at the default pose (the import's F_L), by
 // scoped name; the model must have every link as a frame.
-void ReadSdfCollisions(const urdf_reading::SdfFile& file,
+void ReadSdfCollisions(const model_files::SdfFile& file,
                        const std::map<std::string, Pose>& link_frames, Model* model,
                        std::vector<std::string>* warnings);
 

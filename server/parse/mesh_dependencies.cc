@@ -4,7 +4,7 @@
 #include <cctype>
 #include <filesystem>
 
-#include "common/ascii.h"
+#include "shared/common/ascii.h"
 
 namespace mbstream {
 

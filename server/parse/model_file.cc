@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "server/parse/sdf_import.h"
-#include "urdf_reading/mesh_file_search.h"
+#include "shared/model_files/mesh_file_search.h"
 
 namespace mbstream {
 
@@ -27,8 +27,8 @@ ModelFileImport ImportModelFile(const std::string& path, const UrdfImportOptions
     SdfImport sdf = ImportSdf(
         text, path,
         SdfImportOptions{.max_links = urdf_options.max_links,
-                         .includes = urdf_reading::SdfIncludePath{
-                             dir.empty() ? "." : dir, urdf_reading::PackagePath(package_path)}});
+                         .includes = model_files::SdfIncludePath{
+                             dir.empty() ? "." : dir, model_files::PackagePath(package_path)}});
     result.model = std::move(sdf.model);
     result.loops = std::move(sdf.loops);
     result.warnings = std::move(sdf.warnings);

@@ -8,13 +8,13 @@
 #include "server/model/loop_closure.h"
 #include "server/model/model.h"
 #include "server/parse/urdf_import.h"
-#include "urdf_reading/model_format.h"
+#include "shared/model_files/model_format.h"
 
 namespace mbstream {
 
-// The format by content is urdf_reading's (the viewer's local mode asks there too).
-using urdf_reading::DetectModelFormat;
-using urdf_reading::ModelFormat;
+// The format by content is shared/model_files's (the viewer's local mode asks there too).
+using model_files::DetectModelFormat;
+using model_files::ModelFormat;
 
 struct ModelFileImport {
   ModelFormat format = ModelFormat::kUrdf;
@@ -25,7 +25,7 @@ struct ModelFileImport {
 
 // Reads the file at `path` and imports it as URDF (with `urdf_options`) or SDFormat (its
 // <include>s found beside it, its ancestors and in `package_path` then
-// $MBSTREAM_PACKAGE_PATH: urdf_reading/sdf_includes.h).
+// $MBSTREAM_PACKAGE_PATH: shared/model_files/sdf_includes.h).
 ModelFileImport ImportModelFile(const std::string& path, const UrdfImportOptions& urdf_options = {},
                                 const std::vector<std::string>& package_path = {});
 

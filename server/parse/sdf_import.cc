@@ -11,19 +11,19 @@
 #include <sdf/JointAxis.hh>
 #include <sdf/Link.hh>
 
-#include "common/check.h"
 #include "server/model/model_builder.h"
 #include "server/parse/collision_reading.h"
 #include "server/parse/import_cancel.h"
-#include "urdf_reading/mesh_file_search.h"
-#include "urdf_reading/sdf_reading.h"
+#include "shared/common/check.h"
+#include "shared/model_files/mesh_file_search.h"
+#include "shared/model_files/sdf_reading.h"
 
 namespace mbstream {
 
 namespace {
 
-namespace ur = urdf_reading;
-constexpr const char* kWorld = ur::kSdfWorld;
+namespace mf = model_files;
+constexpr const char* kWorld = mf::kSdfWorld;
 
 Pose ToPose(const Eigen::Isometry3d& X) { return Pose{X.linear(), X.translation()}; }
 
@@ -44,16 +44,16 @@ Pose ToPose(const ignition::math::Pose3d& pose) {
   return X;
 }
 
-using JointInfo = ur::SdfJointOutline;
+using JointInfo = mf::SdfJointOutline;
 
 class SdfReader {
  public:
-  explicit SdfReader(const ur::SdfFile& file) : file_(file), source_(file.source()) {}
+  explicit SdfReader(const mf::SdfFile& file) : file_(file), source_(file.source()) {}
 
   SdfImport Read() {
-    const ur::SdfTree tree = ur::ChooseSdfTree(file_);
+    const mf::SdfTree tree = mf::ChooseSdfTree(file_);
     result_.warnings = tree.warnings;
-    const std::vector<ur::SdfLinkFrame> frames = ur::SdfLinkFrames(file_, tree);
+    const std::vector<mf::SdfLinkFrame> frames = mf::SdfLinkFrames(file_, tree);
     ModelBuilder builder(file_.title(), kWorld);
     frame_of_[kWorld] = Pose::Identity();
     for (size_t k = 0; k < tree.tree.size(); ++k) {
@@ -70,15 +70,15 @@ class SdfReader {
  private:
   // X_WJ, a file joint's frame in the world.
   Pose JointFrame(const JointInfo& info) const {
-    return ToPose(ur::WorldPose(file_.models()[info.model], info.joint->SemanticPose(),
+    return ToPose(mf::WorldPose(file_.models()[info.model], info.joint->SemanticPose(),
                                 "joint '" + info.name + "'", info.where));
   }
 
   // The link's inertia in frame F_L (in the world).
   RigidInertia InertiaIn(const std::string& scoped_link, const Pose& F_L) const {
-    const ur::SdfLinkRef ref = ur::FindSdfLink(file_, scoped_link);
+    const mf::SdfLinkRef ref = mf::FindSdfLink(file_, scoped_link);
     const ignition::math::Inertiald& inertial = ref.link->Inertial();
-    const Pose X_WL = ToPose(ur::SdfLinkPose(file_, scoped_link));
+    const Pose X_WL = ToPose(mf::SdfLinkPose(file_, scoped_link));
     const Pose X_FI = F_L.Inverse() * X_WL * ToPose(inertial.Pose());
     const ignition::math::Matrix3d moi = inertial.MassMatrix().Moi();
     Matrix3d I;
@@ -99,19 +99,19 @@ class SdfReader {
     const Pose& F_P = frame_of_.at(info.parent);
     frame_of_[info.child] = F_L;
     try {
-      if (info.role == ur::SdfJointRole::kFree) {
+      if (info.role == mf::SdfJointRole::kFree) {
         AddFreeBody(builder, info, F_L);
         return;
       }
-      if (info.role == ur::SdfJointRole::kWeld || info.joint->Type() == sdf::JointType::FIXED) {
+      if (info.role == mf::SdfJointRole::kWeld || info.joint->Type() == sdf::JointType::FIXED) {
         builder.AddFixedLink(info.child, info.parent, F_P.Inverse() * F_L,
                              InertiaIn(info.child, F_L));
         return;
       }
       if (info.joint->Type() == sdf::JointType::BALL) {
-        const std::string axes[3] = {ur::SdfBallAxisName(info.name, 0),
-                                     ur::SdfBallAxisName(info.name, 1),
-                                     ur::SdfBallAxisName(info.name, 2)};
+        const std::string axes[3] = {mf::SdfBallAxisName(info.name, 0),
+                                     mf::SdfBallAxisName(info.name, 1),
+                                     mf::SdfBallAxisName(info.name, 2)};
         builder.AddBallLink(info.child, info.parent, info.name, info.where, F_P.Inverse() * F_L,
                             axes, InertiaIn(info.child, F_L));
         return;
@@ -121,7 +121,7 @@ class SdfReader {
       joint.type = info.joint->Type() == sdf::JointType::PRISMATIC ? JointType::kPrismatic
                                                                    : JointType::kRevolute;
       joint.X_PJ = F_P.Inverse() * F_L;
-      joint.axis = ur::SdfJointAxis(file_, info, ToIsometry(F_L));
+      joint.axis = mf::SdfJointAxis(file_, info, ToIsometry(F_L));
       const sdf::JointAxis& axis = *info.joint->Axis(0);
       if (info.joint->Type() != sdf::JointType::CONTINUOUS) {
         joint.limits.lower = LimitOrInfinity(axis.Lower(), false);
@@ -148,7 +148,7 @@ class SdfReader {
   }
 
   void SetTcpIfNamed(ModelBuilder& builder) const {
-    for (const ur::SdfModelEntry& entry : file_.models()) {
+    for (const mf::SdfModelEntry& entry : file_.models()) {
       for (uint64_t k = 0; k < entry.model->LinkCount(); ++k) {
         const std::string& name = entry.model->LinkByIndex(k)->Name();
         std::string lower = name;
@@ -181,7 +181,7 @@ class SdfReader {
     }
     const Pose X_WJ = JointFrame(info);
     if (loop.type == LoopJointType::kRevolute || loop.type == LoopJointType::kPrismatic) {
-      loop.axis = ur::SdfJointAxis(file_, info, ToIsometry(X_WJ));
+      loop.axis = mf::SdfJointAxis(file_, info, ToIsometry(X_WJ));
     }
     // The joint frame in the body that carries each side's link.
     auto side = [&](const std::string& link, int* body, Pose* X_BJ) {
@@ -194,7 +194,7 @@ class SdfReader {
     return loop;
   }
 
-  const ur::SdfFile& file_;
+  const mf::SdfFile& file_;
   const std::string source_;
   std::map<std::string, Pose> frame_of_;  // F_L: each link's frame in the Model, in the world
   SdfImport result_;
@@ -204,11 +204,11 @@ class SdfReader {
 
 SdfImport ImportSdf(const std::string& text, const std::string& source,
                     const SdfImportOptions& options) {
-  const ur::SdfFile file(text, source,
+  const mf::SdfFile file(text, source,
                          {.max_links = options.max_links, .includes = options.includes});
   ThrowIfImportCancelled();  // libsdformat's parse cannot be stopped inside (import_cancel.h)
   SdfImport result = SdfReader(file).Read();
-  SdfMeshes meshes = ur::MeshesOf(file);
+  SdfMeshes meshes = mf::MeshesOf(file);
   result.mesh_files = std::move(meshes.visual);
   for (std::string& uri : meshes.collision) {
     if (std::find(result.mesh_files.begin(), result.mesh_files.end(), uri) ==
@@ -227,7 +227,7 @@ SdfImport ImportSdfFile(const std::string& path, const SdfImportOptions& options
   SdfImportOptions local = options;
   if (!local.includes) {
     local.includes =
-        ur::SdfIncludePath{std::filesystem::path(path).parent_path(), ur::PackagePath({})};
+        mf::SdfIncludePath{std::filesystem::path(path).parent_path(), mf::PackagePath({})};
   }
   return ImportSdf(text.str(), path, local);
 }

@@ -1,6 +1,6 @@
 // Imports an SDFormat (1.6 and later) file into a Model and its loop closures.
 //
-// Read through urdf_reading/sdf_reading.h (libsdformat's sdf::Root, which resolves frames and
+// Read through shared/model_files/sdf_reading.h (libsdformat's sdf::Root, which resolves frames and
 // poses relative to frames; the reading the viewer shares). The file holds a top-level
 // <model>, or a <world> of one or more models, inline or <include>d (includes are resolved
 // only when SdfImportOptions::includes says where: the server never reads a file a model
@@ -9,7 +9,7 @@
 // continuous (revolute without limits), prismatic, fixed or ball, with <axis> (<xyz>,
 // <limit>, <dynamics damping>). A ball joint inside the tree becomes three revolute joints
 // through its centre, "JOINT.x", "JOINT.y", "JOINT.z" (Cardan angles;
-// urdf_reading::SdfBallAxisName, server/model/ball_joint.h). A <static> model's links are
+// model_files::SdfBallAxisName, server/model/ball_joint.h). A <static> model's links are
 // fixed to the world where they stand; a model whose canonical link has no joint to the world
 // is a free body: its canonical link gets a free joint named after the link.
 //
@@ -33,7 +33,7 @@
 
 #include "server/model/loop_closure.h"
 #include "server/model/model.h"
-#include "urdf_reading/sdf_reading.h"
+#include "shared/model_files/sdf_reading.h"
 
 namespace mbstream {
 
@@ -46,19 +46,19 @@ struct SdfImport {
 
 // The <mesh><uri> of the visuals (and the collisions) of every link of SDFormat `text`, in
 // file order, each once; empty when the text fails the XML shape check or libsdformat cannot
-// read it (the import says why). The reading is urdf_reading's, which the viewer shares.
-using urdf_reading::ReadSdfMeshes;
-using urdf_reading::SdfMeshes;
+// read it (the import says why). The reading is shared/model_files's, which the viewer shares.
+using model_files::ReadSdfMeshes;
+using model_files::SdfMeshes;
 
 struct SdfImportOptions {
   // Most <link> elements (--max-links); 0: no limit. Over it: LimitError, before any parse.
   int max_links = 0;
   // Where <include>s are found (a reading on the user's machine); none: refused.
-  std::optional<urdf_reading::SdfIncludePath> includes = std::nullopt;
+  std::optional<model_files::SdfIncludePath> includes = std::nullopt;
 };
 
 // Imports SDFormat XML `text`; `source` names the file in messages. Before libsdformat
-// parses it, the text's shape is checked as a URDF's is (urdf_reading/xml_shape.h: nesting,
+// parses it, the text's shape is checked as a URDF's is (shared/model_files/xml_shape.h: nesting,
 // attributes per element, element count, encodings, entities: InputError with the line),
 // and its links counted against options.max_links (LimitError).
 SdfImport ImportSdf(const std::string& text, const std::string& source,

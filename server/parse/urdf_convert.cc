@@ -5,9 +5,9 @@
 #include <limits>
 #include <optional>
 
-#include "common/check.h"
 #include "server/model/model_builder.h"
 #include "server/parse/urdf_repairs.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -9,7 +9,6 @@
 #include <sstream>
 #include <vector>
 
-#include "common/check.h"
 #include "server/model/model_builder.h"
 #include "server/parse/collision_reading.h"
 #include "server/parse/import_cancel.h"
@@ -19,8 +18,9 @@
 #include "server/parse/urdf_mimic.h"
 #include "server/parse/urdf_xml_scan.h"
 #include "server/parse/urdfdom_parse.h"
-#include "urdf_reading/joint_order.h"
-#include "urdf_reading/tcp_choice.h"
+#include "shared/common/check.h"
+#include "shared/model_files/joint_order.h"
+#include "shared/model_files/tcp_choice.h"
 
 namespace mbstream {
 
@@ -28,12 +28,12 @@ namespace {
 
 using JointList = std::vector<urdf::JointConstSharedPtr>;
 
-// The joints in the shared reading's order (urdf_reading/joint_order.h); joints that
+// The joints in the shared reading's order (shared/model_files/joint_order.h); joints that
 // cannot be placed close a loop.
 JointList JointsParentFirst(const urdf::ModelInterface& urdf, const UrdfXmlFacts& facts,
                             const UrdfDiagnostics& diagnostics) {
   MBSTREAM_CHECK(facts.joint_order.size() == urdf.joints_.size());
-  urdf_reading::JointOrder order = urdf_reading::OrderJoints(urdf, facts.joint_order);
+  model_files::JointOrder order = model_files::OrderJoints(urdf, facts.joint_order);
   MBSTREAM_CHECK_MSG(order.ordered.size() + order.unplaced.size() == urdf.joints_.size(),
                      "urdfdom lost a joint");
   if (!order.unplaced.empty()) {
@@ -48,14 +48,14 @@ JointList JointsParentFirst(const urdf::ModelInterface& urdf, const UrdfXmlFacts
   return std::move(order.ordered);
 }
 
-// The TCP link (urdf_reading/tcp_choice.h); "" with a warning when there is none.
+// The TCP link (shared/model_files/tcp_choice.h); "" with a warning when there is none.
 std::string ChooseTcp(const urdf::ModelInterface& urdf, const JointList& joints,
                       const UrdfXmlFacts& facts, const UrdfDiagnostics& diagnostics) {
-  urdf_reading::JointOrder order;
+  model_files::JointOrder order;
   order.ordered = joints;
-  const std::string tcp = urdf_reading::ChooseTcpLink(urdf, order, facts.link_order);
+  const std::string tcp = model_files::ChooseTcpLink(urdf, order, facts.link_order);
   if (!tcp.empty()) return tcp;
-  const std::string last_body = urdf_reading::LastMovingLink(order);
+  const std::string last_body = model_files::LastMovingLink(order);
   diagnostics.Warn(diagnostics.source() + ": the model has no TCP: no link is named 'tcp' or " +
                    "'tool0', and no leaf link hangs on a fixed joint from the last moving " +
                    "link" + (last_body.empty() ? "" : " '" + last_body + "'") +

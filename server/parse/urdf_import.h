@@ -48,7 +48,7 @@ struct UrdfImportOptions {
   // mass; each repair is a warning "FILE:LINE: link 'NAME': repaired: ...". Off: errors.
   bool repair = false;
   // Most links and named points of the model (0: only the reader's own ceiling,
-  // urdf_reading/xml_shape.h): checked on the text before any parse and on the model
+  // shared/model_files/xml_shape.h): checked on the text before any parse and on the model
   // built; over it, LimitError naming --max-links.
   int max_links = 0;
   // Hold each joint with a <mimic> to its leader (a coupling in `loops`); off: the joint

@@ -3,9 +3,9 @@
 #include <memory>
 #include <system_error>
 
-#include "common/check.h"
 #include "server/parse/asset_references.h"
-#include "urdf_reading/mesh_file_search.h"
+#include "shared/common/check.h"
+#include "shared/model_files/mesh_file_search.h"
 
 namespace mbstream {
 
@@ -80,7 +80,7 @@ void WarnMissingMeshes(const MissingMeshes& missing, const UrdfDiagnostics& diag
 
 std::set<std::string> ExistingMeshFiles(const std::vector<std::string>& mesh_files,
                                         const std::filesystem::path& directory) {
-  const urdf_reading::MeshFileSearch search(directory, urdf_reading::PackagePath({}));
+  const model_files::MeshFileSearch search(directory, model_files::PackagePath({}));
   std::set<std::string> found;
   for (const std::string& filename : mesh_files) {
     if (!search.Find(filename).found.empty()) found.insert(filename);

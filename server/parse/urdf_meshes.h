@@ -13,7 +13,7 @@
 namespace mbstream {
 
 // True if `filename` (a URDF <mesh filename>) is in `assets` under one of the names
-// UrdfMeshAssetNames gives (asset_references.h: urdf_reading::MeshAssetKeys, the names the
+// UrdfMeshAssetNames gives (asset_references.h: model_files::MeshAssetKeys, the names the
 // viewer looks the mesh up by too).
 bool MeshSupplied(const std::string& filename, const std::set<std::string>& assets);
 
@@ -36,7 +36,7 @@ void WarnMissingMeshes(const MissingMeshes& missing, const UrdfDiagnostics& diag
 
 // The files among `mesh_files` (as written in the URDF) that exist for a URDF in
 // `directory`, looked up as `mbstream submit` and the viewer's --model look them up
-// (urdf_reading::MeshFileSearch, with $MBSTREAM_PACKAGE_PATH).
+// (model_files::MeshFileSearch, with $MBSTREAM_PACKAGE_PATH).
 std::set<std::string> ExistingMeshFiles(const std::vector<std::string>& mesh_files,
                                         const std::filesystem::path& directory);
 

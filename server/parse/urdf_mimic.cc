@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

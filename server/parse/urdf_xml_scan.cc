@@ -7,10 +7,10 @@
 #include <string_view>
 #include <utility>
 
-#include "common/check.h"
 #include "server/parse/import_cancel.h"
 #include "server/parse/urdf_diagnostics.h"
-#include "urdf_reading/xml_shape.h"
+#include "shared/common/check.h"
+#include "shared/model_files/xml_shape.h"
 
 namespace mbstream {
 
@@ -152,9 +152,9 @@ class Scanner {
 UrdfXmlFacts ScanUrdfXml(const std::string& text, const std::string& source,
                          std::vector<std::string>* warnings, int max_links) {
   MBSTREAM_CHECK(warnings != nullptr);
-  urdf_reading::XmlShapeLimits limits;
+  model_files::XmlShapeLimits limits;
   if (max_links > 0) limits.max_top_links = max_links;
-  if (const auto problem = urdf_reading::CheckXmlShape(text, limits)) {
+  if (const auto problem = model_files::CheckXmlShape(text, limits)) {
     const std::string message = source + ":" + std::to_string(problem->line) + ": " + problem->what;
     if (problem->over_caller_limit) throw LimitError(message);
     throw InputError(message);

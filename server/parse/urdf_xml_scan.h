@@ -21,7 +21,7 @@ struct UrdfXmlFacts {
 };
 
 // Scans URDF XML `text` (`source` names it in messages). Throws InputError if the text's
-// shape is beyond urdf_reading/xml_shape.h's limits (checked before TinyXML walks it; more
+// shape is beyond shared/model_files/xml_shape.h's limits (checked before TinyXML walks it; more
 // than `max_links` <link> elements when > 0), the XML is not well formed, has no <robot>, repeats a
 // link or joint name, gives a link two parent joints, or has a bad <mbstream:rotor_inertia>. A
 // revolute joint without <limit> (which urdfdom rejects) is rewritten in urdfdom_text as

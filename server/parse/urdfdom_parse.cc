@@ -8,7 +8,7 @@
 #include <regex>
 #include <vector>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <system_error>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream::results_csv {
 

@@ -8,8 +8,8 @@
 #include <functional>
 #include <system_error>
 
-#include "common/check.h"
 #include "server/results/results_csv.h"
+#include "shared/common/check.h"
 
 #ifndef MBSTREAM_VERSION
 #define MBSTREAM_VERSION "unknown"

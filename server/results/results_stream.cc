@@ -2,7 +2,7 @@
 
 #include <system_error>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -1,7 +1,7 @@
 #include "server/runs/control_channel.h"
 
-#include "common/format.h"
 #include "server/sim/run_stop.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -8,8 +8,6 @@
 #include <filesystem>
 #include <set>
 
-#include "common/check.h"
-#include "common/utf8.h"
 #include "server/kinematics/loop_coordinates.h"
 #include "server/parse/asset_references.h"
 #include "server/parse/model_file.h"
@@ -21,6 +19,8 @@
 #include "server/store/store.h"
 #include "server/wire/model_bundle_files.h"
 #include "server/wire/model_info.h"
+#include "shared/common/check.h"
+#include "shared/common/utf8.h"
 
 namespace mbstream {
 

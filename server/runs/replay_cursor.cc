@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <atomic>
 
-#include "common/check.h"
 #include "server/store/store.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

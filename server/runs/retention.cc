@@ -7,11 +7,11 @@
 #include <map>
 #include <stdexcept>
 
-#include "common/check.h"
 #include "server/runs/run_deleter.h"
 #include "server/runs/unix_time.h"
 #include "server/store/store.h"
 #include "server/wire/stats_conversion.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

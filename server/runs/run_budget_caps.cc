@@ -2,10 +2,10 @@
 
 #include <algorithm>
 
-#include "common/format.h"
 #include "server/integrate/failure_messages.h"
 #include "server/sim/input_sanity.h"
 #include "server/sim/run_budget.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

@@ -2,12 +2,12 @@
 
 #include <spdlog/spdlog.h>
 
-#include "common/check.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/request_error.h"
 #include "server/runs/run_manager.h"
 #include "server/store/store.h"
 #include "server/wire/stats_conversion.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

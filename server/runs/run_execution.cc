@@ -3,7 +3,6 @@
 
 #include <chrono>
 
-#include "common/check.h"
 #include "server/engine/engine.h"
 #include "server/runs/run_manager.h"
 #include "server/runs/unix_time.h"
@@ -11,6 +10,7 @@
 #include "server/store/store.h"
 #include "server/wire/frame_conversion.h"
 #include "server/wire/stats_conversion.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -10,7 +10,6 @@
 #include <optional>
 #include <random>
 
-#include "common/check.h"
 #include "server/model/coordinate_names.h"
 #include "server/runs/cluster_follow.h"
 #include "server/runs/release_memory.h"
@@ -27,6 +26,7 @@
 #include "server/store/frame_chunks.h"
 #include "server/store/store.h"
 #include "server/wire/stats_conversion.h"
+#include "shared/common/check.h"
 
 #ifndef MBSTREAM_VERSION
 #define MBSTREAM_VERSION "unknown"

@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <random>
 
-#include "common/check.h"
 #include "server/runs/request_error.h"
 #include "server/runs/run_manager.h"
 #include "server/store/store.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 
-#include "common/check.h"
 #include "server/runs/request_error.h"
 #include "server/runs/run.h"
 #include "server/runs/run_manager.h"
@@ -17,6 +16,7 @@
 #include "server/runs/unix_time.h"
 #include "server/store/store.h"
 #include "server/wire/stats_conversion.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

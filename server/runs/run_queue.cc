@@ -6,10 +6,10 @@
 
 #include <algorithm>
 
-#include "common/check.h"
 #include "server/runs/request_error.h"
 #include "server/store/store.h"
 #include "server/wire/stats_conversion.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

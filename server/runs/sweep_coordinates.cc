@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
-#include "common/check.h"
-#include "common/did_you_mean.h"
 #include "server/model/coordinate_names.h"
+#include "shared/common/check.h"
+#include "shared/common/did_you_mean.h"
 
 namespace mbstream {
 

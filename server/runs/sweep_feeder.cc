@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <set>
 
-#include "common/check.h"
 #include "server/store/store.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -2,8 +2,8 @@
 
 #include <set>
 
-#include "common/check.h"
 #include "server/spec/spec_override.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -9,8 +9,8 @@
 #include <sstream>
 #include <string_view>
 
-#include "common/check.h"
 #include "server/service/rpc_roles.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -10,8 +10,8 @@
 #include <thread>
 #include <vector>
 
-#include "common/format.h"
 #include "server/service/simulation_service.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

@@ -4,8 +4,8 @@
 #include <grpcpp/security/credentials.h>
 #include <grpcpp/support/channel_arguments.h>
 
-#include "net/tls_files.h"
 #include "server/runs/request_error.h"
+#include "shared/net/tls_files.h"
 
 namespace mbstream {
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <deque>
 
-#include "common/check.h"
 #include "server/runs/request_error.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -2,11 +2,11 @@
 
 #include <spdlog/spdlog.h>
 
-#include "common/check.h"
 #include "server/parse/import_cancel.h"
 #include "server/runs/request_error.h"
 #include "server/service/peer_proxy.h"
 #include "server/service/status_from_exception.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -1,8 +1,8 @@
 // StartSweep: a parameter sweep stored whole and fed by the server (RunManager::StartSweep,
 // server/runs/sweep_feeder.h): this call checks it, stores it and queues its first window.
-#include "common/check.h"
 #include "server/runs/request_error.h"
 #include "server/service/simulation_service.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

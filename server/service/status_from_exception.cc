@@ -2,9 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
-#include "common/check.h"
 #include "server/parse/import_cancel.h"
 #include "server/runs/request_error.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -2,11 +2,11 @@
 // that any replica of a cluster answers for every replica's runs.
 #include <chrono>
 
-#include "common/check.h"
 #include "server/runs/request_error.h"
 #include "server/service/simulation_service.h"
 #include "server/service/sweep_progress.h"
 #include "server/wire/stats_conversion.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

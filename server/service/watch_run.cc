@@ -1,7 +1,6 @@
 // SimulationService::WatchRun: a WatchCall (watch_call.h) per stream.
 #include <chrono>
 
-#include "common/check.h"
 #include "server/service/frame_batch.h"
 #include "server/service/peer_proxy.h"
 #include "server/service/rpc_roles.h"
@@ -9,6 +8,7 @@
 #include "server/service/status_from_exception.h"
 #include "server/service/watch_call.h"
 #include "server/wire/stats_conversion.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -5,7 +5,6 @@
 #include <string>
 #include <utility>
 
-#include "common/format.h"
 #include "server/body/body_baumgarte_ode.h"
 #include "server/body/body_cuts.h"
 #include "server/body/body_dae.h"
@@ -21,6 +20,7 @@
 #include "server/sim/initial_state.h"
 #include "server/sim/integrator_options_from.h"
 #include "server/sim/run_stop.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

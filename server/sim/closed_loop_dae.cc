@@ -2,10 +2,10 @@
 
 #include <Eigen/Cholesky>
 
-#include "common/check.h"
 #include "server/dynamics/crba.h"
 #include "server/dynamics/rnea.h"
 #include "server/kinematics/forward_kinematics.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

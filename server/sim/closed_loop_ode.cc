@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/check.h"
 #include "server/dynamics/crba.h"
 #include "server/dynamics/rnea.h"
 #include "server/kinematics/forward_kinematics.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "common/format.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

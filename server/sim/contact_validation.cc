@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-#include "common/check.h"
-#include "common/format.h"
 #include "server/sim/body_run.h"
 #include "server/sim/joint_integration.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

@@ -1,8 +1,8 @@
 #include "server/sim/formulation_choice.h"
 
-#include "common/check.h"
-#include "common/format.h"
 #include "server/integrate/failure_messages.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

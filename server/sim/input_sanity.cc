@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/format.h"
 #include "server/drives/drive_set.h"
 #include "server/dynamics/crba.h"
 #include "server/integrate/failure_messages.h"
 #include "server/model/data.h"
 #include "server/sim/initial_state.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

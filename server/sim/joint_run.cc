@@ -4,7 +4,6 @@
 #include <memory>
 #include <string>
 
-#include "common/format.h"
 #include "server/integrate/stiffness_estimate.h"
 #include "server/sim/advance_to_frame.h"
 #include "server/sim/frame_loop.h"
@@ -13,6 +12,7 @@
 #include "server/sim/joint_space_ode.h"
 #include "server/sim/run_prefix.h"
 #include "server/sim/sampled_joint_run.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 
-#include "common/check.h"
-#include "common/format.h"
 #include "server/body/body_cuts.h"
 #include "server/integrate/failure_messages.h"
 #include "server/sim/body_run.h"
 #include "server/sim/initial_state.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

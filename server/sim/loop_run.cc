@@ -6,8 +6,6 @@
 #include <optional>
 #include <string>
 
-#include "common/check.h"
-#include "common/format.h"
 #include "server/drives/drive_set.h"
 #include "server/dynamics/rnea.h"
 #include "server/integrate/ida_integrator.h"
@@ -30,6 +28,8 @@
 #include "server/sim/run_validation.h"
 #include "server/sim/simulate.h"
 #include "server/sim/singular_pose.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

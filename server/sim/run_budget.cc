@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/format.h"
 #include "server/integrate/failure_messages.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

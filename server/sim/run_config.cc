@@ -1,6 +1,6 @@
 #include "server/sim/run_config.h"
 
-#include "common/name_table.h"
+#include "shared/common/name_table.h"
 
 namespace mbstream {
 

@@ -2,9 +2,9 @@
 
 #include <string>
 
-#include "common/check.h"
-#include "common/format.h"
 #include "server/sim/simulate.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "common/format.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

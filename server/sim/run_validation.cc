@@ -3,8 +3,6 @@
 #include <cmath>
 #include <string>
 
-#include "common/check.h"
-#include "common/format.h"
 #include "server/body/body_model.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/integrator.h"
@@ -12,6 +10,8 @@
 #include "server/sim/contact_validation.h"
 #include "server/sim/integrator_options_from.h"
 #include "server/sim/joint_integration.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

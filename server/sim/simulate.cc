@@ -6,8 +6,6 @@
 #include <memory>
 #include <string>
 
-#include "common/check.h"
-#include "common/format.h"
 #include "server/drives/drive_set.h"
 #include "server/integrate/failure_messages.h"
 #include "server/integrate/thread_cpu_clock.h"
@@ -20,6 +18,8 @@
 #include "server/sim/run_budget.h"
 #include "server/sim/run_trust.h"
 #include "server/sim/run_validation.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

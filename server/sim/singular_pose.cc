@@ -1,6 +1,6 @@
 #include "server/sim/singular_pose.h"
 
-#include "common/format.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/check.h"
-#include "common/format.h"
 #include "server/sim/contact_validation.h"
+#include "shared/common/check.h"
+#include "shared/common/format.h"
 
 namespace mbstream {
 

@@ -6,8 +6,8 @@
 #include <string_view>
 #include <vector>
 
-#include "common/check.h"
-#include "common/utf8.h"
+#include "shared/common/check.h"
+#include "shared/common/utf8.h"
 
 namespace mbstream {
 

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <optional>
 
-#include "common/check.h"
-#include "common/did_you_mean.h"
 #include "server/spec/contact_spec.h"
 #include "server/spec/run_spec_json.h"
+#include "shared/common/check.h"
+#include "shared/common/did_you_mean.h"
 
 namespace mbstream {
 namespace {

@@ -1,9 +1,9 @@
 // RunConfig -> RunSpec, for recording the spec a run used (every field set explicitly).
 #include <cstdint>
 
-#include "common/check.h"
 #include "server/spec/contact_spec.h"
 #include "server/spec/run_spec_json.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

@@ -11,9 +11,9 @@
 #include <google/protobuf/descriptor.h>
 #include <google/protobuf/util/json_util.h>
 
-#include "common/check.h"
-#include "common/did_you_mean.h"
 #include "server/spec/json_shape.h"
+#include "shared/common/check.h"
+#include "shared/common/did_you_mean.h"
 
 namespace mbstream {
 

@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "common/check.h"
 #include "server/spec/run_spec_json.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -4,7 +4,7 @@
 // FAILED with its message, which names the full disk and says what to do.
 #pragma once
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -12,8 +12,8 @@
 #include <nmmintrin.h>
 #endif
 
-#include "common/check.h"
 #include "server/store/disk_full_error.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

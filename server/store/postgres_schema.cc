@@ -4,11 +4,11 @@
 
 #include <pqxx/pqxx>
 
-#include "common/check.h"
 #include "mbstream/v1/run.pb.h"
 #include "server/store/store_codec.h"
 #include "server/store/store_schema.h"
 #include "server/store/sweep_sql.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

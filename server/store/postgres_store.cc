@@ -4,10 +4,10 @@
 #include <cctype>
 #include <utility>
 
-#include "common/check.h"
 #include "server/store/postgres_schema.h"
 #include "server/store/postgres_store_impl.h"
 #include "server/store/sweep_sql.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

@@ -4,10 +4,10 @@
 #include <map>
 #include <tuple>
 
-#include "common/check.h"
 #include "server/store/frame_chunks.h"
 #include "server/store/postgres_store.h"
 #include "server/store/postgres_store_impl.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

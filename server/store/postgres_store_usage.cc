@@ -1,7 +1,7 @@
 // PostgresStore: what the store holds (store_usage.h); its backups are PostgreSQL's (pg_dump).
-#include "common/check.h"
 #include "server/store/postgres_store.h"
 #include "server/store/postgres_store_impl.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -8,8 +8,8 @@
 #include <cstring>
 #include <vector>
 
-#include "common/check.h"
 #include "server/store/disk_full_error.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

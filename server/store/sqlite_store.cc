@@ -7,11 +7,11 @@
 
 #include <sqlite3.h>
 
-#include "common/check.h"
 #include "server/store/sqlite_error.h"
 #include "server/store/store_impl.h"
 #include "server/store/store_schema.h"
 #include "server/store/sweep_sql.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

@@ -1,8 +1,8 @@
 // What every Store does the same way whatever its database.
 #include "server/store/store.h"
 
-#include "common/check.h"
 #include "server/store/sqlite_store.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -9,11 +9,11 @@
 #include <filesystem>
 #include <system_error>
 
-#include "common/check.h"
 #include "server/store/sparse_copy.h"
 #include "server/store/sqlite_error.h"
 #include "server/store/sqlite_store.h"
 #include "server/store/store_impl.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -1,9 +1,9 @@
 // Store: a run's frames, written chunk by chunk while it runs and read back chunk by chunk.
-#include "common/check.h"
 #include "server/store/frame_chunks.h"
 #include "server/store/sqlite_store.h"
 #include "server/store/sqlite_transaction.h"
 #include "server/store/store_impl.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

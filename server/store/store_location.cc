@@ -3,9 +3,9 @@
 #include <fstream>
 #include <string_view>
 
-#include "common/check.h"
 #include "server/store/postgres_store.h"
 #include "server/store/sqlite_store.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

@@ -4,12 +4,12 @@
 #include <utility>
 #include <vector>
 
-#include "common/check.h"
 #include "server/store/sqlite_connection.h"
 #include "server/store/sqlite_statement.h"
 #include "server/store/sqlite_transaction.h"
 #include "server/store/store_codec.h"
 #include "server/store/sweep_sql.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "common/check.h"
 #include "server/wire/stats_conversion.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 

@@ -7,16 +7,16 @@
 #include <set>
 #include <sstream>
 
-#include "common/check.h"
-#include "common/utf8.h"
 #include "server/parse/asset_references.h"
 #include "server/parse/mesh_dependencies.h"
 #include "server/parse/model_file.h"
 #include "server/parse/sdf_import.h"
-#include "urdf_reading/mesh_file_search.h"
-#include "urdf_reading/mesh_lookup.h"
-#include "urdf_reading/sdf_reading.h"
-#include "urdf_reading/urdf_outline.h"
+#include "shared/common/check.h"
+#include "shared/common/utf8.h"
+#include "shared/model_files/mesh_file_search.h"
+#include "shared/model_files/mesh_lookup.h"
+#include "shared/model_files/sdf_reading.h"
+#include "shared/model_files/urdf_outline.h"
 
 namespace mbstream {
 
@@ -239,12 +239,12 @@ BundleRead ReadModelBundle(const BundleFiles& files) {
   if (DetectModelFormat(bundle.urdf()) == ModelFormat::kSdf &&
       bundle.urdf().find("<include") != std::string::npos) {
     // The server reads no file a model names: the included models go inside the world
-    // (found as urdf_reading/sdf_includes.h says; errors name the file and line here).
-    const urdf_reading::SdfFile world(
+    // (found as shared/model_files/sdf_includes.h says; errors name the file and line here).
+    const model_files::SdfFile world(
         bundle.urdf(), urdf_path.string(),
-        {.includes = urdf_reading::SdfIncludePath{
+        {.includes = model_files::SdfIncludePath{
              urdf_path.parent_path().empty() ? fs::path(".") : urdf_path.parent_path(),
-             urdf_reading::PackagePath(files.package_paths)}});
+             model_files::PackagePath(files.package_paths)}});
     bundle.set_urdf(world.ExpandedText());
   }
   bundle.set_urdf_file_name(urdf_path.string());
@@ -253,7 +253,7 @@ BundleRead ReadModelBundle(const BundleFiles& files) {
   AssetSet assets(&bundle);
   // The meshes the model refers to: SDFormat's <mesh><uri> or the URDF's <mesh filename>,
   // found alike. A file the reader cannot read has none here: the server names its error.
-  std::optional<urdf_reading::UrdfOutline> outline;
+  std::optional<model_files::UrdfOutline> outline;
   if (DetectModelFormat(bundle.urdf()) == ModelFormat::kSdf) {
     SdfMeshes sdf = ReadSdfMeshes(bundle.urdf());
     outline.emplace();
@@ -261,17 +261,17 @@ BundleRead ReadModelBundle(const BundleFiles& files) {
     outline->collision_meshes = std::move(sdf.collision);
   } else {
     std::string outline_error;
-    outline = urdf_reading::ReadUrdfOutline(bundle.urdf(), &outline_error);
+    outline = model_files::ReadUrdfOutline(bundle.urdf(), &outline_error);
   }
   if (outline) {
-    const urdf_reading::MeshFileSearch search(urdf_path.parent_path(),
-                                              urdf_reading::PackagePath(files.package_paths));
+    const model_files::MeshFileSearch search(urdf_path.parent_path(),
+                                             model_files::PackagePath(files.package_paths));
     std::set<std::string> seen;  // each reference looked up once
     const auto attach = [&](const std::vector<std::string>& meshes, const std::string& what) {
       for (const std::string& filename : meshes) {
-        const std::string name = urdf_reading::BundleAssetName(filename);
+        const std::string name = model_files::BundleAssetName(filename);
         if (name.empty() || !seen.insert(filename).second) continue;
-        const urdf_reading::MeshSearch found = search.Find(filename);
+        const model_files::MeshSearch found = search.Find(filename);
         if (found.found.empty()) {
           read.warnings.push_back(urdf_path.string() + ": " +
                                   NotFound(what, filename, found.tried, found.note));

@@ -14,7 +14,7 @@ struct BundleFiles {
   // in it, else the one found below it), or without one its one *.sdf (likewise; a world's
   // folder: the one *.sdf holding a <world> directly in it), and its one *.scene (directly
   // in it), unless `scene_path` is given. An SDFormat file's <include>s are read here
-  // (urdf_reading/sdf_includes.h: beside it, its ancestors, the package path) and sent
+  // (shared/model_files/sdf_includes.h: beside it, its ancestors, the package path) and sent
   // written into it: the server reads no file a model names.
   std::string model_path;
   std::string scene_path;                // scene script (may be empty)
@@ -35,7 +35,7 @@ struct BundleRead {
 // Reads a bundle: the model file (in `urdf`, whichever its format), the scene, and every
 // mesh the model's visuals (and collisions, when asked: URDF <mesh filename>, SDFormat
 // <mesh><uri>, model:// found as package://) and the scene's Part commands refer to, found
-// as MeshFileSearch does, each stored once under urdf_reading::BundleAssetName of its
+// as MeshFileSearch does, each stored once under model_files::BundleAssetName of its
 // reference (the path the model writes, so visual/a.stl and collision/a.stl do not collide). Throws
 // InputError naming the path when a file cannot be read, a folder is ambiguous, or the model is a
 // .xacro.

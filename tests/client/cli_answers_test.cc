@@ -10,7 +10,7 @@
 #include <random>
 #include <string>
 
-#include "common/did_you_mean.h"
+#include "shared/common/did_you_mean.h"
 #include "tests/common/server_process.h"
 
 namespace mbstream {

@@ -16,10 +16,10 @@
 #include <set>
 
 #include "bench/viewer/large_model.h"
+#include "shared/model_files/mesh_file_search.h"
+#include "shared/model_files/mesh_lookup.h"
 #include "tests/viewer/test_meshes.h"
 #include "tests/viewer/xvfb_display.h"
-#include "urdf_reading/mesh_file_search.h"
-#include "urdf_reading/mesh_lookup.h"
 #include "viewer/model/urdf_scene.h"
 #include "viewer/scene/mesh_cache.h"
 #include "viewer/scene/scene.h"
@@ -354,7 +354,7 @@ namespace {
 
 // Issue 32: a published robot's URDF names package://val_description/model/meshes/..., and
 // its folders were renamed, so the mesh is only found under one of the URDF's ancestors, as
-// `mbstream submit` looks (urdf_reading::MeshFileSearch). The viewer's local mode finds it
+// `mbstream submit` looks (model_files::MeshFileSearch). The viewer's local mode finds it
 // the same way and draws the mesh, not a placeholder box.
 TEST(LocalMeshLookup, MeshesFoundOnlyUnderTheUrdfsAncestorsAreDrawnAsSubmitFindsThem) {
   ASSERT_EQ(unsetenv("MBSTREAM_PACKAGE_PATH"), 0);
@@ -377,7 +377,7 @@ TEST(LocalMeshLookup, MeshesFoundOnlyUnderTheUrdfsAncestorsAreDrawnAsSubmitFinds
   const fs::path urdf = urdf_dir / "valkyrie.urdf";
   std::ofstream(urdf) << "<robot name=\"valkyrie\">\n" + links + joints + "</robot>\n";
 
-  const urdf_reading::MeshFileSearch submit_search(urdf_dir, {});
+  const model_files::MeshFileSearch submit_search(urdf_dir, {});
   const SceneDescription scene = SceneFromUrdfFile(urdf);
   EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
   ASSERT_EQ(scene.visuals.size(), parts.size());
@@ -390,7 +390,7 @@ TEST(LocalMeshLookup, MeshesFoundOnlyUnderTheUrdfsAncestorsAreDrawnAsSubmitFinds
     // The file submit attaches, and one the lookup inside a bundle (beside the URDF, or in
     // its parent) does not find.
     EXPECT_EQ(file->path, submit_search.Find(part.mesh_filename).found);
-    EXPECT_TRUE(urdf_reading::FindMeshFile(part.mesh_filename, urdf_dir).empty());
+    EXPECT_TRUE(model_files::FindMeshFile(part.mesh_filename, urdf_dir).empty());
     // The STL's box, not the inertia's (an edge of 0.245 m).
     EXPECT_TRUE(Near(Bounds(part), Vector3d(-0.1, -0.1, 0), Vector3d(0.1, 0.1, 0.3)));
   }

@@ -4,7 +4,7 @@
 #include <numbers>
 #include <random>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 #include "tests/viewer/script_test_util.h"
 #include "viewer/kinematics/pose_solver.h"
 #include "viewer/model/script_scene.h"

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 #include "tests/viewer/script_test_util.h"
 #include "viewer/link/run_scene.h"
 #include "viewer/model/urdf_scene.h"
@@ -15,7 +15,7 @@ namespace {
 
 std::string TreeUrdf() {
   std::ifstream in(
-      scene_script::testing::SourcePath("tests/urdf_reading/data/tree_child_first.urdf"));
+      scene_script::testing::SourcePath("tests/model_files/data/tree_child_first.urdf"));
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <map>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 #include "tests/viewer/xvfb_display.h"
 #include "viewer/model/model_scene.h"
 #include "viewer/scene/scene.h"

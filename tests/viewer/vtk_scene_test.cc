@@ -13,7 +13,7 @@
 #include <numbers>
 #include <thread>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 #include "tests/viewer/script_test_util.h"
 #include "tests/viewer/xvfb_display.h"
 #include "viewer/model/script_scene.h"

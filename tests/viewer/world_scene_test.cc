@@ -11,7 +11,7 @@
 #include <map>
 #include <set>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 #include "tests/viewer/xvfb_display.h"
 #include "viewer/model/model_scene.h"
 #include "viewer/scene/scene.h"

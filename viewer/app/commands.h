@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "net/server_credentials.h"
+#include "shared/net/server_credentials.h"
 #include "viewer/link/render_loop.h"
 #include "viewer/link/subscriber_link.h"
 #include "viewer/web/web_server.h"

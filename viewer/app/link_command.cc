@@ -12,8 +12,8 @@
 #include <optional>
 #include <thread>
 
-#include "net/server_credentials.h"
-#include "net/tls_files.h"
+#include "shared/net/server_credentials.h"
+#include "shared/net/tls_files.h"
 #include "viewer/app/commands.h"
 #include "viewer/app/scene_loading.h"
 #include "viewer/link/render_loop.h"

@@ -5,7 +5,7 @@
 #include <iostream>
 #include <optional>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 #include "viewer/app/commands.h"
 #include "viewer/app/scene_loading.h"
 #include "viewer/scene/scene.h"

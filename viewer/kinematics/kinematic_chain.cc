@@ -5,7 +5,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream::viewer {
 

@@ -3,8 +3,8 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "common/check.h"
-#include "urdf_reading/model_format.h"
+#include "shared/common/check.h"
+#include "shared/model_files/model_format.h"
 #include "viewer/model/model_scene.h"
 #include "viewer/model/script_scene.h"
 #include "viewer/script/asset_locator.h"
@@ -65,7 +65,7 @@ SceneDescription SceneFromBundle(const v1::ModelInfo& model, const v1::ModelBund
       scene = SceneFromScript(translation.script);
     } else {
       const bool sdf =
-          urdf_reading::DetectModelFormat(bundle.urdf()) == urdf_reading::ModelFormat::kSdf;
+          model_files::DetectModelFormat(bundle.urdf()) == model_files::ModelFormat::kSdf;
       scene = SceneFromModelText(bundle.urdf(), model.name() + (sdf ? ".sdf" : ".urdf"),
                                  BundleMeshFinder(dir), bundle.floating_base());
     }

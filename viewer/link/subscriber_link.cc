@@ -10,9 +10,9 @@
 #include <cmath>
 #include <thread>
 
-#include "common/check.h"
 #include "mbstream/v1/simulation_service.grpc.pb.h"
-#include "net/tls_files.h"
+#include "shared/common/check.h"
+#include "shared/net/tls_files.h"
 
 namespace mbstream::viewer {
 

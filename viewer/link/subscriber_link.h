@@ -12,7 +12,7 @@
 
 #include "mbstream/v1/simulation_service.pb.h"
 
-#include "net/client_channel.h"
+#include "shared/net/client_channel.h"
 #include "viewer/link/link_status.h"
 #include "viewer/link/run_scene.h"
 #include "viewer/link/scene_slot.h"

@@ -1,7 +1,7 @@
 // Where the viewer finds the file of a model's mesh reference (a URDF <mesh filename> or an
 // SDFormat <mesh><uri>): in a bundle the server sent, as the server stored it
-// (urdf_reading::FindMeshFile), or on the user's disk for the local mode exactly as
-// `mbstream submit` finds it (urdf_reading::MeshFileSearch: relative paths, the package path,
+// (model_files::FindMeshFile), or on the user's disk for the local mode exactly as
+// `mbstream submit` finds it (model_files::MeshFileSearch: relative paths, the package path,
 // package://PKG/REST under each of the model file's ancestors).
 #pragma once
 

@@ -3,9 +3,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "common/check.h"
-#include "urdf_reading/mesh_file_search.h"
-#include "urdf_reading/model_format.h"
+#include "shared/common/check.h"
+#include "shared/model_files/mesh_file_search.h"
+#include "shared/model_files/model_format.h"
 #include "viewer/model/sdf_scene.h"
 #include "viewer/model/urdf_scene.h"
 
@@ -13,7 +13,7 @@ namespace mbstream::viewer {
 
 SceneDescription SceneFromModelText(const std::string& text, const std::string& source,
                                     const MeshFinder& find_mesh, bool floating_base) {
-  if (urdf_reading::DetectModelFormat(text) == urdf_reading::ModelFormat::kSdf) {
+  if (model_files::DetectModelFormat(text) == model_files::ModelFormat::kSdf) {
     return SceneFromSdf(text, source, find_mesh);
   }
   return SceneFromUrdf(text, source, find_mesh, floating_base);
@@ -30,10 +30,10 @@ SceneDescription SceneFromModelFile(const std::filesystem::path& path,
   std::ostringstream text;
   text << in.rdbuf();
   const MeshFinder find_mesh = DiskMeshFinder(path.parent_path(), package_path);
-  if (urdf_reading::DetectModelFormat(text.str()) == urdf_reading::ModelFormat::kSdf) {
+  if (model_files::DetectModelFormat(text.str()) == model_files::ModelFormat::kSdf) {
     // On the user's disk an <include> is found beside the file and in the package path.
-    urdf_reading::SdfIncludePath includes{path.parent_path().empty() ? "." : path.parent_path(),
-                                          urdf_reading::PackagePath(package_path)};
+    model_files::SdfIncludePath includes{path.parent_path().empty() ? "." : path.parent_path(),
+                                         model_files::PackagePath(package_path)};
     return SceneFromSdf(text.str(), path.string(), find_mesh, includes);
   }
   return SceneFromUrdf(text.str(), path.string(), find_mesh, floating_base);

@@ -1,5 +1,5 @@
 // A scene from a model file, URDF or SDFormat, told apart by its content as the server tells
-// them (urdf_reading/model_format.h): `mbstream-viewer --model FILE` and the model a run's
+// them (shared/model_files/model_format.h): `mbstream-viewer --model FILE` and the model a run's
 // bundle carries.
 #pragma once
 

@@ -4,15 +4,15 @@
 
 #include <sdf/Joint.hh>
 
-#include "common/check.h"
-#include "urdf_reading/sdf_reading.h"
+#include "shared/common/check.h"
+#include "shared/model_files/sdf_reading.h"
 #include "viewer/model/shape_mesh.h"
 
 namespace mbstream::viewer {
 
 namespace {
 
-namespace ur = urdf_reading;
+namespace mf = model_files;
 
 constexpr int kResolution = 32;
 constexpr double kPlaceholderEdge = 0.05;  // m
@@ -30,7 +30,7 @@ ChainJointKind KindOf(const sdf::Joint& joint) {
 
 // A scoped name's last part: "tool0" of "irb1600::tool0".
 std::string LocalName(const std::string& name) {
-  const size_t scope = name.rfind(ur::kSdfScope);
+  const size_t scope = name.rfind(mf::kSdfScope);
   return scope == std::string::npos ? name : name.substr(scope + 2);
 }
 
@@ -40,7 +40,7 @@ bool IsTcpName(std::string name) {
 }
 
 // The part that draws `visual` in link frame `frame` (placed at X_LV in it).
-VisualPart PartOf(const ur::SdfVisual& visual, int frame, const Eigen::Isometry3d& X_LV,
+VisualPart PartOf(const mf::SdfVisual& visual, int frame, const Eigen::Isometry3d& X_LV,
                   const MeshFinder& find_mesh, std::vector<std::string>* warnings) {
   VisualPart part;
   part.name = visual.link;
@@ -48,16 +48,16 @@ VisualPart PartOf(const ur::SdfVisual& visual, int frame, const Eigen::Isometry3
   part.placement = X_LV;
   const std::optional<Eigen::Vector3d> colour = visual.diffuse ? visual.diffuse : visual.ambient;
   if (colour) part.color = *colour;
-  if (const auto* box = std::get_if<ur::SdfBox>(&visual.geometry)) {
+  if (const auto* box = std::get_if<mf::SdfBox>(&visual.geometry)) {
     part.geometry = CubeMesh({box->size});
     part.placement = part.placement * Eigen::Translation3d(-box->size / 2);
-  } else if (const auto* cylinder = std::get_if<ur::SdfCylinder>(&visual.geometry)) {
+  } else if (const auto* cylinder = std::get_if<mf::SdfCylinder>(&visual.geometry)) {
     part.geometry = CylinderMesh({2 * cylinder->radius, kResolution, cylinder->length});
     part.placement = part.placement * Eigen::Translation3d(0, 0, -cylinder->length / 2);
-  } else if (const auto* sphere = std::get_if<ur::SdfSphere>(&visual.geometry)) {
+  } else if (const auto* sphere = std::get_if<mf::SdfSphere>(&visual.geometry)) {
     part.geometry = SphereMesh({sphere->radius, kResolution});
   } else {
-    const auto& mesh = std::get<ur::SdfMesh>(visual.geometry);
+    const auto& mesh = std::get<mf::SdfMesh>(visual.geometry);
     part.mesh_filename = mesh.uri;
     VisualPart placeholder = part;
     const Eigen::Vector3d edge = Eigen::Vector3d::Constant(kPlaceholderEdge);
@@ -81,19 +81,19 @@ VisualPart PartOf(const ur::SdfVisual& visual, int frame, const Eigen::Isometry3
 }
 
 // The chain joint of a tree joint (a ball joint's last axis; SceneFromSdf adds the others).
-ChainJointKind KindOf(const ur::SdfJointOutline& outline) {
+ChainJointKind KindOf(const mf::SdfJointOutline& outline) {
   switch (outline.role) {
-    case ur::SdfJointRole::kFree:
+    case mf::SdfJointRole::kFree:
       return ChainJointKind::kFree;
-    case ur::SdfJointRole::kWeld:
+    case mf::SdfJointRole::kWeld:
       return ChainJointKind::kFixed;
     default:
       return KindOf(*outline.joint);
   }
 }
 
-bool IsBall(const ur::SdfJointOutline& outline) {
-  return outline.role == ur::SdfJointRole::kFile && outline.joint->Type() == sdf::JointType::BALL;
+bool IsBall(const mf::SdfJointOutline& outline) {
+  return outline.role == mf::SdfJointRole::kFile && outline.joint->Type() == sdf::JointType::BALL;
 }
 
 // A free joint's seven values holding its link at X_WL: x y z, qw qx qy qz.
@@ -108,22 +108,22 @@ void AppendFreeValues(const Eigen::Isometry3d& X_WL, std::vector<double>* q) {
 
 SceneDescription SceneFromSdf(const std::string& text, const std::string& source,
                               const MeshFinder& find_mesh,
-                              const std::optional<ur::SdfIncludePath>& includes) {
-  const ur::SdfFile file(text, source, {.includes = includes});
-  const ur::SdfTree tree = ur::ChooseSdfTree(file);
-  const std::vector<ur::SdfLinkFrame> frames = ur::SdfLinkFrames(file, tree);
+                              const std::optional<mf::SdfIncludePath>& includes) {
+  const mf::SdfFile file(text, source, {.includes = includes});
+  const mf::SdfTree tree = mf::ChooseSdfTree(file);
+  const std::vector<mf::SdfLinkFrame> frames = mf::SdfLinkFrames(file, tree);
 
   SceneDescription scene;
   scene.title = file.title();
   scene.joints_named_as_model = true;
   scene.warnings = tree.warnings;
-  std::map<std::string, int> frame_of{{ur::kSdfWorld, 0}};
-  std::map<std::string, Eigen::Isometry3d> X_WL{{ur::kSdfWorld, Eigen::Isometry3d::Identity()}};
-  scene.frame_names.push_back(ur::kSdfWorld);
+  std::map<std::string, int> frame_of{{mf::kSdfWorld, 0}};
+  std::map<std::string, Eigen::Isometry3d> X_WL{{mf::kSdfWorld, Eigen::Isometry3d::Identity()}};
+  scene.frame_names.push_back(mf::kSdfWorld);
   std::vector<ChainJoint> joints;
   for (size_t k = 0; k < tree.tree.size(); ++k) {
-    const ur::SdfJointOutline& outline = tree.joints[tree.tree[k]];
-    const ur::SdfLinkFrame& frame = frames[k];
+    const mf::SdfJointOutline& outline = tree.joints[tree.tree[k]];
+    const mf::SdfLinkFrame& frame = frames[k];
     ChainJoint joint;
     joint.name = outline.name;
     joint.parent = frame_of.at(outline.parent);
@@ -136,18 +136,18 @@ SceneDescription SceneFromSdf(const std::string& text, const std::string& source
       // Three revolute joints through the centre, as the server's model (SdfBallAxisName).
       for (int axis = 0; axis < 2; ++axis) {
         ChainJoint inner = joint;
-        inner.name = ur::SdfBallAxisName(outline.name, axis);
+        inner.name = mf::SdfBallAxisName(outline.name, axis);
         inner.axis = Eigen::Vector3d::Unit(axis);
         joints.push_back(std::move(inner));
         scene.frame_names.push_back(joints.back().name);
         joint.parent = static_cast<int>(joints.size());
         joint.pre = Eigen::Isometry3d::Identity();
       }
-      joint.name = ur::SdfBallAxisName(outline.name, 2);
+      joint.name = mf::SdfBallAxisName(outline.name, 2);
       joint.axis = Eigen::Vector3d::UnitZ();
     } else if (joint.kind == ChainJointKind::kRevolute ||
                joint.kind == ChainJointKind::kPrismatic) {
-      joint.axis = ur::SdfJointAxis(file, outline, frame.X_WL);
+      joint.axis = mf::SdfJointAxis(file, outline, frame.X_WL);
     }
     if (joint.kind == ChainJointKind::kFree) {
       AppendFreeValues(frame.X_WL, &scene.initial_q);
@@ -162,7 +162,7 @@ SceneDescription SceneFromSdf(const std::string& text, const std::string& source
   scene.chain = KinematicChain(Eigen::Isometry3d::Identity(), std::move(joints));
   MBSTREAM_CHECK(static_cast<int>(scene.initial_q.size()) == scene.chain.dof());
 
-  for (const ur::SdfVisual& visual : ur::SdfVisuals(file, &scene.warnings)) {
+  for (const mf::SdfVisual& visual : mf::SdfVisuals(file, &scene.warnings)) {
     const Eigen::Isometry3d X_LV = X_WL.at(visual.link).inverse() * visual.X_WV;
     scene.visuals.push_back(
         PartOf(visual, frame_of.at(visual.link), X_LV, find_mesh, &scene.warnings));
@@ -173,7 +173,7 @@ SceneDescription SceneFromSdf(const std::string& text, const std::string& source
     probe.name = "tcp";
     probe.frame = frame_of.at(name);
     probe.refer = 0;
-    probe.refer_name = ur::kSdfWorld;
+    probe.refer_name = mf::kSdfWorld;
     scene.probes.push_back(probe);
     break;
   }

@@ -1,7 +1,7 @@
 // A scene from an SDFormat file's visuals (a model, or a world of several) (box, cylinder, sphere,
 // mesh files) with their materials and poses, for `mbstream-viewer --model FILE.sdf` and for a run
-// of an SDFormat model the server sends. Read through urdf_reading/sdf_reading.h, the reading the
-// server's importer shares: the same spanning tree (its joints are the chain's, in the server's
+// of an SDFormat model the server sends. Read through shared/model_files/sdf_reading.h, the reading
+// the server's importer shares: the same spanning tree (its joints are the chain's, in the server's
 // order; the cut joints close loops the server solves and are not drawn as joints), the
 // same link frames, the same mesh lookup. The viewer links no server code.
 #pragma once
@@ -11,14 +11,14 @@
 #include <string>
 #include <vector>
 
-#include "urdf_reading/sdf_includes.h"
+#include "shared/model_files/sdf_includes.h"
 #include "viewer/model/mesh_finder.h"
 #include "viewer/model/scene_description.h"
 
 namespace mbstream::viewer {
 
 // Throws InputError "FILE[:LINE]: what is wrong; what to do" for input the server's importer
-// refuses too (urdf_reading::SdfFile, ChooseSdfTree). Colours: the <material>'s diffuse,
+// refuses too (model_files::SdfFile, ChooseSdfTree). Colours: the <material>'s diffuse,
 // else its ambient, else the mesh file's own, else grey. A mesh `find_mesh` does not find is
 // drawn as a tinted placeholder cube (with a warning). A link named tcp or tool0 (any
 // case) gets a probe "tcp" reported in the world frame, as the server's TCP.
@@ -28,6 +28,6 @@ namespace mbstream::viewer {
 // (position, unit quaternion), a static model's links are fixed where they stand.
 SceneDescription SceneFromSdf(const std::string& text, const std::string& source,
                               const MeshFinder& find_mesh,
-                              const std::optional<urdf_reading::SdfIncludePath>& includes = {});
+                              const std::optional<model_files::SdfIncludePath>& includes = {});
 
 }  // namespace mbstream::viewer

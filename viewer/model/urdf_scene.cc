@@ -7,10 +7,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "common/check.h"
-#include "urdf_reading/joint_order.h"
-#include "urdf_reading/tcp_choice.h"
-#include "urdf_reading/urdf_outline.h"
+#include "shared/common/check.h"
+#include "shared/model_files/joint_order.h"
+#include "shared/model_files/tcp_choice.h"
+#include "shared/model_files/urdf_outline.h"
 #include "viewer/model/inertia_box.h"
 #include "viewer/model/shape_mesh.h"
 
@@ -58,8 +58,8 @@ class UrdfSceneBuilder {
 
   SceneDescription Build(const std::string& text) {
     std::string error;
-    const std::optional<urdf_reading::UrdfOutline> outline =
-        urdf_reading::ReadUrdfOutline(text, &error);
+    const std::optional<model_files::UrdfOutline> outline =
+        model_files::ReadUrdfOutline(text, &error);
     if (!outline) Fail(error + "; fix the XML");
     outline_ = &*outline;
     const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(outline->urdfdom_text);
@@ -91,7 +91,7 @@ class UrdfSceneBuilder {
     frame_of_link_[root] = static_cast<int>(joints.size());
     scene.frame_names.push_back(root);
 
-    const urdf_reading::JointOrder order = urdf_reading::OrderJoints(*model, outline->joint_order);
+    const model_files::JointOrder order = model_files::OrderJoints(*model, outline->joint_order);
     if (!order.unplaced.empty()) {
       Fail("joint '" + order.unplaced.front()->name + "': its parent link '" +
            order.unplaced.front()->parent_link_name + "' is not connected to the root link '" +
@@ -119,7 +119,7 @@ class UrdfSceneBuilder {
         if (visual && visual->geometry) AddVisual(*link, *visual, &scene);
       }
     }
-    const std::string tcp = urdf_reading::ChooseTcpLink(*model, order, outline->link_order);
+    const std::string tcp = model_files::ChooseTcpLink(*model, order, outline->link_order);
     if (!tcp.empty()) {
       ProbePoint probe;
       probe.name = "tcp";
@@ -246,7 +246,7 @@ class UrdfSceneBuilder {
   MeshFinder find_mesh_;
   bool floating_base_ = false;
   std::string scene_root_;  // the URDF's root link
-  const urdf_reading::UrdfOutline* outline_ = nullptr;
+  const model_files::UrdfOutline* outline_ = nullptr;
   std::map<std::string, int> frame_of_link_;
 };
 

@@ -1,5 +1,5 @@
 // A scene from a URDF's visual elements (box, cylinder, sphere, mesh files), for robots that
-// come without a scene script. Parsed with urdfdom through urdf_reading, the reading the
+// come without a scene script. Parsed with urdfdom through shared/model_files, the reading the
 // server's importer shares: the same joint order (the degree-of-freedom order), the same TCP
 // link and the same mesh lookup. The viewer links no server code.
 #pragma once
@@ -24,7 +24,7 @@ namespace mbstream::viewer {
 // server stored it; a mesh that is not found becomes a tinted placeholder box of the link's inertia
 // size (with a warning in SceneDescription::warnings). Colours: a URDF <material> colour (inline or
 // by name) wins; else the mesh file's own material colours; else grey. The TCP link
-// (urdf_reading::ChooseTcpLink) gets a probe "tcp" reported in the base link's frame.
+// (model_files::ChooseTcpLink) gets a probe "tcp" reported in the base link's frame.
 SceneDescription SceneFromUrdfFile(const std::filesystem::path& path,
                                    const std::vector<std::string>& package_path = {});
 SceneDescription SceneFromUrdf(const std::string& text, const std::string& source,

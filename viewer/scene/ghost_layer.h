@@ -28,7 +28,7 @@ class GhostLayer {
   GhostLayer(const SceneDescription& description, vtkRenderer* renderer, double opacity);
 
   // ---- pose side: thread-safe. q in SI, the chain's joint order; throws
-  // InputError (common/check.h) on a wrong count.
+  // InputError (shared/common/check.h) on a wrong count.
   void SetJointValues(std::span<const double> q_si);
   // Every frame of the newest pose, in World.
   std::vector<Eigen::Isometry3d> Frames() const;

@@ -68,7 +68,7 @@ class Scene {
   // placeholder box) with a logged warning, and named on one HUD line (missing_meshes_line)
   // with the placeholders of missing files; without one, throws SceneError. Textures are
   // drawn where the mesh file's image is beside it (those that cannot be are logged once per
-  // scene). Throws InputError (common/check.h) on a bad description.
+  // scene). Throws InputError (shared/common/check.h) on a bad description.
   // The scene makes its own window (which opens an X connection at its first render).
   Scene(SceneDescription description, SceneOptions options);
   // The same, drawn into `window` (a ViewWindow's, which outlives the Scene; its size,

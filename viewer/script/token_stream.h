@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "common/ascii.h"
+#include "shared/common/ascii.h"
 #include "viewer/script/diagnostics.h"
 #include "viewer/script/token.h"
 
@@ -16,7 +16,7 @@ namespace mbstream::scene_script {
 // Thrown after an error was recorded: the current command cannot be read further.
 struct CommandAbort {};
 
-using ::mbstream::EqualsIgnoreCase;  // common/ascii.h
+using ::mbstream::EqualsIgnoreCase;  // shared/common/ascii.h
 
 class TokenStream {
  public:

@@ -3,7 +3,7 @@
 #include <grpcpp/client_context.h>
 
 #include "mbstream/v1/simulation_service.grpc.pb.h"
-#include "net/tls_files.h"
+#include "shared/net/tls_files.h"
 
 namespace mbstream::viewer {
 

@@ -17,7 +17,7 @@
 #include <mutex>
 #include <string>
 
-#include "net/client_channel.h"
+#include "shared/net/client_channel.h"
 #include "viewer/web/web_server.h"
 
 namespace mbstream::viewer {

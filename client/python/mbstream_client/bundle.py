@@ -110,7 +110,7 @@ def _add_referenced(bundle: "model_pb2.ModelBundle", name: str, path: str) -> No
 
 def _package_folders(package_path: Sequence[str], name: str) -> List[str]:
     """The folders below the package path entries (6 levels at most, in order) named `name`
-    or whose package.xml names it, as the C++ urdf_reading::PackageFolders finds them."""
+    or whose package.xml names it, as the C++ model_files::PackageFolders finds them."""
     found = []
     for root in package_path:
         if not os.path.isdir(root):
@@ -132,7 +132,7 @@ def _package_folders(package_path: Sequence[str], name: str) -> List[str]:
 
 def _include_file(uri: str, directory: str, package_path: Sequence[str]):
     """The model file an <include><uri> names, as the C++ FindSdfInclude finds it
-    (urdf_reading/sdf_includes.h), and every place tried."""
+    (shared/model_files/sdf_includes.h), and every place tried."""
     tried: List[str] = []
 
     def attempt(candidate: str) -> bool:

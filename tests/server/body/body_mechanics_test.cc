@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include "common/check.h"
 #include "server/body/body_cuts.h"
 #include "server/body/consistent_init.h"
 #include "server/body/quaternion.h"
+#include "shared/common/check.h"
 #include "tests/common/test_models.h"
 #include "tests/server/body/body_test_util.h"
 

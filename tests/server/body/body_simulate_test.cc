@@ -6,10 +6,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "common/check.h"
 #include "server/engine/engine.h"
 #include "server/sim/run_validation.h"
 #include "server/spec/run_spec_json.h"
+#include "shared/common/check.h"
 #include "tests/server/body/body_test_util.h"
 
 namespace mbstream {

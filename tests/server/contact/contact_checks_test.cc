@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "common/check.h"
 #include "server/contact/contact_law.h"
 #include "server/engine/engine.h"
 #include "server/parse/sdf_import.h"
 #include "server/sim/run_validation.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

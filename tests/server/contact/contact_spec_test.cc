@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "common/check.h"
 #include "server/spec/run_spec_json.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

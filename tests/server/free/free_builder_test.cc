@@ -5,10 +5,10 @@
 #include <cmath>
 #include <vector>
 
-#include "common/check.h"
 #include "server/model/model_builder.h"
 #include "server/sim/run_config.h"
 #include "server/sim/run_validation.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

@@ -8,9 +8,9 @@
 
 #include <gtest/gtest.h>
 
-#include "common/check.h"
 #include "server/integrate/ida_integrator.h"
 #include "server/integrate/integrator.h"
+#include "shared/common/check.h"
 #include "tests/server/integrate/test_systems.h"
 
 namespace mbstream {

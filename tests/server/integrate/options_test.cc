@@ -6,9 +6,9 @@
 #include <arkode/arkode_butcher_erk.h>
 #include <gtest/gtest.h>
 
-#include "common/check.h"
 #include "server/integrate/butcher_tables.h"
 #include "server/integrate/integrator.h"
+#include "shared/common/check.h"
 #include "tests/server/integrate/test_systems.h"
 
 namespace mbstream {

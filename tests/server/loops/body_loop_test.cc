@@ -9,9 +9,9 @@
 #include <cmath>
 #include <string>
 
-#include "common/check.h"
 #include "server/parse/sdf_import.h"
 #include "server/sim/loop_run.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

@@ -8,13 +8,13 @@
 #include <string>
 #include <utility>
 
-#include "common/check.h"
 #include "server/kinematics/forward_kinematics.h"
 #include "server/model/data.h"
 #include "server/parse/sdf_import.h"
 #include "server/results/results_csv.h"
 #include "server/sim/loop_run.h"
 #include "server/spec/run_spec_json.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

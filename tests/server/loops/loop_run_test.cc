@@ -10,13 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "common/check.h"
 #include "server/engine/engine.h"
 #include "server/parse/sdf_import.h"
 #include "server/sim/closed_loop_dae.h"
 #include "server/sim/closed_loop_ode.h"
 #include "server/sim/loop_plan.h"
 #include "server/spec/run_spec_json.h"
+#include "shared/common/check.h"
 #include "tests/common/allocation_counter.h"
 
 namespace mbstream {

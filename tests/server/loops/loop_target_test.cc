@@ -7,10 +7,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "common/check.h"
 #include "server/engine/engine.h"
 #include "server/parse/sdf_import.h"
 #include "server/sim/loop_run.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

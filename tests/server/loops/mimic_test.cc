@@ -7,13 +7,13 @@
 #include <cmath>
 #include <string>
 
-#include "common/check.h"
 #include "server/body/body_cuts.h"
 #include "server/dynamics/rnea.h"
 #include "server/kinematics/forward_kinematics.h"
 #include "server/kinematics/loop_constraints.h"
 #include "server/parse/urdf_import.h"
 #include "server/sim/loop_run.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

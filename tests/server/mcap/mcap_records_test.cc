@@ -9,10 +9,10 @@
 #include <sstream>
 #include <string>
 
-#include "common/check.h"
 #include "server/mcap/mcap_records.h"
 #include "server/mcap/mcap_writer.h"
 #include "server/mcap/ros_messages.h"
+#include "shared/common/check.h"
 
 namespace mbstream::mcap {
 namespace {

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <string>
 
-#include "common/check.h"
 #include "server/mcap/run_mcap.h"
+#include "shared/common/check.h"
 #include "tests/common/test_models.h"
 
 namespace mbstream::mcap {

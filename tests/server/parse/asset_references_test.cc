@@ -4,7 +4,7 @@
 
 #include "server/parse/asset_references.h"
 #include "server/parse/urdf_meshes.h"
-#include "urdf_reading/mesh_lookup.h"
+#include "shared/model_files/mesh_lookup.h"
 
 namespace mbstream {
 namespace {
@@ -16,11 +16,11 @@ TEST(AssetReferencesTest, UrdfMeshesAreLookedUpByEveryNameTheViewerUses) {
               ElementsAre("package://robot/meshes/base.stl", "robot/meshes/base.stl",
                           "meshes/base.stl", "base.stl"));
   // The name mbstream submit stores a mesh under: the path written, as a relative path.
-  EXPECT_EQ(urdf_reading::BundleAssetName("package://robot/meshes/base.stl"),
+  EXPECT_EQ(model_files::BundleAssetName("package://robot/meshes/base.stl"),
             "robot/meshes/base.stl");
-  EXPECT_EQ(urdf_reading::BundleAssetName("../meshes/visual/./link0.stl"),
+  EXPECT_EQ(model_files::BundleAssetName("../meshes/visual/./link0.stl"),
             "meshes/visual/link0.stl");
-  EXPECT_EQ(urdf_reading::BundleAssetName("file:///opt/robot/meshes/a.dae"),
+  EXPECT_EQ(model_files::BundleAssetName("file:///opt/robot/meshes/a.dae"),
             "opt/robot/meshes/a.dae");
   EXPECT_THAT(UrdfMeshAssetNames("../meshes/visual/link0.stl"),
               ElementsAre("../meshes/visual/link0.stl", "meshes/visual/link0.stl", "link0.stl"));

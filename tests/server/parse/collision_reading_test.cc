@@ -6,9 +6,9 @@
 #include <cmath>
 #include <string>
 
-#include "common/check.h"
 #include "server/parse/sdf_import.h"
 #include "server/parse/urdf_import.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

@@ -8,8 +8,8 @@
 #include <iterator>
 #include <string>
 
-#include "common/check.h"
 #include "server/parse/model_file.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

@@ -9,9 +9,9 @@
 #include <fstream>
 #include <string>
 
-#include "common/check.h"
 #include "server/parse/sdf_import.h"
 #include "server/parse/urdf_import.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {
@@ -242,7 +242,7 @@ TEST_F(SdfIncludeTest, AnErrorInsideAnIncludedModelNamesThatFile) {
 }
 
 // The server reads no file a model names: `mbstream submit` sends the world with its
-// included models written into it (urdf_reading::SdfFile::ExpandedText), which imports alike.
+// included models written into it (model_files::SdfFile::ExpandedText), which imports alike.
 TEST_F(SdfIncludeTest, TheServersReadingRefusesAnIncludeAndReadsTheExpandedWorld) {
   const std::string world = World(
       "<include><uri>model://pendulum</uri><name>p1</name><pose>1 0 0 0 0 0</pose>"
@@ -258,8 +258,8 @@ TEST_F(SdfIncludeTest, TheServersReadingRefusesAnIncludeAndReadsTheExpandedWorld
               std::string::npos)
         << error.what();
   }
-  const urdf_reading::SdfFile local(world, "w.sdf",
-                                    {.includes = urdf_reading::SdfIncludePath{dir_ / "models"}});
+  const model_files::SdfFile local(world, "w.sdf",
+                                   {.includes = model_files::SdfIncludePath{dir_ / "models"}});
   const std::string expanded = local.ExpandedText();
   EXPECT_EQ(expanded.find("<include"), std::string::npos) << expanded;
   const SdfImport sdf = ImportSdf(expanded, "w.sdf");

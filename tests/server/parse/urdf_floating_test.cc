@@ -6,8 +6,8 @@
 
 #include <string>
 
-#include "common/check.h"
 #include "server/parse/urdf_import.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

@@ -6,8 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "common/check.h"
 #include "server/parse/urdf_import.h"
+#include "shared/common/check.h"
 #include "tests/server/parse/urdf_test_util.h"
 
 namespace mbstream {

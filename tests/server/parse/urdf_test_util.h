@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "common/check.h"
 #include "server/parse/urdf_import.h"
+#include "shared/common/check.h"
 
 namespace mbstream::testing {
 

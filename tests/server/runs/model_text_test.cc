@@ -10,11 +10,11 @@
 
 #include <unistd.h>
 
-#include "common/check.h"
-#include "common/utf8.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/server_limits.h"
 #include "server/store/store.h"
+#include "shared/common/check.h"
+#include "shared/common/utf8.h"
 
 namespace mbstream {
 namespace {

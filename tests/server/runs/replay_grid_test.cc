@@ -1,8 +1,8 @@
 // The common time grid of a replay and its ghost, and the refusals that name what to do.
 #include <gmock/gmock.h>
 
-#include "common/check.h"
 #include "server/runs/replay_grid.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

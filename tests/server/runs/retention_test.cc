@@ -13,11 +13,11 @@
 
 #include <unistd.h>
 
-#include "common/check.h"
 #include "server/runs/model_registry.h"
 #include "server/runs/run_deleter.h"
 #include "server/runs/run_manager.h"
 #include "server/store/store.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

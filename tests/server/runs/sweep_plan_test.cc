@@ -4,9 +4,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "common/check.h"
 #include "server/runs/sweep_plan.h"
 #include "server/spec/spec_override.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

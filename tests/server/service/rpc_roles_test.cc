@@ -10,7 +10,7 @@
 #include <map>
 #include <set>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 #include "tests/server/service/server_fixture.h"
 
 namespace mbstream::testing {

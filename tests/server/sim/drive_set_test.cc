@@ -12,9 +12,9 @@
 #include <random>
 #include <vector>
 
-#include "common/check.h"
 #include "server/dynamics/aba.h"
 #include "server/sim/joint_space_ode.h"
+#include "shared/common/check.h"
 #include "tests/common/allocation_counter.h"
 #include "tests/server/sim/scene_fixture.h"
 

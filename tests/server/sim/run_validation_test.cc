@@ -6,10 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include "common/check.h"
 #include "server/engine/engine.h"
 #include "server/sim/integrator_options_from.h"
 #include "server/sim/run_validation.h"
+#include "shared/common/check.h"
 #include "tests/server/sim/scene_fixture.h"
 
 namespace mbstream {

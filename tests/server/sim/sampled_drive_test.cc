@@ -5,10 +5,10 @@
 #include <cmath>
 #include <string>
 
-#include "common/check.h"
 #include "server/engine/engine.h"
 #include "server/sim/run_stop.h"
 #include "server/sim/run_validation.h"
+#include "shared/common/check.h"
 #include "tests/server/sim/scene_fixture.h"
 
 namespace mbstream {

@@ -6,9 +6,9 @@
 
 #include <cmath>
 
-#include "common/check.h"
 #include "server/dynamics/rnea.h"
 #include "server/sim/run_validation.h"
+#include "shared/common/check.h"
 #include "tests/common/seed_kinematics.h"
 #include "tests/server/sim/scene_fixture.h"
 

@@ -11,7 +11,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "common/check.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {

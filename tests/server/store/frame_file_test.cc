@@ -10,8 +10,8 @@
 
 #include <gtest/gtest.h>
 
-#include "common/check.h"
 #include "server/store/disk_full_error.h"
+#include "shared/common/check.h"
 #include "tests/server/store/store_test_util.h"
 
 namespace mbstream {

@@ -7,9 +7,9 @@
 
 #include <gmock/gmock.h>
 
-#include "common/check.h"
 #include "server/store/frame_chunks.h"
 #include "server/store/store.h"
+#include "shared/common/check.h"
 #include "tests/server/store/store_test_util.h"
 
 namespace mbstream::testing {

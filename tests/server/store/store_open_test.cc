@@ -6,10 +6,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "common/check.h"
 #include "server/store/sqlite_connection.h"
 #include "server/store/sqlite_statement.h"
 #include "server/store/store.h"
+#include "shared/common/check.h"
 #include "tests/server/store/store_test_util.h"
 
 namespace mbstream {

@@ -9,10 +9,10 @@
 #include <gtest/gtest.h>
 #include <pqxx/pqxx>
 
-#include "common/check.h"
 #include "server/store/frame_chunks.h"
 #include "server/store/postgres_schema.h"
 #include "server/store/store_location.h"
+#include "shared/common/check.h"
 #include "tests/common/postgres_cluster.h"
 #include "tests/server/store/store_test_util.h"
 

@@ -9,8 +9,8 @@
 #include <fstream>
 #include <map>
 
-#include "common/check.h"
 #include "server/wire/model_bundle_files.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 namespace {
