@@ -76,7 +76,7 @@ std::unique_ptr<Stream> Follow(grpc::ClientContext* context, int max_batch) {
   start.mutable_start()->set_follow(true);
   start.mutable_start()->set_max_batch(max_batch);
   stream->Write(start);
-  while (Server().host->runs().subscriber_count() == 0) {
+  while (Server().host->runs().subscriptions().count() == 0) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   return stream;
@@ -123,7 +123,7 @@ void BM_StreamFrames(benchmark::State& state) {
     state.SetIterationTime(std::chrono::duration<double>(last - first).count());
     context.TryCancel();
     stream->Finish();
-    while (Server().host->runs().subscriber_count() != 0) {
+    while (Server().host->runs().subscriptions().count() != 0) {
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
   }
@@ -176,7 +176,7 @@ void BM_ProbeRoundTrip(benchmark::State& state) {
       }
     }
     reader->Finish();
-    while (Server().host->runs().subscriber_count() != 0) {
+    while (Server().host->runs().subscriptions().count() != 0) {
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
     state.ResumeTiming();

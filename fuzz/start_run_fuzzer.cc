@@ -112,7 +112,7 @@ void Fail(const char* what, const std::string& detail) {
 
 // Waits for the run's end; returns its final info.
 v1::RunInfo WaitForEnd(RunManager& runs, const std::string& run_id) {
-  std::shared_ptr<Subscription> subscription = runs.SubscribeRun(run_id, false);
+  std::shared_ptr<Subscription> subscription = runs.subscriptions().SubscribeRun(run_id, false);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   bool ended = false;
   while (!ended) {
@@ -127,7 +127,7 @@ v1::RunInfo WaitForEnd(RunManager& runs, const std::string& run_id) {
       if (event.kind == StreamEvent::Kind::kRunEnded) ended = true;
     }
   }
-  runs.Unsubscribe(subscription);
+  runs.subscriptions().Unsubscribe(subscription);
   return runs.Get(run_id);
 }
 

@@ -20,7 +20,7 @@ std::unique_ptr<Store> MetricsEndpoint::Measure(std::unique_ptr<Store> store) {
 }
 
 void MetricsEndpoint::Serve(const std::string& host_port, const RunManager& runs) {
-  server_.SetSubscriberCount([&runs] { return static_cast<double>(runs.subscriber_count()); });
+  server_.SetSubscriberCount([&runs] { return static_cast<double>(runs.subscriptions().count()); });
   try {
     listener_ = metrics::HttpListener::Start(host_port, [this] { return registry_.Exposition(); });
   } catch (const std::runtime_error& error) {

@@ -175,7 +175,7 @@ void ServerHost::BuildParts(const ServerConfig& config) {
     const std::string dir = location.target;
     FreeSpaceSource source = config.free_space_source;
     if (!source) source = [dir] { return FreeBytesAt(dir); };
-    runs_->SetFreeSpaceSource(source, dir);
+    runs_->replica().SetFreeSpaceSource(source, dir);
     free_space_ = std::make_unique<FreeSpaceWatch>(source, config.limits.min_free_bytes);
   }
   grace_s_ = config.grace_s;
@@ -185,7 +185,7 @@ void ServerHost::BuildParts(const ServerConfig& config) {
     }
   } else {
     try {
-      peers_ = std::make_unique<PeerChannels>(PeerSecurityOf(config), runs_->replica_id());
+      peers_ = std::make_unique<PeerChannels>(PeerSecurityOf(config), runs_->replica().id());
     } catch (const net::SecurityConfigError& error) {
       throw InputError(error.what());
     }
@@ -218,13 +218,13 @@ void ServerHost::Listen(const ServerConfig& config,
   std::string name, port_text;
   const bool has_port = SplitPort(config.listen, &name, &port_text);
   if (!server_ || (has_port && port == 0)) {
-    runs_->Shutdown("the server could not start");
+    runs_->replica().Shutdown("the server could not start");
     throw InputError("cannot listen on " + config.listen +
                      ": is the address valid and the port free? (use port 0 for any free port)");
   }
   address_ = has_port ? name + ":" + std::to_string(port) : config.listen;
   if (config.advertise.empty()) {
-    runs_->SetAdvertisedAddress(AdvertisedAddress(name, port, address_));
+    runs_->replica().SetAdvertisedAddress(AdvertisedAddress(name, port, address_));
   }
 }
 
@@ -233,7 +233,7 @@ void ServerHost::StartHealthAndMetrics(const ServerConfig& config) {
   // besides while the data directory's disk has --min-free-mb free (health_status.h).
   health_ = std::make_unique<HealthStatus>(server_->GetHealthCheckService());
   HealthStatus* health = health_.get();
-  runs_->SetServingListener([health](bool serving) { health->SetServing(serving); });
+  runs_->replica().SetServingListener([health](bool serving) { health->SetServing(serving); });
   if (free_space_) {
     free_space_->SetListener([health](bool enough) { health->SetEnoughSpace(enough); });
     free_space_->Start(config.free_space_period_s);
@@ -258,13 +258,14 @@ void ServerHost::Shutdown() {
   spdlog::info("shutting down: interrupting runs and closing streams");
   service_->Stop();
   retention_->Stop();
-  runs_->Shutdown("the server was shut down");
+  runs_->replica().Shutdown("the server was shut down");
   server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
 }
 
 void ServerHost::Drain() {
   if (shut_down_ || !server_) return;
-  runs_->Drain(std::chrono::duration<double>(grace_s_), "the server was drained (SIGTERM)");
+  runs_->replica().Drain(std::chrono::duration<double>(grace_s_),
+                         "the server was drained (SIGTERM)");
   Shutdown();
 }
 

@@ -1,4 +1,4 @@
-// Replays of ended runs to the follow streams (ReplayRun: RunManager::ReplayToFollowers): each
+// Replays of ended runs to the follow streams (ReplayRun: RunReplays::ToFollowers): each
 // on a thread of its own, the run's stored frames read one chunk at a time (ReplayCursor) and
 // pushed to the followers attached when it started (started, frames paced at `speed_x`
 // simulated s per s of the run clock, ended), as if the run were running. At most

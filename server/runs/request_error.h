@@ -25,4 +25,10 @@ class RequestError : public std::runtime_error {
   RequestErrorKind kind_;
 };
 
+// NOT_FOUND for a run id this server does not know, saying where the ids are listed.
+inline RequestError UnknownRunError(const std::string& run_id) {
+  return RequestError(RequestErrorKind::kNotFound,
+                      "no run '" + run_id + "' on this server; `mbstream runs` lists them");
+}
+
 }  // namespace mbstream

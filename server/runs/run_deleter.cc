@@ -36,9 +36,9 @@ v1::RunInfo RunDeleter::StopRun(const v1::RunInfo& info) const {
 }
 
 void RunDeleter::Remove(const std::string& run_id) const {
-  runs_->ForgetEnded(run_id);
+  runs_->results().Forget(run_id);
   const bool deleted = store_->DeleteRun(run_id);
-  runs_->ForgetEnded(run_id);  // a result kept between the two (never once the row is gone)
+  runs_->results().Forget(run_id);  // a result kept between the two (never once the row is gone)
   spdlog::info("run {} deleted{}", run_id, deleted ? "" : " (it was gone already)");
 }
 
@@ -58,7 +58,8 @@ std::vector<v1::RunInfo> RunDeleter::DeleteRuns(const std::vector<std::string>& 
 
 v1::ModelInfo RunDeleter::DeleteModel(const std::string& model, bool with_runs,
                                       std::vector<v1::RunInfo>* deleted_runs) const {
-  const v1::ModelInfo info = runs_->ModelInfo(model);  // kNotFound (a shared store read again)
+  const v1::ModelInfo info =
+      runs_->replica().ModelInfo(model);  // kNotFound (a shared store read again)
   if (info.builtin()) {
     throw RequestError(RequestErrorKind::kFailedPrecondition,
                        "model " + info.id() + " '" + info.name() +
@@ -101,7 +102,7 @@ v1::RunInfo RunDeleter::SetKeep(const std::string& run_id, bool keep) const {
   }
   if (!store_->SetRunKeep(run_id, keep))
     throw RequestError(RequestErrorKind::kNotFound, "no run " + run_id + " (deleted)");
-  runs_->ForgetEnded(run_id);  // its info kept in memory lacks the mark: read from the store
+  runs_->results().Forget(run_id);  // its info kept in memory lacks the mark: read from the store
   std::optional<v1::RunInfo> stored = store_->GetRun(run_id);
   if (!stored) throw RequestError(RequestErrorKind::kNotFound, "no run " + run_id + " (deleted)");
   spdlog::info("run {} {}", run_id, keep ? "kept from retention" : "no longer kept");
@@ -110,7 +111,7 @@ v1::RunInfo RunDeleter::SetKeep(const std::string& run_id, bool keep) const {
 
 bool RunDeleter::DeleteIfEnded(const std::string& run_id) const {
   const std::optional<v1::RunInfo> info = store_->GetRun(run_id);
-  if (!info || info->keep() || !IsFinalState(info->state()) || runs_->IsActive(run_id)) {
+  if (!info || info->keep() || !IsFinalState(info->state()) || runs_->replays().IsActive(run_id)) {
     return false;
   }
   Remove(run_id);

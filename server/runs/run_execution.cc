@@ -205,7 +205,7 @@ void RunManager::StoreFinal(Run& run, v1::RunInfo& info) {
     try {
       store_->PutRun(info);  // at least the final state, if the store takes that
     } catch (const std::exception& again) {
-      // Shown as it is meanwhile (Get, ResultInfo), and written once the store takes it.
+      // Shown as it is meanwhile (Get, RunResults::Info), and written once the store takes it.
       spdlog::error(
           "run {}: storing its final state failed too ({}); it is written again "
           "until the store takes it",
@@ -248,7 +248,7 @@ void RunManager::Finish(const std::shared_ptr<Run>& run, const Outcome& outcome)
   // refilling the pages, the cache read back from disk; docs/performance.md, "Many runs at
   // once").
   const int64_t joint_values = info.frames() * std::max(1, run->model().model.num_dofs());
-  if (joint_values >= static_cast<int64_t>(kFramesPerChunk) * 6) ReleaseMemory();
+  if (joint_values >= static_cast<int64_t>(kFramesPerChunk) * 6) results_.ReleaseMemory();
 }
 
 }  // namespace mbstream

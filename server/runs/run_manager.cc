@@ -36,11 +36,6 @@ namespace mbstream {
 
 namespace {
 
-RequestError NotFound(const std::string& run_id) {
-  return RequestError(RequestErrorKind::kNotFound,
-                      "no run '" + run_id + "' on this server; `mbstream runs` lists them");
-}
-
 // `replica` with an id (a new one when none is given).
 ReplicaOptions WithId(ReplicaOptions replica) {
   if (replica.id.empty()) replica.id = NewReplicaId();
@@ -66,7 +61,7 @@ RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& 
                   ? 1000
                   : std::max<int64_t>(50, static_cast<int64_t>(replica_.claim_poll_s * 1000))),
           [this](const StoredSweep& sweep, const SweepPlan& plan, int first, int count) {
-            return !FeedSweep(sweep, plan, first, count).empty();
+            return !sweeps_.Feed(sweep, plan, first, count).empty();
           },
           [this] { pending_finals_.Retry(*store_); }),
       queue_(store_, replica_, limits_, QueueHooks()) {
@@ -80,7 +75,7 @@ RunManager::RunManager(ModelRegistry* models, Store* store, const ServerLimits& 
   }
 }
 
-RunManager::~RunManager() { Shutdown("the server stopped"); }
+RunManager::~RunManager() { replica_control_.Shutdown("the server stopped"); }
 
 std::string RunManager::NewRunId() const {
   // StartMany draws again on a collision (the store refuses a taken id, AddRuns).
@@ -219,7 +214,7 @@ v1::RunInfo RunManager::Get(const std::string& run_id) const {
   if (v1::RunInfo info; recent_results_.GetInfo(run_id, info)) return info;  // ended here
   if (v1::RunInfo info; pending_finals_.Find(run_id, info)) return info;     // not stored yet
   std::optional<v1::RunInfo> stored = store_->GetRun(run_id);
-  if (!stored) throw NotFound(run_id);
+  if (!stored) throw UnknownRunError(run_id);
   return *stored;
 }
 
@@ -284,112 +279,31 @@ RunManager::RunPage RunManager::List(const std::string& model, int limit, int pa
   return page;
 }
 
-v1::RunInfo RunManager::ResultInfo(const std::string& run_id) const {
-  std::shared_ptr<Run> run = FindActive(run_id);
-  if (run && !IsFinalState(run->Info().state())) {
-    throw RequestError(RequestErrorKind::kFailedPrecondition,
-                       "run " + run_id + " is " + v1::RunState_Name(run->Info().state()) +
-                           "; wait for it to end (`mbstream run --watch` or WatchRun)");
-  }
-  if (v1::RunInfo pending; pending_finals_.Find(run_id, pending)) return pending;
-  std::optional<v1::RunInfo> info = store_->GetRun(run_id);
-  if (!info) throw NotFound(run_id);
-  if (!IsFinalState(info->state())) {  // queued, or integrating on another replica
-    throw RequestError(RequestErrorKind::kFailedPrecondition,
-                       "run " + run_id + " is " + v1::RunState_Name(info->state()) +
-                           "; wait for it to end (`mbstream run --watch` or WatchRun)");
-  }
-  return *info;
-}
-
-std::optional<int64_t> RunManager::ResultFrames(const std::string& run_id, int64_t index,
-                                                std::string& data,
-                                                std::vector<std::string_view>& frames) const {
-  if (index == 0 && recent_results_.Get(run_id, data)) {  // the whole result, one chunk
-    MBSTREAM_CHECK(SplitFrameChunk(data, frames));
-    return std::nullopt;
-  }
-  return store_->GetSerializedFrames(run_id, index, data, frames);
-}
-
-void RunManager::ReleaseMemory() const {
-  store_->ReleaseMemory();
-  ReleaseFreedMemory();
-}
-
-std::vector<v1::ProbeReport> RunManager::ResultProbes(const std::string& run_id) const {
-  return store_->GetProbes(run_id);
-}
-
-std::shared_ptr<Subscription> RunManager::NewSubscription() { return fan_out_.NewSubscription(); }
-
-void RunManager::AttachRun(const std::shared_ptr<Subscription>& subscriber,
-                           const std::string& run_id, bool send_started) {
-  switch (queue_.Attach(subscriber, run_id, send_started)) {
-    case RunQueue::Attached::kAttached:
-      return;
-    case RunQueue::Attached::kNotFound:
-      throw NotFound(run_id);
-    case RunQueue::Attached::kNotHere:
-      break;
-  }
-  // Ended and stored (a run leaves the queue's runs only after it is stored and has ended),
-  // or on another replica (not followed here yet: docs/cluster.md).
-  if (send_started) subscriber->Push({StreamEvent::Kind::kRunStarted, run_id, nullptr});
-  subscriber->Push({StreamEvent::Kind::kRunEnded, run_id, nullptr});
-}
-
-bool RunManager::AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber) {
-  // In one step with the worker's marking a run RUNNING and attaching the followers
-  // (FanOut::AnnounceStart): the follower sees each run exactly once, here or from the worker.
-  return fan_out_.Follow(subscriber, [this] { return queue_.NewestRunning(); });
-}
-
-void RunManager::AttachFollow(const std::shared_ptr<Subscription>& subscriber) {
-  const bool running_here = AttachLocalFollow(subscriber);
-  if (!cluster_follow_) return;
-  // The runs other replicas claim from now on; and, with none running here, the newest one
-  // running elsewhere now (the follow relays open each run once, whoever announces it).
-  const std::optional<v1::RunInfo> elsewhere = cluster_follow_->Attach();
-  if (!running_here && elsewhere) {
-    subscriber->Push({StreamEvent::Kind::kRemoteRun, elsewhere->id(), nullptr});
-  }
-}
-
-std::shared_ptr<Subscription> RunManager::SubscribeRun(const std::string& run_id,
-                                                       bool send_started) {
-  std::shared_ptr<Subscription> subscriber = NewSubscription();
+std::shared_ptr<const CompiledModel> RunManager::FindModel(const std::string& model_ref) const {
   try {
-    AttachRun(subscriber, run_id, send_started);
-  } catch (...) {
-    Unsubscribe(subscriber);
-    throw;
+    return models_->Find(model_ref);
+  } catch (const RequestError& error) {
+    if (error.kind() != RequestErrorKind::kNotFound) throw;
   }
-  return subscriber;
+  // Submitted to another replica since this one listed the store's models.
+  if (models_->LoadStored() == 0) return models_->Find(model_ref);  // throws kNotFound again
+  spdlog::info("models of other replicas loaded from the store for '{}'", model_ref);
+  return models_->Find(model_ref);
 }
 
-void RunManager::Unsubscribe(const std::shared_ptr<Subscription>& subscriber) {
-  fan_out_.Unsubscribe(subscriber);
+std::shared_ptr<Run> RunManager::RunOf(const v1::RunInfo& info) {
+  std::shared_ptr<const CompiledModel> model = FindModel(info.model_id());
+  std::vector<std::string> warnings;
+  const RunConfig config = PrepareConfig(*model, info.spec(), &warnings);
+  return std::make_shared<Run>(info, config, std::move(model), *clock_, ProbeOptions());
 }
 
-int RunManager::subscriber_count() const { return fan_out_.subscriber_count(); }
-
-bool RunManager::AddProbes(const std::string& run_id, const std::vector<v1::ProbeReport>& reports) {
-  std::shared_ptr<Run> run = FindActive(run_id);
-  return run && run->probes().Add(reports);
-}
-
-void RunManager::Shutdown(const std::string& reason) {
-  feeder_.Stop();                        // no more points queued
-  if (!queue_.Shutdown(reason)) return;  // shut down already
-  follower_replays_.Stop();
-  if (cluster_follow_) cluster_follow_->Stop();
-  for (const auto& follower : fan_out_.followers()) follower->Close();
-}
-
-void RunManager::Drain(std::chrono::duration<double> grace, const std::string& reason) {
-  queue_.Drain(grace);
-  Shutdown(reason);
+ProbeRecorder::Options RunManager::ProbeOptions() const {
+  ProbeRecorder::Options options;
+  options.max_reports = limits_.max_probe_reports;
+  options.interval = std::chrono::duration_cast<RunClock::TimePoint::duration>(
+      std::chrono::duration<double>(std::max(limits_.frame_flush_s, 0.0)));
+  return options;
 }
 
 }  // namespace mbstream

@@ -2,8 +2,8 @@
 // RunQueue (the queue, the worker threads, leases, cluster claims, draining and shutdown),
 // FanOut (subscriptions, followers, announcements), FollowerReplays (stored runs replayed to
 // the followers) and each run's ProbeRecorder (probe reports stored in batches as they come;
-// a replay's from RecordProbeSet). It validates and prepares runs, integrates a claimed run
-// (run_execution.cc) and answers reads. gRPC-free: the service calls it.
+// a replay's from RunReplays::RecordProbeSet). It validates and prepares runs, integrates a claimed
+// run (run_execution.cc) and answers reads. gRPC-free: the service calls it.
 #pragma once
 
 #include <chrono>
@@ -30,9 +30,14 @@
 #include "server/runs/probe_recorder.h"
 #include "server/runs/recent_results.h"
 #include "server/runs/replay_cursor.h"
+#include "server/runs/replica_control.h"
 #include "server/runs/run.h"
 #include "server/runs/run_clock.h"
 #include "server/runs/run_queue.h"
+#include "server/runs/run_replays.h"
+#include "server/runs/run_results.h"
+#include "server/runs/run_subscriptions.h"
+#include "server/runs/run_sweeps.h"
 #include "server/runs/server_limits.h"
 #include "server/runs/subscription.h"
 #include "server/runs/sweep_feeder.h"
@@ -71,55 +76,26 @@ class RunManager {
                                      const std::string& owner = "",
                                      const std::string& sweep_id = "", int first_point = 0,
                                      int total_points = 0);
-  // Sweeps the server feeds (run_manager_sweep.cc; docs/cluster.md, "Sweeps"). StartSweep
-  // checks every point's values against the spec's fields and the first `window` points
-  // against the model (InputError or RequestError naming the point), stores the sweep whole
-  // and queues its first window (as the queue has room); the feeder queues the rest, at most
-  // `window` (0: 32) of its runs queued or running at once. A later point the model refuses
-  // is stored as a FAILED run of the sweep. Throws as StartMany.
-  struct StartedSweep {
-    std::string id;
-    int total_points = 0;
-    std::vector<std::string> paths;
-    std::vector<v1::RunInfo> runs;  // queued (or FAILED) by this call, in point order
-    std::vector<std::vector<std::string>> values;  // each run's values, in paths' order
-  };
-  StartedSweep StartSweep(const std::string& model, v1::SweepDefinition definition, int window,
-                          const std::string& owner);
-  // A sweep as the store holds it: its row (nullopt for a sweep an older server started in
-  // slices: then `runs` are all its runs), its runs by state (those integrating here as they
-  // are now) and a page of its runs, in point order from point `runs_from`, at most
-  // `max_runs` (0 = 1,000, at most 1,000), each with its values. Throws kNotFound.
-  struct SweepView {
-    std::optional<StoredSweep> stored;
-    std::map<int, int> states;  // by v1::RunState
-    std::vector<v1::RunInfo> runs;
-    std::vector<std::string> paths;
-    std::vector<std::vector<std::string>> values;  // of each run of `runs` (with `stored`)
-  };
-  SweepView ViewSweep(const std::string& sweep_id, int runs_from, int max_runs) const;
-  // The runs of sweep `sweep_id` QUEUED or RUNNING in the store (at most its window).
-  std::vector<v1::RunInfo> UnfinishedSweepRuns(const std::string& sweep_id) const;
-  // The runs of sweep `sweep_id` the store holds (every replica's), in point order, each as
-  // Get returns it (run_manager_sweep.cc). Empty for an unknown sweep.
-  std::vector<v1::RunInfo> SweepRuns(const std::string& sweep_id) const;
-  // Records on every stored run of sweep `sweep_id` that the sweep was cancelled
-  // (RunInfo.sweep_cancelled; Store::MarkSweepCancelled) and returns how many were marked now.
-  int MarkSweepCancelled(const std::string& sweep_id);
-  // Whether sweep `sweep_id` was cancelled (a stored run carries the mark), from the store's
-  // index alone: StartSweep asks before each slice.
-  bool SweepCancelled(const std::string& sweep_id) const;
+  // The parts of the facade, each in a header of its own: sweeps the server stores and
+  // feeds (run_sweeps.h), stored results read piece by piece (run_results.h), replays and
+  // their probe sets (run_replays.h), subscriptions and viewers' probe reports
+  // (run_subscriptions.h), and this replica: where runs integrate, the models of other
+  // replicas, free space, draining and shutdown (replica_control.h).
+  RunSweeps& sweeps() { return sweeps_; }
+  const RunSweeps& sweeps() const { return sweeps_; }
+  RunResults& results() { return results_; }
+  const RunResults& results() const { return results_; }
+  RunReplays& replays() { return replays_; }
+  const RunReplays& replays() const { return replays_; }
+  RunSubscriptions& subscriptions() { return subscriptions_; }
+  const RunSubscriptions& subscriptions() const { return subscriptions_; }
+  ReplicaControl& replica() { return replica_control_; }
+  const ReplicaControl& replica() const { return replica_control_; }
+
   // Tests only: where new run ids come from (the time and 32 random bits by default), to
   // force the collisions the store refuses. Call before the first Start.
   void SetRunIdSourceForTesting(std::function<std::string()> source) {
     run_id_source_ = std::move(source);
-  }
-  // Where Start and StartMany learn the free space of the disk of `data_dir` (the SQLite
-  // store's data directory), checked against limits().min_free_bytes before any run is
-  // queued (free_space.h). Unset (a PostgreSQL store): no check. Call before the first Start.
-  void SetFreeSpaceSource(FreeSpaceSource source, std::string data_dir) {
-    free_space_source_ = std::move(source);
-    data_dir_ = std::move(data_dir);
   }
   // A Control stream attaches to run `run_id` (run_manager_control.cc): a run queued or
   // integrating here with external drives and no controller yet, started by `caller` (or
@@ -156,106 +132,16 @@ class RunManager {
   RunPage List(const std::string& model, int limit, int page_size,
                const std::string& page_token) const;
 
-  // The stored result of an ended run, read piece by piece (a long run is never in memory
-  // at once). ResultInfo throws RequestError: kNotFound, or kFailedPrecondition while the
-  // run is queued or running. ResultFrames reads stored chunk `index` (or the next one) into
-  // `data` and appends its frames' serialized bytes (views into `data`) to `frames`; it
-  // returns the index to ask for next, nullopt after the last (Store::GetSerializedFrames).
-  v1::RunInfo ResultInfo(const std::string& run_id) const;
-  std::optional<int64_t> ResultFrames(const std::string& run_id, int64_t index, std::string& data,
-                                      std::vector<std::string_view>& frames) const;
-  std::vector<v1::ProbeReport> ResultProbes(const std::string& run_id) const;
-  // Forgets what this replica keeps of ended run `run_id` in memory (RecentResults), after
-  // the run was deleted from the store (run_deleter.h): later reads ask the store.
-  void ForgetEnded(const std::string& run_id) {
-    recent_results_.Erase(run_id);
-    pending_finals_.Erase(run_id);
-  }
-  // Replays (run_manager_replay.cc). Whether the run is queued or running now; a cursor over
-  // an ended run's stored frames (`info` from ResultInfo); the replays' probe sets: a new
-  // unique set id, creating a set and adding its reports (each call one transaction), the
-  // sets of a run (kNotFound for an unknown run) and one set's reports (kNotFound when the
-  // set is not one of the run's).
-  bool IsActive(const std::string& run_id) const;
-  std::unique_ptr<ReplayCursor> OpenReplay(const v1::RunInfo& info) const;
-  std::string NewProbeSetId() const;
-  // A recorder of a replay's probe reports, opened: probe set `set` is created in the store
-  // with its first batch, the reports added in batches as they come (probe_recorder.h).
-  std::unique_ptr<ProbeRecorder> RecordProbeSet(const v1::ProbeSet& set) const;
-  std::vector<v1::ProbeSet> ListProbeSets(const std::string& run_id) const;
-  std::vector<v1::ProbeReport> ResultProbeSet(const std::string& run_id,
-                                              const std::string& set_id) const;
-  // Streams the ended run `run_id` to the followers attached now (started, its frames paced
-  // at `speed_x` simulated s per wall s, ended), as if it were running, on a thread of its
-  // own; returns its info at once. Throws ResultInfo's errors, kFailedPrecondition for a run
-  // with no frames. Probe reports of a replayed run are refused (it is stored already).
-  v1::RunInfo ReplayToFollowers(const std::string& run_id, double speed_x);
-  // Hands memory freed after a run or a result back to the system (SQLite's page cache,
-  // glibc's arenas: release_memory.h).
-  void ReleaseMemory() const;
-
-  // Subscriptions. A subscription counts against limits.max_subscribers from NewSubscription
-  // (RESOURCE_EXHAUSTED at the limit) until Unsubscribe, attached to something or not.
-  // AttachRun: the run's events (started if `send_started`, latest frame, frames, ended); an
-  // ended run gives started + ended at once; NOT_FOUND for an unknown run. AttachFollow:
-  // every run that starts from now on, and the one running now (the newest; with a shared
-  // store, the newest of the cluster's when none runs here), each with started/frames/ended,
-  // each exactly once. SubscribeRun = NewSubscription + AttachRun.
-  std::shared_ptr<Subscription> NewSubscription();
-  void AttachRun(const std::shared_ptr<Subscription>& subscriber, const std::string& run_id,
-                 bool send_started);
-  void AttachFollow(const std::shared_ptr<Subscription>& subscriber);
-  std::shared_ptr<Subscription> SubscribeRun(const std::string& run_id, bool send_started);
-  void Unsubscribe(const std::shared_ptr<Subscription>& subscriber);
-  int subscriber_count() const;
-
-  // A viewer's checked probe reports (latency already measured), for its run's probe recorder
-  // (stored in batches while the run integrates, the last batch when it ends). False
-  // (nothing kept) when the run is not integrating or waiting for its last probes any more,
-  // or already holds limits.max_probe_reports reports.
-  bool AddProbes(const std::string& run_id, const std::vector<v1::ProbeReport>& reports);
-
-  // Stops accepting runs, interrupts queued and running ones (state INTERRUPTED, frames so
-  // far stored; with a shared store, queued runs stay queued and running ones with retries
-  // left are queued again), closes every subscription and joins the workers. Idempotent.
-  void Shutdown(const std::string& reason);
-  // Drains the replica: stops claiming runs, waits up to `grace` for the runs integrating
-  // here to end, then Shutdown(reason) (what still runs is handed back).
-  void Drain(std::chrono::duration<double> grace, const std::string& reason);
-
-  // This replica (RunQueue). Its id; the address it advertises (set once the
-  // server listens); whether it should get calls: the store answered the keeper's last look
-  // and it is neither draining nor stopping. `listener` is called with each change of that
-  // (from the keeper's thread or Drain's caller), and at once with the present value.
-  const std::string& replica_id() const { return replica_.id; }
-  void SetAdvertisedAddress(const std::string& address) { queue_.SetAdvertisedAddress(address); }
-  bool serving() const { return queue_.serving(); }
-  void SetServingListener(std::function<void(bool)> listener) {
-    queue_.SetServingListener(std::move(listener));
-  }
-
-  // The cluster (run_manager_cluster.cc). Where run `run_id` integrates, for the service's
-  // proxies: here (with a private store: always, and the store is not read), queued in a
-  // shared store (any replica may claim it), on another replica (`info`, from the store,
-  // names it: replica, replica_address) or ended. Throws RequestError(kNotFound).
-  struct RunPlace {
-    enum class Where { kHere, kQueued, kElsewhere, kEnded };
-    Where where = Where::kHere;
-    v1::RunInfo info;
-  };
-  RunPlace Locate(const std::string& run_id) const;
-  bool shared_store() const { return !replica_.private_store; }
-  // Models submitted to other replicas: with a shared store, the store's model list is read
-  // again (not compiled: a model is compiled when a run first needs it).
-  void RefreshModels() const;
-  // A model's info by id or name, reading the store's list again once when it is unknown
-  // here (shared store). Throws as ModelRegistry::Info.
-  v1::ModelInfo ModelInfo(const std::string& id_or_name) const;
-
   const ModelRegistry& models() const { return *models_; }
   const ServerLimits& limits() const { return limits_; }
 
  private:
+  friend class RunSweeps;
+  friend class RunResults;
+  friend class RunReplays;
+  friend class RunSubscriptions;
+  friend class ReplicaControl;
+
   // How a run ended, decided by Execute and applied by Finish after storing.
   struct Outcome {
     v1::RunState state = v1::FAILED;
@@ -282,8 +168,6 @@ class RunManager {
   void StoreFinal(Run& run, v1::RunInfo& info);
   // A run queued or integrating here (RunQueue::Find); nullptr otherwise.
   std::shared_ptr<Run> FindActive(const std::string& run_id) const { return queue_.Find(run_id); }
-  // False when no run of this replica is running (the follower waits for the next).
-  bool AttachLocalFollow(const std::shared_ptr<Subscription>& subscriber);
   // A new run id: the time and 32 random bits (free in the store only once AddRuns took it).
   std::string NewRunId() const;
   // How runs and replays batch their probe reports: limits_.max_probe_reports, a batch at
@@ -296,13 +180,6 @@ class RunManager {
                                      const std::string& owner, std::vector<v1::RunInfo>& infos);
   // A run of this replica changed state (AwaitChange): counted and notified.
   void NoteStateChange();
-  // The feeder's step (run_manager_sweep.cc): points [first, first + count) of `sweep` (at
-  // most what the queue takes) expanded, checked and stored with the sweep's next point in
-  // one store transaction, the QUEUED ones queued here. Returns the runs stored, in point
-  // order; none when the store refused them (another replica queued them first, the sweep
-  // was cancelled or its window is full), the queue is full or stopping, or the disk full.
-  std::vector<v1::RunInfo> FeedSweep(const StoredSweep& sweep, const SweepPlan& plan, int first,
-                                     int count);
 
   ModelRegistry* models_;
   Store* store_;
@@ -313,15 +190,21 @@ class RunManager {
   RecentResults recent_results_;      // frames of ended runs for their GetResult
   PendingFinals pending_finals_;      // final states the store refused (a full disk)
   FanOut fan_out_;                    // subscriptions and follow streams
-  FollowerReplays follower_replays_;  // ReplayToFollowers; stopped by Shutdown
+  FollowerReplays follower_replays_;  // RunReplays::ToFollowers; stopped by Shutdown
 
   // AwaitChange waits on state_changed_ for state_changes_ to move (NoteStateChange).
   mutable std::mutex changes_mutex_;
   mutable std::condition_variable state_changed_;
   uint64_t state_changes_ = 0;
   std::function<std::string()> run_id_source_;  // SetRunIdSourceForTesting; empty: NewRunId
-  FreeSpaceSource free_space_source_;           // SetFreeSpaceSource; empty: no free-space check
-  std::string data_dir_;                        // named in the refusal
+  FreeSpaceSource free_space_source_;  // ReplicaControl::SetFreeSpaceSource; empty: no check
+  std::string data_dir_;               // named in the refusal
+  // The facade's parts: views of this manager (each holds a reference to it only).
+  RunSweeps sweeps_{*this};
+  RunResults results_{*this};
+  RunReplays replays_{*this};
+  RunSubscriptions subscriptions_{*this};
+  ReplicaControl replica_control_{*this};
   // Follow streams of a shared store also get the runs other replicas claim (kRemoteRun).
   std::unique_ptr<ClusterFollow> cluster_follow_;
   // Keeps the stored sweeps' windows filled (FeedSweep); started once queue_ is made, and

@@ -44,12 +44,12 @@ class SweepFeeder {
   // The plan of stored sweep `sweep` (read from the store the first time; kept while the
   // sweep is followed, a few more after). Throws InputError when its definition is damaged.
   std::shared_ptr<const SweepPlan> Plan(const StoredSweep& sweep) const;
-  // Keeps `plan` for sweep `sweep_id` (StartSweep has it at hand).
+  // Keeps `plan` for sweep `sweep_id` (RunSweeps::Start has it at hand).
   void Remember(const std::string& sweep_id, std::shared_ptr<const SweepPlan> plan);
 
   // One round on the caller's thread (tests; the thread runs them otherwise).
   void RunRound();
-  // No round runs while the lock is held (StartSweep queues a new sweep's first window).
+  // No round runs while the lock is held (RunSweeps::Start queues a new sweep's first window).
   std::unique_lock<std::mutex> HoldRounds() { return std::unique_lock(round_mutex_); }
 
   // How many points of a sweep with `room` places free and `left` points left one round

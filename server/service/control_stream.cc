@@ -82,7 +82,7 @@ grpc::Status SimulationService::ServeControl(
                    "the first message of a Control stream is `start` (model and spec, or "
                    "run_id); then one `command` per state");
   }
-  if (runs_->shared_store()) {
+  if (runs_->replica().shared_store()) {
     return Refused(grpc::StatusCode::FAILED_PRECONDITION,
                    "a controlled run integrates on the server its stream reaches, and this "
                    "server shares its store with a cluster (any replica may claim a run): "
@@ -163,7 +163,7 @@ void SimulationService::WriteStates(
         }
         continue;
       }
-      if (channel.closed() || !runs_->IsActive(run_id)) {
+      if (channel.closed() || !runs_->replays().IsActive(run_id)) {
         *response.mutable_ended() = runs_->Get(run_id);
         stream.Write(response);
         return;

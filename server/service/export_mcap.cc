@@ -58,13 +58,14 @@ grpc::Status SimulationService::SendMcap(grpc::ServerContext& context,
   if (request.wait()) {
     if (grpc::Status waited = AwaitEnd(context, run_id, &info); !waited.ok()) return waited;
   } else {
-    info = runs_->ResultInfo(run_id);
+    info = runs_->results().Info(run_id);
   }
   // Everything that can be refused is checked before the first byte is sent.
   const mcap::RunMcapOptions options =
       mcap::StoredRunMcapOptions(info, request.compression(), request.start(), "");
   std::vector<v1::ProbeReport> probes;
-  if (!request.probe_set().empty()) probes = runs_->ResultProbeSet(run_id, request.probe_set());
+  if (!request.probe_set().empty())
+    probes = runs_->replays().ProbeSetReports(run_id, request.probe_set());
   const std::shared_ptr<const CompiledModel> model = models_->Find(info.model_id());
   const std::string model_text = models_->Bundle(info.model_id()).urdf();
 
@@ -75,11 +76,11 @@ grpc::Status SimulationService::SendMcap(grpc::ServerContext& context,
     std::vector<std::string_view> frames;
     for (std::optional<int64_t> next = 0; next;) {
       frames.clear();
-      next = runs_->ResultFrames(run_id, *next, data, frames);
+      next = runs_->results().Frames(run_id, *next, data, frames);
       mcap.AddFrames(frames);
     }
     std::string().swap(data);
-    if (request.probe_set().empty()) probes = runs_->ResultProbes(run_id);
+    if (request.probe_set().empty()) probes = runs_->results().Probes(run_id);
     if (grpc::Status stored = StillStored(run_id); !stored.ok()) return stored;
     mcap.Finish(probes);
   } catch (const ClientGone&) {
@@ -95,7 +96,7 @@ grpc::Status SimulationService::ExportMcap(grpc::ServerContext* context,
   const grpc::Status status = Admit(*context, "ExportMcap", [&]() -> grpc::Status {
     return SendMcap(*context, *request, *writer, sent_bytes);
   });
-  if (sent_bytes >= kMessageBytes) runs_->ReleaseMemory();  // as GetResult after a burst
+  if (sent_bytes >= kMessageBytes) runs_->results().ReleaseMemory();  // as GetResult after a burst
   return status;
 }
 

@@ -18,14 +18,14 @@ FollowRelays::FollowRelays(PeerChannels* peers, const RunManager* runs,
 FollowRelays::~FollowRelays() { Stop(); }
 
 void FollowRelays::Open(const std::string& run_id) {
-  RunManager::RunPlace place;
+  ReplicaControl::RunPlace place;
   try {
-    place = runs_->Locate(run_id);
+    place = runs_->replica().Locate(run_id);
   } catch (const std::exception& error) {
     spdlog::warn("follow: run {} of another replica: {}", run_id, error.what());
     return;
   }
-  if (place.where != RunManager::RunPlace::Where::kElsewhere) return;  // ended already
+  if (place.where != ReplicaControl::RunPlace::Where::kElsewhere) return;  // ended already
   std::lock_guard<std::mutex> lock(mutex_);
   if (stopped_) return;
   // Relays that ended leave (their threads have returned or are returning).

@@ -40,7 +40,7 @@ grpc::Status SimulationService::StillStored(const std::string& run_id) const {
   // in between: the stream then ends NOT_FOUND, never OK with part of a result. Its row goes
   // in the transaction that deletes everything else: still stored now, everything read was.
   try {
-    runs_->ResultInfo(run_id);
+    runs_->results().Info(run_id);
   } catch (const RequestError& error) {
     if (error.kind() != RequestErrorKind::kNotFound) throw;
     return grpc::Status(grpc::StatusCode::NOT_FOUND,
@@ -62,11 +62,11 @@ grpc::Status SimulationService::SendResult(grpc::ServerContext& context, const s
   if (wait) {  // the final info as the wait read it (stored before it was shown)
     if (grpc::Status waited = AwaitEnd(context, run_id, &info); !waited.ok()) return waited;
   } else {
-    info = runs_->ResultInfo(run_id);
+    info = runs_->results().Info(run_id);
   }
   // A replay's probe set is checked (NOT_FOUND) before anything is sent.
   std::vector<v1::ProbeReport> probes;
-  if (!probe_set.empty()) probes = runs_->ResultProbeSet(run_id, probe_set);
+  if (!probe_set.empty()) probes = runs_->replays().ProbeSetReports(run_id, probe_set);
   const grpc::Status gone(grpc::StatusCode::CANCELLED, "client gone");
   auto flush = [&] {
     if (chunk.empty()) return true;
@@ -79,14 +79,14 @@ grpc::Status SimulationService::SendResult(grpc::ServerContext& context, const s
   std::vector<std::string_view> frames;
   for (std::optional<int64_t> next = 0; next;) {
     frames.clear();
-    next = runs_->ResultFrames(run_id, *next, data, frames);
+    next = runs_->results().Frames(run_id, *next, data, frames);
     for (std::string_view frame : frames) {
       chunk.AddFrame(frame);
       if (chunk.bytes() >= kChunkBytes && !flush()) return gone;
     }
   }
   std::string().swap(data);
-  if (probe_set.empty()) probes = runs_->ResultProbes(run_id);
+  if (probe_set.empty()) probes = runs_->results().Probes(run_id);
   for (const v1::ProbeReport& probe : probes) {
     chunk.AddProbe(probe);
     if (chunk.bytes() >= kChunkBytes && !flush()) return gone;
@@ -106,7 +106,7 @@ grpc::Status SimulationService::GetResult(grpc::ServerContext* context,
   });
   // After the handler's messages and frames are freed, when they were a burst (a message
   // of 1 MiB or more; after every small result it cost more than the result).
-  if (sent_bytes >= kChunkBytes) runs_->ReleaseMemory();
+  if (sent_bytes >= kChunkBytes) runs_->results().ReleaseMemory();
   return status;
 }
 
@@ -129,7 +129,7 @@ grpc::Status SimulationService::GetResults(grpc::ServerContext* context,
     return grpc::Status::OK;
   });
   // Not after every batch of small results (their sum passes 1 MiB every dozen or so).
-  if (largest >= kChunkBytes) runs_->ReleaseMemory();
+  if (largest >= kChunkBytes) runs_->results().ReleaseMemory();
   return status;
 }
 

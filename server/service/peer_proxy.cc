@@ -20,12 +20,12 @@ std::optional<v1::RunInfo> RemoteOwner(PeerChannels* peers, const RunManager& ru
                                        const std::string& run_id,
                                        const grpc::ServerContextBase& context,
                                        const std::atomic<bool>& stopping, bool wait_queued) {
-  if (peers == nullptr || !runs.shared_store() || PeerChannels::IsProxied(context)) {
+  if (peers == nullptr || !runs.replica().shared_store() || PeerChannels::IsProxied(context)) {
     return std::nullopt;
   }
   for (;;) {
-    RunManager::RunPlace place = runs.Locate(run_id);
-    using Where = RunManager::RunPlace::Where;
+    ReplicaControl::RunPlace place = runs.replica().Locate(run_id);
+    using Where = ReplicaControl::RunPlace::Where;
     if (place.where == Where::kElsewhere) return std::move(place.info);
     if (place.where != Where::kQueued || !wait_queued) return std::nullopt;
     if (context.IsCancelled() || stopping) return std::nullopt;

@@ -5,7 +5,7 @@
 namespace mbstream {
 
 ReplayInbox::ReplayInbox(RunManager* runs, v1::ProbeSet set)
-    : set_(std::move(set)), recorder_(runs->RecordProbeSet(set_)), one_(1) {}
+    : set_(std::move(set)), recorder_(runs->replays().RecordProbeSet(set_)), one_(1) {}
 
 ReplayInbox::~ReplayInbox() {
   recorder_->Close();

@@ -37,14 +37,14 @@ ReplayGridRun GridRun(const v1::RunInfo& info, ReplayCursor& frames) {
 
 // The ended run `run_id` (ResultInfo's errors), with at least one stored frame.
 v1::RunInfo EndedRun(RunManager& runs, const std::string& run_id, const char* what) {
-  if (runs.IsActive(run_id)) {
+  if (runs.replays().IsActive(run_id)) {
     throw RequestError(RequestErrorKind::kFailedPrecondition,
                        std::string(what) + " run " + run_id +
                            " has not ended: only a stored run can be replayed from another "
                            "frame, paused or compared; watch it live (no replay options) or "
                            "wait for it to end");
   }
-  v1::RunInfo info = runs.ResultInfo(run_id);
+  v1::RunInfo info = runs.results().Info(run_id);
   if (info.frames() < 1) {
     throw RequestError(RequestErrorKind::kFailedPrecondition,
                        std::string(what) + " run " + run_id + " ended " +
@@ -77,12 +77,12 @@ std::optional<ReplayPlan> PlanReplay(RunManager& runs, const v1::SubscribeReques
   }
   const bool live_compatible =
       options.from_seq() == 0 && options.compare_run_id().empty() && !options.paused();
-  if (live_compatible && runs.IsActive(start.run_id())) return std::nullopt;
+  if (live_compatible && runs.replays().IsActive(start.run_id())) return std::nullopt;
 
   ReplayPlan plan;
   plan.options = options;
   plan.run = EndedRun(runs, start.run_id(), "the");
-  plan.run_frames = runs.OpenReplay(plan.run);
+  plan.run_frames = runs.replays().Open(plan.run);
   if (options.from_seq() >= plan.run.frames()) {
     throw InputError("Subscribe: start.replay.from_seq is " + std::to_string(options.from_seq()) +
                      " but run " + plan.run.id() + " has " + std::to_string(plan.run.frames()) +
@@ -93,7 +93,7 @@ std::optional<ReplayPlan> PlanReplay(RunManager& runs, const v1::SubscribeReques
     plan.grid = SingleRunGrid(run);
   } else {
     plan.ghost = EndedRun(runs, options.compare_run_id(), "the compared");
-    plan.ghost_frames = runs.OpenReplay(*plan.ghost);
+    plan.ghost_frames = runs.replays().Open(*plan.ghost);
     plan.grid = AlignReplayGrids(run, GridRun(*plan.ghost, *plan.ghost_frames));
     // A run whose duration is no whole number of intervals ends with an extra frame at its
     // end time, off the grid: leave it out.

@@ -27,7 +27,7 @@ grpc::Status SimulationService::SubmitModel(grpc::ServerContext* context,
     *response = models_->Submit(request->bundle(), false);
     return grpc::Status::OK;
   });
-  runs_->ReleaseMemory();  // a bundle of many MiB passed through (its received slices)
+  runs_->results().ReleaseMemory();  // a bundle of many MiB passed through (its received slices)
   return status;
 }
 
@@ -35,7 +35,7 @@ grpc::Status SimulationService::ListModels(grpc::ServerContext* context,
                                            const v1::ListModelsRequest*,
                                            v1::ListModelsResponse* response) {
   return Admit(*context, "ListModels", [&]() -> grpc::Status {
-    runs_->RefreshModels();  // models submitted to other replicas (a shared store)
+    runs_->replica().RefreshModels();  // models submitted to other replicas (a shared store)
     for (const v1::ModelInfo& info : models_->List()) *response->add_models() = info;
     return grpc::Status::OK;
   });
@@ -45,7 +45,7 @@ grpc::Status SimulationService::GetModel(grpc::ServerContext* context,
                                          const v1::GetModelRequest* request,
                                          v1::GetModelResponse* response) {
   return Admit(*context, "GetModel", [&]() -> grpc::Status {
-    *response->mutable_info() = runs_->ModelInfo(request->model());
+    *response->mutable_info() = runs_->replica().ModelInfo(request->model());
     if (request->include_bundle()) {
       *response->mutable_bundle() = models_->Bundle(response->info().id());
     }
@@ -92,8 +92,8 @@ grpc::Status SimulationService::CancelRun(grpc::ServerContext* context,
     // forwarded there. A run is claimed once; the third look covers a hand-back (drain).
     for (int look = 0;; ++look) {
       if (forwards) {
-        if (RunManager::RunPlace place = runs_->Locate(info.id());
-            place.where == RunManager::RunPlace::Where::kElsewhere) {
+        if (ReplicaControl::RunPlace place = runs_->replica().Locate(info.id());
+            place.where == ReplicaControl::RunPlace::Where::kElsewhere) {
           return ProxyCancelRun(*peers_, *context, *request, place.info, response);
         }
       }

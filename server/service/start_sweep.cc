@@ -1,4 +1,4 @@
-// StartSweep: a parameter sweep stored whole and fed by the server (RunManager::StartSweep,
+// StartSweep: a parameter sweep stored whole and fed by the server (RunSweeps::Start,
 // server/runs/sweep_feeder.h): this call checks it, stores it and queues its first window.
 #include "server/runs/request_error.h"
 #include "server/service/simulation_service.h"
@@ -44,8 +44,8 @@ grpc::Status SimulationService::StartSweep(grpc::ServerContext* context,
     }
     // An older client's first slice: its size is the window.
     const int window = request->window() > 0 ? request->window() : request->max_runs();
-    RunManager::StartedSweep started = runs_->StartSweep(request->model(), DefinitionOf(*request),
-                                                         window, authorizer_->CallerId(*context));
+    RunSweeps::Started started = runs_->sweeps().Start(request->model(), DefinitionOf(*request),
+                                                       window, authorizer_->CallerId(*context));
     response->set_sweep_id(started.id);
     for (const std::string& path : started.paths) response->add_paths(path);
     for (size_t i = 0; i < started.runs.size(); ++i) {

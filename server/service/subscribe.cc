@@ -41,7 +41,7 @@ void SubscribeCall::Begin() {
   if (admitted.ok()) {
     // Counted before anything is read: idle streams count against the subscriber limit.
     admitted = Serve([&] {
-      subscription_ = deps_.runs->NewSubscription();
+      subscription_ = deps_.runs->subscriptions().New();
       return grpc::Status::OK;
     });
   }
@@ -181,7 +181,7 @@ void SubscribeCall::HandleMessage() {
       stored = inbox_->AddProbe(report);
     } else {
       std::vector<v1::ProbeReport> one(1, std::move(report));
-      stored = deps_.runs->AddProbes(one[0].run_id(), one);
+      stored = deps_.runs->subscriptions().AddProbes(one[0].run_id(), one);
       report = std::move(one[0]);
     }
   }
@@ -257,7 +257,7 @@ void SubscribeCall::Teardown() {
   if (subscription_) {
     subscription_->SetListener(nullptr);
     if (sender_) sender_->Stop();
-    deps_.runs->Unsubscribe(subscription_);
+    deps_.runs->subscriptions().Unsubscribe(subscription_);
     deps_.live->Remove(live_id_);
   }
   std::lock_guard<std::mutex> lock(mutex_);

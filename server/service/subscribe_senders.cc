@@ -51,7 +51,7 @@ class LiveSender final : public SubscribeSender {
       if (head.kind == StreamEvent::Kind::kRunStarted) {
         v1::SubscribeEvent::RunStarted* started = event.mutable_run_started();
         *started->mutable_run() = runs.Get(head.run_id);
-        *started->mutable_model() = runs.ModelInfo(started->run().model_id());
+        *started->mutable_model() = runs.replica().ModelInfo(started->run().model_id());
         *started->mutable_bundle() = call.deps().models->Bundle(started->model().id());
       } else {
         *event.mutable_run_ended() = runs.Get(head.run_id);

@@ -47,7 +47,7 @@ grpc::Status SubscribeCall::Accept() {
   if (std::optional<ReplayPlan> plan =
           start.has_replay() ? PlanReplay(runs, start) : std::nullopt) {
     v1::ProbeSet set;
-    set.set_id(runs.NewProbeSetId());
+    set.set_id(runs.replays().NewProbeSetId());
     set.set_run_id(plan->run.id());
     set.set_viewer(start.replay().viewer());
     set.set_scene(start.replay().scene());
@@ -57,10 +57,10 @@ grpc::Status SubscribeCall::Accept() {
     return grpc::Status::OK;
   }
   // A run of another replica: its owner's stream, relayed (a queued one: looked at again).
-  if (!follow && deps_.peers != nullptr && runs.shared_store() &&
+  if (!follow && deps_.peers != nullptr && runs.replica().shared_store() &&
       !PeerChannels::IsProxied(*context_)) {
-    RunManager::RunPlace place = runs.Locate(start.run_id());
-    using Where = RunManager::RunPlace::Where;
+    ReplicaControl::RunPlace place = runs.replica().Locate(start.run_id());
+    using Where = ReplicaControl::RunPlace::Where;
     if (place.where == Where::kElsewhere) {
       sender_ = NewRelaySender(*this, std::move(place.info), first_);
       phase_ = Phase::kStreaming;
@@ -79,8 +79,8 @@ grpc::Status SubscribeCall::AttachHere(bool follow, int max_batch) {
   RunManager& runs = *deps_.runs;
   std::unique_ptr<FollowRelays> relays;
   if (follow) {
-    runs.AttachFollow(subscription_);
-    if (deps_.peers != nullptr && runs.shared_store()) {
+    runs.subscriptions().AttachFollow(subscription_);
+    if (deps_.peers != nullptr && runs.replica().shared_store()) {
       relays = std::make_unique<FollowRelays>(
           deps_.peers, &runs, context_,
           [this](const v1::SubscribeEvent& e) { return WriteAndWait(e); }, max_batch);
@@ -88,7 +88,7 @@ grpc::Status SubscribeCall::AttachHere(bool follow, int max_batch) {
       divert_ = {[raw](const v1::SubscribeRequest& r) { return raw->Divert(r); }, {}};
     }
   } else {
-    runs.AttachRun(subscription_, first_.start().run_id(), true);
+    runs.subscriptions().AttachRun(subscription_, first_.start().run_id(), true);
   }
   Go(NewLiveSender(follow, max_batch, std::move(relays)),
      follow ? "follow" : first_.start().run_id());

@@ -6,7 +6,7 @@
 
 namespace mbstream {
 
-v1::SweepProgress SweepProgressOf(const std::string& sweep_id, const RunManager::SweepView& view,
+v1::SweepProgress SweepProgressOf(const std::string& sweep_id, const RunSweeps::View& view,
                                   int runs_from) {
   v1::SweepProgress progress;
   progress.set_sweep_id(sweep_id);

@@ -1,4 +1,4 @@
-// A sweep's progress as a whole (GetSweep, CancelSweep) from RunManager::ViewSweep.
+// A sweep's progress as a whole (GetSweep, CancelSweep) from RunSweeps::Get.
 #pragma once
 
 #include <string>
@@ -9,7 +9,7 @@
 namespace mbstream {
 
 // `runs_from`: the point of view.runs' first run (GetSweepRequest.runs_from).
-v1::SweepProgress SweepProgressOf(const std::string& sweep_id, const RunManager::SweepView& view,
+v1::SweepProgress SweepProgressOf(const std::string& sweep_id, const RunSweeps::View& view,
                                   int runs_from);
 
 }  // namespace mbstream

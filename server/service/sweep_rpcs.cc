@@ -1,4 +1,4 @@
-// GetSweep and CancelSweep: a sweep as a whole, from the store (RunManager::ViewSweep), so
+// GetSweep and CancelSweep: a sweep as a whole, from the store (RunSweeps::Get), so
 // that any replica of a cluster answers for every replica's runs.
 #include <chrono>
 
@@ -39,7 +39,7 @@ grpc::Status SimulationService::GetSweep(grpc::ServerContext* context,
     }
     *response = SweepProgressOf(
         request->sweep_id(),
-        runs_->ViewSweep(request->sweep_id(), request->runs_from(), request->max_runs()),
+        runs_->sweeps().Get(request->sweep_id(), request->runs_from(), request->max_runs()),
         request->runs_from());
     return grpc::Status::OK;
   });
@@ -50,11 +50,11 @@ grpc::Status SimulationService::CancelSweep(grpc::ServerContext* context,
                                             v1::SweepProgress* response) {
   return Admit(*context, "CancelSweep", [&]() -> grpc::Status {
     const std::string& id = request->sweep_id();
-    const RunManager::SweepView view = runs_->ViewSweep(id, 0, 1);  // kNotFound when unknown
+    const RunSweeps::View view = runs_->sweeps().Get(id, 0, 1);  // kNotFound when unknown
     const bool admin = authorizer_->CallerHas(*context, Role::kAdmin);
     const std::string caller = authorizer_->CallerId(*context);
     std::vector<v1::RunInfo> runs =
-        view.stored ? runs_->UnfinishedSweepRuns(id) : runs_->SweepRuns(id);
+        view.stored ? runs_->sweeps().Unfinished(id) : runs_->sweeps().Runs(id);
     auto refuse = [&](const std::string& what) {
       return grpc::Status(grpc::StatusCode::PERMISSION_DENIED,
                           "sweep " + id + " was started with another token (" + what +
@@ -70,7 +70,7 @@ grpc::Status SimulationService::CancelSweep(grpc::ServerContext* context,
     // The mark first: no more points are queued from now on (Store::AddSweepRuns checks it in
     // the transaction that queues them). Twice: runs queued just before the mark are
     // cancelled (and marked) too.
-    runs_->MarkSweepCancelled(id);
+    runs_->sweeps().MarkCancelled(id);
     for (int pass = 0; pass < 2; ++pass) {
       for (const v1::RunInfo& run : runs) {
         if (IsFinalState(run.state())) continue;
@@ -84,10 +84,10 @@ grpc::Status SimulationService::CancelSweep(grpc::ServerContext* context,
         }
       }
       for (const v1::RunInfo& run : runs) AwaitEnded(*runs_, run, until);
-      runs_->MarkSweepCancelled(id);
-      runs = view.stored ? runs_->UnfinishedSweepRuns(id) : runs_->SweepRuns(id);
+      runs_->sweeps().MarkCancelled(id);
+      runs = view.stored ? runs_->sweeps().Unfinished(id) : runs_->sweeps().Runs(id);
     }
-    *response = SweepProgressOf(id, runs_->ViewSweep(id, 0, 0), 0);
+    *response = SweepProgressOf(id, runs_->sweeps().Get(id, 0, 0), 0);
     response->set_cancelled(true);
     return grpc::Status::OK;
   });

@@ -70,7 +70,8 @@ grpc::Status WatchCall::Begin() {
   live_id_ = deps_.live->Add(weak_from_this());
   // A shared store: progress while the run is queued; once a replica claims it, watched
   // there (relayed) or here.
-  if (deps_.runs->shared_store() && deps_.peers != nullptr && !PeerChannels::IsProxied(*context_)) {
+  if (deps_.runs->replica().shared_store() && deps_.peers != nullptr &&
+      !PeerChannels::IsProxied(*context_)) {
     phase_ = Phase::kQueued;
   } else {
     Watch();
@@ -84,8 +85,8 @@ void WatchCall::Watch() {
   // Every watch counts against the subscriber limit; only a watch with frames is attached
   // to the run.
   const std::string& run_id = request_.run_id();
-  slot_ =
-      request_.frames() ? deps_.runs->SubscribeRun(run_id, false) : deps_.runs->NewSubscription();
+  slot_ = request_.frames() ? deps_.runs->subscriptions().SubscribeRun(run_id, false)
+                            : deps_.runs->subscriptions().New();
   if (request_.frames()) {
     slot_->SetListener([weak = weak_from_this()] {
       if (std::shared_ptr<WatchCall> call = weak.lock()) call->Poke();
@@ -133,8 +134,8 @@ void WatchCall::Progress(const v1::RunInfo& info) {
 }
 
 void WatchCall::StepQueued() {
-  RunManager::RunPlace place = deps_.runs->Locate(request_.run_id());
-  using Where = RunManager::RunPlace::Where;
+  ReplicaControl::RunPlace place = deps_.runs->replica().Locate(request_.run_id());
+  using Where = ReplicaControl::RunPlace::Where;
   if (place.where == Where::kElsewhere) {
     phase_ = Phase::kRelayed;
     relay_ = std::thread([self = shared_from_this(), owner = std::move(place.info)] {
@@ -261,7 +262,7 @@ void WatchCall::Teardown() {
   if (relay_.joinable()) relay_.join();
   if (slot_) {
     slot_->SetListener(nullptr);
-    deps_.runs->Unsubscribe(slot_);
+    deps_.runs->subscriptions().Unsubscribe(slot_);
   }
   if (live_id_ != 0) deps_.live->Remove(live_id_);
 }

@@ -86,7 +86,7 @@ class RunManagerTest : public ::testing::Test {
 TEST_F(RunManagerTest, RealtimeRunSendsEachFrameWhenItsWallTimeComes) {
   const double realtime = 2.0;  // a frame every 0.1 s of simulated time = every 50 ms of wall
   const v1::RunInfo started = runs_->Start("single_pendulum", Swing(0.5, realtime));
-  const auto subscription = runs_->SubscribeRun(started.id(), false);
+  const auto subscription = runs_->subscriptions().SubscribeRun(started.id(), false);
   const RunClock::TimePoint start = clock_.Now();
   for (int k = 1; k <= 5; ++k) {
     const std::optional<RunClock::TimePoint> due = clock_.WaitForWaiter();
@@ -100,12 +100,12 @@ TEST_F(RunManagerTest, RealtimeRunSendsEachFrameWhenItsWallTimeComes) {
   const v1::RunInfo ended = WaitForEnd(subscription, started.id());
   EXPECT_EQ(ended.state(), v1::FINISHED) << ended.message();
   EXPECT_EQ(ended.frames(), 6);
-  runs_->Unsubscribe(subscription);
+  runs_->subscriptions().Unsubscribe(subscription);
 }
 
 TEST_F(RunManagerTest, CancelEndsARunWaitingForItsNextFrameAtOnce) {
   const v1::RunInfo started = runs_->Start("single_pendulum", Swing(20.0, 1.0));
-  const auto subscription = runs_->SubscribeRun(started.id(), false);
+  const auto subscription = runs_->subscriptions().SubscribeRun(started.id(), false);
   ASSERT_TRUE(clock_.WaitForWaiter().has_value());
   clock_.Advance(milliseconds(100));  // frame 1 goes out
   ASSERT_TRUE(clock_.WaitForWaiter().has_value());
@@ -115,13 +115,13 @@ TEST_F(RunManagerTest, CancelEndsARunWaitingForItsNextFrameAtOnce) {
   // Frames 0 and 1 went out on time; frame 2, computed and waiting, is kept as well.
   EXPECT_EQ(ended.frames(), 3);
   EXPECT_NE(ended.message().find("cancelled at t = 0.2"), std::string::npos) << ended.message();
-  runs_->Unsubscribe(subscription);
+  runs_->subscriptions().Unsubscribe(subscription);
 }
 
 TEST_F(RunManagerTest, ShutdownInterruptsAWaitingRunAndKeepsItsFrames) {
   const v1::RunInfo started = runs_->Start("single_pendulum", Swing(20.0, 1.0));
   ASSERT_TRUE(clock_.WaitForWaiter().has_value());
-  runs_->Shutdown("the test stopped the server");
+  runs_->replica().Shutdown("the test stopped the server");
   const std::optional<v1::RunInfo> stored = store_->GetRun(started.id());
   ASSERT_TRUE(stored.has_value());
   EXPECT_EQ(stored->state(), v1::INTERRUPTED);
@@ -150,13 +150,13 @@ TEST_F(RunManagerTest, APacedRunStoresItsFramesEverySecondOfWallTime) {
 // second (limits_.frame_flush_s) of its clock after the run started: a crash then keeps them.
 TEST_F(RunManagerTest, APacedRunStoresItsViewersProbesEverySecondOfWallTime) {
   const v1::RunInfo started = runs_->Start("single_pendulum", Swing(20.0, 1.0));
-  const auto viewer = runs_->SubscribeRun(started.id(), true);
+  const auto viewer = runs_->subscriptions().SubscribeRun(started.id(), true);
   ASSERT_TRUE(clock_.WaitForWaiter().has_value());  // frame 0 is out
   std::vector<v1::ProbeReport> report(1);
   report[0].set_run_id(started.id());
   report[0].set_seq(0);
   report[0].set_probe("tcp");
-  ASSERT_TRUE(runs_->AddProbes(started.id(), report));
+  ASSERT_TRUE(runs_->subscriptions().AddProbes(started.id(), report));
   for (int k = 1; k <= 10; ++k) {
     EXPECT_TRUE(store_->GetProbes(started.id()).empty()) << "frame " << k;
     clock_.Advance(milliseconds(100));
@@ -169,13 +169,13 @@ TEST_F(RunManagerTest, APacedRunStoresItsViewersProbesEverySecondOfWallTime) {
   // For frame 11, computed and waiting for its time: kept as the run ends, its report ends
   // the end's wait for the viewer's last reports at once.
   report[0].set_seq(11);
-  ASSERT_TRUE(runs_->AddProbes(started.id(), report));
+  ASSERT_TRUE(runs_->subscriptions().AddProbes(started.id(), report));
   runs_->Cancel(started.id());
   const v1::RunInfo ended = WaitForEnd(viewer, started.id());
   EXPECT_EQ(ended.state(), v1::CANCELLED);
   EXPECT_EQ(store_->GetProbes(started.id()).size(), 2u);  // the last batch, at the end
-  EXPECT_FALSE(runs_->AddProbes(started.id(), report));   // ended: refused
-  runs_->Unsubscribe(viewer);
+  EXPECT_FALSE(runs_->subscriptions().AddProbes(started.id(), report));  // ended: refused
+  runs_->subscriptions().Unsubscribe(viewer);
 }
 
 // AwaitChange returns with the change of state that ends the wait, not after its deadline: the
@@ -219,14 +219,14 @@ TEST_F(RunManagerTest, PrivateStoreClaimsInMemoryAndCancelsAQueuedRunBeforeAnyWo
   EXPECT_EQ(runs_->Get(second.id()).state(), v1::CANCELLED);
   EXPECT_EQ(store_->GetRun(second.id())->state(), v1::CANCELLED);
 
-  const auto subscription = runs_->SubscribeRun(first.id(), false);
+  const auto subscription = runs_->subscriptions().SubscribeRun(first.id(), false);
   runs_->Cancel(first.id());
   const v1::RunInfo ended = WaitForEnd(subscription, first.id());
   EXPECT_EQ(ended.state(), v1::CANCELLED);
   EXPECT_EQ(store_->GetRun(first.id())->state(), v1::CANCELLED);
   EXPECT_EQ(store_->GetRun(second.id())->state(), v1::CANCELLED);  // no worker started it
   EXPECT_EQ(store_->GetRun(second.id())->frames(), 0);
-  runs_->Unsubscribe(subscription);
+  runs_->subscriptions().Unsubscribe(subscription);
 }
 
 // The result of a run that just ended is served from memory as it was stored (a sweep's
@@ -246,7 +246,7 @@ TEST_F(RunManagerTest, AnEndedRunsResultAndInfoAreServedFromMemoryAsStored) {
     std::vector<std::string_view> views;
     std::vector<std::string> frames;
     for (std::optional<int64_t> next = 0; next;) {
-      next = runs_->ResultFrames(run_id, *next, data, views);
+      next = runs_->results().Frames(run_id, *next, data, views);
       for (std::string_view view : views) frames.emplace_back(view);
       views.clear();
     }
@@ -307,10 +307,10 @@ TEST_F(RunManagerTest, SubscriberOfARunClaimedHereAndNotYetPreparedWaitsForIt) {
   std::atomic<bool> attached{false};
   std::shared_ptr<Subscription> subscription;
   std::thread subscriber([&] {
-    subscription = b.SubscribeRun(claimed->id(), true);
+    subscription = b.subscriptions().SubscribeRun(claimed->id(), true);
     attached = true;
   });
-  while (b.subscriber_count() == 0) std::this_thread::yield();  // it is in SubscribeRun
+  while (b.subscriptions().count() == 0) std::this_thread::yield();  // it is in SubscribeRun
   EXPECT_FALSE(attached.load()) << "the subscriber was answered while the run was being prepared";
   v1::RunInfo finished = *claimed;
   finished.set_state(v1::FINISHED);
@@ -326,7 +326,7 @@ TEST_F(RunManagerTest, SubscriberOfARunClaimedHereAndNotYetPreparedWaitsForIt) {
   EXPECT_EQ(events[0].kind, StreamEvent::Kind::kRunStarted);
   EXPECT_EQ(events[1].kind, StreamEvent::Kind::kRunEnded);
   EXPECT_EQ(b.Get(claimed->id()).state(), v1::FINISHED);
-  b.Unsubscribe(subscription);
+  b.subscriptions().Unsubscribe(subscription);
 }
 
 // Run ids: the store refuses one it holds already (another replica's, or a run of before)
@@ -409,8 +409,8 @@ TEST_F(RunIdCollisionTest, NoFreeIdRefusesTheBatchAndQueuesNothing) {
 // store nothing; once space is freed, runs start again. The free space is injected.
 TEST_F(RunManagerTest, TooLittleFreeSpaceRefusesNewRunsUntilSpaceIsFreed) {
   std::atomic<int64_t> free_bytes{int64_t{3} << 20};
-  runs_->SetFreeSpaceSource([&] { return std::optional<int64_t>(free_bytes.load()); },
-                            "/srv/mbstream-data");
+  runs_->replica().SetFreeSpaceSource([&] { return std::optional<int64_t>(free_bytes.load()); },
+                                      "/srv/mbstream-data");
   ASSERT_EQ(limits_.min_free_bytes, int64_t{64} << 20);  // the default
   try {
     runs_->Start("single_pendulum", Swing(0.5, 0.0));
@@ -442,7 +442,7 @@ TEST_F(RunManagerTest, TooLittleFreeSpaceRefusesNewRunsUntilSpaceIsFreed) {
 
 // Unknown free space (statvfs failed) does not stop the server from running.
 TEST_F(RunManagerTest, UnknownFreeSpaceLetsRunsStart) {
-  runs_->SetFreeSpaceSource([] { return std::optional<int64_t>(); }, dir_.string());
+  runs_->replica().SetFreeSpaceSource([] { return std::optional<int64_t>(); }, dir_.string());
   EXPECT_EQ(runs_->Start("single_pendulum", Swing(0.5, 0.0)).state(), v1::QUEUED);
 }
 

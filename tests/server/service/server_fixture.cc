@@ -134,10 +134,11 @@ v1::ModelBundle ServerTest::IrbBundle() {
 
 void ServerTest::WaitForSubscribers(int count) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (host().runs().subscriber_count() != count && std::chrono::steady_clock::now() < deadline) {
+  while (host().runs().subscriptions().count() != count &&
+         std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
-  ASSERT_EQ(host().runs().subscriber_count(), count);
+  ASSERT_EQ(host().runs().subscriptions().count(), count);
 }
 
 }  // namespace mbstream::testing

@@ -1,6 +1,6 @@
-// RunManager's sweeps (docs/cluster.md, "Sweeps"). A sweep the server feeds: StartSweep checks
-// and stores it whole and queues its first window; the feeder (sweep_feeder.h) queues the next
-// points as its runs end, here or on any replica sharing the store, each point's run expanded
+// RunManager's sweeps (run_sweeps.h; docs/cluster.md, "Sweeps"). A sweep the server feeds: Start
+// checks and stores it whole and queues its first window; the feeder (sweep_feeder.h) queues the
+// next points as its runs end, here or on any replica sharing the store, each point's run expanded
 // from the stored definition (sweep_plan.h) and stored with the move of the sweep's next point
 // in one transaction (Store::AddSweepRuns). Reads: a sweep's counts and a page of its runs,
 // every replica's (the store's indexes of sweep ids), and the mark that it was cancelled.
@@ -11,6 +11,7 @@
 #include "server/runs/request_error.h"
 #include "server/runs/run.h"
 #include "server/runs/run_manager.h"
+#include "server/runs/run_sweeps.h"
 #include "server/runs/sweep_coordinates.h"
 #include "server/runs/timed_id.h"
 #include "server/runs/unix_time.h"
@@ -22,21 +23,20 @@ namespace mbstream {
 
 namespace {
 
-// Thrown by FeedSweep's store call when the store refuses the points: nothing is queued.
+// Thrown by Feed's store call when the store refuses the points: nothing is queued.
 struct SweepPointsRefused {};
 
 }  // namespace
 
-RunManager::StartedSweep RunManager::StartSweep(const std::string& model_ref,
-                                                v1::SweepDefinition definition, int window,
-                                                const std::string& owner) {
-  std::shared_ptr<const CompiledModel> model = FindModel(model_ref);
-  if (window < 0 || window > limits_.max_queued_runs) {
+RunSweeps::Started RunSweeps::Start(const std::string& model_ref, v1::SweepDefinition definition,
+                                    int window, const std::string& owner) {
+  std::shared_ptr<const CompiledModel> model = m_.FindModel(model_ref);
+  if (window < 0 || window > m_.limits_.max_queued_runs) {
     throw InputError("window is " + std::to_string(window) + "; give 1.." +
-                     std::to_string(limits_.max_queued_runs) +
+                     std::to_string(m_.limits_.max_queued_runs) +
                      " (this server's run queue), or 0 for 32");
   }
-  if (window == 0) window = std::min(32, limits_.max_queued_runs);
+  if (window == 0) window = std::min(32, m_.limits_.max_queued_runs);
   ResolveCoordinatePaths(model->model, &definition);  // initial_q[box::link.z]
   auto plan = std::make_shared<const SweepPlan>(std::move(definition));
   const long total = plan->size();
@@ -47,7 +47,7 @@ RunManager::StartedSweep RunManager::StartSweep(const std::string& model_ref,
     if (k < window) {
       std::vector<std::string> warnings;
       try {
-        PrepareConfig(*model, spec, &warnings);
+        m_.PrepareConfig(*model, spec, &warnings);
       } catch (const InputError& error) {
         throw InputError("sweep: point " + std::to_string(k) + " (" + plan->Label(k) +
                          "): " + error.what());
@@ -57,7 +57,7 @@ RunManager::StartedSweep RunManager::StartSweep(const std::string& model_ref,
       }
     }
   }
-  CheckFreeSpace(free_space_source_, limits_.min_free_bytes, data_dir_);
+  CheckFreeSpace(m_.free_space_source_, m_.limits_.min_free_bytes, m_.data_dir_);
   StoredSweep sweep;
   sweep.model_id = model->info.id();
   sweep.owner = owner;
@@ -68,37 +68,37 @@ RunManager::StartedSweep RunManager::StartSweep(const std::string& model_ref,
     throw InternalError("sweep: its definition cannot be serialized");
   }
   // This replica's feeder waits until the first window is queued (this call's runs).
-  std::unique_lock<std::mutex> no_round = feeder_.HoldRounds();
+  std::unique_lock<std::mutex> no_round = m_.feeder_.HoldRounds();
   for (int attempt = 0;; ++attempt) {
     MBSTREAM_CHECK_MSG(attempt < 100, "no free sweep ids after 100 attempts");
     sweep.id = NewTimedId("s-");
-    if (store_->AddSweep(sweep)) break;
+    if (m_.store_->AddSweep(sweep)) break;
   }
   sweep.definition.clear();
-  feeder_.Remember(sweep.id, plan);
+  m_.feeder_.Remember(sweep.id, plan);
   spdlog::info("sweep {} stored: model {} '{}', {} points, window {}", sweep.id, model->info.id(),
                model->info.name(), total, window);
-  StartedSweep started;
+  Started started;
   started.id = sweep.id;
   started.total_points = sweep.total_points;
   started.paths = plan->paths();
   // The first window now (the queue may hold fewer: the feeder queues the rest as it frees).
-  const int first = static_cast<int>(std::min<long>(std::min(window, queue_.Room()), total));
-  if (first > 0) started.runs = FeedSweep(sweep, *plan, 0, first);
+  const int first = static_cast<int>(std::min<long>(std::min(window, m_.queue_.Room()), total));
+  if (first > 0) started.runs = Feed(sweep, *plan, 0, first);
   no_round.unlock();
   for (const v1::RunInfo& run : started.runs)
     started.values.push_back(plan->Values(run.sweep_point()));
-  feeder_.Wake();
+  m_.feeder_.Wake();
   return started;
 }
 
-std::vector<v1::RunInfo> RunManager::FeedSweep(const StoredSweep& sweep, const SweepPlan& plan,
-                                               int first, int count) {
-  count = std::min(count, queue_.Room());
+std::vector<v1::RunInfo> RunSweeps::Feed(const StoredSweep& sweep, const SweepPlan& plan, int first,
+                                         int count) {
+  count = std::min(count, m_.queue_.Room());
   if (count <= 0) return {};
-  std::shared_ptr<const CompiledModel> model = FindModel(sweep.model_id);
+  std::shared_ptr<const CompiledModel> model = m_.FindModel(sweep.model_id);
   try {
-    CheckFreeSpace(free_space_source_, limits_.min_free_bytes, data_dir_);
+    CheckFreeSpace(m_.free_space_source_, m_.limits_.min_free_bytes, m_.data_dir_);
   } catch (const RequestError& error) {
     spdlog::warn("sweep {}: not queueing more points: {}", sweep.id, error.what());
     return {};
@@ -112,7 +112,7 @@ std::vector<v1::RunInfo> RunManager::FeedSweep(const StoredSweep& sweep, const S
     std::vector<v1::RunInfo> info(1);
     v1::RunInfo* made = nullptr;
     try {
-      configs.push_back(std::move(PrepareRuns(*model, one, sweep.owner, info).front()));
+      configs.push_back(std::move(m_.PrepareRuns(*model, one, sweep.owner, info).front()));
       made = &queued.emplace_back(std::move(info.front()));
     } catch (const std::exception& error) {
       made = &failed.emplace_back();
@@ -134,7 +134,7 @@ std::vector<v1::RunInfo> RunManager::FeedSweep(const StoredSweep& sweep, const S
   auto in_point_order = [&](const std::vector<v1::RunInfo>& with_ids) {
     std::vector<v1::RunInfo> all(with_ids.begin(), with_ids.end());
     for (v1::RunInfo info : failed) {
-      info.set_id(NewRunId());
+      info.set_id(m_.NewRunId());
       all.push_back(std::move(info));
     }
     std::sort(all.begin(), all.end(), [](const v1::RunInfo& a, const v1::RunInfo& b) {
@@ -145,7 +145,7 @@ std::vector<v1::RunInfo> RunManager::FeedSweep(const StoredSweep& sweep, const S
   std::vector<v1::RunInfo> stored;
   auto store_runs = [&](const std::vector<v1::RunInfo>& with_ids) {
     stored = in_point_order(with_ids);
-    switch (store_->AddSweepRuns(sweep.id, stored)) {
+    switch (m_.store_->AddSweepRuns(sweep.id, stored)) {
       case SweepFeed::kAdded:
         return true;
       case SweepFeed::kIdTaken:
@@ -161,10 +161,10 @@ std::vector<v1::RunInfo> RunManager::FeedSweep(const StoredSweep& sweep, const S
         MBSTREAM_CHECK_MSG(attempt < 100, "no free run ids after 100 attempts");
       }
     } else {
-      queue_.Enqueue(
+      m_.queue_.Enqueue(
           queued,
           [&](const v1::RunInfo& info, size_t i) {
-            return std::make_shared<Run>(info, configs[i], model, *clock_, ProbeOptions());
+            return std::make_shared<Run>(info, configs[i], model, *m_.clock_, m_.ProbeOptions());
           },
           store_runs);
     }
@@ -185,13 +185,12 @@ std::vector<v1::RunInfo> RunManager::FeedSweep(const StoredSweep& sweep, const S
   return stored;
 }
 
-RunManager::SweepView RunManager::ViewSweep(const std::string& sweep_id, int runs_from,
-                                            int max_runs) const {
-  SweepView view;
+RunSweeps::View RunSweeps::Get(const std::string& sweep_id, int runs_from, int max_runs) const {
+  View view;
   if (sweep_id.empty()) throw RequestError(RequestErrorKind::kNotFound, "give a sweep id (s-...)");
-  view.stored = store_->GetSweep(sweep_id, false);
+  view.stored = m_.store_->GetSweep(sweep_id, false);
   if (!view.stored) {  // started in slices by an older server: its runs are all there is
-    view.runs = SweepRuns(sweep_id);
+    view.runs = Runs(sweep_id);
     if (view.runs.empty()) {
       throw RequestError(RequestErrorKind::kNotFound,
                          "no sweep '" + sweep_id.substr(0, 80) +
@@ -200,9 +199,9 @@ RunManager::SweepView RunManager::ViewSweep(const std::string& sweep_id, int run
     for (const v1::RunInfo& run : view.runs) ++view.states[run.state()];
     return view;
   }
-  view.states = store_->CountSweepRuns(sweep_id);
-  if (replica_.private_store) {  // a run integrating here is still QUEUED in its row
-    for (const v1::RunInfo& live : queue_.SweepInfos(sweep_id)) {
+  view.states = m_.store_->CountSweepRuns(sweep_id);
+  if (m_.replica_.private_store) {  // a run integrating here is still QUEUED in its row
+    for (const v1::RunInfo& live : m_.queue_.SweepInfos(sweep_id)) {
       if (live.state() == v1::RUNNING && view.states[v1::QUEUED] > 0) {
         --view.states[v1::QUEUED];
         ++view.states[v1::RUNNING];
@@ -212,16 +211,16 @@ RunManager::SweepView RunManager::ViewSweep(const std::string& sweep_id, int run
   }
   constexpr int kMaxPage = 1000;
   max_runs = max_runs <= 0 ? kMaxPage : std::min(max_runs, kMaxPage);
-  view.runs = store_->ListSweepRuns(sweep_id, std::max(0, runs_from), max_runs);
+  view.runs = m_.store_->ListSweepRuns(sweep_id, std::max(0, runs_from), max_runs);
   std::shared_ptr<const SweepPlan> plan;
   try {
-    plan = feeder_.Plan(*view.stored);
+    plan = m_.feeder_.Plan(*view.stored);
     view.paths = plan->paths();
   } catch (const InputError& error) {
     spdlog::error("sweep {}: {}", sweep_id, error.what());
   }
   for (v1::RunInfo& run : view.runs) {
-    if (std::shared_ptr<Run> active = FindActive(run.id()); active) {
+    if (std::shared_ptr<Run> active = m_.FindActive(run.id()); active) {
       const bool cancelled = run.sweep_cancelled();
       run = active->Info();
       run.set_sweep_cancelled(run.sweep_cancelled() || cancelled);
@@ -235,16 +234,16 @@ RunManager::SweepView RunManager::ViewSweep(const std::string& sweep_id, int run
   return view;
 }
 
-std::vector<v1::RunInfo> RunManager::UnfinishedSweepRuns(const std::string& sweep_id) const {
-  return store_->ListSweepRuns(sweep_id, 0, 0, true);
+std::vector<v1::RunInfo> RunSweeps::Unfinished(const std::string& sweep_id) const {
+  return m_.store_->ListSweepRuns(sweep_id, 0, 0, true);
 }
 
-std::vector<v1::RunInfo> RunManager::SweepRuns(const std::string& sweep_id) const {
+std::vector<v1::RunInfo> RunSweeps::Runs(const std::string& sweep_id) const {
   std::vector<v1::RunInfo> runs;
   if (sweep_id.empty()) return runs;
-  for (v1::RunInfo& stored : store_->ListSweepRuns(sweep_id)) {
+  for (v1::RunInfo& stored : m_.store_->ListSweepRuns(sweep_id)) {
     // A run integrating here: its live info (the store's row is updated at its end only).
-    if (std::shared_ptr<Run> run = FindActive(stored.id()); run) {
+    if (std::shared_ptr<Run> run = m_.FindActive(stored.id()); run) {
       const bool cancelled = stored.sweep_cancelled();
       stored = run->Info();
       stored.set_sweep_cancelled(stored.sweep_cancelled() || cancelled);
@@ -257,13 +256,13 @@ std::vector<v1::RunInfo> RunManager::SweepRuns(const std::string& sweep_id) cons
   return runs;
 }
 
-bool RunManager::SweepCancelled(const std::string& sweep_id) const {
-  return !sweep_id.empty() && store_->SweepCancelled(sweep_id);
+bool RunSweeps::Cancelled(const std::string& sweep_id) const {
+  return !sweep_id.empty() && m_.store_->SweepCancelled(sweep_id);
 }
 
-int RunManager::MarkSweepCancelled(const std::string& sweep_id) {
+int RunSweeps::MarkCancelled(const std::string& sweep_id) {
   if (sweep_id.empty()) return 0;
-  return store_->MarkSweepCancelled(sweep_id);
+  return m_.store_->MarkSweepCancelled(sweep_id);
 }
 
 }  // namespace mbstream
