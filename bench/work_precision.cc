@@ -40,6 +40,16 @@
 // joints as constraints between bodies: body-index2/ida and body-baumgarte/bdf, and
 // body-index3/ida (refused with loops: status REFUSED). drift is the largest position
 // constraint residual (m or rad) over the frames.
+//
+// The contact scenes (issue 44: stiff contact against explicit methods): contact-bounce, a
+// 1 kg ball of radius 0.1 m dropped 0.9 m onto a plane (tests/data/contact/ball_on_plane.sdf)
+// with Hunt-Crossley contact, k = 1e6 N/m a surface (5e5 for the pair, a contact period of
+// 2 pi sqrt(m/k) = 8.9 ms), d = 0.2 s/m, over 2 s (five bounces); contact-slide, a 0.2 m box
+// launched at 1 m/s along a plane (box_on_plane.sdf) that friction (mu_d = 0.5) stops at
+// t = 0.2 s and static friction then holds: the Stribeck function's slope below v_s = 1e-4
+// m/s is the stiff part. Their error is the largest distance of the body's origin (m) from
+// the reference (BDF at rtol 1e-12, checked by DIRK at 1e-12); their methods bdf, dirk, erk,
+// rk4 and euler (semi-implicit), the fixed steps down to 1 us.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -60,6 +70,7 @@
 #include "server/sim/loop_run.h"
 #include "server/sim/run_config.h"
 #include "server/sim/run_result.h"
+#include "server/sim/run_validation.h"
 #include "server/spec/run_spec_json.h"
 #include "shared/common/check.h"
 
@@ -133,13 +144,29 @@ const std::vector<std::string> kLoopMethods = {"bdf",
                                                "body-baumgarte/bdf",
                                                "body-index3/ida"};
 
+// The contact scenes' methods: the implicit and the explicit ones the issue compares.
+const std::vector<std::string> kContactMethods = {"bdf", "dirk", "erk", "rk4", "euler"};
+
+bool IsContactScene(const std::string& scene) {
+  return scene == "contact-bounce" || scene == "contact-slide";
+}
+
 bool IsLinkage(const std::string& scene) {
   return scene == "four_bar" || scene == "slider_crank" || scene == "delta" ||
          scene == "palletiser";
 }
 
+// What a scene's error is measured on, per output frame (TrackOf).
+enum class Track {
+  kTcp,           // the TCP, 3 values (m); the distance between two frames the Euclidean norm
+  kJoints,        // every joint (rad or m; the largest difference): the linkages, whose TCP may
+                  // not move (the four-bar's and slider-crank's)
+  kBodyPosition,  // the first free body's origin, x y z (m; Euclidean): the contact scenes
+};
+
 struct Scene {
   std::string name;
+  Track track = Track::kTcp;
   Model model;
   std::vector<LoopClosure> loops;       // the linkages' cut joints (empty: a tree)
   RunConfig config;                     // as shipped (duration shortened with --quick)
@@ -169,40 +196,54 @@ std::string FormatOptional(const std::optional<double>& value) {
   return text;
 }
 
-// What a scene's error is measured on, per output frame: the TCP (3 values, m; the distance
-// between two frames the Euclidean norm) or, for the linkages, whose TCP may not move (the
-// four-bar's and slider-crank's), every joint (rad or m; the largest difference).
-const std::vector<double>& TrackOf(const Scene& scene, const RunResult& result) {
-  return scene.loops.empty() ? result.tcp : result.q;
-}
-
+// The values TrackOf `result` has per frame.
 size_t Stride(const Scene& scene, const RunResult& result) {
-  return scene.loops.empty() ? 3 : static_cast<size_t>(result.num_dofs);
+  return scene.track == Track::kJoints ? static_cast<size_t>(result.num_dofs) : 3;
 }
 
-double FrameDistance(const Scene& scene, const RunResult& result,
+// The scene's track of `result`, Stride values per output frame.
+std::vector<double> TrackOf(const Scene& scene, const RunResult& result) {
+  switch (scene.track) {
+    case Track::kTcp:
+      return result.tcp;
+    case Track::kJoints:
+      return result.q;
+    case Track::kBodyPosition:
+      break;
+  }
+  std::vector<double> origin;
+  const size_t n = static_cast<size_t>(result.num_positions);
+  for (size_t k = 0; k < result.t.size(); ++k) {
+    for (size_t c = 0; c < 3; ++c) origin.push_back(result.q[n * k + c]);
+  }
+  return origin;
+}
+
+// The distance of frame k of `track` from the reference's (Stride `n` values a frame).
+double FrameDistance(const Scene& scene, const std::vector<double>& track, size_t n,
                      const std::vector<double>& reference, size_t k) {
-  const std::vector<double>& track = TrackOf(scene, result);
-  const size_t n = Stride(scene, result);
   double squared = 0.0, largest = 0.0;
   for (size_t c = 0; c < n; ++c) {
     const double d = track[n * k + c] - reference[n * k + c];
     squared += d * d;
     largest = std::max(largest, std::abs(d));
   }
-  return scene.loops.empty() ? std::sqrt(squared) : largest;
+  return scene.track == Track::kJoints ? largest : std::sqrt(squared);
 }
 
 // Largest distance of `result`'s track from `reference` over the first `frames` frames (or
 // fewer, when the run stopped early).
 double TrackDistanceMax(const Scene& scene, const RunResult& result,
                         const std::vector<double>& reference, int frames) {
+  const size_t n = Stride(scene, result);
+  const std::vector<double> track = TrackOf(scene, result);
   const size_t count = std::min({static_cast<size_t>(result.num_frames()),
-                                 reference.size() / std::max<size_t>(1, Stride(scene, result)),
+                                 reference.size() / std::max<size_t>(1, n),
                                  static_cast<size_t>(frames)});
   double error = 0.0;
-  for (size_t k = 0; k < count; ++k)
-    error = std::max(error, FrameDistance(scene, result, reference, k));
+  for (size_t k = 0; k < count; ++k) {
+    error = std::max(error, FrameDistance(scene, track, n, reference, k));
+  }
   return error;
 }
 
@@ -245,7 +286,7 @@ struct ReferencePlan {
 // wrist servo's fast eigenvalue (about kd / J6 = 2e4 / 0.00375 = 5e6 1/s) holds explicit
 // steps below a microsecond, so its reference is implicit.
 ReferencePlan ReferencePlanFor(const std::string& scene) {
-  if (scene == "stiff-servo") {
+  if (scene == "stiff-servo" || IsContactScene(scene)) {
     return {{"bdf", Method::kBdf, "", false}, {"dirk", Method::kDirk, "", false}, 1e-12, 1e-12};
   }
   return {{"erk-fehlberg", Method::kErk, "fehlberg", false},
@@ -276,11 +317,14 @@ Row ComputeReference(Scene& scene) {
   const RunResult check = MustFinish(scene, check_config, scene.name + " reference check");
   const int frames = reference.num_frames();
   const double agreement_limit = kReferenceAgreement;
+  const std::vector<double> check_track = TrackOf(scene, check);
+  const size_t stride = Stride(scene, check);
   int window = 0;
   double agreement = 0.0;       // over the window
   double difference_max = 0.0;  // over the whole run
   for (int k = 0; k < frames; ++k) {
-    const double d = FrameDistance(scene, check, scene.reference_track, static_cast<size_t>(k));
+    const double d =
+        FrameDistance(scene, check_track, stride, scene.reference_track, static_cast<size_t>(k));
     difference_max = std::max(difference_max, d);
     if (window == k && d <= agreement_limit) {
       ++window;
@@ -371,9 +415,10 @@ void WriteCsv(const std::string& path, const std::vector<Row>& rows) {
   if (std::fclose(file) != 0) throw std::runtime_error("cannot write " + path);
 }
 
-std::vector<MethodVariant> SelectedMethods(const Options& options, bool linkage) {
+std::vector<MethodVariant> SelectedMethods(const Options& options, bool linkage, bool contact) {
   std::vector<std::string> names = options.methods;
   if (names.empty() && linkage) names = kLoopMethods;
+  if (names.empty() && contact) names = kContactMethods;
   if (names.empty() && options.quick) {
     names = {"bdf", "rk4", "body-index3/ida", "body-index2/ida", "body-baumgarte/bdf"};
   }
@@ -394,6 +439,35 @@ std::vector<MethodVariant> SelectedMethods(const Options& options, bool linkage)
   return selected;
 }
 
+// A contact scene's model and run (IsContactScene), built here: a passive free body, BDF at
+// the study's tolerances, output every 1 ms.
+Model ContactScene(const std::string& name, RunConfig* config) {
+  const bool bounce = name == "contact-bounce";
+  Model model = ImportSdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/tests/data/contact/" +
+                              (bounce ? "ball_on_plane.sdf" : "box_on_plane.sdf"))
+                    .model;
+  *config = RunConfig{};
+  config->formulation = Formulation::kJoint;
+  config->duration = bounce ? 2.0 : 1.0;
+  config->output_interval = 1e-3;
+  config->want_torques = false;
+  config->drives.resize(static_cast<size_t>(model.nv()));  // passive
+  config->contact.stiffness = 1e6;                         // N/m a surface: 5e5 the pair
+  config->contact.dissipation = 0.2;                       // s/m
+  config->q0 = Eigen::VectorXd(model.nq());
+  NeutralPositions(model, config->q0.data());  // each free body at its pose in the file
+  config->qd0 = Eigen::VectorXd::Zero(model.nv());
+  if (bounce) {
+    config->q0(2) = 1.0;  // the ball's centre 0.9 m above the plane's contact
+  } else {
+    // The box resting on the plane (its static penetration m g / k = 2e-5 m) at 1 m/s.
+    config->q0(2) = 0.1 - 9.81 / 5e5;
+    config->qd0(0) = 1.0;
+  }
+  ValidateRun(model, *config);
+  return model;
+}
+
 int Run(const Options& options) {
   const auto wall0 = std::chrono::steady_clock::now();
   const Model irb1600 = ImportUrdfFile(options.models_dir + "/irb1600.urdf").model;
@@ -405,14 +479,24 @@ int Run(const Options& options) {
       options.quick ? std::vector<double>{1e-2, 1e-3}
                     : std::vector<double>{1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5};
 
+  // The contact scenes' fixed steps: their contact lasts milliseconds.
+  const std::vector<double> contact_steps =
+      options.quick ? std::vector<double>{1e-4, 1e-5}
+                    : std::vector<double>{1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6};
+
   std::vector<Row> rows;
   for (const std::string& name : options.scenes) {
     const bool linkage = IsLinkage(name);
-    const std::vector<MethodVariant> methods = SelectedMethods(options, linkage);
+    const bool contact = IsContactScene(name);
+    const std::vector<MethodVariant> methods = SelectedMethods(options, linkage, contact);
     Scene scene;
     scene.name = name;
     std::string path = options.models_dir + "/" + name + ".json";
-    if (linkage) {
+    if (contact) {
+      scene.track = Track::kBodyPosition;
+      scene.model = ContactScene(name, &scene.config);
+    } else if (linkage) {
+      scene.track = Track::kJoints;
       SdfImport sdf = ImportSdfFile(options.linkages_dir + "/" + name + ".sdf");
       scene.model = std::move(sdf.model);
       scene.loops = std::move(sdf.loops);
@@ -420,9 +504,11 @@ int Run(const Options& options) {
     } else {
       scene.model = irb1600;
     }
-    std::vector<std::string> joints;
-    for (const Body& body : scene.model.bodies) joints.push_back(body.joint.name);
-    scene.config = ToRunConfig(LoadRunSpecFile(path), joints, path);
+    if (!contact) {
+      std::vector<std::string> joints;
+      for (const Body& body : scene.model.bodies) joints.push_back(body.joint.name);
+      scene.config = ToRunConfig(LoadRunSpecFile(path), joints, path);
+    }
     if (options.quick) scene.config.duration = kQuickDuration;
     if (options.duration > 0.0) scene.config.duration = options.duration;
     scene.config.max_steps = options.max_steps;
@@ -448,7 +534,7 @@ int Run(const Options& options) {
       config.formulation = variant.formulation;
       if (variant.max_steps > 0) config.max_steps = std::min(config.max_steps, variant.max_steps);
       if (variant.fixed_step) {
-        for (double step : steps) {
+        for (double step : contact ? contact_steps : steps) {
           const double needed = config.duration / step;
           if (needed > static_cast<double>(options.max_steps) * (1.0 + 1e-9)) {
             std::printf("%-13s %-9s %-10s step %.3g skipped: %.3g steps > %ld\n", name.c_str(),

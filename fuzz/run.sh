@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (ASan + UBSan) and runs each for a bounded time.
-#   fuzz/run.sh [--seconds N] [--no-build] [TARGET...]    default: 60 s each, every target
+#   fuzz/run.sh [--seconds N] [--no-build] [--replay] [TARGET...]    default: 60 s each, every target
+# --replay: the targets are the seed replayers of a tree without libFuzzer (the Release tree:
+# fuzz/seed_replay_main.cc); each is given every seed once, no fuzzing.
 # Environment: FUZZ_SECONDS (the default of --seconds), FUZZ_BUILD_DIR (default build-fuzz;
 # CI: build-asan, where each target is also a ctest test, fuzz.TARGET), JOBS (default 2).
 # The corpus each target grows is kept in $FUZZ_BUILD_DIR/fuzz/corpus/TARGET, so a later run
@@ -12,10 +14,12 @@ cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET=${FUZZ_SECONDS:-60}
 TARGETS=()
 BUILD_STEP=1
+REPLAY=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --seconds) SECONDS_PER_TARGET=$2; shift 2 ;;
     --no-build) BUILD_STEP=0; shift ;;
+    --replay) REPLAY=1; shift ;;
     -h|--help) sed -n '2,8p' "$0"; exit 0 ;;
     *) TARGETS+=("$1"); shift ;;
   esac
@@ -103,6 +107,20 @@ export LSAN_OPTIONS=suppressions=$PWD/cmake/sanitizers/lsan.supp:print_suppressi
 declare -A DICT=([urdf_import_fuzzer]=urdf [sdf_import_fuzzer]=sdf [scene_script_fuzzer]=scene_script
                  [run_spec_json_fuzzer]=run_spec [start_run_fuzzer]=start_run)
 failed=0
+if [ "$REPLAY" = 1 ]; then
+  for target in "${TARGETS[@]}"; do
+    write_seeds "$target"
+    log=$OUT/logs/$target.replay.log
+    if "$BUILD/fuzz/$target" "$SEEDS/$target"/* >"$log" 2>&1; then
+      tail -n 1 "$log"
+    else
+      failed=1
+      echo "fuzz: $target FAILED on a seed (the last seed named below); the end of $log:"
+      tail -n 30 "$log"
+    fi
+  done
+  exit "$failed"
+fi
 header=$(printf '%-22s %8s %12s %10s %8s' target seconds executions exec/s corpus)
 echo "$header"
 for target in "${TARGETS[@]}"; do

@@ -28,6 +28,9 @@ PACKAGES=(
   clang libclang-rt-14-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # a peer for the cross-checks of free bodies and ball joints (tests/server/free: MuJoCo's
+  # forward dynamics at random states)
+  libmujoco-dev
   # viewer and headless rendering
   libvtk9-dev xvfb xauth
   libassimp-dev  # viewer meshes: Collada, OBJ, STL, glTF, PLY
