@@ -237,9 +237,9 @@ double TrackDistanceMax(const Scene& scene, const RunResult& result,
                         const std::vector<double>& reference, int frames) {
   const size_t n = Stride(scene, result);
   const std::vector<double> track = TrackOf(scene, result);
-  const size_t count = std::min({static_cast<size_t>(result.num_frames()),
-                                 reference.size() / std::max<size_t>(1, n),
-                                 static_cast<size_t>(frames)});
+  const size_t count =
+      std::min({static_cast<size_t>(result.num_frames()), reference.size() / std::max<size_t>(1, n),
+                static_cast<size_t>(frames)});
   double error = 0.0;
   for (size_t k = 0; k < count; ++k) {
     error = std::max(error, FrameDistance(scene, track, n, reference, k));
