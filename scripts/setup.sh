@@ -131,6 +131,16 @@ if [ ! -f "$mcap_reader/node_modules/.mbstream-installed" ] ||
   touch "$mcap_reader/node_modules/.mbstream-installed"
 fi
 
+# A controller in another language for the Control stream's test (tests/server/service/
+# node_control: @grpc/grpc-js and @grpc/proto-loader), pinned by its package-lock.json, as above.
+node_control="$(dirname "${BASH_SOURCE[0]}")/../tests/server/service/node_control"
+if [ ! -f "$node_control/node_modules/.mbstream-installed" ] ||
+   [ "$node_control/package-lock.json" -nt "$node_control/node_modules/.mbstream-installed" ]; then
+  echo "setup: npm ci in tests/server/service/node_control (@grpc/grpc-js for the Node controller test)"
+  (cd "$node_control" && npm ci --no-audit --no-fund --loglevel=error) >/dev/null
+  touch "$node_control/node_modules/.mbstream-installed"
+fi
+
 # SUNDIALS 6.4.1 with optimisation, from Debian's source package, into a per-user cache that
 # CMake prefers (about a minute on 2 cores the first time; instant once cached). Debian's
 # libsundials-dev above stays the fallback when the source can't be fetched or built.

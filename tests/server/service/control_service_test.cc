@@ -3,7 +3,12 @@
 // run's end), never for wall time.
 #include <gmock/gmock.h>
 
+#include <google/protobuf/util/json_util.h>
+#include <sys/wait.h>
+
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 
@@ -308,6 +313,54 @@ TEST_F(ControlServiceTest, ComputedTorqueTracksTheSeedTrajectoryToTheErrorItsPer
   const double ratio = errors[0] / errors[1];
   EXPECT_GT(ratio, 1.6) << "the error is first order in h";
   EXPECT_LT(ratio, 2.5) << "the error is first order in h";
+}
+
+// A controller in another language: Node with @grpc/grpc-js, its messages loaded at run time
+// from the .proto files (tests/server/service/node_control/control_pd.js: no code of ours),
+// sends the seed servo's law by effort, and the run equals the built-in sampled servo's to
+// 1e-10 (Node's Math.sin is V8's, not glibc's: the last bits of a command may differ; on
+// this machine they did not: 0 difference, 2026-12-02).
+TEST_F(ControlServiceTest, AControllerInNodeEqualsTheBuiltInSampledServo) {
+  const std::filesystem::path dir =
+      std::filesystem::path(MBSTREAM_SOURCE_DIR) / "tests/server/service/node_control";
+  if (!std::filesystem::exists(dir / "node_modules/@grpc/grpc-js")) {
+    GTEST_SKIP() << "no node_modules in " << dir << ": scripts/setup.sh installs them (npm ci)";
+  }
+  const v1::RunSpec servo = SampledServo();
+  const v1::RunInfo builtin = WaitForEnd(StartRunOk("irb1600", servo).id());
+  ASSERT_EQ(builtin.state(), v1::FINISHED) << builtin.message();
+  std::string json;
+  google::protobuf::util::JsonPrintOptions options;
+  options.preserve_proto_field_names = true;
+  ASSERT_TRUE(google::protobuf::util::MessageToJsonString(servo, &json, options).ok());
+  const std::filesystem::path spec_file = data_.path() / "servo.json";
+  std::ofstream(spec_file) << json;
+
+  const std::string command = "node " + (dir / "control_pd.js").string() + " " + host().address() +
+                              " " + spec_file.string() + " 2>&1";
+  FILE* node = popen(command.c_str(), "r");
+  ASSERT_NE(node, nullptr);
+  std::string output, run_id;
+  char line[4096];
+  while (std::fgets(line, sizeof(line), node) != nullptr) {  // until node exits
+    output += line;
+    if (std::string(line).rfind("run ", 0) == 0) run_id = std::string(line + 4);
+  }
+  const int status = pclose(node);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
+  EXPECT_THAT(output, HasSubstr("ended FINISHED steps 1000"));
+  while (!run_id.empty() && (run_id.back() == '\n' || run_id.back() == '\r')) run_id.pop_back();
+  ASSERT_FALSE(run_id.empty()) << output;
+
+  const std::vector<double> expected = StoredValues(builtin.id());
+  const std::vector<double> controlled = StoredValues(run_id);
+  ASSERT_EQ(controlled.size(), expected.size());
+  double worst = 0.0;
+  for (size_t k = 0; k < expected.size(); ++k) {
+    worst = std::max(worst, std::abs(expected[k] - controlled[k]));
+  }
+  std::printf("RESULT node controller against the built-in servo: %.3g\n", worst);
+  EXPECT_LE(worst, 1e-10);
 }
 
 TEST_F(ControlServiceTest, ASilentControllerFailsTheRunAtItsTimeout) {
