@@ -1,11 +1,14 @@
 // Your controller in the loop, from C++ (issue 45): a PD controller at 1 kHz holding a sine on
 // every joint of the IRB 1600 through Simulation.Control (proto/mbstream/v1/control.proto),
 // against the server at MBSTREAM_SERVER (or the first argument; default 127.0.0.1:50051).
+//   control_pd [ADDRESS [PERIOD_S [DURATION_S]]]     defaults: 1e-3 s (1 kHz), 1 s
+// (bench/control_delay.py runs it across a delayed link, period against rate).
 // At each control instant the server sends the state and waits for this program's command
 // for the period after it. Prints the run's final state and the last tracking error; exits 1
 // when the run did not finish.
 #include <grpcpp/grpcpp.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -19,14 +22,20 @@ int main(int argc, char** argv) {
   auto stub = mbstream::v1::Simulation::NewStub(
       grpc::CreateChannel(address, grpc::InsecureChannelCredentials()));
 
-  constexpr double kH = 1e-3;                          // s: 1 kHz
+  const double kH = argc > 2 ? std::atof(argv[2]) : 1e-3;       // s: 1 kHz by default
+  const double duration = argc > 3 ? std::atof(argv[3]) : 1.0;  // s of simulated time
+  if (!(kH > 0.0) || !(duration > 0.0)) {
+    std::fprintf(stderr, "usage: control_pd [ADDRESS [PERIOD_S [DURATION_S]]]\n");
+    return 2;
+  }
+  const auto wall0 = std::chrono::steady_clock::now();
   const double kp[6] = {400, 400, 400, 400, 400, 40};  // N*m/rad
   const double kd[6] = {40, 40, 40, 40, 40, 2};        // N*m*s/rad
   mbstream::v1::ControlRequest request;
   mbstream::v1::ControlStart& start = *request.mutable_start();
   start.set_model("irb1600");
   mbstream::v1::RunSpec& spec = *start.mutable_spec();
-  spec.set_duration_s(1.0);
+  spec.set_duration_s(duration);
   spec.set_output_interval_s(0.01);
   spec.set_formulation("joint");
   spec.set_method("rk4");  // one RK4 step per control period
@@ -71,5 +80,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "Control: %s\n", status.error_message().c_str());
     return 1;
   }
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  std::printf("period %g s: %g s simulated in %.3f s of wall time, %.2f x real time\n", kH,
+              duration, wall, duration / wall);
   return response.ended().state() == mbstream::v1::FINISHED ? 0 : 1;
 }
