@@ -104,42 +104,32 @@ if [ ${#absent[@]} -gt 0 ]; then
   exit 1
 fi
 
-# The web page's JavaScript (viewer/web: three.js, and playwright-core for the test), pinned by
-# viewer/web/package-lock.json, from the npm registry into viewer/web/node_modules; again only
-# when the lock file changed. Debian's npm when node came without it (NodeSource's has one).
-web="$(dirname "${BASH_SOURCE[0]}")/../viewer/web"
-if [ ! -f "$web/node_modules/.mbstream-installed" ] ||
-   [ "$web/package-lock.json" -nt "$web/node_modules/.mbstream-installed" ]; then
+# The JavaScript packages of the page and of the tests, each folder's pinned by its
+# package-lock.json, from the npm registry into FOLDER/node_modules; again only when the lock
+# file changed. Debian's npm when node came without it (NodeSource's has one).
+npm_folder() {  # npm_folder FOLDER (below the checkout) WHAT-FOR
+  local dir
+  dir="$(dirname "${BASH_SOURCE[0]}")/../$1"
+  if [ -f "$dir/node_modules/.mbstream-installed" ] &&
+     [ ! "$dir/package-lock.json" -nt "$dir/node_modules/.mbstream-installed" ]; then
+    return 0
+  fi
   if ! command -v npm >/dev/null 2>&1; then
     SUDO=""
     if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
     DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends npm >/dev/null
   fi
-  echo "setup: npm ci in viewer/web (three.js for the web page, playwright-core for its test)"
-  (cd "$web" && npm ci --no-audit --no-fund --loglevel=error) >/dev/null
-  touch "$web/node_modules/.mbstream-installed"
-fi
-
-# The MCAP export's independent reader (tests/server/mcap/reader: @mcap/core, Foxglove's ROS 2
-# message decoder, zstd and lz4 decompressors), pinned by its package-lock.json, as viewer/web's
-# above.
-mcap_reader="$(dirname "${BASH_SOURCE[0]}")/../tests/server/mcap/reader"
-if [ ! -f "$mcap_reader/node_modules/.mbstream-installed" ] ||
-   [ "$mcap_reader/package-lock.json" -nt "$mcap_reader/node_modules/.mbstream-installed" ]; then
-  echo "setup: npm ci in tests/server/mcap/reader (@mcap/core for the MCAP export's tests)"
-  (cd "$mcap_reader" && npm ci --no-audit --no-fund --loglevel=error) >/dev/null
-  touch "$mcap_reader/node_modules/.mbstream-installed"
-fi
-
-# A controller in another language for the Control stream's test (tests/server/service/
-# node_control: @grpc/grpc-js and @grpc/proto-loader), pinned by its package-lock.json, as above.
-node_control="$(dirname "${BASH_SOURCE[0]}")/../tests/server/service/node_control"
-if [ ! -f "$node_control/node_modules/.mbstream-installed" ] ||
-   [ "$node_control/package-lock.json" -nt "$node_control/node_modules/.mbstream-installed" ]; then
-  echo "setup: npm ci in tests/server/service/node_control (@grpc/grpc-js for the Node controller test)"
-  (cd "$node_control" && npm ci --no-audit --no-fund --loglevel=error) >/dev/null
-  touch "$node_control/node_modules/.mbstream-installed"
-fi
+  echo "setup: npm ci in $1 ($2)"
+  (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error) >/dev/null
+  touch "$dir/node_modules/.mbstream-installed"
+}
+npm_folder viewer/web "three.js for the web page, playwright-core for its test"
+# The MCAP export's independent reader: @mcap/core, Foxglove's ROS 2 message decoder, zstd and
+# lz4 decompressors.
+npm_folder tests/server/mcap/reader "@mcap/core for the MCAP export's tests"
+# A controller in another language for the Control stream's test: @grpc/grpc-js and
+# @grpc/proto-loader.
+npm_folder tests/server/service/node_control "@grpc/grpc-js for the Node controller test"
 
 # SUNDIALS 6.4.1 with optimisation, from Debian's source package, into a per-user cache that
 # CMake prefers (about a minute on 2 cores the first time; instant once cached). Debian's
