@@ -14,8 +14,9 @@ PACKAGES=(
   lld  # the linker CMake picks when present (cmake/MbstreamCompilerSettings.cmake)
   # core numerics
   libeigen3-dev libsundials-dev libsuitesparse-dev
-  # contact (server/contact): FCL narrow and broad phase, with libccd
-  libfcl-dev libccd-dev
+  # contact (server/contact): FCL narrow and broad phase, with libccd; qhull for the convex
+  # hulls of collision meshes (server/parse/convex_hull.h)
+  libfcl-dev libccd-dev libqhull-dev
   # model import, logging, command line, persistence
   liburdfdom-dev libsdformat-dev libsimbody-dev libspdlog-dev libfmt-dev libcli11-dev libsqlite3-dev nlohmann-json3-dev
   # the shared store for several servers (--store postgresql://...); the tests start their own
@@ -33,7 +34,7 @@ PACKAGES=(
   libmujoco-dev
   # viewer and headless rendering
   libvtk9-dev xvfb xauth
-  libassimp-dev  # viewer meshes: Collada, OBJ, STL, glTF, PLY
+  libassimp-dev  # viewer meshes and the server's collision meshes: Collada, OBJ, STL, glTF, PLY
   dart-doc  # a published robot with textured Collada meshes (the Barrett WAM) for WebViewTest
   # mbstream-viewer --web: Boost.Beast (HTTP, WebSocket); node for `npm ci` in viewer/web
   # (three.js, served to the pages; playwright-core for the test), chromium for the test

@@ -74,8 +74,10 @@ void AddSubmitCommand(CLI::App& app, std::shared_ptr<const ClientOptions> client
                    "of model:// meshes and includes (before $MBSTREAM_PACKAGE_PATH, colon "
                    "separated)")
       ->check(CLI::ExistingDirectory);
-  command->add_flag("--with-collision", options->files.with_collision,
-                    "attach the collision meshes too (the engine does not need them)");
+  command->add_flag(
+      "--with-collision", options->files.with_collision,
+      "attach the collision meshes too (contact takes their convex hulls; without them "
+      "mesh collisions touch nothing)");
   command->add_option("--name", options->files.name,
                       "display name (default: the URDF's robot name, the SDFormat model's name)");
   command->add_flag("--repair", options->repair, kRepairHelp);

@@ -8,6 +8,7 @@
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision_object.h>
@@ -23,6 +24,21 @@ namespace {
 // are candidates too.
 constexpr double kBroadMargin = 1e-3;
 
+// The box [lower, upper] (in the geometry's frame, not centred on it) as an fcl::Convex: a
+// convex polytope's broad-phase shape (its vertices are all the broad phase looks at).
+std::shared_ptr<fcl::CollisionGeometryd> GrownBoundingBox(const Vector3d& lower,
+                                                          const Vector3d& upper) {
+  auto corners = std::make_shared<std::vector<Vector3d>>();
+  for (int k = 0; k < 8; ++k) {
+    corners->emplace_back(k & 1 ? upper.x() : lower.x(), k & 2 ? upper.y() : lower.y(),
+                          k & 4 ? upper.z() : lower.z());
+  }
+  // The six faces, counter-clockwise seen from outside.
+  auto faces = std::make_shared<std::vector<int>>(std::vector<int>{
+      4, 0, 2, 3, 1, 4, 4, 5, 7, 6, 4, 0, 1, 5, 4, 4, 2, 6, 7, 3, 4, 0, 4, 6, 2, 4, 1, 3, 7, 5});
+  return std::make_shared<fcl::Convexd>(std::move(corners), 6, std::move(faces));
+}
+
 std::shared_ptr<fcl::CollisionGeometryd> GrownShape(const CollisionShape& s) {
   const double m = kBroadMargin;
   switch (s.type) {
@@ -34,6 +50,9 @@ std::shared_ptr<fcl::CollisionGeometryd> GrownShape(const CollisionShape& s) {
       return std::make_shared<fcl::Cylinderd>(s.radius + m, s.length + 2 * m);
     case ShapeType::kCapsule:
       return std::make_shared<fcl::Capsuled>(s.radius + m, s.length);
+    case ShapeType::kConvex:
+      return GrownBoundingBox(s.convex.lower - Vector3d::Constant(m),
+                              s.convex.upper + Vector3d::Constant(m));
     case ShapeType::kPlane:
       return nullptr;
   }

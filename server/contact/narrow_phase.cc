@@ -7,6 +7,7 @@
 
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
@@ -41,6 +42,8 @@ std::shared_ptr<fcl::CollisionGeometryd> FclShape(const CollisionShape& s) {
       return std::make_shared<fcl::Cylinderd>(s.radius, s.length);
     case ShapeType::kCapsule:
       return std::make_shared<fcl::Capsuled>(s.radius, s.length);
+    case ShapeType::kConvex:
+      return std::make_shared<fcl::Convexd>(s.convex.vertices, s.convex.num_faces, s.convex.faces);
     case ShapeType::kPlane:
       return nullptr;  // closed forms only (narrow_phase.h)
   }
@@ -95,6 +98,9 @@ void PlaneCandidates(const CollisionShape& s, const Pose& X_WA, const Vector3d& 
       }
       return;
     }
+    case ShapeType::kConvex:  // each vertex, as a box's corners
+      for (const Vector3d& v : *s.convex.vertices) point(X_WA.Apply(v));
+      return;
     case ShapeType::kPlane:
       return;
   }
@@ -124,7 +130,7 @@ void NarrowPhase::Collide(int a, const Pose& X_WA, int b, const Pose& X_WB,
   ShapeType tb = geometries_[b].shape.type;
   if (ta == ShapeType::kPlane && tb == ShapeType::kPlane) return;
   // Order the pair so that a's type is the lesser (sphere < box < cylinder < capsule <
-  // plane); the normals are flipped back at the end.
+  // convex < plane); the normals are flipped back at the end.
   const bool swapped = static_cast<int>(ta) > static_cast<int>(tb);
   const int i = swapped ? b : a;
   const int j = swapped ? a : b;

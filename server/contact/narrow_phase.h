@@ -3,10 +3,12 @@
 // Against a plane (the half-space below it) closed forms: a sphere's deepest point; a box's
 // penetrating vertices, each a contact (so a box resting flat stands on four points); a
 // capsule's two end spheres; a cylinder's deepest rim point at each end (four rim points per
-// end when its axis is along the normal). Between other shapes FCL's primitive routines
-// (sphere-sphere, sphere-box, sphere-cylinder, sphere-capsule, box-box with up to four points;
+// end when its axis is along the normal); a convex polytope's (a mesh's hull) penetrating
+// vertices, as a box's. Between other shapes FCL's primitive routines (sphere-sphere,
+// sphere-box, sphere-cylinder, sphere-capsule, box-box with up to four points;
 // capsule-capsule as the spheres at the segments' closest points); the remaining pairs (box,
-// cylinder or capsule against box, cylinder or capsule) by FCL's GJK/EPA through libccd, which
+// cylinder or capsule against box, cylinder or capsule; a convex polytope against anything
+// but a plane: fcl::Convex) by FCL's GJK/EPA through libccd, one point per pair, which
 // allocates on the heap. Allocates nothing otherwise once the scratch has grown.
 #pragma once
 

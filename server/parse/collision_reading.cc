@@ -17,6 +17,7 @@
 #include <sdf/Sphere.hh>
 #include <sdf/Surface.hh>
 
+#include "server/parse/collision_meshes.h"
 #include "shared/common/check.h"
 
 namespace mbstream {
@@ -66,6 +67,7 @@ void CheckShape(const CollisionGeometry& g) {
       CheckSize(g, "radius", s.radius);
       CheckSize(g, "length", s.length);
       break;
+    case ShapeType::kConvex:
     case ShapeType::kPlane:
       break;
   }
@@ -108,8 +110,9 @@ void PlaceOnLink(const Model& model, const std::string& link, const Pose& X_LG,
   g->X_BG = model.frames[frame].X_BF * X_LG;
 }
 
-// One warning for the collisions skipped (a model with many collision meshes gets one line).
-void WarnSkipped(const std::vector<std::string>& skipped, const char* shapes,
+// One warning for the collisions skipped (a model with many collision meshes gets one line),
+// ending "; `tail`".
+void WarnSkipped(const std::vector<std::string>& skipped, const std::string& tail,
                  std::vector<std::string>* warnings) {
   if (skipped.empty() || warnings == nullptr) return;
   std::string text = skipped.front();
@@ -118,7 +121,69 @@ void WarnSkipped(const std::vector<std::string>& skipped, const char* shapes,
     for (size_t k = 1; k < skipped.size() && k < 4; ++k) text += (k > 1 ? "; " : "") + skipped[k];
     if (skipped.size() > 4) text += "; ...";
   }
-  warnings->push_back(text + "; skipped: they touch nothing (use " + shapes + ")");
+  warnings->push_back(text + "; " + tail);
+}
+
+// A <collision>'s <mesh>: its file as written and its scale.
+struct MeshReference {
+  std::string file;
+  Vector3d scale = Vector3d::Ones();
+};
+
+// What the collisions' meshes left to say, one warning each kind.
+struct MeshNotes {
+  std::vector<std::string> skipped;     // geometry not simulated (another shape)
+  std::vector<std::string> unsupplied;  // a mesh whose file is not supplied
+};
+
+// The convex pieces of `mesh` (collision_meshes.h) as geometries like `g` (placed, its
+// surface read) into model->collisions; a mesh not supplied is noted and adds nothing; a
+// piece that is not convex is a warning naming the file: its hull is used.
+void AddMeshPieces(const MeshReference& mesh, const CollisionGeometry& g, const MeshSource& meshes,
+                   Model* model, MeshNotes* notes, std::vector<std::string>* warnings) {
+  const std::string what = WhatOf(g) + ": mesh '" + mesh.file + "'";
+  const std::optional<std::string> bytes =
+      mesh.file.empty() || !meshes ? std::nullopt : meshes(mesh.file);
+  if (!bytes) {
+    notes->unsupplied.push_back(what + " is not supplied");
+    return;
+  }
+  CollisionMesh read = ReadCollisionMesh(*bytes, mesh.file, mesh.scale, what);
+  std::string concave;
+  int worst = 100;
+  for (size_t k = 0; k < read.pieces.size(); ++k) {
+    const double ratio = read.volume_ratio[k];
+    if (!(ratio >= kConvexVolumeRatio && ratio <= 2.0 - kConvexVolumeRatio)) {
+      concave += (concave.empty() ? "" : ", ") + std::to_string(k + 1);
+      worst = std::min(worst, static_cast<int>(std::lround(100.0 * ratio)));
+    }
+    CollisionGeometry piece = g;
+    piece.piece = static_cast<int>(k);
+    piece.shape = CollisionShape{};
+    piece.shape.type = ShapeType::kConvex;
+    piece.shape.convex = std::move(read.pieces[k]);
+    model->collisions.push_back(std::move(piece));
+  }
+  if (!concave.empty() && warnings != nullptr) {
+    const std::string which =
+        read.pieces.size() == 1 ? "is not convex (its mesh encloses " + std::to_string(worst) +
+                                      " % of its hull's volume)"
+                                : "has pieces that are not convex (" + concave + " of " +
+                                      std::to_string(read.pieces.size()) + "; the least encloses " +
+                                      std::to_string(worst) + " % of its hull's volume)";
+    warnings->push_back(what + " " + which + "; its convex hull is used" +
+                        (read.pieces.size() == 1 ? "" : " for each piece") +
+                        " (split it into convex pieces, one object each, for a closer shape)");
+  }
+}
+
+void WarnMeshNotes(const MeshNotes& notes, const char* shapes, std::vector<std::string>* warnings) {
+  WarnSkipped(notes.skipped, std::string("skipped: they touch nothing (use ") + shapes + ")",
+              warnings);
+  WarnSkipped(notes.unsupplied,
+              "skipped: they touch nothing (send the collision meshes: mbstream submit "
+              "--with-collision)",
+              warnings);
 }
 
 // ---- SDFormat ----
@@ -157,9 +222,10 @@ void ReadSdfSurface(const sdf::Collision& collision, CollisionGeometry* g) {
   }
 }
 
-// The shape of `geometry`, or false (with a warning) when it is not simulated.
+// The shape of `geometry` (a mesh: its reference in *mesh, the shape to come), or false
+// (noted in *skipped) when it is not simulated.
 bool SdfShape(const sdf::Geometry* geometry, CollisionGeometry* g, Pose* X_GS,
-              std::vector<std::string>* skipped) {
+              std::optional<MeshReference>* mesh, std::vector<std::string>* skipped) {
   const sdf::GeometryType type = geometry == nullptr ? sdf::GeometryType::EMPTY : geometry->Type();
   CollisionShape& s = g->shape;
   if (type == sdf::GeometryType::SPHERE && geometry->SphereShape() != nullptr) {
@@ -185,13 +251,13 @@ bool SdfShape(const sdf::Geometry* geometry, CollisionGeometry* g, Pose* X_GS,
     }
     s.type = ShapeType::kPlane;
     X_GS->R = ZAlongNormal(normal.normalized());
+  } else if (type == sdf::GeometryType::MESH && geometry->MeshShape() != nullptr) {
+    const ignition::math::Vector3d scale = geometry->MeshShape()->Scale();
+    *mesh = MeshReference{geometry->MeshShape()->Uri(), Vector3d(scale.X(), scale.Y(), scale.Z())};
+    s.type = ShapeType::kConvex;
+    return true;
   } else {
-    std::string what = "its geometry is not simulated";
-    if (type == sdf::GeometryType::MESH && geometry->MeshShape() != nullptr) {
-      what = "mesh '" + geometry->MeshShape()->Uri() +
-             "' is not simulated yet (its convex hull is not computed)";
-    }
-    if (skipped != nullptr) skipped->push_back(WhatOf(*g) + ": " + what);
+    if (skipped != nullptr) skipped->push_back(WhatOf(*g) + ": its geometry is not simulated");
     return false;
   }
   CheckShape(*g);
@@ -233,7 +299,7 @@ Pose UrdfOrigin(const TiXmlElement* origin) {
 }
 
 bool UrdfShape(const TiXmlElement* geometry, CollisionGeometry* g,
-               std::vector<std::string>* skipped) {
+               std::optional<MeshReference>* mesh, std::vector<std::string>* skipped) {
   const TiXmlElement* shape = geometry == nullptr ? nullptr : geometry->FirstChildElement();
   const std::string tag = shape == nullptr ? "" : shape->Value();
   CollisionShape& s = g->shape;
@@ -247,14 +313,18 @@ bool UrdfShape(const TiXmlElement* geometry, CollisionGeometry* g,
     s.type = ShapeType::kCylinder;
     s.radius = Number(*shape, "radius").value_or(0.0);
     s.length = Number(*shape, "length").value_or(0.0);
-  } else {
-    std::string what = "its geometry is not simulated";
-    if (tag == "mesh") {
-      const char* file = shape->Attribute("filename");
-      what = "mesh '" + std::string(file == nullptr ? "" : file) +
-             "' is not simulated yet (its convex hull is not computed)";
+  } else if (tag == "mesh") {
+    const char* file = shape->Attribute("filename");
+    MeshReference reference{file == nullptr ? "" : file, Vector3d::Ones()};
+    if (shape->Attribute("scale") != nullptr && !Triple(*shape, "scale", &reference.scale)) {
+      throw InputError(WhatOf(*g) + ": the mesh's scale is '" + shape->Attribute("scale") +
+                       "'; give three numbers");
     }
-    if (skipped != nullptr) skipped->push_back(WhatOf(*g) + ": " + what);
+    *mesh = std::move(reference);
+    s.type = ShapeType::kConvex;
+    return true;
+  } else {
+    if (skipped != nullptr) skipped->push_back(WhatOf(*g) + ": its geometry is not simulated");
     return false;
   }
   CheckShape(*g);
@@ -277,8 +347,8 @@ void ReadUrdfSurface(const TiXmlElement& collision, CollisionGeometry* g) {
 }  // namespace
 
 void ReadSdfCollisions(const mf::SdfFile& file, const std::map<std::string, Pose>& link_frames,
-                       Model* model, std::vector<std::string>* warnings) {
-  std::vector<std::string> skipped;
+                       const MeshSource& meshes, Model* model, std::vector<std::string>* warnings) {
+  MeshNotes notes;
   for (const mf::SdfModelEntry& entry : file.models()) {
     for (uint64_t l = 0; l < entry.model->LinkCount(); ++l) {
       const sdf::Link& link = *entry.model->LinkByIndex(l);
@@ -292,25 +362,31 @@ void ReadSdfCollisions(const mf::SdfFile& file, const std::map<std::string, Pose
         g.link = scoped;
         g.where = file.Where(collision.Element());
         Pose X_GS;  // a plane's normal as the shape frame's z
-        if (!SdfShape(collision.Geom(), &g, &X_GS, &skipped)) continue;
+        std::optional<MeshReference> mesh;
+        if (!SdfShape(collision.Geom(), &g, &X_GS, &mesh, &notes.skipped)) continue;
         ReadSdfSurface(collision, &g);
         const Pose X_WG = PoseOf(
             mf::WorldPose(entry, collision.SemanticPose(), "collision '" + g.name + "'", g.where));
         PlaceOnLink(*model, scoped, frame->second.Inverse() * X_WG * X_GS, &g);
-        model->collisions.push_back(std::move(g));
+        if (mesh) {
+          AddMeshPieces(*mesh, g, meshes, model, &notes, warnings);
+        } else {
+          model->collisions.push_back(std::move(g));
+        }
       }
     }
   }
-  WarnSkipped(skipped, "a sphere, box, cylinder, capsule or plane", warnings);
+  WarnMeshNotes(notes, "a sphere, box, cylinder, capsule, plane or mesh", warnings);
 }
 
-void ReadUrdfCollisions(const std::string& text, const std::string& source, Model* model,
+void ReadUrdfCollisions(const std::string& text, const std::string& source,
+                        const MeshSource& meshes, Model* model,
                         std::vector<std::string>* warnings) {
   TiXmlDocument document;
   document.Parse(text.c_str(), nullptr, TIXML_ENCODING_UTF8);
   const TiXmlElement* robot = document.FirstChildElement("robot");
   if (document.Error() || robot == nullptr) return;  // the scan before said why
-  std::vector<std::string> skipped;
+  MeshNotes notes;
   for (const TiXmlElement* link = robot->FirstChildElement("link"); link != nullptr;
        link = link->NextSiblingElement("link")) {
     const char* link_name = link->Attribute("name");
@@ -322,13 +398,18 @@ void ReadUrdfCollisions(const std::string& text, const std::string& source, Mode
       g.name = name == nullptr ? "" : name;
       g.link = link_name;
       g.where = source + ":" + std::to_string(e->Row());
-      if (!UrdfShape(e->FirstChildElement("geometry"), &g, &skipped)) continue;
+      std::optional<MeshReference> mesh;
+      if (!UrdfShape(e->FirstChildElement("geometry"), &g, &mesh, &notes.skipped)) continue;
       ReadUrdfSurface(*e, &g);
       PlaceOnLink(*model, g.link, UrdfOrigin(e->FirstChildElement("origin")), &g);
-      model->collisions.push_back(std::move(g));
+      if (mesh) {
+        AddMeshPieces(*mesh, g, meshes, model, &notes, warnings);
+      } else {
+        model->collisions.push_back(std::move(g));
+      }
     }
   }
-  WarnSkipped(skipped, "a sphere, box or cylinder", warnings);
+  WarnMeshNotes(notes, "a sphere, box, cylinder or mesh", warnings);
 }
 
 }  // namespace mbstream

@@ -26,9 +26,11 @@ ModelFileImport ImportModelFile(const std::string& path, const UrdfImportOptions
     const std::filesystem::path dir = std::filesystem::path(path).parent_path();
     SdfImport sdf = ImportSdf(
         text, path,
-        SdfImportOptions{.max_links = urdf_options.max_links,
-                         .includes = model_files::SdfIncludePath{
-                             dir.empty() ? "." : dir, model_files::PackagePath(package_path)}});
+        SdfImportOptions{
+            .max_links = urdf_options.max_links,
+            .includes = model_files::SdfIncludePath{dir.empty() ? "." : dir,
+                                                    model_files::PackagePath(package_path)},
+            .collision_meshes = DiskMeshSource(dir, package_path)});
     result.model = std::move(sdf.model);
     result.loops = std::move(sdf.loops);
     result.warnings = std::move(sdf.warnings);

@@ -48,7 +48,8 @@ using JointInfo = mf::SdfJointOutline;
 
 class SdfReader {
  public:
-  explicit SdfReader(const mf::SdfFile& file) : file_(file), source_(file.source()) {}
+  SdfReader(const mf::SdfFile& file, const MeshSource& meshes)
+      : file_(file), meshes_(meshes), source_(file.source()) {}
 
   SdfImport Read() {
     const mf::SdfTree tree = mf::ChooseSdfTree(file_);
@@ -62,7 +63,7 @@ class SdfReader {
     SetTcpIfNamed(builder);
     result_.model = builder.Build();
     if (file_.gravity()) result_.model.gravity = *file_.gravity();  // a run spec's gravity wins
-    ReadSdfCollisions(file_, frame_of_, &result_.model, &result_.warnings);
+    ReadSdfCollisions(file_, frame_of_, meshes_, &result_.model, &result_.warnings);
     for (const size_t j : tree.cut) result_.loops.push_back(LoopOf(tree.joints[j]));
     return std::move(result_);
   }
@@ -195,6 +196,7 @@ class SdfReader {
   }
 
   const mf::SdfFile& file_;
+  const MeshSource& meshes_;
   const std::string source_;
   std::map<std::string, Pose> frame_of_;  // F_L: each link's frame in the Model, in the world
   SdfImport result_;
@@ -207,7 +209,7 @@ SdfImport ImportSdf(const std::string& text, const std::string& source,
   const mf::SdfFile file(text, source,
                          {.max_links = options.max_links, .includes = options.includes});
   ThrowIfImportCancelled();  // libsdformat's parse cannot be stopped inside (import_cancel.h)
-  SdfImport result = SdfReader(file).Read();
+  SdfImport result = SdfReader(file, options.collision_meshes).Read();
   SdfMeshes meshes = mf::MeshesOf(file);
   result.mesh_files = std::move(meshes.visual);
   for (std::string& uri : meshes.collision) {
@@ -228,6 +230,9 @@ SdfImport ImportSdfFile(const std::string& path, const SdfImportOptions& options
   if (!local.includes) {
     local.includes =
         mf::SdfIncludePath{std::filesystem::path(path).parent_path(), mf::PackagePath({})};
+  }
+  if (!local.collision_meshes) {
+    local.collision_meshes = DiskMeshSource(std::filesystem::path(path).parent_path());
   }
   return ImportSdf(text.str(), path, local);
 }

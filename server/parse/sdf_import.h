@@ -33,6 +33,7 @@
 
 #include "server/model/loop_closure.h"
 #include "server/model/model.h"
+#include "server/parse/mesh_source.h"
 #include "shared/model_files/sdf_reading.h"
 
 namespace mbstream {
@@ -55,6 +56,9 @@ struct SdfImportOptions {
   int max_links = 0;
   // Where <include>s are found (a reading on the user's machine); none: refused.
   std::optional<model_files::SdfIncludePath> includes = std::nullopt;
+  // The collision meshes' bytes (mesh_source.h); empty: none is supplied (each mesh collision
+  // skipped, one warning). ImportSdfFile: the files beside the model, when not given.
+  MeshSource collision_meshes = {};
 };
 
 // Imports SDFormat XML `text`; `source` names the file in messages. Before libsdformat

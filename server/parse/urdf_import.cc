@@ -154,7 +154,7 @@ UrdfImport ImportUrdf(const std::string& text, const std::string& source,
   if (!tcp.empty()) Guarded(source, [&] { builder.SetTcp(tcp); });
   ThrowIfImportCancelled();
   result.model = builder.Build();
-  ReadUrdfCollisions(text, source, &result.model, &result.warnings);
+  ReadUrdfCollisions(text, source, options.collision_meshes, &result.model, &result.warnings);
   result.loops = MimicCouplings(joints, result.model, options.couple_mimic, diagnostics);
   const int links = static_cast<int>(result.model.frames.size());
   if (options.max_links > 0 && links > options.max_links) {
@@ -185,7 +185,11 @@ UrdfImport ImportUrdfFile(const std::string& path, const UrdfImportOptions& opti
   const UrdfXmlFacts facts = ScanUrdfXml(text, path, &ignored, options.max_links);
   const std::set<std::string> assets =
       ExistingMeshFiles(facts.mesh_files, std::filesystem::path(path).parent_path());
-  return ImportUrdf(text, path, assets, options);
+  UrdfImportOptions local = options;
+  if (!local.collision_meshes) {
+    local.collision_meshes = DiskMeshSource(std::filesystem::path(path).parent_path());
+  }
+  return ImportUrdf(text, path, assets, local);
 }
 
 }  // namespace mbstream

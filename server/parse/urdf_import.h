@@ -32,6 +32,7 @@
 
 #include "server/model/loop_closure.h"
 #include "server/model/model.h"
+#include "server/parse/mesh_source.h"
 
 namespace mbstream {
 
@@ -58,6 +59,10 @@ struct UrdfImportOptions {
   // qy qz, 6 velocities), the root's inertia its body's. A root link named "world" (whose
   // floating joint already frees the base) is refused with it.
   bool floating_base = false;
+  // The collision meshes' bytes (mesh_source.h): each mesh <collision> becomes its convex
+  // pieces (collision_reading.h). Empty: none is supplied (each mesh collision skipped, one
+  // warning). ImportUrdfFile: the files found as `mbstream submit` finds them, when not given.
+  MeshSource collision_meshes = {};
 };
 
 // Imports URDF XML `text`. `source` names the file in messages. `assets` are the mesh

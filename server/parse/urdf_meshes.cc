@@ -73,7 +73,7 @@ void WarnMissingMeshes(const MissingMeshes& missing, const UrdfDiagnostics& diag
   }
   if (missing.collision > 0) {
     diagnostics.Warn(diagnostics.source() + ": " + std::to_string(missing.collision) +
-                     " collision mesh(es) not supplied; the engine does not need them "
+                     " collision mesh(es) not supplied; those collisions touch nothing "
                      "(mbstream submit --with-collision attaches them)");
   }
 }

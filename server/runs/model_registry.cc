@@ -17,6 +17,7 @@
 #include "server/runs/request_error.h"
 #include "server/runs/unix_time.h"
 #include "server/store/store.h"
+#include "server/wire/bundle_mesh_source.h"
 #include "server/wire/model_bundle_files.h"
 #include "server/wire/model_info.h"
 #include "shared/common/check.h"
@@ -105,8 +106,9 @@ BundleImport ImportBundle(const v1::ModelBundle& bundle, const ServerLimits& lim
   const std::string source = SourceName(bundle);
   BundleImport result;
   if (DetectModelFormat(bundle.urdf()) == ModelFormat::kSdf) {
-    SdfImport sdf =
-        ImportSdf(bundle.urdf(), source, SdfImportOptions{.max_links = limits.max_links});
+    SdfImport sdf = ImportSdf(bundle.urdf(), source,
+                              SdfImportOptions{.max_links = limits.max_links,
+                                               .collision_meshes = BundleMeshSource(bundle)});
     result.model = std::move(sdf.model);
     result.loops = std::move(sdf.loops);
     result.warnings = std::move(sdf.warnings);
@@ -119,7 +121,8 @@ BundleImport ImportBundle(const v1::ModelBundle& bundle, const ServerLimits& lim
                                UrdfImportOptions{.repair = bundle.repair(),
                                                  .max_links = limits.max_links,
                                                  .couple_mimic = bundle.couple_mimic(),
-                                                 .floating_base = bundle.floating_base()});
+                                                 .floating_base = bundle.floating_base(),
+                                                 .collision_meshes = BundleMeshSource(bundle)});
   result.model = std::move(urdf.model);
   result.loops = std::move(urdf.loops);
   result.warnings = std::move(urdf.warnings);

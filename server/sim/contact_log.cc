@@ -14,10 +14,7 @@ void ContactLog::Start(const ContactForces& forces) {
   for (const CollisionGeometry& g : forces.model().collisions) {
     link.push_back(g.link);
     collision.push_back(g.name);
-    const CollisionShape& s = g.shape;
-    size.push_back(s.type == ShapeType::kPlane ? std::numeric_limits<double>::infinity()
-                   : s.type == ShapeType::kBox ? 0.5 * s.size.minCoeff()
-                                               : s.radius);
+    size.push_back(ShapeHalfSize(g.shape));
   }
 }
 

@@ -43,10 +43,19 @@ void WriteDescription(const fs::path& folder, const std::string& package, bool m
     std::ofstream(folder / relative, std::ios::binary) << text;
   };
   write("package.xml", "<package format=\"3\"><name>" + package + "</name></package>\n");
-  for (const char* mesh :
-       {"meshes/visual/link0.stl", "meshes/collision/link0.stl", "meshes/visual/link1.stl"}) {
+  for (const char* mesh : {"meshes/visual/link0.stl", "meshes/visual/link1.stl"}) {
     write(mesh, std::string("solid ") + mesh + "\nendsolid\n");
   }
+  // The collision mesh a tetrahedron: contact takes its convex hull.
+  std::string tetrahedron = "solid tetrahedron\n";
+  const char* corners[4] = {"0 0 0", "0.1 0 0", "0 0.1 0", "0 0 0.1"};
+  for (const auto& face : {"021", "013", "032", "123"}) {
+    tetrahedron += " facet normal 0 0 0\n  outer loop\n";
+    for (int k = 0; k < 3; ++k)
+      tetrahedron += std::string("   vertex ") + corners[face[k] - '0'] + "\n";
+    tetrahedron += "  endloop\n endfacet\n";
+  }
+  write("meshes/collision/link0.stl", tetrahedron + "endsolid tetrahedron\n");
   const std::string p = "package://" + package + "/meshes/";
   write("urdf/robot.urdf", R"(<robot name="described">
   <link name="base_link">
@@ -135,11 +144,12 @@ TEST_F(BundleCliTest, SubmitFolderAttachesItsMeshesAndCollisionOnesOnRequest) {
   const CommandOutcome collision = Cli("submit --with-collision " + folder);
   ASSERT_EQ(collision.exit_code, 0) << collision.output;
   EXPECT_THAT(collision.output, HasSubstr(", 3 assets"));
-  // Every mesh sent: none is missing. The collision mesh is named as not simulated (contact
-  // takes primitives only: docs/contact.md).
+  // Every mesh sent: none is missing. The collision mesh is simulated: its convex hull (a
+  // tetrahedron, convex: no warning; docs/contact.md).
   EXPECT_THAT(collision.output, AllOf(Not(HasSubstr("not supplied")), Not(HasSubstr("not found")),
                                       Not(HasSubstr("asset '"))));
-  EXPECT_THAT(collision.output, HasSubstr("collision/link0.stl' is not simulated yet"));
+  EXPECT_THAT(collision.output, AllOf(Not(HasSubstr("not simulated")),
+                                      Not(HasSubstr("touch nothing")), Not(HasSubstr("convex"))));
   EXPECT_NE(visual.output.substr(0, visual.output.find('\n')),
             collision.output.substr(0, collision.output.find('\n')));
 

@@ -1,6 +1,6 @@
 // Collision geometry from URDF and SDFormat <collision> (issue 44): shapes, poses in the
 // body frame, surface parameters (drake:proximity_properties, SDFormat friction), the collide
-// bitmask; meshes skipped with a warning naming the file; bad values refused with the place.
+// bitmask; meshes not supplied skipped with a warning naming the file; bad values refused with the place.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -52,7 +52,7 @@ const CollisionGeometry& Named(const Model& model, const std::string& name) {
 TEST(CollisionReadingTest, SdfShapesPosesSurfacesAndBitmask) {
   const SdfImport sdf = ImportSdf(Sdf(kGround + kBall), "w.sdf");
   const Model& model = sdf.model;
-  ASSERT_EQ(model.collisions.size(), 3u);  // the mesh skipped
+  ASSERT_EQ(model.collisions.size(), 3u);  // the mesh skipped: not supplied
   const CollisionGeometry& plane = Named(model, "plane");
   EXPECT_EQ(plane.link, "ground::floor");
   EXPECT_EQ(plane.body, kBase);

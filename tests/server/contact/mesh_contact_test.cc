@@ -1,0 +1,148 @@
+// Runs with collision meshes (issue 44; docs/contact.md, "Meshes"): a box given as an STL mesh
+// rests on a plane exactly as the primitive box does; the cube mesh dropped turned comes to
+// rest on a face; a non-convex L-shaped mesh rests on its hull on a plane, and a ball dropped
+// over its notch rests on the hull (sphere against a convex polytope, FCL's GJK/EPA). The
+// scenes are SDFormat worlds in tests/data/contact/, their meshes beside them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "server/contact/contact_law.h"
+#include "server/engine/engine.h"
+#include "server/parse/sdf_import.h"
+#include "server/sim/run_validation.h"
+
+namespace mbstream {
+namespace {
+
+constexpr double kG = 9.81;
+
+Model MeshScene(const std::string& name) {
+  return ImportSdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/tests/data/contact/" + name).model;
+}
+
+RunConfig MeshConfig(double duration, double interval) {
+  RunConfig config;
+  config.formulation = Formulation::kJoint;
+  config.duration = duration;
+  config.output_interval = interval;
+  config.rtol = 1e-10;
+  config.atol = 1e-12;
+  config.want_torques = false;
+  config.contact.stiffness = 1e5;  // each surface: k = 5e4 N/m for the pair
+  config.contact.dissipation = 20.0;
+  return config;
+}
+
+RunResult RunMeshScene(const Model& model, RunConfig config) {
+  config.drives.resize(static_cast<size_t>(model.nv()));  // passive
+  ValidateRun(model, config);
+  RunResult result = Simulate(model, config);
+  EXPECT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  return result;
+}
+
+double Qm(const RunResult& r, size_t frame, int k) { return r.q[frame * r.num_positions + k]; }
+
+double FastestAfter(const RunResult& r, double t0) {
+  double fastest = 0.0;
+  for (size_t f = 0; f < r.t.size(); ++f) {
+    if (r.t[f] < t0) continue;
+    for (int j = 0; j < r.num_dofs; ++j)
+      fastest = std::max(fastest, std::abs(r.qd[f * r.num_dofs + j]));
+  }
+  return fastest;
+}
+
+const double kPairStiffness = contact_law::CombineStiffness(1e5, 1e5);
+
+// The mesh box's hull is its eight corners, the primitive box's contacts its corners too: the
+// two runs see the same contact points (summed in another order: rounding, 1e-16 relative),
+// so their trajectories agree to what the error control lets such a difference grow to.
+TEST(MeshContactTest, AnStlBoxRestsAsThePrimitiveBoxDoes) {
+  const Model mesh = MeshScene("box_mesh_on_plane.sdf");
+  const Model box = MeshScene("box_on_plane.sdf");
+  ASSERT_EQ(mesh.collisions.size(), 2u);
+  ASSERT_EQ(mesh.collisions[1].shape.type, ShapeType::kConvex);
+  const RunConfig config = MeshConfig(3.0, 0.01);
+  const RunResult a = RunMeshScene(mesh, config);
+  const RunResult b = RunMeshScene(box, config);
+  ASSERT_EQ(a.t.size(), b.t.size());
+  double worst = 0.0;
+  for (size_t k = 0; k < a.q.size(); ++k) worst = std::max(worst, std::abs(a.q[k] - b.q[k]));
+  const size_t last = a.t.size() - 1;
+  const double depth = 0.1 - Qm(a, last, 2);
+  const double expected = 2.0 * kG / kPairStiffness;  // the contact force m g = k depth
+  printf("RESULT mesh box vs primitive box: largest position difference %.3g m\n", worst);
+  printf("RESULT mesh box penetration %.12g expected %.12g rel %.3g\n", depth, expected,
+         depth / expected - 1);
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_NEAR(depth / expected, 1.0, 1e-6);
+  EXPECT_LE(FastestAfter(a, 1.0), config.contact.stiction_tolerance);
+}
+
+// Dropped from 0.4 m turned by (0.5, 0.3, 0.2): it lands on a corner, tumbles and comes to
+// rest on one of its faces, its centre m g / k below 0.1 m, one body axis vertical.
+TEST(MeshContactTest, ACubeMeshDroppedTurnedComesToRestOnAFace) {
+  const Model model = MeshScene("tumbling_cube_mesh.sdf");
+  RunConfig config = MeshConfig(4.0, 0.01);
+  config.rtol = 1e-8;
+  config.atol = 1e-10;
+  config.contact.mu_static = config.contact.mu_dynamic = 0.5;
+  const RunResult r = RunMeshScene(model, config);
+  const size_t last = r.t.size() - 1;
+  const double depth = 0.1 - Qm(r, last, 2);
+  const Eigen::Quaterniond q(Qm(r, last, 3), Qm(r, last, 4), Qm(r, last, 5), Qm(r, last, 6));
+  const Matrix3d R = q.normalized().toRotationMatrix();
+  double vertical = 0.0;  // the body axis closest to the world's z
+  for (int k = 0; k < 3; ++k) vertical = std::max(vertical, std::abs(R(2, k)));
+  printf(
+      "RESULT tumbling cube: rest depth %.9g expected %.9g; most vertical axis %.12f; "
+      "steps %ld\n",
+      depth, 2.0 * kG / kPairStiffness, vertical, r.stats.solver.steps);
+  EXPECT_NEAR(depth / (2.0 * kG / kPairStiffness), 1.0, 1e-4);
+  EXPECT_NEAR(vertical, 1.0, 1e-8);
+  EXPECT_LT(std::hypot(Qm(r, last, 0), Qm(r, last, 1)), 0.5);  // it did not fly away
+  EXPECT_LE(FastestAfter(r, 3.5), 1e-3);
+}
+
+// The L lies on its hull's slanted face x + z = 0.05 (the face bridging its notch, not a face
+// of the mesh), which the centre of mass stands over the middle of: its origin comes to rest
+// 0.05 / sqrt(2) above the plane less m g / k.
+TEST(MeshContactTest, ANonConvexMeshRestsOnItsHull) {
+  const Model model = MeshScene("l_shape_on_plane.sdf");
+  const RunResult r = RunMeshScene(model, MeshConfig(3.0, 0.01));
+  const size_t last = r.t.size() - 1;
+  const double expected = 0.05 / std::sqrt(2.0) - kG / kPairStiffness;
+  printf("RESULT L on its hull: height %.12g expected %.12g\n", Qm(r, last, 2), expected);
+  EXPECT_NEAR(Qm(r, last, 2), expected, 1e-9);
+  EXPECT_LE(FastestAfter(r, 2.0), 1e-3);
+}
+
+// A ball over the notch of a fixed L: the L's hull (its top face level, 0.05 / sqrt(2) above
+// its origin) holds it; the notch itself would let it sink 0.1 m further. Sphere against a
+// convex polytope goes through FCL's GJK/EPA (libccd), whose depth is exact to its tolerance.
+TEST(MeshContactTest, ABallRestsOnTheHullOverTheNotch) {
+  const Model model = MeshScene("ball_on_l_shape.sdf");
+  ASSERT_EQ(model.collisions.size(), 2u);
+  RunConfig config = MeshConfig(2.0, 0.01);
+  config.rtol = 1e-8;
+  config.atol = 1e-10;
+  const RunResult r = RunMeshScene(model, config);
+  const size_t last = r.t.size() - 1;
+  const double expected = 0.05 / std::sqrt(2.0) + 0.05 - kG / kPairStiffness;
+  printf("RESULT ball on the L's hull: height %.12g expected %.12g (difference %.3g m)\n",
+         Qm(r, last, 2), expected, Qm(r, last, 2) - expected);
+  EXPECT_NEAR(Qm(r, last, 2), expected, 1e-5);
+  for (size_t f = 0; f < r.t.size(); f += 10)
+    printf("DBG t %.2f x %.6g y %.6g z %.9g vx %.3g vz %.3g wy %.3g\n", r.t[f], Qm(r, f, 0),
+           Qm(r, f, 1), Qm(r, f, 2), r.qd[f * r.num_dofs + 0], r.qd[f * r.num_dofs + 2],
+           r.qd[f * r.num_dofs + 4]);
+  EXPECT_LE(FastestAfter(r, 1.5), 1e-3);
+}
+
+}  // namespace
+}  // namespace mbstream
