@@ -259,6 +259,20 @@ bool ContactForces::AddForces(const Data& data, const Eigen::VectorXd& qd, Eigen
                        PointVelocity(model_, data, body_b, c.point, qd);  // a relative to b
     const double vn = v.dot(c.normal);
     c.normal_force = contact_law::NormalForce(c.share * k, d, c.depth, -vn);
+    if (settings_.hertz_modulus > 0.0) {  // Hertz for a sphere against a sphere or a plane
+      const CollisionShape& a = model_.collisions[c.geometry_a].shape;
+      const CollisionShape& b = model_.collisions[c.geometry_b].shape;
+      const auto radius = [](const CollisionShape& s) {
+        return s.type == ShapeType::kSphere  ? s.radius
+               : s.type == ShapeType::kPlane ? std::numeric_limits<double>::infinity()
+                                             : -1.0;
+      };
+      const double ra = radius(a), rb = radius(b);
+      if (ra > 0.0 && rb > 0.0 && !(std::isinf(ra) && std::isinf(rb))) {
+        c.normal_force = contact_law::HertzNormalForce(
+            contact_law::HertzStiffness(settings_.hertz_modulus, ra, rb), d, c.depth, -vn);
+      }
+    }
     const Vector3d vt = v - vn * c.normal;
     const double speed = vt.norm();
     c.friction_force.setZero();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 
 namespace mbstream::contact_law {
 
@@ -11,6 +12,19 @@ namespace mbstream::contact_law {
 // its rate (m/s, > 0 when approaching), k in N/m, d in s/m.
 inline double NormalForce(double k, double d, double delta, double delta_rate) {
   return std::max(0.0, k * delta * (1.0 + d * delta_rate));
+}
+
+// Hertz contact of two spheres (or a sphere and a plane): f_n = K delta^1.5 (1 + d delta'),
+// clamped at 0 (N), with K = (4/3) E* sqrt(R*) (HertzStiffness; N/m^1.5).
+inline double HertzNormalForce(double K, double d, double delta, double delta_rate) {
+  return std::max(0.0, K * delta * std::sqrt(delta) * (1.0 + d * delta_rate));
+}
+
+// K = (4/3) E* sqrt(R*) for the effective modulus E* (Pa) and the effective radius
+// R* = R1 R2 / (R1 + R2) (m; a plane's R infinite: R* = the sphere's).
+inline double HertzStiffness(double modulus, double r1, double r2) {
+  const double r = std::isinf(r2) ? r1 : std::isinf(r1) ? r2 : r1 * r2 / (r1 + r2);
+  return 4.0 / 3.0 * modulus * std::sqrt(r);
 }
 
 // Two stiffnesses in series: k = k1 k2 / (k1 + k2) (0 when both are 0).

@@ -106,10 +106,81 @@ void PlaneCandidates(const CollisionShape& s, const Pose& X_WA, const Vector3d& 
   }
 }
 
+// A convex polytope's face planes (its triangles): outward unit normal n and offset, n.x = d
+// on the face.
+std::vector<Eigen::Vector4d> FacePlanes(const ConvexPolytope& convex) {
+  std::vector<Eigen::Vector4d> planes;
+  const std::vector<Vector3d>& v = *convex.vertices;
+  const std::vector<int>& f = *convex.faces;
+  for (size_t k = 0; k + 3 < f.size(); k += 4) {  // triangles: 3, a, b, c
+    const Vector3d n = (v[f[k + 2]] - v[f[k + 1]]).cross(v[f[k + 3]] - v[f[k + 1]]);
+    if (!(n.norm() > 0.0)) continue;  // a degenerate triangle: its neighbours bound the hull
+    const Vector3d u = n.normalized();
+    planes.emplace_back(u.x(), u.y(), u.z(), u.dot(v[f[k + 1]]));
+  }
+  return planes;
+}
+
+// The point of triangle abc closest to p (Ericson, Real-Time Collision Detection, 5.1.5).
+Vector3d ClosestOnTriangle(const Vector3d& p, const Vector3d& a, const Vector3d& b,
+                           const Vector3d& c) {
+  const Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+  const Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  }
+  const double denominator = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
+// The signed distance from point p (in the polytope's frame) to a convex polytope's surface
+// (< 0 inside) and the outward unit normal there: exact, in closed form (the nearest face
+// plane inside; the nearest point of its triangles outside). Allocates nothing.
+double PointConvexDistance(const Vector3d& p, const ConvexPolytope& convex,
+                           const std::vector<Eigen::Vector4d>& planes, Vector3d* normal) {
+  double highest = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector4d& plane : planes) {
+    const double s = plane.head<3>().dot(p) - plane(3);
+    if (s > highest) {
+      highest = s;
+      *normal = plane.head<3>();
+    }
+  }
+  if (highest <= 0.0) return highest;  // inside: the nearest face
+  const std::vector<Vector3d>& v = *convex.vertices;
+  const std::vector<int>& f = *convex.faces;
+  double nearest = std::numeric_limits<double>::infinity();
+  Vector3d closest = p;
+  for (size_t k = 0; k + 3 < f.size(); k += 4) {  // triangles: 3, a, b, c
+    const Vector3d q = ClosestOnTriangle(p, v[f[k + 1]], v[f[k + 2]], v[f[k + 3]]);
+    const double d = (p - q).squaredNorm();
+    if (d < nearest) {
+      nearest = d;
+      closest = q;
+    }
+  }
+  const double distance = std::sqrt(nearest);
+  if (distance > 0.0) *normal = (p - closest) / distance;
+  return distance;
+}
+
 }  // namespace
 
 struct NarrowPhase::Fcl {
   std::vector<std::shared_ptr<fcl::CollisionGeometryd>> shapes;  // null for planes
+  std::vector<std::vector<Eigen::Vector4d>> planes;  // a convex polytope's faces; else empty
   std::vector<fcl::ContactPointd> points;
   fcl::CollisionRequestd request{8, true};
   fcl::CollisionResultd result;
@@ -117,7 +188,11 @@ struct NarrowPhase::Fcl {
 
 NarrowPhase::NarrowPhase(const std::vector<CollisionGeometry>& geometries)
     : geometries_(geometries), fcl_(std::make_unique<Fcl>()) {
-  for (const CollisionGeometry& g : geometries) fcl_->shapes.push_back(FclShape(g.shape));
+  for (const CollisionGeometry& g : geometries) {
+    fcl_->shapes.push_back(FclShape(g.shape));
+    fcl_->planes.push_back(g.shape.type == ShapeType::kConvex ? FacePlanes(g.shape.convex)
+                                                              : std::vector<Eigen::Vector4d>{});
+  }
   fcl_->points.reserve(16);
   scratch_.reserve(16);
 }
@@ -162,6 +237,21 @@ void NarrowPhase::Collide(int a, const Pose& X_WA, int b, const Pose& X_WB,
       c.normal = d / distance;
       c.depth = depth;
       c.point = cj + (sj.radius - 0.5 * depth) * c.normal;
+      out->push_back(c);
+    }
+  } else if (ta == ShapeType::kSphere && tb == ShapeType::kConvex) {
+    const double r = geometries_[i].shape.radius;
+    Vector3d n_J = Vector3d::UnitZ();
+    const double distance = PointConvexDistance(X_WJ.R.transpose() * (X_WI.p - X_WJ.p),
+                                                geometries_[j].shape.convex, fcl_->planes[j], &n_J);
+    const double depth = r - distance;
+    if (depth > 0.0) {
+      ContactPoint c;
+      c.geometry_a = i;
+      c.geometry_b = j;
+      c.normal = X_WJ.R * n_J;
+      c.depth = depth;
+      c.point = X_WI.p - (r - 0.5 * depth) * c.normal;
       out->push_back(c);
     }
   } else {
@@ -262,6 +352,12 @@ double NarrowPhase::SignedDistance(int a, const Pose& X_WA, int b, const Pose& X
                   sphere, ToFcl(X_WA), static_cast<const fcl::Cylinderd&>(*fcl_->shapes[b]),
                   ToFcl(X_WB), &distance, nullptr, nullptr);
     if (apart && distance >= 0.0) return distance;
+  }
+  if (ta == ShapeType::kSphere && tb == ShapeType::kConvex) {
+    Vector3d n_B;
+    return PointConvexDistance(X_WB.R.transpose() * (X_WA.p - X_WB.p), sb.convex, fcl_->planes[b],
+                               &n_B) -
+           sa.radius;
   }
   scratch_.clear();
   Collide(a, X_WA, b, X_WB, &scratch_);

@@ -6,10 +6,13 @@
 // end when its axis is along the normal); a convex polytope's (a mesh's hull) penetrating
 // vertices, as a box's. Between other shapes FCL's primitive routines (sphere-sphere,
 // sphere-box, sphere-cylinder, sphere-capsule, box-box with up to four points;
-// capsule-capsule as the spheres at the segments' closest points); the remaining pairs (box,
-// cylinder or capsule against box, cylinder or capsule; a convex polytope against anything
-// but a plane: fcl::Convex) by FCL's GJK/EPA through libccd, one point per pair, which
-// allocates on the heap. Allocates nothing otherwise once the scratch has grown.
+// capsule-capsule as the spheres at the segments' closest points); a sphere against a convex
+// polytope in closed form (the nearest face plane when its centre is inside, the nearest
+// point of the hull's triangles outside: exact, no allocation); the remaining pairs (box,
+// cylinder or capsule against box, cylinder or capsule; a convex polytope against a box,
+// cylinder, capsule or convex polytope: fcl::Convex) by FCL's GJK/EPA through libccd, one
+// point per pair, which allocates on the heap. Allocates nothing otherwise once the scratch has
+// grown.
 #pragma once
 
 #include <memory>
@@ -32,10 +35,10 @@ class NarrowPhase {
   void Collide(int a, const Pose& X_WA, int b, const Pose& X_WB, std::vector<ContactPoint>* out);
 
   // The signed distance of a and b (m, < 0 when they overlap: minus the largest depth), for
-  // pairs of which one is a plane, both are spheres or capsules, or a sphere and a box or
-  // cylinder (FCL's distance routines); other pairs: minus their largest depth when they
-  // overlap, else `margin` (unknown but positive). Allocates nothing but for the pairs Collide
-  // hands to libccd.
+  // pairs of which one is a plane, both are spheres or capsules, a sphere and a convex
+  // polytope, or a sphere and a box or cylinder (FCL's distance routines); other pairs: minus their
+  // largest depth when they overlap, else `margin` (unknown but positive). Allocates nothing but
+  // for the pairs Collide hands to libccd.
   double SignedDistance(int a, const Pose& X_WA, int b, const Pose& X_WB, double margin);
 
  private:

@@ -5,6 +5,7 @@
 // for each pair (FCL's GJK/EPA through libccd allocates: counted and printed, not hidden).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -123,14 +124,43 @@ TEST(HullPairsTest, TheHullTouchesEveryShapeAsTheBoxDoes) {
   for (const Case& c : cases) {
     printf("RESULT allocations of one %s-hull call: %ld\n", c.name, c.allocations);
   }
-  // Against a plane the hull's vertices are tested in closed form: no allocation. The other
-  // pairs go through libccd (narrow_phase.h): their counts are printed above.
+  // Against a plane (the hull's vertices) and a sphere (the nearest face or triangle point) the
+  // pairs are in closed form: no allocation. The other pairs go through libccd
+  // (narrow_phase.h): their counts are printed above.
+  EXPECT_EQ(cases.front().allocations, 0);
   EXPECT_EQ(cases.back().allocations, 0);
   // Apart: no contact, and the signed distance to the plane is exact.
   out.clear();
   narrow.Collide(2, At(0.3), 0, Pose(), &out);
   EXPECT_TRUE(out.empty());
   EXPECT_NEAR(narrow.SignedDistance(0, At(0.15), 7, Pose(), 1.0), 0.05, 1e-15);
+}
+
+// A sphere whose centre is inside the hull (the nearest face) or beyond an edge (the nearest
+// point of the edge): exact, as FCL's sphere-box routine for the primitive box.
+TEST(HullPairsTest, SphereAgainstTheHullIsExactInsideAndAtAnEdge) {
+  std::vector<CollisionGeometry> g = {CubeHull(0.2),
+                                      Primitive(ShapeType::kBox, 0, 0, Vector3d::Constant(0.2)),
+                                      Primitive(ShapeType::kSphere, 0.05, 0, Vector3d::Zero())};
+  NarrowPhase narrow(g);
+  std::vector<ContactPoint> out;
+  out.reserve(8);
+  narrow.Collide(2, At(0.09), 0, Pose(), &out);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_NEAR(out[0].depth, 0.06, 1e-15);
+  EXPECT_NEAR(out[0].normal.z(), 1.0, 1e-15);
+  Pose edge;
+  edge.p = Vector3d(0.12, 0.0, 0.12);
+  for (const int cube : {0, 1}) {
+    out.clear();
+    narrow.Collide(2, edge, cube, Pose(), &out);
+    ASSERT_EQ(out.size(), 1u) << cube;
+    EXPECT_NEAR(out[0].depth, 0.05 - 0.02 * std::sqrt(2.0), 1e-12) << cube;
+    EXPECT_NEAR(out[0].normal.x(), std::sqrt(0.5), 1e-12) << cube;
+    EXPECT_NEAR(out[0].normal.z(), std::sqrt(0.5), 1e-12) << cube;
+  }
+  EXPECT_NEAR(narrow.SignedDistance(2, edge, 0, Pose(), 1.0), 0.02 * std::sqrt(2.0) - 0.05, 1e-15);
+  EXPECT_NEAR(narrow.SignedDistance(2, At(0.3), 0, Pose(), 1.0), 0.15, 1e-15);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // Runs with collision meshes (issue 44; docs/contact.md, "Meshes"): a box given as an STL mesh
 // rests on a plane exactly as the primitive box does; the cube mesh dropped turned comes to
 // rest on a face; a non-convex L-shaped mesh rests on its hull on a plane, and a ball dropped
-// over its notch rests on the hull (sphere against a convex polytope, FCL's GJK/EPA). The
+// over its notch rests on the hull (sphere against a convex polytope, in closed form). The
 // scenes are SDFormat worlds in tests/data/contact/, their meshes beside them.
 #include <gtest/gtest.h>
 
@@ -118,13 +118,13 @@ TEST(MeshContactTest, ANonConvexMeshRestsOnItsHull) {
   const size_t last = r.t.size() - 1;
   const double expected = 0.05 / std::sqrt(2.0) - kG / kPairStiffness;
   printf("RESULT L on its hull: height %.12g expected %.12g\n", Qm(r, last, 2), expected);
-  EXPECT_NEAR(Qm(r, last, 2), expected, 1e-9);
+  EXPECT_NEAR(Qm(r, last, 2), expected, 2e-9);  // Assimp's float vertices: 0.05 to 1e-9
   EXPECT_LE(FastestAfter(r, 2.0), 1e-3);
 }
 
 // A ball over the notch of a fixed L: the L's hull (its top face level, 0.05 / sqrt(2) above
 // its origin) holds it; the notch itself would let it sink 0.1 m further. Sphere against a
-// convex polytope goes through FCL's GJK/EPA (libccd), whose depth is exact to its tolerance.
+// convex polytope is in closed form (narrow_phase.h): its depth is exact.
 TEST(MeshContactTest, ABallRestsOnTheHullOverTheNotch) {
   const Model model = MeshScene("ball_on_l_shape.sdf");
   ASSERT_EQ(model.collisions.size(), 2u);
@@ -136,12 +136,11 @@ TEST(MeshContactTest, ABallRestsOnTheHullOverTheNotch) {
   const double expected = 0.05 / std::sqrt(2.0) + 0.05 - kG / kPairStiffness;
   printf("RESULT ball on the L's hull: height %.12g expected %.12g (difference %.3g m)\n",
          Qm(r, last, 2), expected, Qm(r, last, 2) - expected);
-  EXPECT_NEAR(Qm(r, last, 2), expected, 1e-5);
-  for (size_t f = 0; f < r.t.size(); f += 10)
-    printf("DBG t %.2f x %.6g y %.6g z %.9g vx %.3g vz %.3g wy %.3g\n", r.t[f], Qm(r, f, 0),
-           Qm(r, f, 1), Qm(r, f, 2), r.qd[f * r.num_dofs + 0], r.qd[f * r.num_dofs + 2],
-           r.qd[f * r.num_dofs + 4]);
-  EXPECT_LE(FastestAfter(r, 1.5), 1e-3);
+  EXPECT_NEAR(Qm(r, last, 2), expected, 1e-9);
+  // Straight down: the float vertices tilt the face by ~1e-9 rad, friction holds it (v_s).
+  EXPECT_LT(std::hypot(Qm(r, last, 0), Qm(r, last, 1)), 1e-7);
+  printf("RESULT ball on the L's hull: fastest after 1.5 s %.3g\n", FastestAfter(r, 1.5));
+  EXPECT_LE(FastestAfter(r, 1.5), 1e-6);
 }
 
 }  // namespace
