@@ -15,6 +15,7 @@
 
 #include "server/contact/contact_law.h"
 #include "server/contact/point_forces.h"
+#include "server/kinematics/forward_kinematics.h"
 
 namespace mbstream {
 
@@ -76,6 +77,14 @@ bool Adjacent(const Model& model, const std::vector<int>& parent, int a, int b) 
   if (a != kBase && parent[a] == b && !model.bodies[a].free()) return true;
   if (b != kBase && parent[b] == a && !model.bodies[b].free()) return true;
   return false;
+}
+
+// The first body of the mechanism a body belongs to: up its parents (the file's) to one that
+// hangs from the world or on a free joint (a free body is a mechanism of its own).
+int MechanismOf(const Model& model, const std::vector<int>& parent, int body) {
+  if (body == kBase) return kBase;
+  while (parent[body] != kBase && !model.bodies[body].free()) body = parent[body];
+  return body;
 }
 
 bool Filtered(const ContactSettings& settings, const CollisionGeometry& a,
@@ -147,6 +156,7 @@ ContactForces::ContactForces(const Model& model, const ContactSettings& settings
         root_pairs_.emplace_back(a, b);
     }
   }
+  DropOverlapsAtRest(parent);
   active_ = num_allowed_ > 0;
   if (!active_) return;
   for (int g = 0; g < n_; ++g) {
@@ -170,6 +180,47 @@ ContactForces::ContactForces(const Model& model, const ContactSettings& settings
 }
 
 ContactForces::~ContactForces() = default;
+
+void ContactForces::DropOverlapsAtRest(const std::vector<int>& parent) {
+  const std::vector<CollisionGeometry>& geometries = model_.collisions;
+  std::vector<int> mechanism(static_cast<size_t>(n_));
+  bool any = false;
+  for (int a = 0; a < n_ && !any; ++a) {
+    for (int b = a + 1; b < n_ && !any; ++b) {
+      any = Allowed(a, b) && geometries[a].body != kBase && geometries[b].body != kBase &&
+            MechanismOf(model_, parent, geometries[a].body) ==
+                MechanismOf(model_, parent, geometries[b].body);
+    }
+  }
+  if (!any) return;
+  Data data(model_);
+  Eigen::VectorXd q(model_.nq());
+  NeutralPositions(model_, q.data());
+  BodyKinematics(model_, data, q);
+  std::vector<Pose> X_W(static_cast<size_t>(n_));
+  for (int g = 0; g < n_; ++g) {
+    const CollisionGeometry& geometry = geometries[g];
+    X_W[g] = geometry.body == kBase ? geometry.X_BG : data.X_world[geometry.body] * geometry.X_BG;
+    mechanism[g] = MechanismOf(model_, parent, geometry.body);
+  }
+  for (int a = 0; a < n_; ++a) {
+    for (int b = a + 1; b < n_; ++b) {
+      if (!Allowed(a, b) || mechanism[a] == kBase || mechanism[a] != mechanism[b]) continue;
+      if (narrow_.SignedDistance(a, X_W[a], b, X_W[b], 1.0) >= 0.0) continue;
+      allowed_[a * n_ + b] = allowed_[b * n_ + a] = 0;
+      --num_allowed_;
+      ++num_overlapping_at_rest_;
+    }
+  }
+  root_pairs_.clear();
+  for (int a = 0; a < n_; ++a) {
+    for (int b = a + 1; b < n_; ++b) {
+      if (Allowed(a, b) && static_cast<int>(root_pairs_.size()) < kMaxRootPairs) {
+        root_pairs_.emplace_back(a, b);
+      }
+    }
+  }
+}
 
 void ContactForces::UpdatePoses(const Data& data) {
   for (size_t k = 0; k < others_.size(); ++k) {

@@ -134,13 +134,21 @@ struct MeshReference {
 struct MeshNotes {
   std::vector<std::string> skipped;     // geometry not simulated (another shape)
   std::vector<std::string> unsupplied;  // a mesh whose file is not supplied
+  // meshes not convex: the first in full ("WHERE: mesh 'F' is not convex (...)"), the others
+  // as "'F' (NN %)"
+  std::vector<std::string> concave;
 };
 
+// "61 %" for a volume ratio of 0.61.
+std::string Percent(double ratio) {
+  return std::to_string(static_cast<int>(std::lround(100.0 * ratio))) + " %";
+}
+
 // The convex pieces of `mesh` (collision_meshes.h) as geometries like `g` (placed, its
-// surface read) into model->collisions; a mesh not supplied is noted and adds nothing; a
-// piece that is not convex is a warning naming the file: its hull is used.
+// surface read) into model->collisions; a mesh not supplied is noted and adds nothing; a mesh
+// with a piece that is not convex is noted (its hull is used).
 void AddMeshPieces(const MeshReference& mesh, const CollisionGeometry& g, const MeshSource& meshes,
-                   Model* model, MeshNotes* notes, std::vector<std::string>* warnings) {
+                   Model* model, MeshNotes* notes) {
   const std::string what = WhatOf(g) + ": mesh '" + mesh.file + "'";
   const std::optional<std::string> bytes =
       mesh.file.empty() || !meshes ? std::nullopt : meshes(mesh.file);
@@ -149,13 +157,13 @@ void AddMeshPieces(const MeshReference& mesh, const CollisionGeometry& g, const 
     return;
   }
   CollisionMesh read = ReadCollisionMesh(*bytes, mesh.file, mesh.scale, what);
-  std::string concave;
-  int worst = 100;
+  int concave = 0;
+  double farthest = 1.0;  // the volume ratio farthest from 1
   for (size_t k = 0; k < read.pieces.size(); ++k) {
     const double ratio = read.volume_ratio[k];
     if (!(ratio >= kConvexVolumeRatio && ratio <= 2.0 - kConvexVolumeRatio)) {
-      concave += (concave.empty() ? "" : ", ") + std::to_string(k + 1);
-      worst = std::min(worst, static_cast<int>(std::lround(100.0 * ratio)));
+      ++concave;
+      if (std::abs(std::log(ratio)) > std::abs(std::log(farthest))) farthest = ratio;
     }
     CollisionGeometry piece = g;
     piece.piece = static_cast<int>(k);
@@ -164,16 +172,20 @@ void AddMeshPieces(const MeshReference& mesh, const CollisionGeometry& g, const 
     piece.shape.convex = std::move(read.pieces[k]);
     model->collisions.push_back(std::move(piece));
   }
-  if (!concave.empty() && warnings != nullptr) {
-    const std::string which =
-        read.pieces.size() == 1 ? "is not convex (its mesh encloses " + std::to_string(worst) +
-                                      " % of its hull's volume)"
-                                : "has pieces that are not convex (" + concave + " of " +
-                                      std::to_string(read.pieces.size()) + "; the least encloses " +
-                                      std::to_string(worst) + " % of its hull's volume)";
-    warnings->push_back(what + " " + which + "; its convex hull is used" +
-                        (read.pieces.size() == 1 ? "" : " for each piece") +
-                        " (split it into convex pieces, one object each, for a closer shape)");
+  if (concave == 0) return;
+  const std::string pieces = read.pieces.size() == 1
+                                 ? ""
+                                 : ", " + std::to_string(concave) + " of its " +
+                                       std::to_string(read.pieces.size()) + " pieces";
+  if (notes->concave.empty()) {
+    const std::string why = farthest < 1.0
+                                ? "is not convex (it encloses " + Percent(farthest) +
+                                      " of its hull's volume" + pieces + ")"
+                                : "is not closed (its triangles enclose " + Percent(farthest) +
+                                      " of its hull's volume" + pieces + ")";
+    notes->concave.push_back(what + " " + why);
+  } else {
+    notes->concave.push_back("'" + mesh.file + "' (" + Percent(farthest) + pieces + ")");
   }
 }
 
@@ -184,6 +196,18 @@ void WarnMeshNotes(const MeshNotes& notes, const char* shapes, std::vector<std::
               "skipped: they touch nothing (send the collision meshes: mbstream submit "
               "--with-collision)",
               warnings);
+  if (notes.concave.empty() || warnings == nullptr) return;
+  // One warning for the model, every file named (a humanoid has 29 such meshes).
+  std::string text = notes.concave.front();
+  if (notes.concave.size() > 1) {
+    text += "; and " + std::to_string(notes.concave.size() - 1) + " more meshes not convex:";
+    for (size_t k = 1; k < notes.concave.size(); ++k)
+      text += (k > 1 ? ", " : " ") + notes.concave[k];
+  }
+  warnings->push_back(
+      text +
+      (notes.concave.size() > 1 ? "; their convex hulls are used" : "; its convex hull is used") +
+      " (split a mesh into convex pieces, one object each, for a closer shape)");
 }
 
 // ---- SDFormat ----
@@ -369,7 +393,7 @@ void ReadSdfCollisions(const mf::SdfFile& file, const std::map<std::string, Pose
             mf::WorldPose(entry, collision.SemanticPose(), "collision '" + g.name + "'", g.where));
         PlaceOnLink(*model, scoped, frame->second.Inverse() * X_WG * X_GS, &g);
         if (mesh) {
-          AddMeshPieces(*mesh, g, meshes, model, &notes, warnings);
+          AddMeshPieces(*mesh, g, meshes, model, &notes);
         } else {
           model->collisions.push_back(std::move(g));
         }
@@ -403,7 +427,7 @@ void ReadUrdfCollisions(const std::string& text, const std::string& source,
       ReadUrdfSurface(*e, &g);
       PlaceOnLink(*model, g.link, UrdfOrigin(e->FirstChildElement("origin")), &g);
       if (mesh) {
-        AddMeshPieces(*mesh, g, meshes, model, &notes, warnings);
+        AddMeshPieces(*mesh, g, meshes, model, &notes);
       } else {
         model->collisions.push_back(std::move(g));
       }

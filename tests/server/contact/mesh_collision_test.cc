@@ -21,6 +21,7 @@ namespace {
 
 using ::testing::AllOf;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 const std::string kData = std::string(MBSTREAM_SOURCE_DIR) + "/tests/data/contact/";
 
@@ -106,6 +107,25 @@ TEST(MeshCollisionTest, ANonConvexMeshIsWarnedAboutByFileAndItsHullUsed) {
               AllOf(HasSubstr("meshy.urdf:3: link 'base': collision 'hull': mesh "
                               "'meshes/l_shape.stl' is not convex"),
                     HasSubstr("61 % of its hull's volume"), HasSubstr("its convex hull is used")));
+  // Several: one warning, every file named.
+  const std::string two = R"(<robot name="two">
+  <link name="a"><collision name="x"><geometry><mesh filename="l.stl"/></geometry></collision>
+    <collision name="y"><geometry><mesh filename="m.stl" scale="2 2 2"/></geometry></collision>
+    <collision name="z"><geometry><mesh filename="cube.stl"/></geometry></collision></link>
+</robot>
+)";
+  const UrdfImport both = ImportUrdf(two, "two.urdf", {},
+                                     Supplying({{"l.stl", Bytes("l_shape.stl")},
+                                                {"m.stl", Bytes("l_shape.stl")},
+                                                {"cube.stl", Bytes("unit_cube.stl")}}));
+  ASSERT_EQ(both.model.collisions.size(), 3u);
+  int concave = 0;
+  for (const std::string& w : both.warnings) concave += w.find("not convex") != std::string::npos;
+  EXPECT_EQ(concave, 1) << AllWarnings(both.warnings);
+  EXPECT_THAT(AllWarnings(both.warnings),
+              AllOf(HasSubstr("two.urdf:2: link 'a': collision 'x': mesh 'l.stl' is not convex"),
+                    HasSubstr("and 1 more meshes not convex: 'm.stl' (61 %)"),
+                    HasSubstr("their convex hulls are used"), Not(HasSubstr("cube.stl"))));
 }
 
 TEST(MeshCollisionTest, AMeshNotSuppliedIsSkippedWithAWarning) {

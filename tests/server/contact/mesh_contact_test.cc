@@ -10,8 +10,11 @@
 #include <cstdio>
 #include <string>
 
+#include "server/contact/contact_forces.h"
 #include "server/contact/contact_law.h"
 #include "server/engine/engine.h"
+#include "server/kinematics/forward_kinematics.h"
+#include "server/parse/model_file.h"
 #include "server/parse/sdf_import.h"
 #include "server/sim/run_validation.h"
 
@@ -141,6 +144,40 @@ TEST(MeshContactTest, ABallRestsOnTheHullOverTheNotch) {
   EXPECT_LT(std::hypot(Qm(r, last, 0), Qm(r, last, 1)), 1e-7);
   printf("RESULT ball on the L's hull: fastest after 1.5 s %.3g\n", FastestAfter(r, 1.5));
   EXPECT_LE(FastestAfter(r, 1.5), 1e-6);
+}
+
+// A published humanoid's collision meshes (Atlas, from Debian's dart-doc, as
+// published_floating_test reads it): each an STL read and hulled. At the default pose 8 pairs
+// of its hulls that the adjacency rule lets touch overlap (non-adjacent links whose hulls
+// reach into each other: pelvis and the upper legs, up to 7.8 cm); ContactForces leaves
+// them out (contact_forces.h), so the robot is not pushed apart, and no other pair touches.
+TEST(MeshContactTest, APublishedHumanoidsMeshesBecomeHullsThatDoNotPushItApart) {
+  const char* atlas = "/usr/share/doc/dart/data/sdf/atlas/atlas_v3_no_head.urdf";
+  const ModelFileImport imported = ImportModelFile(atlas, UrdfImportOptions{.floating_base = true});
+  const Model& model = imported.model;
+  int hulls = 0;
+  size_t vertices = 0;
+  for (const CollisionGeometry& g : model.collisions) {
+    if (g.shape.type != ShapeType::kConvex) continue;
+    ++hulls;
+    vertices = std::max(vertices, g.shape.convex.vertices->size());
+  }
+  Data data(model);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(model.nq());
+  NeutralPositions(model, q.data());
+  ForwardKinematics(model, data, q);
+  ContactForces contact(model, ContactSettings{});
+  Eigen::VectorXd qd = Eigen::VectorXd::Zero(model.nv()), tau = Eigen::VectorXd::Zero(model.nv());
+  ASSERT_TRUE(contact.AddForces(data, qd, &tau));
+  printf(
+      "RESULT Atlas: %zu collisions, %d hulls (largest %d vertices), %d pairs may touch, %d "
+      "left out as overlapping at the default pose, %zu contacts there\n",
+      model.collisions.size(), hulls, static_cast<int>(vertices), contact.num_allowed_pairs(),
+      contact.num_overlapping_at_rest(), contact.contacts().size());
+  EXPECT_EQ(hulls, 29);
+  EXPECT_EQ(contact.num_overlapping_at_rest(), 8);
+  EXPECT_TRUE(contact.contacts().empty());
+  EXPECT_EQ(tau.norm(), 0.0);
 }
 
 }  // namespace
