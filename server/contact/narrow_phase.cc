@@ -176,11 +176,51 @@ double PointConvexDistance(const Vector3d& p, const ConvexPolytope& convex,
   return distance;
 }
 
+// A box's corners and face planes, as a convex polytope's (VertexContacts).
+std::vector<Vector3d> BoxCorners(const Vector3d& size) {
+  std::vector<Vector3d> corners;
+  for (int k = 0; k < 8; ++k) {
+    corners.push_back(
+        Vector3d(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, k & 4 ? 0.5 : -0.5).cwiseProduct(size));
+  }
+  return corners;
+}
+
+std::vector<Eigen::Vector4d> BoxPlanes(const Vector3d& size) {
+  std::vector<Eigen::Vector4d> planes;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const double sign : {1.0, -1.0}) {
+      Eigen::Vector4d plane = Eigen::Vector4d::Zero();
+      plane(axis) = sign;
+      plane(3) = 0.5 * size(axis);
+      planes.push_back(plane);
+    }
+  }
+  return planes;
+}
+
+// The largest signed distance of point p to `planes` (< 0: inside all of them) and that plane's
+// normal.
+double DeepestPlane(const Vector3d& p, const std::vector<Eigen::Vector4d>& planes,
+                    Vector3d* normal) {
+  double highest = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector4d& plane : planes) {
+    const double s = plane.head<3>().dot(p) - plane(3);
+    if (s > highest) {
+      highest = s;
+      *normal = plane.head<3>();
+    }
+  }
+  return highest;
+}
+
 }  // namespace
 
 struct NarrowPhase::Fcl {
   std::vector<std::shared_ptr<fcl::CollisionGeometryd>> shapes;  // null for planes
-  std::vector<std::vector<Eigen::Vector4d>> planes;  // a convex polytope's faces; else empty
+  // A convex polytope's (or a box's) vertices and face planes, in its frame; else empty.
+  std::vector<std::vector<Vector3d>> vertices;
+  std::vector<std::vector<Eigen::Vector4d>> planes;
   std::vector<fcl::ContactPointd> points;
   fcl::CollisionRequestd request{8, true};
   fcl::CollisionResultd result;
@@ -190,8 +230,13 @@ NarrowPhase::NarrowPhase(const std::vector<CollisionGeometry>& geometries)
     : geometries_(geometries), fcl_(std::make_unique<Fcl>()) {
   for (const CollisionGeometry& g : geometries) {
     fcl_->shapes.push_back(FclShape(g.shape));
-    fcl_->planes.push_back(g.shape.type == ShapeType::kConvex ? FacePlanes(g.shape.convex)
-                                                              : std::vector<Eigen::Vector4d>{});
+    const ShapeType type = g.shape.type;
+    fcl_->planes.push_back(type == ShapeType::kConvex ? FacePlanes(g.shape.convex)
+                           : type == ShapeType::kBox  ? BoxPlanes(g.shape.size)
+                                                      : std::vector<Eigen::Vector4d>{});
+    fcl_->vertices.push_back(type == ShapeType::kConvex ? *g.shape.convex.vertices
+                             : type == ShapeType::kBox  ? BoxCorners(g.shape.size)
+                                                        : std::vector<Vector3d>{});
   }
   fcl_->points.reserve(16);
   scratch_.reserve(16);
@@ -239,6 +284,9 @@ void NarrowPhase::Collide(int a, const Pose& X_WA, int b, const Pose& X_WB,
       c.point = cj + (sj.radius - 0.5 * depth) * c.normal;
       out->push_back(c);
     }
+  } else if ((ta == ShapeType::kBox || ta == ShapeType::kConvex) && tb == ShapeType::kConvex &&
+             VertexContacts(i, X_WI, j, X_WJ, out) > 0) {
+    // each vertex of one inside the other (a face resting on a face: its corners)
   } else if (ta == ShapeType::kSphere && tb == ShapeType::kConvex) {
     const double r = geometries_[i].shape.radius;
     Vector3d n_J = Vector3d::UnitZ();
@@ -307,6 +355,34 @@ void NarrowPhase::Collide(int a, const Pose& X_WA, int b, const Pose& X_WB,
       c.normal = -c.normal;
     }
   }
+}
+
+int NarrowPhase::VertexContacts(int i, const Pose& X_WI, int j, const Pose& X_WJ,
+                                std::vector<ContactPoint>* out) {
+  int added = 0;
+  // Vertices of `from` inside `into`: the normal (from j toward i) along the nearest face of
+  // `into`, outward for a vertex of i, inward for a vertex of j.
+  const auto inside = [&](int from, const Pose& X_WF, int into, const Pose& X_WT, double sign) {
+    const Matrix3d R_TF = X_WT.R.transpose() * X_WF.R;
+    const Vector3d p_TF = X_WT.R.transpose() * (X_WF.p - X_WT.p);
+    for (const Vector3d& v : fcl_->vertices[from]) {
+      Vector3d n_T = Vector3d::UnitZ();
+      const double s = DeepestPlane(R_TF * v + p_TF, fcl_->planes[into], &n_T);
+      if (!(s < 0.0)) continue;
+      ContactPoint c;
+      c.geometry_a = i;
+      c.geometry_b = j;
+      c.depth = -s;
+      const Vector3d n_W = X_WT.R * n_T;  // outward of `into`
+      c.normal = sign * n_W;
+      c.point = X_WF.Apply(v) + 0.5 * c.depth * n_W;
+      out->push_back(c);
+      ++added;
+    }
+  };
+  inside(i, X_WI, j, X_WJ, 1.0);
+  inside(j, X_WJ, i, X_WI, -1.0);
+  return added;
 }
 
 double NarrowPhase::SignedDistance(int a, const Pose& X_WA, int b, const Pose& X_WB,

@@ -8,10 +8,13 @@
 // sphere-box, sphere-cylinder, sphere-capsule, box-box with up to four points;
 // capsule-capsule as the spheres at the segments' closest points); a sphere against a convex
 // polytope in closed form (the nearest face plane when its centre is inside, the nearest
-// point of the hull's triangles outside: exact, no allocation); the remaining pairs (box,
-// cylinder or capsule against box, cylinder or capsule; a convex polytope against a box,
-// cylinder, capsule or convex polytope: fcl::Convex) by FCL's GJK/EPA through libccd, one
-// point per pair, which allocates on the heap. Allocates nothing otherwise once the scratch has
+// point of the hull's triangles outside: exact, no allocation); a box or convex polytope
+// against a convex polytope: each vertex of one inside the other, a point with the depth and
+// normal of the other's nearest face (a face resting on a face stands on its corners; no
+// allocation), and when no vertex is inside (edges crossing) FCL's GJK/EPA; the remaining
+// pairs (box, cylinder or capsule against box, cylinder or capsule; a convex polytope against
+// a cylinder or capsule: fcl::Convex) by FCL's GJK/EPA through libccd, one point per pair,
+// which allocates on the heap. Allocates nothing otherwise once the scratch has
 // grown.
 #pragma once
 
@@ -43,6 +46,9 @@ class NarrowPhase {
 
  private:
   struct Fcl;
+  // Box or hull i against hull j: each vertex of one inside the other a point; how many.
+  int VertexContacts(int i, const Pose& X_WI, int j, const Pose& X_WJ,
+                     std::vector<ContactPoint>* out);
   const std::vector<CollisionGeometry>& geometries_;
   std::unique_ptr<Fcl> fcl_;
   std::vector<ContactPoint> scratch_;

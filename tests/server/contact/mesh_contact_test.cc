@@ -87,6 +87,26 @@ TEST(MeshContactTest, AnStlBoxRestsAsThePrimitiveBoxDoes) {
   EXPECT_LE(FastestAfter(a, 1.0), config.contact.stiction_tolerance);
 }
 
+// The cube mesh standing on a table that is a primitive box, then a mesh: each bottom corner of
+// the hull inside the table is a point (narrow_phase.h), so it stands as on the plane: sunk
+// m g / k, still.
+TEST(MeshContactTest, ACubeMeshStandsOnABoxAndOnAHullAsOnThePlane) {
+  for (const char* scene : {"mesh_box_on_table.sdf", "mesh_box_on_mesh_table.sdf"}) {
+    const Model model = MeshScene(scene);
+    ASSERT_EQ(model.collisions.size(), 2u);
+    const RunConfig config = MeshConfig(3.0, 0.01);
+    const RunResult r = RunMeshScene(model, config);
+    const size_t last = r.t.size() - 1;
+    const double depth = 0.1 - Qm(r, last, 2);
+    const double expected = 2.0 * kG / kPairStiffness;
+    printf("RESULT %s: penetration %.12g expected %.12g rel %.3g; fastest after 1 s %.3g\n", scene,
+           depth, expected, depth / expected - 1, FastestAfter(r, 1.0));
+    EXPECT_NEAR(depth / expected, 1.0, 1e-6) << scene;
+    EXPECT_LE(FastestAfter(r, 1.0), config.contact.stiction_tolerance) << scene;
+    EXPECT_NEAR(Qm(r, last, 0), 0.1, 1e-6) << scene;  // where it was put
+  }
+}
+
 // Dropped from 0.4 m turned by (0.5, 0.3, 0.2): it lands on a corner, tumbles and comes to
 // rest on one of its faces, its centre m g / k below 0.1 m, one body axis vertical.
 TEST(MeshContactTest, ACubeMeshDroppedTurnedComesToRestOnAFace) {
