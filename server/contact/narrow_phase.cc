@@ -214,6 +214,29 @@ double DeepestPlane(const Vector3d& p, const std::vector<Eigen::Vector4d>& plane
   return highest;
 }
 
+// A sphere about the shape: centre (in its frame) and radius.
+Eigen::Vector4d BoundingSphere(const CollisionShape& s) {
+  switch (s.type) {
+    case ShapeType::kSphere:
+      return Eigen::Vector4d(0, 0, 0, s.radius);
+    case ShapeType::kBox:
+      return Eigen::Vector4d(0, 0, 0, 0.5 * s.size.norm());
+    case ShapeType::kCylinder:
+      return Eigen::Vector4d(0, 0, 0, std::hypot(s.radius, 0.5 * s.length));
+    case ShapeType::kCapsule:
+      return Eigen::Vector4d(0, 0, 0, s.radius + 0.5 * s.length);
+    case ShapeType::kConvex: {
+      const Vector3d centre = 0.5 * (s.convex.lower + s.convex.upper);
+      double radius = 0.0;
+      for (const Vector3d& v : *s.convex.vertices) radius = std::max(radius, (v - centre).norm());
+      return Eigen::Vector4d(centre.x(), centre.y(), centre.z(), radius);
+    }
+    case ShapeType::kPlane:
+      break;
+  }
+  return Eigen::Vector4d(0, 0, 0, std::numeric_limits<double>::infinity());
+}
+
 }  // namespace
 
 struct NarrowPhase::Fcl {
@@ -221,6 +244,10 @@ struct NarrowPhase::Fcl {
   // A convex polytope's (or a box's) vertices and face planes, in its frame; else empty.
   std::vector<std::vector<Vector3d>> vertices;
   std::vector<std::vector<Eigen::Vector4d>> planes;
+  // A box's or convex polytope's bounding box in its frame; else empty.
+  std::vector<Vector3d> lower, upper;
+  // Each shape's bounding sphere in its frame: centre and radius (a plane's infinite).
+  std::vector<Eigen::Vector4d> bounds;
   std::vector<fcl::ContactPointd> points;
   fcl::CollisionRequestd request{8, true};
   fcl::CollisionResultd result;
@@ -234,6 +261,9 @@ NarrowPhase::NarrowPhase(const std::vector<CollisionGeometry>& geometries)
     fcl_->planes.push_back(type == ShapeType::kConvex ? FacePlanes(g.shape.convex)
                            : type == ShapeType::kBox  ? BoxPlanes(g.shape.size)
                                                       : std::vector<Eigen::Vector4d>{});
+    fcl_->bounds.push_back(BoundingSphere(g.shape));
+    fcl_->lower.push_back(type == ShapeType::kConvex ? g.shape.convex.lower : -0.5 * g.shape.size);
+    fcl_->upper.push_back(type == ShapeType::kConvex ? g.shape.convex.upper : 0.5 * g.shape.size);
     fcl_->vertices.push_back(type == ShapeType::kConvex ? *g.shape.convex.vertices
                              : type == ShapeType::kBox  ? BoxCorners(g.shape.size)
                                                         : std::vector<Vector3d>{});
@@ -365,9 +395,14 @@ int NarrowPhase::VertexContacts(int i, const Pose& X_WI, int j, const Pose& X_WJ
   const auto inside = [&](int from, const Pose& X_WF, int into, const Pose& X_WT, double sign) {
     const Matrix3d R_TF = X_WT.R.transpose() * X_WF.R;
     const Vector3d p_TF = X_WT.R.transpose() * (X_WF.p - X_WT.p);
+    const Vector3d& lower = fcl_->lower[into];
+    const Vector3d& upper = fcl_->upper[into];
     for (const Vector3d& v : fcl_->vertices[from]) {
+      const Vector3d v_T = R_TF * v + p_TF;
+      // outside `into`'s bounding box: not inside (the faces' test costs O(faces))
+      if ((v_T.array() <= lower.array()).any() || (v_T.array() >= upper.array()).any()) continue;
       Vector3d n_T = Vector3d::UnitZ();
-      const double s = DeepestPlane(R_TF * v + p_TF, fcl_->planes[into], &n_T);
+      const double s = DeepestPlane(v_T, fcl_->planes[into], &n_T);
       if (!(s < 0.0)) continue;
       ContactPoint c;
       c.geometry_a = i;
@@ -435,6 +470,11 @@ double NarrowPhase::SignedDistance(int a, const Pose& X_WA, int b, const Pose& X
                                &n_B) -
            sa.radius;
   }
+  // No distance routine for the pair: apart when their bounding spheres are (the common case
+  // of a robot's many root pairs: no narrow phase, no libccd), else minus the depth.
+  const Eigen::Vector4d& ba = fcl_->bounds[a];
+  const Eigen::Vector4d& bb = fcl_->bounds[b];
+  if ((X_WA.Apply(ba.head<3>()) - X_WB.Apply(bb.head<3>())).norm() > ba(3) + bb(3)) return margin;
   scratch_.clear();
   Collide(a, X_WA, b, X_WB, &scratch_);
   double deepest = 0.0;

@@ -39,9 +39,10 @@ class NarrowPhase {
 
   // The signed distance of a and b (m, < 0 when they overlap: minus the largest depth), for
   // pairs of which one is a plane, both are spheres or capsules, a sphere and a convex
-  // polytope, or a sphere and a box or cylinder (FCL's distance routines); other pairs: minus their
-  // largest depth when they overlap, else `margin` (unknown but positive). Allocates nothing but
-  // for the pairs Collide hands to libccd.
+  // polytope, or a sphere and a box or cylinder (FCL's distance routines); other pairs:
+  // `margin` (unknown but positive) when their bounding spheres are apart, else minus their
+  // largest depth when they overlap, else `margin`. Allocates nothing but for the pairs
+  // Collide hands to libccd (when their bounding spheres overlap).
   double SignedDistance(int a, const Pose& X_WA, int b, const Pose& X_WB, double margin);
 
  private:
