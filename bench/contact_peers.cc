@@ -21,10 +21,11 @@
 // mbstream: the scenes of tests/data/contact/ with the run spec's defaults (k 1e5 N/m a
 // surface, BDF; rtol 1e-6; the bounce with d = 0, the scene's elasticity) and tighter
 // tolerances down to 1e-10; the rolling cylinder also with k = 1e8 (a stiffer surface,
-// rolling radius r to 2e-6, with the rolling check's d = 20 s/m and v_s = 1e-3 m/s). MuJoCo: the same bodies in MJCF at its defaults (timestep
-// 2 ms, Euler, solref 0.02 1, pyramidal cone) and at smaller timesteps; the bounce also with
-// solref "-k 0" (stiffness k = 5e4 N/m, mbstream's pair, no damping: MuJoCo's elastic
-// contact) at smaller timesteps. CPU: the median of three runs, this process's CPU clock.
+// rolling radius r to 2e-6, with the rolling check's d = 20 s/m and v_s = 1e-3 m/s). MuJoCo: the
+// same bodies in MJCF at its defaults (timestep 2 ms, Euler, solref 0.02 1, pyramidal cone) and at
+// smaller timesteps; the bounce also with solref "-k 0" (stiffness k = 5e4 N/m, mbstream's pair, no
+// damping: MuJoCo's elastic contact) at smaller timesteps. CPU: the median of three runs, this
+// process's CPU clock.
 #include <mujoco/mujoco.h>
 
 #include <CLI/CLI.hpp>

@@ -15,38 +15,14 @@
 #include "server/parse/sdf_import.h"
 #include "server/sim/run_validation.h"
 #include "shared/common/check.h"
+#include "tests/server/contact/contact_scene.h"
 
 namespace mbstream {
 namespace {
 
+using namespace contact_testing;
+
 constexpr double kG = 9.81;
-
-Model Scene(const std::string& name) {
-  return ImportSdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/tests/data/contact/" + name).model;
-}
-
-RunConfig Config(double duration, double interval) {
-  RunConfig config;
-  config.formulation = Formulation::kJoint;
-  config.duration = duration;
-  config.output_interval = interval;
-  config.rtol = 1e-10;
-  config.atol = 1e-12;
-  config.want_torques = false;
-  config.contact.stiffness = 1e5;  // each surface: k = 5e4 N/m for the pair
-  return config;
-}
-
-RunResult RunScene(const Model& model, RunConfig config) {
-  config.drives.resize(static_cast<size_t>(model.nv()));  // passive
-  ValidateRun(model, config);
-  RunResult result = Simulate(model, config);
-  EXPECT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
-  return result;
-}
-
-double Q(const RunResult& r, size_t frame, int k) { return r.q[frame * r.num_positions + k]; }
-double Qd(const RunResult& r, size_t frame, int k) { return r.qd[frame * r.num_dofs + k]; }
 
 // The apexes of z (position 2) between bounces: each the vertex of the parabola through a
 // frame that is a local maximum and its neighbours (exact in free flight).

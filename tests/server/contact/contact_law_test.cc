@@ -7,9 +7,12 @@
 
 #include "server/contact/contact_law.h"
 #include "server/contact/narrow_phase.h"
+#include "tests/server/contact/primitive_geometry.h"
 
 namespace mbstream {
 namespace {
+
+using namespace contact_testing;
 
 namespace law = contact_law;
 
@@ -36,15 +39,6 @@ TEST(ContactLawTest, CombinationAndNormalForce) {
   EXPECT_EQ(law::NormalForce(1e4, 0.5, 1e-3, -3.0), 0.0);  // separating fast: clamped
 }
 
-CollisionGeometry Shape(ShapeType type, double radius, double length, Vector3d size) {
-  CollisionGeometry g;
-  g.shape.type = type;
-  g.shape.radius = radius;
-  g.shape.length = length;
-  g.shape.size = size;
-  return g;
-}
-
 Pose At(double x, double y, double z) {
   Pose X;
   X.p = Vector3d(x, y, z);
@@ -53,12 +47,12 @@ Pose At(double x, double y, double z) {
 
 TEST(NarrowPhaseTest, PointsAndNormalsFromBTowardA) {
   const std::vector<CollisionGeometry> g = {
-      Shape(ShapeType::kPlane, 0, 0, Vector3d::Zero()),         // 0
-      Shape(ShapeType::kSphere, 0.1, 0, Vector3d::Zero()),      // 1
-      Shape(ShapeType::kBox, 0, 0, Vector3d(0.2, 0.4, 0.2)),    // 2
-      Shape(ShapeType::kSphere, 0.2, 0, Vector3d::Zero()),      // 3
-      Shape(ShapeType::kCapsule, 0.05, 0.4, Vector3d::Zero()),  // 4
-      Shape(ShapeType::kCylinder, 0.1, 0.3, Vector3d::Zero()),  // 5
+      Primitive(ShapeType::kPlane, 0, 0, Vector3d::Zero()),         // 0
+      Primitive(ShapeType::kSphere, 0.1, 0, Vector3d::Zero()),      // 1
+      Primitive(ShapeType::kBox, 0, 0, Vector3d(0.2, 0.4, 0.2)),    // 2
+      Primitive(ShapeType::kSphere, 0.2, 0, Vector3d::Zero()),      // 3
+      Primitive(ShapeType::kCapsule, 0.05, 0.4, Vector3d::Zero()),  // 4
+      Primitive(ShapeType::kCylinder, 0.1, 0.3, Vector3d::Zero()),  // 5
   };
   NarrowPhase narrow(g);
   std::vector<ContactPoint> out;

@@ -13,28 +13,14 @@
 #include "server/engine/engine.h"
 #include "server/parse/sdf_import.h"
 #include "server/sim/run_validation.h"
+#include "tests/server/contact/contact_scene.h"
 
 namespace mbstream {
 namespace {
 
+using namespace contact_testing;
+
 constexpr double kG = 9.81;
-
-Model Scene(const std::string& name) {
-  return ImportSdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/tests/data/contact/" + name).model;
-}
-
-RunResult RunScene(const Model& model, RunConfig config) {
-  config.formulation = Formulation::kJoint;
-  config.want_torques = false;
-  config.drives.resize(static_cast<size_t>(model.nv()));
-  ValidateRun(model, config);
-  RunResult result = Simulate(model, config);
-  EXPECT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
-  return result;
-}
-
-double Q(const RunResult& r, size_t frame, int k) { return r.q[frame * r.num_positions + k]; }
-double Qd(const RunResult& r, size_t frame, int k) { return r.qd[frame * r.num_dofs + k]; }
 
 // The 1-D Hunt-Crossley bounce of a ball of radius r on a floor: from an apex at height z
 // (its centre), the next apex. Free flight in closed form; the contact, m z'' = -m g +

@@ -15,18 +15,12 @@
 #include "server/parse/convex_hull.h"
 #include "shared/common/check.h"
 #include "tests/common/allocation_counter.h"
+#include "tests/server/contact/primitive_geometry.h"
 
 namespace mbstream {
 namespace {
 
-CollisionGeometry Primitive(ShapeType type, double radius, double length, Vector3d size) {
-  CollisionGeometry g;
-  g.shape.type = type;
-  g.shape.radius = radius;
-  g.shape.length = length;
-  g.shape.size = size;
-  return g;
-}
+using namespace contact_testing;
 
 // The hull of a cube of edge `edge`, centred.
 CollisionGeometry CubeHull(double edge) {

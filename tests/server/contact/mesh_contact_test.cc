@@ -17,38 +17,21 @@
 #include "server/parse/model_file.h"
 #include "server/parse/sdf_import.h"
 #include "server/sim/run_validation.h"
+#include "tests/server/contact/contact_scene.h"
 
 namespace mbstream {
 namespace {
 
+using namespace contact_testing;
+
 constexpr double kG = 9.81;
 
-Model MeshScene(const std::string& name) {
-  return ImportSdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/tests/data/contact/" + name).model;
-}
-
+// The suites' run with the meshes' dissipation.
 RunConfig MeshConfig(double duration, double interval) {
-  RunConfig config;
-  config.formulation = Formulation::kJoint;
-  config.duration = duration;
-  config.output_interval = interval;
-  config.rtol = 1e-10;
-  config.atol = 1e-12;
-  config.want_torques = false;
-  config.contact.stiffness = 1e5;  // each surface: k = 5e4 N/m for the pair
+  RunConfig config = Config(duration, interval);
   config.contact.dissipation = 20.0;
   return config;
 }
-
-RunResult RunMeshScene(const Model& model, RunConfig config) {
-  config.drives.resize(static_cast<size_t>(model.nv()));  // passive
-  ValidateRun(model, config);
-  RunResult result = Simulate(model, config);
-  EXPECT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
-  return result;
-}
-
-double Qm(const RunResult& r, size_t frame, int k) { return r.q[frame * r.num_positions + k]; }
 
 double FastestAfter(const RunResult& r, double t0) {
   double fastest = 0.0;
@@ -66,18 +49,18 @@ const double kPairStiffness = contact_law::CombineStiffness(1e5, 1e5);
 // two runs see the same contact points (summed in another order: rounding, 1e-16 relative),
 // so their trajectories agree to what the error control lets such a difference grow to.
 TEST(MeshContactTest, AnStlBoxRestsAsThePrimitiveBoxDoes) {
-  const Model mesh = MeshScene("box_mesh_on_plane.sdf");
-  const Model box = MeshScene("box_on_plane.sdf");
+  const Model mesh = Scene("box_mesh_on_plane.sdf");
+  const Model box = Scene("box_on_plane.sdf");
   ASSERT_EQ(mesh.collisions.size(), 2u);
   ASSERT_EQ(mesh.collisions[1].shape.type, ShapeType::kConvex);
   const RunConfig config = MeshConfig(3.0, 0.01);
-  const RunResult a = RunMeshScene(mesh, config);
-  const RunResult b = RunMeshScene(box, config);
+  const RunResult a = RunScene(mesh, config);
+  const RunResult b = RunScene(box, config);
   ASSERT_EQ(a.t.size(), b.t.size());
   double worst = 0.0;
   for (size_t k = 0; k < a.q.size(); ++k) worst = std::max(worst, std::abs(a.q[k] - b.q[k]));
   const size_t last = a.t.size() - 1;
-  const double depth = 0.1 - Qm(a, last, 2);
+  const double depth = 0.1 - Q(a, last, 2);
   const double expected = 2.0 * kG / kPairStiffness;  // the contact force m g = k depth
   printf("RESULT mesh box vs primitive box: largest position difference %.3g m\n", worst);
   printf("RESULT mesh box penetration %.12g expected %.12g rel %.3g\n", depth, expected,
@@ -92,33 +75,33 @@ TEST(MeshContactTest, AnStlBoxRestsAsThePrimitiveBoxDoes) {
 // m g / k, still.
 TEST(MeshContactTest, ACubeMeshStandsOnABoxAndOnAHullAsOnThePlane) {
   for (const char* scene : {"mesh_box_on_table.sdf", "mesh_box_on_mesh_table.sdf"}) {
-    const Model model = MeshScene(scene);
+    const Model model = Scene(scene);
     ASSERT_EQ(model.collisions.size(), 2u);
     const RunConfig config = MeshConfig(3.0, 0.01);
-    const RunResult r = RunMeshScene(model, config);
+    const RunResult r = RunScene(model, config);
     const size_t last = r.t.size() - 1;
-    const double depth = 0.1 - Qm(r, last, 2);
+    const double depth = 0.1 - Q(r, last, 2);
     const double expected = 2.0 * kG / kPairStiffness;
     printf("RESULT %s: penetration %.12g expected %.12g rel %.3g; fastest after 1 s %.3g\n", scene,
            depth, expected, depth / expected - 1, FastestAfter(r, 1.0));
     EXPECT_NEAR(depth / expected, 1.0, 1e-6) << scene;
     EXPECT_LE(FastestAfter(r, 1.0), config.contact.stiction_tolerance) << scene;
-    EXPECT_NEAR(Qm(r, last, 0), 0.1, 1e-6) << scene;  // where it was put
+    EXPECT_NEAR(Q(r, last, 0), 0.1, 1e-6) << scene;  // where it was put
   }
 }
 
 // Dropped from 0.4 m turned by (0.5, 0.3, 0.2): it lands on a corner, tumbles and comes to
 // rest on one of its faces, its centre m g / k below 0.1 m, one body axis vertical.
 TEST(MeshContactTest, ACubeMeshDroppedTurnedComesToRestOnAFace) {
-  const Model model = MeshScene("tumbling_cube_mesh.sdf");
+  const Model model = Scene("tumbling_cube_mesh.sdf");
   RunConfig config = MeshConfig(4.0, 0.01);
   config.rtol = 1e-8;
   config.atol = 1e-10;
   config.contact.mu_static = config.contact.mu_dynamic = 0.5;
-  const RunResult r = RunMeshScene(model, config);
+  const RunResult r = RunScene(model, config);
   const size_t last = r.t.size() - 1;
-  const double depth = 0.1 - Qm(r, last, 2);
-  const Eigen::Quaterniond q(Qm(r, last, 3), Qm(r, last, 4), Qm(r, last, 5), Qm(r, last, 6));
+  const double depth = 0.1 - Q(r, last, 2);
+  const Eigen::Quaterniond q(Q(r, last, 3), Q(r, last, 4), Q(r, last, 5), Q(r, last, 6));
   const Matrix3d R = q.normalized().toRotationMatrix();
   double vertical = 0.0;  // the body axis closest to the world's z
   for (int k = 0; k < 3; ++k) vertical = std::max(vertical, std::abs(R(2, k)));
@@ -128,7 +111,7 @@ TEST(MeshContactTest, ACubeMeshDroppedTurnedComesToRestOnAFace) {
       depth, 2.0 * kG / kPairStiffness, vertical, r.stats.solver.steps);
   EXPECT_NEAR(depth / (2.0 * kG / kPairStiffness), 1.0, 1e-4);
   EXPECT_NEAR(vertical, 1.0, 1e-8);
-  EXPECT_LT(std::hypot(Qm(r, last, 0), Qm(r, last, 1)), 0.5);  // it did not fly away
+  EXPECT_LT(std::hypot(Q(r, last, 0), Q(r, last, 1)), 0.5);  // it did not fly away
   EXPECT_LE(FastestAfter(r, 3.5), 1e-3);
 }
 
@@ -136,12 +119,12 @@ TEST(MeshContactTest, ACubeMeshDroppedTurnedComesToRestOnAFace) {
 // of the mesh), which the centre of mass stands over the middle of: its origin comes to rest
 // 0.05 / sqrt(2) above the plane less m g / k.
 TEST(MeshContactTest, ANonConvexMeshRestsOnItsHull) {
-  const Model model = MeshScene("l_shape_on_plane.sdf");
-  const RunResult r = RunMeshScene(model, MeshConfig(3.0, 0.01));
+  const Model model = Scene("l_shape_on_plane.sdf");
+  const RunResult r = RunScene(model, MeshConfig(3.0, 0.01));
   const size_t last = r.t.size() - 1;
   const double expected = 0.05 / std::sqrt(2.0) - kG / kPairStiffness;
-  printf("RESULT L on its hull: height %.12g expected %.12g\n", Qm(r, last, 2), expected);
-  EXPECT_NEAR(Qm(r, last, 2), expected, 2e-9);  // Assimp's float vertices: 0.05 to 1e-9
+  printf("RESULT L on its hull: height %.12g expected %.12g\n", Q(r, last, 2), expected);
+  EXPECT_NEAR(Q(r, last, 2), expected, 2e-9);  // Assimp's float vertices: 0.05 to 1e-9
   EXPECT_LE(FastestAfter(r, 2.0), 1e-3);
 }
 
@@ -149,19 +132,19 @@ TEST(MeshContactTest, ANonConvexMeshRestsOnItsHull) {
 // its origin) holds it; the notch itself would let it sink 0.1 m further. Sphere against a
 // convex polytope is in closed form (narrow_phase.h): its depth is exact.
 TEST(MeshContactTest, ABallRestsOnTheHullOverTheNotch) {
-  const Model model = MeshScene("ball_on_l_shape.sdf");
+  const Model model = Scene("ball_on_l_shape.sdf");
   ASSERT_EQ(model.collisions.size(), 2u);
   RunConfig config = MeshConfig(2.0, 0.01);
   config.rtol = 1e-8;
   config.atol = 1e-10;
-  const RunResult r = RunMeshScene(model, config);
+  const RunResult r = RunScene(model, config);
   const size_t last = r.t.size() - 1;
   const double expected = 0.05 / std::sqrt(2.0) + 0.05 - kG / kPairStiffness;
   printf("RESULT ball on the L's hull: height %.12g expected %.12g (difference %.3g m)\n",
-         Qm(r, last, 2), expected, Qm(r, last, 2) - expected);
-  EXPECT_NEAR(Qm(r, last, 2), expected, 1e-9);
+         Q(r, last, 2), expected, Q(r, last, 2) - expected);
+  EXPECT_NEAR(Q(r, last, 2), expected, 1e-9);
   // Straight down: the float vertices tilt the face by ~1e-9 rad, friction holds it (v_s).
-  EXPECT_LT(std::hypot(Qm(r, last, 0), Qm(r, last, 1)), 1e-7);
+  EXPECT_LT(std::hypot(Q(r, last, 0), Q(r, last, 1)), 1e-7);
   printf("RESULT ball on the L's hull: fastest after 1.5 s %.3g\n", FastestAfter(r, 1.5));
   EXPECT_LE(FastestAfter(r, 1.5), 1e-6);
 }

@@ -15,9 +15,12 @@
 #include "server/model/coordinate_names.h"
 #include "server/parse/sdf_import.h"
 #include "server/sim/run_validation.h"
+#include "tests/server/contact/contact_scene.h"
 
 namespace mbstream {
 namespace {
+
+using contact_testing::Q;
 
 constexpr double kG = 9.81;
 constexpr double kBoxMass = 0.1;  // kg (gripper_box.sdf)
@@ -45,9 +48,9 @@ struct Grasp {
 // The gripper squeezing the box: each finger's setpoint `squeeze` (m) past the box's face.
 Grasp MakeGrasp(double squeeze, double duration, double output_interval) {
   Grasp grasp;
-  grasp.model = ImportSdfFile(std::string(MBSTREAM_SOURCE_DIR) +
-                              "/tests/data/manipulation/gripper_box.sdf")
-                    .model;
+  grasp.model =
+      ImportSdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/tests/data/manipulation/gripper_box.sdf")
+          .model;
   const Model& model = grasp.model;
   const std::vector<std::string> positions = PositionNames(model);
   const std::vector<std::string> velocities = VelocityNames(model);
@@ -59,7 +62,8 @@ Grasp MakeGrasp(double squeeze, double duration, double output_interval) {
   config.duration = duration;
   config.output_interval = output_interval;
   config.rtol = 1e-9;
-  config.atol = 1e-10;  // 1e-12 asks the creeping velocities for what roundoff in the pads' depths hides
+  config.atol =
+      1e-10;  // 1e-12 asks the creeping velocities for what roundoff in the pads' depths hides
   config.want_torques = false;
   config.contact.stiffness = 1e5;  // each surface: 5e4 N/m the pair
   config.contact.dissipation = 0.2;
@@ -76,10 +80,6 @@ Grasp MakeGrasp(double squeeze, double duration, double output_interval) {
   }
   ValidateRun(model, config);
   return grasp;
-}
-
-double Q(const RunResult& r, size_t frame, int k) {
-  return r.q[frame * static_cast<size_t>(r.num_positions) + static_cast<size_t>(k)];
 }
 
 // The pads' contacts with the box at the last output frame: normal forces and the vertical

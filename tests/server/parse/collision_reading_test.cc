@@ -1,6 +1,7 @@
 // Collision geometry from URDF and SDFormat <collision> (issue 44): shapes, poses in the
 // body frame, surface parameters (drake:proximity_properties, SDFormat friction), the collide
-// bitmask; meshes not supplied skipped with a warning naming the file; bad values refused with the place.
+// bitmask; meshes not supplied skipped with a warning naming the file; bad values refused with the
+// place.
 #include <gtest/gtest.h>
 
 #include <cmath>
