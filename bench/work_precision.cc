@@ -335,7 +335,8 @@ Row ComputeReference(Scene& scene) {
   scene.window_end = reference.t[window - 1];
   std::printf(
       "%s: reference %s rtol %.0e atol %.0e (%ld steps, %.3g s CPU); check %s rtol %.0e: max "
-      "difference %.3g (TCP m; linkages: joints, rad or m) over the run",
+      "difference %.3g (TCP m; linkages: joints, rad or m; contact: the body's origin, m) over the "
+      "run",
       scene.name.c_str(), plan.reference.label.c_str(), reference_config.rtol,
       reference_config.atol, reference.stats.solver.steps, reference.stats.cpu_s,
       plan.check.label.c_str(), check_config.rtol, difference_max);
