@@ -11,7 +11,10 @@
 # Host ports are any free ones, and the secrets, context and volume are its own, so it runs
 # beside a demo of your own.
 #
-#   deploy/docker-test.sh [BUILD_DIR]      (default build/)
+#   deploy/docker-test.sh [--images-only] [BUILD_DIR]      (default build/)
+#
+# --images-only: make the base image and build the images, then stop (scripts/test.sh --ci builds
+# them beside the sanitizer stages, so that its docker stage finds them in the daemon's cache).
 #
 # Exits 77 (skipped, with the reason) when no Docker daemon can be started, or the base image
 # is missing and cannot be made (no debootstrap, not root). scripts/test.sh --ci runs it in its
@@ -19,6 +22,8 @@
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/.." && pwd)
+images_only=0
+if [ "${1:-}" = --images-only ]; then images_only=1; shift; fi
 build=${1:-$root/build}
 log() { echo "compose-docker: $*"; }
 skip() { echo "compose-docker: SKIPPED: $*"; exit 77; }
@@ -63,6 +68,7 @@ trap 'exit 143' TERM
 started=$(date +%s)
 dc build -q >/dev/null 2>&1 || dc build || fail "building the images"
 log "images built in $(($(date +%s) - started)) s"
+[ "$images_only" = 1 ] && exit 0
 dc up -d server viewer >/dev/null 2>&1 || dc up -d server viewer || fail "bringing up the server and the viewer"
 
 # The page and the three.js it imports, served by the viewer from its image (no npm there).

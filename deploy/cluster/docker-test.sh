@@ -10,7 +10,10 @@
 # that run INTERRUPTED (--lease-timeout-s 5) while the other replicas' runs FINISH.
 # Everything is brought down (volumes too) on every exit path.
 #
-#   deploy/cluster/docker-test.sh [BUILD_DIR]      (default build/)
+#   deploy/cluster/docker-test.sh [--images-only] [BUILD_DIR]      (default build/)
+#
+# --images-only: make the base image and build the images, then stop (scripts/test.sh --ci builds
+# them beside the sanitizer stages, so that its docker stage finds them in the daemon's cache).
 #
 # Exits 77 (skipped, with the reason) when no Docker daemon can be started, or the base image
 # is missing and cannot be made (no debootstrap, not root). CI installs no Docker: there the
@@ -18,6 +21,8 @@
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/../.." && pwd)
+images_only=0
+if [ "${1:-}" = --images-only ]; then images_only=1; shift; fi
 build=${1:-$root/build}
 log() { echo "cluster-docker: $*"; }
 skip() { echo "cluster-docker: SKIPPED: $*"; exit 77; }
@@ -54,6 +59,7 @@ trap 'exit 143' TERM
 started=$(date +%s)
 dc build -q >/dev/null 2>&1 || dc build || fail "building the images"
 log "images built in $(($(date +%s) - started)) s"
+[ "$images_only" = 1 ] && exit 0
 dc up -d postgres server1 server2 server3 lb viewer >/dev/null 2>&1 || dc up -d postgres server1 server2 server3 lb viewer ||
   fail "bringing the cluster up"
 log "up: postgres, server1-3, lb (HAProxy), viewer"
