@@ -111,9 +111,10 @@ std::string StatsJson(const RunResult& result, const RunProvenance& provenance, 
   j["summary"] = SummaryJson(s.summary, result.joint_names);
   j["warnings"] = s.warnings;
   j["budget"] = {{"max_steps", s.max_steps}, {"max_cpu_s", s.max_cpu_s}};
-  if (result.contacts.active) {  // docs/contact.md
-    j["contact"] = {{"penetration_max_m", result.contacts.depth_max},
-                    {"contacts_peak", result.contacts.count_peak}};
+  if (s.contact.active) {  // docs/contact.md
+    j["contact"] = {{"penetration_max_m", s.contact.penetration_max_m},
+                    {"contacts_peak", s.contact.contacts_peak},
+                    {"penetration_relative_max", s.contact.penetration_relative_max}};
   }
   j["joints"] = result.joint_names;
   if (result.num_positions > 0) j["positions"] = result.position_names;  // free bodies

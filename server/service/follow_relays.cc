@@ -8,12 +8,14 @@ namespace mbstream {
 
 FollowRelays::FollowRelays(PeerChannels* peers, const RunManager* runs,
                            const grpc::ServerContextBase* context,
-                           std::function<bool(const v1::SubscribeEvent&)> write, int max_batch)
+                           std::function<bool(const v1::SubscribeEvent&)> write, int max_batch,
+                           bool contacts)
     : peers_(peers),
       runs_(runs),
       context_(context),
       write_(std::move(write)),
-      max_batch_(max_batch) {}
+      max_batch_(max_batch),
+      contacts_(contacts) {}
 
 FollowRelays::~FollowRelays() { Stop(); }
 
@@ -52,6 +54,7 @@ void FollowRelays::Pass(Relay* relay, const v1::RunInfo& owner) {
   v1::SubscribeRequest start;
   start.mutable_start()->set_run_id(relay->run_id);
   start.mutable_start()->set_max_batch(max_batch_);
+  start.mutable_start()->set_contacts(contacts_);
   PeerSubscribe* upstream = nullptr;
   try {
     auto connected = std::make_unique<PeerSubscribe>(*peers_, *context_, owner, start);

@@ -25,9 +25,10 @@ namespace mbstream {
 class FollowRelays {
  public:
   // `write` sends an event on the follow stream (serialized with the stream's own events;
-  // false when the stream is gone). None is owned; all outlive the relays.
+  // false when the stream is gone). None is owned; all outlive the relays. `contacts`: the
+  // follower asked for the frames' contacts (SubscribeRequest.Start.contacts).
   FollowRelays(PeerChannels* peers, const RunManager* runs, const grpc::ServerContextBase* context,
-               std::function<bool(const v1::SubscribeEvent&)> write, int max_batch);
+               std::function<bool(const v1::SubscribeEvent&)> write, int max_batch, bool contacts);
   ~FollowRelays();  // Stop()
 
   // A run announced by the run manager: relayed from its replica if it integrates elsewhere
@@ -53,6 +54,7 @@ class FollowRelays {
   const grpc::ServerContextBase* const context_;
   const std::function<bool(const v1::SubscribeEvent&)> write_;
   const int max_batch_;
+  const bool contacts_;
   std::mutex mutex_;
   bool stopped_ = false;
   std::vector<std::shared_ptr<Relay>> relays_;

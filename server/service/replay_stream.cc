@@ -199,7 +199,8 @@ namespace {
 // away). Each Step sends what is due and asks to be woken for what comes next.
 class ReplaySender final : public SubscribeSender {
  public:
-  ReplaySender(ReplayPlan plan, int max_batch) : plan_(std::move(plan)), max_batch_(max_batch) {
+  ReplaySender(ReplayPlan plan, int max_batch, bool contacts)
+      : plan_(std::move(plan)), max_batch_(max_batch), contacts_(contacts) {
     player_.plan = &plan_;
     player_.step = plan_.start_step;
     player_.paused = plan_.options.paused();
@@ -310,7 +311,9 @@ class ReplaySender final : public SubscribeSender {
     const SentFrames::Clock::time_point now = SentFrames::Clock::now();
     do {
       const v1::Frame& frame = player_.Frame(player_.step);
-      *batch->add_frames() = frame;
+      v1::Frame* sent = batch->add_frames();
+      *sent = frame;
+      if (!contacts_) sent->clear_contacts();
       call.sent().Record(plan_.run.id(), frame.seq(), frame.t_s(), now);
       if (plan_.ghost) *batch->add_ghost_frames() = player_.Ghost(player_.step);
       if (gate_) ahead_.push_back(frame.seq());
@@ -328,6 +331,7 @@ class ReplaySender final : public SubscribeSender {
 
   ReplayPlan plan_;
   const int max_batch_;
+  const bool contacts_;
   Player player_;
   bool started_ = false;
   // The frames sent and not yet answered, oldest first, while the viewer answers probes.
@@ -340,8 +344,8 @@ class ReplaySender final : public SubscribeSender {
 
 }  // namespace
 
-std::unique_ptr<SubscribeSender> NewReplaySender(ReplayPlan plan, int max_batch) {
-  return std::make_unique<ReplaySender>(std::move(plan), max_batch);
+std::unique_ptr<SubscribeSender> NewReplaySender(ReplayPlan plan, int max_batch, bool contacts) {
+  return std::make_unique<ReplaySender>(std::move(plan), max_batch, contacts);
 }
 
 }  // namespace mbstream

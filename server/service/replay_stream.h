@@ -42,6 +42,7 @@ std::string CheckReplaySpeed(double speed);
 // The sender of a replay's Subscribe stream (subscribe_call.h): run_started, replay_state,
 // the frames paced by their simulated times (and the viewer's controls as they come: its
 // call's ReplayInbox), then run_ended (unless looping).
-std::unique_ptr<SubscribeSender> NewReplaySender(ReplayPlan plan, int max_batch);
+// `contacts`: the frames keep their stored contacts (SubscribeRequest.Start.contacts).
+std::unique_ptr<SubscribeSender> NewReplaySender(ReplayPlan plan, int max_batch, bool contacts);
 
 }  // namespace mbstream

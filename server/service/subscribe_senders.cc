@@ -13,8 +13,8 @@ namespace {
 
 class LiveSender final : public SubscribeSender {
  public:
-  LiveSender(bool follow, int max_batch, std::unique_ptr<FollowRelays> relays)
-      : follow_(follow), max_batch_(max_batch), relays_(std::move(relays)) {}
+  LiveSender(bool follow, int max_batch, bool contacts, std::unique_ptr<FollowRelays> relays)
+      : follow_(follow), max_batch_(max_batch), contacts_(contacts), relays_(std::move(relays)) {}
 
   void Step(SubscribeCall& call) override {
     for (;;) {
@@ -42,7 +42,7 @@ class LiveSender final : public SubscribeSender {
       }
       if (head.kind == StreamEvent::Kind::kFrame || missed > 0) {
         v1::SubscribeEvent frames;
-        FillFrameBatch(events_, missed, frames.mutable_frames(), &call.sent());
+        FillFrameBatch(events_, missed, frames.mutable_frames(), &call.sent(), contacts_);
         call.Enqueue(std::move(frames));
       }
       if (head.kind == StreamEvent::Kind::kFrame) return;  // more after the write
@@ -69,6 +69,7 @@ class LiveSender final : public SubscribeSender {
  private:
   const bool follow_;
   const int max_batch_;
+  const bool contacts_;
   const std::unique_ptr<FollowRelays> relays_;
   std::deque<StreamEvent> events_;
 };
@@ -140,9 +141,9 @@ class RelaySender final : public SubscribeSender {
 
 }  // namespace
 
-std::unique_ptr<SubscribeSender> NewLiveSender(bool follow, int max_batch,
+std::unique_ptr<SubscribeSender> NewLiveSender(bool follow, int max_batch, bool contacts,
                                                std::unique_ptr<FollowRelays> relays) {
-  return std::make_unique<LiveSender>(follow, max_batch, std::move(relays));
+  return std::make_unique<LiveSender>(follow, max_batch, contacts, std::move(relays));
 }
 
 std::unique_ptr<SubscribeSender> NewRelaySender(SubscribeCall& call, v1::RunInfo owner,

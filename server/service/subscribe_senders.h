@@ -14,8 +14,8 @@ namespace mbstream {
 
 // Sends the subscription's events until its one run ended (`follow`: until the server
 // stops), the viewer left or said goodbye. `relays` (follow, shared store) are stopped with
-// the stream.
-std::unique_ptr<SubscribeSender> NewLiveSender(bool follow, int max_batch,
+// the stream. `contacts`: frames keep their contacts (SubscribeRequest.Start.contacts).
+std::unique_ptr<SubscribeSender> NewLiveSender(bool follow, int max_batch, bool contacts,
                                                std::unique_ptr<FollowRelays> relays);
 
 // Connects to `owner`'s replica and relays its stream for `start` (on a thread of its own,

@@ -53,7 +53,7 @@ grpc::Status SubscribeCall::Accept() {
     set.set_scene(start.replay().scene());
     inbox_.emplace(&runs, set);
     const std::string subscribed = "replay " + plan->run.id();
-    Go(NewReplaySender(std::move(*plan), max_batch), subscribed);
+    Go(NewReplaySender(std::move(*plan), max_batch, start.contacts()), subscribed);
     return grpc::Status::OK;
   }
   // A run of another replica: its owner's stream, relayed (a queued one: looked at again).
@@ -83,14 +83,15 @@ grpc::Status SubscribeCall::AttachHere(bool follow, int max_batch) {
     if (deps_.peers != nullptr && runs.replica().shared_store()) {
       relays = std::make_unique<FollowRelays>(
           deps_.peers, &runs, context_,
-          [this](const v1::SubscribeEvent& e) { return WriteAndWait(e); }, max_batch);
+          [this](const v1::SubscribeEvent& e) { return WriteAndWait(e); }, max_batch,
+          first_.start().contacts());
       FollowRelays* raw = relays.get();
       divert_ = {[raw](const v1::SubscribeRequest& r) { return raw->Divert(r); }, {}};
     }
   } else {
     runs.subscriptions().AttachRun(subscription_, first_.start().run_id(), true);
   }
-  Go(NewLiveSender(follow, max_batch, std::move(relays)),
+  Go(NewLiveSender(follow, max_batch, first_.start().contacts(), std::move(relays)),
      follow ? "follow" : first_.start().run_id());
   return grpc::Status::OK;
 }

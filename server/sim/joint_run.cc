@@ -194,6 +194,10 @@ void RunJointSpace(const Model& model, const RunConfig& config, const PilotLink&
                           pilot.prefix.get(), prefix_frames,
                           live->contact != nullptr ? &result.contacts : nullptr);
   RunFrames(times, source, recorder, result, sink, cancel);
+  if (result.contacts.active) {
+    result.stats.contact = {true, result.contacts.depth_max, result.contacts.count_peak,
+                            result.contacts.relative_max};
+  }
   if (const std::string deep = result.contacts.DeepContactWarning(); !deep.empty()) {
     result.stats.warnings.push_back(deep);
   }

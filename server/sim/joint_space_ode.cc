@@ -194,6 +194,10 @@ int JointSpaceOde::Roots(double t, const double* y, double* g) {
   }
   for (const int b : model_.free_bodies)
     free_joint::NormaliseQuaternion(&q_(model_.bodies[b].q_index));
+  // A time or state that is not finite (CVODE has asked at t = inf after a failed first step)
+  // never reaches the narrow phase, whose library asserts on it: the root function fails, and
+  // with it the step, with a message.
+  if (!std::isfinite(t) || !q_.allFinite()) return 1;
   BodyKinematics(model_, data_, q_);
   contact_->SignedDistances(data_, g);
   for (int k = 0; k < contact_->num_root_pairs(); ++k) {

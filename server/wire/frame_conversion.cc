@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "server/wire/contact_conversion.h"
 #include "server/wire/stats_conversion.h"
 #include "shared/common/check.h"
 
@@ -64,6 +65,7 @@ void FrameToProto(const RunResult& result, int k, v1::Frame* frame) {
     frame->set_kinetic_j(result.kinetic[k]);
     frame->set_potential_j(result.potential[k]);
   }
+  ContactsToProto(result.contacts, result.t[k], frame->mutable_contacts());
 }
 
 RunResult ResultFromFrames(const v1::RunInfo& info, const std::vector<v1::Frame>& frames) {
@@ -119,6 +121,7 @@ RunResult ResultFromFrames(const v1::RunInfo& info, const std::vector<v1::Frame>
       result.potential.push_back(frame.potential_j());
     }
   }
+  ContactsFromFrames(frames, result.stats.contact.active, &result.contacts);
   return result;
 }
 

@@ -107,6 +107,12 @@ v1::RunStats StatsToProto(const RunStats& s) {
     loops.set_mobility(s.loops.mobility);
     loops.set_assembly(s.loops.assembly);
   }
+  if (s.contact.active) {
+    v1::ContactStats& contact = *out.mutable_contact();
+    contact.set_penetration_max_m(FiniteOr(s.contact.penetration_max_m, 0.0));
+    contact.set_contacts_peak(s.contact.contacts_peak);
+    contact.set_penetration_relative_max(FiniteOr(s.contact.penetration_relative_max, 0.0));
+  }
   SummaryToProto(s.summary, out.mutable_summary());
   return out;
 }
@@ -180,6 +186,10 @@ RunStats StatsFromProto(const v1::RunInfo& info) {
     s.loops.independent = in.loops().independent();
     s.loops.mobility = in.loops().mobility();
     s.loops.assembly = in.loops().assembly();
+  }
+  if (in.has_contact()) {
+    s.contact = {true, in.contact().penetration_max_m(), in.contact().contacts_peak(),
+                 in.contact().penetration_relative_max()};
   }
   if (in.has_summary()) s.summary = SummaryFromProto(in.summary());
   s.warnings.assign(info.warnings().begin(), info.warnings().end());

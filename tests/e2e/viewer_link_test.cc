@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <regex>
 #include <sstream>
 
 #include "tests/common/cli_server_test.h"
@@ -70,6 +71,36 @@ TEST_F(ViewerLinkTest, FollowingViewerShowsALiveLoopRunOfTheDeltaAndAnswersWithI
   const CommandOutcome result = Cli("result " + run_id + " --out " + (dir_ / "out").string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   ExpectProbesMatchTcp(dir_ / "out", 0, 200);
+}
+
+// Contacts on the wire (issue 44): a viewer started with --contacts asks for each frame's
+// contacts and draws them; a box resting on a plane touches it at four corners in every frame.
+TEST_F(ViewerLinkTest, FollowingViewerWithContactsDrawsEveryFramesContacts) {
+  const CommandOutcome submit = Cli("submit tests/data/contact/box_resting.sdf --name box");
+  ASSERT_EQ(submit.exit_code, 0) << submit.output;
+  const fs::path log = dir_ / "viewer.log";
+  ASSERT_EQ(
+      RunCommand(Viewer("--follow --contacts --exit-after-runs 1 > " + log.string() + " 2>&1 &"))
+          .exit_code,
+      0);
+  ASSERT_TRUE(WaitForLineIn(log.string(), "subscribed to")) << ReadTextFile(log.string());
+  const CommandOutcome run =
+      Cli("run box --duration 1 --output-interval 0.05 --realtime 2 --watch");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_TRUE(WaitForLineIn(log.string(), "viewer done")) << ReadTextFile(log.string());
+  const std::string viewer_log = ReadTextFile(log.string());
+  // Of the 21 frames, every one after the first (at t = 0 the box just touches, depth 0) has
+  // the four corners.
+  const std::smatch drawn = [&] {
+    std::smatch m;
+    std::regex_search(viewer_log, m,
+                      std::regex("contacts: drawn in (\\d+) frames, at most (\\d+)"));
+    return m;
+  }();
+  ASSERT_EQ(drawn.size(), 3u) << viewer_log;
+  EXPECT_GE(std::stoi(drawn[1]), 20) << viewer_log;
+  EXPECT_EQ(std::stoi(drawn[2]), 4) << viewer_log;
+  EXPECT_THAT(viewer_log, ::testing::Not(HasSubstr("[error]")));
 }
 
 TEST_F(ViewerLinkTest, RunModeJoinsARunningRunAndAnswersFromThenOn) {

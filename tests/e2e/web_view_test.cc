@@ -392,6 +392,31 @@ TEST_F(WebViewTest, AWorldsModelsAreAllDrawnAndItsTcpProbedFromThePage) {
   ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
 }
 
+// Contacts on the page (issue 44): with --contacts the viewer sends each frame's contacts to
+// the pages, which draw a point and a force arrow each. A box resting on a plane: four
+// corners, each arrow the floor's share of the weight, pointing down.
+TEST_F(WebViewTest, APageDrawsTheContactsOfABoxRestingOnAPlane) {
+  const CommandOutcome submitted =
+      Cli("submit " MBSTREAM_SOURCE_DIR "/tests/data/contact/box_resting.sdf --name box");
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
+  const nlohmann::json seen = WatchSubmittedRun("box", "--contacts");
+  ASSERT_GE(seen["record"].size(), 10u);
+  for (const auto& frame : seen["record"]) {
+    if (frame["seq"].get<int64_t>() == 0) continue;  // at t = 0 the box just touches
+    ASSERT_EQ(frame["contacts"].size(), 4u) << frame.dump();
+    for (const auto& c : frame["contacts"]) {
+      EXPECT_NEAR(std::abs(c["point"]["x"].get<double>()), 0.1, 1e-6) << c.dump();
+      EXPECT_NEAR(std::abs(c["point"]["y"].get<double>()), 0.1, 1e-6) << c.dump();
+      // Downwards, and no longer than the largest force so far's 0.25 m (the box settles,
+      // so its first frames' forces are larger than its weight's share).
+      const double drop = c["point"]["z"].get<double>() - c["tip"]["z"].get<double>();
+      EXPECT_GT(drop, 0.05) << c.dump();
+      EXPECT_LE(drop, 0.25 + 1e-9) << c.dump();
+    }
+  }
+  ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
+}
+
 TEST_F(WebViewTest, AColladaMeshedRobotIsDrawnWithItsMaterialColours) {
   const fs::path robot = dir_ / "colladabot";
   fs::create_directories(robot / "meshes");

@@ -146,6 +146,10 @@ void LogFinalStatus(const LinkStatus& status) {
   const v1::ViewerStatus final = status.Get();
   spdlog::info("viewer done: {} runs, last run {}: {} frames, {} probe reports", final.runs_seen(),
                final.run_id(), final.frames(), final.probe_reports());
+  if (final.contact_frames() > 0) {
+    spdlog::info("contacts: drawn in {} frames, at most {} in one", final.contact_frames(),
+                 final.contacts_peak());
+  }
   if (final.mode() == "replay") {
     spdlog::info("replay of run {}: probe set {}", final.run_id(), final.probe_set());
   }
@@ -182,6 +186,8 @@ int RunLink(const LinkCommandOptions& options) {
   scene_options.triangle_budget = options.triangle_budget;
   scene_options.window_title = "mbstream viewer: " + options.link.server;
   if (!options.link.replay.compare_run_id.empty()) scene_options.ghost_opacity = kGhostOpacity;
+  scene_options.contacts = options.link.contacts;
+  scene_options.contact_scale = options.link.contact_scale;
   LinkOptions link_options = options.link;
   if (!options.scene_file.empty()) {
     link_options.replay.scene_tag = std::filesystem::path(options.scene_file).filename().string();

@@ -87,6 +87,12 @@ void AddLinkFlags(CLI::App& app, ViewerFlags& flags, Related& o) {
   o.compare = app.add_option("--compare", flags.link.link.replay.compare_run_id,
                              "Replay: show this ended run of the same model as a "
                              "translucent ghost, with the distance between the TCPs");
+  app.add_flag("--contacts", flags.link.link.contacts,
+               "Ask for each frame's contacts and draw them: a point and a force arrow each");
+  app.add_option("--contact-scale", flags.link.link.contact_scale,
+                 "With --contacts: force arrows' length in m per N (0 = the largest force so "
+                 "far is 0.25 m)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--exit-after-runs", flags.link.link.exit_after_runs,
                  "With --follow: exit after this many runs ended (0 = never)")
       ->check(CLI::NonNegativeNumber);

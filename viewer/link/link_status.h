@@ -2,6 +2,7 @@
 // service (read).
 #pragma once
 
+#include <algorithm>
 #include <mutex>
 #include <string>
 
@@ -83,6 +84,14 @@ class LinkStatus {
       s.set_missed_frames(s.missed_frames() + missed);
       s.set_probe_reports(s.probe_reports() + probes);
       s.set_probe_compute_us(s.frames() > 0 ? 1e-3 * compute_ns_total_ / s.frames() : 0.0);
+    });
+  }
+  // A frame shown with `count` contacts drawn (--contacts).
+  void AddContacts(int count) {
+    if (count == 0) return;
+    Set([&](v1::ViewerStatus& s) {
+      s.set_contact_frames(s.contact_frames() + 1);
+      s.set_contacts_peak(std::max(s.contacts_peak(), count));
     });
   }
   // Frames the server dropped for this viewer with no frame of the batch left to show.

@@ -44,6 +44,20 @@ double Distance(const v1::Vector3& a, const v1::Vector3& b) {
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
+// A frame's contacts as the layer draws them: each point, and the force on the pair's first
+// body (normal force along the normal, plus friction), into `out` (its storage reused).
+void ContactMarks(const v1::Frame& frame, std::vector<ContactMark>* out) {
+  out->resize(frame.contacts_size());
+  for (int i = 0; i < frame.contacts_size(); ++i) {
+    const v1::FrameContact& c = frame.contacts(i);
+    ContactMark& m = (*out)[i];
+    m.point = {c.point_m().x(), c.point_m().y(), c.point_m().z()};
+    m.force = c.normal_force_n() * Eigen::Vector3d(c.normal().x(), c.normal().y(), c.normal().z()) +
+              Eigen::Vector3d(c.friction_force_n().x(), c.friction_force_n().y(),
+                              c.friction_force_n().z());
+  }
+}
+
 bool IsFatal(grpc::StatusCode code) {
   return code == grpc::StatusCode::NOT_FOUND || code == grpc::StatusCode::INVALID_ARGUMENT ||
          code == grpc::StatusCode::UNAUTHENTICATED || code == grpc::StatusCode::PERMISSION_DENIED;
@@ -105,6 +119,7 @@ struct SubscriberLink::StreamState {
   v1::SubscribeRequest reply;  // reused for every probe report
   std::vector<ProbeReport> probes;
   std::vector<double> q, ghost_q;
+  std::vector<ContactMark> contacts;  // the frame's, reused
   // The model's position coordinates (ModelInfo.positions, else dofs): a frame's values beyond
   // them are the columns of the joints cut to close loops (the server's results order: the tree's
   // joints, then the cut joints'), which pose nothing.
@@ -179,6 +194,7 @@ v1::SubscribeRequest SubscriberLink::StartRequest() const {
     SetReplay(options_.replay, start.mutable_start()->mutable_replay());
   }
   start.mutable_start()->set_max_batch(options_.max_batch);
+  start.mutable_start()->set_contacts(options_.contacts);
   return start;
 }
 
@@ -278,6 +294,11 @@ void SubscriberLink::OnFrames(const v1::FrameBatch& batch, StreamState* state) {
                                 ghost.q().begin() + std::min(ghost.q_size(), tree_values));
           scene.ghost()->SetJointValues(state->ghost_q);
           status_->AddGhost(frame.t_s(), Distance(frame.tcp_m(), ghost.tcp_m()));
+        }
+        if (scene.contacts()) {
+          ContactMarks(frame, &state->contacts);
+          scene.contacts()->SetContacts(state->contacts);
+          status_->AddContacts(static_cast<int>(state->contacts.size()));
         }
       });
     } catch (const std::exception& e) {  // InputError: the frame does not fit the scene

@@ -37,6 +37,8 @@ struct LinkOptions {
   int exit_after_runs = 0;       // follow: stop after this many runs ended; 0 = never
   int max_batch = 64;            // frames per message asked of the server
   ReplayOptions replay;          // with run_id
+  bool contacts = false;         // --contacts: ask for the frames' contacts and draw them
+  double contact_scale = 0.0;    // --contact-scale: m per N of the force arrows; 0 = automatic
 };
 
 class SubscriberLink {

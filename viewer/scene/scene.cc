@@ -105,6 +105,9 @@ Scene::Scene(SceneDescription description, const SceneOptions& options,
     probe_actors_.push_back(MakeProbeActor(marker));
     renderer_->AddActor(probe_actors_.back());
   }
+  if (options.contacts) {
+    contacts_ = std::make_unique<ContactLayer>(renderer_, options.contact_scale);
+  }
   if (options.ghost_opacity > 0.0) {
     ghost_ = std::make_unique<GhostLayer>(description_, renderer_, options.ghost_opacity);
   }
@@ -260,6 +263,7 @@ std::uint64_t Scene::Frames(std::vector<Eigen::Isometry3d>* out) const {
 
 void Scene::SyncActors() {
   if (ghost_) ghost_->SyncActors();
+  if (contacts_) contacts_->SyncActors();
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     if (version_ == applied_version_) return;

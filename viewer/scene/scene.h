@@ -25,6 +25,7 @@
 
 #include "viewer/kinematics/pose_solver.h"
 #include "viewer/model/scene_description.h"
+#include "viewer/scene/contact_layer.h"
 #include "viewer/scene/ghost_layer.h"
 #include "viewer/scene/mesh_file_reader.h"
 #include "viewer/scene/probe_report.h"
@@ -45,6 +46,10 @@ struct SceneOptions {
   // > 0: the scene also draws a ghost (a second, translucent copy of the mechanism posed on
   // its own, ghost_layer.h) with this opacity.
   double ghost_opacity = 0.0;
+  // The scene also draws each frame's contact points and force arrows (contact_layer.h);
+  // contact_scale in m/N, 0 = automatic.
+  bool contacts = false;
+  double contact_scale = 0.0;
 };
 
 // A render window with the options' size, offscreen flag and title (no X request yet: the
@@ -133,6 +138,8 @@ class Scene {
   std::string missing_meshes_line() const { return MissingMeshesLine(missing_meshes_); }
   // The ghost (SceneOptions::ghost_opacity > 0), or nullptr. Its pose side is thread-safe.
   GhostLayer* ghost() { return ghost_.get(); }
+  // The contacts' layer (SceneOptions::contacts), or nullptr. Its pose side is thread-safe.
+  ContactLayer* contacts() { return contacts_.get(); }
 
  private:
   SceneDescription description_;
@@ -156,6 +163,7 @@ class Scene {
   vtkSmartPointer<vtkTextActor> missing_meshes_actor_;  // top left; null when none is missing
   long long triangle_count_ = 0;
   std::unique_ptr<GhostLayer> ghost_;
+  std::unique_ptr<ContactLayer> contacts_;
 
   Scene(SceneDescription description, const SceneOptions& options,
         vtkSmartPointer<vtkRenderWindow> window, bool owns_window);

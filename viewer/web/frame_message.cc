@@ -56,7 +56,17 @@ std::string FrameMessageJson(const FrameMessage& frame, const v1::ViewerStatus& 
                    i ? "," : "", Quoted(p.name), Quoted(p.frame), p.position_m.x(),
                    p.position_m.y(), p.position_m.z());
   }
-  out += "]}";
+  out += ']';
+  if (frame.contacts) {
+    fmt::format_to(it, ",\"contact_scale\":{:.9g},\"c\":[", frame.contact_scale);
+    for (std::size_t i = 0; i < frame.contact_marks.size(); ++i) {
+      const ContactMark& c = frame.contact_marks[i];
+      fmt::format_to(it, "{}[{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}]", i ? "," : "", c.point.x(),
+                     c.point.y(), c.point.z(), c.force.x(), c.force.y(), c.force.z());
+    }
+    out += ']';
+  }
+  out += '}';
   return out;
 }
 

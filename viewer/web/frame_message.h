@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "mbstream/v1/viewer_service.pb.h"
+#include "viewer/scene/contact_layer.h"
 #include "viewer/scene/probe_report.h"
 
 namespace mbstream::viewer {
@@ -23,9 +24,15 @@ struct FrameMessage {
   std::span<const Eigen::Isometry3d> frames;
   std::span<const Eigen::Isometry3d> ghost_frames;  // empty without --compare
   std::span<const ProbeReport> probes;
+  // --contacts: the frame's contacts (point, force on the pair's first body, World) and the
+  // arrows' scale in m/N (0: the largest force so far is ContactLayer::kAutoLength long).
+  bool contacts = false;
+  std::span<const ContactMark> contact_marks;
+  double contact_scale = 0.0;
 };
 
-// JSON text; frame matrices as the 12 numbers of their top 3 rows, row by row (9 digits).
+// JSON text; frame matrices as the 12 numbers of their top 3 rows, row by row (9 digits);
+// with contacts, "c": [[px, py, pz, fx, fy, fz], ...] (m, N) and "contact_scale".
 std::string FrameMessageJson(const FrameMessage& frame, const v1::ViewerStatus& status);
 
 }  // namespace mbstream::viewer

@@ -13,6 +13,9 @@ const state = window.mbstream = {
   // False when this page's token may watch but not steer the replay (every page's and the
   // viewer window's: the server's run role); `controls_message` says why.
   controls: true, controls_message: '', control_refused: 0,
+  // mbstream-viewer --contacts: the newest frame's contacts as drawn ({point, tip} in World,
+  // m) and how many frames had any.
+  contacts: [], contact_frames: 0,
 };
 
 const view = document.getElementById('view');
@@ -90,7 +93,9 @@ function onScene(message) {
     return { name: probe.name, frame: probe.frame, refer: probe.refer, refer_name: probe.refer_name, point };
   });
   world.add(root);
-  model = { root, frames, ghost, probes };
+  const contacts = new THREE.Group();
+  root.add(contacts);
+  model = { root, frames, ghost, probes, contacts, contact_marks: [], force_max: 0 };
   // The camera as the VTK viewer placed it; the mouse orbits (left), pans (right), zooms.
   const c = message.camera;
   camera.position.set(...c.position);
@@ -121,6 +126,43 @@ function setMatrices(groups, m) {
   return true;
 }
 
+// A frame's contacts (message.c: [px, py, pz, fx, fy, fz], World, m and N), drawn as the VTK
+// window draws them: a yellow point and a red arrow along the force, message.contact_scale
+// m per N, or (0) 0.25 m for the largest force so far. Objects are reused frame to frame.
+const kAutoLength = 0.25;
+const contactPoint = new THREE.SphereGeometry(0.008, 12, 8);
+const contactMaterial = new THREE.MeshPhongMaterial({ color: 0xffd91a, emissive: 0x665c0a });
+function drawContacts(list) {
+  const marks = model.contact_marks;
+  for (const c of list) model.force_max = Math.max(model.force_max, Math.hypot(c[3], c[4], c[5]));
+  const scale = state.contact_scale > 0 ? state.contact_scale
+                                        : (model.force_max > 0 ? kAutoLength / model.force_max : 0);
+  state.contacts = list.map((c, i) => {
+    if (i >= marks.length) {
+      const point = new THREE.Mesh(contactPoint, contactMaterial);
+      const arrow = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 1, 0xf24033);
+      model.contacts.add(point, arrow);
+      marks.push({ point, arrow });
+    }
+    const origin = new THREE.Vector3(c[0], c[1], c[2]);
+    const force = new THREE.Vector3(c[3], c[4], c[5]);
+    const length = scale * force.length();
+    marks[i].point.position.copy(origin);
+    marks[i].point.visible = true;
+    marks[i].arrow.position.copy(origin);
+    if (length > 0) marks[i].arrow.setDirection(force.clone().normalize());
+    marks[i].arrow.setLength(Math.max(length, 1e-6), 0.2 * length, 0.06 * length);
+    marks[i].arrow.visible = length > 0;
+    const tip = origin.clone().addScaledVector(force, scale);
+    return { point: { x: origin.x, y: origin.y, z: origin.z }, tip: { x: tip.x, y: tip.y, z: tip.z } };
+  });
+  for (let i = list.length; i < marks.length; ++i) {
+    marks[i].point.visible = false;
+    marks[i].arrow.visible = false;
+  }
+  if (list.length > 0) state.contact_frames += 1;
+}
+
 function onFrame(message) {
   if (!model || message.scene !== state.scene) return;
   if (!setMatrices(model.frames, message.m)) return;
@@ -137,6 +179,10 @@ function onFrame(message) {
     ghost_distance: message.compare ? message.tcp_distance : null,
     ghost_distance_max: message.compare ? message.tcp_distance_max : null,
   });
+  if (message.c) {
+    state.contact_scale = message.contact_scale;
+    drawContacts(message.c);
+  }
   const latency = performance.timeOrigin + performance.now() - message.posed_ms;
   state.latency_ms.push(latency);
   if (state.latency_ms.length > 1000) state.latency_ms.shift();
@@ -151,7 +197,7 @@ function onFrame(message) {
     return { name: probe.name, frame: probe.refer_name, x: p.x, y: p.y, z: p.z,
              world: { x: world.x, y: world.y, z: world.z } };
   });
-  if (state.record) state.record.push({ seq: state.seq, t: state.t, probes: state.probes });
+  if (state.record) state.record.push({ seq: state.seq, t: state.t, probes: state.probes, contacts: state.contacts });
   updateHud();
   updateReplay(message);
 }

@@ -93,6 +93,11 @@ void WebView::OnPosed(Scene& scene, std::span<const ProbeReport> probes) {
   if (&scene != scene_) return;  // not exported yet: OnScene sends its pose
   scene.Frames(&frames_);
   if (scene.ghost()) ghost_frames_ = scene.ghost()->Frames();
+  contacts_on_ = scene.contacts() != nullptr;
+  if (contacts_on_) {
+    scene.contacts()->Marks(&contacts_);
+    contact_scale_ = scene.contacts()->scale();
+  }
   probes_.assign(probes.begin(), probes.end());
   posed_unix_ms_ = UnixMs();
   status_->GetSeq(&seq_, &t_s_);  // the batch's (the link set it before posing us)
@@ -124,6 +129,9 @@ void WebView::Publish() {
     sent_frames_.assign(frames_.begin(), frames_.end());
     sent_ghost_frames_.assign(ghost_frames_.begin(), ghost_frames_.end());
     sent_probes_.assign(probes_.begin(), probes_.end());
+    sent_contacts_.assign(contacts_.begin(), contacts_.end());
+    frame.contacts = contacts_on_;
+    frame.contact_scale = contact_scale_;
     frame.scene_version = version_;
     frame.posed_unix_ms = posed ? posed_unix_ms_ : UnixMs();
     status_copy_.set_seq(seq_);  // the pose's, not a newer batch's
@@ -134,6 +142,7 @@ void WebView::Publish() {
   frame.frames = sent_frames_;
   frame.ghost_frames = sent_ghost_frames_;
   frame.probes = sent_probes_;
+  frame.contact_marks = sent_contacts_;
   server_.PublishFrame(FrameMessageJson(frame, status_copy_));
 }
 

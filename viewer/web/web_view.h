@@ -65,6 +65,9 @@ class WebView {
   const Scene* scene_ = nullptr;
   std::uint64_t version_ = 0;
   std::vector<Eigen::Isometry3d> frames_, ghost_frames_;
+  bool contacts_on_ = false;  // the scene draws contacts (--contacts)
+  std::vector<ContactMark> contacts_;
+  double contact_scale_ = 0.0;
   std::vector<ProbeReport> probes_;
   double posed_unix_ms_ = 0;
   std::int64_t seq_ = -1;  // the status's seq and time when the pose was taken
@@ -75,6 +78,7 @@ class WebView {
   // The web thread's own (no lock): the message's copy of the pose, the state last sent.
   std::uint64_t number_ = 0;
   std::vector<Eigen::Isometry3d> sent_frames_, sent_ghost_frames_;
+  std::vector<ContactMark> sent_contacts_;
   std::vector<ProbeReport> sent_probes_;
   v1::ViewerStatus status_copy_;
   std::string published_state_;

@@ -3,6 +3,9 @@
 models/irb1600/irb1600.urdf as an SDFormat 1.8 model, its base welded to the world) and
 box/ (a 0.1 m cube of 1 kg). world.sdf, written by hand, includes them.
 
+`generate.py --push DIR` writes the same two into DIR with collision geometry for contact
+(../irb1600_push: the robot's tool a 4 cm sphere at the TCP, the box its own cube).
+
 The URDF's frames carry over unchanged: each joint's pose is its <origin> relative to the
 parent link, each link's pose is its joint's frame (relative_to the joint), so the link
 frames, inertials and visuals are the URDF's, and the joints keep their names and order.
@@ -29,7 +32,7 @@ def geometry(element):
     raise ValueError(f"no SDFormat shape for {shape.tag}")
 
 
-def link(element, joint_of):
+def link(element, joint_of, tool_radius=None):
     name = element.get("name")
     lines = [f'    <link name="{name}">']
     if name in joint_of:
@@ -58,6 +61,11 @@ def link(element, joint_of):
             "        <material><diffuse>0.93 0.45 0.1 1</diffuse></material>",
             "      </visual>",
         ]
+    if tool_radius is not None and name == "link6":
+        # The tool: a sphere centred on the TCP (tcp_joint's origin in link6's frame).
+        lines += ['      <collision name="tool">', "        <pose>0.065 0 0 0 0 0</pose>",
+                  f"        <geometry><sphere><radius>{tool_radius:g}</radius></sphere></geometry>",
+                  "      </collision>"]
     lines.append("    </link>")
     return lines
 
@@ -99,7 +107,7 @@ def write(path, text):
         out.write(text)
 
 
-def irb1600():
+def irb1600(folder="irb1600", tool_radius=None):
     robot = ET.parse(URDF).getroot()
     joints = robot.findall("joint")
     joint_of = {j.find("child").get("link"): j.get("name") for j in joints}
@@ -107,20 +115,24 @@ def irb1600():
              "<!-- Written by ../generate.py from models/irb1600/irb1600.urdf; do not edit. -->",
              '<sdf version="1.8">', '  <model name="irb1600">']
     for element in robot.findall("link"):
-        lines += link(element, joint_of)
+        lines += link(element, joint_of, tool_radius)
     lines += ['    <joint name="base_weld" type="fixed">', "      <parent>world</parent>",
               "      <child>base_link</child>", "    </joint>"]
     for element in joints:
         lines += joint(element)
     lines += ["  </model>", "</sdf>", ""]
-    write("irb1600/model.sdf", "\n".join(lines))
-    write("irb1600/model.config", config("irb1600", "ABB IRB 1600, base welded to the world"))
+    write(f"{folder}/model.sdf", "\n".join(lines))
+    write(f"{folder}/model.config", config("irb1600", "ABB IRB 1600, base welded to the world"))
 
 
-def box():
+def box(folder="box", collide=False):
     mass, edge = 1.0, 0.1
     moment = mass * 2 * edge * edge / 12
-    write("box/model.sdf", f"""<?xml version="1.0"?>
+    collision = (f"""
+      <collision name="cube">
+        <geometry><box><size>{edge:g} {edge:g} {edge:g}</size></box></geometry>
+      </collision>""" if collide else "")
+    write(f"{folder}/model.sdf", f"""<?xml version="1.0"?>
 <!-- Written by ../generate.py; do not edit. A {edge:g} m cube of {mass:g} kg, no joint: a free body. -->
 <sdf version="1.8">
   <model name="box">
@@ -132,17 +144,25 @@ def box():
       <visual name="visual">
         <geometry><box><size>{edge:g} {edge:g} {edge:g}</size></box></geometry>
         <material><diffuse>0.2 0.5 0.9 1</diffuse></material>
-      </visual>
+      </visual>{collision}
     </link>
   </model>
 </sdf>
 """)
-    write("box/model.config", config("box", "a 0.1 m cube of 1 kg"))
+    write(f"{folder}/model.config", config("box", "a 0.1 m cube of 1 kg"))
 
 
 if __name__ == "__main__":
     import os
-    os.makedirs("irb1600", exist_ok=True)
-    os.makedirs("box", exist_ok=True)
-    irb1600()
-    box()
+    import sys
+    if sys.argv[1:2] == ["--push"]:
+        out = sys.argv[2]
+        os.makedirs(f"{out}/irb1600", exist_ok=True)
+        os.makedirs(f"{out}/box", exist_ok=True)
+        irb1600(f"{out}/irb1600", tool_radius=0.04)
+        box(f"{out}/box", collide=True)
+    else:
+        os.makedirs("irb1600", exist_ok=True)
+        os.makedirs("box", exist_ok=True)
+        irb1600()
+        box()
