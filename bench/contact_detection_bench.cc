@@ -4,8 +4,8 @@
 // default stiffness, 5e4 N/m the pair: m g / k), so that every box stands on its four bottom
 // corners, 400 contacts:
 //
-//   build/bench/contact_detection_bench --benchmark_repetitions=10 \
-//     --benchmark_report_aggregates_only
+//   build/bench/contact_detection_bench --benchmark_repetitions=10
+//       --benchmark_report_aggregates_only  (one line)
 //
 // mbstream (server/contact/, the code runs use), one evaluation each:
 //   BM_MbstreamContactForces  ContactForces::AddForces: the geometries' poses, FCL's dynamic
@@ -19,9 +19,12 @@
 // MuJoCo 2.2.2 (where CMake finds it): the same scene in MJCF,
 //   BM_MujocoCollision        mj_collision: its broad phase (sweep and prune, bounding
 //                             spheres) and narrow phase (plane-box), the contacts in d->contact.
-// Each iteration evaluates the same state (after the kinematics, not timed).
+// Each iteration evaluates the same state (after the kinematics, not timed). For scale, whole
+// steps: BM_MbstreamRun (a 0.1 s run: steps, right-hand sides a step, each one AddForces)
+// and BM_MujocoStep (mj_step).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -30,9 +33,11 @@
 
 #include "server/contact/contact_forces.h"
 #include "server/contact/narrow_phase.h"
+#include "server/engine/engine.h"
 #include "server/kinematics/forward_kinematics.h"
 #include "server/model/data.h"
 #include "server/parse/sdf_import.h"
+#include "server/sim/run_validation.h"
 
 #ifdef MBSTREAM_HAVE_MUJOCO
 #include <mujoco/mujoco.h>
@@ -158,6 +163,30 @@ void BM_MbstreamSignedDistances(benchmark::State& state) {
 }
 BENCHMARK(BM_MbstreamSignedDistances)->Unit(benchmark::kMicrosecond);
 
+// For scale: a whole run of the scene (0.1 s at the run spec's defaults: BDF, rtol 1e-6, the
+// joint formulation), its steps and right-hand sides (each one AddForces), CPU per step.
+void BM_MbstreamRun(benchmark::State& state) {
+  OurBoxes& s = Ours();
+  RunConfig config;
+  config.formulation = Formulation::kJoint;
+  config.want_torques = false;
+  config.duration = 0.1;
+  config.output_interval = 0.01;
+  config.drives.resize(static_cast<size_t>(s.model.nv()));
+  ValidateRun(s.model, config);
+  RunResult result;
+  for (auto _ : state) result = Simulate(s.model, config);
+  const SolverStats& solver = result.stats.solver;
+  state.counters["steps"] = static_cast<double>(solver.steps);
+  state.counters["rhs_per_step"] =
+      static_cast<double>(solver.rhs_evals) / static_cast<double>(std::max(1L, solver.steps));
+  state.counters["us_per_step"] = benchmark::Counter(
+      static_cast<double>(solver.steps),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  if (result.stats.status != RunStatus::kFinished) state.SkipWithError("the run did not finish");
+}
+BENCHMARK(BM_MbstreamRun)->Unit(benchmark::kMillisecond)->Iterations(1);
+
 #ifdef MBSTREAM_HAVE_MUJOCO
 std::string BoxesMjcf() {
   std::string text =
@@ -208,6 +237,15 @@ void BM_MujocoCollision(benchmark::State& state) {
   state.counters["contacts"] = s.d->ncon;
 }
 BENCHMARK(BM_MujocoCollision)->Unit(benchmark::kMicrosecond);
+
+// For scale: one mj_step (its default 2 ms, Euler) of the scene from rest.
+void BM_MujocoStep(benchmark::State& state) {
+  static MujocoBoxes s;
+  mj_resetData(s.m, s.d);
+  for (auto _ : state) mj_step(s.m, s.d);
+  state.counters["contacts"] = s.d->ncon;
+}
+BENCHMARK(BM_MujocoStep)->Unit(benchmark::kMicrosecond);
 #endif
 
 }  // namespace

@@ -52,10 +52,8 @@
 #include "server/parse/sdf_import.h"
 #include "server/sim/run_validation.h"
 
-namespace mbstream {
+namespace mbstream::contact_peers {
 namespace {
-
-using namespace contact_peers;  // NOLINT: the bench's own helpers
 
 // ---- mbstream ----
 
@@ -262,7 +260,7 @@ int Run(const std::string& out, bool quick) {
 }
 
 }  // namespace
-}  // namespace mbstream
+}  // namespace mbstream::contact_peers
 
 int main(int argc, char** argv) {
   std::string out = "contact_peers.csv";
@@ -274,7 +272,7 @@ int main(int argc, char** argv) {
   app.add_flag("--quick", quick, "each engine at its default only");
   CLI11_PARSE(app, argc, argv);
   try {
-    return mbstream::Run(out, quick);
+    return mbstream::contact_peers::Run(out, quick);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "contact_peers: %s\n", e.what());
     return 1;
