@@ -21,14 +21,15 @@
 //
 // mbstream: the scenes of tests/data/contact/ with the run spec's defaults (k 1e5 N/m a
 // surface, BDF; rtol 1e-6; the bounce with d = 0, the scene's elasticity) and tighter
-// tolerances down to 1e-10; the incline and the rolling cylinder also with k = 1e8 (a stiffer
-// surface, rolling radius r to 2e-6, with the rolling check's d = 20 s/m and v_s = 1e-3 m/s).
+// tolerances down to 1e-10; the incline and the rolling cylinder also with the rolling check's
+// d = 20 s/m and v_s = 1e-3 m/s at k = 1e5, 1e6, 1e7 and 1e8 (stiffer surfaces: at 1e8 the
+// rolling radius is r to 2e-6).
 // MuJoCo: the same bodies in MJCF at its defaults (timestep 2 ms, Euler, solref 0.02 1, pyramidal
 // cone) and at smaller timesteps; the bounce also with solref "-k 0" (stiffness k = 5e4 N/m,
 // mbstream's pair, no damping: MuJoCo's elastic contact) at smaller timesteps. DART
 // (contact_peers_dart.h: rigid LCP contact, restitution 1 for the bounce): its defaults (time step
-// 1 ms, FCL with the shapes as meshes, the boxed LCP solver) and smaller steps, and FCL's primitive
-// shapes at the same steps. CPU: the median of three runs, this process's CPU clock.
+// 1 ms, FCL with the shapes as meshes, the boxed LCP solver), 2 ms and smaller steps, and FCL's
+// primitive shapes at the same steps. CPU: the median of three runs, this process's CPU clock.
 #include <mujoco/mujoco.h>
 
 #include <CLI/CLI.hpp>
@@ -62,7 +63,9 @@ struct OurScene {
   RunConfig config;
 };
 
-OurScene Ours(const std::string& scene, double rtol, double stiffness) {
+// `damped`: the rolling check's surface (contact_scenes_test.cc), d = 20 s/m and v_s = 1e-3
+// m/s, instead of the defaults (0.2 s/m, 1e-4 m/s); the bounce stays elastic.
+OurScene Ours(const std::string& scene, double rtol, double stiffness, bool damped) {
   const std::string file = scene == "incline"   ? "box_on_plane.sdf"
                            : scene == "rolling" ? "cylinder_on_plane.sdf"
                                                 : "ball_on_plane.sdf";
@@ -82,31 +85,28 @@ OurScene Ours(const std::string& scene, double rtol, double stiffness) {
     c.gravity = TiltedGravity(kInclineTheta);
     c.contact.mu_static = 0.4;
     c.contact.mu_dynamic = 0.3;
-    if (stiffness > 1e6) {  // the stiff surface's settings of the rolling check, as below
-      c.contact.stiction_tolerance = 1e-3;
-      c.contact.dissipation = 20.0;
-    }
   } else if (scene == "rolling") {
     c.duration = 0.5;
     c.output_interval = 0.01;
     c.gravity = TiltedGravity(kRollingTheta);
     c.contact.mu_static = 0.8;
     c.contact.mu_dynamic = 0.8;
-    if (stiffness > 1e6) {  // the rolling check's stiff surface (contact_scenes_test.cc)
-      c.contact.stiction_tolerance = 1e-3;
-      c.contact.dissipation = 20.0;
-    }
   } else {
     c.duration = 3.0;
     c.output_interval = 1e-3;
     c.contact.dissipation = 0.0;  // the scene is elastic
   }
+  if (damped && scene != "bounce") {
+    c.contact.stiction_tolerance = 1e-3;
+    c.contact.dissipation = 20.0;
+  }
   ValidateRun(s.model, c);
   return s;
 }
 
-Row RunOurs(const std::string& scene, double rtol, double stiffness, const std::string& setting) {
-  const OurScene s = Ours(scene, rtol, stiffness);
+Row RunOurs(const std::string& scene, double rtol, double stiffness, bool damped,
+            const std::string& setting) {
+  const OurScene s = Ours(scene, rtol, stiffness, damped);
   RunResult result;
   Row row{scene, "mbstream", setting};
   row.cpu_per_sim_s = MedianCpu([&] { result = Simulate(s.model, s.config); }) / s.config.duration;
@@ -211,7 +211,7 @@ int Run(const std::string& out, bool quick) {
       quick ? std::vector<double>{2e-3} : std::vector<double>{2e-3, 1e-3, 5e-4, 2e-4, 1e-4, 5e-5};
 #ifdef MBSTREAM_HAVE_DART
   const std::vector<double> dart_timesteps =
-      quick ? std::vector<double>{1e-3} : std::vector<double>{1e-3, 5e-4, 2e-4, 1e-4, 5e-5};
+      quick ? std::vector<double>{1e-3} : std::vector<double>{2e-3, 1e-3, 5e-4, 2e-4, 1e-4, 5e-5};
 #endif
   std::vector<Row> rows;
   auto add = [&](Row row) {
@@ -223,11 +223,16 @@ int Run(const std::string& out, bool quick) {
   };
   for (const std::string scene : {"incline", "rolling", "bounce"}) {
     for (double rtol : rtols) {
-      add(RunOurs(scene, rtol, 1e5,
+      add(RunOurs(scene, rtol, 1e5, false,
                   "k 1e5; rtol " + Format(rtol) + (rtol == 1e-6 ? " (default)" : "")));
     }
-    if (scene != std::string("bounce")) {
-      for (double rtol : rtols) add(RunOurs(scene, rtol, 1e8, "k 1e8; rtol " + Format(rtol)));
+    if (scene != std::string("bounce")) {  // damped, stiffer surfaces: less compliance
+      for (int e : quick ? std::vector<int>{8} : std::vector<int>{5, 6, 7, 8}) {
+        for (double rtol : rtols) {
+          add(RunOurs(scene, rtol, std::pow(10.0, e), true,
+                      "k 1e" + std::to_string(e) + " d 20; rtol " + Format(rtol)));
+        }
+      }
     }
     for (double h : timesteps) {
       add(RunMujoco(scene, h, "", "dt " + Format(h) + (h == 2e-3 ? " (default)" : "")));
