@@ -1,6 +1,6 @@
 // The scenes of bench/contact_peers in DART 6.12 (Debian's libdart-dev; built only where CMake
 // finds it): the same bodies, masses, inertias, friction and, for the bounce, elasticity
-// (restitution 1; DART's default 0 does not bounce), on a 20 x 20 x 0.2 m fixed box whose top
+// (restitution 1; DART's default, 0, is inelastic), on a 20 x 20 x 0.2 m fixed box whose top
 // face is the plane z = 0 (DART's examples' ground). DART's contact is rigid: a
 // velocity-level LCP (its BoxedLcpConstraintSolver, Dantzig with PGS as the fallback) with a
 // Coulomb friction pyramid of one coefficient (the smaller of the two shapes'), restitution
