@@ -1,4 +1,5 @@
-// Contact side by side with MuJoCo 2.2.2 (issue 44, "Figures"): three scenes with closed
+// Contact side by side with MuJoCo 2.2.2 and DART 6.12 (issue 44, "Figures"; DART where CMake
+// finds it, scripts/setup.sh --peers installs it): three scenes with closed
 // forms, each engine at its defaults and at finer settings, the error against the closed
 // form and the CPU time per simulated second, one CSV row per run:
 //
@@ -6,9 +7,9 @@
 //   /usr/bin/python3 scripts/plot_contact_peers.py --csv docs/contact_peers.csv --out docs
 //
 // Scenes (the incline is gravity turned by theta about y, so that the plane stays z = 0, in
-// both engines):
+// every engine):
 //   incline  a 0.2 m box of 2 kg slides down a 30 degree incline, mu_d 0.3 (mbstream's
-//            mu_s 0.4; MuJoCo has one coefficient): a = g (sin 30 - 0.3 cos 30); measured
+//            mu_s 0.4; MuJoCo and DART have one coefficient): a = g (sin 30 - 0.3 cos 30); measured
 //            as the least-squares slope of the velocity along the incline over t in [1, 2] s
 //            (sampled every 10 ms: the contact's vibration averages out).
 //   rolling  a solid cylinder (r 0.1 m, 2 kg) rolls down 20 degrees, mu 0.8:
@@ -20,12 +21,15 @@
 //
 // mbstream: the scenes of tests/data/contact/ with the run spec's defaults (k 1e5 N/m a
 // surface, BDF; rtol 1e-6; the bounce with d = 0, the scene's elasticity) and tighter
-// tolerances down to 1e-10; the rolling cylinder also with k = 1e8 (a stiffer surface,
-// rolling radius r to 2e-6, with the rolling check's d = 20 s/m and v_s = 1e-3 m/s). MuJoCo: the
-// same bodies in MJCF at its defaults (timestep 2 ms, Euler, solref 0.02 1, pyramidal cone) and at
-// smaller timesteps; the bounce also with solref "-k 0" (stiffness k = 5e4 N/m, mbstream's pair, no
-// damping: MuJoCo's elastic contact) at smaller timesteps. CPU: the median of three runs, this
-// process's CPU clock.
+// tolerances down to 1e-10; the incline and the rolling cylinder also with the rolling check's
+// d = 20 s/m and v_s = 1e-3 m/s at k = 1e5, 1e6, 1e7 and 1e8 (stiffer surfaces: at 1e8 the
+// rolling radius is r to 2e-6).
+// MuJoCo: the same bodies in MJCF at its defaults (timestep 2 ms, Euler, solref 0.02 1, pyramidal
+// cone) and at smaller timesteps; the bounce also with solref "-k 0" (stiffness k = 5e4 N/m,
+// mbstream's pair, no damping: MuJoCo's elastic contact) at smaller timesteps. DART
+// (contact_peers_dart.h: rigid LCP contact, restitution 1 for the bounce): its defaults (time step
+// 1 ms, FCL with the shapes as meshes, the boxed LCP solver), 2 ms and smaller steps, and FCL's
+// primitive shapes at the same steps. CPU: the median of three runs, this process's CPU clock.
 #include <mujoco/mujoco.h>
 
 #include <CLI/CLI.hpp>
@@ -41,65 +45,16 @@
 #include <string>
 #include <vector>
 
+#include "bench/contact_peers_common.h"
+#ifdef MBSTREAM_HAVE_DART
+#include "bench/contact_peers_dart.h"
+#endif
 #include "server/engine/engine.h"
 #include "server/parse/sdf_import.h"
 #include "server/sim/run_validation.h"
 
-namespace mbstream {
+namespace mbstream::contact_peers {
 namespace {
-
-constexpr double kG = 9.81;
-const double kInclineTheta = 30.0 * M_PI / 180.0;
-const double kRollingTheta = 20.0 * M_PI / 180.0;
-
-struct Row {
-  std::string scene, engine, setting;
-  double error = 0.0;          // relative, against the closed form
-  double cpu_per_sim_s = 0.0;  // s of CPU per s of simulated time
-  std::string status = "FINISHED";
-};
-
-double CpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-// The median CPU time of three calls of `run`, which returns its measurement each time.
-double MedianCpu(const std::function<void()>& run) {
-  std::array<double, 3> cpu{};
-  for (double& c : cpu) {
-    const double t0 = CpuSeconds();
-    run();
-    c = CpuSeconds() - t0;
-  }
-  std::sort(cpu.begin(), cpu.end());
-  return cpu[1];
-}
-
-// The apexes of a height track sampled every h (a local maximum's parabola vertex).
-std::vector<double> Apexes(const std::vector<double>& z, double h) {
-  std::vector<double> apexes;
-  for (size_t k = 1; k + 1 < z.size(); ++k) {
-    if (!(z[k] > z[k - 1] && z[k] >= z[k + 1])) continue;
-    const double a = (z[k - 1] - 2 * z[k] + z[k + 1]) / (2 * h * h);
-    const double b = (z[k + 1] - z[k - 1]) / (2 * h);
-    apexes.push_back(z[k] - b * b / (4 * a));
-  }
-  return apexes;
-}
-
-double BounceError(const std::vector<double>& z, double h) {
-  const std::vector<double> apexes = Apexes(z, h);
-  if (apexes.size() < 3) return 1.0;  // no bounce (or fewer than three): the whole height lost
-  double worst = 0.0;
-  for (size_t k = 0; k < 3; ++k) worst = std::max(worst, std::abs(apexes[k] - 1.0) / 0.9);
-  return worst;
-}
-
-Eigen::Vector3d TiltedGravity(double theta) {
-  return {kG * std::sin(theta), 0.0, -kG * std::cos(theta)};
-}
 
 // ---- mbstream ----
 
@@ -108,7 +63,9 @@ struct OurScene {
   RunConfig config;
 };
 
-OurScene Ours(const std::string& scene, double rtol, double stiffness) {
+// `damped`: the rolling check's surface (contact_scenes_test.cc), d = 20 s/m and v_s = 1e-3
+// m/s, instead of the defaults (0.2 s/m, 1e-4 m/s); the bounce stays elastic.
+OurScene Ours(const std::string& scene, double rtol, double stiffness, bool damped) {
   const std::string file = scene == "incline"   ? "box_on_plane.sdf"
                            : scene == "rolling" ? "cylinder_on_plane.sdf"
                                                 : "ball_on_plane.sdf";
@@ -134,43 +91,22 @@ OurScene Ours(const std::string& scene, double rtol, double stiffness) {
     c.gravity = TiltedGravity(kRollingTheta);
     c.contact.mu_static = 0.8;
     c.contact.mu_dynamic = 0.8;
-    if (stiffness > 1e6) {  // the rolling check's stiff surface (contact_scenes_test.cc)
-      c.contact.stiction_tolerance = 1e-3;
-      c.contact.dissipation = 20.0;
-    }
   } else {
     c.duration = 3.0;
     c.output_interval = 1e-3;
     c.contact.dissipation = 0.0;  // the scene is elastic
   }
+  if (damped && scene != "bounce") {
+    c.contact.stiction_tolerance = 1e-3;
+    c.contact.dissipation = 20.0;
+  }
   ValidateRun(s.model, c);
   return s;
 }
 
-// The least-squares slope of v(t) over the samples at t >= t_from: the acceleration,
-// averaged over what the contact's vibration adds to it.
-double Slope(const std::vector<double>& t, const std::vector<double>& v, double t_from) {
-  double n = 0, st = 0, sv = 0, stt = 0, stv = 0;
-  for (size_t k = 0; k < t.size(); ++k) {
-    if (t[k] < t_from - 1e-12) continue;
-    n += 1;
-    st += t[k];
-    sv += v[k];
-    stt += t[k] * t[k];
-    stv += t[k] * v[k];
-  }
-  return (n * stv - st * sv) / (n * stt - st * st);
-}
-
-double ClosedForm(const std::string& scene) {
-  if (scene == "incline") {
-    return kG * (std::sin(kInclineTheta) - 0.3 * std::cos(kInclineTheta));
-  }
-  return 2.0 / 3.0 * kG * std::sin(kRollingTheta);  // rolling
-}
-
-Row RunOurs(const std::string& scene, double rtol, double stiffness, const std::string& setting) {
-  const OurScene s = Ours(scene, rtol, stiffness);
+Row RunOurs(const std::string& scene, double rtol, double stiffness, bool damped,
+            const std::string& setting) {
+  const OurScene s = Ours(scene, rtol, stiffness, damped);
   RunResult result;
   Row row{scene, "mbstream", setting};
   row.cpu_per_sim_s = MedianCpu([&] { result = Simulate(s.model, s.config); }) / s.config.duration;
@@ -243,8 +179,8 @@ Row RunMujoco(const std::string& scene, double timestep, const std::string& solr
   std::filesystem::remove(path);
   if (m == nullptr) throw std::runtime_error("MuJoCo refused the " + scene + " scene: " + error);
   mjData* d = mj_makeData(m);
-  const double duration = scene == "incline" ? 2.0 : scene == "rolling" ? 0.5 : 3.0;
-  const double sample = scene == "bounce" ? 1e-3 : 0.01;  // s between samples
+  const double duration = Duration(scene);
+  const double sample = SampleInterval(scene);  // s between samples
   const long steps = std::lround(duration / timestep);
   const long every = std::max(1L, std::lround(sample / timestep));
   std::vector<double> samples, times;  // bounce: z; others: vx
@@ -262,25 +198,10 @@ Row RunMujoco(const std::string& scene, double timestep, const std::string& solr
   };
   Row row{scene, "mujoco", setting};
   row.cpu_per_sim_s = MedianCpu(run) / duration;
-  bool finite = true;
-  for (double v : samples) finite = finite && std::isfinite(v);
-  if (!finite) {
-    row.status = "DIVERGED";
-    row.error = 1.0;
-  } else if (scene == "bounce") {
-    row.error = BounceError(samples, static_cast<double>(every) * timestep);
-  } else {
-    row.error = std::abs(Slope(times, samples, duration / 2) / ClosedForm(scene) - 1.0);
-  }
+  Measure(scene, times, samples, static_cast<double>(every) * timestep, &row);
   mj_deleteData(d);
   mj_deleteModel(m);
   return row;
-}
-
-std::string Format(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.3g", value);
-  return text;
 }
 
 int Run(const std::string& out, bool quick) {
@@ -288,9 +209,13 @@ int Run(const std::string& out, bool quick) {
       quick ? std::vector<double>{1e-6} : std::vector<double>{1e-4, 1e-6, 1e-8, 1e-10};
   const std::vector<double> timesteps =
       quick ? std::vector<double>{2e-3} : std::vector<double>{2e-3, 1e-3, 5e-4, 2e-4, 1e-4, 5e-5};
+#ifdef MBSTREAM_HAVE_DART
+  const std::vector<double> dart_timesteps =
+      quick ? std::vector<double>{1e-3} : std::vector<double>{2e-3, 1e-3, 5e-4, 2e-4, 1e-4, 5e-5};
+#endif
   std::vector<Row> rows;
   auto add = [&](Row row) {
-    std::printf("%-8s %-9s %-26s error %-10.3g cpu/sim-s %-10.4g %s\n", row.scene.c_str(),
+    std::printf("%-8s %-9s %-28s error %-10.3g cpu/sim-s %-10.4g %s\n", row.scene.c_str(),
                 row.engine.c_str(), row.setting.c_str(), row.error, row.cpu_per_sim_s,
                 row.status.c_str());
     std::fflush(stdout);
@@ -298,11 +223,16 @@ int Run(const std::string& out, bool quick) {
   };
   for (const std::string scene : {"incline", "rolling", "bounce"}) {
     for (double rtol : rtols) {
-      add(RunOurs(scene, rtol, 1e5,
+      add(RunOurs(scene, rtol, 1e5, false,
                   "k 1e5; rtol " + Format(rtol) + (rtol == 1e-6 ? " (default)" : "")));
     }
-    if (scene == std::string("rolling")) {
-      for (double rtol : rtols) add(RunOurs(scene, rtol, 1e8, "k 1e8; rtol " + Format(rtol)));
+    if (scene != std::string("bounce")) {  // damped, stiffer surfaces: less compliance
+      for (int e : quick ? std::vector<int>{8} : std::vector<int>{5, 6, 7, 8}) {
+        for (double rtol : rtols) {
+          add(RunOurs(scene, rtol, std::pow(10.0, e), true,
+                      "k 1e" + std::to_string(e) + " d 20; rtol " + Format(rtol)));
+        }
+      }
     }
     for (double h : timesteps) {
       add(RunMujoco(scene, h, "", "dt " + Format(h) + (h == 2e-3 ? " (default)" : "")));
@@ -311,6 +241,16 @@ int Run(const std::string& out, bool quick) {
       for (double h : timesteps)
         add(RunMujoco(scene, h, "-50000 0", "solref -5e4 0; dt " + Format(h)));
     }
+#ifdef MBSTREAM_HAVE_DART
+    for (const bool primitives :
+         quick ? std::vector<bool>{false} : std::vector<bool>{false, true}) {
+      for (double h : dart_timesteps) {
+        add(RunDart(scene, DartSetting{h, primitives},
+                    std::string(primitives ? "fcl primitive; " : "fcl mesh; ") + "dt " + Format(h) +
+                        (h == 1e-3 && !primitives ? " (default)" : "")));
+      }
+    }
+#endif
   }
   std::FILE* file = std::fopen(out.c_str(), "w");
   if (file == nullptr) throw std::runtime_error("cannot write " + out);
@@ -325,18 +265,19 @@ int Run(const std::string& out, bool quick) {
 }
 
 }  // namespace
-}  // namespace mbstream
+}  // namespace mbstream::contact_peers
 
 int main(int argc, char** argv) {
   std::string out = "contact_peers.csv";
   bool quick = false;
   CLI::App app{
-      "Contact side by side with MuJoCo: the incline, the rolling cylinder and the bounce"};
+      "Contact side by side with MuJoCo (and DART): the incline, the rolling cylinder and the "
+      "bounce"};
   app.add_option("--out", out, "the CSV to write")->capture_default_str();
   app.add_flag("--quick", quick, "each engine at its default only");
   CLI11_PARSE(app, argc, argv);
   try {
-    return mbstream::Run(out, quick);
+    return mbstream::contact_peers::Run(out, quick);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "contact_peers: %s\n", e.what());
     return 1;

@@ -4,9 +4,24 @@
 # Then builds the optimised SUNDIALS (scripts/build_sundials.sh) unless it is cached already.
 #   scripts/setup.sh --docker   also Debian's Docker daemon and debootstrap (the docker stage of
 #                               scripts/test.sh --ci: deploy/docker-test.sh)
+#   scripts/setup.sh --peers    also DART 6.12 (Debian's libdart-dev: about 100 packages with all
+#                               of Boost, so not by default), the third engine of
+#                               bench/contact_peers (docs/accuracy.md, "Contact beside MuJoCo and
+#                               DART"); CMake builds its runs when it finds DART (reconfigure)
+# The options combine (setup.sh --docker --peers).
 set -euo pipefail
 DOCKER=0
-[ "${1:-}" = --docker ] && DOCKER=1
+PEERS=0
+for option in "$@"; do
+  case "$option" in
+    --docker) DOCKER=1 ;;
+    --peers) PEERS=1 ;;
+    *)
+      echo "setup: unknown option $option (known: --docker, --peers)" >&2
+      exit 2
+      ;;
+  esac
+done
 
 PACKAGES=(
   # toolchain
@@ -72,6 +87,11 @@ COMMANDS=(
   grpc_cpp_plugin:protobuf-compiler-grpc node:nodejs chromium:chromium
 )
 [ "$DOCKER" = 1 ] && COMMANDS+=(dockerd:docker.io debootstrap:debootstrap)
+if [ "$PEERS" = 1 ]; then
+  # DART for bench/contact_peers: its CMake package (find_package(DART CONFIG) in
+  # bench/CMakeLists.txt), headers and libraries.
+  PACKAGES+=(libdart-dev)
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do
