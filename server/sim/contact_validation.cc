@@ -48,7 +48,7 @@ void CheckContact(const Model& model, const RunConfig& config,
   Range(c.stiction_tolerance, kMinStictionTolerance, kMaxStictionTolerance, false,
         "stiction_tolerance_m_per_s", "m/s",
         "give the slip speed below which friction holds, such as 1e-4");
-  Range(c.hertz_modulus, 0.0, kMaxHertzModulus, false, "hertz_modulus", "Pa",
+  Range(c.hertz_modulus, 0.0, kMaxHertzModulus, false, "hertz_modulus_pa", "Pa",
         "give the effective modulus E* of Hertz contact for spheres, such as 1e7 (rubber), or "
         "0 for point contact");
   for (const auto& [a, b] : c.filter) {

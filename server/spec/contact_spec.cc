@@ -54,6 +54,9 @@ ContactSettings ToContactSettings(const v1::Contact& spec, const std::string& so
     s.stiction_tolerance =
         Finite(spec.stiction_tolerance_m_per_s(), source, "stiction_tolerance_m_per_s", "m/s");
   }
+  if (spec.has_hertz_modulus_pa()) {
+    s.hertz_modulus = Finite(spec.hertz_modulus_pa(), source, "hertz_modulus_pa", "Pa");
+  }
   if (spec.collision_filter_size() > kMaxFilterPairs) {
     throw InputError(
         FormatString("%s: contact.collision_filter: has %d pairs, more than %d; "
@@ -74,6 +77,7 @@ void ToContactSpec(const ContactSettings& s, v1::Contact* spec) {
   spec->set_mu_static(s.mu_static);
   spec->set_mu_dynamic(s.mu_dynamic);
   spec->set_stiction_tolerance_m_per_s(s.stiction_tolerance);
+  if (s.hertz_modulus != 0.0) spec->set_hertz_modulus_pa(s.hertz_modulus);
   for (const auto& [a, b] : s.filter) {
     v1::CollisionFilter* pair = spec->add_collision_filter();
     pair->set_a(a);

@@ -17,7 +17,7 @@ RunConfig FromJson(const std::string& json) {
 TEST(ContactSpecTest, JsonSectionReachesTheRunConfigAndRoundTrips) {
   const RunConfig config = FromJson(R"({"contact": {"enabled": true, "stiffness_n_per_m": 2e6,
       "dissipation_s_per_m": 0.5, "mu_static": 0.9, "mu_dynamic": 0.7,
-      "stiction_tolerance_m_per_s": 1e-3,
+      "stiction_tolerance_m_per_s": 1e-3, "hertz_modulus_pa": 1e7,
       "collision_filter": [{"a": "left_finger", "b": "right_finger"}]}})");
   const ContactSettings& c = config.contact;
   EXPECT_TRUE(c.enabled);
@@ -26,6 +26,7 @@ TEST(ContactSpecTest, JsonSectionReachesTheRunConfigAndRoundTrips) {
   EXPECT_EQ(c.mu_static, 0.9);
   EXPECT_EQ(c.mu_dynamic, 0.7);
   EXPECT_EQ(c.stiction_tolerance, 1e-3);
+  EXPECT_EQ(c.hertz_modulus, 1e7);
   ASSERT_EQ(c.filter.size(), 1u);
   EXPECT_EQ(c.filter[0].first, "left_finger");
   EXPECT_EQ(c.filter[0].second, "right_finger");
@@ -50,6 +51,7 @@ TEST(ContactSpecTest, NonFiniteValuesAndEmptyNamesAreRefusedByField) {
   };
   refused(R"({"contact": {"stiffness_n_per_m": "Infinity"}})", "contact.stiffness_n_per_m");
   refused(R"({"contact": {"mu_static": "NaN"}})", "contact.mu_static");
+  refused(R"({"contact": {"hertz_modulus_pa": "-Infinity"}})", "contact.hertz_modulus_pa");
   refused(R"({"contact": {"collision_filter": [{"a": "x"}]}})", "contact.collision_filter[0].b");
   refused(R"({"contact": {"stiffnes": 1}})", "stiffnes");
 }
