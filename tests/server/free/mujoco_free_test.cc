@@ -36,7 +36,7 @@ void ExpectForwardDynamicsAsMujoco(const Model& model, const char* label, std::m
   for (const Body& body : model.bodies) {
     const int joint = mj_name2id(m, mjOBJ_JOINT, body.joint.name.c_str());
     ASSERT_GE(joint, 0) << body.joint.name;
-    const int nq = body.free() ? kFreeNq : 1, nv = body.free() ? kFreeNv : 1;
+    const int nq = body.nq(), nv = body.nv();
     for (int k = 0; k < nq; ++k)
       qpos[static_cast<size_t>(body.q_index + k)] = m->jnt_qposadr[joint] + k;
     for (int k = 0; k < nv; ++k)
@@ -84,6 +84,16 @@ TEST(MujocoFreeTest, FloatingTreeForwardDynamicsMatchesMujoco) {
   ASSERT_EQ(model.nv(), 6 + 4 + 6);
 
   ExpectForwardDynamicsAsMujoco(model, "floating tree", rng);
+}
+
+// Ball joints (quaternions, MuJoCo's ball joint) in a fixed-base chain with a revolute joint
+// between them and below a free torso, through a prismatic joint.
+TEST(MujocoFreeTest, BallJointChainsForwardDynamicsMatchMujoco) {
+  std::mt19937 rng(13);
+  const Model model = testing::BallTree(rng);
+  ASSERT_EQ(model.nq(), 4 + 4 + 1 + 4 + 7 + 4 + 1 + 4);
+  ASSERT_EQ(model.nv(), 3 + 3 + 1 + 3 + 6 + 3 + 1 + 3);
+  ExpectForwardDynamicsAsMujoco(model, "ball-joint chains", rng);
 }
 
 // A published humanoid (Atlas v3 of Debian's dart-doc, --floating-base: a free pelvis and 27
