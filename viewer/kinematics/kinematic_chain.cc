@@ -133,6 +133,7 @@ void KinematicChain::OrderJointValuesBy(const std::vector<std::string>& names) {
   std::vector<int> new_of_old(dof());
   for (size_t value = 0; value < order.size(); ++value) new_of_old[order[value]] = value;
   std::vector<int> dof_joints(dof());
+  std::vector<int> value_of_joint = value_of_joint_;  // the chain unchanged when this throws
   for (size_t i = 0; i < joints_.size(); ++i) {
     const int first = value_of_joint_[i];
     if (first < 0) continue;
@@ -144,9 +145,10 @@ void KinematicChain::OrderJointValuesBy(const std::vector<std::string>& names) {
                          joints_[i].name + "' has its values apart or out of order in the model");
       }
     }
-    value_of_joint_[i] = new_of_old[first];
+    value_of_joint[i] = new_of_old[first];
     for (int v = 0; v < values; ++v) dof_joints[new_of_old[first] + v] = static_cast<int>(i);
   }
+  value_of_joint_ = std::move(value_of_joint);
   dof_joints_ = std::move(dof_joints);
 }
 
