@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "server/contact/point_forces.h"
 #include "server/dynamics/aba.h"
 #include "server/dynamics/crba.h"
 #include "server/dynamics/energy.h"
@@ -147,6 +148,32 @@ TEST(FreeDynamicsTest, PointJacobianMatchesDifferencesOfKinematics) {
 TEST(FreeDynamicsTest, PointJacobianMatchesDifferencesOfKinematicsWithBallJoints) {
   std::mt19937 rng(51);
   ExpectPointJacobianMatchesDifferencesOfKinematics(BallTree(rng), rng);
+}
+
+// Contact's point velocity and generalised force (server/contact/point_forces.h, walked up the
+// chain without J) against the point Jacobian's linear rows: v = J qd, tau = J^T f.
+TEST(FreeDynamicsTest, ContactPointForcesAreThePointJacobiansWithBallJoints) {
+  std::mt19937 rng(61);
+  for (const Model& model : {BallTree(rng), FloatingTree(rng)}) {
+    Data data(model);
+    const int tip = model.FindFrame("tip");
+    const int body = model.frames[tip].body;
+    for (int trial = 0; trial < 10; ++trial) {
+      const Eigen::VectorXd q = RandomPositions(model, rng);
+      const Eigen::VectorXd qd = RandomVelocities(model, rng, 1.0);
+      ForwardKinematics(model, data, q);
+      Eigen::MatrixXd J(6, model.nv());
+      PointJacobian(model, data, tip, J);
+      const Vector3d p = data.frame_world[tip].p;
+      const Vector3d f = RandomVelocities(model, rng, 3.0).head<3>();
+      Eigen::VectorXd tau = Eigen::VectorXd::Zero(model.nv());
+      AddPointForce(model, data, body, p, f, &tau);
+      const Eigen::VectorXd expected = J.bottomRows<3>().transpose() * f;
+      EXPECT_LT((tau - expected).norm(), 1e-13 * (1.0 + expected.norm()));
+      const Vector3d v = J.bottomRows<3>() * qd;
+      EXPECT_LT((PointVelocity(model, data, body, p, qd) - v).norm(), 1e-13 * (1.0 + v.norm()));
+    }
+  }
 }
 
 TEST(FreeDynamicsTest, ALoneFreeBodyFollowsNewtonAndEuler) {
