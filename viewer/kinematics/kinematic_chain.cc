@@ -140,9 +140,10 @@ void KinematicChain::OrderJointValuesBy(const std::vector<std::string>& names) {
     const int values = ChainJointValues(joints_[i].kind);
     for (int v = 1; v < values; ++v) {
       if (new_of_old[first + v] != new_of_old[first] + v) {
-        throw InputError(std::string("the joint names differ: ") +
-                         (joints_[i].kind == ChainJointKind::kFree ? "free" : "ball") + " joint '" +
-                         joints_[i].name + "' has its values apart or out of order in the model");
+        const bool free = joints_[i].kind == ChainJointKind::kFree;
+        throw InputError(std::string("the joint names differ: ") + (free ? "free" : "ball") +
+                         " joint '" + joints_[i].name + "' has its " + (free ? "seven" : "four") +
+                         " values apart or out of order in the model");
       }
     }
     value_of_joint[i] = new_of_old[first];
