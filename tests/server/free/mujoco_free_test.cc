@@ -11,6 +11,8 @@
 #include <random>
 #include <string>
 
+#include <unistd.h>
+
 #include "server/dynamics/aba.h"
 #include "server/parse/model_file.h"
 #include "tests/server/free/free_tree_model.h"
@@ -21,11 +23,13 @@ namespace {
 
 // Writes `model` as MJCF, loads it in MuJoCo and compares qacc at 100 random states and forces.
 void ExpectForwardDynamicsAsMujoco(const Model& model, const char* label, std::mt19937& rng) {
-  const std::filesystem::path path =
-      std::filesystem::path(::testing::TempDir()) / "mbstream_floating_tree.xml";
+  // One file per test process: ctest runs the tests of this program in parallel.
+  const std::filesystem::path path = std::filesystem::path(::testing::TempDir()) /
+                                     ("mbstream_mjcf_" + std::to_string(getpid()) + ".xml");
   std::ofstream(path) << testing::Mjcf(model);
   char error[1000] = "";
   mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
+  std::filesystem::remove(path);
   ASSERT_NE(m, nullptr) << error;
   mjData* d = mj_makeData(m);
   ASSERT_EQ(m->nq, model.nq());
