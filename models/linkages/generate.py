@@ -215,10 +215,10 @@ def rpy_of_columns(x, y, z):
 
 
 def delta(ball_wrist=False):
-    """ball_wrist: the platform hangs from rod 1a by one ball joint `wrist` in the tree (three
-    Cardan axes wrist.x, .y, .z: server/model/ball_joint.h) instead of the three revolutes; its
-    frame's x is -normal, y the arm's tangent, z along the rod, so wrist.x = -wrist_1,
-    wrist.y = wrist_2, wrist.z = wrist_3 and the motion is the same."""
+    """ball_wrist: the platform hangs from rod 1a by one ball joint `wrist` in the tree (a
+    quaternion joint, server/kinematics/ball_joint.h; the server refuses closed loops with a
+    ball joint in the tree, tests/server/loops/ball_joint_test.cc) instead of the three
+    revolutes; its frame's x is -normal, y the arm's tangent, z along the rod."""
     d = DELTA
     p = (0.0, 0.0, d["z0"])
     thetas = delta_ik(p)

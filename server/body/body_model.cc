@@ -13,6 +13,11 @@ Vector3d Perpendicular(const Vector3d& a) {
 
 void CheckBodyFormulationHandles(const Model& model) {
   for (const Body& body : model.bodies) {
+    if (body.ball()) {
+      throw InputError("ball joint '" + body.joint.name + "' (link '" + body.name +
+                       "'): the body-coordinate formulations do not simulate ball joints yet; "
+                       "use formulation joint (or auto)");
+    }
     if (!(body.inertia.mass > 0.0)) {
       throw InputError("link '" + body.name +
                        "' has no mass: a free body needs mass and inertia in the body-coordinate "

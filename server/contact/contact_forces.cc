@@ -62,14 +62,10 @@ std::shared_ptr<fcl::CollisionGeometryd> GrownShape(const CollisionShape& s) {
 
 double Or(double value, double fallback) { return std::isnan(value) ? fallback : value; }
 
-// The body a body hangs from in the model file: its parent, or for the last of a ball
-// joint's three bodies the body the ball joint hangs from.
+// The body each body hangs from (a ball joint's child hangs from its parent directly).
 std::vector<int> FileParents(const Model& model) {
   std::vector<int> parent(model.bodies.size());
   for (size_t b = 0; b < model.bodies.size(); ++b) parent[b] = model.bodies[b].parent;
-  for (const BallJoint& ball : model.ball_joints) {
-    for (int k = 1; k < 3; ++k) parent[ball.first_body + k] = model.bodies[ball.first_body].parent;
-  }
   return parent;
 }
 

@@ -5,7 +5,7 @@ namespace mbstream {
 namespace {
 
 int Column(const Model& model, int j) {
-  return model.has_free_bodies() ? model.bodies[j].v_index : j;
+  return model.has_quaternions() ? model.bodies[j].v_index : j;
 }
 
 }  // namespace
@@ -17,6 +17,10 @@ Vector3d PointVelocity(const Model& model, const Data& data, int body, const Vec
     const Joint& joint = model.bodies[j].joint;
     const int col = Column(model, j);
     const Vector3d r = p - data.X_world[j].p;
+    if (joint.type == JointType::kBall) {  // w_B (model.h)
+      v += (data.X_world[j].R * Vector3d(qd(col), qd(col + 1), qd(col + 2))).cross(r);
+      continue;
+    }
     if (joint.type == JointType::kFree) {  // [v_WB; w_B] (model.h)
       const Matrix3d& R = data.X_world[j].R;
       v += Vector3d(qd(col), qd(col + 1), qd(col + 2)) +
@@ -35,6 +39,11 @@ void AddPointForce(const Model& model, const Data& data, int body, const Vector3
     const Joint& joint = model.bodies[j].joint;
     const int col = Column(model, j);
     const Vector3d r = p - data.X_world[j].p;
+    if (joint.type == JointType::kBall) {  // the moment about the centre in the child frame
+      const Vector3d moment_B = data.X_world[j].R.transpose() * r.cross(f);
+      for (int k = 0; k < 3; ++k) (*tau)(col + k) += moment_B(k);
+      continue;
+    }
     if (joint.type == JointType::kFree) {  // the force in the world, the moment in the body
       const Vector3d moment_B = data.X_world[j].R.transpose() * r.cross(f);
       for (int k = 0; k < 3; ++k) {

@@ -14,9 +14,9 @@ DriveSet::DriveSet(const Model& model, const std::vector<DriveConfig>& drives) :
   references_.resize(drives_.size());
   for (size_t i = 0; i < drives_.size(); ++i) {
     const DriveConfig& drive = drives_[i];
-    // Joint i's damping (a velocity coordinate: a free joint's coordinates have none).
+    // Joint i's damping (a velocity coordinate: a free or ball joint's coordinates have none).
     const Body& body = model.bodies[static_cast<size_t>(model.BodyOfVelocity(static_cast<int>(i)))];
-    const double damping = body.free() ? 0.0 : body.joint.damping;
+    const double damping = body.nv() != 1 ? 0.0 : body.joint.damping;
     damping_.push_back(damping);
     if (drive.kind == DriveConfig::Kind::kPrescribed || drive.kind == DriveConfig::Kind::kPdServo) {
       references_[i] = TrajectoryEvaluator(drive.trajectory);

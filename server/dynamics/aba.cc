@@ -13,7 +13,7 @@ const Eigen::VectorXd& Aba(const Model& model, Data& data,
                            const Eigen::Ref<const Eigen::VectorXd>& q,
                            const Eigen::Ref<const Eigen::VectorXd>& qd,
                            const Eigen::Ref<const Eigen::VectorXd>& tau) {
-  if (model.has_free_bodies()) {
+  if (model.has_quaternions()) {
     MBSTREAM_CHECK(q.size() == model.nq() && qd.size() == model.nv() && tau.size() == model.nv());
     return free_tree::Aba(model, data, q, qd, tau);
   }

@@ -9,7 +9,7 @@ namespace mbstream {
 
 const Eigen::MatrixXd& Crba(const Model& model, Data& data,
                             const Eigen::Ref<const Eigen::VectorXd>& q) {
-  if (model.has_free_bodies()) {
+  if (model.has_quaternions()) {
     MBSTREAM_CHECK(q.size() == model.nq());
     return free_tree::Crba(model, data, q);
   }

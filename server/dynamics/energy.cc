@@ -9,7 +9,7 @@ namespace mbstream {
 
 double KineticEnergy(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& q,
                      const Eigen::Ref<const Eigen::VectorXd>& qd) {
-  if (model.has_free_bodies()) {
+  if (model.has_quaternions()) {
     MBSTREAM_CHECK(q.size() == model.nq());
     BodyKinematics(model, data, q);
     return KineticEnergyAfterKinematics(model, data, qd);
@@ -22,7 +22,7 @@ double KineticEnergy(const Model& model, Data& data, const Eigen::Ref<const Eige
 
 double KineticEnergyAfterKinematics(const Model& model, Data& data,
                                     const Eigen::Ref<const Eigen::VectorXd>& qd) {
-  if (model.has_free_bodies()) {
+  if (model.has_quaternions()) {
     MBSTREAM_CHECK(qd.size() == model.nv());
     return free_tree::KineticEnergy(model, data, qd);
   }

@@ -2,6 +2,8 @@
 
 #include <Eigen/Cholesky>
 
+#include "server/dynamics/ball_aba_steps.h"
+#include "server/kinematics/ball_joint.h"
 #include "server/kinematics/free_joint.h"
 #include "server/kinematics/joint_transform.h"
 #include "shared/common/check.h"
@@ -28,6 +30,24 @@ Vector6d FreeColumn(const Matrix3d& R, int k) {
   return s;
 }
 
+// Column k of body i's motion subspace: a free joint's S(q), a ball joint's e_k, else S.
+Vector6d Column(const Body& body, const Data& data, int i, int k) {
+  if (body.free()) return FreeColumn(data.X_parent[i].R, k);
+  if (body.ball()) return Vector6d::Unit(k);
+  return data.S[i];
+}
+
+// S^T F for body i's joint into out (its nv values).
+void ToCoordinates(const Body& body, const Data& data, int i, const Vector6d& F, double* out) {
+  if (body.free()) {
+    free_joint::ForceToCoordinates(data.X_parent[i].R, F, out);
+  } else if (body.ball()) {
+    for (int k = 0; k < 3; ++k) out[k] = F(k);
+  } else {
+    out[0] = data.S[i].dot(F);
+  }
+}
+
 }  // namespace
 
 void Velocities(const Model& model, Data& data, ConstVector q, ConstVector qd) {
@@ -40,8 +60,14 @@ void Velocities(const Model& model, Data& data, ConstVector q, ConstVector qd) {
       data.c[i] = free_joint::RateProduct(data.v[i]);
       continue;
     }
-    JointTransform(body.joint, q(body.q_index), &X);
-    const Vector6d vJ = data.S[i] * qd(body.v_index);
+    Vector6d vJ;
+    if (body.ball()) {
+      ball_joint::Transform(body.joint, q.data() + body.q_index, &X);
+      vJ = ball_joint::Motion(qd.data() + body.v_index);
+    } else {
+      JointTransform(body.joint, q(body.q_index), &X);
+      vJ = data.S[i] * qd(body.v_index);
+    }
     if (body.parent == kBase) {
       data.v[i] = vJ;
       data.c[i].setZero();
@@ -64,6 +90,8 @@ const Eigen::VectorXd& Rnea(const Model& model, Data& data, ConstVector q, Const
     a = MotionToChild(X, a_parent) + data.c[i];
     if (body.free()) {
       a += free_joint::Motion(X.R, qdd.data() + body.v_index);
+    } else if (body.ball()) {
+      a += ball_joint::Motion(qdd.data() + body.v_index);
     } else {
       a += data.S[i] * qdd(body.v_index);
     }
@@ -77,7 +105,11 @@ const Eigen::VectorXd& Rnea(const Model& model, Data& data, ConstVector q, Const
       free_joint::ForceToCoordinates(data.X_parent[i].R, data.f[i], data.tau.data() + v);
       continue;
     }
-    data.tau(v) = data.S[i].dot(data.f[i]) + body.joint.armature * qdd(v);
+    if (body.ball()) {
+      ToCoordinates(body, data, i, data.f[i], data.tau.data() + v);
+    } else {
+      data.tau(v) = data.S[i].dot(data.f[i]) + body.joint.armature * qdd(v);
+    }
     if (body.parent != kBase) data.f[body.parent] += ForceToParent(data.X_parent[i], data.f[i]);
   }
   return data.tau;
@@ -98,6 +130,11 @@ const Eigen::VectorXd& HybridAba(const Model& model, Data& data, ConstVector q, 
     const int v = body.v_index;
     if (body.free()) {
       for (int k = 0; k < kFreeNv; ++k) MBSTREAM_CHECK(!is_prescribed(v + k));
+      continue;
+    }
+    if (body.ball()) {  // never prescribed either (the run's validation refuses drives on it)
+      for (int k = 0; k < kBallNv; ++k) MBSTREAM_CHECK(!is_prescribed(v + k));
+      ball_aba::BackwardStep(body, i, tau.data() + v, data);
       continue;
     }
     const Matrix6d& IA = data.IA[i];
@@ -129,6 +166,10 @@ const Eigen::VectorXd& HybridAba(const Model& model, Data& data, ConstVector q, 
     const int v = body.v_index;
     const Pose& X = data.X_parent[i];
     const Vector6d& a_parent = body.parent == kBase ? a_base : data.a[body.parent];
+    if (body.ball()) {
+      ball_aba::AccelerationStep(a_parent, i, data.qdd.data() + v, data);
+      continue;
+    }
     Vector6d& a = data.a[i];
     a = MotionToChild(X, a_parent) + data.c[i];
     if (body.free()) {
@@ -158,6 +199,8 @@ const Eigen::MatrixXd& Crba(const Model& model, Data& data, ConstVector q) {
     const Body& body = model.bodies[i];
     if (body.free()) {
       free_joint::Transform(q.data() + body.q_index, &data.X_parent[i]);
+    } else if (body.ball()) {
+      ball_joint::Transform(body.joint, q.data() + body.q_index, &data.X_parent[i]);
     } else {
       JointTransform(body.joint, q(body.q_index), &data.X_parent[i]);
     }
@@ -168,27 +211,23 @@ const Eigen::MatrixXd& Crba(const Model& model, Data& data, ConstVector q) {
     if (parent != kBase) AddInertiaToParent(data.X_parent[i], data.IA[i], &data.IA[parent]);
   }
   Eigen::MatrixXd& M = data.M;
+  double rows[kFreeNv];
   for (int i = 0; i < n; ++i) {
     const Body& body = model.bodies[i];
-    const int columns = body.free() ? kFreeNv : 1;
-    for (int k = 0; k < columns; ++k) {
+    for (int k = 0; k < body.nv(); ++k) {
       const int col = body.v_index + k;
-      const Vector6d s = body.free() ? FreeColumn(data.X_parent[i].R, k) : data.S[i];
-      Vector6d F = data.IA[i] * s;
-      if (body.free()) {
-        free_joint::ForceToCoordinates(data.X_parent[i].R, F, &M(body.v_index, col));
-        continue;  // a root: nothing above it
-      }
-      M(col, col) = s.dot(F) + body.joint.armature;
+      Vector6d F = data.IA[i] * Column(body, data, i, k);
+      // The body's own block (symmetric: IA is), then each ancestor's rows and their mirror.
+      ToCoordinates(body, data, i, F, rows);
+      for (int r = 0; r < body.nv(); ++r) M(body.v_index + r, col) = rows[r];
+      M(col, col) += body.joint.armature * (body.nv() == 1);
       for (int j = i; model.bodies[j].parent != kBase;) {
         F = ForceToParent(data.X_parent[j], F);
         j = model.bodies[j].parent;
         const Body& above = model.bodies[j];
-        if (above.free()) {
-          free_joint::ForceToCoordinates(data.X_parent[j].R, F, &M(above.v_index, col));
-          for (int r = 0; r < kFreeNv; ++r) M(col, above.v_index + r) = M(above.v_index + r, col);
-        } else {
-          M(above.v_index, col) = M(col, above.v_index) = data.S[j].dot(F);
+        ToCoordinates(above, data, j, F, rows);
+        for (int r = 0; r < above.nv(); ++r) {
+          M(above.v_index + r, col) = M(col, above.v_index + r) = rows[r];
         }
       }
     }
@@ -203,6 +242,9 @@ double KineticEnergy(const Model& model, Data& data, ConstVector qd) {
     const Pose& X = data.X_parent[i];
     if (body.free()) {
       data.v[i] = free_joint::Motion(X.R, qd.data() + body.v_index);
+    } else if (body.ball()) {
+      data.v[i] = ball_joint::Motion(qd.data() + body.v_index);
+      if (body.parent != kBase) data.v[i] += MotionToChild(X, data.v[body.parent]);
     } else {
       const double rate = qd(body.v_index);
       data.v[i] = data.S[i] * rate;

@@ -1,10 +1,10 @@
-// The algorithms for a model with free bodies (Model::has_free_bodies): positions indexed by
-// Body::q_index, velocities and forces by Body::v_index, a free joint's six columns from
-// server/kinematics/free_joint.h, every other joint through the general (unspecialised)
-// transforms. The public entries (Aba, HybridAba, Rnea, Crba, the energies, forward
-// kinematics) call these when the model has free bodies and keep their specialised paths for
-// fixed-base trees, which so pay one test per call. Internal to server/dynamics. Allocate
-// nothing.
+// The algorithms for a model with free bodies or ball joints (Model::has_quaternions):
+// positions indexed by Body::q_index, velocities and forces by Body::v_index, a free joint's
+// six columns from server/kinematics/free_joint.h, a ball joint's three from ball_joint.h,
+// every other joint through the general (unspecialised) transforms. The public entries (Aba,
+// HybridAba, Rnea, Crba, the energies, forward kinematics) call these when the model has
+// quaternions and keep their specialised paths for trees without them, which so pay one test
+// per call. Internal to server/dynamics. Allocate nothing.
 #pragma once
 
 #include <vector>
@@ -31,8 +31,8 @@ const Eigen::VectorXd& Aba(const Model& model, Data& data, ConstVector q, ConstV
                            ConstVector tau);
 
 // HybridAba (hybrid_dynamics.h); `prescribed` null (no velocity coordinate prescribed: Aba)
-// or nv flags. A free joint's coordinates are never prescribed (the run's validation refuses
-// drives on them): CHECKed.
+// or nv flags. A free or ball joint's coordinates are never prescribed (the run's validation
+// refuses drives on them): CHECKed.
 const Eigen::VectorXd& HybridAba(const Model& model, Data& data, ConstVector q, ConstVector qd,
                                  ConstVector tau, ConstVector qdd,
                                  const std::vector<unsigned char>* prescribed);

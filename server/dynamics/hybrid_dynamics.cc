@@ -57,7 +57,7 @@ const Eigen::VectorXd& HybridAba(const Model& model, Data& data,
                                  const Eigen::Ref<const Eigen::VectorXd>& tau,
                                  const Eigen::Ref<const Eigen::VectorXd>& qdd,
                                  const std::vector<unsigned char>& prescribed) {
-  if (model.has_free_bodies()) {
+  if (model.has_quaternions()) {
     const int nv = model.nv();
     MBSTREAM_CHECK(q.size() == model.nq() && qd.size() == nv && tau.size() == nv &&
                    qdd.size() == nv && static_cast<int>(prescribed.size()) == nv);

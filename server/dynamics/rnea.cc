@@ -103,7 +103,7 @@ void ForwardPassAboutAxis(const Body& body, int i, double q, double qd, double q
 
 const Eigen::VectorXd& Rnea(const Model& model, Data& data, ConstVectorRef q, ConstVectorRef qd,
                             ConstVectorRef qdd) {
-  if (model.has_free_bodies()) {
+  if (model.has_quaternions()) {
     MBSTREAM_CHECK(q.size() == model.nq() && qd.size() == model.nv() && qdd.size() == model.nv());
     return free_tree::Rnea(model, data, q, qd, qdd);
   }

@@ -1,5 +1,6 @@
 #include "server/kinematics/forward_kinematics.h"
 
+#include "server/kinematics/ball_joint.h"
 #include "server/kinematics/free_joint.h"
 #include "server/kinematics/joint_transform.h"
 #include "shared/common/check.h"
@@ -8,13 +9,15 @@ namespace mbstream {
 
 namespace {
 
-// BodyKinematics for a model with free bodies (q indexed by Body::q_index).
+// BodyKinematics for a model with free bodies or ball joints (q indexed by Body::q_index).
 void FreeBodyKinematics(const Model& model, Data& data,
                         const Eigen::Ref<const Eigen::VectorXd>& q) {
   for (int i = 0; i < model.num_bodies(); ++i) {
     const Body& body = model.bodies[i];
     if (body.free()) {
       free_joint::Transform(q.data() + body.q_index, &data.X_parent[i]);
+    } else if (body.ball()) {
+      ball_joint::Transform(body.joint, q.data() + body.q_index, &data.X_parent[i]);
     } else {
       JointTransform(body.joint, q(body.q_index), &data.X_parent[i]);
     }
@@ -35,7 +38,7 @@ void ForwardKinematics(const Model& model, Data& data, const Eigen::Ref<const Ei
 
 void BodyKinematics(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& q) {
   MBSTREAM_CHECK(q.size() == model.nq());
-  if (model.has_free_bodies()) {
+  if (model.has_quaternions()) {
     FreeBodyKinematics(model, data, q);
     return;
   }

@@ -12,26 +12,13 @@
 // allocate nothing.
 #pragma once
 
-#include <cmath>
-
+#include "server/kinematics/quaternion.h"
 #include "server/math/spatial.h"
 
 namespace mbstream::free_joint {
 
-// R_WB of the quaternion (qw, qx, qy, qz) = quat[0..3], normalised first (a quaternion that
-// drifted from unit length still gives a rotation).
-inline Matrix3d Rotation(const double* quat) {
-  const double w = quat[0], x = quat[1], y = quat[2], z = quat[3];
-  const double s = 2.0 / (w * w + x * x + y * y + z * z);
-  const double xx = s * x * x, yy = s * y * y, zz = s * z * z;
-  const double xy = s * x * y, xz = s * x * z, yz = s * y * z;
-  const double wx = s * w * x, wy = s * w * y, wz = s * w * z;
-  Matrix3d R;
-  R << 1.0 - (yy + zz), xy - wz, xz + wy,  //
-      xy + wz, 1.0 - (xx + zz), yz - wx,   //
-      xz - wy, yz + wx, 1.0 - (xx + yy);
-  return R;
-}
+// R_WB of the quaternion (qw, qx, qy, qz) = quat[0..3], normalised first.
+inline Matrix3d Rotation(const double* quat) { return quaternion::Rotation(quat); }
 
 // X_WB for positions q (7 values).
 inline void Transform(const double* q, Pose* X_WB) {
@@ -86,19 +73,10 @@ inline void PositionRate(const double* q, const double* qd, double* q_rate) {
   q_rate[0] = qd[0];
   q_rate[1] = qd[1];
   q_rate[2] = qd[2];
-  const double w = q[3], x = q[4], y = q[5], z = q[6];
-  const double a = qd[3], b = qd[4], c = qd[5];
-  q_rate[3] = 0.5 * (-x * a - y * b - z * c);
-  q_rate[4] = 0.5 * (w * a + y * c - z * b);
-  q_rate[5] = 0.5 * (w * b + z * a - x * c);
-  q_rate[6] = 0.5 * (w * c + x * b - y * a);
+  quaternion::Rate(q + 3, qd + 3, q_rate + 3);
 }
 
 // Scales the quaternion q[3..6] to unit length; returns its norm before.
-inline double NormaliseQuaternion(double* q) {
-  const double norm = std::sqrt(q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6]);
-  for (int k = 3; k < 7; ++k) q[k] /= norm;
-  return norm;
-}
+inline double NormaliseQuaternion(double* q) { return quaternion::Normalise(q + 3); }
 
 }  // namespace mbstream::free_joint

@@ -12,8 +12,17 @@ void PointJacobian(const Model& model, const Data& data, int frame, Eigen::Ref<E
   for (int j = model.frames[frame].body; j != kBase; j = model.bodies[j].parent) {
     const Body& body = model.bodies[j];
     const Joint& joint = body.joint;
-    const int col = model.has_free_bodies() ? body.v_index : j;  // equal when built
-    if (joint.type == JointType::kFree) {                        // [v_WB; w_B] (model.h)
+    const int col = model.has_quaternions() ? body.v_index : j;  // equal when built
+    if (joint.type == JointType::kBall) {                        // w_B (model.h)
+      const Matrix3d& R = data.X_world[j].R;
+      const Vector3d r = p - data.X_world[j].p;
+      for (int k = 0; k < 3; ++k) {
+        J.col(col + k).head<3>() = R.col(k);
+        J.col(col + k).tail<3>() = R.col(k).cross(r);
+      }
+      continue;
+    }
+    if (joint.type == JointType::kFree) {  // [v_WB; w_B] (model.h)
       const Matrix3d& R = data.X_world[j].R;
       const Vector3d r = p - data.X_world[j].p;
       for (int k = 0; k < 3; ++k) {

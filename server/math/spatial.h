@@ -18,6 +18,7 @@ using Vector3d = Eigen::Vector3d;
 using Matrix3d = Eigen::Matrix3d;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using Matrix63d = Eigen::Matrix<double, 6, 3>;
 
 // Pose of frame B in frame A: R_AB and p_AoBo_A.
 struct Pose {

@@ -4,15 +4,18 @@ namespace mbstream {
 
 namespace {
 
-template <int N>
-std::vector<std::string> Names(const Model& model, const char* const (&suffixes)[N]) {
+template <int N, int M>
+std::vector<std::string> Names(const Model& model, const char* const (&free)[N],
+                               const char* const (&ball)[M]) {
   std::vector<std::string> names;
   for (const Body& body : model.bodies) {
-    if (!body.free()) {
+    if (body.free()) {
+      for (const char* suffix : free) names.push_back(body.joint.name + suffix);
+    } else if (body.ball()) {
+      for (const char* suffix : ball) names.push_back(body.joint.name + suffix);
+    } else {
       names.push_back(body.joint.name);
-      continue;
     }
-    for (const char* suffix : suffixes) names.push_back(body.joint.name + suffix);
   }
   return names;
 }
@@ -20,11 +23,11 @@ std::vector<std::string> Names(const Model& model, const char* const (&suffixes)
 }  // namespace
 
 std::vector<std::string> PositionNames(const Model& model) {
-  return Names(model, kFreePositionSuffixes);
+  return Names(model, kFreePositionSuffixes, kBallPositionSuffixes);
 }
 
 std::vector<std::string> VelocityNames(const Model& model) {
-  return Names(model, kFreeVelocitySuffixes);
+  return Names(model, kFreeVelocitySuffixes, kBallVelocitySuffixes);
 }
 
 }  // namespace mbstream

@@ -20,11 +20,16 @@ Data::Data(const Model& model) {
   D.assign(n, 0.0);
   inv_D.assign(n, 0.0);
   u.assign(n, 0.0);
+  if (model.has_ball_joints()) {
+    U3.assign(n, Matrix63d::Zero());
+    D3_inv.assign(n, Matrix3d::Zero());
+    u3.assign(n, Vector3d::Zero());
+  }
   for (size_t i = 0; i < n; ++i) {
     I[i] = model.bodies[i].inertia.ToMatrix();
     const Joint& joint = model.bodies[i].joint;
-    if (joint.type == JointType::kFree) {
-      continue;  // six columns, a function of q (server/kinematics/free_joint.h); S stays 0
+    if (joint.type == JointType::kFree || joint.type == JointType::kBall) {
+      continue;  // six or three columns (server/kinematics/free_joint.h, ball_joint.h); S stays 0
     }
     if (joint.type == JointType::kRevolute) {
       S[i].head<3>() = joint.axis;

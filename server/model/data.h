@@ -23,7 +23,7 @@ struct Data {
   std::vector<Vector6d> a;    // spatial acceleration (gravity included as a base accel.)
   std::vector<Vector6d> f;    // force transmitted by the body's joint
   std::vector<Vector6d> c;    // velocity-product acceleration v x S qd
-  std::vector<Vector6d> S;    // joint motion subspace (axis), constant; 0 for a free joint
+  std::vector<Vector6d> S;    // joint motion subspace (axis), constant; 0 for a free or ball joint
   std::vector<int> S_index;   // k when S is the unit vector e_k (a coordinate axis), else -1
   std::vector<Matrix6d> I;    // body spatial inertia about its origin, constant
   std::vector<Matrix6d> IA;   // articulated-body (ABA) or composite (CRBA) inertia
@@ -32,6 +32,11 @@ struct Data {
   std::vector<double> D;      // S^T IA S + armature
   std::vector<double> inv_D;  // 1 / D (ABA's pass 3 for an axis joint multiplies by it)
   std::vector<double> u;      // tau - S^T pA
+  // A ball joint's ABA terms (S = [I3; 0]; server/kinematics/ball_joint.h), one per body (only
+  // ball joints' entries are used; empty without ball joints):
+  std::vector<Matrix63d> U3;     // IA S: IA's first three columns
+  std::vector<Matrix3d> D3_inv;  // (S^T IA S)^-1
+  std::vector<Vector3d> u3;      // tau - S^T pA
 
   // Per velocity coordinate (nv; num_dofs):
   Eigen::VectorXd zeros;  // zeros, for calls with qd = 0 or qdd = 0

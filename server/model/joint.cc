@@ -10,12 +10,15 @@ const char* JointTypeName(JointType type) {
       return "prismatic";
     case JointType::kFree:
       return "free";
+    case JointType::kBall:
+      return "ball";
   }
   return "unknown";
 }
 
 void DeriveJointShape(Joint& joint) {
-  if (joint.type == JointType::kFree) {  // no axis: never one of the kernels' shapes
+  if (joint.type == JointType::kFree || joint.type == JointType::kBall) {
+    // no axis: never one of the kernels' shapes
     joint.axis_index = -1;
     joint.origin_rotation_identity = false;
     joint.offset_axis = kAnyOffset;

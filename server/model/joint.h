@@ -10,9 +10,11 @@ namespace mbstream {
 
 // kFree: six degrees of freedom, the body's pose in the world (model.h: free bodies). Only a
 // root body (parent kBase) has one; its axis, origin, limits, damping and armature are unused.
-enum class JointType { kRevolute, kPrismatic, kFree };
+// kBall: three rotational degrees of freedom about the joint frame's origin (model.h: ball
+// joints); its axis, limits, damping and armature are unused, its origin X_PJ is the joint frame.
+enum class JointType { kRevolute, kPrismatic, kFree, kBall };
 
-// "revolute", "prismatic" or "free".
+// "revolute", "prismatic", "free" or "ball".
 const char* JointTypeName(JointType type);
 
 struct JointLimits {

@@ -19,7 +19,7 @@ int Model::FindBody(const std::string& body_name) const {
 }
 
 int Model::BodyOfVelocity(int v) const {
-  if (!has_free_bodies()) return v;
+  if (!has_quaternions()) return v;
   for (size_t i = bodies.size(); i-- > 0;) {
     if (bodies[i].v_index <= v) return static_cast<int>(i);
   }
@@ -34,20 +34,28 @@ double Model::TotalMass() const {
 
 void IndexCoordinates(Model* model) {
   model->free_bodies.clear();
+  model->ball_bodies.clear();
+  model->quaternions.clear();
   int q = 0, v = 0;
   for (size_t i = 0; i < model->bodies.size(); ++i) {
     Body& body = model->bodies[i];
     body.q_index = q;
     body.v_index = v;
-    const bool free = body.free();
-    if (free) model->free_bodies.push_back(static_cast<int>(i));
-    q += free ? kFreeNq : 1;
-    v += free ? kFreeNv : 1;
+    if (body.free()) {
+      model->free_bodies.push_back(static_cast<int>(i));
+      model->quaternions.push_back(q + 3);
+    } else if (body.ball()) {
+      model->ball_bodies.push_back(static_cast<int>(i));
+      model->quaternions.push_back(q);
+    }
+    q += body.nq();
+    v += body.nv();
   }
 }
 
 void NeutralPositions(const Model& model, double* q) {
   for (int i = 0; i < model.nq(); ++i) q[i] = 0.0;
+  for (const int i : model.ball_bodies) q[model.bodies[i].q_index] = 1.0;
   for (const int i : model.free_bodies) {
     const Body& body = model.bodies[i];
     double* qi = q + body.q_index;

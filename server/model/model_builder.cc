@@ -73,29 +73,32 @@ const ModelBuilder::LinkPlace& ModelBuilder::PlaceOf(const std::string& link,
 
 void ModelBuilder::AddMovingLink(const std::string& link, const std::string& parent_link,
                                  const Joint& joint, const RigidInertia& inertia) {
-  AddBody(link, parent_link, joint, inertia, /*massless=*/false);
+  if (joint.type != JointType::kRevolute && joint.type != JointType::kPrismatic) {
+    throw InputError("joint '" + joint.name + "' (link '" + link + "'): AddMovingLink takes a " +
+                     "revolute or prismatic joint, not " + JointTypeName(joint.type) +
+                     "; use AddBallLink or AddFreeLink");
+  }
+  AddBody(link, parent_link, joint, inertia);
 }
 
 void ModelBuilder::AddBallLink(const std::string& link, const std::string& parent_link,
-                               const std::string& joint_name, const std::string& where,
-                               const Pose& X_PJ, const std::string (&axis_names)[3],
+                               const std::string& joint_name, const Pose& X_PJ,
                                const RigidInertia& inertia) {
-  const int first = static_cast<int>(model_.bodies.size());
-  std::string parent = parent_link;
-  for (int k = 0; k < 3; ++k) {
-    Joint joint;
-    joint.name = axis_names[k];
-    joint.axis = Vector3d::Unit(k);
-    if (k == 0) joint.X_PJ = X_PJ;
-    const bool last = k == 2;
-    AddBody(last ? link : axis_names[k], parent, joint, last ? inertia : RigidInertia{}, !last);
-    parent = axis_names[k];
+  const double orthogonality = (X_PJ.R.transpose() * X_PJ.R - Matrix3d::Identity()).norm();
+  if (!X_PJ.p.allFinite() || !(orthogonality < 1e-9) || !(X_PJ.R.determinant() > 0.0)) {
+    throw InputError("ball joint '" + joint_name + "' (link '" + link +
+                     "'): its frame is not a finite rigid pose (|R^T R - 1| = " +
+                     std::to_string(orthogonality) + ")");
   }
-  model_.ball_joints.push_back(BallJoint{joint_name, where, first});
+  Joint joint;
+  joint.name = joint_name;
+  joint.type = JointType::kBall;
+  joint.X_PJ = X_PJ;
+  AddBody(link, parent_link, joint, inertia);
 }
 
 void ModelBuilder::AddBody(const std::string& link, const std::string& parent_link,
-                           const Joint& joint, const RigidInertia& inertia, bool massless) {
+                           const Joint& joint, const RigidInertia& inertia) {
   const std::string what = "joint '" + joint.name + "' (link '" + link + "')";
   CheckNewName(link);
   const LinkPlace& parent = PlaceOf(parent_link, what);
@@ -109,7 +112,7 @@ void ModelBuilder::AddBody(const std::string& link, const std::string& parent_li
   if (!(joint.damping >= 0.0) || !(joint.armature >= 0.0)) {
     throw InputError(what + ": damping and armature must be finite and >= 0");
   }
-  if (!massless) ValidateRigidInertia(inertia, "link '" + link + "'");
+  ValidateRigidInertia(inertia, "link '" + link + "'");
 
   Body body;
   body.name = link;

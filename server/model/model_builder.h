@@ -20,13 +20,11 @@ class ModelBuilder {
   void AddMovingLink(const std::string& link, const std::string& parent_link, const Joint& joint,
                      const RigidInertia& inertia);
 
-  // Adds `link`, moved by a ball joint named `joint_name` (at `where` in the model file) whose
-  // frame is X_PJ in `parent_link`: three revolute bodies through the joint's centre, about
-  // its x, y and z axes in turn (ball_joint.h), named axis_names[0..2] (the joints; the first
-  // two massless links take the same names), the last carrying `link` and its inertia.
+  // Adds `link`, moved by a ball joint named `joint_name` whose frame is X_PJ in
+  // `parent_link`: one body turning about the joint frame's origin (JointType::kBall, model.h),
+  // its frame the joint frame turned by the joint's quaternion (identity at q = (1, 0, 0, 0)).
   void AddBallLink(const std::string& link, const std::string& parent_link,
-                   const std::string& joint_name, const std::string& where, const Pose& X_PJ,
-                   const std::string (&axis_names)[3], const RigidInertia& inertia);
+                   const std::string& joint_name, const Pose& X_PJ, const RigidInertia& inertia);
 
   // Adds `link` as a free body: moved by a free joint named `joint_name` (6 degrees of freedom,
   // model.h) relative to the world, at the pose X_WL by default (its q when a run gives no
@@ -60,9 +58,9 @@ class ModelBuilder {
   };
   const LinkPlace& PlaceOf(const std::string& link, const std::string& context) const;
   void CheckNewName(const std::string& link) const;
-  // AddMovingLink's work; `massless`: no inertia of its own (a ball joint's inner links).
+  // AddMovingLink's and AddBallLink's work.
   void AddBody(const std::string& link, const std::string& parent_link, const Joint& joint,
-               const RigidInertia& inertia, bool massless);
+               const RigidInertia& inertia);
 
   Model model_;
   std::map<std::string, LinkPlace> links_;

@@ -109,12 +109,9 @@ class SdfReader {
                              InertiaIn(info.child, F_L));
         return;
       }
-      if (info.joint->Type() == sdf::JointType::BALL) {
-        const std::string axes[3] = {mf::SdfBallAxisName(info.name, 0),
-                                     mf::SdfBallAxisName(info.name, 1),
-                                     mf::SdfBallAxisName(info.name, 2)};
-        builder.AddBallLink(info.child, info.parent, info.name, info.where, F_P.Inverse() * F_L,
-                            axes, InertiaIn(info.child, F_L));
+      if (info.joint->Type() == sdf::JointType::BALL) {  // its frame's origin, the centre
+        builder.AddBallLink(info.child, info.parent, info.name, F_P.Inverse() * F_L,
+                            InertiaIn(info.child, F_L));
         return;
       }
       Joint joint;

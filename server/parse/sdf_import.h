@@ -7,9 +7,10 @@
 // names), nested models too. In a world of several models every link, joint and coordinate
 // is named MODEL::NAME (docs/worlds.md). Links carry <inertial>; joints are revolute,
 // continuous (revolute without limits), prismatic, fixed or ball, with <axis> (<xyz>,
-// <limit>, <dynamics damping>). A ball joint inside the tree becomes three revolute joints
-// through its centre, "JOINT.x", "JOINT.y", "JOINT.z" (Cardan angles;
-// model_files::SdfBallAxisName, server/model/ball_joint.h). A <static> model's links are
+// <limit>, <dynamics damping>). A ball joint inside the tree moves its child by one
+// quaternion joint about its frame's origin (JointType::kBall: coordinates JOINT.qw .qx .qy .qz,
+// velocities JOINT.wx .wy .wz; docs/free_bodies.md); a cut ball joint is a loop closure. A
+// <static> model's links are
 // fixed to the world where they stand; a model whose canonical link has no joint to the world
 // is a free body: its canonical link gets a free joint named after the link.
 //

@@ -179,7 +179,7 @@ std::vector<RunConfig> RunManager::PrepareRuns(
     // Every joint of the model file: a closed loop's cut joints after the tree's.
     info.set_num_dofs(static_cast<int>(model.result_joint_names.size()));
     for (const std::string& name : model.result_joint_names) info.add_joint_names(name);
-    if (model.model.has_free_bodies()) {  // Frame.q then has nq values (run.proto)
+    if (model.model.has_quaternions()) {  // Frame.q then has nq values (run.proto)
       info.set_num_positions(model.model.nq());
       for (const std::string& name : PositionNames(model.model)) info.add_position_names(name);
     }

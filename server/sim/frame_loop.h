@@ -30,9 +30,7 @@ class FrameSource {
 
 // Runs `source` over the output `times`, recording every good frame into `result` (through
 // `recorder`) and passing each to `sink` if given. Stops at the first failure or when
-// `cancel` is set, with the status and message in result.stats; after a frame that brings
-// a ball joint of the tree to its gimbal lock (kFailed, GimbalLockMessage); a failure to
-// advance with a ball joint near its lock says so too.
+// `cancel` is set, with the status and message in result.stats.
 void RunFrames(const std::vector<double>& times, FrameSource& source, FrameRecorder& recorder,
                RunResult& result, FrameSink* sink, const std::atomic<bool>* cancel);
 

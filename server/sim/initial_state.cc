@@ -1,6 +1,6 @@
 #include "server/sim/initial_state.h"
 
-#include "server/kinematics/free_joint.h"
+#include "server/kinematics/quaternion.h"
 
 namespace mbstream {
 
@@ -19,7 +19,7 @@ Eigen::VectorXd InitialJointState(const RunConfig& config, const DriveSet& drive
 
 Eigen::VectorXd InitialJointState(const RunConfig& config, const DriveSet& drives,
                                   const Model& model) {
-  if (!model.has_free_bodies()) return InitialJointState(config, drives, model.nv());
+  if (!model.has_quaternions()) return InitialJointState(config, drives, model.nv());
   const int nq = model.nq(), nv = model.nv();
   Eigen::VectorXd y = Eigen::VectorXd::Zero(nq + nv);
   if (config.q0.size() == nq) {
@@ -28,11 +28,9 @@ Eigen::VectorXd InitialJointState(const RunConfig& config, const DriveSet& drive
     NeutralPositions(model, y.data());
   }
   if (config.qd0.size() == nv) y.tail(nv) = config.qd0;
+  for (const int k : model.quaternions) quaternion::Normalise(y.data() + k);
   for (const Body& body : model.bodies) {
-    if (body.free()) {
-      free_joint::NormaliseQuaternion(y.data() + body.q_index);
-      continue;
-    }
+    if (body.nv() != 1) continue;  // a free or ball joint: never prescribed
     const int i = body.v_index;
     if (!drives.prescribed(i)) continue;
     const TrajectoryPoint ref = drives.Reference(i, 0.0);

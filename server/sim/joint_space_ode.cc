@@ -10,6 +10,7 @@
 #include "server/dynamics/rnea.h"
 #include "server/kinematics/forward_kinematics.h"
 #include "server/kinematics/free_joint.h"
+#include "server/kinematics/quaternion.h"
 
 namespace mbstream {
 
@@ -19,7 +20,7 @@ JointSpaceOde::JointSpaceOde(const Model& model, const DriveSet& drives, bool tr
       drives_(drives),
       n_(model.nv()),
       nq_(model.nq()),
-      free_bodies_(model.has_free_bodies()),
+      quaternions_(model.has_quaternions()),
       track_work_(track_work),
       data_(model),
       q_(Eigen::VectorXd::Zero(nq_)),
@@ -47,10 +48,10 @@ JointSpaceOde::JointSpaceOde(const Model& model, const DriveSet& drives, bool tr
   id0_ = Eigen::VectorXd::Zero(n_);
   dqdd_ = Eigen::MatrixXd::Zero(n_, 2 * n_);
   mass_llt_ = Eigen::LLT<Eigen::MatrixXd>(n_);
-  if (free_bodies_) {
+  if (quaternions_) {
     q_of_v_.assign(n_, -1);
     for (const Body& body : model.bodies) {
-      if (!body.free()) q_of_v_[body.v_index] = body.q_index;
+      if (body.nv() == 1) q_of_v_[body.v_index] = body.q_index;
     }
     drive_q_ = Eigen::VectorXd::Zero(n_);
   }
@@ -68,9 +69,8 @@ void JointSpaceOde::EvaluateFreeState(double t, const double* y) {
   for (int i = 0; i < n_; ++i) qd_(i) = y[nq_ + i];
   // The dynamics, the quaternions' rates and the outputs from unit quaternions (the rate
   // 1/2 quat (x) (0, w) is orthogonal to quat: the state's norm still does not change).
-  for (const int b : model_.free_bodies)
-    free_joint::NormaliseQuaternion(&q_(model_.bodies[b].q_index));
-  for (int i : prescribed_) {  // never a free joint's coordinate (ValidateRun)
+  for (const int k : model_.quaternions) quaternion::Normalise(&q_(k));
+  for (int i : prescribed_) {  // never a free or ball joint's coordinate (ValidateRun)
     const TrajectoryPoint ref = drives_.Reference(i, t);
     if (!drives_.velocity_source(i)) q_(q_of_v_[i]) = ref.q;
     qd_(i) = ref.qd;
@@ -90,7 +90,7 @@ void JointSpaceOde::AddContactForces() {
 }
 
 void JointSpaceOde::EvaluateState(double t, const double* y) {
-  if (free_bodies_) {
+  if (quaternions_) {
     EvaluateFreeState(t, y);
     return;
   }
@@ -141,13 +141,15 @@ void JointSpaceOde::ComputePrescribedEfforts() {
 }
 
 void JointSpaceOde::PositionRate(const double* q, const double* qd, double* q_rate) {
-  if (!free_bodies_) {
+  if (!quaternions_) {
     for (int i = 0; i < n_; ++i) q_rate[i] = qd[i];
     return;
   }
   for (const Body& body : model_.bodies) {
     if (body.free()) {
       free_joint::PositionRate(q + body.q_index, qd + body.v_index, q_rate + body.q_index);
+    } else if (body.ball()) {
+      quaternion::Rate(q + body.q_index, qd + body.v_index, q_rate + body.q_index);
     } else {
       q_rate[body.q_index] = qd[body.v_index];
     }
@@ -156,25 +158,23 @@ void JointSpaceOde::PositionRate(const double* q, const double* qd, double* q_ra
 
 int JointSpaceOde::Project(double /*t*/, const double* y, double* correction) {
   for (int i = 0; i < size(); ++i) correction[i] = 0.0;
-  for (const int b : model_.free_bodies) {
-    const int k = model_.bodies[b].q_index;
-    double quat[7];
-    for (int e = 3; e < 7; ++e) quat[e] = y[k + e];
-    free_joint::NormaliseQuaternion(quat);
-    for (int e = 3; e < 7; ++e) correction[k + e] = quat[e] - y[k + e];
+  for (const int k : model_.quaternions) {
+    double quat[4];
+    for (int e = 0; e < 4; ++e) quat[e] = y[k + e];
+    quaternion::Normalise(quat);
+    for (int e = 0; e < 4; ++e) correction[k + e] = quat[e] - y[k + e];
   }
   return 0;
 }
 
 int JointSpaceOde::ProjectInPlace(double /*t*/, double* y) {
-  for (const int b : model_.free_bodies)
-    free_joint::NormaliseQuaternion(y + model_.bodies[b].q_index);
+  for (const int k : model_.quaternions) quaternion::Normalise(y + k);
   return 0;
 }
 
 int JointSpaceOde::Rhs(double t, const double* y, double* ydot) {
   if (!Evaluate(t, y)) return 1;  // recoverable: the solver retries with a smaller step
-  if (free_bodies_) {
+  if (quaternions_) {
     PositionRate(q_.data(), qd_.data(), ydot);
     for (int i = 0; i < n_; ++i) ydot[nq_ + i] = qdd_(i);
     return 0;
@@ -189,11 +189,10 @@ int JointSpaceOde::Rhs(double t, const double* y, double* ydot) {
 int JointSpaceOde::Roots(double t, const double* y, double* g) {
   if (contact_ == nullptr) return -1;
   for (int i = 0; i < nq_; ++i) q_(i) = y[i];
-  for (int i : prescribed_) {  // never a free joint's coordinate (ValidateRun)
-    if (!drives_.velocity_source(i)) q_(free_bodies_ ? q_of_v_[i] : i) = drives_.Reference(i, t).q;
+  for (int i : prescribed_) {  // never a free or ball joint's coordinate (ValidateRun)
+    if (!drives_.velocity_source(i)) q_(quaternions_ ? q_of_v_[i] : i) = drives_.Reference(i, t).q;
   }
-  for (const int b : model_.free_bodies)
-    free_joint::NormaliseQuaternion(&q_(model_.bodies[b].q_index));
+  for (const int k : model_.quaternions) quaternion::Normalise(&q_(k));
   // A time or state that is not finite (CVODE has asked at t = inf after a failed first step)
   // never reaches the narrow phase, whose library asserts on it: the root function fails, and
   // with it the step, with a message.

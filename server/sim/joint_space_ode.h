@@ -1,14 +1,14 @@
 // The joint-space formulation: minimal coordinates, y = [q; qd] (2n states), with
 // M(q) qdd + h(q, qd) = tau_drive - damping * qd.
 //
-// With free bodies (model.h) y = [q (nq); qd (nv)] and q' = G(q) qd: a free body's quaternion
-// rate is 1/2 quat (x) (0, w_B). The quaternions are kept unit by projection (normalising
-// them) after each step: CVODE BDF through its projection, ARKODE, RK4 and semi-implicit
-// Euler after each step (ManifoldProjection::ProjectsEveryMethod); CVODE Adams does not project
-// (docs/free_bodies.md gives its drift). The right-hand side and the outputs (q()) normalise the
-// quaternions they read, so a frame's quaternion is unit to round-off with every method. Drive
-// laws see each one-coordinate joint's position at its velocity index (a free joint's
-// coordinates are passive). The own Jacobian is for fixed-base models only.
+// With free bodies or ball joints (model.h) y = [q (nq); qd (nv)] and q' = G(q) qd: a free
+// body's or ball joint's quaternion rate is 1/2 quat (x) (0, w_B). The quaternions are kept unit by
+// projection (normalising them) after each step: CVODE BDF through its projection, ARKODE, RK4 and
+// semi-implicit Euler after each step (ManifoldProjection::ProjectsEveryMethod); CVODE Adams does
+// not project (docs/free_bodies.md gives its drift). The right-hand side and the outputs (q())
+// normalise the quaternions they read, so a frame's quaternion is unit to round-off with every
+// method. Drive laws see each one-coordinate joint's position at its velocity index (a free or ball
+// joint's coordinates are passive). The own Jacobian is for fixed-base models only.
 //
 // Prescribed joints impose q_ref(t) (or, as velocity sources, impose qd_ref(t) and take q
 // from the state); the dynamics then solves for the free joints' accelerations and the
@@ -44,12 +44,13 @@ class JointSpaceOde : public OdeSystem, public ManifoldProjection {
   int Rhs(double t, const double* y, double* ydot) override;
   int num_positions() const override { return nq_; }
   int num_velocities() const override { return n_; }
-  // q' = G(q) qd: qd itself without free bodies.
+  // q' = G(q) qd: qd itself without quaternions.
   void PositionRate(const double* q, const double* qd, double* q_rate) override;
 
-  // The free bodies' quaternions normalised (nothing to do without free bodies).
-  bool Projects() const override { return free_bodies_; }
-  bool ProjectsEveryMethod() const override { return free_bodies_; }
+  // Every quaternion normalised, the free bodies' and the ball joints' (Model::quaternions;
+  // nothing to do without them).
+  bool Projects() const override { return quaternions_; }
+  bool ProjectsEveryMethod() const override { return quaternions_; }
   int Project(double t, const double* y, double* correction) override;
   int ProjectInPlace(double t, double* y) override;
 
@@ -60,7 +61,7 @@ class JointSpaceOde : public OdeSystem, public ManifoldProjection {
   // of RNEA: 2n + 1 RNEA calls and one CRBA instead of the 2n ABA calls and 2n drive
   // evaluations of differencing f. Allocates nothing.
   bool HasJacobian() const override {
-    return !free_bodies_ && contact_ == nullptr && free_.size() == static_cast<size_t>(n_);
+    return !quaternions_ && contact_ == nullptr && free_.size() == static_cast<size_t>(n_);
   }
   int Jacobian(double t, const double* y, const double* fy, double* jac_col_major) override;
 
@@ -121,13 +122,13 @@ class JointSpaceOde : public OdeSystem, public ManifoldProjection {
   const Model& model_;
   const DriveSet& drives_;
   const int n_;             // velocity coordinates (nv)
-  const int nq_;            // position coordinates (nq; n_ without free bodies)
-  const bool free_bodies_;  // the model has free bodies
+  const int nq_;            // position coordinates (nq; n_ without quaternions)
+  const bool quaternions_;  // the model has quaternions (free bodies or ball joints)
   const bool track_work_;
   Data data_;
   Eigen::VectorXd q_, qd_, qdd_, effort_, tau_;
-  // With free bodies: each velocity coordinate's position index (-1 for a free joint's) and
-  // the positions by velocity coordinate that the drive laws read (0 for a free joint's).
+  // With quaternions: each velocity coordinate's position index (-1 for a free or ball joint's)
+  // and the positions by velocity coordinate that the drive laws read (0 for those).
   std::vector<int> q_of_v_;
   Eigen::VectorXd drive_q_;
   std::vector<int> free_;                       // indices of non-prescribed joints

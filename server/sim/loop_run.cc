@@ -394,6 +394,10 @@ FormulationChoice ValidateLoopRun(const Model& model, const std::vector<LoopClos
   RefuseFreeBodies(model,
                    "a mechanism with closed loops does not simulate free bodies yet; "
                    "attach the link to the world or open the loop");
+  RefuseBallJoints(model,
+                   "a mechanism with closed loops does not simulate a ball joint in its "
+                   "spanning tree yet; make the ball joint one of the loop's cut joints (a "
+                   "loop closure), model it as three revolute joints, or open the loop");
   const DriveSet drives(model, config.drives);
   if (drives.any_sampled()) {
     throw InputError(

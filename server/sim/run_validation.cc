@@ -64,16 +64,71 @@ std::string FreeJointLabel(const Body& body) {
   return "free joint '" + body.joint.name + "' (link '" + body.name + "')";
 }
 
+std::string BallJointLabel(const Body& body) {
+  return "ball joint '" + body.joint.name + "' (link '" + body.name + "')";
+}
+
+std::string AndMore(size_t count) {
+  return count > 1 ? " and " + std::to_string(count - 1) + " more" : std::string();
+}
+
+// initial_q and initial_qd of a model with quaternions: nq and nv values.
+void CheckCoordinateCounts(const Model& model, const RunConfig& config) {
+  const int nq = model.nq(), nv = model.nv();
+  if (config.q0.size() != 0 && config.q0.size() != nq) {
+    throw InputError(FormatString(
+        "initial_q has %d values and the model has %d position coordinates: give none or one "
+        "per coordinate, a free joint's 7 as x y z qw qx qy qz, a ball joint's 4 as qw qx qy qz "
+        "(docs/free_bodies.md)",
+        static_cast<int>(config.q0.size()), nq));
+  }
+  if (config.qd0.size() != 0 && config.qd0.size() != nv) {
+    throw InputError(FormatString(
+        "initial_qd has %d values and the model has %d velocity coordinates: give none or one "
+        "per coordinate, a free joint's 6 as vx vy vz (world) wx wy wz (body frame), a ball "
+        "joint's 3 as wx wy wz (child frame)",
+        static_cast<int>(config.qd0.size()), nv));
+  }
+}
+
+// The drives on a free or ball joint's coordinates: none (passive) allowed.
+void CheckPassive(const Body& body, const RunConfig& config, const std::string& label,
+                  const char* what) {
+  for (int k = 0; k < body.nv(); ++k) {
+    if (config.drives[static_cast<size_t>(body.v_index + k)].kind != DriveConfig::Kind::kPassive) {
+      throw InputError(label + " has a drive on its coordinate " + std::to_string(k + 1) + ": " +
+                       what);
+    }
+  }
+}
+
+// The initial quaternion at q0[k..k+3]: unit within 1e-6.
+void CheckUnitQuaternion(const RunConfig& config, int k, const std::string& label) {
+  if (config.q0.size() != 0 && k + 4 <= config.q0.size()) {
+    const double* quat = config.q0.data() + k;
+    const double norm =
+        std::sqrt(quat[0] * quat[0] + quat[1] * quat[1] + quat[2] * quat[2] + quat[3] * quat[3]);
+    if (!(std::abs(norm - 1.0) <= 1e-6)) {
+      throw InputError(FormatString(
+          "%s: initial_q's quaternion (qw qx qy qz) = (%g, %g, %g, %g) has norm %.9g; give a "
+          "unit quaternion (norm 1 within 1e-6)",
+          label.c_str(), quat[0], quat[1], quat[2], quat[3], norm));
+    }
+  }
+}
+
 }  // namespace
 
 void RefuseFreeBodies(const Model& model, const std::string& what) {
   if (!model.has_free_bodies()) return;
   const Body& body = model.bodies[model.free_bodies.front()];
-  throw InputError(FreeJointLabel(body) +
-                   (model.free_bodies.size() > 1
-                        ? " and " + std::to_string(model.free_bodies.size() - 1) + " more"
-                        : std::string()) +
-                   ": " + what);
+  throw InputError(FreeJointLabel(body) + AndMore(model.free_bodies.size()) + ": " + what);
+}
+
+void RefuseBallJoints(const Model& model, const std::string& what) {
+  if (!model.has_ball_joints()) return;
+  const Body& body = model.bodies[model.ball_bodies.front()];
+  throw InputError(BallJointLabel(body) + AndMore(model.ball_bodies.size()) + ": " + what);
 }
 
 void CheckFreeBodies(const Model& model, const RunConfig& config) {
@@ -88,39 +143,43 @@ void CheckFreeBodies(const Model& model, const RunConfig& config) {
                      "an accuracy target does not choose the method for free bodies yet; give "
                      "method and tolerances (e.g. bdf, rtol 1e-8)");
   }
-  const int nq = model.nq(), nv = model.nv();
-  if (config.q0.size() != 0 && config.q0.size() != nq) {
-    throw InputError(FormatString(
-        "initial_q has %d values and the model has %d position coordinates: give none or one "
-        "per coordinate, a free joint's 7 as x y z qw qx qy qz (docs/free_bodies.md)",
-        static_cast<int>(config.q0.size()), nq));
-  }
-  if (config.qd0.size() != 0 && config.qd0.size() != nv) {
-    throw InputError(FormatString(
-        "initial_qd has %d values and the model has %d velocity coordinates: give none or one "
-        "per coordinate, a free joint's 6 as vx vy vz (world) wx wy wz (body frame)",
-        static_cast<int>(config.qd0.size()), nv));
-  }
+  CheckCoordinateCounts(model, config);
   for (const int i : model.free_bodies) {
     const Body& body = model.bodies[i];
-    for (int k = 0; k < kFreeNv; ++k) {
-      if (config.drives[static_cast<size_t>(body.v_index + k)].kind !=
-          DriveConfig::Kind::kPassive) {
-        throw InputError(FreeJointLabel(body) + " has a drive on its coordinate " +
-                         std::to_string(k + 1) +
-                         ": a free joint has no actuator; leave its drives out (passive)");
-      }
+    CheckPassive(body, config, FreeJointLabel(body),
+                 "a free joint has no actuator; leave its drives out (passive)");
+    if (config.q0.size() == model.nq()) {
+      CheckUnitQuaternion(config, body.q_index + 3, FreeJointLabel(body));
     }
-    if (config.q0.size() == nq) {
-      const double* quat = config.q0.data() + body.q_index + 3;
-      const double norm =
-          std::sqrt(quat[0] * quat[0] + quat[1] * quat[1] + quat[2] * quat[2] + quat[3] * quat[3]);
-      if (!(std::abs(norm - 1.0) <= 1e-6)) {
-        throw InputError(FormatString(
-            "%s: initial_q's quaternion (qw qx qy qz) = (%g, %g, %g, %g) has norm %.9g; give a "
-            "unit quaternion (norm 1 within 1e-6)",
-            FreeJointLabel(body).c_str(), quat[0], quat[1], quat[2], quat[3], norm));
-      }
+  }
+}
+
+void CheckBallJoints(const Model& model, const RunConfig& config) {
+  if (!model.has_ball_joints()) return;
+  if (IsBodyFormulation(config.formulation)) {
+    RefuseBallJoints(model, std::string("formulation ") + FormulationName(config.formulation) +
+                                " does not simulate ball joints yet; use formulation joint "
+                                "(or auto)");
+  }
+  if (config.formulation == Formulation::kKinematic) {
+    RefuseBallJoints(model,
+                     "formulation kinematic prescribes every joint along a trajectory, and a "
+                     "ball joint takes none (its coordinates are passive); use formulation "
+                     "joint (or auto)");
+  }
+  if (config.target.any()) {
+    RefuseBallJoints(model,
+                     "an accuracy target does not choose the method for ball joints yet; give "
+                     "method and tolerances (e.g. bdf, rtol 1e-8)");
+  }
+  CheckCoordinateCounts(model, config);
+  for (const int i : model.ball_bodies) {
+    const Body& body = model.bodies[i];
+    CheckPassive(body, config, BallJointLabel(body),
+                 "a ball joint has no actuator or trajectory yet; leave its drives out "
+                 "(passive), or model the joint as three revolute joints to drive it");
+    if (config.q0.size() == model.nq()) {
+      CheckUnitQuaternion(config, body.q_index, BallJointLabel(body));
     }
   }
 }
@@ -143,6 +202,7 @@ FormulationChoice ValidatedFormulation(const Model& model, const RunConfig& conf
 FormulationChoice ValidateRun(const Model& model, const RunConfig& config) {
   CheckShape(model, config);
   CheckFreeBodies(model, config);
+  CheckBallJoints(model, config);
   return ValidateRun(model, config, DriveSet(model, config.drives));
 }
 
@@ -167,6 +227,9 @@ void CheckSampledDrives(const Model& model, const RunConfig& config, const Drive
   if (model.has_free_bodies()) {
     RefuseFreeBodies(model, what + ": sampled drives do not run with free bodies yet");
   }
+  if (model.has_ball_joints()) {
+    RefuseBallJoints(model, what + ": sampled drives do not run with ball joints yet");
+  }
   if (MayTouch(model, config.contact)) {
     throw InputError(what +
                      ", and the model's collision geometries may touch: sampled drives "
@@ -177,8 +240,13 @@ void CheckSampledDrives(const Model& model, const RunConfig& config, const Drive
 FormulationChoice ValidateRun(const Model& model, const RunConfig& config, const DriveSet& drives) {
   CheckShape(model, config);
   CheckFreeBodies(model, config);
+  CheckBallJoints(model, config);
   CheckContact(model, config);
   const FormulationChoice choice = ChooseFormulation(config, drives);
+  if (choice.formulation != Formulation::kJoint) {  // auto's choice too
+    RefuseBallJoints(model, std::string("formulation ") + FormulationName(choice.formulation) +
+                                " does not simulate ball joints yet; use formulation joint");
+  }
   CheckSampledDrives(model, config, drives, choice);
   if (config.target.any() && IsBodyFormulation(choice.formulation)) {
     throw InputError(std::string("an accuracy target is met with formulation auto, kinematic or "

@@ -34,6 +34,17 @@ FormulationChoice ValidatedFormulation(const Model& model, const RunConfig& conf
 // free bodies (JointType::kFree); nothing otherwise.
 void RefuseFreeBodies(const Model& model, const std::string& what);
 
+// Throws InputError "ball joint 'NAME' (link 'LINK') [and N more]: <what>" when `model` has
+// ball joints (JointType::kBall); nothing otherwise.
+void RefuseBallJoints(const Model& model, const std::string& what);
+
+// A run of a model with ball joints: refuses what does not simulate them yet (the body
+// formulations, kinematic, accuracy targets), a drive on a ball joint's coordinate,
+// initial_q or initial_qd of the wrong length and an initial quaternion whose norm is not 1
+// within 1e-6, naming the norm. ValidateRun calls it; closed loops refuse ball joints in the
+// tree in ValidateLoopRun.
+void CheckBallJoints(const Model& model, const RunConfig& config);
+
 // A run of a model with free bodies: refuses what does not simulate them yet (the body
 // formulations, accuracy targets), a drive on a free joint's coordinate, initial_q or
 // initial_qd of the wrong length (nq and nv values: model.h) and an initial quaternion whose

@@ -95,13 +95,13 @@ RunResult SimulateTree(const Model& model_in, const RunConfig& config_in, FrameS
 
   RunResult result;
   result.num_dofs = model.num_dofs();
-  result.joint_names = VelocityNames(model);  // one per body without free bodies
-  if (model.has_free_bodies()) {
+  result.joint_names = VelocityNames(model);  // one per body without quaternions
+  if (model.has_quaternions()) {
     result.num_positions = model.nq();
     result.position_names = PositionNames(model);
     result.position_index.assign(static_cast<size_t>(model.nv()), -1);
     for (const Body& body : model.bodies) {
-      if (!body.free()) result.position_index[static_cast<size_t>(body.v_index)] = body.q_index;
+      if (body.nv() == 1) result.position_index[static_cast<size_t>(body.v_index)] = body.q_index;
     }
   }
   const bool kinematic = choice.formulation == Formulation::kKinematic;

@@ -151,8 +151,8 @@ Eigen::VectorXd JointVector(const google::protobuf::RepeatedField<double>& value
                    (joints ? "one per joint (" + unit + ") in the model's joint order"
                            : "one per coordinate (" + unit +
                                  ") in the model's order; a free joint's are x y z qw qx qy qz "
-                                 "(positions) and vx vy vz wx wy wz (velocities), "
-                                 "docs/free_bodies.md"));
+                                 "(positions) and vx vy vz wx wy wz (velocities), a ball "
+                                 "joint's qw qx qy qz and wx wy wz, docs/free_bodies.md"));
   }
   Eigen::VectorXd vector(values.size());
   for (int i = 0; i < values.size(); ++i) {

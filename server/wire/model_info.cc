@@ -33,7 +33,8 @@ void DescribeModel(const Model& model, const std::vector<std::string>& warnings,
     joint->set_name(body.joint.name);
     joint->set_type(JointTypeName(body.joint.type));
     const JointLimits& limits = body.joint.limits;
-    const bool limited = !body.free() && std::isfinite(limits.lower) && std::isfinite(limits.upper);
+    const bool limited =
+        body.nv() == 1 && std::isfinite(limits.lower) && std::isfinite(limits.upper);
     joint->set_lower(limited ? limits.lower : 0.0);
     joint->set_upper(limited ? limits.upper : 0.0);
     joint->set_velocity_limit(FiniteOrZero(limits.velocity));

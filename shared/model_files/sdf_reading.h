@@ -119,14 +119,10 @@ struct SdfTree {
 // joint not reached from the world, two links of one scoped name.
 SdfTree ChooseSdfTree(const SdfFile& file);
 
-// A ball joint inside the tree moves its child by three revolute joints through its centre
-// (the joint frame's origin): about the joint frame's x axis, then about y and z as turned by
-// the ones before (Cardan angles x-y-z: R = Rx(q_x) Ry(q_y) Rz(q_z), rad), named "JOINT.x",
-// "JOINT.y", "JOINT.z" (`axis` 0, 1, 2) in the results and the viewer's chain; the two links
-// between them, massless, take the first two names. The angles lock at q_y = +-90 degrees
-// (the child's z axis along the joint frame's x axis), where a run stops and says so
-// (server/model/ball_joint.h).
-std::string SdfBallAxisName(const std::string& joint, int axis);
+// A ball joint inside the tree moves its child about the joint frame's origin; its values are
+// the unit quaternion of the child's rotation in the joint frame, "JOINT.qw" ".qx" ".qy" ".qz"
+// (`value` 0..3, scalar first), in the results and the viewer's chain (server/model/model.h).
+std::string SdfBallValueName(const std::string& joint, int value);
 
 // `pose` resolved in the model frame of `entry`, then in the world (X_W?). Throws InputError
 // "WHERE: WHAT: its pose cannot be resolved: ...".

@@ -141,10 +141,10 @@ SdfTree ChooseSdfTree(const SdfFile& file) {
   return tree;
 }
 
-std::string SdfBallAxisName(const std::string& joint, int axis) {
-  MBSTREAM_CHECK(axis >= 0 && axis < 3);
-  static constexpr const char* kSuffix[3] = {".x", ".y", ".z"};
-  return joint + kSuffix[axis];
+std::string SdfBallValueName(const std::string& joint, int value) {
+  MBSTREAM_CHECK(value >= 0 && value < 4);
+  static constexpr const char* kSuffix[4] = {".qw", ".qx", ".qy", ".qz"};
+  return joint + kSuffix[value];
 }
 
 std::vector<SdfLinkFrame> SdfLinkFrames(const SdfFile& file, const SdfTree& tree) {

@@ -3,13 +3,15 @@
 // LoopRunTest.EveryLinkagesRunSpecsLoadAndAreAccepted). The script translates without errors,
 // its Device has the model's tree joints in the server's order, and at any joint values its
 // link frames are the model's (SceneFromSdf's chain): the script draws what the server runs.
-// A ball joint inside the tree is three chain joints JOINT.x, .y, .z, as the server's.
+// A ball joint inside the tree is one chain joint of four values JOINT.qw .qx .qy .qz (the
+// quaternion of the child in the joint frame), as the server's.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <random>
 
+#include "shared/common/check.h"
 #include "tests/viewer/script_test_util.h"
 #include "viewer/model/model_scene.h"
 #include "viewer/model/script_scene.h"
@@ -73,19 +75,68 @@ TEST(LinkageScene, EveryLinkageHasAScriptWhoseFramesAreTheModels) {
   }
 }
 
-TEST(LinkageScene, ABallJointInTheTreeIsThreeChainJointsNamedAsTheServersColumns) {
+TEST(LinkageScene, ABallJointInTheTreeIsOneChainJointTurnedByItsQuaternion) {
   const SceneDescription scene = SceneFromModelText(
       ss::testing::ReadFile(ss::testing::SourcePath("tests/data/delta_ball.sdf")), "delta_ball.sdf",
       [](const std::string&) { return std::filesystem::path(); });
   std::vector<std::string> names;
   for (int i = 0; i < scene.chain.dof(); ++i) names.push_back(scene.chain.dof_joint(i).name);
-  const auto x = std::find(names.begin(), names.end(), "wrist.x");
-  ASSERT_NE(x, names.end());
-  ASSERT_LT(x + 2, names.end());
-  EXPECT_EQ(*(x + 1), "wrist.y");
-  EXPECT_EQ(*(x + 2), "wrist.z");
-  EXPECT_EQ(std::find(names.begin(), names.end(), "wrist"), names.end());
-  EXPECT_EQ(scene.chain.dof(), ModelScene("delta").chain.dof());  // 3 axes for 3 revolutes
+  const auto first = std::find(names.begin(), names.end(), "wrist");
+  ASSERT_NE(first, names.end());
+  ASSERT_LT(first + 3, names.end());
+  EXPECT_EQ(*(first + 3), "wrist");
+  const int v = static_cast<int>(first - names.begin());
+  EXPECT_EQ(scene.chain.dof_joint(v).kind, ChainJointKind::kBall);
+  EXPECT_EQ(scene.chain.dof(), ModelScene("delta").chain.dof() + 1);  // 4 values for 3 axes
+  EXPECT_EQ(scene.initial_q[static_cast<size_t>(v)], 1.0);            // qw: the identity
+
+  // The wrist's child is the joint frame (the frame at the identity quaternion) turned by the
+  // quaternion, whatever the other joints do.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> value(-0.5, 0.5);
+  for (int trial = 0; trial < 5; ++trial) {
+    std::vector<double> q(static_cast<size_t>(scene.chain.dof()));
+    for (double& x : q) x = value(random);
+    Eigen::Quaterniond quat(value(random), value(random), value(random), value(random));
+    for (int k = 0; k < 4; ++k) q[static_cast<size_t>(v + k)] = quat.coeffs()[(k + 3) % 4];
+    std::vector<double> identity = q;
+    identity[static_cast<size_t>(v)] = 1.0;
+    for (int k = 1; k < 4; ++k) identity[static_cast<size_t>(v + k)] = 0.0;
+    // The chain joint of value v: its frame index among the moving joints.
+    const std::vector<Eigen::Isometry3d> turned = JointFrames(scene.chain, q);
+    const std::vector<Eigen::Isometry3d> still = JointFrames(scene.chain, identity);
+    int joint = 0;
+    for (int i = 0; i < v; ++i)
+      joint += scene.chain.dof_joint(i).name != scene.chain.dof_joint(i + 1).name;
+    const Eigen::Matrix3d expected =
+        still[static_cast<size_t>(joint)].linear() * quat.normalized().toRotationMatrix();
+    EXPECT_LT((turned[static_cast<size_t>(joint)].linear() - expected).cwiseAbs().maxCoeff(),
+              1e-12);
+    EXPECT_LT((turned[static_cast<size_t>(joint)].translation() -
+               still[static_cast<size_t>(joint)].translation())
+                  .norm(),
+              1e-12);
+  }
+
+  // Ordered by the server's position names: the four values by their names.
+  KinematicChain chain = scene.chain;
+  std::vector<std::string> server;
+  for (int i = 0; i < chain.dof();) {
+    const ChainJoint& joint = chain.dof_joint(i);
+    if (joint.kind == ChainJointKind::kBall) {
+      for (int k = 0; k < 4; ++k) server.push_back(BallValueName(joint.name, k));
+      i += 4;
+    } else {
+      server.push_back(joint.name);
+      ++i;
+    }
+  }
+  std::reverse(server.begin(), server.end());
+  EXPECT_THROW(chain.OrderJointValuesBy(server), InputError);  // qz .. qw: out of order
+  std::reverse(server.begin(), server.end());
+  std::rotate(server.begin(), server.begin() + 1, server.end());
+  chain.OrderJointValuesBy(server);
+  EXPECT_EQ(chain.dof(), scene.chain.dof());
 }
 
 }  // namespace

@@ -13,6 +13,23 @@ namespace {
 
 constexpr int kFreeValues = 7;
 constexpr const char* kFreeSuffix[kFreeValues] = {".x", ".y", ".z", ".qw", ".qx", ".qy", ".qz"};
+constexpr int kBallValues = 4;
+constexpr const char* kBallSuffix[kBallValues] = {".qw", ".qx", ".qy", ".qz"};
+
+// The name of value `v` of a joint with several.
+std::string ValueName(const ChainJoint& joint, int v) {
+  return joint.kind == ChainJointKind::kFree ? FreeValueName(joint.name, v)
+                                             : BallValueName(joint.name, v);
+}
+
+// The rotation of the quaternion q[0..3] (qw qx qy qz), normalised; none for a zero one.
+Eigen::Matrix3d QuaternionRotation(const double* q) {
+  Eigen::Quaterniond rotation(q[0], q[1], q[2], q[3]);
+  const double norm = rotation.norm();
+  if (!(norm > 1e-12)) return Eigen::Matrix3d::Identity();  // no rotation to show (NaN-free)
+  rotation.coeffs() /= norm;
+  return rotation.toRotationMatrix();
+}
 
 }  // namespace
 
@@ -22,6 +39,8 @@ int ChainJointValues(ChainJointKind kind) {
       return 0;
     case ChainJointKind::kFree:
       return kFreeValues;
+    case ChainJointKind::kBall:
+      return kBallValues;
     default:
       return 1;
   }
@@ -30,6 +49,11 @@ int ChainJointValues(ChainJointKind kind) {
 std::string FreeValueName(const std::string& joint, int value) {
   MBSTREAM_CHECK(value >= 0 && value < kFreeValues);
   return joint + kFreeSuffix[value];
+}
+
+std::string BallValueName(const std::string& joint, int value) {
+  MBSTREAM_CHECK(value >= 0 && value < kBallValues);
+  return joint + kBallSuffix[value];
 }
 
 KinematicChain::KinematicChain(Eigen::Isometry3d base_in_world, std::vector<ChainJoint> joints)
@@ -54,18 +78,18 @@ KinematicChain::KinematicChain(Eigen::Isometry3d base_in_world, std::vector<Chai
 }
 
 void KinematicChain::OrderJointValuesBy(const std::vector<std::string>& names) {
-  // Every joint value by name, and each free joint's seven by the joint's name.
+  // Every joint value by name, and each free or ball joint's values by the joint's name.
   std::map<std::string, std::vector<int>> values_of_name;  // values in the current order
   std::map<std::string, std::string> joint_of_name;
   for (size_t i = 0; i < joints_.size(); ++i) {
     const ChainJoint& joint = joints_[i];
     const int first = value_of_joint_[i];
     if (first < 0) continue;
-    if (joint.kind == ChainJointKind::kFree) {
+    if (const int values = ChainJointValues(joint.kind); values > 1) {
       std::vector<int>& all = values_of_name[joint.name];
-      for (int v = 0; v < kFreeValues; ++v) {
-        values_of_name[FreeValueName(joint.name, v)] = {first + v};
-        joint_of_name[FreeValueName(joint.name, v)] = joint.name;
+      for (int v = 0; v < values; ++v) {
+        values_of_name[ValueName(joint, v)] = {first + v};
+        joint_of_name[ValueName(joint, v)] = joint.name;
         all.push_back(first + v);
       }
     } else {
@@ -105,23 +129,27 @@ void KinematicChain::OrderJointValuesBy(const std::vector<std::string>& names) {
     message.pop_back();
     throw InputError(message);
   }
-  // A free joint's seven values stay together, in their order: the server names them so.
+  // A free or ball joint's values stay together, in their order: the server names them so.
   std::vector<int> new_of_old(dof());
   for (size_t value = 0; value < order.size(); ++value) new_of_old[order[value]] = value;
   std::vector<int> dof_joints(dof());
+  std::vector<int> value_of_joint = value_of_joint_;  // the chain unchanged when this throws
   for (size_t i = 0; i < joints_.size(); ++i) {
     const int first = value_of_joint_[i];
     if (first < 0) continue;
     const int values = ChainJointValues(joints_[i].kind);
     for (int v = 1; v < values; ++v) {
       if (new_of_old[first + v] != new_of_old[first] + v) {
-        throw InputError("the joint names differ: free joint '" + joints_[i].name +
-                         "' has its seven values apart or out of order in the model");
+        const bool free = joints_[i].kind == ChainJointKind::kFree;
+        throw InputError(std::string("the joint names differ: ") + (free ? "free" : "ball") +
+                         " joint '" + joints_[i].name + "' has its " + (free ? "seven" : "four") +
+                         " values apart or out of order in the model");
       }
     }
-    value_of_joint_[i] = new_of_old[first];
+    value_of_joint[i] = new_of_old[first];
     for (int v = 0; v < values; ++v) dof_joints[new_of_old[first] + v] = static_cast<int>(i);
   }
+  value_of_joint_ = std::move(value_of_joint);
   dof_joints_ = std::move(dof_joints);
 }
 
@@ -138,14 +166,10 @@ void KinematicChain::Compute(std::span<const double> q, std::span<Eigen::Isometr
     } else if (joint.kind == ChainJointKind::kPrismatic) {
       motion.translation() = joint.axis * q[v];
     } else if (joint.kind == ChainJointKind::kFree) {
-      Eigen::Quaterniond rotation(q[v + 3], q[v + 4], q[v + 5], q[v + 6]);
-      const double norm = rotation.norm();
-      if (norm > 1e-12)
-        rotation.coeffs() /= norm;
-      else
-        rotation = Eigen::Quaterniond::Identity();  // no rotation to show (a NaN-free pose)
-      motion.linear() = rotation.toRotationMatrix();
+      motion.linear() = QuaternionRotation(&q[v + 3]);
       motion.translation() = Eigen::Vector3d(q[v], q[v + 1], q[v + 2]);
+    } else if (joint.kind == ChainJointKind::kBall) {
+      motion.linear() = QuaternionRotation(&q[v]);
     }
     frames[i + 1] = frames[joint.parent] * joint.pre * motion * joint.post;
   }

@@ -4,7 +4,9 @@
 // frame `parent` (< i+1): frame = parent * pre * motion(q) * post, where motion is a
 // rotation about `axis` (revolute, q in rad) or a translation along it (prismatic, q in m),
 // or for a free joint the pose its seven values give (x y z in m, then the unit quaternion
-// qw qx qy qz: motion = translation(x, y, z) * rotation(q), the quaternion normalised).
+// qw qx qy qz: motion = translation(x, y, z) * rotation(q), the quaternion normalised), or for
+// a ball joint the rotation its four values give (the unit quaternion qw qx qy qz of the child
+// in the joint frame, normalised: motion = rotation(q)).
 // Fixed joints (URDF) take no joint value. Lengths are metres.
 #pragma once
 
@@ -16,13 +18,16 @@
 
 namespace mbstream::viewer {
 
-enum class ChainJointKind { kRevolute, kPrismatic, kFixed, kFree };
+enum class ChainJointKind { kRevolute, kPrismatic, kFixed, kFree, kBall };
 
-// The joint values a joint of `kind` takes: 1, 0 (fixed) or 7 (free).
+// The joint values a joint of `kind` takes: 1, 0 (fixed), 7 (free) or 4 (ball).
 int ChainJointValues(ChainJointKind kind);
 
 // The names of a free joint's seven values: "NAME.x" ".y" ".z" ".qw" ".qx" ".qy" ".qz".
 std::string FreeValueName(const std::string& joint, int value);
+
+// The names of a ball joint's four values: "NAME.qw" ".qx" ".qy" ".qz".
+std::string BallValueName(const std::string& joint, int value);
 
 struct ChainJoint {
   std::string name;
@@ -40,16 +45,17 @@ class KinematicChain {
   KinematicChain(Eigen::Isometry3d base_in_world, std::vector<ChainJoint> joints);
 
   int frame_count() const { return static_cast<int>(joints_.size()) + 1; }
-  // Number of joint values (one per revolute or prismatic joint, seven per free joint).
+  // Number of joint values (one per revolute or prismatic joint, seven per free joint, four
+  // per ball joint).
   int dof() const { return static_cast<int>(dof_joints_.size()); }
   const std::vector<ChainJoint>& joints() const { return joints_; }
-  // The joint of joint value `i` (a free joint's for each of its seven).
+  // The joint of joint value `i` (a free or ball joint's for each of its values).
   const ChainJoint& dof_joint(int i) const { return joints_[dof_joints_[i]]; }
   const Eigen::Isometry3d& base_in_world() const { return base_in_world_; }
 
   // Reorders the joint values to follow `names` (the server's joint order): a moving joint's
-  // name; for a free joint either its name (its seven values in their order) or its seven
-  // value names (FreeValueName). Throws InputError naming the joints that differ when
+  // name; for a free or ball joint either its name (its values in their order) or its value
+  // names (FreeValueName, BallValueName). Throws InputError naming the joints that differ when
   // `names` are not exactly the moving joints'.
   void OrderJointValuesBy(const std::vector<std::string>& names);
 

@@ -23,7 +23,9 @@ ChainJointKind KindOf(const sdf::Joint& joint) {
       return ChainJointKind::kPrismatic;
     case sdf::JointType::FIXED:
       return ChainJointKind::kFixed;
-    default:  // revolute, continuous; ball: three revolutes (SceneFromSdf)
+    case sdf::JointType::BALL:
+      return ChainJointKind::kBall;
+    default:  // revolute, continuous
       return ChainJointKind::kRevolute;
   }
 }
@@ -80,7 +82,7 @@ VisualPart PartOf(const mf::SdfVisual& visual, int frame, const Eigen::Isometry3
   return part;
 }
 
-// The chain joint of a tree joint (a ball joint's last axis; SceneFromSdf adds the others).
+// The chain joint of a tree joint.
 ChainJointKind KindOf(const mf::SdfJointOutline& outline) {
   switch (outline.role) {
     case mf::SdfJointRole::kFree:
@@ -90,10 +92,6 @@ ChainJointKind KindOf(const mf::SdfJointOutline& outline) {
     default:
       return KindOf(*outline.joint);
   }
-}
-
-bool IsBall(const mf::SdfJointOutline& outline) {
-  return outline.role == mf::SdfJointRole::kFile && outline.joint->Type() == sdf::JointType::BALL;
 }
 
 // A free joint's seven values holding its link at X_WL: x y z, qw qx qy qz.
@@ -132,27 +130,15 @@ SceneDescription SceneFromSdf(const std::string& text, const std::string& source
     joint.pre = joint.kind == ChainJointKind::kFree
                     ? Eigen::Isometry3d::Identity()
                     : Eigen::Isometry3d(X_WL.at(outline.parent).inverse() * frame.X_WL);
-    if (IsBall(outline)) {
-      // Three revolute joints through the centre, as the server's model (SdfBallAxisName).
-      for (int axis = 0; axis < 2; ++axis) {
-        ChainJoint inner = joint;
-        inner.name = mf::SdfBallAxisName(outline.name, axis);
-        inner.axis = Eigen::Vector3d::Unit(axis);
-        joints.push_back(std::move(inner));
-        scene.frame_names.push_back(joints.back().name);
-        joint.parent = static_cast<int>(joints.size());
-        joint.pre = Eigen::Isometry3d::Identity();
-      }
-      joint.name = mf::SdfBallAxisName(outline.name, 2);
-      joint.axis = Eigen::Vector3d::UnitZ();
-    } else if (joint.kind == ChainJointKind::kRevolute ||
-               joint.kind == ChainJointKind::kPrismatic) {
+    if (joint.kind == ChainJointKind::kRevolute || joint.kind == ChainJointKind::kPrismatic) {
       joint.axis = mf::SdfJointAxis(file, outline, frame.X_WL);
     }
     if (joint.kind == ChainJointKind::kFree) {
       AppendFreeValues(frame.X_WL, &scene.initial_q);
+    } else if (joint.kind == ChainJointKind::kBall) {  // the identity rotation: qw = 1
+      scene.initial_q.insert(scene.initial_q.end(), {1.0, 0.0, 0.0, 0.0});
     } else if (joint.kind != ChainJointKind::kFixed) {
-      scene.initial_q.insert(scene.initial_q.end(), IsBall(outline) ? 3 : 1, 0.0);
+      scene.initial_q.push_back(0.0);
     }
     joints.push_back(std::move(joint));
     frame_of[frame.link] = static_cast<int>(joints.size());

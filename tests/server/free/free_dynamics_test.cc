@@ -1,23 +1,26 @@
-// The algorithms with free bodies against each other (ABA against CRBA + RNEA, hybrid dynamics
-// against ABA, the energy against the mass matrix), the point Jacobian against differences of
-// forward kinematics, and a lone free body against the Newton-Euler equations.
+// The algorithms with free bodies and ball joints against each other (ABA against CRBA + RNEA,
+// hybrid dynamics against ABA, the energy against the mass matrix), the point Jacobian against
+// differences of forward kinematics, and a lone free body against the Newton-Euler equations.
 #include <gtest/gtest.h>
 
 #include <random>
 #include <vector>
 
+#include "server/contact/point_forces.h"
 #include "server/dynamics/aba.h"
 #include "server/dynamics/crba.h"
 #include "server/dynamics/energy.h"
 #include "server/dynamics/hybrid_dynamics.h"
 #include "server/dynamics/rnea.h"
 #include "server/kinematics/forward_kinematics.h"
+#include "server/kinematics/free_joint.h"
 #include "server/kinematics/point_jacobian.h"
 #include "tests/server/free/free_tree_model.h"
 
 namespace mbstream {
 namespace {
 
+using testing::BallTree;
 using testing::FloatingTree;
 using testing::RandomPositions;
 using testing::RandomVelocities;
@@ -26,11 +29,7 @@ double Relative(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return (a - b).norm() / std::max(1.0, b.norm());
 }
 
-TEST(FreeDynamicsTest, AbaSolvesTheMassMatrixEquation) {
-  std::mt19937 rng(3);
-  const Model model = FloatingTree(rng);
-  ASSERT_EQ(model.nq(), 6 + 14);
-  ASSERT_EQ(model.nv(), 6 + 12);
+void ExpectAbaSolvesTheMassMatrixEquation(const Model& model, std::mt19937& rng) {
   Data data(model);
   double worst = 0.0;
   for (int trial = 0; trial < 50; ++trial) {
@@ -51,13 +50,24 @@ TEST(FreeDynamicsTest, AbaSolvesTheMassMatrixEquation) {
   EXPECT_LT(worst, 1e-12);
 }
 
-TEST(FreeDynamicsTest, HybridDynamicsMatchesAba) {
-  std::mt19937 rng(4);
+TEST(FreeDynamicsTest, AbaSolvesTheMassMatrixEquation) {
+  std::mt19937 rng(3);
   const Model model = FloatingTree(rng);
+  ASSERT_EQ(model.nq(), 6 + 14);
+  ASSERT_EQ(model.nv(), 6 + 12);
+  ExpectAbaSolvesTheMassMatrixEquation(model, rng);
+}
+
+TEST(FreeDynamicsTest, AbaSolvesTheMassMatrixEquationWithBallJoints) {
+  std::mt19937 rng(31);
+  ExpectAbaSolvesTheMassMatrixEquation(BallTree(rng), rng);
+}
+
+void ExpectHybridDynamicsMatchesAba(const Model& model, std::mt19937& rng) {
   Data data(model);
   std::vector<unsigned char> prescribed(model.nv(), 0);
   for (const Body& body : model.bodies) {
-    if (!body.free() && body.v_index % 2 == 0) prescribed[body.v_index] = 1;
+    if (body.nv() == 1 && body.v_index % 2 == 0) prescribed[body.v_index] = 1;
   }
   for (int trial = 0; trial < 20; ++trial) {
     const Eigen::VectorXd q = RandomPositions(model, rng);
@@ -75,9 +85,30 @@ TEST(FreeDynamicsTest, HybridDynamicsMatchesAba) {
   }
 }
 
-TEST(FreeDynamicsTest, PointJacobianMatchesDifferencesOfKinematics) {
-  std::mt19937 rng(5);
-  const Model model = FloatingTree(rng);
+TEST(FreeDynamicsTest, HybridDynamicsMatchesAba) {
+  std::mt19937 rng(4);
+  ExpectHybridDynamicsMatchesAba(FloatingTree(rng), rng);
+}
+
+TEST(FreeDynamicsTest, HybridDynamicsMatchesAbaWithBallJoints) {
+  std::mt19937 rng(41);
+  ExpectHybridDynamicsMatchesAba(BallTree(rng), rng);
+}
+
+// q' = G(q) qd of every joint (free_joint.h, ball_joint.h), into rate (nq values).
+void PositionRates(const Model& model, const double* q, const double* qd, double* rate) {
+  for (const Body& body : model.bodies) {
+    if (body.free()) {
+      free_joint::PositionRate(q + body.q_index, qd + body.v_index, rate + body.q_index);
+    } else if (body.ball()) {
+      quaternion::Rate(q + body.q_index, qd + body.v_index, rate + body.q_index);
+    } else {
+      rate[body.q_index] = qd[body.v_index];
+    }
+  }
+}
+
+void ExpectPointJacobianMatchesDifferencesOfKinematics(const Model& model, std::mt19937& rng) {
   Data data(model);
   const int tip = model.FindFrame("tip");
   for (int trial = 0; trial < 10; ++trial) {
@@ -90,19 +121,11 @@ TEST(FreeDynamicsTest, PointJacobianMatchesDifferencesOfKinematics) {
     // q(+-h) by q' = G(q) qd, to second order in h (central differences).
     const double h = 1e-6;
     auto step = [&](double dt) {
-      Eigen::VectorXd moved = q;
-      for (const Body& body : model.bodies) {
-        if (!body.free()) {
-          moved(body.q_index) += dt * qd(body.v_index);
-          continue;
-        }
-        double rate[7];
-        free_joint::PositionRate(&q(body.q_index), &qd(body.v_index), rate);
-        double half[7];
-        for (int k = 0; k < 7; ++k) half[k] = q(body.q_index + k) + 0.5 * dt * rate[k];
-        free_joint::PositionRate(half, &qd(body.v_index), rate);  // midpoint
-        for (int k = 0; k < 7; ++k) moved(body.q_index + k) += dt * rate[k];
-      }
+      Eigen::VectorXd rate(model.nq());
+      PositionRates(model, q.data(), qd.data(), rate.data());
+      const Eigen::VectorXd half = q + 0.5 * dt * rate;
+      PositionRates(model, half.data(), qd.data(), rate.data());  // midpoint
+      const Eigen::VectorXd moved = q + dt * rate;
       ForwardKinematics(model, data, moved);
       return data.frame_world[tip];
     };
@@ -114,6 +137,42 @@ TEST(FreeDynamicsTest, PointJacobianMatchesDifferencesOfKinematics) {
     const Vector3d w(W(2, 1), W(0, 2), W(1, 0));
     EXPECT_LT((twist.head<3>() - w).norm(), 1e-7);
     EXPECT_LT((twist.tail<3>() - velocity).norm(), 1e-7);
+  }
+}
+
+TEST(FreeDynamicsTest, PointJacobianMatchesDifferencesOfKinematics) {
+  std::mt19937 rng(5);
+  ExpectPointJacobianMatchesDifferencesOfKinematics(FloatingTree(rng), rng);
+}
+
+TEST(FreeDynamicsTest, PointJacobianMatchesDifferencesOfKinematicsWithBallJoints) {
+  std::mt19937 rng(51);
+  ExpectPointJacobianMatchesDifferencesOfKinematics(BallTree(rng), rng);
+}
+
+// Contact's point velocity and generalised force (server/contact/point_forces.h, walked up the
+// chain without J) against the point Jacobian's linear rows: v = J qd, tau = J^T f.
+TEST(FreeDynamicsTest, ContactPointForcesAreThePointJacobiansWithBallJoints) {
+  std::mt19937 rng(61);
+  for (const Model& model : {BallTree(rng), FloatingTree(rng)}) {
+    Data data(model);
+    const int tip = model.FindFrame("tip");
+    const int body = model.frames[tip].body;
+    for (int trial = 0; trial < 10; ++trial) {
+      const Eigen::VectorXd q = RandomPositions(model, rng);
+      const Eigen::VectorXd qd = RandomVelocities(model, rng, 1.0);
+      ForwardKinematics(model, data, q);
+      Eigen::MatrixXd J(6, model.nv());
+      PointJacobian(model, data, tip, J);
+      const Vector3d p = data.frame_world[tip].p;
+      const Vector3d f = RandomVelocities(model, rng, 3.0).head<3>();
+      Eigen::VectorXd tau = Eigen::VectorXd::Zero(model.nv());
+      AddPointForce(model, data, body, p, f, &tau);
+      const Eigen::VectorXd expected = J.bottomRows<3>().transpose() * f;
+      EXPECT_LT((tau - expected).norm(), 1e-13 * (1.0 + expected.norm()));
+      const Vector3d v = J.bottomRows<3>() * qd;
+      EXPECT_LT((PointVelocity(model, data, body, p, qd) - v).norm(), 1e-13 * (1.0 + v.norm()));
+    }
   }
 }
 

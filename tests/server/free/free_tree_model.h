@@ -1,4 +1,4 @@
-// Test models with free bodies, and random states for them (unit quaternions).
+// Test models with free bodies and ball joints, and random states for them (unit quaternions).
 #pragma once
 
 #include <random>
@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "server/kinematics/free_joint.h"
+#include "server/kinematics/quaternion.h"
 #include "server/model/model_builder.h"
 
 namespace mbstream::testing {
@@ -65,13 +65,49 @@ inline Model FloatingTree(std::mt19937& rng, double armature = 0.01) {
   return builder.Build();
 }
 
-// Random positions (every free body's quaternion unit) and random velocities.
+// Ball joints in trees: a fixed-base chain world -ball-> b1 -ball-> b2 -revolute-> b3 -ball->
+// b4 (a point "tip" on it), and a free "torso" carrying a ball-jointed "upper" whose prismatic
+// "slider" carries a ball-jointed "hand". Joint frames rotated and offset at random.
+inline Model BallTree(std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  auto frame = [&] {
+    Pose X;
+    X.p = 0.3 * Vector3d(unit(rng), unit(rng), unit(rng));
+    X.R = AxisAngleRotation(Vector3d(unit(rng), unit(rng), unit(rng)).normalized(), unit(rng));
+    return X;
+  };
+  auto joint = [&](const std::string& name, JointType type, const Vector3d& axis) {
+    Joint j;
+    j.name = name;
+    j.type = type;
+    j.axis = axis.normalized();
+    j.X_PJ = frame();
+    return j;
+  };
+  ModelBuilder builder("balls", "world");
+  builder.AddBallLink("b1", "world", "ball1", frame(), RandomInertia(rng));
+  builder.AddBallLink("b2", "b1", "ball2", frame(), RandomInertia(rng));
+  builder.AddMovingLink("b3", "b2", joint("elbow", JointType::kRevolute, Vector3d(1, 0.5, 0.2)),
+                        RandomInertia(rng));
+  builder.AddBallLink("b4", "b3", "ball4", frame(), RandomInertia(rng));
+  builder.AddPoint("tip", "b4", Vector3d(0.1, -0.2, 0.3));
+  Pose X_W0;
+  X_W0.p = Vector3d(0.5, -0.2, 1.0);
+  builder.AddFreeLink("torso", "root", X_W0, RandomInertia(rng));
+  builder.AddBallLink("upper", "torso", "shoulder", frame(), RandomInertia(rng));
+  builder.AddMovingLink("slider", "upper", joint("slide", JointType::kPrismatic, Vector3d(0, 1, 1)),
+                        RandomInertia(rng));
+  builder.AddBallLink("hand", "slider", "wrist", frame(), RandomInertia(rng));
+  return builder.Build();
+}
+
+// Random positions (every quaternion unit: the free bodies' and the ball joints') and random
+// velocities.
 inline Eigen::VectorXd RandomPositions(const Model& model, std::mt19937& rng) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   Eigen::VectorXd q(model.nq());
   for (int k = 0; k < q.size(); ++k) q(k) = 2.0 * unit(rng);
-  for (const int i : model.free_bodies)
-    free_joint::NormaliseQuaternion(&q(model.bodies[i].q_index));
+  for (const int k : model.quaternions) quaternion::Normalise(&q(k));
   return q;
 }
 

@@ -1,7 +1,8 @@
 // A Model with free bodies written as MuJoCo's MJCF, for comparisons with MuJoCo (tests and
-// bench/free_body_bench.cc): free roots as <freejoint>, revolute and prismatic joints as hinge
-// and slide joints at their body's origin, inertias as <inertial> on their principal axes;
-// contacts, constraints and passive forces disabled. Armature, damping and limits are not written.
+// bench/free_body_bench.cc): free roots as <freejoint>, revolute, prismatic and ball joints as
+// hinge, slide and ball joints at their body's origin, inertias as <inertial> on their principal
+// axes; contacts, constraints and passive forces disabled. Armature, damping and limits are not
+// written.
 #pragma once
 
 #include <Eigen/Eigenvalues>
@@ -47,16 +48,20 @@ inline void MjcfBody(const Model& model, int i, const std::vector<std::vector<in
     const Eigen::Quaterniond quat(body.joint.X_PJ.R);
     out << "<body name=\"" << body.name << "\" pos=\"" << Numbers(body.joint.X_PJ.p) << "\" quat=\""
         << quat.w() << ' ' << quat.x() << ' ' << quat.y() << ' ' << quat.z() << "\"><joint name=\""
-        << body.joint.name << "\" type=\""
-        << (body.joint.type == JointType::kRevolute ? "hinge" : "slide") << "\" axis=\""
-        << Numbers(body.joint.axis) << "\"/>";
+        << body.joint.name << "\" type=\"";
+    if (body.ball()) {
+      out << "ball\"/>";
+    } else {
+      out << (body.joint.type == JointType::kRevolute ? "hinge" : "slide") << "\" axis=\""
+          << Numbers(body.joint.axis) << "\"/>";
+    }
   }
   out << Inertial(body.inertia);
   for (const int child : children[static_cast<size_t>(i)]) MjcfBody(model, child, children, out);
   out << "</body>";
 }
 
-// `model` (free roots and one-coordinate joints, no armature, no fixed-base bodies) as MJCF.
+// `model` (free roots, ball and one-coordinate joints, no armature) as MJCF.
 inline std::string Mjcf(const Model& model) {
   std::ostringstream out;
   out.precision(17);

@@ -11,6 +11,8 @@
 #include <random>
 #include <string>
 
+#include <unistd.h>
+
 #include "server/dynamics/aba.h"
 #include "server/parse/model_file.h"
 #include "tests/server/free/free_tree_model.h"
@@ -21,11 +23,13 @@ namespace {
 
 // Writes `model` as MJCF, loads it in MuJoCo and compares qacc at 100 random states and forces.
 void ExpectForwardDynamicsAsMujoco(const Model& model, const char* label, std::mt19937& rng) {
-  const std::filesystem::path path =
-      std::filesystem::path(::testing::TempDir()) / "mbstream_floating_tree.xml";
+  // One file per test process: ctest runs the tests of this program in parallel.
+  const std::filesystem::path path = std::filesystem::path(::testing::TempDir()) /
+                                     ("mbstream_mjcf_" + std::to_string(getpid()) + ".xml");
   std::ofstream(path) << testing::Mjcf(model);
   char error[1000] = "";
   mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
+  std::filesystem::remove(path);
   ASSERT_NE(m, nullptr) << error;
   mjData* d = mj_makeData(m);
   ASSERT_EQ(m->nq, model.nq());
@@ -36,7 +40,7 @@ void ExpectForwardDynamicsAsMujoco(const Model& model, const char* label, std::m
   for (const Body& body : model.bodies) {
     const int joint = mj_name2id(m, mjOBJ_JOINT, body.joint.name.c_str());
     ASSERT_GE(joint, 0) << body.joint.name;
-    const int nq = body.free() ? kFreeNq : 1, nv = body.free() ? kFreeNv : 1;
+    const int nq = body.nq(), nv = body.nv();
     for (int k = 0; k < nq; ++k)
       qpos[static_cast<size_t>(body.q_index + k)] = m->jnt_qposadr[joint] + k;
     for (int k = 0; k < nv; ++k)
@@ -84,6 +88,16 @@ TEST(MujocoFreeTest, FloatingTreeForwardDynamicsMatchesMujoco) {
   ASSERT_EQ(model.nv(), 6 + 4 + 6);
 
   ExpectForwardDynamicsAsMujoco(model, "floating tree", rng);
+}
+
+// Ball joints (quaternions, MuJoCo's ball joint) in a fixed-base chain with a revolute joint
+// between them and below a free torso, through a prismatic joint.
+TEST(MujocoFreeTest, BallJointChainsForwardDynamicsMatchMujoco) {
+  std::mt19937 rng(13);
+  const Model model = testing::BallTree(rng);
+  ASSERT_EQ(model.nq(), 4 + 4 + 1 + 4 + 7 + 4 + 1 + 4);
+  ASSERT_EQ(model.nv(), 3 + 3 + 1 + 3 + 6 + 3 + 1 + 3);
+  ExpectForwardDynamicsAsMujoco(model, "ball-joint chains", rng);
 }
 
 // A published humanoid (Atlas v3 of Debian's dart-doc, --floating-base: a free pelvis and 27

@@ -157,6 +157,18 @@ TEST(McapExportTest, WorldsFreeBodiesAreTheirTfPoses) {
   EXPECT_GT(read["frames"].get<int>(), 5);
 }
 
+// An arm carrying a bob on a ball joint (tests/data/ball_arm.sdf): /joint_states holds the
+// revolute joint only; the bob's /tf transform (its quaternion's rotation after the joint
+// frame) puts tool0, fixed to the bob off the joint centre, where tcp.csv has it.
+TEST(McapExportTest, ABallJointsChildIsItsTfPose) {
+  const nlohmann::json read = SimulateAndRead(
+      "tests/data/ball_arm.sdf", "tests/data/ball_arm-swing.json", "", "ball", "tool0");
+  ASSERT_FALSE(read.is_null());
+  EXPECT_EQ(read["names"], nlohmann::json::array({"shoulder"}));
+  EXPECT_LT(read["tcp_error_max_m"].get<double>(), 1e-12);
+  EXPECT_GT(read["frames"].get<int>(), 50);
+}
+
 // A million frames of the single pendulum, with and without --mcap: the export's memory is its
 // chunk (1 MiB of records, its compressed copy, zstd's context), not the run's 47 MB file.
 // docs/performance.md, "MCAP export", quotes these figures.

@@ -145,7 +145,8 @@ async function main() {
   const columnOf = (csv) => new Map(csv.header.map((name, k) => [name, k]));
   const jointColumn = columnOf(joints), velocityColumn = columnOf(velocities);
   const torqueColumn = torques ? columnOf(torques) : null;
-  const freeBodies = joints.header.filter((name) => name.endsWith(".qz")).map((name) => name.slice(0, -3));
+  // A free body has NAME.x .. NAME.qz; a ball joint (NAME.qw .. NAME.qz, no NAME.x) is not one.
+  const freeBodies = joints.header.filter((name) => name.endsWith(".qz") && joints.header.includes(name.slice(0, -3) + ".x")).map((name) => name.slice(0, -3));
   let freeErrorMax = freeBodies.length ? 0 : null;
   const topicOf = (id) => reader.channelsById.get(id).topic;
   let frame = 0, tfFrame = 0, lastLogTime = -1n;
