@@ -4,6 +4,7 @@
 //   BM_BareStreamFrames      frames/s of a bare server stream of the same Frame messages
 //   BM_ProbeRoundTrip        frame out of the server -> probe back (p50_us, p99_us)
 //   BM_BarePingPong/0, /10   a bare bidi echo of one Frame, hot or paced every 10 ms
+//   BM_BarePingPongBesideServer  the hot echo with the mbstream server running in the process
 //   BM_ControlRoundTrip      a 1 kHz controller on the IRB 1600 over Simulation.Control for
 //                            10 s of simulated time: command out -> next state back (p50_us,
 //                            p99_us) and the run's rate (x_real_time)
@@ -258,8 +259,7 @@ BENCHMARK(BM_BareStreamFrames)->Unit(benchmark::kMillisecond)->UseRealTime();
 // A bare bidi echo of one Frame. range(0) = ms of pause before each echo: 0 is a hot loop
 // (the baseline); 10 paces it like BM_ProbeRoundTrip's frames, so that every round
 // trip starts from sleeping threads, as a viewer's answer to a paced run does.
-void BM_BarePingPong(benchmark::State& state) {
-  const auto pause = std::chrono::milliseconds(state.range(0));
+void PingPong(benchmark::State& state, std::chrono::milliseconds pause) {
   std::vector<double> latencies;
   grpc::ClientContext context;
   auto stream = BareServer().stub->PingPong(&context);
@@ -275,8 +275,24 @@ void BM_BarePingPong(benchmark::State& state) {
   stream->Finish();
   Percentiles(state, latencies);
 }
+void BM_BarePingPong(benchmark::State& state) {
+  PingPong(state, std::chrono::milliseconds(state.range(0)));
+}
 BENCHMARK(BM_BarePingPong)->Arg(0)->Iterations(2000)->Unit(benchmark::kMicrosecond)->UseRealTime();
 BENCHMARK(BM_BarePingPong)->Arg(10)->Iterations(400)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+// The hot echo with the mbstream server started in the same process, as BM_ControlRoundTrip
+// has it: the server's callback-API methods bring gRPC's "nexting" threads (gRPC 1.51, epoll1:
+// they poll the process's one epoll set and take sockets' events from the threads that wait on
+// them, then hand those over). The like-for-like baseline of a round trip through this server.
+void BM_BarePingPongBesideServer(benchmark::State& state) {
+  Server();
+  PingPong(state, std::chrono::milliseconds(0));
+}
+BENCHMARK(BM_BarePingPongBesideServer)
+    ->Iterations(2000)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
 
 // A PD controller at 1 kHz (h = 1 ms, one RK4 step per period) holding a sine on every joint
 // of the IRB 1600 for 10 s of simulated time (10,000 round trips): the time from a command's

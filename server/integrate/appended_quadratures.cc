@@ -40,7 +40,8 @@ class AppendedQuadratureIntegrator : public Integrator {
                                const IntegratorOptions& options)
       : ode_(std::make_unique<AppendedQuadratureOde>(system)),
         n_(system.size()),
-        z_(static_cast<size_t>(ode_->size()), 0.0) {
+        z_(static_cast<size_t>(ode_->size()), 0.0),
+        z0_(z_.size(), 0.0) {
     std::copy_n(y0, n_, z_.data());
     IntegratorOptions inner = options;
     inner.error_states = n_;
@@ -59,6 +60,15 @@ class AppendedQuadratureIntegrator : public Integrator {
     inner.error_states = n_;
     return integrator_->Retune(inner);
   }
+  bool Restart(double t0, const double* y0, const IntegratorOptions& options) override {
+    restart_ = options;  // assigned, not made: no allocation for the table's name
+    restart_.error_states = n_;
+    std::copy_n(y0, n_, z0_.data());
+    std::fill(z0_.begin() + n_, z0_.end(), 0.0);  // the quadratures from 0 again
+    if (!integrator_->Restart(t0, z0_.data(), restart_)) return false;
+    z_.swap(z0_);
+    return true;
+  }
   const char* name() const override { return integrator_->name(); }
 
   bool Quadratures(double* q) override {
@@ -69,7 +79,9 @@ class AppendedQuadratureIntegrator : public Integrator {
  private:
   std::unique_ptr<AppendedQuadratureOde> ode_;
   const int n_;
-  std::vector<double> z_;  // [y; Q] at the last output
+  std::vector<double> z_;      // [y; Q] at the last output
+  std::vector<double> z0_;     // Restart's start (kept: no allocation)
+  IntegratorOptions restart_;  // Restart's options for the inner integrator (likewise)
   std::unique_ptr<Integrator> integrator_;
 };
 

@@ -120,6 +120,13 @@ int ArkStepIntegrator::SetStopTime(double t_final) {
   return ARKStepSetStopTime(memory_.get(), t_final);
 }
 
+int ArkStepIntegrator::ReInit(double t0) {
+  roots_found_ = 0;
+  const bool implicit = variant_ == Variant::kDirk;
+  return ARKStepReInit(memory_.get(), implicit ? nullptr : RhsCallback,
+                       implicit ? RhsCallback : nullptr, t0, initial_state());
+}
+
 SolverStats ArkStepIntegrator::stats() const {
   void* ark = memory_.get();
   SolverStats stats;

@@ -112,6 +112,11 @@ int CvodeIntegrator::SetStopTime(double t_final) {
   return CVodeSetStopTime(memory_.get(), t_final);
 }
 
+int CvodeIntegrator::ReInit(double t0) {
+  roots_found_ = 0;
+  return CVodeReInit(memory_.get(), t0, initial_state());
+}
+
 SolverStats CvodeIntegrator::stats() const {
   void* cvode = memory_.get();
   SolverStats stats;

@@ -25,6 +25,7 @@ class CvodeIntegrator final : public SundialsIntegrator {
   int SetMaxNumSteps(long steps) override;
   int Evolve(double t_out, N_Vector y, double* t_reached) override;
   int SetStopTime(double t_final) override;
+  int ReInit(double t0) override;
 
   Variant variant_;
   long roots_found_ = 0;  // root returns of Evolve

@@ -95,6 +95,19 @@ AdvanceResult FixedStepIntegrator::DoAdvance(double t_out, double* y) {
   return {IntegratorStatus::kOk, t_out, {}};
 }
 
+bool FixedStepIntegrator::DoRestart(double t0, const double* y0,
+                                    const IntegratorOptions& /*options*/) {
+  rhs_.Reset();
+  t0_ = t0;
+  k_ = 0;
+  std::copy(y0, y0 + state_size(), y_grid_.begin());
+  steps_ = 0;
+  cpu_chunk_start_ = 0;
+  next_cpu_check_ = 0;
+  last_step_ = 0.0;
+  return true;
+}
+
 SolverStats FixedStepIntegrator::stats() const {
   SolverStats stats;
   stats.steps = steps_;

@@ -29,6 +29,7 @@ class FixedStepIntegrator : public IntegratorBase {
 
  private:
   AdvanceResult DoAdvance(double t_out, double* y) final;
+  bool DoRestart(double t0, const double* y0, const IntegratorOptions& options) final;
   double GridTime(long k) const { return t0_ + static_cast<double>(k) * step_; }
   // The result of a failed step from grid point k (y = the state there).
   AdvanceResult StepFailure(int code, double t, double h, double* y);

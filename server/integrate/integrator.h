@@ -102,6 +102,18 @@ class Integrator {
   // false, changing nothing, when it cannot (a fixed-step method, another method, a failed
   // integration, t_final before the last output).
   virtual bool Retune(const IntegratorOptions& /*options*/) { return false; }
+
+  // Starts again at (t0, y0), as MakeIntegrator(system, t0, y0, options) would, in this one's
+  // memory: no heap allocation (CVodeReInit / ARKStepReInit for SUNDIALS' methods). Its
+  // statistics and quadratures start from zero again, and no step straddles t0 (the use: a
+  // discontinuity at t0, such as a new command held from then on). `options` may change
+  // t_final (finite, after t0, and finite already if it was), the tolerances, max_steps and
+  // cpu_deadline_s; the method, table, fixed step, max_step, divergence limit and error
+  // states must be those it was made with. Returns false, changing nothing, when they are not
+  // or y0 is not finite: make a new integrator then.
+  virtual bool Restart(double /*t0*/, const double* /*y0*/, const IntegratorOptions& /*options*/) {
+    return false;
+  }
 };
 
 // Creates the integrator for `system` starting at (t0, y0); keeps a reference to `system`,

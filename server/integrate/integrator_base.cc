@@ -56,6 +56,28 @@ ChunkedSolve IntegratorBase::SolveInChunks(double t_out, double* y, ChunkedSolve
   }
 }
 
+bool IntegratorBase::Restart(double t0, const double* y0, const IntegratorOptions& next) {
+  const IntegratorOptions& now = options_;
+  if (next.method != now.method || next.erk_table != now.erk_table ||
+      next.fixed_step != now.fixed_step || next.max_step != now.max_step ||
+      next.divergence_limit != now.divergence_limit || next.error_states != now.error_states ||
+      !std::isfinite(t0) || !(next.t_final > t0) ||
+      (std::isfinite(now.t_final) && !std::isfinite(next.t_final)) || next.max_steps <= 0) {
+    return false;
+  }
+  for (int i = 0; i < size_; ++i) {
+    if (!std::isfinite(y0[i])) return false;
+  }
+  if (!DoRestart(t0, y0, next)) return false;
+  ReplaceOptions(next);
+  last_t_ = t0;
+  std::copy(y0, y0 + size_, last_y_.begin());
+  failed_ = false;
+  failure_.status = IntegratorStatus::kOk;
+  failure_.message.clear();
+  return true;
+}
+
 AdvanceResult IntegratorBase::AdvanceTo(double t_out, double* y) {
   MBSTREAM_CHECK_MSG(std::isfinite(t_out) && t_out >= last_t_,
                      "AdvanceTo needs finite, non-decreasing output times");

@@ -18,6 +18,7 @@ class IntegratorBase : public Integrator {
   IntegratorBase& operator=(const IntegratorBase&) = delete;
 
   AdvanceResult AdvanceTo(double t_out, double* y) final;
+  bool Restart(double t0, const double* y0, const IntegratorOptions& options) final;
 
  protected:
   IntegratorBase(int size, double t0, const double* y0, const IntegratorOptions& options);
@@ -26,6 +27,14 @@ class IntegratorBase : public Integrator {
   // into y. On failure returns status != kOk with `t` = the last good time and y the state
   // there; if that state is not healthy the base falls back to the last output.
   virtual AdvanceResult DoAdvance(double t_out, double* y) = 0;
+
+  // Restart's part of the implementation, its checks passed (options: the new ones, not yet
+  // options()): starts the method again at (t0, y0) without allocating. false when it cannot
+  // (nothing changed then).
+  virtual bool DoRestart(double /*t0*/, const double* /*y0*/,
+                         const IntegratorOptions& /*options*/) {
+    return false;
+  }
 
   // Fixed-step, explicit or implicit: the advice on failures differs.
   virtual MethodKind method_kind() const = 0;

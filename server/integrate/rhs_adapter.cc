@@ -13,6 +13,16 @@ RhsAdapter::RhsAdapter(OdeSystem& system, double divergence_limit, int limited_s
       limited_states_(LimitedStates(system.size(), limited_states)),
       divergence_limit_(divergence_limit) {}
 
+void RhsAdapter::Reset() noexcept {
+  num_evals_ = 0;
+  event_ = Event::kNone;
+  event_time_ = 0.0;
+  event_code_ = 0;
+  event_what_[0] = '\0';
+  last_recoverable_code_ = 0;
+  last_recoverable_time_ = 0.0;
+}
+
 int RhsAdapter::Fail(Event event, double t, int code) noexcept {
   if (event_ == Event::kNone) {
     event_ = event;

@@ -38,6 +38,9 @@ class RhsAdapter {
   // is kept) and returns the code for SUNDIALS (< 0). For the C callbacks' boundary.
   int RecordException(double t, const char* what) noexcept;
 
+  // As made: no calls counted, no event (Integrator::Restart).
+  void Reset() noexcept;
+
   OdeSystem& system() const { return system_; }
   int size() const { return size_; }
   double divergence_limit() const { return divergence_limit_; }

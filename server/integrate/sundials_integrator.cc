@@ -90,6 +90,18 @@ bool SundialsIntegrator::Retune(const IntegratorOptions& next) {
   return true;
 }
 
+bool SundialsIntegrator::DoRestart(double t0, const double* y0, const IntegratorOptions& next) {
+  if (!(next.rtol > 0.0) || !(next.atol > 0.0)) return false;
+  std::copy(y0, y0 + state_size(), N_VGetArrayPointer(y0_.get()));
+  rhs_.Reset();
+  errors_.Clear();
+  callback_data_.rtol = next.rtol;
+  callback_data_.atol = next.atol;
+  CheckSetup(ReInit(t0), "ReInit");
+  if (std::isfinite(next.t_final)) CheckSetup(SetStopTime(next.t_final), "SetStopTime");
+  return true;
+}
+
 int SundialsIntegrator::TooMuchWorkFlag() const {
   return family_ == Family::kCvode ? CV_TOO_MUCH_WORK : ARK_TOO_MUCH_WORK;
 }

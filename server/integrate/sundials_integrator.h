@@ -28,6 +28,8 @@ class SundialsIntegrator : public IntegratorBase, protected ChunkedSolver {
   // weight function its data only in their initial set-up: *SStolerances after the first
   // step would leave it without.)
   virtual int SetStopTime(double t_final) = 0;
+  // CVodeReInit / ARKStepReInit at (t0, initial_state()), the root count reset (Restart).
+  virtual int ReInit(double t0) = 0;
 
   // Throws InternalError naming `call` and SUNDIALS' message when flag < 0 (set-up only).
   void CheckSetup(int flag, const char* call) const;
@@ -43,6 +45,7 @@ class SundialsIntegrator : public IntegratorBase, protected ChunkedSolver {
 
  private:
   AdvanceResult DoAdvance(double t_out, double* y) final;
+  bool DoRestart(double t0, const double* y0, const IntegratorOptions& options) final;
   void LimitSteps(long steps) final { CheckSetup(SetMaxNumSteps(steps), "SetMaxNumSteps"); }
   int Solve(double t_out, double* t_reached) final { return Evolve(t_out, out_.get(), t_reached); }
   int TooMuchWorkFlag() const final;

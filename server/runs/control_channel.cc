@@ -1,5 +1,8 @@
 #include "server/runs/control_channel.h"
 
+#include <algorithm>
+
+#include "server/model/collision_geometry.h"
 #include "server/sim/run_stop.h"
 #include "shared/common/format.h"
 
@@ -7,6 +10,14 @@ namespace mbstream {
 
 namespace {
 
+void ToProto(const Vector3d& v, v1::Vector3* out) {
+  out->set_x(v.x());
+  out->set_y(v.y());
+  out->set_z(v.z());
+}
+
+// The message's repeated fields are cleared and refilled: protobuf keeps the cleared
+// elements and their strings' capacity, so a state of the same shape allocates nothing.
 void ToProto(const ControlState& state, bool final, v1::ControlState* out) {
   out->set_step(state.step);
   out->set_t_s(state.t);
@@ -16,6 +27,28 @@ void ToProto(const ControlState& state, bool final, v1::ControlState* out) {
   out->mutable_tcp()->set_y(state.tcp.y());
   out->mutable_tcp()->set_z(state.tcp.z());
   out->set_final(final);
+  out->clear_sensors();
+  if (state.sensors != nullptr) {
+    for (const Vector3d& p : *state.sensors) ToProto(p, out->add_sensors());
+  }
+  out->clear_contacts();
+  if (state.contacts != nullptr && state.model != nullptr) {
+    const std::vector<CollisionGeometry>& g = state.model->collisions;
+    for (const ContactPoint& c : *state.contacts) {
+      v1::FrameContact* contact = out->add_contacts();
+      const CollisionGeometry& a = g[static_cast<size_t>(c.geometry_a)];
+      const CollisionGeometry& b = g[static_cast<size_t>(c.geometry_b)];
+      contact->set_link_a(a.link);
+      contact->set_collision_a(a.name);
+      contact->set_link_b(b.link);
+      contact->set_collision_b(b.name);
+      ToProto(c.point, contact->mutable_point_m());
+      ToProto(c.normal, contact->mutable_normal());
+      contact->set_depth_m(c.depth);
+      contact->set_normal_force_n(c.normal_force);
+      ToProto(c.friction_force, contact->mutable_friction_force_n());
+    }
+  }
 }
 
 // How often a waiting worker looks at the run's cancel flag besides being woken (a shutdown
@@ -32,12 +65,30 @@ ControlChannel::ControlChannel(int external, std::chrono::duration<double> timeo
       cancel_(cancel),
       command_(static_cast<size_t>(external), 0.0) {}
 
+void ControlChannel::NotifyAll() {
+  command_cv_.notify_all();
+  stream_cv_.notify_all();
+}
+
+void ControlChannel::Send(std::unique_lock<std::mutex>& lock) {
+  if (writer_ == nullptr || written_ >= published_) return;
+  written_ = published_;
+  ++writer_calls_;
+  *out_.mutable_state() = state_;
+  ControlWriter* writer = writer_;
+  lock.unlock();
+  const bool ok = writer->Write(out_);
+  lock.lock();
+  if (!ok) detached_ = true;
+  if (--writer_calls_ == 0 && stop_waits_) stream_cv_.notify_all();
+}
+
 bool ControlChannel::Command(const ControlState& state, double* commands, RunStats* stats) {
   std::unique_lock<std::mutex> lock(mutex_);
   ToProto(state, false, &state_);
   published_ = state.step;
   awaited_ = state.step;
-  changed_.notify_all();
+  Send(lock);
   const auto deadline = std::chrono::steady_clock::now() +
                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(timeout_);
   for (;;) {
@@ -93,40 +144,54 @@ bool ControlChannel::Command(const ControlState& state, double* commands, RunSta
                            state.t, state.step, seconds));
       return false;
     }
-    changed_.wait_until(lock, std::min(deadline, now + kCancelLook));
+    command_cv_.wait_until(lock, std::min(deadline, now + kCancelLook));
   }
 }
 
 void ControlChannel::Final(const ControlState& state) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::mutex> lock(mutex_);
   ToProto(state, true, &state_);
   published_ = state.step;
-  changed_.notify_all();
+  Send(lock);
 }
 
 bool ControlChannel::Attach() {
   std::lock_guard<std::mutex> lock(mutex_);
   if (attached_) return false;
   attached_ = true;
-  changed_.notify_all();
+  NotifyAll();
   return true;
 }
 
-std::optional<v1::ControlState> ControlChannel::NextState(int64_t after,
-                                                          std::chrono::duration<double> wait) {
+void ControlChannel::SetWriter(ControlWriter* writer) {
   std::unique_lock<std::mutex> lock(mutex_);
-  changed_.wait_for(lock, wait, [&] { return published_ > after || closed_; });
-  if (published_ > after) return state_;
-  return std::nullopt;
+  writer_ = writer;
+  Send(lock);                           // the state published before the stream attached
+  if (closed_ && writer_ != nullptr) {  // the run ended already
+    ++writer_calls_;
+    lock.unlock();
+    writer->Ended();
+    lock.lock();
+    if (--writer_calls_ == 0 && stop_waits_) stream_cv_.notify_all();
+  }
 }
 
-std::string ControlChannel::Deliver(int64_t step, const std::vector<double>& values) {
-  std::lock_guard<std::mutex> lock(mutex_);
+void ControlChannel::StopWriting() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  writer_ = nullptr;
+  stop_waits_ = true;
+  stream_cv_.wait(lock, [&] { return writer_calls_ == 0; });
+  stop_waits_ = false;
+}
+
+std::string ControlChannel::Deliver(int64_t step, const double* values, size_t count) {
+  std::unique_lock<std::mutex> lock(mutex_);
   if (step == awaited_ && awaited_ >= 0) {
-    command_ = values;
+    command_.assign(values, values + count);  // one per external joint (the stream checked)
     last_taken_ = step;
     awaited_ = -1;
-    changed_.notify_all();
+    lock.unlock();
+    command_cv_.notify_one();  // the worker, the one waiter (woken unlocked: no second wait)
     return "";
   }
   if (stopped_ || closed_) return "";  // the run stopped already: nothing to command
@@ -144,31 +209,38 @@ std::string ControlChannel::Deliver(int64_t step, const std::vector<double>& val
                           "after it",
                           static_cast<long>(step), static_cast<long>(published_));
   failure_ = reason;
-  changed_.notify_all();
+  NotifyAll();
   return reason;
 }
 
 void ControlChannel::Fail(const std::string& message) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (failure_.empty()) failure_ = message;
-  changed_.notify_all();
+  NotifyAll();
 }
 
 void ControlChannel::Detach() {
   std::lock_guard<std::mutex> lock(mutex_);
   detached_ = true;
-  changed_.notify_all();
+  NotifyAll();
 }
 
 void ControlChannel::Wake() {
   std::lock_guard<std::mutex> lock(mutex_);
-  changed_.notify_all();
+  NotifyAll();
 }
 
 void ControlChannel::Close() {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::mutex> lock(mutex_);
   closed_ = true;
-  changed_.notify_all();
+  NotifyAll();
+  if (writer_ == nullptr) return;  // SetWriter tells a stream attaching later
+  ControlWriter* writer = writer_;
+  ++writer_calls_;
+  lock.unlock();
+  writer->Ended();
+  lock.lock();
+  if (--writer_calls_ == 0 && stop_waits_) stream_cv_.notify_all();
 }
 
 bool ControlChannel::closed() const {

@@ -108,6 +108,7 @@ class RunManager {
     std::string denied;
     v1::RunInfo info;
     std::vector<std::string> joint_names, external_joints, commands;
+    std::vector<std::string> sensor_names;  // RunConfig::sensor_points' names, in order
     double period_s = 0.0;
   };
   ControlAttachment AttachControl(const std::string& run_id, const std::string& caller, bool admin);

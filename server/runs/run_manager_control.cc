@@ -56,6 +56,9 @@ RunManager::ControlAttachment RunManager::AttachControl(const std::string& run_i
                                                                                      : "velocity");
     attachment.period_s = drive.period;
   }
+  for (const SensorPointConfig& sensor : config.sensor_points) {
+    attachment.sensor_names.push_back(sensor.name);
+  }
   return attachment;
 }
 

@@ -26,11 +26,11 @@ struct DataKeeping {
   const StorageKeeper* storage = nullptr;  // GetStorage, BackupStorage (data_rpcs.cc)
 };
 
-// Subscribe and WatchRun are reactors on gRPC's callback API (subscribe_call.h,
-// watch_call.h); the other methods are synchronous handlers.
+// Subscribe, WatchRun and Control are reactors on gRPC's callback API (subscribe_call.h,
+// watch_call.h, control_call.h); the other methods are synchronous handlers.
 class SimulationService final
-    : public v1::Simulation::WithCallbackMethod_WatchRun<
-          v1::Simulation::WithCallbackMethod_Subscribe<v1::Simulation::Service>> {
+    : public v1::Simulation::WithCallbackMethod_Control<v1::Simulation::WithCallbackMethod_WatchRun<
+          v1::Simulation::WithCallbackMethod_Subscribe<v1::Simulation::Service>>> {
  public:
   // None is owned; all must outlive the service. `peers` (a cluster's replicas on a shared
   // store) proxies calls about runs integrating on other replicas; null: none are proxied.
@@ -69,9 +69,8 @@ class SimulationService final
       const v1::WatchRunRequest* request) override;  // watch_call.h
   grpc::ServerBidiReactor<v1::SubscribeRequest, v1::SubscribeEvent>* Subscribe(
       grpc::CallbackServerContext* context) override;  // subscribe_call.h
-  grpc::Status Control(grpc::ServerContext* context,
-                       grpc::ServerReaderWriter<v1::ControlResponse, v1::ControlRequest>* stream)
-      override;  // control_stream.cc
+  grpc::ServerBidiReactor<v1::ControlRequest, v1::ControlResponse>* Control(
+      grpc::CallbackServerContext* context) override;  // control_call.h
   grpc::Status DeleteRuns(grpc::ServerContext* context, const v1::DeleteRunsRequest* request,
                           v1::DeleteRunsResponse* response) override;  // data_rpcs.cc
   grpc::Status DeleteModel(grpc::ServerContext* context, const v1::DeleteModelRequest* request,
@@ -129,19 +128,6 @@ class SimulationService final
   // `sent_bytes`. export_mcap.cc.
   grpc::Status SendMcap(grpc::ServerContext& context, const v1::ExportMcapRequest& request,
                         grpc::ServerWriter<v1::McapFileChunk>& writer, size_t& sent_bytes);
-
-  // Control's body once admitted (control_stream.cc): the start, then the commands read on
-  // this thread (ReadCommands) while a thread of the stream writes the states (WriteStates).
-  grpc::Status ServeControl(
-      grpc::ServerContext& context,
-      grpc::ServerReaderWriter<v1::ControlResponse, v1::ControlRequest>& stream);
-  void WriteStates(ControlChannel& channel, const std::string& run_id,
-                   const std::atomic<bool>& reading, grpc::ServerContext& context,
-                   grpc::ServerReaderWriter<v1::ControlResponse, v1::ControlRequest>& stream);
-  grpc::Status ReadCommands(
-      ControlChannel& channel, const RunManager::ControlAttachment& attachment,
-      const std::string& run_id,
-      grpc::ServerReaderWriter<v1::ControlResponse, v1::ControlRequest>& stream);
 
   ModelRegistry* models_;
   RunManager* runs_;

@@ -5,9 +5,13 @@
 // where the commands come from.
 #pragma once
 
+#include <vector>
+
 #include <Eigen/Core>
 
+#include "server/contact/contact_point.h"
 #include "server/math/spatial.h"
+#include "server/model/model.h"
 #include "server/sim/run_result.h"
 
 namespace mbstream {
@@ -19,6 +23,12 @@ struct ControlState {
   const Eigen::VectorXd* q = nullptr;   // rad or m, in the model's joint order
   const Eigen::VectorXd* qd = nullptr;  // rad/s or m/s
   Vector3d tcp = Vector3d::Zero();      // m, the TCP's position in the base frame (0: none)
+  // m, the world (base) frame: each RunConfig::sensor_points' position, in its order.
+  const std::vector<Vector3d>* sensors = nullptr;
+  // The active contacts at t (a run with contact; null without), world frame: their geometry
+  // indices are into model->collisions.
+  const std::vector<ContactPoint>* contacts = nullptr;
+  const Model* model = nullptr;  // the run's
 };
 
 class ControlLaw {

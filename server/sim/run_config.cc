@@ -31,7 +31,7 @@ bool RunConfig::operator==(const RunConfig& other) const {
          baumgarte == other.baumgarte && max_steps == other.max_steps &&
          max_cpu_s == other.max_cpu_s && target == other.target &&
          method_auto == other.method_auto && verify == other.verify && keep == other.keep &&
-         contact == other.contact;
+         contact == other.contact && sensor_points == other.sensor_points;
 }
 
 const char* FormulationName(Formulation formulation) { return NameOf(kFormulations, formulation); }

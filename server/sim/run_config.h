@@ -17,6 +17,15 @@
 
 namespace mbstream {
 
+// A point fixed on a link whose world position a controlled run's states carry
+// (RunSpec.sensor_points, ControlState::sensors).
+struct SensorPointConfig {
+  std::string name;  // unique among the run's points
+  std::string link;  // a link (or frame) of the model, by name (ValidateRun)
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // m, in the link's frame
+  bool operator==(const SensorPointConfig&) const = default;
+};
+
 // How the mechanism is modelled ("model no more than a scene needs").
 enum class Formulation {
   kAuto,           // the least formulation that answers the run's outputs
@@ -67,6 +76,8 @@ struct RunConfig {
   bool verify = true;        // check the achieved error after a target run
   FrameKeep keep;            // which output frames the run keeps (the engine drops the rest)
   ContactSettings contact;   // contact forces (joint formulation; docs/contact.md)
+  // Points whose world positions a controlled run's states carry (external drives only).
+  std::vector<SensorPointConfig> sensor_points;
 
   // Field by field, exactly (doubles bit for bit but for -0 == 0; q0 and qd0 of another
   // size differ).

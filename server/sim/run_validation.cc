@@ -230,10 +230,31 @@ void CheckSampledDrives(const Model& model, const RunConfig& config, const Drive
   if (model.has_ball_joints()) {
     RefuseBallJoints(model, what + ": sampled drives do not run with ball joints yet");
   }
-  if (MayTouch(model, config.contact)) {
-    throw InputError(what +
-                     ", and the model's collision geometries may touch: sampled drives "
-                     "do not run with contact yet; give contact.enabled false");
+}
+
+// sensor_points: on links of the model, in a run whose states carry them (external drives).
+void CheckSensorPoints(const Model& model, const RunConfig& config, const DriveSet& drives) {
+  if (config.sensor_points.empty()) return;
+  if (drives.external_joints().empty()) {
+    throw InputError(
+        "sensor_points: only a run with external drives sends states (Simulation.Control) to "
+        "carry them; give a drive {\"external\": {...}} or drop sensor_points");
+  }
+  for (size_t i = 0; i < config.sensor_points.size(); ++i) {
+    const std::string& link = config.sensor_points[i].link;
+    if (model.FindFrame(link) >= 0) continue;
+    std::string names;
+    int listed = 0;
+    for (const Frame& frame : model.frames) {
+      if (++listed > 20) {
+        names += ", ...";
+        break;
+      }
+      names += (names.empty() ? "'" : ", '") + frame.name + "'";
+    }
+    throw InputError("sensor_points[" + std::to_string(i) +
+                     "].link: the model has no link named '" + link.substr(0, 64) +
+                     "'; give one of " + names);
   }
 }
 
@@ -248,6 +269,7 @@ FormulationChoice ValidateRun(const Model& model, const RunConfig& config, const
                                 " does not simulate ball joints yet; use formulation joint");
   }
   CheckSampledDrives(model, config, drives, choice);
+  CheckSensorPoints(model, config, drives);
   if (config.target.any() && IsBodyFormulation(choice.formulation)) {
     throw InputError(std::string("an accuracy target is met with formulation auto, kinematic or "
                                  "joint, not ") +

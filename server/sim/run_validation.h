@@ -53,7 +53,8 @@ void CheckBallJoints(const Model& model, const RunConfig& config);
 void CheckFreeBodies(const Model& model, const RunConfig& config);
 
 // A run with sampled drives (external, pd_servo with a period: drive_set.h): refuses what
-// does not run them yet (formulations other than joint, accuracy targets, free bodies).
+// does not run them yet (formulations other than joint, accuracy targets, free bodies); with
+// contact they run (the states carry the contacts: control_law.h).
 // ValidateRun calls it; closed loops refuse sampled drives in ValidateLoopRun.
 void CheckSampledDrives(const Model& model, const RunConfig& config, const DriveSet& drives,
                         const FormulationChoice& choice);

@@ -3,6 +3,8 @@
 // t_k = k h the sampled servos' laws are evaluated at the state then, the controller
 // (control_law.h) gives the external joints' commands, and the integrator starts afresh at
 // (t_k, y(t_k)) with them held: a new command is a discontinuity, which no step may straddle.
+// The integrator is made once and restarted at each instant in its own memory
+// (Integrator::Restart): after the first period a period allocates nothing.
 #pragma once
 
 #include <atomic>
@@ -19,9 +21,7 @@
 namespace mbstream {
 
 // RunJointSpace for drives.any_sampled() (no free bodies, no prefix: ValidateRun). A run with
-// external drives and no `control` fails at its first control instant. Making the integrator
-// at each control instant allocates (one integrator per period), unlike a continuous run's
-// steps.
+// external drives and no `control` fails at its first control instant.
 void RunSampledJointSpace(const Model& model, const RunConfig& config, const DriveSet& drives,
                           const std::vector<double>& times, FrameRecorder& recorder,
                           RunResult& result, FrameSink* sink, const std::atomic<bool>* cancel,

@@ -553,6 +553,43 @@ void ReadKeep(const v1::RunSpec& spec, const Checker& check, RunConfig* config) 
   }
 }
 
+// sensor_points: their shape (names, offsets); their links are the model's (ValidateRun).
+constexpr int kMaxSensorPoints = 64;
+constexpr double kMaxSensorOffset = 1e3;  // m from its link's origin: beyond any mechanism
+
+void ReadSensorPoints(const v1::RunSpec& spec, const Checker& check, RunConfig* config) {
+  check.Count(spec.sensor_points_size(), kMaxSensorPoints, "sensor_points",
+              "give the points your controller reads");
+  for (int i = 0; i < spec.sensor_points_size(); ++i) {
+    const v1::SensorPoint& point = spec.sensor_points(i);
+    const std::string field = "sensor_points[" + std::to_string(i) + "]";
+    SensorPointConfig sensor;
+    sensor.link = check.Name(point.link(), field + ".link");
+    if (sensor.link.empty()) {
+      check.Fail(field + ".link", "is empty; give the name of the link the point is fixed on");
+    }
+    sensor.name = check.Name(point.name().empty() ? point.link() : point.name(), field + ".name");
+    const double offset[3] = {point.offset_m().x(), point.offset_m().y(), point.offset_m().z()};
+    for (int axis = 0; axis < 3; ++axis) {
+      const std::string component = field + ".offset_m." + "xyz"[axis];
+      sensor.offset[axis] = check.Finite(offset[axis], component, "m");
+      if (std::abs(offset[axis]) > kMaxSensorOffset) {
+        check.Fail(component, "is " + Format(offset[axis]) + " m, beyond +-" +
+                                  Format(kMaxSensorOffset) +
+                                  " m; give the point in its link's frame, in m");
+      }
+    }
+    for (const SensorPointConfig& other : config->sensor_points) {
+      if (other.name == sensor.name) {
+        check.Fail(field + ".name", Quote(sensor.name) +
+                                        " names another sensor point already; give each "
+                                        "point its own name");
+      }
+    }
+    config->sensor_points.push_back(std::move(sensor));
+  }
+}
+
 // The fields only the server acts on (realtime, retries, max_output_frames): checked here so
 // that simulate refuses what the server refuses; not part of RunConfig.
 void CheckServerFields(const v1::RunSpec& spec, const Checker& check) {
@@ -607,6 +644,7 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const SpecCoordinates& coordinate
   ReadBudget(spec, check, &config);
   ReadTarget(spec, check, &config);
   ReadKeep(spec, check, &config);
+  ReadSensorPoints(spec, check, &config);
   if (spec.has_contact()) config.contact = ToContactSettings(spec.contact(), source);
   CheckServerFields(spec, check);
   return config;

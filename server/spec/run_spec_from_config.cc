@@ -108,6 +108,14 @@ v1::RunSpec ToRunSpec(const RunConfig& config) {
   spec.mutable_baumgarte()->set_alpha(config.baumgarte.alpha);
   spec.mutable_baumgarte()->set_beta(config.baumgarte.beta);
   ToContactSpec(config.contact, spec.mutable_contact());
+  for (const SensorPointConfig& sensor : config.sensor_points) {
+    v1::SensorPoint* point = spec.add_sensor_points();
+    point->set_name(sensor.name);
+    point->set_link(sensor.link);
+    point->mutable_offset_m()->set_x(sensor.offset.x());
+    point->mutable_offset_m()->set_y(sensor.offset.y());
+    point->mutable_offset_m()->set_z(sensor.offset.z());
+  }
   // 0 = the default budget: the fields stay absent.
   MBSTREAM_CHECK_MSG(config.max_steps >= 0 && config.max_steps <= INT32_MAX,
                      "RunConfig::max_steps must fit RunSpec.max_internal_steps (int32)");

@@ -22,7 +22,7 @@ from ._version import __version__
 from .bundle import read_model_bundle
 from .client import Client, connect
 from .compare import Comparison, compare_results
-from .control import ControlLoop, ControlState
+from .control import Contact, ControlLoop, ControlState
 from .errors import (AlreadyExists, BadRequest, Cancelled, DeadlineExceeded, FailedPrecondition,
                      IncompatibleServer, MbstreamError, NotFound, OutOfRange, PermissionDenied,
                      ResourceExhausted, RunFailed, ServerError, Unauthenticated, Unavailable,
@@ -38,7 +38,7 @@ __all__ = [
     "__version__", "WIRE_MAJOR", "connect", "Client", "Run", "Result", "RunInfo", "Frame",
     "ProgressBar", "ServerCheck", "load_spec", "spec_to_dict", "read_model_bundle",
     "FINAL_STATES", "Comparison", "compare_results", "plot_sweep", "Sweep", "ControlLoop",
-    "ControlState",
+    "ControlState", "Contact",
     # errors
     "MbstreamError", "BadRequest", "NotFound", "AlreadyExists", "FailedPrecondition",
     "OutOfRange", "Unauthenticated", "PermissionDenied", "ResourceExhausted", "Unavailable",

@@ -24,12 +24,40 @@ from .errors import bad_request, from_rpc_error
 Command = Union[Sequence[float], "np.ndarray", Mapping[str, float]]
 
 
+def _xyz(v: Any) -> "np.ndarray":
+    return np.array([v.x, v.y, v.z], dtype=float)
+
+
+class Contact:
+    """One active contact at a state (contacts.csv's columns): the geometry pair (`link_a`,
+    `collision_a`, `link_b`, `collision_b`), `point` (m), the unit `normal` from b toward a,
+    `depth` (m), `normal_force` (N) and `friction` (N, a 3-vector) on a, world frame."""
+
+    def __init__(self, message: Any):
+        self.link_a = message.link_a
+        self.collision_a = message.collision_a
+        self.link_b = message.link_b
+        self.collision_b = message.collision_b
+        self.point = _xyz(message.point_m)
+        self.normal = _xyz(message.normal)
+        self.depth = float(message.depth_m)
+        self.normal_force = float(message.normal_force_n)
+        self.friction = _xyz(message.friction_force_n)
+
+    def __repr__(self) -> str:
+        return "Contact(%s/%s on %s/%s, %.6g N)" % (self.link_a, self.collision_a, self.link_b,
+                                                   self.collision_b, self.normal_force)
+
+
 class ControlState:
     """The state at control instant t_k = k h: step k, t (s), q (rad or m) and qd (rad/s or
     m/s) as NumPy arrays in the model's joint order (`joint_names`), the TCP's position (m,
-    base frame). `state["joint2"]` is joint2's q."""
+    base frame), `sensors` (an (n, 3) array, m, world frame: the spec's sensor points in
+    `sensor_names`' order; `state.sensor("tip")` is one) and `contacts` (the active contacts,
+    a list of Contact). `state["joint2"]` is joint2's q."""
 
-    def __init__(self, message: "control_pb2.ControlState", joint_names: List[str]):
+    def __init__(self, message: "control_pb2.ControlState", joint_names: List[str],
+                 sensor_names: Optional[List[str]] = None):
         self.step = int(message.step)
         self.t = float(message.t_s)
         self.q = np.array(message.q, dtype=float)
@@ -37,9 +65,20 @@ class ControlState:
         self.tcp = np.array([message.tcp.x, message.tcp.y, message.tcp.z])
         self.final = bool(message.final)
         self.joint_names = joint_names
+        self.sensor_names = sensor_names or []
+        self.sensors = np.array([[p.x, p.y, p.z] for p in message.sensors],
+                                dtype=float).reshape(-1, 3)
+        self.contacts = [Contact(c) for c in message.contacts]
 
     def __getitem__(self, joint: str) -> float:
         return float(self.q[self.joint_names.index(joint)])
+
+    def sensor(self, name: str) -> "np.ndarray":
+        """The sensor point `name`'s position (m, world frame)."""
+        if name not in self.sensor_names:
+            raise bad_request("no sensor point %r; the run's are %s"
+                              % (name, ", ".join(self.sensor_names) or "none"))
+        return self.sensors[self.sensor_names.index(name)]
 
     def __repr__(self) -> str:
         return "ControlState(step=%d, t=%.6g s)" % (self.step, self.t)
@@ -69,6 +108,7 @@ class ControlLoop:
         self.external_joints: List[str] = list(started.external_joints)
         self.commands: List[str] = list(started.commands)
         self.period_s: float = started.period_s
+        self.sensor_names: List[str] = list(started.sensor_names)
 
     def __enter__(self) -> "ControlLoop":
         return self
@@ -83,7 +123,7 @@ class ControlLoop:
             for response in self._call:
                 which = response.WhichOneof("kind")
                 if which == "state":
-                    state = ControlState(response.state, self.joint_names)
+                    state = ControlState(response.state, self.joint_names, self.sensor_names)
                     if state.final:
                         self.final = state
                         continue
@@ -158,4 +198,4 @@ def control_start(model: str, spec: Any = None, run_id: str = "") -> "control_pb
     return control_pb2.ControlStart(model=model, spec=spec)
 
 
-__all__ = ["ControlLoop", "ControlState", "control_start"]
+__all__ = ["Contact", "ControlLoop", "ControlState", "control_start"]

@@ -73,6 +73,34 @@ class ControlTest(ServerTestCase):
         self.assertLessEqual(np.max(np.abs(controlled.qd - builtin.qd)), 1e-12)
         self.assertIn(loop.run_id, [run.id for run in self.client.runs("irb1600")])
 
+    def test_states_carry_the_sensor_points(self):
+        spec = external(sampled_servo())
+        spec.duration_s = 0.002
+        spec.output_interval_s = 0.002
+        point = spec.sensor_points.add(name="tip", link="link6")
+        point.offset_m.x = 0.1
+        spec.sensor_points.add(link="link1")
+        with self.client.control("irb1600", spec) as loop:
+            self.assertEqual(loop.sensor_names, ["tip", "link1"])
+            states = 0
+            for state in loop:
+                self.assertEqual(state.sensors.shape, (2, 3))
+                self.assertEqual(state.contacts, [])
+                np.testing.assert_array_equal(state.sensor("tip"), state.sensors[0])
+                self.assertTrue(np.all(np.isfinite(state.sensors)))
+                loop.send(effort=np.zeros(6))
+                states += 1
+        self.assertEqual(states, 20)
+        self.assertEqual(loop.info.state, run_pb2.FINISHED, loop.info.message)
+        with self.assertRaises(mb.BadRequest):
+            loop.final.sensor("nothing")
+        spec.sensor_points[1].link = "link9"
+        with self.assertRaises(mb.BadRequest) as refused:
+            with self.client.control("irb1600", spec) as loop:
+                for state in loop:
+                    loop.send(effort=np.zeros(6))
+        self.assertIn("sensor_points[1].link", str(refused.exception))
+
     def test_a_controller_asleep_past_the_timeout_fails_the_run(self):
         with self.client.control("irb1600", external(sampled_servo(), timeout_s=0.2)) as loop:
             for state in loop:

@@ -14,6 +14,7 @@
 
 #include "server/dynamics/aba.h"
 #include "server/dynamics/rnea.h"
+#include "server/kinematics/forward_kinematics.h"
 #include "server/parse/urdf_import.h"
 #include "server/spec/run_spec_json.h"
 #include "tests/server/service/server_fixture.h"
@@ -465,6 +466,56 @@ TEST_F(ControlServiceTest, AttachesToARunStartedWithExternalDrives) {
   EXPECT_EQ(steps, 1000);
   EXPECT_TRUE(session.Finish().ok());
   EXPECT_EQ(session.ended().state(), v1::FINISHED);
+}
+
+// The spec's sensor points: named in `started`, their world positions in each state, where
+// forward kinematics puts them; one on an unknown link is refused at the door, naming it.
+TEST_F(ControlServiceTest, StatesCarryTheSensorPoints) {
+  v1::RunSpec spec = ExternalEffort(SampledServo());
+  spec.set_duration_s(0.005);
+  spec.set_output_interval_s(0.005);
+  v1::SensorPoint* tip = spec.add_sensor_points();
+  tip->set_name("tip");
+  tip->set_link("link6");
+  tip->mutable_offset_m()->set_x(0.1);
+  tip->mutable_offset_m()->set_z(0.05);
+  spec.add_sensor_points()->set_link("link3");  // named after its link
+  Session session(stub(), Session::NewRun(spec));
+  ASSERT_TRUE(session.ok()) << session.Finish().error_message();
+  ASSERT_EQ(session.started().sensor_names_size(), 2);
+  EXPECT_EQ(session.started().sensor_names(0), "tip");
+  EXPECT_EQ(session.started().sensor_names(1), "link3");
+  const Model model = ImportUrdfFile("models/irb1600/irb1600.urdf").model;
+  Data data(model);
+  v1::ControlState state;
+  int states = 0;
+  double worst = 0.0;
+  while (session.NextState(&state)) {
+    ASSERT_EQ(state.sensors_size(), 2);
+    EXPECT_EQ(state.contacts_size(), 0);  // the IRB 1600 without contact
+    Eigen::VectorXd q(6);
+    for (int i = 0; i < 6; ++i) q(i) = state.q(i);
+    ForwardKinematics(model, data, q);
+    const Pose& flange = data.frame_world[static_cast<size_t>(model.FindFrame("link6"))];
+    const Eigen::Vector3d expected = flange.R * Eigen::Vector3d(0.1, 0.0, 0.05) + flange.p;
+    const Eigen::Vector3d link3 = data.frame_world[static_cast<size_t>(model.FindFrame("link3"))].p;
+    const Eigen::Vector3d got(state.sensors(0).x(), state.sensors(0).y(), state.sensors(0).z());
+    const Eigen::Vector3d got3(state.sensors(1).x(), state.sensors(1).y(), state.sensors(1).z());
+    worst = std::max({worst, (got - expected).norm(), (got3 - link3).norm()});
+    session.Send(state.step(), std::vector<double>(6, 5.0));
+    ++states;
+  }
+  EXPECT_EQ(states, 50);
+  EXPECT_LE(worst, 1e-12);  // m
+  EXPECT_TRUE(session.Finish().ok());
+  EXPECT_EQ(session.final_state().sensors_size(), 2);
+
+  spec.mutable_sensor_points(1)->set_link("link9");
+  Session unknown(stub(), Session::NewRun(spec));
+  const grpc::Status status = unknown.Finish();
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(status.error_message(), HasSubstr("sensor_points[1].link"));
+  EXPECT_THAT(status.error_message(), HasSubstr("'link9'"));
 }
 
 TEST_F(ControlServiceTest, BadStartsAreRefused) {

@@ -2,10 +2,13 @@
 // ControlLaw, integrated period by period (server/sim/sampled_joint_run.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "server/engine/engine.h"
+#include "server/kinematics/forward_kinematics.h"
+#include "server/parse/sdf_import.h"
 #include "server/sim/run_stop.h"
 #include "server/sim/run_validation.h"
 #include "shared/common/check.h"
@@ -194,6 +197,118 @@ TEST(SampledDriveTest, ControllerStopsTheRun) {
   EXPECT_EQ(result.stats.status, RunStatus::kFailed);
   EXPECT_EQ(result.stats.message, "stopped by the controller");
   EXPECT_LT(result.t.back(), 0.05);
+}
+
+// Each state's sensor points are where forward kinematics puts them: a point on link6 (the
+// flange) off its origin, and one on the base.
+TEST(SampledDriveTest, SensorPointsAreWhereForwardKinematicsPutsThem) {
+  RunConfig config = ExternalEffort(SampledServo());
+  config.duration = 0.02;
+  config.sensor_points = {{"tip", "link6", Eigen::Vector3d(0.1, -0.2, 0.3)},
+                          {"origin", Irb1600().frames[0].name, Eigen::Vector3d(0.0, 0.0, 0.5)}};
+  ValidateRun(Irb1600(), config);
+  struct Law : ControlLaw {
+    Data data{Irb1600()};
+    int checked = 0;
+    double worst = 0.0;
+    bool Command(const ControlState& state, double* commands, RunStats*) override {
+      for (int i = 0; i < 6; ++i) commands[i] = 20.0 * std::sin(100.0 * state.t + i);
+      EXPECT_EQ(state.sensors->size(), 2u);
+      ForwardKinematics(Irb1600(), data, *state.q);
+      const Pose& flange = data.frame_world[static_cast<size_t>(Irb1600().FindFrame("link6"))];
+      const Eigen::Vector3d tip = flange.R * Eigen::Vector3d(0.1, -0.2, 0.3) + flange.p;
+      const Pose& base = data.frame_world[0];
+      const Eigen::Vector3d origin = base.R * Eigen::Vector3d(0.0, 0.0, 0.5) + base.p;
+      worst = std::max(
+          {worst, ((*state.sensors)[0] - tip).norm(), ((*state.sensors)[1] - origin).norm()});
+      ++checked;
+      return true;
+    }
+  } law;
+  const RunResult result = Simulate(Irb1600(), {}, config, nullptr, nullptr, &law);
+  ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  EXPECT_EQ(law.checked, 200);
+  EXPECT_LE(law.worst, 1e-12);  // m
+}
+
+TEST(SampledDriveTest, ASensorPointOnAnUnknownLinkIsRefusedNamingTheField) {
+  RunConfig config = ExternalEffort(SampledServo());
+  config.sensor_points = {{"tip", "link6", Eigen::Vector3d::Zero()},
+                          {"oops", "link7", Eigen::Vector3d::Zero()}};
+  try {
+    ValidateRun(Irb1600(), config);
+    FAIL() << "accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("sensor_points[1].link"), std::string::npos)
+        << error.what();
+    EXPECT_NE(std::string(error.what()).find("'link7'"), std::string::npos) << error.what();
+  }
+  config.sensor_points.clear();
+  config.sensor_points.push_back({"tip", "link6", Eigen::Vector3d::Zero()});
+  for (DriveConfig& drive : config.drives) drive = DriveConfig{};  // no external drive
+  EXPECT_THROW(ValidateRun(Irb1600(), config), InputError);
+}
+
+// A controlled run of a box dropped on the floor: its slider commanded 0 N in the air and a
+// damper's effort, -c qd, while the state reports contacts (the contact alone would ring for
+// seconds: Hunt-Crossley's damping is light at rest). Once it rests, each state reports its
+// four corners on the floor, whose normal forces add up to its weight.
+TEST(SampledDriveTest, AControlledBoxOnTheFloorReportsItsWeightAsContactForce) {
+  const Model box =
+      ImportSdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/tests/data/contact/box_on_slider.sdf")
+          .model;
+  ASSERT_EQ(box.nv(), 2);  // carriage (x), drop (z)
+  RunConfig config;
+  config.formulation = Formulation::kJoint;
+  config.duration = 1.5;
+  config.output_interval = 0.1;
+  config.rtol = 1e-8;
+  config.atol = 1e-10;
+  config.contact.stiffness = 1e5;
+  config.drives.resize(2);
+  for (DriveConfig& drive : config.drives) {
+    drive.kind = DriveConfig::Kind::kExternal;
+    drive.command = DriveConfig::Command::kEffort;
+    drive.period = 1e-3;
+  }
+  ValidateRun(box, config);
+  struct Law : ControlLaw {
+    double first_contact_t = -1.0, normal_sum = 0.0, friction = 0.0, point_z = 1.0;
+    double normal_z = 0.0;
+    size_t count = 0;
+    std::string link_a, link_b;
+    bool Command(const ControlState& state, double* commands, RunStats*) override {
+      commands[0] = commands[1] = 0.0;
+      if (state.contacts == nullptr) return true;
+      if (!state.contacts->empty()) commands[1] = -300.0 * (*state.qd)(1);  // N s/m
+      if (!state.contacts->empty() && first_contact_t < 0.0) first_contact_t = state.t;
+      count = state.contacts->size();
+      normal_sum = friction = 0.0;
+      for (const ContactPoint& c : *state.contacts) {
+        normal_sum += c.normal_force;
+        friction = std::max(friction, c.friction_force.norm());
+        point_z = c.point.z();
+        normal_z = c.normal.z();
+        link_a = state.model->collisions[static_cast<size_t>(c.geometry_a)].link;
+        link_b = state.model->collisions[static_cast<size_t>(c.geometry_b)].link;
+      }
+      return true;
+    }
+  } law;
+  const RunResult result = Simulate(box, {}, config, nullptr, nullptr, &law);
+  ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  // Free fall of 0.05 m: t = sqrt(2 h / g) = 0.101 s.
+  EXPECT_GE(law.first_contact_t, 0.1);
+  EXPECT_LE(law.first_contact_t, 0.103);
+  EXPECT_EQ(law.count, 4u);  // a box resting flat: its four bottom corners
+  EXPECT_NEAR(law.normal_sum, 2.0 * 9.81, 1e-3 * 2.0 * 9.81);  // N: its weight
+  EXPECT_LE(law.friction, 1e-6);                               // N: nothing pushes it sideways
+  EXPECT_NEAR(std::abs(law.normal_z), 1.0, 1e-12);
+  EXPECT_NEAR(law.point_z, 0.0, 1e-3);  // m: at the floor (midway, a fraction of a mm deep)
+  EXPECT_NE((law.link_a + law.link_b).find("floor"), std::string::npos) << law.link_a;
+  EXPECT_NE((law.link_a + law.link_b).find("body"), std::string::npos) << law.link_b;
+  EXPECT_TRUE(result.contacts.active);  // and contacts.csv's log has them at the frames
+  EXPECT_FALSE(result.contacts.records.empty());
 }
 
 TEST(SampledDriveTest, ValidationRefusesWhatDoesNotRunSampledDrives) {
