@@ -84,7 +84,7 @@ class ControlChannel : public ControlLaw {
   // Hands state_ to the writer if it has not had it (lock held on entry and exit, released
   // around the call).
   void Send(std::unique_lock<std::mutex>& lock);
-  // Wakes the worker and the stream's writer thread (lock held or not).
+  // Wakes the worker and StopWriting's wait (lock held or not).
   void NotifyAll();
 
   mutable std::mutex mutex_;
