@@ -243,6 +243,10 @@ void RunSampledJointSpace(const Model& model, const RunConfig& config, const Dri
   result.stats.equations = source.ode().size();
   result.stats.jacobian_nnz = source.ode().JacobianNonZeros();
   RunFrames(times, source, recorder, result, sink, cancel);
+  if (result.contacts.active) {  // as RunJointSpace
+    result.stats.contact = {true, result.contacts.depth_max, result.contacts.count_peak,
+                            result.contacts.relative_max};
+  }
   if (const std::string deep = result.contacts.DeepContactWarning(); !deep.empty()) {
     result.stats.warnings.push_back(deep);
   }

@@ -309,6 +309,8 @@ TEST(SampledDriveTest, AControlledBoxOnTheFloorReportsItsWeightAsContactForce) {
   EXPECT_NE((law.link_a + law.link_b).find("body"), std::string::npos) << law.link_b;
   EXPECT_TRUE(result.contacts.active);  // and contacts.csv's log has them at the frames
   EXPECT_FALSE(result.contacts.records.empty());
+  EXPECT_TRUE(result.stats.contact.active);
+  EXPECT_EQ(result.stats.contact.contacts_peak, 4);
 }
 
 TEST(SampledDriveTest, ValidationRefusesWhatDoesNotRunSampledDrives) {
