@@ -331,7 +331,12 @@ void ControlCall::Drive(std::unique_lock<std::mutex>& lock) {
     return;
   }
   finished_ = true;
-  outside([&] { Finish(status); });
+  // On the pump, never here: gRPC may run OnDone inside Finish, and this thread may be the
+  // starter (which OnDone joins) or the worker inside a channel call (which OnDone waits for).
+  // The caller touches nothing of the call after Drive.
+  std::shared_ptr<ControlCall> self = shared_from_this();
+  lock.unlock();
+  deps_.pump->Post([self, status] { self->Finish(status); });
 }
 
 void ControlCall::OnDone() {

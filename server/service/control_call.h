@@ -61,7 +61,8 @@ class ControlCall final : public grpc::ServerBidiReactor<v1::ControlRequest, v1:
   void WatchRun();                     // every 250 ms: a run that ended without Ended
   void Conclude(const grpc::Status&);  // the first status given stays (lock held)
   // Starts the next write, a read that is due, or finishes the call (lock held; released
-  // around gRPC's calls, which may run a reaction inline).
+  // around gRPC's calls, which may run a reaction inline; released for good when it finishes
+  // the call, whose Finish runs on the pump).
   void Drive(std::unique_lock<std::mutex>& lock);
 
   grpc::CallbackServerContext* const context_;
