@@ -29,7 +29,7 @@ class CountingLaw : public ControlLaw {
       at[static_cast<size_t>(state.step)] = mbstream::testing::AllocationCount();
     }
     for (int i = 0; i < 6; ++i) {
-      commands[i] = -20.0 * (*state.q)(i) - 1.0 * (*state.qd)(i);
+      commands[i] = -20.0 * (*state.q)(i)-1.0 * (*state.qd)(i);
     }
     return true;
   }
