@@ -194,8 +194,9 @@ CLANG=(-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DMBSTREAM_WERROR=O
 
 # ThreadSanitizer: the tests whose code is threaded: the service (gRPC handlers, run
 # manager, fan-out), the run manager, and the cluster (two server processes on a test
-# PostgreSQL: proxies, follow relays, leases).
-TSAN_EXES=(service_test runs_test cluster_e2e_test)
+# PostgreSQL: proxies, follow relays, leases), and the Control stream (its callback-API reactor:
+# the gRPC threads and the run's worker share each call).
+TSAN_EXES=(service_test runs_test cluster_e2e_test control_service_test)
 tsan_build() {
   configure build-tsan "${CLANG[@]}" -DMBSTREAM_SANITIZE=thread -DMBSTREAM_BUILD_BENCH=OFF
   local available targets=()
