@@ -1,5 +1,6 @@
 #include "server/drives/drive_set.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -12,6 +13,24 @@ DriveSet::DriveSet(const Model& model, const std::vector<DriveConfig>& drives) :
   MBSTREAM_CHECK_MSG(static_cast<int>(drives_.size()) == model.num_dofs(),
                      "a run must have one drive per joint");
   references_.resize(drives_.size());
+  pose_hold_.assign(drives_.size(), 0);
+  for (int b = 0; b < model.num_bodies(); ++b) {  // prescribed poses: the rest held
+    const Body& body = model.bodies[static_cast<size_t>(b)];
+    if (body.nv() == 1) continue;
+    const auto first = drives_.begin() + body.v_index;
+    if (std::none_of(first, first + body.nv(), [](const DriveConfig& drive) {
+          return drive.kind == DriveConfig::Kind::kPrescribed;
+        })) {
+      continue;
+    }
+    posed_bodies_.push_back(b);
+    for (int k = body.v_index; k < body.v_index + body.nv(); ++k) {
+      if (drives_[static_cast<size_t>(k)].kind != DriveConfig::Kind::kPassive) continue;
+      drives_[static_cast<size_t>(k)].kind = DriveConfig::Kind::kPrescribed;
+      drives_[static_cast<size_t>(k)].trajectory = Trajectory{};
+      pose_hold_[static_cast<size_t>(k)] = 1;
+    }
+  }
   for (size_t i = 0; i < drives_.size(); ++i) {
     const DriveConfig& drive = drives_[i];
     // Joint i's damping (a velocity coordinate: a free or ball joint's coordinates have none).

@@ -22,6 +22,13 @@ class DriveSet {
     return prescribed(joint) && drives_[joint].velocity_source;
   }
   int num_prescribed() const { return num_prescribed_; }
+  // A prescribed pose (pose_motion.h): a free or ball joint with a prescribed drive on some of
+  // its velocity coordinates (its pose's components x y z roll pitch yaw, or a ball joint's
+  // roll pitch yaw, in order) has all of them prescribed; the ones without a drive are held at
+  // their initial value, and pose_hold is true for them (their Reference is 0).
+  bool pose_hold(int joint) const { return pose_hold_[joint] != 0; }
+  // The bodies whose free or ball joint has a prescribed pose, ascending.
+  const std::vector<int>& posed_bodies() const { return posed_bodies_; }
   bool all_prescribed() const { return num_prescribed_ == size(); }
   // True when some drive or damping does work (energy is then not conserved).
   bool any_work() const { return any_work_; }
@@ -78,6 +85,8 @@ class DriveSet {
 
   std::vector<DriveConfig> drives_;
   std::vector<TrajectoryEvaluator> references_;
+  std::vector<unsigned char> pose_hold_;  // one per joint (pose_hold)
+  std::vector<int> posed_bodies_;
   std::vector<double> damping_;
   // For ActuatorEfforts: the distinct sine arguments omega * t + phase (rad/s, rad), the
   // sine terms, and each joint's law in compact form.

@@ -91,15 +91,39 @@ void CheckCoordinateCounts(const Model& model, const RunConfig& config) {
   }
 }
 
-// The drives on a free or ball joint's coordinates: none (passive) allowed.
-void CheckPassive(const Body& body, const RunConfig& config, const std::string& label,
-                  const char* what) {
+// The drives on a free or ball joint's coordinates: none (passive), or a prescribed pose
+// (pose_motion.h: prescribed drives on some of them, the rest held) in a kinematic run.
+void CheckPoseDrives(const Model& model, const Body& body, const RunConfig& config,
+                     const std::string& label, const char* what) {
+  bool posed = false;
   for (int k = 0; k < body.nv(); ++k) {
-    if (config.drives[static_cast<size_t>(body.v_index + k)].kind != DriveConfig::Kind::kPassive) {
+    const DriveConfig& drive = config.drives[static_cast<size_t>(body.v_index + k)];
+    if (drive.kind == DriveConfig::Kind::kPassive) continue;
+    if (drive.kind != DriveConfig::Kind::kPrescribed || drive.velocity_source) {
       throw InputError(label + " has a drive on its coordinate " + std::to_string(k + 1) + ": " +
                        what);
     }
+    posed = true;
   }
+  if (!posed) {
+    if (config.formulation == Formulation::kKinematic) {
+      throw InputError(label +
+                       ": formulation kinematic prescribes every joint, and this one has no "
+                       "motion; give it a pose drive ({\"joint\": \"" +
+                       body.joint.name +
+                       "\", \"pose\": {...}}, run_spec.proto Drive.Pose) or use formulation "
+                       "joint (or auto)");
+    }
+    return;
+  }
+  if (config.formulation == Formulation::kKinematic) return;
+  if (config.formulation == Formulation::kAuto && DriveSet(model, config.drives).all_prescribed()) {
+    return;
+  }
+  throw InputError(label +
+                   " has a prescribed pose, which runs in formulation kinematic only, where "
+                   "every joint is prescribed; prescribe every joint (formulation kinematic or "
+                   "auto), or leave this joint passive to simulate its motion");
 }
 
 // The initial quaternion at q0[k..k+3]: unit within 1e-6.
@@ -146,8 +170,9 @@ void CheckFreeBodies(const Model& model, const RunConfig& config) {
   CheckCoordinateCounts(model, config);
   for (const int i : model.free_bodies) {
     const Body& body = model.bodies[i];
-    CheckPassive(body, config, FreeJointLabel(body),
-                 "a free joint has no actuator; leave its drives out (passive)");
+    CheckPoseDrives(model, body, config, FreeJointLabel(body),
+                    "a free joint has no actuator; leave its drives out (passive), or "
+                    "prescribe its motion with a pose drive in a kinematic run");
     if (config.q0.size() == model.nq()) {
       CheckUnitQuaternion(config, body.q_index + 3, FreeJointLabel(body));
     }
@@ -161,12 +186,6 @@ void CheckBallJoints(const Model& model, const RunConfig& config) {
                                 " does not simulate ball joints yet; use formulation joint "
                                 "(or auto)");
   }
-  if (config.formulation == Formulation::kKinematic) {
-    RefuseBallJoints(model,
-                     "formulation kinematic prescribes every joint along a trajectory, and a "
-                     "ball joint takes none (its coordinates are passive); use formulation "
-                     "joint (or auto)");
-  }
   if (config.target.any()) {
     RefuseBallJoints(model,
                      "an accuracy target does not choose the method for ball joints yet; give "
@@ -175,9 +194,10 @@ void CheckBallJoints(const Model& model, const RunConfig& config) {
   CheckCoordinateCounts(model, config);
   for (const int i : model.ball_bodies) {
     const Body& body = model.bodies[i];
-    CheckPassive(body, config, BallJointLabel(body),
-                 "a ball joint has no actuator or trajectory yet; leave its drives out "
-                 "(passive), or model the joint as three revolute joints to drive it");
+    CheckPoseDrives(model, body, config, BallJointLabel(body),
+                    "a ball joint has no actuator yet; leave its drives out (passive), "
+                    "prescribe its orientation with a pose drive in a kinematic run, or model "
+                    "the joint as three revolute joints to drive it");
     if (config.q0.size() == model.nq()) {
       CheckUnitQuaternion(config, body.q_index, BallJointLabel(body));
     }
@@ -264,9 +284,13 @@ FormulationChoice ValidateRun(const Model& model, const RunConfig& config, const
   CheckBallJoints(model, config);
   CheckContact(model, config);
   const FormulationChoice choice = ChooseFormulation(config, drives);
-  if (choice.formulation != Formulation::kJoint) {  // auto's choice too
-    RefuseBallJoints(model, std::string("formulation ") + FormulationName(choice.formulation) +
-                                " does not simulate ball joints yet; use formulation joint");
+  if (choice.formulation != Formulation::kJoint &&
+      choice.formulation != Formulation::kKinematic) {  // auto's choice too
+    RefuseBallJoints(
+        model,
+        std::string("formulation ") + FormulationName(choice.formulation) +
+            " does not simulate ball joints yet; use formulation joint (or kinematic, with a "
+            "pose drive on each ball joint)");
   }
   CheckSampledDrives(model, config, drives, choice);
   CheckSensorPoints(model, config, drives);

@@ -307,10 +307,77 @@ DriveConfig ToDrive(const v1::Drive& spec, const std::string& field, const Check
       }
       return drive;
     }
+    case v1::Drive::kPose:  // ToDrives reads it: it covers several coordinates
     case v1::Drive::KIND_NOT_SET:
       break;
   }
-  check.Fail(field, "no drive kind; give one of prescribed, torque, pd_servo, external or passive");
+  check.Fail(field,
+             "no drive kind; give one of prescribed, torque, pd_servo, external, pose or passive");
+}
+
+// The coordinates a pose drive (Drive.Pose) covers: a free joint NAME's six velocity
+// coordinates NAME.vx .. NAME.wz, or a ball joint's three NAME.wx .wy .wz.
+struct PoseJoint {
+  int first = 0;  // index of the first velocity coordinate
+  bool free = false;
+};
+
+std::optional<PoseJoint> FindPoseJoint(const std::string& name,
+                                       const std::vector<std::string>& velocity_names) {
+  const auto index = [&](const std::string& coordinate) {
+    const auto at = std::find(velocity_names.begin(), velocity_names.end(), coordinate);
+    return at == velocity_names.end() ? -1 : static_cast<int>(at - velocity_names.begin());
+  };
+  if (const int vx = index(name + ".vx"); vx >= 0) return PoseJoint{vx, true};
+  if (const int wx = index(name + ".wx"); wx >= 0) return PoseJoint{wx, false};
+  return std::nullopt;
+}
+
+// The free and ball joints' names, for a message.
+std::vector<std::string> PoseJointNames(const std::vector<std::string>& velocity_names) {
+  std::vector<std::string> names;
+  for (const std::string& coordinate : velocity_names) {
+    if (coordinate.size() > 3 && coordinate.compare(coordinate.size() - 3, 3, ".wx") == 0) {
+      names.push_back(coordinate.substr(0, coordinate.size() - 3));
+    }
+  }
+  return names;
+}
+
+// A pose drive's components, in the order of the joint's velocity coordinates: x y z roll
+// pitch yaw (free), roll pitch yaw (ball); a component left out stays passive (DriveSet holds
+// it at its initial value).
+void ReadPose(const v1::Drive& spec, const PoseJoint& joint, const std::string& field,
+              const Checker& check, DriveConfig* drives) {
+  const v1::Drive::Pose& pose = spec.pose();
+  const std::string where = field + ".pose";
+  const std::pair<bool, const v1::Trajectory*> components[6] = {
+      {pose.has_x(), &pose.x()},         {pose.has_y(), &pose.y()},
+      {pose.has_z(), &pose.z()},         {pose.has_roll(), &pose.roll()},
+      {pose.has_pitch(), &pose.pitch()}, {pose.has_yaw(), &pose.yaw()}};
+  static constexpr const char* kNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+  if (!joint.free) {
+    for (int k = 0; k < 3; ++k) {
+      if (components[k].first) {
+        check.Fail(where + "." + kNames[k],
+                   "joint " + Quote(spec.joint()) +
+                       " is a ball joint, which has no position; give roll, pitch and yaw only");
+      }
+    }
+  }
+  bool any = false;
+  for (int k = joint.free ? 0 : 3; k < 6; ++k) {
+    if (!components[k].first) continue;
+    any = true;
+    DriveConfig& drive = drives[joint.free ? k : k - 3];
+    drive.kind = DriveConfig::Kind::kPrescribed;
+    drive.trajectory = ToTrajectory(*components[k].second, where + "." + kNames[k], check);
+  }
+  if (!any) {
+    check.Fail(where, std::string("has no component; give at least one of ") +
+                          (joint.free ? "x, y, z, roll, pitch, yaw" : "roll, pitch, yaw") +
+                          " (the others are held at their initial values)");
+  }
 }
 
 std::vector<DriveConfig> ToDrives(const v1::RunSpec& spec,
@@ -321,6 +388,7 @@ std::vector<DriveConfig> ToDrives(const v1::RunSpec& spec,
   // model): that, not the count, is what to fix.
   for (int i = 0; i < spec.drives_size(); ++i) {
     const std::string& name = spec.drives(i).joint();
+    if (spec.drives(i).has_pose()) continue;  // names a free or ball joint: checked below
     if (name.empty() ||
         std::find(joint_names.begin(), joint_names.end(), name) != joint_names.end()) {
       continue;
@@ -345,6 +413,30 @@ std::vector<DriveConfig> ToDrives(const v1::RunSpec& spec,
   for (int i = 0; i < spec.drives_size(); ++i) {
     const v1::Drive& drive = spec.drives(i);
     const std::string field = "drives[" + std::to_string(i) + "]";
+    if (drive.has_pose()) {
+      if (check.Name(drive.joint(), field + ".joint").empty()) {
+        check.Fail(field + ".joint", "is empty; a pose drive names its free or ball joint");
+      }
+      const std::optional<PoseJoint> pose_joint = FindPoseJoint(drive.joint(), joint_names);
+      if (!pose_joint) {
+        const std::vector<std::string> names = PoseJointNames(joint_names);
+        check.Fail(field + ".joint", "the model has no free or ball joint named " +
+                                         Quote(drive.joint()) + DidYouMean(drive.joint(), names) +
+                                         "; a pose drive takes one of " + JoinNames(names) +
+                                         " (a one-coordinate joint takes a prescribed drive)");
+      }
+      const int count = pose_joint->free ? 6 : 3;
+      for (int k = pose_joint->first; k < pose_joint->first + count; ++k) {
+        if (driven_by[k]) {
+          check.Fail(field, "joint '" + drive.joint() + "' already has a drive (drives[" +
+                                std::to_string(*driven_by[k]) + "], on " + joint_names[k] +
+                                "); give each joint at most one drive");
+        }
+        driven_by[k] = i;
+      }
+      ReadPose(drive, *pose_joint, field, check, drives.data() + pose_joint->first);
+      continue;
+    }
     int joint = i;
     if (!check.Name(drive.joint(), field + ".joint").empty()) {
       joint = 0;

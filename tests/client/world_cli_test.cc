@@ -262,5 +262,58 @@ TEST_F(WorldCliTest, AWorldsGravityIsTheRunsUnlessTheSpecGivesOne) {
   EXPECT_LT(largest_fall_error("earth", 9.81), 1e-9);
 }
 
+// A kinematic run of the world (models/worlds/irb1600_table/box-carried.json): the robot's
+// joints on their trajectories and each box on its pose drive (run_spec.proto Drive.Pose),
+// box_a carried along splines in x and z while it turns about z, box_b rocking about x from
+// its own yaw, box_c held where the world puts it. Through `simulate` and a live server: the
+// same files, the poses as their closed forms give them.
+TEST_F(WorldCliTest, AKinematicRunCarriesEachBoxAlongItsPose) {
+  constexpr char kCarried[] = "models/worlds/irb1600_table/box-carried.json";
+  const CommandOutcome local = RunCommand(std::string(MBSTREAM_CLI) + " simulate " + kWorld +
+                                          " --spec " + kCarried + " --out " + Out("local"));
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+  const std::vector<std::string> names = Header(dir_ / "local" / "joints.csv");
+  std::map<std::string, size_t> column;
+  for (size_t k = 0; k < names.size(); ++k) column[names[k]] = k;
+  const std::vector<std::vector<std::string>> rows = ReadCsv(dir_ / "local" / "joints.csv");
+  ASSERT_EQ(rows.size(), 41u);
+  double knots = 0, turn = 0, rock = 0, held = 0;
+  for (const auto& row : rows) {
+    const double t = std::stod(row[0]);
+    const auto at = [&](const std::string& name) { return std::stod(row.at(column.at(name))); };
+    if (t == 0.0 || t == 1.0 || t == 2.0) {  // the splines' knots
+      const int k = static_cast<int>(t);
+      knots = std::max({knots, std::abs(at("box_a::link.x") - (1.0 - 0.2 * k)),
+                        std::abs(at("box_a::link.z") - std::vector<double>{0.9, 1.4, 1.2}[k])});
+    }
+    const double yaw = 1.2 * std::sin(2.0 * t);  // box_a: a turn about z, from the identity
+    turn = std::max({turn, std::abs(at("box_a::link.y") + 0.15),
+                     std::abs(at("box_a::link.qw") - std::cos(yaw / 2)),
+                     std::abs(at("box_a::link.qz") - std::sin(yaw / 2))});
+    // box_b: Rz(0.5) Rx(roll), the product of (cos 0.25, 0, 0, sin 0.25) and (cos r/2, sin r/2,
+    // 0, 0).
+    const double r = 0.15 * std::sin(4.0 * t), c = std::cos(0.25), s = std::sin(0.25);
+    rock = std::max({rock, std::abs(at("box_b::link.qw") - c * std::cos(r)),
+                     std::abs(at("box_b::link.qx") - c * std::sin(r)),
+                     std::abs(at("box_b::link.qy") - s * std::sin(r)),
+                     std::abs(at("box_b::link.qz") - s * std::cos(r))});
+    held =
+        std::max({held, std::abs(at("box_c::link.x") - 1.25), std::abs(at("box_c::link.z") - 1.1),
+                  std::abs(at("box_c::link.qx") - std::sin(0.15))});
+  }
+  EXPECT_LT(knots, 1e-15);
+  EXPECT_LT(turn, 1e-15);
+  EXPECT_LT(rock, 1e-15);
+  EXPECT_LT(held, 1e-15);
+  StartServer();
+  ASSERT_EQ(Cli("submit models/worlds/irb1600_table --name irb1600_table").exit_code, 0);
+  const CommandOutcome served =
+      Cli(std::string("run irb1600_table --spec ") + kCarried + " --watch --out " + Out("served"));
+  ASSERT_EQ(served.exit_code, 0) << served.output;
+  for (const char* file : {"joints.csv", "velocities.csv", "torques.csv"}) {
+    EXPECT_EQ(ReadFile(dir_ / "served" / file), ReadFile(dir_ / "local" / file)) << file;
+  }
+}
+
 }  // namespace
 }  // namespace mbstream::testing
