@@ -8,6 +8,11 @@
 //   BM_ControlRoundTrip      a 1 kHz controller on the IRB 1600 over Simulation.Control for
 //                            10 s of simulated time: command out -> next state back (p50_us,
 //                            p99_us) and the run's rate (x_real_time)
+//   BM_ControlRoundTripOutOfProcess, BM_BarePingPongOutOfProcess  the same round trip and the
+//                            hot echo with the server in another process, as a user's
+//                            controller has it (bench/control_process.sh starts the servers
+//                            and gives their addresses in MBSTREAM_BENCH_SERVER and
+//                            MBSTREAM_BENCH_ECHO; `stream_bench --serve-echo` is the echo)
 //   BM_ReplayFrames/V/P      frames/s of an unpaced replay of a stored run to V viewers at
 //                            once, each answering every frame with P probes (issue 17)
 //   BM_ReplayFirstFrame/S    a 1,000,001-frame stored run: Subscribe -> first replayed frame,
@@ -18,6 +23,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <map>
@@ -259,10 +266,11 @@ BENCHMARK(BM_BareStreamFrames)->Unit(benchmark::kMillisecond)->UseRealTime();
 // A bare bidi echo of one Frame. range(0) = ms of pause before each echo: 0 is a hot loop
 // (the issue's baseline); 10 paces it like BM_ProbeRoundTrip's frames, so that every round
 // trip starts from sleeping threads, as a viewer's answer to a paced run does.
-void PingPong(benchmark::State& state, std::chrono::milliseconds pause) {
+void PingPong(benchmark::State& state, std::chrono::milliseconds pause,
+              bench::Baseline::Stub& stub) {
   std::vector<double> latencies;
   grpc::ClientContext context;
-  auto stream = BareServer().stub->PingPong(&context);
+  auto stream = stub.PingPong(&context);
   v1::Frame frame = BaselineService::SampleFrame(), echo;
   for (auto _ : state) {
     if (pause.count() > 0) std::this_thread::sleep_for(pause);
@@ -276,7 +284,7 @@ void PingPong(benchmark::State& state, std::chrono::milliseconds pause) {
   Percentiles(state, latencies);
 }
 void BM_BarePingPong(benchmark::State& state) {
-  PingPong(state, std::chrono::milliseconds(state.range(0)));
+  PingPong(state, std::chrono::milliseconds(state.range(0)), *BareServer().stub);
 }
 BENCHMARK(BM_BarePingPong)->Arg(0)->Iterations(2000)->Unit(benchmark::kMicrosecond)->UseRealTime();
 BENCHMARK(BM_BarePingPong)->Arg(10)->Iterations(400)->Unit(benchmark::kMicrosecond)->UseRealTime();
@@ -287,7 +295,7 @@ BENCHMARK(BM_BarePingPong)->Arg(10)->Iterations(400)->Unit(benchmark::kMicroseco
 // them, then hand those over). The like-for-like baseline of a round trip through this server.
 void BM_BarePingPongBesideServer(benchmark::State& state) {
   Server();
-  PingPong(state, std::chrono::milliseconds(0));
+  PingPong(state, std::chrono::milliseconds(0), *BareServer().stub);
 }
 BENCHMARK(BM_BarePingPongBesideServer)
     ->Iterations(2000)
@@ -298,7 +306,7 @@ BENCHMARK(BM_BarePingPongBesideServer)
 // of the IRB 1600 for 10 s of simulated time (10,000 round trips): the time from a command's
 // Write to the next state's Read (one period integrated on the server between them), and the
 // whole run's simulated seconds per wall second.
-void BM_ControlRoundTrip(benchmark::State& state) {
+void ControlRoundTrip(benchmark::State& state, v1::Simulation::Stub& stub) {
   constexpr double kH = 1e-3, kDuration = 10.0;
   const double kp[6] = {400, 400, 400, 400, 400, 40}, kd[6] = {40, 40, 40, 40, 40, 2};
   v1::ControlStart start;
@@ -320,7 +328,7 @@ void BM_ControlRoundTrip(benchmark::State& state) {
     latencies.clear();
     latencies.reserve(10000);
     grpc::ClientContext context;
-    auto stream = Server().stub->Control(&context);
+    auto stream = stub.Control(&context);
     v1::ControlRequest request;
     *request.mutable_start() = start;
     const Clock::time_point begin = Clock::now();
@@ -361,7 +369,48 @@ void BM_ControlRoundTrip(benchmark::State& state) {
   Percentiles(state, latencies);
   state.counters["x_real_time"] = kDuration / wall_s;
 }
+void BM_ControlRoundTrip(benchmark::State& state) { ControlRoundTrip(state, *Server().stub); }
 BENCHMARK(BM_ControlRoundTrip)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The address in environment variable `name` (bench/control_process.sh sets it), or empty.
+std::string AddressFrom(const char* name) {
+  const char* address = std::getenv(name);
+  return address == nullptr ? std::string() : std::string(address);
+}
+
+// The round trip with the server in another process (MBSTREAM_BENCH_SERVER): this process
+// then has none of the server's threads, as a user's controller has none.
+void BM_ControlRoundTripOutOfProcess(benchmark::State& state) {
+  const std::string address = AddressFrom("MBSTREAM_BENCH_SERVER");
+  if (address.empty()) {
+    state.SkipWithError("MBSTREAM_BENCH_SERVER is not set: run bench/control_process.sh");
+    return;
+  }
+  auto stub =
+      v1::Simulation::NewStub(grpc::CreateChannel(address, grpc::InsecureChannelCredentials()));
+  ControlRoundTrip(state, *stub);
+}
+BENCHMARK(BM_ControlRoundTripOutOfProcess)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The hot echo with the echo server in another process (MBSTREAM_BENCH_ECHO, `stream_bench
+// --serve-echo`): the like-for-like baseline of BM_ControlRoundTripOutOfProcess.
+void BM_BarePingPongOutOfProcess(benchmark::State& state) {
+  const std::string address = AddressFrom("MBSTREAM_BENCH_ECHO");
+  if (address.empty()) {
+    state.SkipWithError("MBSTREAM_BENCH_ECHO is not set: run bench/control_process.sh");
+    return;
+  }
+  auto stub =
+      bench::Baseline::NewStub(grpc::CreateChannel(address, grpc::InsecureChannelCredentials()));
+  PingPong(state, std::chrono::milliseconds(0), *stub);
+}
+BENCHMARK(BM_BarePingPongOutOfProcess)
+    ->Iterations(2000)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
 
 // The server's CPU while a controller sleeps: a controlled run waits for a command that comes
 // only after 2 s of wall time; the process's CPU time over that sleep (the server is this
@@ -521,7 +570,32 @@ BENCHMARK(BM_ReplayFirstFrame)
     ->Unit(benchmark::kMillisecond)
     ->UseManualTime();
 
+// `stream_bench --serve-echo`: the baseline's echo server alone, on a free loopback port that
+// it prints ("127.0.0.1:PORT"), until its standard input closes.
+int ServeEcho() {
+  BaselineService service;
+  grpc::ServerBuilder builder;
+  int port = 0;
+  builder.AddListeningPort("127.0.0.1:0", grpc::InsecureServerCredentials(), &port);
+  builder.RegisterService(&service);
+  std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
+  if (server == nullptr || port == 0) return 1;
+  std::printf("127.0.0.1:%d\n", port);
+  std::fflush(stdout);
+  for (int c = std::getchar(); c != EOF; c = std::getchar()) {
+  }
+  server->Shutdown();
+  return 0;
+}
+
 }  // namespace
 }  // namespace mbstream
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  if (argc == 2 && std::string(argv[1]) == "--serve-echo") return mbstream::ServeEcho();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -161,7 +161,7 @@ INSTANTIATE_TEST_SUITE_P(
                     "give each joint at most one drive"},
         InvalidSpec{"NoDriveKind", Drive(R"({"joint": "joint1"})"),
                     "test.json: drives[0]: no drive kind",
-                    "give one of prescribed, torque, pd_servo, external or passive"},
+                    "give one of prescribed, torque, pd_servo, external, pose or passive"},
         InvalidSpec{"NoTrajectory", Drive(R"({"prescribed": {"velocity_source": true}})"),
                     "test.json: drives[0].prescribed.trajectory: missing",
                     "give a sum_of_sines or a spline"},
