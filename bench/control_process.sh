@@ -39,7 +39,7 @@ echo "server $server (pid $server_pid), echo $echo_address (pid $echo_pid); $(np
 export MBSTREAM_BENCH_SERVER=$server MBSTREAM_BENCH_ECHO=$echo_address
 for round in $(seq 1 "$rounds"); do
   for bench in BM_BarePingPongOutOfProcess BM_ControlRoundTripOutOfProcess; do
-    "$build/bench/stream_bench" --benchmark_filter="^$bench\$" --benchmark_format=csv 2>/dev/null |
+    "$build/bench/stream_bench" --benchmark_filter="^$bench/" --benchmark_format=csv 2>/dev/null |
       python3 -c '
 import csv, sys
 rows = [r for r in csv.reader(sys.stdin)]
