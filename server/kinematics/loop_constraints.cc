@@ -48,9 +48,11 @@ LoopConstraints::LoopConstraints(const Model& model, const std::vector<LoopClosu
         align(ey, ez), align(ez, ex), align(ex, ey);
         break;
       case LoopJointType::kMimic:
-        MBSTREAM_CHECK_MSG(loop.body_a >= 0 && loop.body_a < model.num_dofs() && loop.body_b >= 0 &&
-                               loop.body_b < model.num_dofs(),
-                           "a coupling joins two moving bodies");
+        MBSTREAM_CHECK_MSG(loop.body_a >= 0 && loop.body_a < model.num_bodies() &&
+                               loop.body_b >= 0 && loop.body_b < model.num_bodies() &&
+                               model.bodies[loop.body_a].nv() == 1 &&
+                               model.bodies[loop.body_b].nv() == 1,
+                           "a coupling joins two moving one-coordinate joints");
         rows_.push_back({i, Kind::kCoupling, zero, zero});
         break;
     }
@@ -76,12 +78,13 @@ LoopConstraints::Side LoopConstraints::SideB(const Data& data, const LoopClosure
 
 void LoopConstraints::Residual(const Data& data, const Eigen::Ref<const Eigen::VectorXd>& q,
                                Eigen::Ref<Eigen::VectorXd> phi) const {
-  MBSTREAM_CHECK(phi.size() == num_rows() && q.size() == model_.num_dofs());
+  MBSTREAM_CHECK(phi.size() == num_rows() && q.size() == model_.nq());
   for (int r = 0; r < num_rows(); ++r) {
     const LoopRow& row = rows_[r];
     const LoopClosure& loop = loops_[row.loop];
     if (row.kind == LoopRow::Kind::kCoupling) {
-      phi(r) = q(loop.body_b) - loop.multiplier * q(loop.body_a) - loop.offset;
+      const int qb = model_.bodies[loop.body_b].q_index, qa = model_.bodies[loop.body_a].q_index;
+      phi(r) = q(qb) - loop.multiplier * q(qa) - loop.offset;
       continue;
     }
     const Side a = SideA(data, loop), b = SideB(data, loop);
@@ -126,26 +129,41 @@ void LoopConstraints::AddChain(const Data& data, int body, const Vector3d& p, co
                                const Vector3d& m, double sign, Eigen::Ref<Eigen::MatrixXd> G,
                                int r) const {
   for (int j = body; j != kBase; j = model_.bodies[j].parent) {
-    const Joint& joint = model_.bodies[j].joint;
-    const Vector3d u = data.X_world[j].R * joint.axis;
+    const Body& b = model_.bodies[j];
+    const Joint& joint = b.joint;
+    const int c = b.v_index;
     if (joint.type == JointType::kRevolute) {
-      G(r, j) += sign * (n.dot(u.cross(p - data.X_world[j].p)) + m.dot(u));
+      const Vector3d u = data.X_world[j].R * joint.axis;
+      G(r, c) += sign * (n.dot(u.cross(p - data.X_world[j].p)) + m.dot(u));
+    } else if (joint.type == JointType::kPrismatic) {
+      const Vector3d u = data.X_world[j].R * joint.axis;
+      G(r, c) += sign * n.dot(u);
     } else {
-      G(r, j) += sign * n.dot(u);
+      // A ball joint's or a free joint's rotation: w_B in the body frame, about the body's
+      // origin (the ball joint's centre); a free joint's translation first, in the world.
+      const int w = joint.type == JointType::kFree ? c + 3 : c;
+      if (joint.type == JointType::kFree) {
+        for (int k = 0; k < 3; ++k) G(r, c + k) += sign * n(k);
+      }
+      const Vector3d s = p - data.X_world[j].p;
+      for (int k = 0; k < 3; ++k) {
+        const Vector3d u = data.X_world[j].R.col(k);
+        G(r, w + k) += sign * (n.dot(u.cross(s)) + m.dot(u));
+      }
     }
   }
 }
 
 void LoopConstraints::Jacobian(const Data& data, Eigen::Ref<Eigen::MatrixXd> G) {
-  MBSTREAM_CHECK(G.rows() == num_rows() && G.cols() == model_.num_dofs());
+  MBSTREAM_CHECK(G.rows() == num_rows() && G.cols() == model_.nv());
   G.setZero();
   const Vector3d zero = Vector3d::Zero();
   for (int r = 0; r < num_rows(); ++r) {
     const LoopRow& row = rows_[r];
     const LoopClosure& loop = loops_[row.loop];
     if (row.kind == LoopRow::Kind::kCoupling) {
-      G(r, loop.body_b) += 1.0;
-      G(r, loop.body_a) -= loop.multiplier;
+      G(r, model_.bodies[loop.body_b].v_index) += 1.0;
+      G(r, model_.bodies[loop.body_a].v_index) -= loop.multiplier;
       continue;
     }
     const Side a = SideA(data, loop), b = SideB(data, loop);
@@ -167,8 +185,15 @@ void LoopConstraints::Jacobian(const Data& data, Eigen::Ref<Eigen::MatrixXd> G) 
 void LoopConstraints::VelocityKinematics(const Data& data,
                                          const Eigen::Ref<const Eigen::VectorXd>& qd) {
   const Vector3d zero = Vector3d::Zero();
-  for (int i = 0; i < model_.num_dofs(); ++i) {
+  for (int i = 0; i < model_.num_bodies(); ++i) {
     const Body& body = model_.bodies[i];
+    if (body.free()) {  // a root: w = R w_B, v = v_WB; at qdd = 0 both are constant
+      const int c = body.v_index;
+      w_[i] = data.X_world[i].R * Vector3d(qd(c + 3), qd(c + 4), qd(c + 5));
+      v_[i] = Vector3d(qd(c), qd(c + 1), qd(c + 2));
+      alpha_[i] = acc_[i] = zero;
+      continue;
+    }
     const int p = body.parent;
     const Vector3d& wp = p == kBase ? zero : w_[p];
     const Vector3d& vp = p == kBase ? zero : v_[p];
@@ -176,10 +201,14 @@ void LoopConstraints::VelocityKinematics(const Data& data,
     const Vector3d& ap = p == kBase ? zero : acc_[p];
     const Vector3d& op = p == kBase ? zero : data.X_world[p].p;
     const Vector3d r = data.X_world[i].p - op;
-    const Vector3d uq = data.X_world[i].R * body.joint.axis * qd(i);
+    // The joint's own angular (or, prismatic, linear) velocity in the world; a ball joint's
+    // w_B is in the child frame, its centre the child's origin.
+    const Vector3d uq = body.ball()
+                            ? Vector3d(data.X_world[i].R * qd.segment<3>(body.v_index))
+                            : Vector3d(data.X_world[i].R * body.joint.axis * qd(body.v_index));
     acc_[i] = ap + alp.cross(r) + wp.cross(wp.cross(r));
     v_[i] = vp + wp.cross(r);
-    if (body.joint.type == JointType::kRevolute) {
+    if (body.joint.type != JointType::kPrismatic) {
       w_[i] = wp + uq;
       alpha_[i] = alp + wp.cross(uq);
     } else {
@@ -193,7 +222,7 @@ void LoopConstraints::VelocityKinematics(const Data& data,
 
 void LoopConstraints::Bias(const Data& data, const Eigen::Ref<const Eigen::VectorXd>& qd,
                            Eigen::Ref<Eigen::VectorXd> bias) {
-  MBSTREAM_CHECK(bias.size() == num_rows() && qd.size() == model_.num_dofs());
+  MBSTREAM_CHECK(bias.size() == num_rows() && qd.size() == model_.nv());
   VelocityKinematics(data, qd);
   const Vector3d zero = Vector3d::Zero();
   // Angular velocity and velocity-product acceleration of body k, and of a point P in it.

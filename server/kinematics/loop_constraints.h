@@ -9,7 +9,8 @@
 //   orientation (prismatic, fixed).
 // - coupling rows (a URDF <mimic>, loop_closure.h): q_b - multiplier q_a - offset, in the
 //   follower's unit (rad or m); their Jacobian row is constant and their bias 0.
-// The Jacobian G = dphi/dq comes from the tree's kinematics (joint axes and origins in the
+// The Jacobian G (velocity space: phi' = G qd, nv columns; dphi/dq without free bodies and ball
+// joints) comes from the tree's kinematics (joint axes and origins in the
 // world); the velocity constraint is G qd = 0 and the acceleration constraint
 // G qdd + bias = 0 with bias = dG/dt qd, from the bodies' velocity-product accelerations.
 // Rows can be dependent (a planar loop described with spatial joints): see loop_rank.h.
@@ -44,10 +45,11 @@ class LoopConstraints {
   const std::vector<LoopRow>& rows() const { return rows_; }
   const std::vector<LoopClosure>& loops() const { return loops_; }
 
-  // phi(q) (size num_rows) after BodyKinematics (or ForwardKinematics) at q.
+  // phi(q) (size num_rows) after BodyKinematics (or ForwardKinematics) at q (nq values).
   void Residual(const Data& data, const Eigen::Ref<const Eigen::VectorXd>& q,
                 Eigen::Ref<Eigen::VectorXd> phi) const;
-  // G = dphi/dq (num_rows x num_dofs) after BodyKinematics at q.
+  // G (num_rows x nv) after BodyKinematics at q: phi' = G v for velocities v (nv values,
+  // model.h; q' = G(q) v), a ball or free joint's angular columns those of w_B in its body.
   void Jacobian(const Data& data, Eigen::Ref<Eigen::MatrixXd> G);
   // bias = dG/dt qd (size num_rows) after BodyKinematics at q: G qdd + bias is phi's second
   // time derivative.

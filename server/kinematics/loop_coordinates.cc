@@ -50,24 +50,31 @@ LoopCoordinates::LoopCoordinates(const Model& model, const std::vector<LoopClosu
     : model_(model),
       loops_(loops),
       data_(model),
-      w_(model.num_dofs(), Vector3d::Zero()),
-      v_(model.num_dofs(), Vector3d::Zero()),
+      w_(static_cast<size_t>(model.num_bodies()), Vector3d::Zero()),
+      v_(static_cast<size_t>(model.num_bodies()), Vector3d::Zero()),
       last_angle_(loops.size(), 0.0) {
   for (const LoopClosure& loop : loops) size_ += Columns(loop.type);
 }
 
 void LoopCoordinates::Velocities(const Eigen::VectorXd& qd) {
   const Vector3d zero = Vector3d::Zero();
-  for (int i = 0; i < model_.num_dofs(); ++i) {
+  for (int i = 0; i < model_.num_bodies(); ++i) {
     const Body& body = model_.bodies[i];
+    const int c = body.v_index;
+    if (body.free()) {  // v_WB in the world, w_B in the body
+      v_[i] = qd.segment<3>(c);
+      w_[i] = data_.X_world[i].R * qd.segment<3>(c + 3);
+      continue;
+    }
     const int p = body.parent;
     const Vector3d& wp = p == kBase ? zero : w_[p];
     const Vector3d& vp = p == kBase ? zero : v_[p];
     const Vector3d& op = p == kBase ? zero : data_.X_world[p].p;
-    const Vector3d uq = data_.X_world[i].R * body.joint.axis * qd(i);
+    const Vector3d uq = body.ball() ? Vector3d(data_.X_world[i].R * qd.segment<3>(c))
+                                    : Vector3d(data_.X_world[i].R * body.joint.axis * qd(c));
     v_[i] = vp + wp.cross(data_.X_world[i].p - op);
     w_[i] = wp;
-    if (body.joint.type == JointType::kRevolute) {
+    if (body.joint.type != JointType::kPrismatic) {
       w_[i] += uq;
     } else {
       v_[i] += uq;

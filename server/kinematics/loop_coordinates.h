@@ -34,7 +34,8 @@ class LoopCoordinates {
 
   int size() const { return size_; }
 
-  // The coordinates and their rates at tree state (q, qd); `value` and `rate` have size().
+  // The coordinates and their rates at tree state (q, qd: nq and nv values, model.h); `value`
+  // and `rate` have size().
   // Revolute angles continue from the previous call's (the first call: within +-pi).
   void Compute(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd* value,
                Eigen::VectorXd* rate);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <utility>
 
+#include "server/kinematics/coordinate_step.h"
 #include "server/kinematics/forward_kinematics.h"
 #include "shared/common/check.h"
 
@@ -33,14 +34,20 @@ LoopSolver::LoopSolver(const Model& model, LoopConstraints& constraints, std::ve
     : model_(model),
       constraints_(constraints),
       held_(std::move(held)),
-      G_(constraints.num_rows(), model.num_dofs()),
+      q_of_v_(PositionOfVelocity(model)),
+      G_(constraints.num_rows(), model.nv()),
       phi_(constraints.num_rows()),
       phi_dot_(constraints.num_rows()),
       bias_(constraints.num_rows()),
-      dx_(model.num_dofs()) {}
+      dx_(model.nv()) {
+  for (const int j : held_) {
+    MBSTREAM_CHECK_MSG(q_of_v_[static_cast<size_t>(j)] >= 0,
+                       "a held joint has one coordinate (not a free or ball joint's)");
+  }
+}
 
 LoopRank LoopSolver::Analyse(Data& data, const Eigen::VectorXd& q, bool* held_independent) {
-  const int n = model_.num_dofs();
+  const int n = model_.nv();
   BodyKinematics(model_, data, q);
   constraints_.Jacobian(data, G_);
   const LoopRank rank = RankOf(G_);
@@ -75,9 +82,19 @@ void LoopSolver::Correct(Eigen::VectorXd& x) {
   x -= dx_;
 }
 
+void LoopSolver::CorrectPositions(Eigen::VectorXd& q) {
+  if (!model_.has_quaternions()) {
+    Correct(q);
+    return;
+  }
+  lambda_ = llt_.solve(c_);
+  dx_.noalias() = A_.transpose() * lambda_;
+  StepPositions(model_, dx_, -1.0, q);  // q (+) -dx: the quaternions turned on their sphere
+}
+
 int LoopSolver::SolvePositions(Data& data, Eigen::VectorXd& q, const Eigen::VectorXd& held_values,
                                double tolerance, int max_iterations) {
-  MBSTREAM_CHECK(held_values.size() == model_.num_dofs());
+  MBSTREAM_CHECK(held_values.size() == model_.nv() && q.size() == model_.nq());
   const int r = static_cast<int>(rows_.size());
   for (int iteration = 0;; ++iteration) {
     BodyKinematics(model_, data, q);
@@ -85,7 +102,7 @@ int LoopSolver::SolvePositions(Data& data, Eigen::VectorXd& q, const Eigen::Vect
     double largest = phi_.size() > 0 ? phi_.cwiseAbs().maxCoeff() : 0.0;
     for (int i = 0; i < r; ++i) c_(i) = phi_(rows_[i]);
     for (size_t h = 0; h < held_.size(); ++h) {
-      const double d = q(held_[h]) - held_values(held_[h]);
+      const double d = q(q_of_v_[static_cast<size_t>(held_[h])]) - held_values(held_[h]);
       c_(r + static_cast<Eigen::Index>(h)) = d;
       largest = std::max(largest, std::abs(d));
     }
@@ -93,7 +110,7 @@ int LoopSolver::SolvePositions(Data& data, Eigen::VectorXd& q, const Eigen::Vect
     if (iteration == max_iterations || !std::isfinite(largest)) return -1;
     constraints_.Jacobian(data, G_);
     BuildA();
-    Correct(q);
+    CorrectPositions(q);
   }
 }
 

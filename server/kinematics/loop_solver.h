@@ -34,7 +34,8 @@ LoopRank RankOf(const Eigen::MatrixXd& G, double tolerance = 1e-9);
 
 class LoopSolver {
  public:
-  // `held`: the joints whose values a solve keeps as given (each a row q_i = value).
+  // `held`: the joints whose values a solve keeps as given (each a row q_i = value), by
+  // velocity coordinate (one-coordinate joints only). G has nv columns (model.h).
   // Keeps references to model and constraints.
   LoopSolver(const Model& model, LoopConstraints& constraints, std::vector<int> held);
 
@@ -43,8 +44,10 @@ class LoopSolver {
   // of the constraints and of each other (rank of [G; E] = rank + held.size()).
   LoopRank Analyse(Data& data, const Eigen::VectorXd& q, bool* held_independent);
 
-  // Newton from q: phi(q) = 0 on the independent rows and q_i = held_values(i) for the held
-  // joints, each step the minimal-norm correction. Returns the iterations, or -1 when the
+  // Newton from q (nq values): phi(q) = 0 on the independent rows and q_i = held_values(i) for
+  // the held joints (held_values by velocity coordinate, nv values), each step the
+  // minimal-norm correction in velocity space, applied to q on its manifold (StepPositions,
+  // coordinate_step.h: quaternions turned and renormalised). Returns the iterations, or -1 when the
   // largest residual is not below `tolerance` (m or rad) after `max_iterations`; q is then
   // the last iterate. Data holds BodyKinematics at the returned q.
   int SolvePositions(Data& data, Eigen::VectorXd& q, const Eigen::VectorXd& held_values,
@@ -75,11 +78,15 @@ class LoopSolver {
   void BuildA();
   // x += minimal-norm correction making A x = target: x -= A^T (A A^T)^-1 (A x - target).
   void Correct(Eigen::VectorXd& x);
+  // The same correction of positions q (nq): q (+) -dx on the manifold (Correct without
+  // quaternions).
+  void CorrectPositions(Eigen::VectorXd& q);
 
   const Model& model_;
   LoopConstraints& constraints_;
   const std::vector<int> held_;
-  std::vector<int> rows_;  // independent rows of G
+  const std::vector<int> q_of_v_;  // PositionOfVelocity
+  std::vector<int> rows_;          // independent rows of G
   Eigen::MatrixXd G_, A_, AAt_;
   Eigen::VectorXd phi_, phi_dot_, bias_, c_, lambda_, dx_;
   Eigen::LLT<Eigen::MatrixXd> llt_;

@@ -5,7 +5,10 @@
 
 #include "server/dynamics/crba.h"
 #include "server/dynamics/rnea.h"
+#include "server/kinematics/coordinate_step.h"
 #include "server/kinematics/forward_kinematics.h"
+#include "server/kinematics/free_joint.h"
+#include "server/kinematics/quaternion.h"
 #include "shared/common/check.h"
 
 namespace mbstream {
@@ -15,19 +18,23 @@ ClosedLoopOde::ClosedLoopOde(const Model& model, const std::vector<LoopClosure>&
                              const BaumgarteParameters& gains, double projection_tolerance)
     : model_(model),
       drives_(drives),
-      n_(model.num_dofs()),
+      n_(model.nv()),
+      nq_(model.nq()),
+      quaternions_(model.has_quaternions()),
+      q_of_v_(PositionOfVelocity(model)),
       gains_(gains),
       projection_tolerance_(projection_tolerance),
       data_(model),
       constraints_(model, loops),
       solver_(model, constraints_, PrescribedJoints(drives)),
       prescribed_(PrescribedJoints(drives)),
-      q_(n_),
+      q_(nq_),
       qd_(n_),
       qdd_(n_),
       effort_(n_),
       force_(n_),
       minv_force_(n_),
+      drive_q_(Eigen::VectorXd::Zero(n_)),
       held_q_(Eigen::VectorXd::Zero(n_)),
       held_qd_(Eigen::VectorXd::Zero(n_)),
       held_qdd_(Eigen::VectorXd::Zero(n_)),
@@ -60,11 +67,17 @@ void ClosedLoopOde::HeldValues(double t) {
 }
 
 bool ClosedLoopOde::Evaluate(double t, const double* y) {
-  q_ = Eigen::Map<const Eigen::VectorXd>(y, n_);
-  qd_ = Eigen::Map<const Eigen::VectorXd>(y + n_, n_);
+  q_ = Eigen::Map<const Eigen::VectorXd>(y, nq_);
+  qd_ = Eigen::Map<const Eigen::VectorXd>(y + nq_, n_);
   HeldValues(t);
   // Applied forces less the velocity products and gravity.
-  drives_.ActuatorEfforts(t, q_.data(), qd_.data(), drive_workspace_, effort_.data());
+  if (quaternions_) {
+    NormaliseQuaternions(model_, q_);
+    for (int i = 0; i < n_; ++i) drive_q_(i) = q_of_v_[i] >= 0 ? q_(q_of_v_[i]) : 0.0;
+    drives_.ActuatorEfforts(t, drive_q_.data(), qd_.data(), drive_workspace_, effort_.data());
+  } else {
+    drives_.ActuatorEfforts(t, q_.data(), qd_.data(), drive_workspace_, effort_.data());
+  }
   force_ = effort_ - NonlinearEffects(model_, data_, q_, qd_);
   for (int i = 0; i < n_; ++i) force_(i) -= drives_.damping(i) * qd_(i);
   mass_llt_.compute(Crba(model_, data_, q_));
@@ -86,8 +99,8 @@ bool ClosedLoopOde::Evaluate(double t, const double* y) {
     const int j = prescribed_[h];
     const Eigen::Index row = r + static_cast<Eigen::Index>(h);
     A_(row, j) = 1.0;
-    b_(row) =
-        held_qdd_(j) - gains_.alpha * (qd_(j) - held_qd_(j)) - gains_.beta * (q_(j) - held_q_(j));
+    b_(row) = held_qdd_(j) - gains_.alpha * (qd_(j) - held_qd_(j)) -
+              gains_.beta * (q_(q_of_v_[j]) - held_q_(j));
   }
   // qdd = M^-1 (force + A^T mu) with A qdd = b: (A M^-1 A^T) mu = b - A M^-1 force.
   minv_force_ = mass_llt_.solve(force_);
@@ -107,6 +120,11 @@ bool ClosedLoopOde::Evaluate(double t, const double* y) {
 
 int ClosedLoopOde::Rhs(double t, const double* y, double* ydot) {
   if (!Evaluate(t, y)) return 1;  // singular: a smaller step may avoid the singular pose
+  if (quaternions_) {
+    PositionRate(q_.data(), qd_.data(), ydot);
+    for (int i = 0; i < n_; ++i) ydot[nq_ + i] = qdd_(i);
+    return 0;
+  }
   for (int i = 0; i < n_; ++i) {
     ydot[i] = qd_(i);
     ydot[n_ + i] = qdd_(i);
@@ -115,16 +133,46 @@ int ClosedLoopOde::Rhs(double t, const double* y, double* ydot) {
 }
 
 int ClosedLoopOde::Project(double t, const double* y, double* correction) {
-  q_ = Eigen::Map<const Eigen::VectorXd>(y, n_);
-  qd_ = Eigen::Map<const Eigen::VectorXd>(y + n_, n_);
+  q_ = Eigen::Map<const Eigen::VectorXd>(y, nq_);
+  qd_ = Eigen::Map<const Eigen::VectorXd>(y + nq_, n_);
   HeldValues(t);
+  if (quaternions_) NormaliseQuaternions(model_, q_);
   if (solver_.SolvePositions(data_, q_, held_q_, projection_tolerance_, 8) < 0) return 1;
   solver_.SolveVelocities(data_, qd_, held_qd_);
-  for (int i = 0; i < n_; ++i) {
-    correction[i] = q_(i) - y[i];
-    correction[n_ + i] = qd_(i) - y[n_ + i];
-  }
+  for (int i = 0; i < nq_; ++i) correction[i] = q_(i) - y[i];
+  for (int i = 0; i < n_; ++i) correction[nq_ + i] = qd_(i) - y[nq_ + i];
   return 0;
+}
+
+int ClosedLoopOde::ProjectInPlace(double /*t*/, double* y) {
+  for (const int k : model_.quaternions) quaternion::Normalise(y + k);
+  return 0;
+}
+
+void ClosedLoopOde::PositionRate(const double* q, const double* qd, double* q_rate) {
+  if (!quaternions_) {
+    for (int i = 0; i < n_; ++i) q_rate[i] = qd[i];
+    return;
+  }
+  for (const Body& body : model_.bodies) {
+    if (body.free()) {
+      free_joint::PositionRate(q + body.q_index, qd + body.v_index, q_rate + body.q_index);
+    } else if (body.ball()) {
+      quaternion::Rate(q + body.q_index, qd + body.v_index, q_rate + body.q_index);
+    } else {
+      q_rate[body.q_index] = qd[body.v_index];
+    }
+  }
+}
+
+double ClosedLoopOde::QuaternionNormError(const double* y) const {
+  double error = 0.0;
+  for (const int k : model_.quaternions) {
+    const double norm =
+        std::sqrt(y[k] * y[k] + y[k + 1] * y[k + 1] + y[k + 2] * y[k + 2] + y[k + 3] * y[k + 3]);
+    error = std::max(error, std::abs(norm - 1.0));
+  }
+  return error;
 }
 
 double ClosedLoopOde::ConstraintConditioning() { return conditioning_.Of(A_); }

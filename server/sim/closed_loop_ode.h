@@ -6,6 +6,13 @@
 // an ODE whose drift the Baumgarte terms damp and the projection (ManifoldProjection, after
 // each step of CVODE BDF) removes: positions by minimal-norm Newton onto phi = 0, velocities
 // onto G qd = 0. The prescribed joints' drive efforts are their multipliers.
+//
+// With free bodies or ball joints in the tree (model.h) y = [q (nq); qd (nv)], q' = G(q) qd,
+// the constraint Jacobian G has nv columns and the projection's Newton steps move q on its
+// manifold (StepPositions, coordinate_step.h); the right-hand side and the outputs read every
+// quaternion normalised, and every one-step method (ARKODE, RK4, semi-implicit Euler)
+// normalises them after each step (ProjectInPlace; the loops there are held by Baumgarte, as
+// without quaternions); BDF's projection normalises them too.
 #pragma once
 
 #include <vector>
@@ -35,14 +42,20 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
                 const Eigen::VectorXd& q_assembled, const BaumgarteParameters& gains,
                 double projection_tolerance);
 
-  int size() const override { return 2 * n_; }
-  int num_positions() const override { return n_; }
+  int size() const override { return nq_ + n_; }
+  int num_positions() const override { return nq_; }
+  int num_velocities() const override { return n_; }
+  // q' = G(q) qd: qd itself without quaternions.
+  void PositionRate(const double* q, const double* qd, double* q_rate) override;
+  // With quaternions: every one-step method normalises them after each step.
+  bool ProjectsEveryMethod() const override { return quaternions_; }
+  int ProjectInPlace(double t, double* y) override;
   int Rhs(double t, const double* y, double* ydot) override;
   int Project(double t, const double* y, double* correction) override;
 
-  // Evaluates the mechanism at (t, y): q(), qd(), qdd(), drive_effort() (the actuators'
-  // laws, and the prescribed joints' multipliers). False when the constraint system is
-  // singular or a value is not finite. Allocates nothing.
+  // Evaluates the mechanism at (t, y): q() (its quaternions normalised), qd(), qdd(),
+  // drive_effort() (the actuators' laws, and the prescribed joints' multipliers). False when the
+  // constraint system is singular or a value is not finite. Allocates nothing.
   bool Evaluate(double t, const double* y);
   // The constraint residuals at the last Evaluate: largest |phi| over gap rows (m) and
   // alignment rows (rad), and of G qd (m/s or rad/s).
@@ -64,6 +77,10 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
     constraints_.Reactions(data_, rank_.independent, mu_, *reactions);
   }
 
+  // The largest | |quat| - 1 | of y's quaternions (0 without): the integrator's drift from
+  // unit length before Evaluate normalises them.
+  double QuaternionNormError(const double* y) const;
+
   const LoopRank& rank() const { return rank_; }
   const Model& model() const { return model_; }
   const Eigen::VectorXd& q() const { return q_; }
@@ -77,7 +94,10 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
 
   const Model& model_;
   const DriveSet& drives_;
-  const int n_;
+  const int n_;                    // velocity coordinates (nv)
+  const int nq_;                   // position coordinates (nq; n_ without quaternions)
+  const bool quaternions_;         // the model has free bodies or ball joints
+  const std::vector<int> q_of_v_;  // PositionOfVelocity (coordinate_step.h)
   const BaumgarteParameters gains_;
   const double projection_tolerance_;
   Data data_;
@@ -86,6 +106,7 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
   LoopRank rank_;
   std::vector<int> prescribed_;
   Eigen::VectorXd q_, qd_, qdd_, effort_, force_, minv_force_;
+  Eigen::VectorXd drive_q_;  // with quaternions: positions by velocity coordinate, for the drives
   Eigen::VectorXd held_q_, held_qd_, held_qdd_;
   Eigen::VectorXd phi_, phi_dot_, bias_, b_, mu_;
   Eigen::MatrixXd G_, A_, Y_, S_;

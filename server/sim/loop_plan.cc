@@ -4,6 +4,7 @@
 
 #include "server/body/body_cuts.h"
 #include "server/integrate/failure_messages.h"
+#include "server/kinematics/coordinate_step.h"
 #include "server/sim/body_run.h"
 #include "server/sim/initial_state.h"
 #include "shared/common/check.h"
@@ -59,11 +60,11 @@ LoopPlan PlanLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
   MBSTREAM_CHECK(!loops.empty());
   CheckSupported(config, drives);
   if (IsBodyFormulation(config.formulation)) CheckBodyFormulationCloses(loops);
-  const int n = model.num_dofs();
+  const int n = model.nv(), nq = model.nq();
   const std::vector<int> prescribed = PrescribedJoints(drives);
-  const Eigen::VectorXd y0 = InitialJointState(config, drives, n);
+  const Eigen::VectorXd y0 = InitialJointState(config, drives, model);
   LoopPlan plan;
-  plan.q0 = y0.head(n);
+  plan.q0 = y0.head(nq);
   plan.qd0 = y0.tail(n);
   Data data(model);
   LoopConstraints constraints(model, loops);
@@ -71,7 +72,15 @@ LoopPlan PlanLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
   bool independent = false;
   solver.Analyse(data, plan.q0, &independent);
   const Eigen::VectorXd given = plan.q0;  // the prescribed joints' values among them
-  const int iterations = solver.SolvePositions(data, plan.q0, given, kLoopAssemblyTolerance, 50);
+  // The same by velocity coordinate, as the solver holds them (given itself without
+  // quaternions).
+  Eigen::VectorXd held_q = given;
+  if (model.has_quaternions()) {
+    const std::vector<int> q_of_v = PositionOfVelocity(model);
+    held_q = Eigen::VectorXd::Zero(n);
+    for (int i = 0; i < n; ++i) held_q(i) = q_of_v[i] >= 0 ? given(q_of_v[i]) : 0.0;
+  }
+  const int iterations = solver.SolvePositions(data, plan.q0, held_q, kLoopAssemblyTolerance, 50);
   if (iterations < 0) {
     const Eigen::VectorXd& phi = solver.residual();
     const LoopClosure& loop = WorstLoop(loops, constraints, phi);
@@ -92,7 +101,7 @@ LoopPlan PlanLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
         loop.where.c_str(), loop.name.c_str(), phi.cwiseAbs().maxCoeff()));
   }
   plan.assembly_iterations = iterations;
-  plan.assembly_change = n > 0 ? (plan.q0 - given).cwiseAbs().maxCoeff() : 0.0;
+  plan.assembly_change = nq > 0 ? (plan.q0 - given).cwiseAbs().maxCoeff() : 0.0;
   plan.rank = solver.Analyse(data, plan.q0, &independent);
   if (!independent) {
     throw InputError(FormatString(
@@ -100,7 +109,7 @@ LoopPlan PlanLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
         "%d degree(s) of freedom): prescribe only independent joints, e.g. the crank",
         static_cast<int>(prescribed.size()), plan.rank.mobility));
   }
-  solver.SolvePositions(data, plan.q0, given, kLoopAssemblyTolerance, 5);
+  solver.SolvePositions(data, plan.q0, held_q, kLoopAssemblyTolerance, 5);
   const Eigen::VectorXd held_qd = plan.qd0;
   solver.SolveVelocities(data, plan.qd0, held_qd);
   plan.assembly = iterations == 0

@@ -20,7 +20,7 @@ namespace mbstream {
 struct LoopPlan {
   FormulationChoice choice;
   LoopRank rank;                 // of the loop constraints at the assembled pose
-  Eigen::VectorXd q0, qd0;       // assembled: phi(q0) = 0, G qd0 = 0, prescribed on track
+  Eigen::VectorXd q0, qd0;       // assembled (nq, nv): phi(q0) = 0, G qd0 = 0, prescribed on track
   int assembly_iterations = 0;   // Newton iterations (0: the given pose was assembled)
   double assembly_change = 0.0;  // largest |q0 - given q| (rad or m)
   std::string assembly;          // one sentence for the user

@@ -12,6 +12,7 @@
 #include "server/integrate/thread_cpu_clock.h"
 #include "server/kinematics/forward_kinematics.h"
 #include "server/kinematics/loop_coordinates.h"
+#include "server/model/coordinate_names.h"
 #include "server/sim/advance_to_frame.h"
 #include "server/sim/body_run.h"
 #include "server/sim/closed_loop_dae.h"
@@ -193,6 +194,10 @@ class ClosedLoopSource : public FrameSource {
   }
 
   bool Record(double t, FrameRecorder& recorder) override {
+    if (ode_.model().has_quaternions()) {  // the integrator's own, before Evaluate normalises
+      stats_->quaternion_norm_error_max =
+          std::max(stats_->quaternion_norm_error_max, ode_.QuaternionNormError(y_.data()));
+    }
     if (!ode_.Evaluate(t, y_.data())) return false;
     double gap = 0.0, alignment = 0.0, velocity = 0.0;
     ode_.Residuals(&gap, &alignment, &velocity);
@@ -306,8 +311,24 @@ RunResult StartLoopResult(const Model& model, const std::vector<LoopClosure>& lo
   const bool kinematic = plan.choice.formulation == Formulation::kKinematic;
   RunResult result;
   result.num_dofs = model.num_dofs() + cut_coordinates.size();
-  for (const Body& body : model.bodies) result.joint_names.push_back(body.joint.name);
-  for (std::string& name : LoopCoordinateNames(loops)) result.joint_names.push_back(name);
+  if (model.has_quaternions()) {  // as SimulateTree's, the cut joints' coordinates after
+    result.joint_names = VelocityNames(model);
+    result.num_positions = model.nq() + cut_coordinates.size();
+    result.position_names = PositionNames(model);
+    result.position_index.assign(static_cast<size_t>(result.num_dofs), -1);
+    for (const Body& body : model.bodies) {
+      if (body.nv() == 1) result.position_index[static_cast<size_t>(body.v_index)] = body.q_index;
+    }
+    for (int k = 0; k < cut_coordinates.size(); ++k) {
+      result.position_index[static_cast<size_t>(model.nv() + k)] = model.nq() + k;
+    }
+  } else {
+    for (const Body& body : model.bodies) result.joint_names.push_back(body.joint.name);
+  }
+  for (std::string& name : LoopCoordinateNames(loops)) {
+    if (model.has_quaternions()) result.position_names.push_back(name);
+    result.joint_names.push_back(name);
+  }
   result.has_torques = config.want_torques;
   result.has_energy = !kinematic;
   RunStats& stats = result.stats;
@@ -319,6 +340,7 @@ RunResult StartLoopResult(const Model& model, const std::vector<LoopClosure>& lo
   stats.max_steps = config.max_steps;
   stats.max_cpu_s = config.max_cpu_s;
   stats.drift_position_max = stats.drift_orientation_max = stats.drift_velocity_max = 0.0;
+  if (model.has_quaternions() && !kinematic) stats.quaternion_norm_error_max = 0.0;
   for (const LoopClosure& loop : loops) {
     stats.loops.cut_joints.push_back(loop.name + " (" + LoopJointTypeName(loop.type) + ")");
   }
@@ -344,6 +366,7 @@ struct LoopFrames {
 void RunLoopDae(const Model& model, const std::vector<LoopClosure>& loops, const RunConfig& config,
                 const DriveSet& drives, const LoopPlan& plan, const LoopFrames& frames) {
   RunStats& stats = frames.result.stats;
+  MBSTREAM_CHECK_MSG(!model.has_quaternions(), "ValidateLoopRun refuses ida with quaternions");
   ClosedLoopDae dae(model, loops, drives, plan.rank);
   Eigen::VectorXd y, yp;
   dae.ConsistentStart(0.0, plan.q0, plan.qd0, &y, &yp);
@@ -371,7 +394,7 @@ void RunLoopOde(const Model& model, const std::vector<LoopClosure>& loops, const
   // under round-off and the projection fails (docs/closed_loops.md).
   ClosedLoopOde ode(model, loops, drives, plan.q0, config.baumgarte,
                     std::min(1e-10, 0.01 * config.atol));
-  Eigen::VectorXd y(2 * model.num_dofs());
+  Eigen::VectorXd y(model.nq() + model.nv());
   y << plan.q0, plan.qd0;
   const IntegratorOptions options =
       IntegratorOptionsFrom(config, frames.times.back(), frames.budget->cpu_deadline_s);
@@ -385,19 +408,36 @@ void RunLoopOde(const Model& model, const std::vector<LoopClosure>& loops, const
   stats.solver = integrator->stats();
 }
 
+// Free bodies and ball joints in the spanning tree run with formulation joint and an ODE
+// method (closed_loop_ode.h: q on its manifold, the Jacobian in velocity space); method ida (the
+// GGL DAE) and the body formulations keep one position per velocity, and are refused naming the
+// joint and what to use instead.
+void RefuseLoopQuaternions(const Model& model, const RunConfig& config) {
+  if (!model.has_quaternions()) return;
+  std::string what;
+  if (IsBodyFormulation(config.formulation)) {
+    what = std::string("formulation ") + FormulationName(config.formulation) +
+           " does not simulate it in a mechanism with closed loops; use formulation joint (or "
+           "auto) with an ODE method (bdf projects onto the loops after each step)";
+  } else if (config.method == Method::kIda) {
+    what =
+        "method ida (the closed loops' index-2 DAE) does not simulate it yet; use method bdf "
+        "(the joint-space ODE projected onto the loops and the unit quaternions after each "
+        "step), or adams, erk, dirk";
+  } else {
+    return;
+  }
+  if (model.has_free_bodies()) RefuseFreeBodies(model, what);
+  RefuseBallJoints(model, what);
+}
+
 }  // namespace
 
 FormulationChoice ValidateLoopRun(const Model& model, const std::vector<LoopClosure>& loops,
                                   const RunConfig& config) {
   if (loops.empty()) return ValidateRun(model, config);
   CheckContact(model, config, loops);
-  RefuseFreeBodies(model,
-                   "a mechanism with closed loops does not simulate free bodies yet; "
-                   "attach the link to the world or open the loop");
-  RefuseBallJoints(model,
-                   "a mechanism with closed loops does not simulate a ball joint in its "
-                   "spanning tree yet; make the ball joint one of the loop's cut joints (a "
-                   "loop closure), model it as three revolute joints, or open the loop");
+  RefuseLoopQuaternions(model, config);
   const DriveSet drives(model, config.drives);
   if (drives.any_sampled()) {
     throw InputError(

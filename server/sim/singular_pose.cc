@@ -6,11 +6,22 @@ namespace mbstream {
 
 std::string PoseText(const Model& model, const Eigen::VectorXd& q) {
   std::string text;
-  for (int i = 0; i < model.num_dofs(); ++i) {
-    const Joint& joint = model.bodies[i].joint;
+  for (int i = 0; i < model.num_bodies(); ++i) {
+    const Body& body = model.bodies[i];
+    const Joint& joint = body.joint;
     if (!text.empty()) text += ", ";
-    text += FormatString("%s = %.6g %s", joint.name.c_str(), q(i),
-                         joint.type == JointType::kRevolute ? "rad" : "m");
+    const int k = body.q_index;
+    if (body.free()) {  // x y z qw qx qy qz
+      text +=
+          FormatString("%s = (%.6g, %.6g, %.6g) m, (%.6g, %.6g, %.6g, %.6g)", joint.name.c_str(),
+                       q(k), q(k + 1), q(k + 2), q(k + 3), q(k + 4), q(k + 5), q(k + 6));
+    } else if (body.ball()) {  // qw qx qy qz
+      text += FormatString("%s = (%.6g, %.6g, %.6g, %.6g)", joint.name.c_str(), q(k), q(k + 1),
+                           q(k + 2), q(k + 3));
+    } else {
+      text += FormatString("%s = %.6g %s", joint.name.c_str(), q(k),
+                           joint.type == JointType::kRevolute ? "rad" : "m");
+    }
   }
   return text;
 }
@@ -19,7 +30,7 @@ SingularPoseWatch::SingularPoseWatch(const Model& model, Eigen::Index rows)
     : model_(model),
       square_(rows == model.num_dofs()),
       conditioning_(rows, model.num_dofs()),
-      last_q_(model.num_dofs()) {}
+      last_q_(model.nq()) {}
 
 std::optional<std::string> SingularPoseWatch::Check(double t, const Eigen::VectorXd& q,
                                                     const Eigen::MatrixXd& A) {
