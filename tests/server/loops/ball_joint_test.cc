@@ -10,11 +10,13 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "server/engine/engine.h"
 #include "server/parse/sdf_import.h"
 #include "server/sim/loop_run.h"
+#include "server/sim/run_trust.h"
 #include "shared/common/check.h"
 #include "tests/server/loops/simbody_linkage.h"
 
@@ -199,7 +201,14 @@ TEST(BallJointTest, AClosedLoopWithABallJointInItsTreeRunsWithBdfAndIdaIsRefused
   ASSERT_NO_THROW(ValidateLoopRun(ball.model, ball.loops, config));
   const RunResult result = SimulateLoops(ball.model, ball.loops, config);
   ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  std::printf(
+      "delta_ball (bdf, rtol 1e-9): energy %.3g, drift %.3g m %.3g rad %.3g, quaternion "
+      "%.3g, steps %ld, cpu %.3g s\n",
+      result.stats.energy_error_max, result.stats.drift_position_max,
+      result.stats.drift_orientation_max, result.stats.drift_velocity_max,
+      result.stats.quaternion_norm_error_max, result.stats.solver.steps, result.stats.cpu_s);
   EXPECT_EQ(result.stats.loops.mobility, 3);
+  EXPECT_EQ(result.stats.trust, Trust::kOk) << result.stats.trust_reason;
   EXPECT_LT(result.stats.energy_error_max, 1e-6);
   EXPECT_LT(result.stats.drift_position_max, 1e-10);
   EXPECT_LT(result.stats.quaternion_norm_error_max, 1e-10);

@@ -17,12 +17,15 @@
 #include <string>
 #include <vector>
 
+#include "server/drives/drive_set.h"
 #include "server/kinematics/forward_kinematics.h"
 #include "server/model/model_builder.h"
 #include "server/parse/sdf_import.h"
+#include "server/sim/closed_loop_ode.h"
 #include "server/sim/loop_run.h"
 #include "server/sim/run_trust.h"
 #include "shared/common/check.h"
+#include "tests/common/allocation_counter.h"
 
 namespace mbstream {
 namespace {
@@ -452,6 +455,54 @@ TEST(FreeLoopTest, ABallPendulumTiedByACoaxialCutRevoluteIsTheTreePendulum) {
   EXPECT_LT(FrameQuaternionError(b, 0), 1e-15);
   EXPECT_LT(b.stats.quaternion_norm_error_max, config.rtol);
   EXPECT_EQ(b.stats.trust, Trust::kOk) << b.stats.trust_reason;
+}
+
+// The ODE's right-hand side, its projection (Newton on the manifold) and its per-step
+// quaternion normalisation allocate nothing; the projection closes both loops and puts the
+// quaternion back on the unit sphere.
+TEST(FreeLoopTest, TheOdeWithAFreeCouplerStepsWithoutAllocatingAndProjectsOntoTheManifold) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  const FourBar bar = FreeCouplerFourBar(sdf);
+  const RunConfig config = FourBarConfig(bar.model, Method::kBdf, 1e-10);
+  const DriveSet drives(bar.model, config.drives);
+  Eigen::VectorXd q0(bar.model.nq());
+  NeutralPositions(bar.model, q0.data());
+  ClosedLoopOde ode(bar.model, bar.loops, drives, q0, config.baumgarte, 1e-12);
+  ASSERT_EQ(ode.size(), 17);
+  ASSERT_EQ(ode.num_positions(), 9);
+  ASSERT_EQ(ode.num_velocities(), 8);
+  ASSERT_TRUE(ode.ProjectsEveryMethod());
+  // Off the loops by millimetres and milliradians, the quaternion 1e-4 off unit length.
+  const int c = BodyNamed(bar.model, "coupler").q_index;
+  Eigen::VectorXd y(17), ydot(17), correction(17);
+  y << q0, Eigen::VectorXd::Zero(8);
+  y(0) += 0.003;
+  y(c) += 0.002;
+  y(c + 2) -= 0.001;
+  y.segment<4>(c + 3) *= 1.0001;
+  y.tail(8) << 0.5, -0.2, 0.01, 0.02, 0.0, 0.1, 0.3, -0.1;
+  Eigen::VectorXd normalised = y;
+  const long before = testing::AllocationCount();
+  const int rhs = ode.Rhs(0.0, y.data(), ydot.data());
+  const int project = ode.Project(0.0, y.data(), correction.data());
+  const int in_place = ode.ProjectInPlace(0.0, normalised.data());
+  EXPECT_EQ(testing::AllocationCount() - before, 0);
+  EXPECT_EQ(rhs, 0);
+  EXPECT_EQ(project, 0);
+  EXPECT_EQ(in_place, 0);
+  EXPECT_TRUE(ydot.allFinite());
+  EXPECT_NEAR(normalised.segment<4>(c + 3).norm(), 1.0, 1e-15);
+  // The projected state: on the loops (phi = 0, G v = 0) with a unit quaternion.
+  const Eigen::VectorXd projected = y + correction;
+  EXPECT_NEAR(projected.segment<4>(c + 3).norm(), 1.0, 1e-15);
+  ASSERT_TRUE(ode.Evaluate(0.0, projected.data()));
+  double gap = 0.0, alignment = 0.0, velocity = 0.0;
+  ode.Residuals(&gap, &alignment, &velocity);
+  EXPECT_LT(gap, 1e-12);
+  EXPECT_LT(alignment, 1e-12);
+  EXPECT_LT(velocity, 1e-12);
+  // The quaternion's rate is q' = 1/2 quat (x) (0, w_B): orthogonal to quat.
+  EXPECT_LT(std::abs(ydot.segment<4>(c + 3).dot(y.segment<4>(c + 3).normalized())), 1e-14);
 }
 
 // --- What stays refused -------------------------------------------------------------------
