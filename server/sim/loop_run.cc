@@ -414,6 +414,20 @@ void RunLoopOde(const Model& model, const std::vector<LoopClosure>& loops, const
 // joint and what to use instead.
 void RefuseLoopQuaternions(const Model& model, const RunConfig& config) {
   if (!model.has_quaternions()) return;
+  for (const Body& body : model.bodies) {  // a pose drive (pose_motion.h) on a free or ball joint
+    if (body.nv() == 1) continue;
+    for (int k = 0; k < body.nv(); ++k) {
+      const size_t v = static_cast<size_t>(body.v_index + k);
+      if (v < config.drives.size() && config.drives[v].kind != DriveConfig::Kind::kPassive) {
+        throw InputError(std::string(body.free() ? "free" : "ball") + " joint '" + body.joint.name +
+                         "' (link '" + body.name +
+                         "') has a drive, and a mechanism with closed loops takes drives on "
+                         "one-coordinate joints only (a prescribed pose is not a loop "
+                         "constraint yet); leave it passive and prescribe a revolute or "
+                         "prismatic joint of the loop, or open the loop");
+      }
+    }
+  }
   std::string what;
   if (IsBodyFormulation(config.formulation)) {
     what = std::string("formulation ") + FormulationName(config.formulation) +

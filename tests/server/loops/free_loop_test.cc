@@ -542,6 +542,17 @@ TEST(FreeLoopTest, IdaAndTheBodyFormulationsAreRefusedNamingTheJoint) {
       EXPECT_NE(message.find("closed loops"), std::string::npos) << message;
     }
   }
+  // A drive on a free joint's coordinate (a prescribed pose: not a loop constraint yet).
+  RunConfig config = Config(free, Method::kBdf, 1e-8, 0.1);
+  config.drives[2].kind = DriveConfig::Kind::kPrescribed;
+  try {
+    ValidateLoopRun(free, loops, config);
+    ADD_FAILURE() << "accepted a drive on the free joint";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("free joint 'bob'"), std::string::npos) << message;
+    EXPECT_NE(message.find("leave it passive"), std::string::npos) << message;
+  }
 }
 
 }  // namespace
