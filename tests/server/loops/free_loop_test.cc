@@ -405,6 +405,49 @@ TEST(FreeLoopTest, AFourBarWithABallJointInItsTreeIsTheTreeFourBar) {
   }
 }
 
+// Driven: the crank prescribed at one turn per second, formulation kinematic (Newton on the
+// loops at each frame, now on the manifold): the free coupler's pose, the rocker's angle and
+// the crank's effort are the tree four-bar's.
+TEST(FreeLoopTest, ADrivenFourBarWithAFreeCouplerIsSolvedFrameByFrameAsTheTreeFourBar) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  const FourBar bar = FreeCouplerFourBar(sdf);
+  DriveConfig crank;
+  crank.kind = DriveConfig::Kind::kPrescribed;
+  crank.trajectory.kind = Trajectory::Kind::kSpline;
+  crank.trajectory.times = {-1.0, 3.0};
+  crank.trajectory.values = {-2.0 * M_PI, 6.0 * M_PI};
+  RunResult runs[2];
+  for (int k = 0; k < 2; ++k) {
+    const Model& model = k == 0 ? sdf.model : bar.model;
+    const std::vector<LoopClosure>& loops = k == 0 ? sdf.loops : bar.loops;
+    RunConfig config = FourBarConfig(model, Method::kBdf, 1e-10);
+    config.formulation = Formulation::kKinematic;
+    config.want_torques = true;
+    config.drives[static_cast<size_t>(BodyNamed(model, "crank").v_index)] = crank;
+    ASSERT_EQ(ValidateLoopRun(model, loops, config).formulation, Formulation::kKinematic);
+    runs[k] = SimulateLoops(model, loops, config);
+    ASSERT_EQ(runs[k].stats.status, RunStatus::kFinished) << runs[k].stats.message;
+  }
+  const Difference d = Compare(sdf.model, runs[0], bar.model, runs[1]);
+  double effort = 0.0, largest = 0.0;
+  const int ca = BodyNamed(sdf.model, "crank").v_index, cb = BodyNamed(bar.model, "crank").v_index;
+  for (size_t f = 0; f < runs[0].t.size(); ++f) {
+    const double ta = runs[0].tau[f * static_cast<size_t>(runs[0].num_dofs) + ca];
+    const double tb = runs[1].tau[f * static_cast<size_t>(runs[1].num_dofs) + cb];
+    effort = std::max(effort, std::abs(ta - tb));
+    largest = std::max(largest, std::abs(ta));
+  }
+  std::printf(
+      "driven free coupler: joints %.3g rad, coupler %.3g m %.3g, crank effort %.3g of "
+      "%.3g N*m, drift %.3g m\n",
+      d.joints, d.coupler_p, d.coupler_R, effort, largest, runs[1].stats.drift_position_max);
+  EXPECT_LT(d.joints, 1e-10);
+  EXPECT_LT(d.coupler_p, 1e-10);
+  EXPECT_LT(d.coupler_R, 1e-10);
+  EXPECT_LT(effort, 1e-8 * largest);
+  EXPECT_LT(FrameQuaternionError(runs[1], BodyNamed(bar.model, "coupler").q_index + 3), 1e-15);
+}
+
 // A ball pendulum whose bob a cut revolute joint at the same centre, about the tree
 // pendulum's axis, turns into that revolute pendulum: the cut joint's three gap rows hold
 // identically (the ball joint keeps the centre), two alignment rows remain.
