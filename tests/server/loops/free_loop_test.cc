@@ -405,6 +405,41 @@ TEST(FreeLoopTest, AFourBarWithABallJointInItsTreeIsTheTreeFourBar) {
   }
 }
 
+// The same from SDFormat (tests/data/loops/four_bar_ball.sdf: the shipped four-bar's
+// coupler_joint of type ball): imported as a ball joint of the tree and a cut revolute, its
+// results named by position and velocity coordinate, then the cut joint's column.
+TEST(FreeLoopTest, AnSdfFourBarWithABallJointInItsTreeIsTheTreeFourBar) {
+  const SdfImport sdf = ImportSdfFile(kFourBar);
+  const RunResult a = FourBarReference(sdf);
+  const SdfImport ball =
+      ImportSdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/tests/data/loops/four_bar_ball.sdf");
+  ASSERT_EQ(ball.model.ball_bodies.size(), 1u);
+  ASSERT_EQ(ball.loops.size(), 1u);
+  const RunConfig config = FourBarConfig(ball.model, Method::kErk, 1e-12);
+  ASSERT_NO_THROW(ValidateLoopRun(ball.model, ball.loops, config));
+  const RunResult b = SimulateLoops(ball.model, ball.loops, config);
+  ASSERT_EQ(b.stats.status, RunStatus::kFinished) << b.stats.message;
+  const std::vector<std::string> positions = {
+      "crank_joint",      "rocker_joint",     "coupler_joint.qw", "coupler_joint.qx",
+      "coupler_joint.qy", "coupler_joint.qz", "loop_joint"};
+  const std::vector<std::string> velocities = {"crank_joint",      "rocker_joint",
+                                               "coupler_joint.wx", "coupler_joint.wy",
+                                               "coupler_joint.wz", "loop_joint"};
+  EXPECT_EQ(b.position_names, positions);
+  EXPECT_EQ(b.joint_names, velocities);
+  EXPECT_EQ(b.position_index, (std::vector<int>{0, 1, -1, -1, -1, 6}));
+  const Difference d = Compare(sdf.model, a, ball.model, b);
+  EXPECT_LT(d.joints, 1e-8);
+  EXPECT_LT(d.coupler_R, 1e-8);
+  // The cut joint's column is the coupler's angle relative to the rocker: the tree four-bar
+  // has it as a cut joint too.
+  double cut = 0.0;
+  for (size_t f = 0; f < a.t.size(); ++f) {
+    cut = std::max(cut, std::abs(b.q[f * 7 + 6] - a.q[f * static_cast<size_t>(a.num_dofs) + 3]));
+  }
+  EXPECT_LT(cut, 1e-8);
+}
+
 // Driven: the crank prescribed at one turn per second, formulation kinematic (Newton on the
 // loops at each frame, now on the manifold): the free coupler's pose, the rocker's angle and
 // the crank's effort are the tree four-bar's.
