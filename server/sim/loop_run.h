@@ -5,7 +5,9 @@
 // CVODE BDF: closed_loop_ode.h; with method ida the index-2 GGL DAE, closed_loop_dae.h) and
 // the body formulations (the cut joints as more joints between bodies: body_run.h). Every run
 // reports the largest constraint residuals over its frames (RunStats' drift figures: m, rad, m/s or
-// rad/s) and how the loops were closed (RunStats::loops).
+// rad/s) and how the loops were closed (RunStats::loops). The tree may hold free bodies and
+// ball joints (kinematic and joint with an ODE method: q on its manifold, the loops in velocity
+// space); method ida and the body formulations refuse them, naming the joint.
 #pragma once
 
 #include <atomic>
