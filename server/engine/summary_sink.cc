@@ -61,8 +61,16 @@ void SummarySink::StartSummary(const RunResult& result) {
   effort_square_sum_.assign(n, 0.0);
   for (size_t j = 0; j < n; ++j) {
     if (result.has_torques) summary_.joints[j].effort_peak = 0.0;
-    if (j < references_.size() && references_[j]) summary_.joints[j].tracking_error_max = 0.0;
+    if (Tracks(result, j)) summary_.joints[j].tracking_error_max = 0.0;
   }
+}
+
+bool SummarySink::Tracks(const RunResult& result, size_t j) const {
+  // A driven one-coordinate joint. A free or ball joint's velocity coordinate (position_index
+  // -1) has no position of its own: its reference, when its pose is prescribed, is a
+  // component of the pose (Drive.Pose), not a coordinate.
+  return j < references_.size() && references_[j] &&
+         (result.num_positions == 0 || result.position_index[j] >= 0);
 }
 
 void SummarySink::AddToSummary(const RunResult& result, int frame) {
@@ -83,9 +91,9 @@ void SummarySink::AddToSummary(const RunResult& result, int frame) {
       joint.effort_peak = std::max(joint.effort_peak, std::abs(effort));
       effort_square_sum_[j] += effort * effort;
     }
-    if (j < references_.size() && references_[j]) {
-      // A driven joint's position (never a free joint's: its coordinates are passive).
-      const size_t position = result.num_positions > 0 ? result.position_index[j] : j;
+    if (Tracks(result, j)) {
+      const size_t position =
+          result.num_positions > 0 ? static_cast<size_t>(result.position_index[j]) : j;
       const double error = std::abs(references_[j]->At(t).q - result.q[q_at + position]);
       joint.tracking_error_max = std::max(joint.tracking_error_max, error);
     }

@@ -28,6 +28,8 @@ class SummarySink : public FrameSink {
   void Finish(RunResult* result);
 
  private:
+  // Whether joint (velocity coordinate) j has a tracking error: see the definition.
+  bool Tracks(const RunResult& result, size_t j) const;
   void StartSummary(const RunResult& result);
   void AddToSummary(const RunResult& result, int frame);
 

@@ -15,7 +15,8 @@ FrameRecorder::FrameRecorder(const Model& model, const DriveSet& drives, RunResu
       result_(result),
       data_(model),
       q_ref_(model.num_dofs()),
-      track_tcp_error_(track_tcp_error && drives.all_prescribed() && model.tcp_frame >= 0),
+      track_tcp_error_(track_tcp_error && drives.all_prescribed() && model.tcp_frame >= 0 &&
+                       !model.has_quaternions()),
       latest_only_(latest_only) {
   const size_t n = static_cast<size_t>(model.num_dofs());
   if (latest_only_) frames = 1;

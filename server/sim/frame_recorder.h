@@ -23,7 +23,8 @@ struct FrameExtras {
 class FrameRecorder {
  public:
   // track_tcp_error: compare the TCP with direct kinematics of the prescribed motion (off
-  // when the states are that motion, as in the kinematic formulation: the error is 0).
+  // when the states are that motion, as in the kinematic formulation: the error is 0; off with
+  // free or ball joints, whose references are poses, not coordinates).
   // latest_only: keep only the latest frame in `result` (see RunResult::first_seq).
   FrameRecorder(const Model& model, const DriveSet& drives, RunResult& result, size_t frames,
                 bool track_tcp_error, bool latest_only = false);

@@ -180,5 +180,17 @@ TEST(DriveSetTest, JointSpaceOdeRhsMatchesThePerJointEfforts) {
   }
 }
 
+// A held component of a prescribed pose has the empty trajectory: every reader of a drive's
+// reference gets 0 from it (Trajectory{} is the sine law with no terms).
+TEST(DriveSetTest, AnEmptyTrajectoryIsZeroAtEveryTime) {
+  const TrajectoryEvaluator empty{Trajectory{}};
+  for (const double t : {-1.0, 0.0, 0.5, 1e9}) {
+    const TrajectoryPoint p = empty.At(t);
+    EXPECT_EQ(p.q, 0.0);
+    EXPECT_EQ(p.qd, 0.0);
+    EXPECT_EQ(p.qdd, 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace mbstream
