@@ -107,7 +107,9 @@ class RunManager {
     std::shared_ptr<ControlChannel> channel;  // null when denied
     std::string denied;
     v1::RunInfo info;
-    std::vector<std::string> joint_names, external_joints, commands;
+    // joint_names: the velocity coordinates' names (coordinate_names.h), position_names the
+    // position coordinates'.
+    std::vector<std::string> joint_names, position_names, external_joints, commands;
     std::vector<std::string> sensor_names;  // RunConfig::sensor_points' names, in order
     double period_s = 0.0;
   };

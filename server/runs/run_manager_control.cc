@@ -1,5 +1,6 @@
 // RunManager's side of the Control stream (issue 45): a stream attaches to a run with
 // external drives (control_channel.h).
+#include "server/model/coordinate_names.h"
 #include "server/runs/request_error.h"
 #include "server/runs/run_manager.h"
 #include "server/wire/stats_conversion.h"
@@ -45,9 +46,10 @@ RunManager::ControlAttachment RunManager::AttachControl(const std::string& run_i
   attachment.info = run->Info();
   const Model& model = run->model().model;
   const RunConfig& config = run->config();
+  attachment.position_names = PositionNames(model);
+  attachment.joint_names = VelocityNames(model);
   for (int i = 0; i < model.num_dofs(); ++i) {
-    const std::string& name = model.bodies[static_cast<size_t>(model.BodyOfVelocity(i))].joint.name;
-    attachment.joint_names.push_back(name);
+    const std::string& name = attachment.joint_names[static_cast<size_t>(i)];
     const DriveConfig& drive = config.drives[static_cast<size_t>(i)];
     if (drive.kind != DriveConfig::Kind::kExternal) continue;
     attachment.external_joints.push_back(name);

@@ -192,7 +192,11 @@ grpc::Status ControlCall::Attach() {
   v1::ControlResponse response;
   v1::ControlStarted* started = response.mutable_started();
   *started->mutable_run() = attachment.info;
-  for (const std::string& name : attachment.joint_names) started->add_joint_names(name);
+  for (const std::string& name : attachment.joint_names) {
+    started->add_joint_names(name);
+    started->add_velocity_names(name);
+  }
+  for (const std::string& name : attachment.position_names) started->add_position_names(name);
   for (const std::string& name : attachment.external_joints) started->add_external_joints(name);
   for (const std::string& command : attachment.commands) started->add_commands(command);
   started->set_period_s(attachment.period_s);

@@ -82,6 +82,12 @@ void JointSpaceOde::EvaluateFreeState(double t, const double* y) {
   if (contact_ != nullptr) AddContactForces();
 }
 
+const double* JointSpaceOde::DrivePositions(const double* y) {
+  if (!quaternions_) return y;
+  for (int i = 0; i < n_; ++i) drive_q_(i) = q_of_v_[i] >= 0 ? y[q_of_v_[i]] : 0.0;
+  return drive_q_.data();
+}
+
 void JointSpaceOde::AddContactForces() {
   BodyKinematics(model_, data_, q_);
   contact_tau_.setZero();

@@ -112,6 +112,11 @@ class JointSpaceOde : public OdeSystem, public ManifoldProjection {
   const Eigen::VectorXd& contact_force() const { return contact_tau_; }
   // The drives' scratch, with the sampled drives' held values (DriveSet::Workspace::held).
   DriveSet::Workspace& drive_workspace() { return drive_workspace_; }
+  // The positions the drive laws read from the state y (rad or m, one per velocity
+  // coordinate): y itself without quaternions; with them each one-coordinate joint's q at its
+  // position index, 0 for a free or ball joint's coordinates (valid until the next call or
+  // evaluation). Allocates nothing.
+  const double* DrivePositions(const double* y);
 
  private:
   void EvaluateState(double t, const double* y);      // q_, qd_, reference qdd_, efforts, tau_

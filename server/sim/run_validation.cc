@@ -244,12 +244,6 @@ void CheckSampledDrives(const Model& model, const RunConfig& config, const Drive
                      ", and an accuracy target does not choose methods for sampled "
                      "drives yet: drop the target and give method and tolerances");
   }
-  if (model.has_free_bodies()) {
-    RefuseFreeBodies(model, what + ": sampled drives do not run with free bodies yet");
-  }
-  if (model.has_ball_joints()) {
-    RefuseBallJoints(model, what + ": sampled drives do not run with ball joints yet");
-  }
 }
 
 // sensor_points: on links of the model, in a run whose states carry them (external drives).

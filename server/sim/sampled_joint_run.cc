@@ -160,9 +160,12 @@ class SampledJointSource : public FrameSource {
       if (integrator_->Quadratures(&work)) work_base_ += work;
       AddStats(integrator_->stats(), &done_);
     }
+    // With free bodies or ball joints the state at an instant comes from the integrator's
+    // interpolant, between projected steps: its quaternions are normalised before the
+    // servos and the controller see it and the next period starts from it.
+    if (model_.has_quaternions()) ode_.ProjectInPlace(t, y_.data());
     DriveSet::Workspace& held = ode_.drive_workspace();
-    const int n = model_.nv();
-    drives_.SampleServos(t, y_.data(), y_.data() + n, held);
+    drives_.SampleServos(t, ode_.DrivePositions(y_.data()), y_.data() + model_.nq(), held);
     const std::vector<int>& external = drives_.external_joints();
     if (!external.empty()) {
       if (control_ == nullptr) {

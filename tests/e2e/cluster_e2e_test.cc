@@ -441,6 +441,31 @@ TEST_F(ClusterE2eTest, FollowAttachedDuringARunOfTheOtherReplicaSeesThatRun) {
   EXPECT_EQ(got.ended.replica_address(), busy_->address());
 }
 
+// A controlled run (issue 45) integrates on the server its Control stream reaches, so a
+// replica of a cluster (any replica may claim a run) refuses one with FAILED_PRECONDITION and
+// says where control runs; the replica goes on serving ordinary runs.
+TEST_F(ClusterE2eTest, AControlStreamToAReplicaIsRefusedNamingWhereControlRuns) {
+  auto replica = NewReplica("a");
+  grpc::ClientContext context;
+  auto stream = replica->stub().Control(&context);
+  v1::ControlRequest start;
+  start.mutable_start()->set_model("single_pendulum");
+  v1::RunSpec* spec = start.mutable_start()->mutable_spec();
+  spec->set_duration_s(0.05);
+  spec->set_output_interval_s(0.01);
+  spec->add_drives()->mutable_external()->set_period_s(0.01);
+  ASSERT_TRUE(stream->Write(start));
+  stream->WritesDone();
+  v1::ControlResponse response;
+  EXPECT_FALSE(stream->Read(&response));
+  const grpc::Status refused = stream->Finish();
+  EXPECT_EQ(refused.error_code(), grpc::StatusCode::FAILED_PRECONDITION) << refused.error_message();
+  EXPECT_THAT(refused.error_message(), HasSubstr("cluster"));
+  EXPECT_THAT(refused.error_message(), HasSubstr("--data"));
+  const v1::RunInfo run = replica->Start(Paced(0.05));
+  EXPECT_EQ(replica->WaitForEnd(run.id()).state(), v1::FINISHED);
+}
+
 TEST_F(ClusterE2eTest, CancelThroughTheOtherReplicaCancelsTheRunOnItsOwner) {
   StartBusyAndFree();
   grpc::ClientContext context;

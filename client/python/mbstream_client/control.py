@@ -50,14 +50,21 @@ class Contact:
 
 
 class ControlState:
-    """The state at control instant t_k = k h: step k, t (s), q (rad or m) and qd (rad/s or
-    m/s) as NumPy arrays in the model's joint order (`joint_names`), the TCP's position (m,
-    base frame), `sensors` (an (n, 3) array, m, world frame: the spec's sensor points in
-    `sensor_names`' order; `state.sensor("tip")` is one) and `contacts` (the active contacts,
-    a list of Contact). `state["joint2"]` is joint2's q."""
+    """The state at control instant t_k = k h: step k, t (s), q (rad or m, `position_names`'
+    order) and qd (rad/s or m/s, `velocity_names`' order, the same as `joint_names`) as NumPy
+    arrays, the TCP's position (m, base frame), `sensors` (an (n, 3) array, m, world frame:
+    the spec's sensor points in `sensor_names`' order; `state.sensor("tip")` is one) and
+    `contacts` (the active contacts, a list of Contact). `state["joint2"]` is joint2's q,
+    `state.velocity("joint2")` its qd. Without free or ball joints q and qd are both in the
+    joints' order; with them q has a free joint NAME's 7 positions (`state["base.z"]`,
+    `state["base.qw"]`: x y z, then the unit quaternion scalar first) and qd its 6 velocities
+    (`state.velocity("base.wz")`: vx vy vz in the world, wx wy wz in the body frame)."""
 
     def __init__(self, message: "control_pb2.ControlState", joint_names: List[str],
-                 sensor_names: Optional[List[str]] = None):
+                 sensor_names: Optional[List[str]] = None,
+                 position_names: Optional[List[str]] = None):
+        self.position_names = position_names or joint_names
+        self.velocity_names = joint_names
         self.step = int(message.step)
         self.t = float(message.t_s)
         self.q = np.array(message.q, dtype=float)
@@ -70,8 +77,20 @@ class ControlState:
                                 dtype=float).reshape(-1, 3)
         self.contacts = [Contact(c) for c in message.contacts]
 
-    def __getitem__(self, joint: str) -> float:
-        return float(self.q[self.joint_names.index(joint)])
+    def __getitem__(self, coordinate: str) -> float:
+        """The position coordinate `coordinate` (a joint's name, or NAME.x ... NAME.qz)."""
+        return float(self.q[self._index(coordinate, self.position_names, "position")])
+
+    def velocity(self, coordinate: str) -> float:
+        """The velocity coordinate `coordinate` (a joint's name, or NAME.vx ... NAME.wz)."""
+        return float(self.qd[self._index(coordinate, self.velocity_names, "velocity")])
+
+    @staticmethod
+    def _index(coordinate: str, names: List[str], what: str) -> int:
+        if coordinate not in names:
+            raise bad_request("no %s coordinate %r; the model's are %s"
+                              % (what, coordinate, ", ".join(names)))
+        return names.index(coordinate)
 
     def sensor(self, name: str) -> "np.ndarray":
         """The sensor point `name`'s position (m, world frame)."""
@@ -109,6 +128,9 @@ class ControlLoop:
         self.commands: List[str] = list(started.commands)
         self.period_s: float = started.period_s
         self.sensor_names: List[str] = list(started.sensor_names)
+        # A server before position_names sent none: its q was in joint_names' order.
+        self.position_names: List[str] = list(started.position_names) or self.joint_names
+        self.velocity_names: List[str] = list(started.velocity_names) or self.joint_names
 
     def __enter__(self) -> "ControlLoop":
         return self
@@ -123,7 +145,8 @@ class ControlLoop:
             for response in self._call:
                 which = response.WhichOneof("kind")
                 if which == "state":
-                    state = ControlState(response.state, self.joint_names, self.sensor_names)
+                    state = ControlState(response.state, self.joint_names, self.sensor_names,
+                                         self.position_names)
                     if state.final:
                         self.final = state
                         continue

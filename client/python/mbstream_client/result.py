@@ -44,10 +44,14 @@ QUANTITIES = {  # name: (attribute, unit, what)
 @dataclass
 class Result:
     """The result of one run. Arrays have one row per output frame: N frames, n joints in the
-    model's joint order (`joint_names[j]` names column j), SI units.
+    model's joint order (`joint_names[j]` names column j), SI units. A model with free bodies
+    or ball joints has more position coordinates than velocities (docs/free_bodies.md): q's
+    columns are then named by position_names (a free joint NAME's NAME.x .y .z .qw .qx .qy
+    .qz), qd's and tau's by joint_names (NAME.vx .vy .vz .wx .wy .wz).
 
     t (N,):           s, simulated time of each frame
-    q (N, n):         rad (revolute) or m (prismatic), joint positions
+    q (N, nq):        rad (revolute) or m (prismatic), joint positions; m and a unit
+                      quaternion for a free body; nq = n without free bodies and ball joints
     qd (N, n):        rad/s or m/s, joint velocities
     tau (N, n):       N*m or N, drive efforts; (N, 0) when the run computed no torques
     tcp (N, 3):       m, x y z of the TCP in the model's base (world) frame
@@ -83,6 +87,8 @@ class Result:
     stats: Dict[str, Any]
     info: "run_pb2.RunInfo" = field(repr=False)
     loop_force_names: List[str] = field(default_factory=list)
+    # q's column names: joint_names for a model without free bodies or ball joints.
+    position_names: List[str] = field(default_factory=list)
     loop_forces: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)
     # The server it came from (a SimulationStub) and its probe set, for to_mcap.
     _stub: Any = field(default=None, repr=False, compare=False)
@@ -105,12 +111,23 @@ class Result:
         return sorted(set(self.probes["name"].tolist()))
 
     def joint(self, name: str) -> int:
-        """The column of joint `name` in q, qd and tau."""
+        """The column of velocity coordinate `name` in qd and tau (and in q when the model
+        has no free bodies or ball joints; else see position)."""
         try:
             return self.joint_names.index(name)
         except ValueError:
             raise KeyError("run %s has no joint '%s'; its joints: %s"
                            % (self.run_id, name, ", ".join(self.joint_names))) from None
+
+    def position(self, name: str) -> int:
+        """The column of position coordinate `name` in q (a one-coordinate joint by its
+        name, a free joint's by NAME.x ... NAME.qz)."""
+        names = self.position_names or self.joint_names
+        try:
+            return names.index(name)
+        except ValueError:
+            raise KeyError("run %s has no position coordinate '%s'; its coordinates: %s"
+                           % (self.run_id, name, ", ".join(names))) from None
 
     def to_mcap(self, path: Union[str, "os.PathLike[str]"], compression: str = "zstd",
                 start: StartLike = None) -> str:
@@ -143,7 +160,7 @@ class Result:
                               "python3-pandas)") from None
         index = pd.Index(self.t, name="t")
         tables = {
-            "q": (self.q, self.joint_names),
+            "q": (self.q, self.position_names or self.joint_names),
             "qd": (self.qd, self.joint_names),
             "tau": (self.tau, self.joint_names if self.tau.shape[1] else []),
             "tcp": (self.tcp, ["x", "y", "z"]),
@@ -189,8 +206,11 @@ class Result:
         plt = _pyplot()
         if ax is None:
             _, ax = plt.subplots(figsize=(7, 4))
-        for name in (self.joint_names if joints is None else list(joints)):
-            ax.plot(self.t, values[:, self.joint(name)], label=name)
+        by_position = quantity == "q" and bool(self.position_names)
+        names = self.position_names if by_position else self.joint_names
+        column = self.position if by_position else self.joint
+        for name in (names if joints is None else list(joints)):
+            ax.plot(self.t, values[:, column(name)], label=name)
         ax.set_xlabel("t (s)")
         ax.set_ylabel("%s (%s)" % (quantity, unit))
         ax.set_title("run %s (%s): %s" % (self.run_id, self.model_name, what), fontsize=10)
@@ -247,6 +267,7 @@ def result_from_chunks(chunks: Iterable["run_pb2.ResultChunk"], stub: Any = None
     if info is None:
         info = run_pb2.RunInfo()
     n = info.num_dofs or (len(frames[0].q) if frames else 0)
+    nq = info.num_positions or n
     # Frame.tau: the drive efforts (n, or none), then the cut joints' reactions (6 each) of a
     # run with closed loops and spec.report_loop_forces.
     cut_joints = [c[:c.rfind(" (")] if " (" in c else c for c in info.stats.loops.cut_joints]
@@ -266,7 +287,7 @@ def result_from_chunks(chunks: Iterable["run_pb2.ResultChunk"], stub: Any = None
         state=run_pb2.RunState.Name(info.state), message=info.message,
         joint_names=list(info.joint_names),
         t=np.array([f.t_s for f in frames], dtype=float),
-        q=_matrix(frames, "q", n), qd=_matrix(frames, "qd", n),
+        q=_matrix(frames, "q", nq), qd=_matrix(frames, "qd", n),
         tcp=np.array([(f.tcp_m.x, f.tcp_m.y, f.tcp_m.z) for f in frames],
                      dtype=float).reshape(len(frames), 3),
         tau=_matrix(frames, "tau", n if has_tau else 0, reactions),
@@ -274,4 +295,5 @@ def result_from_chunks(chunks: Iterable["run_pb2.ResultChunk"], stub: Any = None
         potential=np.array([f.potential_j for f in frames], dtype=float),
         seq=np.array([f.seq for f in frames], dtype=np.int64),
         probes=probe_rows, stats=stats_dict(info), info=info, loop_force_names=loop_force_names,
-        loop_forces=_tail(frames, "tau", reactions), _stub=stub, _probe_set=probe_set)
+        loop_forces=_tail(frames, "tau", reactions), position_names=list(info.position_names),
+        _stub=stub, _probe_set=probe_set)
