@@ -108,6 +108,9 @@ TEST(LoopContactTest, ALoopRetracesTheTreeThroughTheDropAndTheBounces) {
   printf("RESULT cpu loop %.4g s tree %.4g s; steps loop %ld tree %ld; roots loop %ld tree %ld\n",
          a.stats.cpu_s, b.stats.cpu_s, a.stats.solver.steps, b.stats.solver.steps,
          a.stats.solver.roots_found, b.stats.solver.roots_found);
+  printf("RESULT energy balance loop %.3g (quadrature %.3g, trust %s: %s) tree %.3g\n",
+         a.stats.energy_error_max, a.stats.energy_quadrature_error_max, TrustName(a.stats.trust),
+         a.stats.trust_reason.c_str(), b.stats.energy_error_max);
   // The two runs integrate the same equations of motion in different coordinates (4 with a
   // loop's multipliers against 2), each at rtol 1e-10, atol 1e-12: they differ by the two
   // integrations' errors, measured 1.4e-12 m and 5e-10 m/s. The bounds leave a factor of 100 to
