@@ -1,6 +1,7 @@
 #include "server/sim/closed_loop_ode.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 
 #include "server/dynamics/crba.h"
@@ -15,7 +16,8 @@ namespace mbstream {
 
 ClosedLoopOde::ClosedLoopOde(const Model& model, const std::vector<LoopClosure>& loops,
                              const DriveSet& drives, const Eigen::VectorXd& q_assembled,
-                             const BaumgarteParameters& gains, double projection_tolerance)
+                             const BaumgarteParameters& gains, double projection_tolerance,
+                             ContactForces* contact)
     : model_(model),
       drives_(drives),
       n_(model.nv()),
@@ -43,7 +45,9 @@ ClosedLoopOde::ClosedLoopOde(const Model& model, const std::vector<LoopClosure>&
       bias_(constraints_.num_rows()),
       G_(constraints_.num_rows(), n_),
       mass_llt_(n_),
-      drive_workspace_(drives.MakeWorkspace()) {
+      drive_workspace_(drives.MakeWorkspace()),
+      contact_(contact),
+      contact_tau_(Eigen::VectorXd::Zero(n_)) {
   bool independent = false;
   rank_ = solver_.Analyse(data_, q_assembled, &independent);
   MBSTREAM_CHECK_MSG(independent, "prescribed joints must be independent of the loops");
@@ -84,6 +88,12 @@ bool ClosedLoopOde::Evaluate(double t, const double* y) {
   if (mass_llt_.info() != Eigen::Success) return false;
   // The constraints and their Baumgarte-stabilised acceleration targets b.
   BodyKinematics(model_, data_, q_);
+  bool contact_finite = true;
+  if (contact_ != nullptr) {  // J^T f joins the applied forces before the constrained solve
+    contact_tau_.setZero();
+    contact_finite = contact_->AddForces(data_, qd_, &contact_tau_);
+    force_ += contact_tau_;
+  }
   constraints_.Residual(data_, q_, phi_);
   constraints_.Jacobian(data_, G_);
   constraints_.Bias(data_, qd_, bias_);
@@ -115,7 +125,7 @@ bool ClosedLoopOde::Evaluate(double t, const double* y) {
   for (size_t h = 0; h < prescribed_.size(); ++h) {
     effort_(prescribed_[h]) = mu_(r + static_cast<Eigen::Index>(h));
   }
-  return qdd_.allFinite() && mu_.allFinite();
+  return contact_finite && qdd_.allFinite() && mu_.allFinite();
 }
 
 int ClosedLoopOde::Rhs(double t, const double* y, double* ydot) {
@@ -141,6 +151,21 @@ int ClosedLoopOde::Project(double t, const double* y, double* correction) {
   solver_.SolveVelocities(data_, qd_, held_qd_);
   for (int i = 0; i < nq_; ++i) correction[i] = q_(i) - y[i];
   for (int i = 0; i < n_; ++i) correction[nq_ + i] = qd_(i) - y[nq_ + i];
+  return 0;
+}
+
+int ClosedLoopOde::Roots(double t, const double* y, double* g) {
+  if (contact_ == nullptr) return -1;
+  q_ = Eigen::Map<const Eigen::VectorXd>(y, nq_);
+  if (quaternions_) NormaliseQuaternions(model_, q_);
+  // As JointSpaceOde::Roots: a state that is not finite never reaches the narrow phase.
+  if (!std::isfinite(t) || !q_.allFinite()) return 1;
+  BodyKinematics(model_, data_, q_);
+  contact_->SignedDistances(data_, g);
+  for (int k = 0; k < contact_->num_root_pairs(); ++k) {
+    if (!std::isfinite(g[k])) return 1;
+    if (g[k] == 0.0) g[k] = DBL_MIN;  // never exactly 0 (JointSpaceOde::Roots says why)
+  }
   return 0;
 }
 

@@ -22,6 +22,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "server/body/baumgarte_parameters.h"
+#include "server/contact/contact_forces.h"
 #include "server/drives/drive_set.h"
 #include "server/integrate/manifold_projection.h"
 #include "server/integrate/ode_system.h"
@@ -37,10 +38,11 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
  public:
   // Keeps references to model, loops and drives, which must outlive it. `q_assembled`
   // satisfies the constraints: the independent rows are chosen there (LoopSolver::Analyse).
-  // `projection_tolerance`: the Newton tolerance of Project (m or rad).
+  // `projection_tolerance`: the Newton tolerance of Project (m or rad). `contact`, when given
+  // (not owned, outlives it), adds the contact forces at every evaluation.
   ClosedLoopOde(const Model& model, const std::vector<LoopClosure>& loops, const DriveSet& drives,
                 const Eigen::VectorXd& q_assembled, const BaumgarteParameters& gains,
-                double projection_tolerance);
+                double projection_tolerance, ContactForces* contact = nullptr);
 
   int size() const override { return nq_ + n_; }
   int num_positions() const override { return nq_; }
@@ -52,6 +54,10 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
   int ProjectInPlace(double t, double* y) override;
   int Rhs(double t, const double* y, double* ydot) override;
   int Project(double t, const double* y, double* correction) override;
+  // With contact: the signed distances of the contact's root pairs
+  // (ContactForces::SignedDistances). Allocates nothing.
+  int num_roots() const override { return contact_ != nullptr ? contact_->num_root_pairs() : 0; }
+  int Roots(double t, const double* y, double* g) override;
 
   // Evaluates the mechanism at (t, y): q() (its quaternions normalised), qd(), qdd(),
   // drive_effort() (the actuators' laws, and the prescribed joints' multipliers). False when the
@@ -88,6 +94,12 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
   const Eigen::VectorXd& qdd() const { return qdd_; }
   const Eigen::VectorXd& drive_effort() const { return effort_; }
   Data& data() { return data_; }
+  // The contacts of the last evaluation (null without contact).
+  const ContactForces* contact() const { return contact_; }
+  // The generalised contact forces of the last evaluation (zeros without contact).
+  const Eigen::VectorXd& contact_force() const { return contact_tau_; }
+  // After Evaluate: the contact forces' power contact_force()^T qd (W; 0 without contact).
+  double ContactPower() const { return contact_tau_.dot(qd_); }
 
  private:
   void HeldValues(double t);  // the prescribed joints' references at t into held_*
@@ -113,6 +125,8 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
   Eigen::LLT<Eigen::MatrixXd> mass_llt_, s_llt_;
   RowConditioning conditioning_{0, 0};  // ConstraintConditioning's workspace
   DriveSet::Workspace drive_workspace_;
+  ContactForces* const contact_;  // null without contact
+  Eigen::VectorXd contact_tau_;   // J^T f of the contacts (nv)
 };
 
 }  // namespace mbstream

@@ -66,10 +66,14 @@ void CheckContact(const Model& model, const RunConfig& config,
                      " has no contact forces yet, and the model's collision geometry may "
                      "touch: use formulation joint (or auto), or contact.enabled false");
   }
-  if (!loops.empty()) {
+  // Closed loops: the joint-space ODE (closed_loop_ode.h) has the contact forces; the loops'
+  // index-2 DAE (method ida) does not yet.
+  if (!loops.empty() && config.method == Method::kIda) {
     throw InputError(
-        "a mechanism with closed loops has no contact forces yet, and the model's collision "
-        "geometry may touch: give contact.enabled false, or open the loop");
+        "method ida (the closed loops' index-2 DAE) has no contact forces yet, and the model's "
+        "collision geometry may touch: use method bdf (the closed loops' joint-space ODE, "
+        "projected onto the loops after each step, has contact), or adams, erk, dirk; or give "
+        "contact.enabled false");
   }
 }
 

@@ -25,7 +25,8 @@ inline constexpr double kMaxHertzModulus = 1e13;        // Pa (diamond's E* is 6
 // stiction tolerance outside [kMinStictionTolerance, kMaxStictionTolerance], a Hertz modulus
 // outside [0, kMaxHertzModulus], a filter name
 // that is neither a link nor a collision of the model; and, when the model's geometry may
-// touch, for a body formulation or closed loops (contact runs in formulation joint).
+// touch, for a body formulation, or closed loops with method ida (contact runs in formulation
+// joint with an ODE method, the tree's and the closed loops').
 void CheckContact(const Model& model, const RunConfig& config,
                   const std::vector<LoopClosure>& loops = {});
 

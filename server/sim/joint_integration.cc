@@ -1,5 +1,7 @@
 #include "server/sim/joint_integration.h"
 
+#include <cmath>
+
 #include "server/sim/initial_state.h"
 
 namespace mbstream {
@@ -10,6 +12,14 @@ std::unique_ptr<ContactForces> MakeContactForces(const Model& model,
   auto contact = std::make_unique<ContactForces>(model, settings);
   if (!contact->active()) return nullptr;
   return contact;
+}
+
+void CapContactStep(const Model& model, const ContactSettings& settings,
+                    IntegratorOptions* options) {
+  const double cap = ContactPeriod(model, settings) / kContactStepsPerPeriod;
+  if (std::isfinite(cap) && (options->max_step <= 0.0 || cap < options->max_step)) {
+    options->max_step = cap;
+  }
 }
 
 JointIntegration::JointIntegration(const Model& model_in, const RunConfig& config,

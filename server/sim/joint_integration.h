@@ -45,6 +45,12 @@ inline bool MayTouch(const Model& model, const ContactSettings& settings) {
 std::unique_ptr<ContactForces> MakeContactForces(const Model& model,
                                                  const ContactSettings& settings);
 
+// Caps an adaptive method's step (options->max_step) at ContactPeriod / kContactStepsPerPeriod,
+// so that no step jumps from free flight deep into a surface: for a run whose contact may act
+// (the tree's and the closed loops' joint-space runs).
+void CapContactStep(const Model& model, const ContactSettings& settings,
+                    IntegratorOptions* options);
+
 // `now` less `before` (the counts; the last step and order of `now`).
 SolverStats StatsSince(const SolverStats& now, const SolverStats& before);
 

@@ -158,12 +158,7 @@ void RunJointSpace(const Model& model, const RunConfig& config, const PilotLink&
   const bool track_work =
       result.has_energy && (drives.any_work() || MayTouch(model, config.contact));
   IntegratorOptions options = IntegratorOptionsFrom(config, times.back(), budget->cpu_deadline_s);
-  if (MayTouch(model, config.contact)) {  // no step from free flight deep into a surface
-    const double cap = ContactPeriod(model, config.contact) / kContactStepsPerPeriod;
-    if (std::isfinite(cap) && (options.max_step <= 0.0 || cap < options.max_step)) {
-      options.max_step = cap;
-    }
-  }
+  if (MayTouch(model, config.contact)) CapContactStep(model, config.contact, &options);
   size_t prefix_frames = 0;
   std::shared_ptr<JointIntegration> live =
       TakeOverPrefix(pilot.prefix.get(), times, n, track_work, options, &prefix_frames);

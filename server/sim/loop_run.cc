@@ -17,11 +17,13 @@
 #include "server/sim/body_run.h"
 #include "server/sim/closed_loop_dae.h"
 #include "server/sim/closed_loop_ode.h"
+#include "server/sim/contact_log.h"
 #include "server/sim/contact_validation.h"
 #include "server/sim/frame_loop.h"
 #include "server/sim/frame_recorder.h"
 #include "server/sim/input_sanity.h"
 #include "server/sim/integrator_options_from.h"
+#include "server/sim/joint_integration.h"
 #include "server/sim/loop_plan.h"
 #include "server/sim/run_budget.h"
 #include "server/sim/run_stop.h"
@@ -161,13 +163,15 @@ void StopSingular(const Model& model, const Eigen::VectorXd& q, double t, double
 class ClosedLoopSource : public FrameSource {
  public:
   ClosedLoopSource(ClosedLoopOde& ode, Integrator& integrator, Eigen::VectorXd& y,
-                   BudgetTracking* budget, Eigen::VectorXd* reactions, RunStats* stats)
+                   BudgetTracking* budget, Eigen::VectorXd* reactions, RunStats* stats,
+                   ContactLog* contacts)
       : ode_(ode),
         integrator_(integrator),
         y_(y),
         budget_(budget),
         reactions_(reactions),
-        stats_(stats) {}
+        stats_(stats),
+        contacts_(contacts) {}
 
   bool Advance(const std::vector<double>& times, size_t k, RunStats* stats) override {
     if (!AdvanceToFrame(integrator_, times, k, y_.data(), stats, "", &budget_->t_stop)) {
@@ -203,7 +207,10 @@ class ClosedLoopSource : public FrameSource {
     ode_.Residuals(&gap, &alignment, &velocity);
     TrackResiduals(gap, alignment, velocity, stats_);
     if (reactions_ != nullptr) ode_.Reactions(reactions_);
-    recorder.SetConstraintPower(ode_.ConstraintPower());
+    if (contacts_ != nullptr && ode_.contact() != nullptr) contacts_->Record(t, *ode_.contact());
+    // The contacts' power joins the loops' in the energy balance's work (a trapezoid over the
+    // frames: docs/closed_loops.md).
+    recorder.SetConstraintPower(ode_.ConstraintPower() + ode_.ContactPower());
     return recorder.Record(t, ode_.q(), ode_.qd(), &ode_.drive_effort());
   }
 
@@ -221,6 +228,7 @@ class ClosedLoopSource : public FrameSource {
   BudgetTracking* budget_;
   Eigen::VectorXd* reactions_;  // null: not asked for
   RunStats* stats_;
+  ContactLog* contacts_;  // null: no contact, or the frames' contacts are not kept
 };
 
 // The index-2 GGL DAE, integrated frame to frame by IDA.
@@ -392,19 +400,42 @@ void RunLoopOde(const Model& model, const std::vector<LoopClosure>& loops, const
   // The projection's Newton tolerance: well below the run's atol, or CVODE takes the
   // leftover for a correction too large and shrinks the step. Below atol 1e-13 it is
   // under round-off and the projection fails (docs/closed_loops.md).
+  // Contact as for a tree (joint_run.cc): the forces in the right-hand side, the pairs' signed
+  // distances as root functions, adaptive steps capped at a fraction of the contact period.
+  const std::unique_ptr<ContactForces> contact = MakeContactForces(model, config.contact);
   ClosedLoopOde ode(model, loops, drives, plan.q0, config.baumgarte,
-                    std::min(1e-10, 0.01 * config.atol));
+                    std::min(1e-10, 0.01 * config.atol), contact.get());
   Eigen::VectorXd y(model.nq() + model.nv());
   y << plan.q0, plan.qd0;
-  const IntegratorOptions options =
+  IntegratorOptions options =
       IntegratorOptionsFrom(config, frames.times.back(), frames.budget->cpu_deadline_s);
+  if (contact != nullptr) CapContactStep(model, config.contact, &options);
   std::unique_ptr<Integrator> integrator = MakeIntegrator(ode, 0.0, y.data(), options);
   stats.equations = ode.size();
   stats.jacobian_nnz = ode.size() * ode.size();
   stats.integrator =
       std::string(integrator->name()) + (config.method == Method::kBdf ? " with projection" : "");
-  ClosedLoopSource source(ode, *integrator, y, frames.budget, frames.reactions, &stats);
+  ContactLog& log = frames.result.contacts;
+  if (contact != nullptr) {
+    stats.formulation_reason += FormatString(
+        "; contact on: %d geometry pair(s) may touch (compliant point contact), adaptive steps "
+        "at most %g s",
+        contact->num_allowed_pairs(), options.max_step);
+    log.Start(*contact);
+    log.keep_records = frames.sink == nullptr || !frames.sink->KeepsFrames();
+  } else if (!model.collisions.empty()) {
+    stats.formulation_reason +=
+        config.contact.enabled ? "; contact off: no pair of the model's collision geometries may "
+                                 "touch (same or adjacent bodies, bitmasks, filter)"
+                               : "; contact off (contact.enabled false)";
+  }
+  ClosedLoopSource source(ode, *integrator, y, frames.budget, frames.reactions, &stats,
+                          contact != nullptr ? &log : nullptr);
   RunFrames(frames.times, source, frames.recorder, frames.result, frames.sink, frames.cancel);
+  if (log.active) stats.contact = {true, log.depth_max, log.count_peak, log.relative_max};
+  if (const std::string deep = log.DeepContactWarning(); !deep.empty()) {
+    stats.warnings.push_back(deep);
+  }
   stats.solver = integrator->stats();
 }
 
