@@ -6,7 +6,7 @@ namespace mbstream {
 
 AppendedQuadratureOde::AppendedQuadratureOde(OdeSystem& system)
     : system_(system),
-      projection_(EveryStepProjectionOf(system)),
+      projection_(ProjectionOf(system)),
       n_(system.size()),
       nq_(system.num_quadratures()),
       jacobian_(system.HasJacobian() ? static_cast<size_t>(n_) * n_ : 0) {}

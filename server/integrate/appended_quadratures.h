@@ -22,9 +22,10 @@ namespace mbstream {
 // and columns for Q (Q feeds nothing back; a zero row only lags Q's Newton update by one
 // iteration inside DIRK's stage solves). Keeps a reference to `system`.
 //
-// It passes on the system's own position rate (OdeSystem::PositionRate) and, when the system
-// projects with every method (ManifoldProjection::ProjectsEveryMethod: unit quaternions), its
-// projection, Q untouched.
+// It passes on the system's own position rate (OdeSystem::PositionRate) and its projection,
+// Q untouched: with every method when the system projects with every method
+// (ManifoldProjection::ProjectsEveryMethod: unit quaternions), else with CVODE BDF only (the
+// closed loops' constraints).
 class AppendedQuadratureOde : public OdeSystem, public ManifoldProjection {
  public:
   explicit AppendedQuadratureOde(OdeSystem& system);
@@ -43,13 +44,15 @@ class AppendedQuadratureOde : public OdeSystem, public ManifoldProjection {
   int num_roots() const override { return system_.num_roots(); }
   int Roots(double t, const double* z, double* g) override { return system_.Roots(t, z, g); }
   bool Projects() const override { return projection_ != nullptr; }
-  bool ProjectsEveryMethod() const override { return projection_ != nullptr; }
+  bool ProjectsEveryMethod() const override {
+    return projection_ != nullptr && projection_->ProjectsEveryMethod();
+  }
   int Project(double t, const double* z, double* correction) override;
   int ProjectInPlace(double t, double* z) override { return projection_->ProjectInPlace(t, z); }
 
  private:
   OdeSystem& system_;
-  ManifoldProjection* const projection_;  // EveryStepProjectionOf(system_)
+  ManifoldProjection* const projection_;  // ProjectionOf(system_)
   const int n_, nq_;
   std::vector<double> jacobian_;  // n x n workspace for the system's own Jacobian
 };

@@ -142,6 +142,26 @@ int ClosedLoopOde::Rhs(double t, const double* y, double* ydot) {
   return 0;
 }
 
+int ClosedLoopOde::Quadrature(double t, const double* y, double* qdot) {
+  if (contact_ == nullptr) return -1;
+  if (!Evaluate(t, y)) return 1;
+  qdot[0] = Power();
+  return 0;
+}
+
+int ClosedLoopOde::RhsAndQuadrature(double t, const double* y, double* ydot, double* qdot) {
+  if (contact_ == nullptr) return -1;
+  if (const int code = Rhs(t, y, ydot); code != 0) return code;
+  qdot[0] = Power();  // Rhs's evaluation, a function of (t, y) alone
+  return 0;
+}
+
+double ClosedLoopOde::Power() const {
+  double power = ConstraintPower() + ContactPower();
+  for (int i = 0; i < n_; ++i) power += (effort_(i) - drives_.damping(i) * qd_(i)) * qd_(i);
+  return power;
+}
+
 int ClosedLoopOde::Project(double t, const double* y, double* correction) {
   q_ = Eigen::Map<const Eigen::VectorXd>(y, nq_);
   qd_ = Eigen::Map<const Eigen::VectorXd>(y + nq_, n_);

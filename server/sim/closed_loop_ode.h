@@ -39,7 +39,10 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
   // Keeps references to model, loops and drives, which must outlive it. `q_assembled`
   // satisfies the constraints: the independent rows are chosen there (LoopSolver::Analyse).
   // `projection_tolerance`: the Newton tolerance of Project (m or rad). `contact`, when given
-  // (not owned, outlives it), adds the contact forces at every evaluation.
+  // (not owned, outlives it), adds the contact forces at every evaluation, and the ODE then
+  // integrates the work of the drives, the damping, the loops' and the contacts' forces as a
+  // quadrature (an impact between two frames is in it; the trapezoid rule over the frames
+  // would miss it).
   ClosedLoopOde(const Model& model, const std::vector<LoopClosure>& loops, const DriveSet& drives,
                 const Eigen::VectorXd& q_assembled, const BaumgarteParameters& gains,
                 double projection_tolerance, ContactForces* contact = nullptr);
@@ -58,6 +61,11 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
   // (ContactForces::SignedDistances). Allocates nothing.
   int num_roots() const override { return contact_ != nullptr ? contact_->num_root_pairs() : 0; }
   int Roots(double t, const double* y, double* g) override;
+  // With contact: one quadrature, the power of the drives, the damping, the loops' and the
+  // contacts' forces (W). Allocates nothing.
+  int num_quadratures() const override { return contact_ != nullptr ? 1 : 0; }
+  int Quadrature(double t, const double* y, double* qdot) override;
+  int RhsAndQuadrature(double t, const double* y, double* ydot, double* qdot) override;
 
   // Evaluates the mechanism at (t, y): q() (its quaternions normalised), qd(), qdd(),
   // drive_effort() (the actuators' laws, and the prescribed joints' multipliers). False when the
@@ -103,6 +111,7 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
 
  private:
   void HeldValues(double t);  // the prescribed joints' references at t into held_*
+  double Power() const;       // the quadrature's integrand after Evaluate
 
   const Model& model_;
   const DriveSet& drives_;

@@ -208,9 +208,11 @@ class ClosedLoopSource : public FrameSource {
     TrackResiduals(gap, alignment, velocity, stats_);
     if (reactions_ != nullptr) ode_.Reactions(reactions_);
     if (contacts_ != nullptr && ode_.contact() != nullptr) contacts_->Record(t, *ode_.contact());
-    // The contacts' power joins the loops' in the energy balance's work (a trapezoid over the
-    // frames: docs/closed_loops.md).
-    recorder.SetConstraintPower(ode_.ConstraintPower() + ode_.ContactPower());
+    if (ode_.num_quadratures() > 0) {  // with contact: the work integrated with the ODE
+      if (integrator_.Quadratures(&work_)) recorder.SetWork(work_);
+    } else {  // the loops' power joins the drives' (a trapezoid over the frames)
+      recorder.SetConstraintPower(ode_.ConstraintPower());
+    }
     return recorder.Record(t, ode_.q(), ode_.qd(), &ode_.drive_effort());
   }
 
@@ -229,6 +231,7 @@ class ClosedLoopSource : public FrameSource {
   Eigen::VectorXd* reactions_;  // null: not asked for
   RunStats* stats_;
   ContactLog* contacts_;  // null: no contact, or the frames' contacts are not kept
+  double work_ = 0.0;     // J, the integrated work since t = 0 (with contact)
 };
 
 // The index-2 GGL DAE, integrated frame to frame by IDA.
@@ -417,6 +420,7 @@ void RunLoopOde(const Model& model, const std::vector<LoopClosure>& loops, const
       std::string(integrator->name()) + (config.method == Method::kBdf ? " with projection" : "");
   ContactLog& log = frames.result.contacts;
   if (contact != nullptr) {
+    frames.recorder.UseIntegratedWork();
     stats.formulation_reason += FormatString(
         "; contact on: %d geometry pair(s) may touch (compliant point contact), adaptive steps "
         "at most %g s",
