@@ -137,6 +137,13 @@ void AssessTrust(RunStats* s, const TrustScale& scale) {
   integration |= drift && drift_remedy.empty();
   integration |=
       Exceeds(s->quaternion_norm_error_max, limits.quaternion, "quaternion norm error", &reason);
+  // A penetration deep against the geometry's size is a contact too soft for its load (the
+  // compliant law's answer, not the integrator's error): its remedy is the stiffness.
+  const bool deep =
+      s->contact.active && Exceeds(s->contact.penetration_relative_max, kTrustContactPenetration,
+                                   "contact penetration relative to the smaller "
+                                   "geometry's size",
+                                   &reason);
   if (s->solver.steps > 0) {
     const double rejected =
         static_cast<double>(s->solver.error_test_failures) / static_cast<double>(s->solver.steps);
@@ -165,6 +172,12 @@ void AssessTrust(RunStats* s, const TrustScale& scale) {
   if (!drift_remedy.empty()) {
     if (!remedy.empty()) remedy += "; and ";
     remedy += drift_remedy;
+  }
+  if (deep) {
+    if (!remedy.empty()) remedy += "; and ";
+    remedy +=
+        "the compliant contact is too soft for its load (the warnings name the pair and the "
+        "time): raise the stiffness (contact.stiffness_n_per_m, drake:point_contact_stiffness)";
   }
   if (integration) {
     if (!remedy.empty()) remedy += "; and ";

@@ -26,6 +26,11 @@ inline constexpr double kTrustDriftOrientation = 1e-2;  // rad
 inline constexpr double kTrustQuaternionNorm = 1e-3;    // | |e| - 1 |
 // Rejected steps (error test failures) per accepted step.
 inline constexpr double kTrustRejectedPerStep = 1.0;
+// A contact's largest penetration relative to the size of the smaller geometry of its pair
+// (RunStats::contact): past half of it a point contact no longer describes the touch (a deep
+// overlap's normal and witness points, a thin body passed through). From a tenth of it the
+// run is warned (ContactLog::kDeepContact).
+inline constexpr double kTrustContactPenetration = 0.5;
 
 // How far the global error of an adaptive run may exceed the local tolerance it asked for,
 // per indicator. Chosen so that the default tolerances (rtol 1e-6, atol 1e-8) on a model of

@@ -167,7 +167,8 @@ TEST(ContactChecksTest, AFastBallDoesNotTunnelThroughAThinPlate) {
   }
 }
 
-// A contact too soft for its load is named in the run's warnings.
+// A contact too soft for its load is named in the run's warnings; past half the geometry's
+// size the run is not trusted either, and the remedy named is the stiffness.
 TEST(ContactChecksTest, ATooSoftContactIsWarnedAbout) {
   const Model model = Scene("box_on_plane.sdf");
   RunConfig config = Config(1.0, 0.05);
@@ -179,10 +180,24 @@ TEST(ContactChecksTest, ATooSoftContactIsWarnedAbout) {
   EXPECT_NE(r.stats.warnings.back().find("'box::body' ('cube')"), std::string::npos)
       << r.stats.warnings.back();
   EXPECT_NE(r.stats.warnings.back().find("contact.stiffness_n_per_m"), std::string::npos);
+  EXPECT_EQ(r.stats.trust, Trust::kOk) << r.stats.trust_reason;  // 19 %: warned only
+  config.contact.stiffness = 600.0;  // 2 g m / k = 6.5 cm of the 0.1 m half-size at rest
+  const RunResult sunk = RunScene(model, config);
+  EXPECT_GT(sunk.stats.contact.penetration_relative_max, 0.5);  // 0.518 at the output frames
+  EXPECT_EQ(sunk.stats.trust, Trust::kLow);
+  EXPECT_NE(sunk.stats.trust_reason.find("contact penetration relative to the smaller "
+                                         "geometry's size"),
+            std::string::npos)
+      << sunk.stats.trust_reason;
+  EXPECT_NE(sunk.stats.trust_reason.find("raise the stiffness"), std::string::npos);
+  EXPECT_EQ(sunk.stats.trust_reason.find("tighten rtol"), std::string::npos)
+      << sunk.stats.trust_reason;
   config.contact.stiffness = 1e5;
-  for (const std::string& w : RunScene(model, config).stats.warnings) {
+  const RunResult stiff = RunScene(model, config);
+  for (const std::string& w : stiff.stats.warnings) {
     EXPECT_EQ(w.find("contact:"), std::string::npos) << w;
   }
+  EXPECT_EQ(stiff.stats.trust, Trust::kOk) << stiff.stats.trust_reason;
 }
 
 // A stiff contact (k = 1e9 N/m) that starts 1 mm in: ERK runs until its step budget, and the
