@@ -289,6 +289,10 @@ void NarrowPhase::Collide(int a, const Pose& X_WA, int b, const Pose& X_WB,
   ta = geometries_[i].shape.type;
   tb = geometries_[j].shape.type;
   const size_t first = out->size();
+  const bool round_i = ta == ShapeType::kCylinder || ta == ShapeType::kCapsule;
+  const bool box_round = ta == ShapeType::kBox && (tb == ShapeType::kCylinder ||
+                                                   tb == ShapeType::kCapsule);
+  const bool round_convex = round_i && tb == ShapeType::kConvex;
   if (tb == ShapeType::kPlane) {
     const Vector3d n = X_WJ.R.col(2);
     PlaneCandidates(geometries_[i].shape, X_WI, n,
@@ -317,6 +321,9 @@ void NarrowPhase::Collide(int a, const Pose& X_WA, int b, const Pose& X_WB,
   } else if ((ta == ShapeType::kBox || ta == ShapeType::kConvex) && tb == ShapeType::kConvex &&
              VertexContacts(i, X_WI, j, X_WJ, out) > 0) {
     // each vertex of one inside the other (a face resting on a face: its corners)
+  } else if (box_round ? FaceContacts(i, j, j, X_WJ, i, X_WI, out)
+                       : round_convex && FaceContacts(i, j, i, X_WI, j, X_WJ, out)) {
+    // the round shape on the polytope's face, or apart along a face normal
   } else if (ta == ShapeType::kSphere && tb == ShapeType::kConvex) {
     const double r = geometries_[i].shape.radius;
     Vector3d n_J = Vector3d::UnitZ();
@@ -418,6 +425,54 @@ int NarrowPhase::VertexContacts(int i, const Pose& X_WI, int j, const Pose& X_WJ
   inside(i, X_WI, j, X_WJ, 1.0);
   inside(j, X_WJ, i, X_WI, -1.0);
   return added;
+}
+
+bool NarrowPhase::FaceContacts(int i, int j, int round, const Pose& X_WR, int poly,
+                               const Pose& X_WP, std::vector<ContactPoint>* out) {
+  const CollisionShape& s = geometries_[round].shape;
+  const std::vector<Eigen::Vector4d>& planes = fcl_->planes[poly];
+  const Vector3d axis = X_WR.R.col(2);
+  // The face of least overlap: along each outward face normal n (world), the polytope reaches
+  // h = n.p_P + d and the round shape down to n.c - (L/2)|n.a| - r (times sin(n, a) for a
+  // cylinder's disc); the overlap is the difference.
+  double least = std::numeric_limits<double>::infinity();
+  int face = -1;
+  for (size_t f = 0; f < planes.size(); ++f) {
+    const Vector3d n = X_WP.R * planes[f].head<3>();
+    const double along = n.dot(axis);
+    const double radial = s.type == ShapeType::kCylinder
+                              ? s.radius * std::sqrt(std::max(0.0, 1.0 - along * along))
+                              : s.radius;
+    const double lowest = n.dot(X_WR.p) - 0.5 * s.length * std::abs(along) - radial;
+    const double overlap = n.dot(X_WP.p) + planes[f](3) - lowest;
+    if (overlap < least) {
+      least = overlap;
+      face = static_cast<int>(f);
+    }
+  }
+  if (!(least > 0.0)) return true;  // apart along that face's normal
+  if (face < 0) return false;
+  const Vector3d n = X_WP.R * planes[static_cast<size_t>(face)].head<3>();
+  const double h = n.dot(X_WP.p) + planes[static_cast<size_t>(face)](3);
+  const double sign = round == i ? 1.0 : -1.0;  // the normal from j toward i
+  int added = 0;
+  PlaneCandidates(s, X_WR, n, [&](const Vector3d& x) {
+    const double depth = h - n.dot(x);
+    if (!(depth > 0.0)) return;
+    const Vector3d x_P = X_WP.R.transpose() * (x - X_WP.p);
+    for (size_t g = 0; g < planes.size(); ++g) {  // under the face, inside the others
+      if (static_cast<int>(g) != face && planes[g].head<3>().dot(x_P) - planes[g](3) > 0.0) return;
+    }
+    ContactPoint c;
+    c.geometry_a = i;
+    c.geometry_b = j;
+    c.normal = sign * n;
+    c.depth = depth;
+    c.point = x + 0.5 * depth * n;
+    out->push_back(c);
+    ++added;
+  });
+  return added > 0;
 }
 
 double NarrowPhase::SignedDistance(int a, const Pose& X_WA, int b, const Pose& X_WB,

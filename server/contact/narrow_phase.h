@@ -11,10 +11,14 @@
 // point of the hull's triangles outside: exact, no allocation); a box or convex polytope
 // against a convex polytope: each vertex of one inside the other, a point with the depth and
 // normal of the other's nearest face (a face resting on a face stands on its corners; no
-// allocation), and when no vertex is inside (edges crossing) FCL's GJK/EPA; the remaining
-// pairs (box, cylinder or capsule against box, cylinder or capsule; a convex polytope against
-// a cylinder or capsule: fcl::Convex) by FCL's GJK/EPA through libccd, one point per pair,
-// which allocates on the heap. Allocates nothing otherwise once the scratch has
+// allocation), and when no vertex is inside (edges crossing) FCL's GJK/EPA; a cylinder or
+// capsule against a box or convex polytope as against the polytope's face of least overlap
+// (the separating-axis test over its face normals): the plane's candidate points of the round
+// shape below that face and inside the polytope's other faces (a can standing or lying on a
+// table: its rim's four or two points, as on a plane), and when none is (an edge or a corner
+// in the way) GJK/EPA; the remaining pairs (box, cylinder or capsule against cylinder or
+// capsule; box against box by FCL's boxBox2 above) by FCL's GJK/EPA through libccd, one point
+// per pair, which allocates on the heap. Allocates nothing otherwise once the scratch has
 // grown.
 #pragma once
 
@@ -50,6 +54,12 @@ class NarrowPhase {
   // Box or hull i against hull j: each vertex of one inside the other a point; how many.
   int VertexContacts(int i, const Pose& X_WI, int j, const Pose& X_WJ,
                      std::vector<ContactPoint>* out);
+  // Cylinder or capsule `round` against box or hull `poly` (one of them i, the other j of the
+  // ordered pair): the round shape's points below the polytope's face of least overlap and
+  // inside its other faces. True when that settles the pair (points found, or apart along a
+  // face normal); false: GJK/EPA must (an edge or corner in the way).
+  bool FaceContacts(int i, int j, int round, const Pose& X_WR, int poly, const Pose& X_WP,
+                    std::vector<ContactPoint>* out);
   const std::vector<CollisionGeometry>& geometries_;
   std::unique_ptr<Fcl> fcl_;
   std::vector<ContactPoint> scratch_;

@@ -50,7 +50,8 @@ class OdeSystem {
   // Optional root functions g(t, y), num_roots() of them: CVODE and ARKODE end a step where
   // one changes sign and go on from there (the fixed-step methods ignore them), so that no
   // step steps over the event (a contact beginning or ending). Roots writes g (num_roots()
-  // doubles); codes as Rhs. Must not allocate.
+  // doubles); codes as Rhs. Must not allocate. The integrators move each g to at least
+  // kRootFloor from 0 (sundials_callbacks.h says why).
   virtual int num_roots() const { return 0; }
   virtual int Roots(double /*t*/, const double* /*y*/, double* /*g*/) { return -1; }
 

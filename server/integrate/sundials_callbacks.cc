@@ -70,7 +70,10 @@ int RhsCallback(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) noexc
 int RootCallback(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data) noexcept {
   const auto* data = static_cast<const CallbackData*>(user_data);
   try {
-    return data->rhs->system().Roots(t, N_VGetArrayPointer(y), g);
+    OdeSystem& system = data->rhs->system();
+    const int code = system.Roots(t, N_VGetArrayPointer(y), g);
+    if (code == 0) KeepRootsAwayFromZero(system.num_roots(), g);
+    return code;
   } catch (const std::exception& error) {
     return data->rhs->RecordException(t, error.what());
   }

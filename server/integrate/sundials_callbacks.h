@@ -26,8 +26,23 @@ struct CallbackData {
 // RhsAdapter turns one into an unrecoverable failure that keeps its message.
 int RhsCallback(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) noexcept;
 
-// CVRootFn / ARKRootFn: the system's root functions (OdeSystem::Roots).
+// CVRootFn / ARKRootFn: the system's root functions (OdeSystem::Roots), each at least
+// kRootFloor from 0 (KeepRootsAwayFromZero).
 int RootCallback(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data) noexcept;
+
+// SUNDIALS finds a sign change where glo * ghi < 0, and takes a g of exactly 0 at a root it
+// has just found, and again a tiny step later, as bad input (CV_ILL_INPUT, "Root found at and
+// very near t"). So each g_k is moved to at least kRootFloor from 0: a 0 to +kRootFloor (two
+// geometries just touching are apart), a smaller value to kRootFloor of its sign. The floor
+// is large enough that no product of two floored values underflows to 0: with DBL_MIN for an
+// exact 0, a box placed exactly on the floor had DBL_MIN * -1.4e-17 = -0.0, CVODE's Illinois
+// iteration lost the bracket, asked g at t = -3.2e-9 s and then t = inf, and the run failed.
+inline constexpr double kRootFloor = 1e-150;
+inline void KeepRootsAwayFromZero(int n, double* g) {
+  for (int k = 0; k < n; ++k) {
+    if (g[k] < kRootFloor && g[k] > -kRootFloor) g[k] = g[k] < 0.0 ? -kRootFloor : kRootFloor;
+  }
+}
 
 // CVEwtFn / ARKEwtFn: SUNDIALS' scalar-tolerance weights 1 / (rtol |y_i| + atol) for the first
 // error_states states, 0 for the rest (they take no part in the error control).

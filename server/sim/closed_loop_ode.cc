@@ -1,7 +1,6 @@
 #include "server/sim/closed_loop_ode.h"
 
 #include <algorithm>
-#include <cfloat>
 #include <cmath>
 
 #include "server/dynamics/crba.h"
@@ -184,7 +183,6 @@ int ClosedLoopOde::Roots(double t, const double* y, double* g) {
   contact_->SignedDistances(data_, g);
   for (int k = 0; k < contact_->num_root_pairs(); ++k) {
     if (!std::isfinite(g[k])) return 1;
-    if (g[k] == 0.0) g[k] = DBL_MIN;  // never exactly 0 (JointSpaceOde::Roots says why)
   }
   return 0;
 }

@@ -207,9 +207,6 @@ int JointSpaceOde::Roots(double t, const double* y, double* g) {
   contact_->SignedDistances(data_, g);
   for (int k = 0; k < contact_->num_root_pairs(); ++k) {
     if (!std::isfinite(g[k])) return 1;
-    // Never exactly 0: SUNDIALS takes a root function that is 0 at a root just found and again
-    // a tiny step after it as bad input (CV_ILL_INPUT, "Root found at and very near t").
-    if (g[k] == 0.0) g[k] = DBL_MIN;
   }
   return 0;
 }
