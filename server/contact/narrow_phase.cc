@@ -290,8 +290,8 @@ void NarrowPhase::Collide(int a, const Pose& X_WA, int b, const Pose& X_WB,
   tb = geometries_[j].shape.type;
   const size_t first = out->size();
   const bool round_i = ta == ShapeType::kCylinder || ta == ShapeType::kCapsule;
-  const bool box_round = ta == ShapeType::kBox && (tb == ShapeType::kCylinder ||
-                                                   tb == ShapeType::kCapsule);
+  const bool box_round =
+      ta == ShapeType::kBox && (tb == ShapeType::kCylinder || tb == ShapeType::kCapsule);
   const bool round_convex = round_i && tb == ShapeType::kConvex;
   if (tb == ShapeType::kPlane) {
     const Vector3d n = X_WJ.R.col(2);

@@ -9,6 +9,7 @@
 #include "server/kinematics/forward_kinematics.h"
 #include "server/kinematics/free_joint.h"
 #include "server/kinematics/quaternion.h"
+#include "server/sim/contact_roots.h"
 #include "shared/common/check.h"
 
 namespace mbstream {
@@ -177,14 +178,7 @@ int ClosedLoopOde::Roots(double t, const double* y, double* g) {
   if (contact_ == nullptr) return -1;
   q_ = Eigen::Map<const Eigen::VectorXd>(y, nq_);
   if (quaternions_) NormaliseQuaternions(model_, q_);
-  // As JointSpaceOde::Roots: a state that is not finite never reaches the narrow phase.
-  if (!std::isfinite(t) || !q_.allFinite()) return 1;
-  BodyKinematics(model_, data_, q_);
-  contact_->SignedDistances(data_, g);
-  for (int k = 0; k < contact_->num_root_pairs(); ++k) {
-    if (!std::isfinite(g[k])) return 1;
-  }
-  return 0;
+  return ContactRoots(model_, data_, *contact_, t, q_, g);
 }
 
 int ClosedLoopOde::ProjectInPlace(double /*t*/, double* y) {

@@ -11,6 +11,7 @@
 #include "server/kinematics/forward_kinematics.h"
 #include "server/kinematics/free_joint.h"
 #include "server/kinematics/quaternion.h"
+#include "server/sim/contact_roots.h"
 
 namespace mbstream {
 
@@ -199,16 +200,7 @@ int JointSpaceOde::Roots(double t, const double* y, double* g) {
     if (!drives_.velocity_source(i)) q_(quaternions_ ? q_of_v_[i] : i) = drives_.Reference(i, t).q;
   }
   for (const int k : model_.quaternions) quaternion::Normalise(&q_(k));
-  // A time or state that is not finite (CVODE has asked at t = inf after a failed first step)
-  // never reaches the narrow phase, whose library asserts on it: the root function fails, and
-  // with it the step, with a message.
-  if (!std::isfinite(t) || !q_.allFinite()) return 1;
-  BodyKinematics(model_, data_, q_);
-  contact_->SignedDistances(data_, g);
-  for (int k = 0; k < contact_->num_root_pairs(); ++k) {
-    if (!std::isfinite(g[k])) return 1;
-  }
-  return 0;
+  return ContactRoots(model_, data_, *contact_, t, q_, g);
 }
 
 int JointSpaceOde::Quadrature(double t, const double* y, double* qdot) {

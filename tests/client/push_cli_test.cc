@@ -131,9 +131,9 @@ TEST_F(PushCliTest, ABoxPlacedExactlyOnTheFloorIsPushedAsWell) {
   ASSERT_NE(text.find(shipped), std::string::npos);
   text.replace(text.find(shipped), shipped.size(), "0.92222 -0.18695 0.05 ");
   std::ofstream(world / "world.sdf") << text;
-  const CommandOutcome run = RunCommand(std::string(MBSTREAM_CLI) + " simulate " +
-                                        (world / "world.sdf").string() + " --spec " + kSpec +
-                                        " --out " + Out("touching_out"));
+  const CommandOutcome run =
+      RunCommand(std::string(MBSTREAM_CLI) + " simulate " + (world / "world.sdf").string() +
+                 " --spec " + kSpec + " --out " + Out("touching_out"));
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_THAT(run.output, ::testing::HasSubstr("trust: ok")) << run.output;
   ExpectThePush(dir_ / "touching_out");
