@@ -77,8 +77,8 @@ void JointSpaceOde::EvaluateFreeState(double t, const double* y) {
     qd_(i) = ref.qd;
     qdd_(i) = ref.qdd;
   }
-  for (int i = 0; i < n_; ++i) drive_q_(i) = q_of_v_[i] >= 0 ? q_(q_of_v_[i]) : 0.0;
-  drives_.ActuatorEfforts(t, drive_q_.data(), qd_.data(), drive_workspace_, effort_.data());
+  drives_.ActuatorEfforts(t, DrivePositions(q_.data()), qd_.data(), drive_workspace_,
+                          effort_.data());
   for (int i : free_) tau_(i) = effort_(i) - drives_.damping(i) * qd_(i);
   if (contact_ != nullptr) AddContactForces();
 }

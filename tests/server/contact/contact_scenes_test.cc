@@ -175,8 +175,7 @@ TEST(ContactScenesTest, FiveStackedBoxesStandForTenSeconds) {
 // points under the face of least overlap, as on a plane (a lying cylinder on its two rim
 // points, a standing one on four, a capsule on its end spheres), on a box and on a hull. Placed
 // exactly touching, each sinks by its weight over the pair's stiffness and stays. With GJK/EPA's
-// one point, wandering along the line or rim, the cylinder on the box did not get past t = 0
-// (BDF's Newton iteration failed at every step: 20,000 steps of 1e-9 s).
+// one point a can on a box table, lying or standing, used 20,000 steps without leaving t = 0.
 TEST(ContactScenesTest, RoundShapesRestOnTheFaceOfABoxAndOfAHull) {
   const Model model = Scene("round_on_tables.sdf");
   RunConfig config = Config(1.0, 0.05);
