@@ -5,7 +5,8 @@
 // capsule's two end spheres; a cylinder's deepest rim point at each end (four rim points per
 // end when its axis is along the normal); a convex polytope's (a mesh's hull) penetrating
 // vertices, as a box's. Between other shapes FCL's primitive routines (sphere-sphere,
-// sphere-box, sphere-cylinder, sphere-capsule, box-box with up to four points;
+// sphere-box, sphere-cylinder, sphere-capsule, box-box with the whole overlap of
+// the faces, up to eight points, never culled (culling jumps as a box tilts);
 // capsule-capsule as the spheres at the segments' closest points); a sphere against a convex
 // polytope in closed form (the nearest face plane when its centre is inside, the nearest
 // point of the hull's triangles outside: exact, no allocation); a box or convex polytope
