@@ -19,6 +19,7 @@
 #include <fcl/narrowphase/detail/primitive_shape_algorithm/sphere_cylinder.h>
 #include <fcl/narrowphase/detail/primitive_shape_algorithm/sphere_sphere.h>
 
+#include "server/contact/polytope_clip.h"
 #include "shared/common/check.h"
 
 namespace mbstream {
@@ -248,6 +249,9 @@ struct NarrowPhase::Fcl {
   std::vector<Vector3d> lower, upper;
   // Each shape's bounding sphere in its frame: centre and radius (a plane's infinite).
   std::vector<Eigen::Vector4d> bounds;
+  // A box's or convex polytope's faces and edges (polytope_clip.h); else empty.
+  std::vector<PolytopeFaces> faces;
+  PolytopeClip clip;
   std::vector<fcl::ContactPointd> points;
   fcl::CollisionRequestd request{8, true};
   fcl::CollisionResultd result;
@@ -264,6 +268,9 @@ NarrowPhase::NarrowPhase(const std::vector<CollisionGeometry>& geometries)
     fcl_->bounds.push_back(BoundingSphere(g.shape));
     fcl_->lower.push_back(type == ShapeType::kConvex ? g.shape.convex.lower : -0.5 * g.shape.size);
     fcl_->upper.push_back(type == ShapeType::kConvex ? g.shape.convex.upper : 0.5 * g.shape.size);
+    fcl_->faces.push_back(type == ShapeType::kConvex ? PolytopeFaces::OfHull(g.shape.convex)
+                          : type == ShapeType::kBox  ? PolytopeFaces::OfBox(g.shape.size)
+                                                     : PolytopeFaces{});
     fcl_->vertices.push_back(type == ShapeType::kConvex ? *g.shape.convex.vertices
                              : type == ShapeType::kBox  ? BoxCorners(g.shape.size)
                                                         : std::vector<Vector3d>{});
@@ -319,8 +326,8 @@ void NarrowPhase::Collide(int a, const Pose& X_WA, int b, const Pose& X_WB,
       out->push_back(c);
     }
   } else if ((ta == ShapeType::kBox || ta == ShapeType::kConvex) && tb == ShapeType::kConvex &&
-             VertexContacts(i, X_WI, j, X_WJ, out) > 0) {
-    // each vertex of one inside the other (a face resting on a face: its corners)
+             PolytopeContacts(i, X_WI, j, X_WJ, out)) {
+    // a face on a face: the overlap's corners; apart; or edges crossing with a vertex inside
   } else if (box_round ? FaceContacts(i, j, j, X_WJ, i, X_WI, out)
                        : round_convex && FaceContacts(i, j, i, X_WI, j, X_WJ, out)) {
     // the round shape on the polytope's face, or apart along a face normal
@@ -359,7 +366,8 @@ void NarrowPhase::Collide(int a, const Pose& X_WA, int b, const Pose& X_WB,
       sphereCapsuleIntersect(sphere(), Ti, static_cast<const fcl::Capsuled&>(gj), Tj, &points);
     } else if (ta == ShapeType::kBox && tb == ShapeType::kBox) {
       // boxBox2 itself: boxBoxIntersect copies through a vector of its own (allocates). At
-      // most 8 points, the whole clipped overlap: fewer culls it, which jumps (box_box_test).
+      // most 8 points, the whole clipped overlap: fewer culls it, which jumps
+      // (polytope_pairs_test).
       Vector3d normal;
       double depth = 0.0;
       int code = 0;
@@ -393,6 +401,17 @@ void NarrowPhase::Collide(int a, const Pose& X_WA, int b, const Pose& X_WB,
       c.normal = -c.normal;
     }
   }
+}
+
+bool NarrowPhase::PolytopeContacts(int i, const Pose& X_WI, int j, const Pose& X_WJ,
+                                   std::vector<ContactPoint>* out) {
+  const PolytopeFaces& I = fcl_->faces[static_cast<size_t>(i)];
+  const PolytopeFaces& J = fcl_->faces[static_cast<size_t>(j)];
+  if (PolytopeClip::Affordable(I, J) &&
+      fcl_->clip.Collide(i, I, X_WI, j, J, X_WJ, out) != PolytopeClip::Outcome::kEdge) {
+    return true;
+  }
+  return VertexContacts(i, X_WI, j, X_WJ, out) > 0;
 }
 
 int NarrowPhase::VertexContacts(int i, const Pose& X_WI, int j, const Pose& X_WJ,
@@ -527,10 +546,20 @@ double NarrowPhase::SignedDistance(int a, const Pose& X_WA, int b, const Pose& X
            sa.radius;
   }
   // No distance routine for the pair: apart when their bounding spheres are (the common case
-  // of a robot's many root pairs: no narrow phase, no libccd), else minus the depth.
+  // of a robot's many root pairs: no narrow phase, no libccd); two polytopes: the separating
+  // axes' separation; else minus the depth.
   const Eigen::Vector4d& ba = fcl_->bounds[a];
   const Eigen::Vector4d& bb = fcl_->bounds[b];
   if ((X_WA.Apply(ba.head<3>()) - X_WB.Apply(bb.head<3>())).norm() > ba(3) + bb(3)) return margin;
+  const bool polytope_a = ta == ShapeType::kBox || ta == ShapeType::kConvex;
+  const bool polytope_b = tb == ShapeType::kBox || tb == ShapeType::kConvex;
+  if (polytope_a && polytope_b) {
+    const PolytopeFaces& A = fcl_->faces[static_cast<size_t>(a)];
+    const PolytopeFaces& B = fcl_->faces[static_cast<size_t>(b)];
+    if (PolytopeClip::Affordable(A, B)) {
+      return std::min(margin, fcl_->clip.Separation(A, X_WA, B, X_WB));
+    }
+  }
   scratch_.clear();
   Collide(a, X_WA, b, X_WB, &scratch_);
   double deepest = 0.0;

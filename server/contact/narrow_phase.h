@@ -10,9 +10,10 @@
 // capsule-capsule as the spheres at the segments' closest points); a sphere against a convex
 // polytope in closed form (the nearest face plane when its centre is inside, the nearest
 // point of the hull's triangles outside: exact, no allocation); a box or convex polytope
-// against a convex polytope: each vertex of one inside the other, a point with the depth and
-// normal of the other's nearest face (a face resting on a face stands on its corners; no
-// allocation), and when no vertex is inside (edges crossing) FCL's GJK/EPA; a cylinder or
+// against a convex polytope by the separating-axis test (polytope_clip.h): a face on a face
+// stands on the whole clipped overlap of the two faces (no allocation); edges crossing: each
+// vertex of one inside the other, a point with the depth and normal of the other's nearest
+// face, and when no vertex is inside FCL's GJK/EPA; a cylinder or
 // capsule against a box or convex polytope as against the polytope's face of least overlap
 // (the separating-axis test over its face normals): the plane's candidate points of the round
 // shape below that face and inside the polytope's other faces (a can standing or lying on a
@@ -44,7 +45,9 @@ class NarrowPhase {
 
   // The signed distance of a and b (m, < 0 when they overlap: minus the largest depth), for
   // pairs of which one is a plane, both are spheres or capsules, a sphere and a convex
-  // polytope, or a sphere and a box or cylinder (FCL's distance routines); other pairs:
+  // polytope, or a sphere and a box or cylinder (FCL's distance routines); two boxes or hulls:
+  // their separating axes' largest separation (polytope_clip.h: the gap of faces or crossing
+  // edges, a lower bound of the distance otherwise, capped at `margin`); other pairs:
   // `margin` (unknown but positive) when their bounding spheres are apart, else minus their
   // largest depth when they overlap, else `margin`. Allocates nothing but for the pairs
   // Collide hands to libccd (when their bounding spheres overlap).
@@ -52,6 +55,10 @@ class NarrowPhase {
 
  private:
   struct Fcl;
+  // Box or hull i against hull j (polytope_clip.h): a face contact's clipped overlap, or apart;
+  // edges crossing: VertexContacts. False: nothing settled it (GJK/EPA must).
+  bool PolytopeContacts(int i, const Pose& X_WI, int j, const Pose& X_WJ,
+                        std::vector<ContactPoint>* out);
   // Box or hull i against hull j: each vertex of one inside the other a point; how many.
   int VertexContacts(int i, const Pose& X_WI, int j, const Pose& X_WJ,
                      std::vector<ContactPoint>* out);

@@ -71,16 +71,22 @@ void ControlChannel::NotifyAll() {
 }
 
 void ControlChannel::Send(std::unique_lock<std::mutex>& lock) {
+  // The writer reads out_ outside the lock, and two threads send (the stream's SetWriter, the
+  // worker): one Send at a time, or the second would rewrite out_ under the first's Write.
+  stream_cv_.wait(lock, [&] { return !sending_; });
   if (writer_ == nullptr || written_ >= published_) return;
   written_ = published_;
   ++writer_calls_;
+  sending_ = true;
   *out_.mutable_state() = state_;
   ControlWriter* writer = writer_;
   lock.unlock();
   const bool ok = writer->Write(out_);
   lock.lock();
   if (!ok) detached_ = true;
-  if (--writer_calls_ == 0 && stop_waits_) stream_cv_.notify_all();
+  sending_ = false;
+  --writer_calls_;
+  stream_cv_.notify_all();  // StopWriting, or a Send waiting for out_
 }
 
 bool ControlChannel::Command(const ControlState& state, double* commands, RunStats* stats) {

@@ -89,7 +89,7 @@ class ControlChannel : public ControlLaw {
 
   mutable std::mutex mutex_;
   std::condition_variable command_cv_;  // the worker waits: a command, a failure, the end
-  std::condition_variable stream_cv_;   // StopWriting waits
+  std::condition_variable stream_cv_;   // StopWriting waits; a Send waits for the one before
   bool attached_ = false;               // a stream attached (once)
   bool detached_ = false;               // ... and went away
   bool closed_ = false;                 // the run ended
@@ -102,6 +102,7 @@ class ControlChannel : public ControlLaw {
   int writer_calls_ = 0;                // calls of writer_ under way (outside the lock)
   bool stop_waits_ = false;             // StopWriting waits for them
   v1::ControlResponse out_;             // the message handed to Write (reused)
+  bool sending_ = false;                // a Send's Write reads out_ (outside the lock)
   int64_t awaited_ = -1;                // the step the worker waits for a command for (-1: none)
   int64_t held_up_to_ = -1;             // the last step whose command timed out and was held
   int64_t last_taken_ = -1;             // the step of the last command taken

@@ -23,18 +23,7 @@ namespace {
 using namespace contact_testing;
 
 // The hull of a cube of edge `edge`, centred.
-CollisionGeometry CubeHull(double edge) {
-  std::vector<Vector3d> corners;
-  for (int k = 0; k < 8; ++k) {
-    corners.emplace_back(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, k & 4 ? 0.5 : -0.5);
-    corners.back() *= edge;
-  }
-  corners.emplace_back(0.0, 0.0, 0.0);  // inside: not a hull vertex
-  CollisionGeometry g;
-  g.shape.type = ShapeType::kConvex;
-  g.shape.convex = ConvexHullOf(corners, "cube");
-  return g;
-}
+CollisionGeometry CubeHull(double edge) { return BoxHull(Vector3d::Constant(edge)); }
 
 Pose At(double z) {
   Pose X;
