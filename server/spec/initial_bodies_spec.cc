@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "server/drives/pose_motion.h"
 #include "server/model/coordinate_names.h"
@@ -18,6 +19,9 @@ constexpr size_t kMaxBodyNameBytes = 256;    // as the spec's other names
 constexpr double kMaxBodyPosition = 1e6;     // m from the world's origin
 constexpr double kMaxBodySpeed = 1e6;        // m/s and rad/s
 constexpr double kBodyUnitTolerance = 1e-6;  // |norm - 1| of a quaternion
+constexpr double kMaxBodyAngle = 1e3;        // rad, roll, pitch and yaw
+// A quaternion's components: finite (its norm is checked then).
+constexpr double kAnyFinite = std::numeric_limits<double>::infinity();
 
 class BodyChecker {
  public:
@@ -34,8 +38,8 @@ class BodyChecker {
            FormatString("is %g, not a finite number; give a finite value (%s)", value, unit));
     }
     if (std::abs(value) > bound) {
-      Fail(field, FormatString("is %g %s, beyond +-%g %s; give a value in %s", value, unit, bound,
-                               unit, unit));
+      Fail(field, FormatString("is %g %s, beyond +-%g %s; give a value within that", value, unit,
+                               bound, unit));
     }
     return value;
   }
@@ -84,18 +88,18 @@ std::string CheckedBodyName(const std::string& name, const std::vector<std::stri
 
 Eigen::Vector4d OrientationOf(const v1::BodyState& body, const BodyChecker& check) {
   if (body.has_rpy()) {
-    const double roll = check.Value(body.rpy().roll(), "rpy.roll", "rad", 1e3);
-    const double pitch = check.Value(body.rpy().pitch(), "rpy.pitch", "rad", 1e3);
-    const double yaw = check.Value(body.rpy().yaw(), "rpy.yaw", "rad", 1e3);
+    const double roll = check.Value(body.rpy().roll(), "rpy.roll", "rad", kMaxBodyAngle);
+    const double pitch = check.Value(body.rpy().pitch(), "rpy.pitch", "rad", kMaxBodyAngle);
+    const double yaw = check.Value(body.rpy().yaw(), "rpy.yaw", "rad", kMaxBodyAngle);
     Eigen::Vector4d quat;
     pose_motion::Quaternion(roll, pitch, yaw, quat.data());
     return quat;
   }
   const v1::Quaternion& q = body.quaternion();
-  const Eigen::Vector4d quat{check.Value(q.w(), "quaternion.w", "dimensionless", 2.0),
-                             check.Value(q.x(), "quaternion.x", "dimensionless", 2.0),
-                             check.Value(q.y(), "quaternion.y", "dimensionless", 2.0),
-                             check.Value(q.z(), "quaternion.z", "dimensionless", 2.0)};
+  const Eigen::Vector4d quat{check.Value(q.w(), "quaternion.w", "dimensionless", kAnyFinite),
+                             check.Value(q.x(), "quaternion.x", "dimensionless", kAnyFinite),
+                             check.Value(q.y(), "quaternion.y", "dimensionless", kAnyFinite),
+                             check.Value(q.z(), "quaternion.z", "dimensionless", kAnyFinite)};
   const double norm = quat.norm();
   if (!(std::abs(norm - 1.0) <= kBodyUnitTolerance)) {
     check.Fail("quaternion", FormatString("(w x y z) = (%g, %g, %g, %g) has norm %.9g; give a "

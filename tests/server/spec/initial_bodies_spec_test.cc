@@ -141,6 +141,8 @@ TEST(InitialBodiesSpecTest, AQuaternionNotUnitIsRefusedWithItsNorm) {
             HasSubstr("give a unit quaternion (norm 1 within 1e-6)")));
   EXPECT_THAT(BodiesRefusal(BodiesSpec(R"({"name": "box_a::link", "quaternion": {}})")),
               HasSubstr("has norm 0;"));
+  EXPECT_THAT(BodiesRefusal(BodiesSpec(R"({"name": "box_a::link", "quaternion": {"w": -3}})")),
+              HasSubstr("initial_bodies[0].quaternion: (w x y z) = (-3, 0, 0, 0) has norm 3;"));
   // Within 1e-6 of unit: accepted as given (the run normalises it).
   const RunConfig near =
       ConvertBodies(BodiesSpec(R"({"name": "box_a::link", "quaternion": {"w": 1.0000009}})"));
