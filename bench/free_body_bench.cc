@@ -1,11 +1,14 @@
-// Timings of the algorithms with free bodies (docs/free_bodies.md): one free body, and the
+// Timings of the algorithms with free bodies (docs/free_bodies.md): one free body, the
 // 38-joint tree of models/big/tree38.urdf on a free root (44 degrees of freedom, 45
-// positions), against the same tree bolted down:
+// positions), against the same tree bolted down, and a published humanoid on a free root
+// (Atlas v3 of Debian's dart-doc, read with --floating-base: 6 + 27 velocities; left out with
+// a note when the file is missing):
 //
 //   build/bench/free_body_bench --benchmark_repetitions=10 --benchmark_report_aggregates_only
 //
 // Where CMake finds MuJoCo (libmujoco-dev 2.2.2), BM_MujocoForward/NAME times mj_forward on
-// the same model written as MJCF (tests/server/free/mjcf.h), at the same states.
+// the same model written as MJCF (tests/server/free/mjcf.h), at the same states (MuJoCo numbers
+// its coordinates depth first: each is copied to its place by joint name).
 //
 // Every iteration runs at a new random state from a pre-generated pool (unit quaternions).
 #include <benchmark/benchmark.h>
@@ -22,12 +25,14 @@
 #include "server/dynamics/rnea.h"
 #include "server/kinematics/free_joint.h"
 #include "server/model/model_builder.h"
+#include "server/parse/model_file.h"
 #include "server/parse/urdf_import.h"
+
+#include <filesystem>
 
 #ifdef MBSTREAM_HAVE_MUJOCO
 #include <mujoco/mujoco.h>
 
-#include <filesystem>
 #include <fstream>
 
 #include "tests/server/free/mjcf.h"
@@ -35,6 +40,8 @@
 
 namespace mbstream {
 namespace {
+
+constexpr char kAtlas[] = "/usr/share/doc/dart/data/sdf/atlas/atlas_v3_no_head.urdf";
 
 struct States {
   explicit States(const Model& model) {
@@ -127,13 +134,23 @@ void BM_MujocoForward(benchmark::State& state, const Model* model) {
     return;
   }
   mjData* d = mj_makeData(m);
+  std::vector<int> qpos(static_cast<size_t>(model->nq())), dof(static_cast<size_t>(model->nv()));
+  for (const Body& body : model->bodies) {
+    const int joint = mj_name2id(m, mjOBJ_JOINT, body.joint.name.c_str());
+    if (joint < 0) {
+      state.SkipWithError(("MuJoCo's model has no joint " + body.joint.name).c_str());
+      return;
+    }
+    for (int k = 0; k < body.nq(); ++k) qpos[body.q_index + k] = m->jnt_qposadr[joint] + k;
+    for (int k = 0; k < body.nv(); ++k) dof[body.v_index + k] = m->jnt_dofadr[joint] + k;
+  }
   const States states(*model);
   int k = 0;
   for (auto _ : state) {
-    for (int i = 0; i < m->nq; ++i) d->qpos[i] = states.q[k](i);
+    for (int i = 0; i < m->nq; ++i) d->qpos[qpos[i]] = states.q[k](i);
     for (int i = 0; i < m->nv; ++i) {
-      d->qvel[i] = states.qd[k](i);
-      d->qfrc_applied[i] = states.x[k](i);
+      d->qvel[dof[i]] = states.qd[k](i);
+      d->qfrc_applied[dof[i]] = states.x[k](i);
     }
     mj_forward(m, d);
     benchmark::DoNotOptimize(d->qacc);
@@ -166,6 +183,13 @@ int main(int argc, char** argv) {
         ImportUrdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/models/big/tree38.urdf").model;
     models.push_back(std::make_unique<Model>(Floating(tree)));
     models.push_back(std::make_unique<Model>(tree));
+    if (std::filesystem::exists(kAtlas)) {
+      models.push_back(std::make_unique<Model>(
+          ImportModelFile(kAtlas, UrdfImportOptions{.floating_base = true}).model));
+    } else {
+      std::fprintf(stderr, "free_body_bench: %s is missing (Debian's dart-doc): no atlas rows\n",
+                   kAtlas);
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "free_body_bench: %s\n", e.what());
     return 2;
@@ -173,6 +197,7 @@ int main(int argc, char** argv) {
   Register("free_body", models[0].get());
   Register("tree38_floating", models[1].get());
   Register("tree38_fixed", models[2].get());
+  if (models.size() > 3) Register("atlas_floating", models[3].get());
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
   benchmark::RunSpecifiedBenchmarks();

@@ -1,10 +1,13 @@
 #include "server/sim/initial_state.h"
 
 #include "server/kinematics/quaternion.h"
+#include "shared/common/check.h"
 
 namespace mbstream {
 
 Eigen::VectorXd InitialJointState(const RunConfig& config, const DriveSet& drives, int n) {
+  MBSTREAM_CHECK_MSG(config.initial_bodies.empty(),
+                     "initial_bodies need a model with free bodies: ValidateRun first");
   Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n);
   if (config.q0.size() == n) y.head(n) = config.q0;
   if (config.qd0.size() == n) y.tail(n) = config.qd0;
@@ -28,6 +31,7 @@ Eigen::VectorXd InitialJointState(const RunConfig& config, const DriveSet& drive
     NeutralPositions(model, y.data());
   }
   if (config.qd0.size() == nv) y.tail(nv) = config.qd0;
+  ApplyInitialBodies(model, config.initial_bodies, y.data(), y.data() + nq);
   for (const int k : model.quaternions) quaternion::Normalise(y.data() + k);
   for (const Body& body : model.bodies) {
     if (body.nv() != 1) continue;  // a free or ball joint: never prescribed

@@ -15,8 +15,9 @@ Eigen::VectorXd InitialJointState(const RunConfig& config, const DriveSet& drive
 
 // The same for `model`, with free bodies too: y0 = [q0 (nq); qd0 (nv)], q0 the spec's
 // (config.q0, nq values) or the neutral positions (NeutralPositions: each free body at its
-// default pose), every free body's quaternion normalised (ValidateRun refused one that was not
-// unit within 1e-6). Without free bodies InitialJointState(config, drives, model.nv()).
+// default pose), then config.initial_bodies over them (initial_bodies.h), every free body's
+// quaternion normalised (ValidateRun refused one that was not unit within 1e-6). Without free
+// bodies InitialJointState(config, drives, model.nv()).
 Eigen::VectorXd InitialJointState(const RunConfig& config, const DriveSet& drives,
                                   const Model& model);
 

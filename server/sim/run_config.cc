@@ -26,10 +26,10 @@ bool RunConfig::operator==(const RunConfig& other) const {
          max_step == other.max_step && formulation == other.formulation && method == other.method &&
          erk_table == other.erk_table && rtol == other.rtol && atol == other.atol &&
          fixed_step == other.fixed_step && gravity == other.gravity && SameVector(q0, other.q0) &&
-         SameVector(qd0, other.qd0) && drives == other.drives &&
-         want_torques == other.want_torques && want_loop_forces == other.want_loop_forces &&
-         baumgarte == other.baumgarte && max_steps == other.max_steps &&
-         max_cpu_s == other.max_cpu_s && target == other.target &&
+         SameVector(qd0, other.qd0) && initial_bodies == other.initial_bodies &&
+         drives == other.drives && want_torques == other.want_torques &&
+         want_loop_forces == other.want_loop_forces && baumgarte == other.baumgarte &&
+         max_steps == other.max_steps && max_cpu_s == other.max_cpu_s && target == other.target &&
          method_auto == other.method_auto && verify == other.verify && keep == other.keep &&
          contact == other.contact && sensor_points == other.sensor_points;
 }

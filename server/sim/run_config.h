@@ -14,6 +14,7 @@
 #include "server/drives/drive_config.h"
 #include "server/integrate/method.h"
 #include "server/sim/frame_keep.h"
+#include "server/sim/initial_bodies.h"
 
 namespace mbstream {
 
@@ -78,6 +79,8 @@ struct RunConfig {
   ContactSettings contact;   // contact forces (joint formulation; docs/contact.md)
   // Points whose world positions a controlled run's states carry (external drives only).
   std::vector<SensorPointConfig> sensor_points;
+  // Free bodies' initial poses and twists by name, over q0 and qd0 (initial_bodies.h).
+  std::vector<InitialBodyState> initial_bodies;
 
   // Field by field, exactly (doubles bit for bit but for -0 == 0; q0 and qd0 of another
   // size differ).

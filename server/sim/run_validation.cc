@@ -141,6 +141,24 @@ void CheckUnitQuaternion(const RunConfig& config, int k, const std::string& labe
   }
 }
 
+// initial_bodies: each a free body's, its quaternion unit within 1e-6 (the spec's edge says
+// the same with the field's path; this covers a RunConfig built in code).
+void CheckInitialBodies(const Model& model, const RunConfig& config) {
+  for (const InitialBodyState& state : config.initial_bodies) {
+    if (FindFreeBody(model, state.name) < 0) {
+      throw InputError("initial_bodies: '" + state.name +
+                       "' is no free body of the model; give a free joint's name, as the "
+                       "model's position names show it (NAME of NAME.x ... NAME.qz)");
+    }
+    if (state.quaternion && !(std::abs(state.quaternion->norm() - 1.0) <= 1e-6)) {
+      throw InputError(FormatString(
+          "initial_bodies '%s': the quaternion has norm %.9g; give a unit quaternion (norm 1 "
+          "within 1e-6)",
+          state.name.c_str(), state.quaternion->norm()));
+    }
+  }
+}
+
 }  // namespace
 
 void RefuseFreeBodies(const Model& model, const std::string& what) {
@@ -156,6 +174,7 @@ void RefuseBallJoints(const Model& model, const std::string& what) {
 }
 
 void CheckFreeBodies(const Model& model, const RunConfig& config) {
+  CheckInitialBodies(model, config);
   if (!model.has_free_bodies()) return;
   if (IsBodyFormulation(config.formulation)) {
     RefuseFreeBodies(model, std::string("formulation ") + FormulationName(config.formulation) +

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "server/spec/contact_spec.h"
+#include "server/spec/initial_bodies_spec.h"
 #include "server/spec/run_spec_json.h"
 #include "shared/common/check.h"
 #include "shared/common/did_you_mean.h"
@@ -546,9 +547,10 @@ void ReadSolver(const v1::RunSpec& spec, const Checker& check, RunConfig* config
   }
 }
 
-// gravity, initial state, drives, torques, Baumgarte gains.
+// gravity, initial state (initial_q, initial_qd, initial_bodies), drives, torques, Baumgarte
+// gains.
 void ReadPhysics(const v1::RunSpec& spec, const SpecCoordinates& coordinates, const Checker& check,
-                 RunConfig* config) {
+                 const std::string& source, RunConfig* config) {
   const std::vector<std::string>& joint_names = coordinates.velocities;
   const bool free = coordinates.positions.size() != coordinates.velocities.size();
   if (spec.has_gravity()) {
@@ -570,6 +572,7 @@ void ReadPhysics(const v1::RunSpec& spec, const SpecCoordinates& coordinates, co
   config->qd0 =
       JointVector(spec.initial_qd(), joint_names, free ? "velocity coordinates" : "joints",
                   "initial_qd", "rad/s or m/s", check);
+  config->initial_bodies = ToInitialBodies(spec.initial_bodies(), coordinates.positions, source);
   config->drives = ToDrives(spec, joint_names, check);
   config->want_torques = spec.has_want_torques() ? spec.want_torques() : true;
   config->want_loop_forces = spec.report_loop_forces();
@@ -732,7 +735,7 @@ RunConfig ToRunConfig(const v1::RunSpec& spec, const SpecCoordinates& coordinate
   RunConfig config;
   ReadTimes(spec, check, &config);
   ReadSolver(spec, check, &config);
-  ReadPhysics(spec, coordinates, check, &config);
+  ReadPhysics(spec, coordinates, check, source, &config);
   ReadBudget(spec, check, &config);
   ReadTarget(spec, check, &config);
   ReadKeep(spec, check, &config);

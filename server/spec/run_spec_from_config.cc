@@ -2,6 +2,7 @@
 #include <cstdint>
 
 #include "server/spec/contact_spec.h"
+#include "server/spec/initial_bodies_spec.h"
 #include "server/spec/run_spec_json.h"
 #include "shared/common/check.h"
 
@@ -102,6 +103,7 @@ v1::RunSpec ToRunSpec(const RunConfig& config) {
   spec.mutable_gravity()->set_z(config.gravity.z());
   spec.mutable_initial_q()->Add(config.q0.begin(), config.q0.end());
   spec.mutable_initial_qd()->Add(config.qd0.begin(), config.qd0.end());
+  ToBodyStateSpecs(config.initial_bodies, spec.mutable_initial_bodies());
   for (const DriveConfig& drive : config.drives) ToDriveSpec(drive, spec.add_drives());
   spec.set_want_torques(config.want_torques);
   spec.set_report_loop_forces(config.want_loop_forces);

@@ -175,6 +175,74 @@ TEST_F(WorldCliTest, AServedRunTakesEachFreeBodysPoseAndTwist) {
   EXPECT_THAT(bad.output, HasSubstr("has norm 1.41421356"));
 }
 
+// A box dropped from a pose and thrown with a twist given by its name (RunSpec.initial_bodies),
+// over the world's own poses (no initial_q): through `simulate` and a live server, box_b
+// starts where the spec puts it, turned by its rpy, and flies on its parabola from there;
+// box_a keeps the world's pose. A name that is no free body is refused (INVALID_ARGUMENT on
+// the server), naming it and the free bodies.
+TEST_F(WorldCliTest, ABoxFallsFromAPoseGivenByItsName) {
+  const fs::path spec = dir_ / "dropped.json";
+  std::ofstream(spec) << R"({"duration_s": 0.4, "output_interval_s": 0.02, "formulation": "joint",
+    "method": "bdf", "rtol": 1e-10, "atol": 1e-12, "gravity": {"z": -9.81},
+    "initialBodies": [{"name": "box_b::link", "positionM": {"x": 0.3, "y": -0.4, "z": 1.7},
+                       "rpy": {"roll": 0.4, "yaw": -1.0},
+                       "linearVelocityMPerS": {"x": 0.5, "z": 2.0}}]})";
+  // R_WB = Rz(-1) Rx(0.4): the product of the axis quaternions.
+  const double cy = std::cos(-0.5), sy = std::sin(-0.5), cr = std::cos(0.2), sr = std::sin(0.2);
+  const Box turned{"box_b::link", 0, 0, 0, cy * cr, cy * sr, sy * sr, sy * cr};
+  const auto check = [&](const std::string& out) {
+    const std::vector<std::string> names = Header(dir_ / out / "joints.csv");
+    std::map<std::string, size_t> column;
+    for (size_t k = 0; k < names.size(); ++k) column[names[k]] = k;
+    const std::vector<std::vector<std::string>> rows = ReadCsv(dir_ / out / "joints.csv");
+    ASSERT_EQ(rows.size(), 21u);
+    double off_parabola = 0, off_turn = 0;
+    for (const auto& row : rows) {
+      const double t = std::stod(row[0]);
+      const auto at = [&](const std::string& suffix) {
+        return std::stod(row.at(column.at("box_b::link" + suffix)));
+      };
+      off_parabola =
+          std::max({off_parabola, std::abs(at(".x") - (0.3 + 0.5 * t)), std::abs(at(".y") + 0.4),
+                    std::abs(at(".z") - (1.7 + 2.0 * t - 0.5 * kG * t * t))});
+      off_turn =
+          std::max({off_turn, std::abs(at(".qw") - turned.qw), std::abs(at(".qx") - turned.qx),
+                    std::abs(at(".qy") - turned.qy), std::abs(at(".qz") - turned.qz)});
+    }
+    std::cout << out << ": box_b off its parabola by at most " << off_parabola
+              << " m, off its turn by " << off_turn << "\n";
+    EXPECT_LT(off_parabola, 1e-8) << out;
+    EXPECT_LT(off_turn, 1e-10) << out;
+    EXPECT_NEAR(std::stod(rows.front().at(column.at("box_b::link.x"))), 0.3, 1e-15) << out;
+    const Deviation a = FallDeviation(dir_ / out, Boxes()[0]);  // box_a: the world's pose
+    EXPECT_LT(a.position_m, 1e-8) << out;
+  };
+  const CommandOutcome local = RunCommand(std::string(MBSTREAM_CLI) + " simulate " + kWorld +
+                                          " --spec " + spec.string() + " --out " + Out("local"));
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+  check("local");
+  StartServer();
+  ASSERT_EQ(Cli("submit models/worlds/irb1600_table --name irb1600_table").exit_code, 0);
+  const CommandOutcome served =
+      Cli("run irb1600_table --spec " + spec.string() + " --watch --out " + Out("served"));
+  ASSERT_EQ(served.exit_code, 0) << served.output;
+  check("served");
+  EXPECT_EQ(ReadFile(dir_ / "served" / "joints.csv"), ReadFile(dir_ / "local" / "joints.csv"));
+
+  std::ofstream(dir_ / "typo.json") << R"({"initial_bodies": [{"name": "box_b::lnk"}]})";
+  const std::string typo = " --spec " + (dir_ / "typo.json").string();
+  const CommandOutcome refused_local = RunCommand(std::string(MBSTREAM_CLI) + " simulate " +
+                                                  kWorld + typo + " --out " + Out("typo"));
+  EXPECT_NE(refused_local.exit_code, 0);
+  const CommandOutcome refused = Cli("run irb1600_table" + typo);
+  EXPECT_EQ(refused.exit_code, 2);  // INVALID_ARGUMENT
+  for (const CommandOutcome* outcome : {&refused_local, &refused}) {
+    EXPECT_THAT(outcome->output, HasSubstr("initial_bodies[0].name: 'box_b::lnk' is no free body "
+                                           "of the model; did you mean 'box_b::link'?"));
+    EXPECT_THAT(outcome->output, HasSubstr("box_a::link, box_b::link, box_c::link"));
+  }
+}
+
 // A sweep of a free body's initial pose by its coordinate's name (sweep_coordinates.h): the
 // base spec has no initial_q, so every other coordinate keeps the world's own pose; each
 // run's box_a starts at its swept height and falls from there.

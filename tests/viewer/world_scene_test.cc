@@ -13,6 +13,7 @@
 
 #include "shared/common/check.h"
 #include "tests/viewer/xvfb_display.h"
+#include "viewer/kinematics/pose_solver.h"
 #include "viewer/model/model_scene.h"
 #include "viewer/scene/scene.h"
 
@@ -203,6 +204,53 @@ TEST(WorldScene, AFreeBoxFollowsItsPositionAndQuaternionAndTheSnapshotShowsEvery
   EXPECT_GT(blue, 20) << "no box in the picture";
   EXPECT_GT(brown, 20) << "no table in the picture";
   EXPECT_GT(orange, 20) << "no robot in the picture";
+}
+
+// A comparison of two runs of the world (a replay's --compare): the ghost, a second copy of
+// every model, takes its own run's values and poses each free box from them, bit for bit as
+// the chain computes them, while the scene keeps its run's pose.
+TEST(WorldScene, TheGhostOfAWorldRunPosesItsOwnFreeBoxes) {
+  const SceneDescription description = SceneFromModelFile(kWorld);
+  ASSERT_TRUE(testing::EnsureDisplay()) << "no X display and Xvfb could not be started";
+  SceneOptions options = Offscreen();
+  options.ghost_opacity = 0.35;
+  Scene scene(description, options);
+  GhostLayer* ghost = scene.ghost();
+  ASSERT_NE(ghost, nullptr);
+  EXPECT_EQ(ghost->actor_count(), scene.part_actor_count());
+  const std::vector<double> q = description.initial_q;
+  std::vector<double> ghost_q = q;
+  const double half = M_PI / 8;  // box_a half a metre lower, turned an eighth of a turn about z
+  const std::vector<double> moved = {1.0, -0.15, 0.4, std::cos(half), 0, 0, std::sin(half)};
+  std::copy(moved.begin(), moved.end(), ghost_q.begin() + 6);
+  scene.SetJointValues(q);
+  ghost->SetJointValues(ghost_q);
+
+  PoseSolver solver(description.chain, description.probes);
+  Pose own = solver.MakePose(), theirs = solver.MakePose();
+  solver.Solve(q, &own);
+  solver.Solve(ghost_q, &theirs);
+  std::vector<Eigen::Isometry3d> scene_frames;
+  scene.Frames(&scene_frames);
+  const std::vector<Eigen::Isometry3d> ghost_frames = ghost->Frames();
+  ASSERT_EQ(ghost_frames.size(), theirs.frames.size());
+  ASSERT_EQ(scene_frames.size(), own.frames.size());
+  int differ = 0;
+  for (size_t k = 0; k < ghost_frames.size(); ++k) {
+    EXPECT_TRUE(ghost_frames[k].isApprox(theirs.frames[k], 0.0)) << "frame " << k;
+    EXPECT_TRUE(scene_frames[k].isApprox(own.frames[k], 0.0)) << "frame " << k;
+    if (ghost_frames[k].isApprox(scene_frames[k], 0.0)) continue;
+    if (differ++ == 0) {  // box_a's link: where the ghost's values put it
+      EXPECT_LT((ghost_frames[k].translation() - Vector3d(1.0, -0.15, 0.4)).norm(), 1e-15);
+      EXPECT_LT((Eigen::Quaterniond(ghost_frames[k].rotation()).coeffs() -
+                 Eigen::Quaterniond(std::cos(half), 0, 0, std::sin(half)).coeffs())
+                    .norm(),
+                1e-15);
+    }
+  }
+  EXPECT_GE(differ, 1);  // box_a's frames, and nothing else of the world
+  EXPECT_LT(differ, static_cast<int>(ghost_frames.size()) / 2);
+  scene.Render();  // both drawn
 }
 
 }  // namespace
