@@ -279,6 +279,7 @@ void ContactForces::SignedDistances(const Data& data, double* g) {
 
 bool ContactForces::AddForces(const Data& data, const Eigen::VectorXd& qd, Eigen::VectorXd* tau) {
   contacts_.clear();
+  dissipated_power_ = 0.0;
   if (!active_) return true;
   UpdatePoses(data);
   Candidates();
@@ -306,6 +307,7 @@ bool ContactForces::AddForces(const Data& data, const Eigen::VectorXd& qd, Eigen
                        PointVelocity(model_, data, body_b, c.point, qd);  // a relative to b
     const double vn = v.dot(c.normal);
     c.normal_force = contact_law::NormalForce(c.share * k, d, c.depth, -vn);
+    double spring = contact_law::NormalForce(c.share * k, 0.0, c.depth, 0.0);
     if (settings_.hertz_modulus > 0.0) {  // Hertz for a sphere against a sphere or a plane
       const CollisionShape& a = model_.collisions[c.geometry_a].shape;
       const CollisionShape& b = model_.collisions[c.geometry_b].shape;
@@ -316,8 +318,9 @@ bool ContactForces::AddForces(const Data& data, const Eigen::VectorXd& qd, Eigen
       };
       const double ra = radius(a), rb = radius(b);
       if (ra > 0.0 && rb > 0.0 && !(std::isinf(ra) && std::isinf(rb))) {
-        c.normal_force = contact_law::HertzNormalForce(
-            contact_law::HertzStiffness(settings_.hertz_modulus, ra, rb), d, c.depth, -vn);
+        const double hertz = contact_law::HertzStiffness(settings_.hertz_modulus, ra, rb);
+        c.normal_force = contact_law::HertzNormalForce(hertz, d, c.depth, -vn);
+        spring = contact_law::HertzNormalForce(hertz, 0.0, c.depth, 0.0);
       }
     }
     const Vector3d vt = v - vn * c.normal;
@@ -329,6 +332,8 @@ bool ContactForces::AddForces(const Data& data, const Eigen::VectorXd& qd, Eigen
     }
     const Vector3d f = c.normal_force * c.normal + c.friction_force;
     finite = finite && f.allFinite();
+    // The normal force's damping part against the penetration rate -vn, and the friction's.
+    dissipated_power_ += (c.normal_force - spring) * -vn - c.friction_force.dot(vt);
     AddPointForce(model_, data, body_a, c.point, f, tau);
     AddPointForce(model_, data, body_b, c.point, -f, tau);
   }

@@ -73,6 +73,11 @@ class ContactForces {
 
   // The contacts of the last AddForces.
   const std::vector<ContactPoint>& contacts() const { return contacts_; }
+  // The power the contacts of the last AddForces dissipate (W, >= 0): each point's normal force
+  // less its spring part (the law at zero rate: k delta, or Hertz's) times the penetration
+  // rate, and its friction force against the sliding velocity. The run integrates it as a
+  // quadrature: the dissipated contact work (RunStats.contact).
+  double dissipated_power() const { return dissipated_power_; }
   const ResolvedSurface& surface(int geometry) const { return surfaces_[geometry]; }
   bool Allowed(int a, int b) const { return allowed_[a * n_ + b] != 0; }
   const Model& model() const { return model_; }
@@ -97,6 +102,7 @@ class ContactForces {
   std::vector<std::pair<int, int>> pairs_;  // the broad phase's candidates
   std::vector<std::pair<int, int>> root_pairs_;
   std::vector<ContactPoint> contacts_;
+  double dissipated_power_ = 0.0;
   NarrowPhase narrow_;
   std::unique_ptr<Broad> broad_;
 };

@@ -16,6 +16,19 @@ struct ContactPoint {
   double share = 1.0;
   double normal_force = 0.0;  // N, >= 0: the normal force on a (b gets the opposite)
   Vector3d friction_force = Vector3d::Zero();  // N: the friction force on a (b: the opposite)
+
+  // A point x of one geometry `depth` below the other's face of outward normal n_face: the
+  // point midway between the surfaces, the normal sign * n_face (+1 when the face is b's).
+  static ContactPoint UnderFace(int a, int b, const Vector3d& x, const Vector3d& n_face,
+                                double sign, double depth) {
+    ContactPoint c;
+    c.geometry_a = a;
+    c.geometry_b = b;
+    c.normal = sign * n_face;
+    c.depth = depth;
+    c.point = x + 0.5 * depth * n_face;
+    return c;
+  }
 };
 
 }  // namespace mbstream

@@ -54,14 +54,7 @@ std::shared_ptr<fcl::CollisionGeometryd> FclShape(const CollisionShape& s) {
 // A point of a shape at depth `depth` below the plane (normal n, world): the contact midway.
 void AddPlanePoint(int a, int b, const Vector3d& x, const Vector3d& n, double depth,
                    std::vector<ContactPoint>* out) {
-  if (!(depth > 0.0)) return;
-  ContactPoint c;
-  c.geometry_a = a;
-  c.geometry_b = b;
-  c.normal = n;
-  c.depth = depth;
-  c.point = x + 0.5 * depth * n;
-  out->push_back(c);
+  if (depth > 0.0) out->push_back(ContactPoint::UnderFace(a, b, x, n, 1.0, depth));
 }
 
 // The points of shape a (pose X_WA) that a plane (pose X_WP, normal its z) tests: calls
@@ -483,13 +476,7 @@ bool NarrowPhase::FaceContacts(int i, int j, int round, const Pose& X_WR, int po
     for (size_t g = 0; g < planes.size(); ++g) {  // under the face, inside the others
       if (static_cast<int>(g) != face && planes[g].head<3>().dot(x_P) - planes[g](3) > 0.0) return;
     }
-    ContactPoint c;
-    c.geometry_a = i;
-    c.geometry_b = j;
-    c.normal = sign * n;
-    c.depth = depth;
-    c.point = x + 0.5 * depth * n;
-    out->push_back(c);
+    out->push_back(ContactPoint::UnderFace(i, j, x, n, sign, depth));
     ++added;
   });
   return added > 0;

@@ -217,13 +217,7 @@ int PolytopeClip::Clip(const PolytopeFaces& P, const World& p, int face, const P
   for (const Vector3d& x : polygon_) {
     const double depth = h - n.dot(x);
     if (!(depth > 0.0)) continue;
-    ContactPoint c;
-    c.geometry_a = i;
-    c.geometry_b = j;
-    c.normal = sign * n;
-    c.depth = depth;
-    c.point = x + 0.5 * depth * n;
-    out->push_back(c);
+    out->push_back(ContactPoint::UnderFace(i, j, x, n, sign, depth));
     ++added;
   }
   return added;

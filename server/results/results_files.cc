@@ -114,7 +114,8 @@ std::string StatsJson(const RunResult& result, const RunProvenance& provenance, 
   if (s.contact.active) {  // docs/contact.md
     j["contact"] = {{"penetration_max_m", s.contact.penetration_max_m},
                     {"contacts_peak", s.contact.contacts_peak},
-                    {"penetration_relative_max", s.contact.penetration_relative_max}};
+                    {"penetration_relative_max", s.contact.penetration_relative_max},
+                    {"dissipated_work_j", s.contact.dissipated_work_j}};
   }
   j["joints"] = result.joint_names;
   if (result.num_positions > 0) j["positions"] = result.position_names;  // free bodies

@@ -146,6 +146,7 @@ int ClosedLoopOde::Quadrature(double t, const double* y, double* qdot) {
   if (contact_ == nullptr) return -1;
   if (!Evaluate(t, y)) return 1;
   qdot[0] = Power();
+  qdot[1] = contact_->dissipated_power();
   return 0;
 }
 
@@ -153,6 +154,7 @@ int ClosedLoopOde::RhsAndQuadrature(double t, const double* y, double* ydot, dou
   if (contact_ == nullptr) return -1;
   if (const int code = Rhs(t, y, ydot); code != 0) return code;
   qdot[0] = Power();  // Rhs's evaluation, a function of (t, y) alone
+  qdot[1] = contact_->dissipated_power();
   return 0;
 }
 

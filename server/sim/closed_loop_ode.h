@@ -61,9 +61,10 @@ class ClosedLoopOde : public OdeSystem, public ManifoldProjection {
   // (ContactForces::SignedDistances). Allocates nothing.
   int num_roots() const override { return contact_ != nullptr ? contact_->num_root_pairs() : 0; }
   int Roots(double t, const double* y, double* g) override;
-  // With contact: one quadrature, the power of the drives, the damping, the loops' and the
-  // contacts' forces (W). Allocates nothing.
-  int num_quadratures() const override { return contact_ != nullptr ? 1 : 0; }
+  // With contact: two quadratures, the power of the drives, the damping, the loops' and the
+  // contacts' forces (W), and the power the contacts dissipate (ContactForces::
+  // dissipated_power). Allocates nothing.
+  int num_quadratures() const override { return contact_ != nullptr ? 2 : 0; }
   int Quadrature(double t, const double* y, double* qdot) override;
   int RhsAndQuadrature(double t, const double* y, double* ydot, double* qdot) override;
 

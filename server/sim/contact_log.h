@@ -11,6 +11,19 @@
 
 namespace mbstream {
 
+// A run with contact forces (docs/contact.md), over every output frame it computed: the
+// summary a remote client gets (RunStats.contact on the wire).
+struct ContactStats {
+  bool active = false;             // the run had contact forces
+  double penetration_max_m = 0.0;  // m, the largest penetration
+  int contacts_peak = 0;           // the most contacts at one output frame
+  // The largest penetration relative to the size of the smaller geometry of its pair.
+  double penetration_relative_max = 0.0;
+  // J, the work the contact forces dissipated (Hunt-Crossley damping and friction; a
+  // quadrature of their power, docs/contact.md), at the last frame.
+  double dissipated_work_j = 0.0;
+};
+
 struct ContactRecord {
   double t = 0.0;                      // s, the output frame's time
   int geometry_a = 0, geometry_b = 0;  // indices into ContactLog::link / collision
@@ -37,6 +50,14 @@ struct ContactLog {
   double relative_max = 0.0;
   double relative_t = 0.0;
   int relative_a = -1, relative_b = -1;
+  // J, the work the contacts dissipated up to the last frame: the integral of
+  // ContactForces::dissipated_power, a quadrature of the run's ODE.
+  double dissipated_work = 0.0;
+
+  // The run's summary (RunStats::contact).
+  ContactStats Stats() const {
+    return {true, depth_max, count_peak, relative_max, dissipated_work};
+  }
 
   // "contact: ..." when relative_max exceeds kDeepContact, naming the pair, the time and what
   // to do; "" otherwise.

@@ -1,5 +1,6 @@
 #include "server/sim/joint_run.h"
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -71,8 +72,11 @@ class JointSpaceSource : public FrameSource {
     if (ode_.num_quadratures() > 0) {
       if (frame_ < prefix_frames_) {
         recorder.SetWork(prefix_->work[frame_]);
-      } else if (integrator_.Quadratures(&work_)) {
-        recorder.SetWork(work_);
+      } else if (integrator_.Quadratures(work_.data())) {
+        recorder.SetWork(work_[0]);
+        if (ode_.num_quadratures() > 1 && contacts_ != nullptr) {
+          contacts_->dissipated_work = work_[1];
+        }
       }
     }
     const bool finite = ode_.EvaluateOutputs(t, y_.data(), need_effort_);
@@ -108,7 +112,9 @@ class JointSpaceSource : public FrameSource {
   const size_t prefix_frames_;  // frames taken from the prefix (0: none)
   ContactLog* contacts_;        // null: the frames' contacts are not kept
   size_t frame_ = 0;            // the frame being advanced to and recorded
-  double work_ = 0.0;  // J, the integrated work of drives and damping since t = 0 (when tracked)
+  // J since t = 0 (when tracked): the integrated work of drives, damping and contacts; the
+  // contacts' dissipated work (with contact).
+  std::array<double, 2> work_{};
 };
 
 // `prefix`'s integration, taken over and retuned to `options`, when the prefix's frames
@@ -190,8 +196,7 @@ void RunJointSpace(const Model& model, const RunConfig& config, const PilotLink&
                           live->contact != nullptr ? &result.contacts : nullptr);
   RunFrames(times, source, recorder, result, sink, cancel);
   if (result.contacts.active) {
-    result.stats.contact = {true, result.contacts.depth_max, result.contacts.count_peak,
-                            result.contacts.relative_max};
+    result.stats.contact = result.contacts.Stats();
   }
   if (const std::string deep = result.contacts.DeepContactWarning(); !deep.empty()) {
     result.stats.warnings.push_back(deep);

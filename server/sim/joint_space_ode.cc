@@ -230,6 +230,7 @@ void JointSpaceOde::WritePower(double* qdot) const {
   for (int i = 0; i < n_; ++i) power += (effort_(i) - drives_.damping(i) * qd_(i)) * qd_(i);
   if (contact_ != nullptr) power += contact_tau_.dot(qd_);  // the contacts' power
   qdot[0] = power;
+  if (contact_ != nullptr) qdot[1] = contact_->dissipated_power();
 }
 
 int JointSpaceOde::Jacobian(double /*t*/, const double* y, const double* fy,

@@ -75,7 +75,9 @@ class JointSpaceOde : public OdeSystem, public ManifoldProjection {
   int num_roots() const override { return contact_ != nullptr ? contact_->num_root_pairs() : 0; }
   int Roots(double t, const double* y, double* g) override;
 
-  int num_quadratures() const override { return track_work_ ? 1 : 0; }
+  // With contact a second quadrature: the power the contacts dissipate (ContactForces::
+  // dissipated_power), whose integral RunStats.contact reports.
+  int num_quadratures() const override { return track_work_ ? (contact_ != nullptr ? 2 : 1) : 0; }
   int Quadrature(double t, const double* y, double* qdot) override;
   // Rhs and Quadrature at one (t, y) with one evaluation of the dynamics (the appended
   // quadratures ask for both on every right-hand side); bit for bit the two calls' results.

@@ -1,6 +1,7 @@
 #include "server/sim/loop_run.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -209,7 +210,10 @@ class ClosedLoopSource : public FrameSource {
     if (reactions_ != nullptr) ode_.Reactions(reactions_);
     if (contacts_ != nullptr && ode_.contact() != nullptr) contacts_->Record(t, *ode_.contact());
     if (ode_.num_quadratures() > 0) {  // with contact: the work integrated with the ODE
-      if (integrator_.Quadratures(&work_)) recorder.SetWork(work_);
+      if (integrator_.Quadratures(work_.data())) {
+        recorder.SetWork(work_[0]);
+        if (contacts_ != nullptr) contacts_->dissipated_work = work_[1];
+      }
     } else {  // the loops' power joins the drives' (a trapezoid over the frames)
       recorder.SetConstraintPower(ode_.ConstraintPower());
     }
@@ -230,8 +234,8 @@ class ClosedLoopSource : public FrameSource {
   BudgetTracking* budget_;
   Eigen::VectorXd* reactions_;  // null: not asked for
   RunStats* stats_;
-  ContactLog* contacts_;  // null: no contact, or the frames' contacts are not kept
-  double work_ = 0.0;     // J, the integrated work since t = 0 (with contact)
+  ContactLog* contacts_;          // null: no contact, or the frames' contacts are not kept
+  std::array<double, 2> work_{};  // J since t = 0 (with contact): the work; the dissipated
 };
 
 // The index-2 GGL DAE, integrated frame to frame by IDA.
@@ -436,7 +440,7 @@ void RunLoopOde(const Model& model, const std::vector<LoopClosure>& loops, const
   ClosedLoopSource source(ode, *integrator, y, frames.budget, frames.reactions, &stats,
                           contact != nullptr ? &log : nullptr);
   RunFrames(frames.times, source, frames.recorder, frames.result, frames.sink, frames.cancel);
-  if (log.active) stats.contact = {true, log.depth_max, log.count_peak, log.relative_max};
+  if (log.active) stats.contact = log.Stats();
   if (const std::string deep = log.DeepContactWarning(); !deep.empty()) {
     stats.warnings.push_back(deep);
   }

@@ -60,16 +60,6 @@ struct LoopStats {
   std::string assembly;                 // how the initial pose was assembled
 };
 
-// A run with contact forces (docs/contact.md), over every output frame it computed: the
-// summary a remote client gets (RunStats.contact on the wire).
-struct ContactStats {
-  bool active = false;             // the run had contact forces
-  double penetration_max_m = 0.0;  // m, the largest penetration
-  int contacts_peak = 0;           // the most contacts at one output frame
-  // The largest penetration relative to the size of the smaller geometry of its pair.
-  double penetration_relative_max = 0.0;
-};
-
 struct RunStats {
   RunStatus status = RunStatus::kFinished;
   std::string message;     // on failure: what happened and what to try

@@ -1,6 +1,7 @@
 #include "server/sim/sampled_joint_run.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -82,9 +83,14 @@ class SampledJointSource : public FrameSource {
 
   bool Record(double t, FrameRecorder& recorder) override {
     if (ode_.num_quadratures() > 0) {
-      double work = 0.0;
-      if (integrator_ != nullptr && integrator_->Quadratures(&work)) work_ = work_base_ + work;
-      recorder.SetWork(work_);
+      std::array<double, 2> work{};
+      if (integrator_ != nullptr && integrator_->Quadratures(work.data())) {
+        for (size_t k = 0; k < work.size(); ++k) work_[k] = work_base_[k] + work[k];
+      }
+      recorder.SetWork(work_[0]);
+      if (ode_.num_quadratures() > 1 && contacts_ != nullptr) {
+        contacts_->dissipated_work = work_[1];
+      }
     }
     const bool finite = ode_.EvaluateOutputs(t, y_.data(), need_effort_);
     if (finite && contacts_ != nullptr && contact_ != nullptr) contacts_->Record(t, *contact_);
@@ -156,8 +162,10 @@ class SampledJointSource : public FrameSource {
   // restarted in its own memory at the others (Integrator::Restart: no allocation).
   bool ControlInstant(double t, RunStats* stats) {
     if (integrator_ != nullptr) {
-      double work = 0.0;
-      if (integrator_->Quadratures(&work)) work_base_ += work;
+      std::array<double, 2> work{};
+      if (integrator_->Quadratures(work.data())) {
+        for (size_t k = 0; k < work.size(); ++k) work_base_[k] += work[k];
+      }
       AddStats(integrator_->stats(), &done_);
     }
     // With free bodies or ball joints the state at an instant comes from the integrator's
@@ -216,8 +224,9 @@ class SampledJointSource : public FrameSource {
   SolverStats done_;                        // the statistics of the periods before the current one
   double t_ = 0.0;                          // s, the time of y_
   long step_ = 0;                           // the next control instant's k
-  double work_base_ = 0.0;                  // J, the work up to the current period's start
-  double work_ = 0.0;                       // J, at the last frame
+  // J: the work and the contacts' dissipated work (JointSpaceOde's quadratures) up to the
+  // current period's start, and at the last frame.
+  std::array<double, 2> work_base_{}, work_{};
 };
 
 }  // namespace
@@ -247,8 +256,7 @@ void RunSampledJointSpace(const Model& model, const RunConfig& config, const Dri
   result.stats.jacobian_nnz = source.ode().JacobianNonZeros();
   RunFrames(times, source, recorder, result, sink, cancel);
   if (result.contacts.active) {  // as RunJointSpace
-    result.stats.contact = {true, result.contacts.depth_max, result.contacts.count_peak,
-                            result.contacts.relative_max};
+    result.stats.contact = result.contacts.Stats();
   }
   if (const std::string deep = result.contacts.DeepContactWarning(); !deep.empty()) {
     result.stats.warnings.push_back(deep);

@@ -112,6 +112,7 @@ v1::RunStats StatsToProto(const RunStats& s) {
     contact.set_penetration_max_m(FiniteOr(s.contact.penetration_max_m, 0.0));
     contact.set_contacts_peak(s.contact.contacts_peak);
     contact.set_penetration_relative_max(FiniteOr(s.contact.penetration_relative_max, 0.0));
+    contact.set_dissipated_work_j(FiniteOr(s.contact.dissipated_work_j, 0.0));
   }
   SummaryToProto(s.summary, out.mutable_summary());
   return out;
@@ -189,7 +190,7 @@ RunStats StatsFromProto(const v1::RunInfo& info) {
   }
   if (in.has_contact()) {
     s.contact = {true, in.contact().penetration_max_m(), in.contact().contacts_peak(),
-                 in.contact().penetration_relative_max()};
+                 in.contact().penetration_relative_max(), in.contact().dissipated_work_j()};
   }
   if (in.has_summary()) s.summary = SummaryFromProto(in.summary());
   s.warnings.assign(info.warnings().begin(), info.warnings().end());

@@ -102,17 +102,23 @@ TEST(ContactChecksTest, RestingBoxSinksByWeightOverStiffnessAndStaysStill) {
   EXPECT_LE(fastest, config.contact.stiction_tolerance);
 }
 
+// The incline runs: the plane tilted by theta (gravity turned about y), d = 20 s/m,
+// mu_s = 0.4, mu_d = 0.3 (the friction angle 21.8 degrees).
+RunConfig InclineConfig(double theta, double duration, double interval) {
+  RunConfig config = Config(duration, interval);
+  config.gravity = Eigen::Vector3d(kG * std::sin(theta), 0.0, -kG * std::cos(theta));
+  config.contact.dissipation = 20.0;
+  config.contact.mu_static = 0.4;
+  config.contact.mu_dynamic = 0.3;
+  return config;
+}
+
 // A box on a plane tilted by theta (gravity turned about y): it slides with
 // a = g (sin theta - mu_d cos theta) above the friction angle.
 TEST(ContactChecksTest, BoxSlidesDownASteepInclineWithCoulombsAcceleration) {
   const Model model = Scene("box_on_plane.sdf");
   const double theta = 30.0 * M_PI / 180.0;
-  RunConfig config = Config(2.0, 0.01);
-  config.gravity = Eigen::Vector3d(kG * std::sin(theta), 0.0, -kG * std::cos(theta));
-  config.contact.dissipation = 20.0;
-  config.contact.mu_static = 0.4;
-  config.contact.mu_dynamic = 0.3;
-  const RunResult r = RunScene(model, config);
+  const RunResult r = RunScene(model, InclineConfig(theta, 2.0, 0.01));
   const double expected = kG * (std::sin(theta) - 0.3 * std::cos(theta));
   const size_t a = r.t.size() / 2, b = r.t.size() - 1;
   const double measured = (Qd(r, b, 0) - Qd(r, a, 0)) / (r.t[b] - r.t[a]);
@@ -121,15 +127,33 @@ TEST(ContactChecksTest, BoxSlidesDownASteepInclineWithCoulombsAcceleration) {
   EXPECT_NEAR(measured / expected, 1.0, 1e-6) << measured << " against " << expected;
 }
 
+// The sliding box's dissipated contact work (RunStats.contact, a quadrature of the contacts'
+// dissipated power): while it slides at a steady depth, friction alone dissipates, mu_d N per
+// metre slid. Between a 1 s and a 2 s run of the same scene the work grows by
+// mu_d m g cos(theta) times the distance slid meanwhile.
+TEST(ContactChecksTest, ASlidingBoxDissipatesMuDTimesItsWeightPerMetre) {
+  const Model model = Scene("box_on_plane.sdf");
+  const double theta = 30.0 * M_PI / 180.0;
+  RunConfig config = InclineConfig(theta, 1.0, 0.01);
+  const RunResult first = RunScene(model, config);
+  config.duration = 2.0;
+  const RunResult second = RunScene(model, config);
+  ASSERT_TRUE(first.stats.contact.active);
+  const double slid = Q(second, second.t.size() - 1, 0) - Q(first, first.t.size() - 1, 0);
+  const double expected = 0.3 * model.TotalMass() * kG * std::cos(theta) * slid;
+  const double measured =
+      second.stats.contact.dissipated_work_j - first.stats.contact.dissipated_work_j;
+  printf("RESULT dissipated from 1 s to 2 s: %.12g J, mu_d N s %.12g J (rel %.3g); by 1 s %.9g J\n",
+         measured, expected, measured / expected - 1, first.stats.contact.dissipated_work_j);
+  EXPECT_GT(slid, 1.0);
+  EXPECT_NEAR(measured / expected, 1.0, 1e-6);
+}
+
 // Below the friction angle the box holds: it creeps no faster than the stiction tolerance.
 TEST(ContactChecksTest, BoxHoldsOnAnInclineBelowTheFrictionAngle) {
   const Model model = Scene("box_on_plane.sdf");
   const double theta = 15.0 * M_PI / 180.0;
-  RunConfig config = Config(5.0, 0.05);
-  config.gravity = Eigen::Vector3d(kG * std::sin(theta), 0.0, -kG * std::cos(theta));
-  config.contact.dissipation = 20.0;
-  config.contact.mu_static = 0.4;
-  config.contact.mu_dynamic = 0.3;
+  const RunConfig config = InclineConfig(theta, 5.0, 0.05);
   const RunResult r = RunScene(model, config);
   const size_t last = r.t.size() - 1;
   const double drift = Q(r, last, 0) - Q(r, 0, 0);
