@@ -1,6 +1,8 @@
 #include "shared/model_files/sdf_reading.h"
 
 #include <algorithm>
+#include <string_view>
+#include <system_error>
 
 #include <sdf/Collision.hh>
 #include <sdf/Console.hh>
@@ -10,8 +12,10 @@
 #include <sdf/ParserConfig.hh>
 #include <sdf/Visual.hh>
 #include <sdf/World.hh>
+#include <sdf/parser.hh>
 
 #include "shared/common/check.h"
+#include "shared/model_files/sdf_mesh_uris.h"
 #include "shared/model_files/xml_shape.h"
 
 namespace mbstream::model_files {
@@ -44,6 +48,21 @@ std::string Joined(const std::vector<std::filesystem::path>& paths) {
   for (const std::filesystem::path& path : paths)
     text += (text.empty() ? "" : ", ") + path.string();
   return text;
+}
+
+// An <include> of model://NAME found at `found` (its folder, or its model.sdf): the folder
+// is NAME's, for its meshes' paths (sdf_mesh_uris.h).
+void NoteIncludedModel(const std::string& uri, const std::filesystem::path& found,
+                       SdfIncludedModels* models) {
+  constexpr std::string_view kModel = "model://";
+  if (found.empty() || !uri.starts_with(kModel)) return;
+  std::string name = uri.substr(kModel.size());
+  if (!name.empty() && name.back() == '/') name.pop_back();
+  if (name.empty() || name.find('/') != std::string::npos) return;
+  std::error_code error;
+  const std::filesystem::path folder =
+      std::filesystem::is_directory(found, error) ? found : found.parent_path();
+  models->emplace(std::filesystem::absolute(folder).lexically_normal(), name);
 }
 
 // The include that was not found, as an error naming where the <include> stands.
@@ -101,14 +120,27 @@ SdfFile::SdfFile(const std::string& text, std::string source, const SdfLoadOptio
   sdf::Console::Instance()->SetQuiet(true);
   sdf::ParserConfig config;
   std::vector<IncludeMiss> misses;
+  SdfIncludedModels included;
   if (options.includes) {
     config.SetFindCallback([&](const std::string& uri) {
       SdfIncludeSearch search = FindSdfInclude(uri, *options.includes);
       if (search.found.empty()) misses.push_back({uri, std::move(search.tried)});
+      NoteIncludedModel(uri, search.found, &included);
       return search.found.string();
     });
   }
-  const sdf::Errors errors = root_->LoadSdfString(text, config);
+  // Root::LoadSdfString's two steps, with the included models' relative mesh paths
+  // rewritten between them (sdf_mesh_uris.h).
+  sdf::Errors errors;
+  const sdf::SDFPtr parsed = std::make_shared<sdf::SDF>();
+  sdf::init(parsed);
+  if (!sdf::readString(text, config, parsed, errors)) {
+    errors.push_back({sdf::ErrorCode::STRING_READ, "unable to read the SDFormat text"});
+  } else {
+    if (options.includes) RewriteIncludedMeshUris(parsed->Root(), *options.includes, included);
+    const sdf::Errors load = root_->Load(parsed, config);
+    errors.insert(errors.end(), load.begin(), load.end());
+  }
   if (!errors.empty()) {
     if (!misses.empty()) ThrowIncludeMiss(source_, errors, misses.front());
     ThrowSdfErrors(source_, errors);

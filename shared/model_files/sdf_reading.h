@@ -55,7 +55,8 @@ class SdfFile {
   // count, encodings, entities; InputError "SOURCE:LINE: ..."), counts its links against
   // options.max_links (LimitError), then loads it. Throws InputError "SOURCE[:LINE]: ..." for
   // SDFormat's own errors (quoted), an <include> not found (with every place tried) or not
-  // allowed, two worlds, no model.
+  // allowed, two worlds, no model. An included model's mesh written relative to its own file
+  // is renamed as the world finds it (sdf_mesh_uris.h), for every reader of the file.
   SdfFile(const std::string& text, std::string source, const SdfLoadOptions& options = {});
 
   const std::vector<SdfModelEntry>& models() const { return models_; }

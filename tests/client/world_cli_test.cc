@@ -127,6 +127,33 @@ TEST_F(WorldCliTest, TheWorldsFolderIsSubmittedWithItsModelsAndRuns) {
   EXPECT_EQ(FirstLine(again.output), FirstLine(submit.output));
 }
 
+// A world whose included models are drawn from mesh files (tests/data/worlds/mesh_world/):
+// its folder is submitted with the three meshes attached (STL, OBJ and Collada, named
+// relative to their model.sdf or by model://, docs/worlds.md), none missing, and the server
+// runs it: the free crate falls on its parabola, the post's hinge stays where it is.
+TEST_F(WorldCliTest, AWorldOfMeshedModelsIsSubmittedWithItsMeshesAndRuns) {
+  StartServer();
+  const CommandOutcome submit = Cli("submit tests/data/worlds/mesh_world --name mesh_world");
+  ASSERT_EQ(submit.exit_code, 0) << submit.output;
+  EXPECT_THAT(submit.output, HasSubstr("model 'mesh_world'"));
+  EXPECT_THAT(submit.output, HasSubstr("3 assets"));
+  EXPECT_THAT(submit.output, ::testing::Not(HasSubstr("not found")));
+  const CommandOutcome run =
+      Cli("run mesh_world --duration 0.3 --output-interval 0.05 --watch --out " + Out("meshes"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::vector<std::string> names = Header(dir_ / "meshes" / "joints.csv");
+  ASSERT_EQ(names, (std::vector<std::string>{"t", "post::hinge", "crate::body.x", "crate::body.y",
+                                             "crate::body.z", "crate::body.qw", "crate::body.qx",
+                                             "crate::body.qy", "crate::body.qz"}));
+  const std::vector<std::vector<std::string>> rows = ReadCsv(dir_ / "meshes" / "joints.csv");
+  ASSERT_EQ(rows.size(), 7u);
+  for (const auto& row : rows) {
+    const double t = std::stod(row[0]);
+    EXPECT_NEAR(std::stod(row[1]), 0.0, 1e-12) << "t = " << t;
+    EXPECT_NEAR(std::stod(row[4]), 0.5 - 0.5 * kG * t * t, 1e-5) << "t = " << t;
+  }
+}
+
 // A thrown box through a live server: the spec's initial_q has the model's 27 position
 // coordinates (a free joint's 7 each) and initial_qd its 24 velocities; box_a leaves at
 // 1 m/s along x (world frame) spinning at 2 rad/s about its own z axis.

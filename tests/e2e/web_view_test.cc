@@ -392,6 +392,35 @@ TEST_F(WebViewTest, AWorldsModelsAreAllDrawnAndItsTcpProbedFromThePage) {
   ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
 }
 
+// A world whose included models are drawn from their mesh files (issue 43, docs/worlds.md,
+// "Meshes of included models"): tests/data/worlds/mesh_world/ submitted as a folder (its
+// STL, OBJ and Collada files attached from the models' folders, named relative to their
+// model.sdf or by model://) reaches the page with every mesh: the post's column and arm (12
+// triangles each, red), the crate's two cubes (24, green), the shelf's block (12, its
+// Collada file's blue); none is a placeholder.
+TEST_F(WebViewTest, AWorldsIncludedModelsAreDrawnFromTheirMeshFiles) {
+  const CommandOutcome submitted =
+      Cli("submit " MBSTREAM_SOURCE_DIR "/tests/data/worlds/mesh_world --name mesh_world");
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
+  EXPECT_THAT(submitted.output, Not(HasSubstr("not found"))) << submitted.output;
+  const nlohmann::json seen = WatchSubmittedRun("mesh_world", "");
+  ASSERT_TRUE(seen.contains("parts") && seen["parts"].is_array()) << seen.dump().substr(0, 2000);
+  EXPECT_EQ(seen.value("triangles", 0), 12 + 12 + 24 + 12) << seen["parts"];
+  std::multiset<std::string> colours;
+  for (const auto& part : seen["parts"]) {
+    const double r = part["color"][0].get<double>(), g = part["color"][1].get<double>(),
+                 b = part["color"][2].get<double>();
+    colours.insert(r > g + 0.5 && r > b + 0.5   ? "red"
+                   : g > r + 0.5 && g > b + 0.5 ? "green"
+                   : b > r + 0.5 && b > g + 0.5 ? "blue"
+                                                : "other");
+    EXPECT_EQ(part["opacity"].get<double>(), 1.0) << part << " (a placeholder is translucent)";
+  }
+  EXPECT_EQ(colours, (std::multiset<std::string>{"red", "red", "green", "blue"})) << seen["parts"];
+  EXPECT_THAT(seen.value("hud", ""), Not(HasSubstr("missing")));
+  ASSERT_TRUE(WaitForLineIn((dir_ / "viewer.log").string(), "viewer exit ", 60));
+}
+
 // Contacts on the page (issue 44): with --contacts the viewer sends each frame's contacts to
 // the pages, which draw a point and a force arrow each. A box resting on a plane: four
 // corners, each arrow the floor's share of the weight, pointing down.

@@ -268,5 +268,52 @@ TEST_F(SdfIncludeTest, TheServersReadingRefusesAnIncludeAndReadsTheExpandedWorld
   EXPECT_GE(sdf.model.FindFrame("table::top"), 0);
 }
 
+// A mesh an included model names relative to its own file is named from the world once the
+// includes are read (shared/model_files/sdf_mesh_uris.h): model://NAME/... for a model found
+// by model://NAME (beside the world, or in the package path), a path relative to the world's
+// folder for one included by a relative path, file:///abs for one outside the world's folder.
+// A model:// URI and the world's own relative paths stay as written.
+TEST_F(SdfIncludeTest, AnIncludedModelsRelativeMeshPathIsNamedFromTheWorld) {
+  const auto model = [](const std::string& name, const std::string& mesh) {
+    return "<?xml version=\"1.0\"?>\n<sdf version=\"1.8\">\n<model name=\"" + name +
+           "\"><static>true</static><link name=\"l\"><visual name=\"v\"><geometry><mesh><uri>" +
+           mesh + "</uri></mesh></geometry></visual><collision name=\"c\"><geometry><mesh><uri>" +
+           mesh + "</uri></mesh></geometry></collision></link></model>\n</sdf>\n";
+  };
+  const auto folder = [&](const std::string& path, const std::string& name,
+                          const std::string& mesh) {
+    fs::create_directories(dir_ / path);
+    Write(path + "/model.config", "<?xml version=\"1.0\"?><model><name>" + name +
+                                      "</name><sdf version=\"1.8\">model.sdf</sdf></model>\n");
+    Write(path + "/model.sdf", model(name, mesh));
+  };
+  folder("models/post", "post", "meshes/post.stl");
+  folder("packages/grippers/gripper", "gripper", "./meshes/../meshes/finger.dae");
+  folder("models/parts/plate", "plate", "plate.obj");
+  folder("outside/lid", "lid", "meshes/lid.stl");
+  folder("models/cup", "cup", "model://cup/meshes/cup.stl");
+  const std::string world = World(
+      "<include><uri>model://post</uri></include>\n"
+      "<include><uri>model://gripper</uri></include>\n"
+      "<include><uri>parts/plate</uri></include>\n"
+      "<include><uri>../outside/lid</uri></include>\n"
+      "<include><uri>model://cup</uri></include>\n"
+      "<model name=\"own\"><static>true</static><link name=\"l\"><visual name=\"v\"><geometry>"
+      "<mesh><uri>meshes/own.stl</uri></mesh></geometry></visual></link></model>");
+  const model_files::SdfFile file(
+      world, (dir_ / "models/world.sdf").string(),
+      {.includes = model_files::SdfIncludePath{dir_ / "models", {dir_ / "packages"}}});
+  const std::vector<std::string> expected = {
+      "model://post/meshes/post.stl", "model://gripper/meshes/finger.dae",
+      "parts/plate/plate.obj",        "file://" + (dir_ / "outside/lid/meshes/lid.stl").string(),
+      "model://cup/meshes/cup.stl",   "meshes/own.stl"};
+  const model_files::SdfMeshes meshes = model_files::MeshesOf(file);
+  EXPECT_EQ(meshes.visual, expected);
+  EXPECT_EQ(meshes.collision, std::vector<std::string>(expected.begin(), expected.end() - 1));
+  // `mbstream submit` sends the expanded world: it names them alike.
+  const model_files::SdfMeshes sent = model_files::ReadSdfMeshes(file.ExpandedText());
+  EXPECT_EQ(sent.visual, expected);
+}
+
 }  // namespace
 }  // namespace mbstream
