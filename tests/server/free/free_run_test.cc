@@ -13,16 +13,12 @@
 #include "server/sim/run_validation.h"
 #include "server/wire/frame_conversion.h"
 #include "server/wire/model_info.h"
+#include "tests/server/free/free_tree_model.h"
 
 namespace mbstream {
 namespace {
 
-RigidInertia Box(double mass) {
-  RigidInertia inertia;
-  inertia.mass = mass;
-  inertia.inertia_com = Vector3d(0.1, 0.2, 0.25).asDiagonal();
-  return inertia;
-}
+using testing::Box;
 
 // An arm (one driven revolute joint) and a free box above the floor.
 Model ArmAndBox() {

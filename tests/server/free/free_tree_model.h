@@ -11,6 +11,14 @@
 
 namespace mbstream::testing {
 
+// A body of `mass` (kg) with principal inertias 0.1, 0.2, 0.25 kg*m^2 about its origin.
+inline RigidInertia Box(double mass) {
+  RigidInertia inertia;
+  inertia.mass = mass;
+  inertia.inertia_com = Vector3d(0.1, 0.2, 0.25).asDiagonal();
+  return inertia;
+}
+
 inline RigidInertia RandomInertia(std::mt19937& rng) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   RigidInertia inertia;

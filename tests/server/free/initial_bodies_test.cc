@@ -11,16 +11,12 @@
 #include "server/sim/run_config.h"
 #include "server/sim/run_validation.h"
 #include "shared/common/check.h"
+#include "tests/server/free/free_tree_model.h"
 
 namespace mbstream {
 namespace {
 
-RigidInertia Box(double mass) {
-  RigidInertia inertia;
-  inertia.mass = mass;
-  inertia.inertia_com = Vector3d(0.1, 0.2, 0.25).asDiagonal();
-  return inertia;
-}
+using testing::Box;
 
 // An arm joint, a free box at a turned pose, and a free torso at the origin.
 Model World() {
