@@ -80,7 +80,22 @@ void ControlCall::Conclude(const grpc::Status& status) {
 }
 
 void ControlCall::Poke() {
-  if (*deps_.stopping) context_->TryCancel();
+  if (!*deps_.stopping) return;
+  std::unique_lock<std::mutex> lock(mutex_);
+  Cancel(lock);
+  Drive(lock);
+}
+
+void ControlCall::Cancel(std::unique_lock<std::mutex>& lock) {
+  // Once Finish is posted the call may end and gRPC free its context: a TryCancel then took a
+  // reference on a freed call (gRPC's "RefNonZero: prior > 0" abort at a server's stop, seen
+  // under TSan). outside_ keeps Drive from finishing while this one is under way.
+  if (finished_) return;
+  ++outside_;
+  lock.unlock();
+  context_->TryCancel();
+  lock.lock();
+  --outside_;
 }
 
 void ControlCall::OnReadDone(bool ok) {
@@ -246,8 +261,8 @@ bool ControlCall::Write(const v1::ControlResponse& response) {
   if (finished_ || broken_) return false;
   if (queue_.size() >= kMaxQueued) {  // the client does not read
     broken_ = true;
-    lock.unlock();
-    context_->TryCancel();
+    Cancel(lock);
+    Drive(lock);
     return false;
   }
   queue_.push_back(response);

@@ -60,6 +60,9 @@ class ControlCall final : public grpc::ServerBidiReactor<v1::ControlRequest, v1:
   void HandleCommand();                // request_ holds a command (lock held)
   void WatchRun();                     // every 250 ms: a run that ended without Ended
   void Conclude(const grpc::Status&);  // the first status given stays (lock held)
+  // TryCancel unless the call is finishing (lock held; released around it): from threads of
+  // our own (the server's stop, the worker), which no gRPC reaction holds the call for.
+  void Cancel(std::unique_lock<std::mutex>& lock);
   // Starts the next write, a read that is due, or finishes the call (lock held; released
   // around gRPC's calls, which may run a reaction inline; released for good when it finishes
   // the call, whose Finish runs on the pump).
