@@ -4,6 +4,7 @@
 // ERK stepping through the bounces, after a first call has grown the buffers.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -39,13 +40,13 @@ TEST(ContactNoAllocationTest, RightHandSideWithContactsAllocatesNothing) {
   double sink = 0.0;  // each body 0.1 mm into the one below
   for (const int b : model.free_bodies) y(model.bodies[b].q_index + 2) -= (sink += 1e-4);
   Eigen::VectorXd ydot(y.size());
-  double work = 0.0;
-  ASSERT_EQ(ode.RhsAndQuadrature(0.0, y.data(), ydot.data(), &work), 0);  // grows the buffers
+  std::array<double, 2> work{};  // J: the work; the contacts' dissipated work
+  ASSERT_EQ(ode.RhsAndQuadrature(0.0, y.data(), ydot.data(), work.data()), 0);  // grows the buffers
   ASSERT_GE(contact.contacts().size(), 9u);  // 4 box-plane, 4 box-box, 1 sphere-box
   const long before = testing::AllocationCount();
   for (int k = 0; k < 20; ++k) {
     y(model.nq()) = 1e-3 * k;  // a sliding speed
-    ode.RhsAndQuadrature(0.01 * k, y.data(), ydot.data(), &work);
+    ode.RhsAndQuadrature(0.01 * k, y.data(), ydot.data(), work.data());
   }
   EXPECT_EQ(testing::AllocationCount() - before, 0);
   EXPECT_TRUE(ydot.allFinite());
@@ -68,13 +69,13 @@ TEST(ContactNoAllocationTest, HullContactsAllocateNothing) {
     // into the surface below by 0.1 mm (the ball: from 0.15 m onto the hull face at 0.0354)
     y(model.bodies[b].q_index + 2) = ball ? 0.05 / std::sqrt(2.0) + 0.05 - 1e-4 : 0.1 - 1e-4;
     Eigen::VectorXd ydot(y.size());
-    double work = 0.0;
-    ASSERT_EQ(ode.RhsAndQuadrature(0.0, y.data(), ydot.data(), &work), 0);
+    std::array<double, 2> work{};
+    ASSERT_EQ(ode.RhsAndQuadrature(0.0, y.data(), ydot.data(), work.data()), 0);
     ASSERT_EQ(contact.contacts().size(), ball ? 1u : 4u) << scene;
     const long before = testing::AllocationCount();
     for (int k = 0; k < 20; ++k) {
       y(model.nq()) = 1e-3 * k;
-      ode.RhsAndQuadrature(0.01 * k, y.data(), ydot.data(), &work);
+      ode.RhsAndQuadrature(0.01 * k, y.data(), ydot.data(), work.data());
     }
     EXPECT_EQ(testing::AllocationCount() - before, 0) << scene;
     EXPECT_TRUE(ydot.allFinite()) << scene;
