@@ -170,29 +170,6 @@ double PointConvexDistance(const Vector3d& p, const ConvexPolytope& convex,
   return distance;
 }
 
-// A box's corners and face planes, as a convex polytope's (VertexContacts).
-std::vector<Vector3d> BoxCorners(const Vector3d& size) {
-  std::vector<Vector3d> corners;
-  for (int k = 0; k < 8; ++k) {
-    corners.push_back(
-        Vector3d(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, k & 4 ? 0.5 : -0.5).cwiseProduct(size));
-  }
-  return corners;
-}
-
-std::vector<Eigen::Vector4d> BoxPlanes(const Vector3d& size) {
-  std::vector<Eigen::Vector4d> planes;
-  for (int axis = 0; axis < 3; ++axis) {
-    for (const double sign : {1.0, -1.0}) {
-      Eigen::Vector4d plane = Eigen::Vector4d::Zero();
-      plane(axis) = sign;
-      plane(3) = 0.5 * size(axis);
-      planes.push_back(plane);
-    }
-  }
-  return planes;
-}
-
 // The largest signed distance of point p to `planes` (< 0: inside all of them) and that plane's
 // normal.
 double DeepestPlane(const Vector3d& p, const std::vector<Eigen::Vector4d>& planes,

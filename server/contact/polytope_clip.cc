@@ -65,18 +65,16 @@ PolytopeFaces MakeFaces(std::vector<Vector3d> vertices, const std::vector<Eigen:
 
 }  // namespace
 
-bool PolytopeClip::Affordable(const PolytopeFaces& I, const PolytopeFaces& J) {
-  return I.edges.size() * J.edges.size() <= kMaxEdgePairs &&
-         I.vertices.size() * J.planes.size() + J.vertices.size() * I.planes.size() <=
-             kMaxVertexFaces;
-}
-
-PolytopeFaces PolytopeFaces::OfBox(const Vector3d& size) {
+std::vector<Vector3d> BoxCorners(const Vector3d& size) {
   std::vector<Vector3d> corners;
   for (int k = 0; k < 8; ++k) {
     corners.push_back(
         Vector3d(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, k & 4 ? 0.5 : -0.5).cwiseProduct(size));
   }
+  return corners;
+}
+
+std::vector<Eigen::Vector4d> BoxPlanes(const Vector3d& size) {
   std::vector<Eigen::Vector4d> planes;
   for (int axis = 0; axis < 3; ++axis) {
     for (const double sign : {1.0, -1.0}) {
@@ -86,7 +84,17 @@ PolytopeFaces PolytopeFaces::OfBox(const Vector3d& size) {
       planes.push_back(plane);
     }
   }
-  return MakeFaces(std::move(corners), planes, 1e-12 * size.maxCoeff());
+  return planes;
+}
+
+bool PolytopeClip::Affordable(const PolytopeFaces& I, const PolytopeFaces& J) {
+  return I.edges.size() * J.edges.size() <= kMaxEdgePairs &&
+         I.vertices.size() * J.planes.size() + J.vertices.size() * I.planes.size() <=
+             kMaxVertexFaces;
+}
+
+PolytopeFaces PolytopeFaces::OfBox(const Vector3d& size) {
+  return MakeFaces(BoxCorners(size), BoxPlanes(size), 1e-12 * size.maxCoeff());
 }
 
 PolytopeFaces PolytopeFaces::OfHull(const ConvexPolytope& convex) {

@@ -21,6 +21,11 @@
 
 namespace mbstream {
 
+// A box's corners (the 8 sign combinations of +-size/2, x fastest) and its 6 face planes
+// (outward unit normal n, offset d: n.x <= d), in its frame.
+std::vector<Vector3d> BoxCorners(const Vector3d& size);
+std::vector<Eigen::Vector4d> BoxPlanes(const Vector3d& size);
+
 // A convex polytope's faces as polygons (coplanar triangles of a hull merged) and its edges
 // with their two faces, in its frame G.
 struct PolytopeFaces {
