@@ -1,8 +1,9 @@
 // The applied forces and the mass matrix of BodyMechanics: gravity, gyroscopic torques,
 // joint actuators (servo and torque laws), damping and rotor inertia (armature), all acting
-// along each joint's rate row h_j.
+// along each joint's rate row h_j, and the contact forces (body_contact.h).
 #include <cmath>
 
+#include "server/body/body_contact.h"
 #include "server/body/body_mechanics.h"
 
 namespace mbstream {
@@ -54,6 +55,7 @@ void BodyMechanics::EvaluateForces() {
       }
     }
   }
+  if (contact_ != nullptr) contact_finite_ = contact_->AddTo(&f_);
 }
 
 }  // namespace mbstream

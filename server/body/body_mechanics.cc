@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "server/body/body_contact.h"
 #include "server/body/quaternion.h"
 
 namespace mbstream {
@@ -61,6 +62,16 @@ BodyMechanics::BodyMechanics(const BodyModel& body_model, const DriveSet& drives
   rhs_ = Eigen::VectorXd::Zero(m);
   nu_dot_ = Eigen::VectorXd::Zero(n6);
   lambda_ = Eigen::VectorXd::Zero(m);
+}
+
+BodyMechanics::~BodyMechanics() = default;
+
+void BodyMechanics::UseContact(ContactForces* forces) {
+  contact_ = forces != nullptr ? std::make_unique<BodyContact>(*this, *forces) : nullptr;
+}
+
+double BodyMechanics::contact_power() const {
+  return contact_ != nullptr ? contact_->power() : 0.0;
 }
 
 void BodyMechanics::Load(double t, const double* y) {

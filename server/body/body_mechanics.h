@@ -12,6 +12,8 @@
 //   joint formulation's armature term.
 #pragma once
 
+#include <memory>
+
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -22,10 +24,23 @@
 
 namespace mbstream {
 
+class BodyContact;
+class ContactForces;
+
 class BodyMechanics {
  public:
   // Keeps references to its arguments, which must outlive it.
   BodyMechanics(const BodyModel& body_model, const DriveSet& drives);
+  ~BodyMechanics();
+
+  // Adds the contact forces of `forces` (not owned, outlives this; shared by the run's
+  // mechanics) to f at every EvaluateForces (body_contact.h). Allocates; call before the run.
+  void UseContact(ContactForces* forces);
+  // The contact (null without one) and, after EvaluateForces, whether its forces were finite
+  // and their power on the bodies (W).
+  BodyContact* contact() const { return contact_.get(); }
+  bool contact_finite() const { return contact_finite_; }
+  double contact_power() const;
 
   // Loads the positions and velocities (the first 13n entries of y) and the drives'
   // targets at t. Must come first.
@@ -34,7 +49,8 @@ class BodyMechanics {
   // g, G and g_t; with `acceleration_terms` also gamma (G dnu/dt = gamma on the solution).
   void EvaluateConstraints(bool acceleration_terms);
   // Joint angles (each on the branch nearest its servo reference, else in (-pi, pi]) and
-  // rates, the applied force f and the mass matrix M (armature included). Needs Load.
+  // rates, the applied force f (contact included, with UseContact) and the mass matrix M
+  // (armature included). Needs Load.
   void EvaluateForces();
   // After EvaluateConstraints(true) and EvaluateForces: solves M dnu/dt = f + G^T lambda
   // with G dnu/dt = gamma - alpha (G nu + g_t) - beta g (alpha = beta = 0: the exact
@@ -100,6 +116,8 @@ class BodyMechanics {
 
   const BodyModel& bm_;
   const DriveSet& drives_;
+  std::unique_ptr<BodyContact> contact_;  // null without contact
+  bool contact_finite_ = true;
   double t_ = 0.0;
   // Per body, slot n = the fixed base.
   std::vector<Matrix3d> R_;

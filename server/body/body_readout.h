@@ -31,6 +31,9 @@ class BodyReadout {
   // nothing.
   bool Read(double t, const double* y, bool efforts);
   void SetStart(const Eigen::VectorXd& q_start) { q_ = q_start; }
+  // The run's contact (BodyMechanics::UseContact): Read then evaluates the contacts at y, and
+  // `forces`' contacts() are those of the state read. Allocates; call before the run.
+  void UseContact(ContactForces* forces) { mechanics_.UseContact(forces); }
 
   const Eigen::VectorXd& q() const { return q_; }
   const Eigen::VectorXd& qd() const { return qd_; }

@@ -218,18 +218,18 @@ void ContactForces::DropOverlapsAtRest(const std::vector<int>& parent) {
   }
 }
 
-void ContactForces::UpdatePoses(const Data& data) {
+void ContactForces::UpdatePoses(const ContactBodies& bodies) {
   for (size_t k = 0; k < others_.size(); ++k) {
     const int g = others_[k];
     const CollisionGeometry& geometry = model_.collisions[g];
     if (geometry.body == kBase) continue;
-    X_W_[g] = data.X_world[geometry.body] * geometry.X_BG;
+    X_W_[g] = bodies.X_world(geometry.body) * geometry.X_BG;
     broad_->objects[k]->setTransform(BroadTransform(X_W_[g]));
     broad_->objects[k]->computeAABB();
   }
   for (const int g : planes_) {
     const CollisionGeometry& geometry = model_.collisions[g];
-    if (geometry.body != kBase) X_W_[g] = data.X_world[geometry.body] * geometry.X_BG;
+    if (geometry.body != kBase) X_W_[g] = bodies.X_world(geometry.body) * geometry.X_BG;
   }
   broad_->manager.update();
 }
@@ -265,9 +265,13 @@ void ContactForces::Candidates() {
 }
 
 void ContactForces::SignedDistances(const Data& data, double* g) {
+  SignedDistances(JointContactBodies(model_, data, nullptr, nullptr), g);
+}
+
+void ContactForces::SignedDistances(const ContactBodies& bodies, double* g) {
   for (int k = 0; k < n_; ++k) {
     const CollisionGeometry& geometry = model_.collisions[k];
-    if (geometry.body != kBase) X_W_[k] = data.X_world[geometry.body] * geometry.X_BG;
+    if (geometry.body != kBase) X_W_[k] = bodies.X_world(geometry.body) * geometry.X_BG;
   }
   // Far pairs: their distance, or 1 m when the narrow phase has none (then the sign changes
   // only at contact: CVODE and ARKODE still find the time).
@@ -278,10 +282,15 @@ void ContactForces::SignedDistances(const Data& data, double* g) {
 }
 
 bool ContactForces::AddForces(const Data& data, const Eigen::VectorXd& qd, Eigen::VectorXd* tau) {
+  JointContactBodies bodies(model_, data, &qd, tau);
+  return AddForces(bodies);
+}
+
+bool ContactForces::AddForces(ContactBodies& bodies) {
   contacts_.clear();
   dissipated_power_ = 0.0;
   if (!active_) return true;
-  UpdatePoses(data);
+  UpdatePoses(bodies);
   Candidates();
   // Each pair's points, and the share of the pair's stiffness each takes: delta_i / sum delta.
   for (const auto& [a, b] : pairs_) {
@@ -303,8 +312,8 @@ bool ContactForces::AddForces(const Data& data, const Eigen::VectorXd& qd, Eigen
     const double mu_d = contact_law::CombineFriction(sa.mu_dynamic, sb.mu_dynamic);
     const int body_a = model_.collisions[c.geometry_a].body;
     const int body_b = model_.collisions[c.geometry_b].body;
-    const Vector3d v = PointVelocity(model_, data, body_a, c.point, qd) -
-                       PointVelocity(model_, data, body_b, c.point, qd);  // a relative to b
+    const Vector3d v = bodies.PointVelocity(body_a, c.point) -
+                       bodies.PointVelocity(body_b, c.point);  // a relative to b
     const double vn = v.dot(c.normal);
     c.normal_force = contact_law::NormalForce(c.share * k, d, c.depth, -vn);
     double spring = contact_law::NormalForce(c.share * k, 0.0, c.depth, 0.0);
@@ -334,8 +343,8 @@ bool ContactForces::AddForces(const Data& data, const Eigen::VectorXd& qd, Eigen
     finite = finite && f.allFinite();
     // The normal force's damping part against the penetration rate -vn, and the friction's.
     dissipated_power_ += (c.normal_force - spring) * -vn - c.friction_force.dot(vt);
-    AddPointForce(model_, data, body_a, c.point, f, tau);
-    AddPointForce(model_, data, body_b, c.point, -f, tau);
+    bodies.AddPointForce(body_a, c.point, f);
+    bodies.AddPointForce(body_b, c.point, -f);
   }
   return finite;
 }

@@ -23,6 +23,7 @@
 
 #include <Eigen/Core>
 
+#include "server/contact/contact_bodies.h"
 #include "server/contact/contact_point.h"
 #include "server/contact/contact_settings.h"
 #include "server/contact/narrow_phase.h"
@@ -61,6 +62,8 @@ class ContactForces {
   // and adds their generalised forces to *tau (nv values). Returns false when a force is not
   // finite. Allocates nothing (see above).
   bool AddForces(const Data& data, const Eigen::VectorXd& qd, Eigen::VectorXd* tau);
+  // The same for any formulation's state (contact_bodies.h): the forces go to `bodies`.
+  bool AddForces(ContactBodies& bodies);
 
   // The pairs whose signed distances are root functions of the integration (CVODE, ARKODE:
   // a step ends where a contact begins or ends): every allowed pair, at most kMaxRootPairs
@@ -70,6 +73,7 @@ class ContactForces {
   // After BodyKinematics for q: g[k] = the signed distance of root pair k (m, < 0 when they
   // overlap; narrow_phase.h says for which shapes it is exact). Allocates nothing.
   void SignedDistances(const Data& data, double* g);
+  void SignedDistances(const ContactBodies& bodies, double* g);
 
   // The contacts of the last AddForces.
   const std::vector<ContactPoint>& contacts() const { return contacts_; }
@@ -85,7 +89,7 @@ class ContactForces {
  private:
   struct Broad;
   static bool OnPair(void* o1, void* o2, void* self);
-  void UpdatePoses(const Data& data);
+  void UpdatePoses(const ContactBodies& bodies);
   void DropOverlapsAtRest(const std::vector<int>& parent);
   void Candidates();
 

@@ -1,5 +1,7 @@
 #include "server/contact/point_forces.h"
 
+#include "server/contact/contact_bodies.h"
+
 namespace mbstream {
 
 namespace {
@@ -55,6 +57,14 @@ void AddPointForce(const Model& model, const Data& data, int body, const Vector3
     const Vector3d axis = data.X_world[j].R * joint.axis;
     (*tau)(col) += joint.type == JointType::kRevolute ? axis.dot(r.cross(f)) : axis.dot(f);
   }
+}
+
+Vector3d JointContactBodies::PointVelocity(int body, const Vector3d& p) const {
+  return mbstream::PointVelocity(model_, data_, body, p, *qd_);
+}
+
+void JointContactBodies::AddPointForce(int body, const Vector3d& p, const Vector3d& f) {
+  mbstream::AddPointForce(model_, data_, body, p, f, tau_);
 }
 
 }  // namespace mbstream

@@ -1,6 +1,7 @@
 #include "server/sim/body_run.h"
 
 #include <algorithm>
+#include <array>
 #include <memory>
 #include <string>
 #include <utility>
@@ -19,6 +20,8 @@
 #include "server/sim/frame_loop.h"
 #include "server/sim/initial_state.h"
 #include "server/sim/integrator_options_from.h"
+#include "server/sim/joint_integration.h"
+#include "server/sim/run_contact.h"
 #include "server/sim/run_stop.h"
 #include "shared/common/format.h"
 
@@ -48,7 +51,7 @@ class BodySource : public FrameSource {
  public:
   BodySource(BodyReadout& readout, Integrator& integrator, Eigen::VectorXd& y,
              BodyBaumgarteOde* ode, std::string advice, bool need_effort, BudgetTracking* budget,
-             Eigen::VectorXd* reactions)
+             Eigen::VectorXd* reactions, const ContactForces* contact, ContactLog* contacts)
       : readout_(readout),
         integrator_(integrator),
         y_(y),
@@ -56,12 +59,15 @@ class BodySource : public FrameSource {
         advice_(std::move(advice)),
         need_effort_(need_effort),
         budget_(budget),
-        reactions_(reactions) {}
+        reactions_(reactions),
+        contact_(contact),
+        contacts_(contacts) {}
 
   bool Advance(const std::vector<double>& times, size_t k, RunStats* stats) override {
     if (AdvanceToFrame(integrator_, times, k, y_.data(), stats, advice_, &budget_->t_stop)) {
       return true;
     }
+    if (contact_ != nullptr) stats->message += DeepestContactNote(*contact_);
     if (stats->status == RunStatus::kTooMuchWork) {
       budget_->advice = advice_;
       // The failure path only (it allocates); the state y is the last good one.
@@ -71,11 +77,15 @@ class BodySource : public FrameSource {
   }
 
   bool Record(double t, FrameRecorder& recorder) override {
-    if (ode_ != nullptr && ode_->num_quadratures() > 0 && integrator_.Quadratures(&work_)) {
-      recorder.SetWork(work_);
+    if (ode_ != nullptr && ode_->num_quadratures() > 0 && integrator_.Quadratures(work_.data())) {
+      recorder.SetWork(work_[0]);
+      if (ode_->num_quadratures() > 1 && contacts_ != nullptr)
+        contacts_->dissipated_work = work_[1];
     }
+    // The readout evaluates the contacts at y too (BodyReadout::UseContact).
     const bool finite = readout_.Read(t, y_.data(), need_effort_ || reactions_ != nullptr);
     if (finite && reactions_ != nullptr) readout_.CutReactions(*reactions_);
+    if (finite && contacts_ != nullptr) contacts_->Record(t, *contact_);
     extras_.tcp = readout_.tcp();
     extras_.kinetic = readout_.kinetic();
     extras_.potential = readout_.potential();
@@ -84,7 +94,8 @@ class BodySource : public FrameSource {
   }
 
   std::string NonFiniteMessage(double t) const override {
-    return FormatString("the state became non-finite at t = %g s", t) + advice_;
+    return FormatString("the state became non-finite at t = %g s", t) + advice_ +
+           (contact_ != nullptr ? DeepestContactNote(*contact_) : std::string());
   }
 
  private:
@@ -95,9 +106,13 @@ class BodySource : public FrameSource {
   const std::string advice_;
   const bool need_effort_;
   BudgetTracking* budget_;
-  Eigen::VectorXd* reactions_;  // the cut joints' reactions (null: not reported)
+  Eigen::VectorXd* reactions_;    // the cut joints' reactions (null: not reported)
+  const ContactForces* contact_;  // null without contact
+  ContactLog* contacts_;          // null without contact
   FrameExtras extras_;
-  double work_ = 0.0;  // J, the integrated work of drives and damping (body-baumgarte)
+  // J since t = 0 (body-baumgarte): the integrated work of drives, damping and contacts; the
+  // contacts' dissipated work (with contact).
+  std::array<double, 2> work_{};
 };
 
 }  // namespace
@@ -121,6 +136,11 @@ void RunBody(const Model& model, const RunConfig& config, Formulation formulatio
     SelectCutRows(model, drives, q0, &bm);
   }
   const bool baumgarte = formulation == Formulation::kBodyBaumgarte;
+  // Contact (body-baumgarte: contact_validation.h): the forces on the bodies at every
+  // evaluation (body_contact.h), the pairs' signed distances as root functions, adaptive steps
+  // capped at a fraction of the contact period, as in the joint-space runs.
+  const std::unique_ptr<ContactForces> contact =
+      baumgarte ? MakeContactForces(model, config.contact) : nullptr;
 
   std::unique_ptr<BodyBaumgarteOde> ode;
   std::unique_ptr<BodyDae> dae;
@@ -129,9 +149,11 @@ void RunBody(const Model& model, const RunConfig& config, Formulation formulatio
   // body-baumgarte integrates the work of drives and damping with its ODE (a quadrature that
   // leaves the motion bit for bit as it is); the DAE formulations take the trapezoid rule
   // over the output frames (IDA has no quadratures: RunStats::energy_work says which).
-  const bool track_work = baumgarte && result.has_energy && drives.any_work();
+  const bool track_work =
+      baumgarte && result.has_energy && (drives.any_work() || contact != nullptr);
   if (baumgarte) {
-    ode = std::make_unique<BodyBaumgarteOde>(bm, drives, config.baumgarte, track_work);
+    ode =
+        std::make_unique<BodyBaumgarteOde>(bm, drives, config.baumgarte, track_work, contact.get());
     consistent = ConsistentInitialState(model, bm, ode->mechanics(), times.front(), q0, qd0, &init);
     result.stats.equations = ode->size();
     result.stats.jacobian_nnz = ode->JacobianNonZeros();
@@ -153,8 +175,8 @@ void RunBody(const Model& model, const RunConfig& config, Formulation formulatio
 
   Eigen::VectorXd y = baumgarte ? Eigen::VectorXd(init.y.head(bm.ode_size())) : init.y;
   std::unique_ptr<Integrator> integrator;
-  const IntegratorOptions options =
-      IntegratorOptionsFrom(config, times.back(), budget->cpu_deadline_s);
+  IntegratorOptions options = IntegratorOptionsFrom(config, times.back(), budget->cpu_deadline_s);
+  if (contact != nullptr) CapContactStep(model, config.contact, &options);
   if (baumgarte) {
     integrator = MakeIntegrator(*ode, times.front(), y.data(), options);
   } else {
@@ -171,12 +193,18 @@ void RunBody(const Model& model, const RunConfig& config, Formulation formulatio
   result.stats.integrator = integrator->name();
   if (track_work) recorder.UseIntegratedWork();
 
+  AddContactReason(model, config.contact, contact.get(), options.max_step, &result.stats);
+  StartContactLog(contact.get(), sink, &result.contacts);
+
   BodyReadout readout(bm, drives);
   readout.SetStart(q0);
+  readout.UseContact(contact.get());
   BodySource source(readout, *integrator, y, ode.get(), Advice(formulation),
                     result.has_torques || result.has_energy, budget,
-                    loops != nullptr ? loops->reactions : nullptr);
+                    loops != nullptr ? loops->reactions : nullptr, contact.get(),
+                    contact != nullptr ? &result.contacts : nullptr);
   RunFrames(times, source, recorder, result, sink, cancel);
+  FinishContactLog(result.contacts, &result.stats);
   result.stats.solver = integrator->stats();
   const ConstraintDrift& drift = readout.drift();
   result.stats.drift_position_max = drift.position;

@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "server/sim/body_run.h"
 #include "server/sim/joint_integration.h"
 #include "shared/common/check.h"
 #include "shared/common/format.h"
@@ -61,10 +60,14 @@ void CheckContact(const Model& model, const RunConfig& config,
     }
   }
   if (!MayTouch(model, config.contact)) return;
-  if (IsBodyFormulation(config.formulation)) {
+  // body-baumgarte (an ODE) has the contact forces (server/body/body_contact.h); the body
+  // DAEs for IDA do not yet.
+  if (config.formulation == Formulation::kBodyIndex3 ||
+      config.formulation == Formulation::kBodyIndex2) {
     throw InputError(std::string("formulation ") + FormulationName(config.formulation) +
-                     " has no contact forces yet, and the model's collision geometry may "
-                     "touch: use formulation joint (or auto), or contact.enabled false");
+                     " (a DAE for IDA) has no contact forces yet, and the model's collision "
+                     "geometry may touch: use formulation body-baumgarte (an ODE, with contact), "
+                     "joint (or auto), or contact.enabled false");
   }
   // Closed loops: the joint-space ODE (closed_loop_ode.h) has the contact forces; the loops'
   // index-2 DAE (method ida) does not yet.

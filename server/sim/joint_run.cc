@@ -11,6 +11,7 @@
 #include "server/sim/integrator_options_from.h"
 #include "server/sim/joint_integration.h"
 #include "server/sim/joint_space_ode.h"
+#include "server/sim/run_contact.h"
 #include "server/sim/run_prefix.h"
 #include "server/sim/sampled_joint_run.h"
 #include "shared/common/format.h"
@@ -18,24 +19,6 @@
 namespace mbstream {
 
 namespace {
-
-// For a run that failed: the deepest contact of the last evaluation, by pair (the failure
-// path only: it allocates).
-std::string DeepestContactNote(const ContactForces& contact) {
-  const ContactPoint* deepest = nullptr;
-  for (const ContactPoint& c : contact.contacts()) {
-    if (deepest == nullptr || !(c.depth <= deepest->depth)) deepest = &c;
-  }
-  if (deepest == nullptr) return "; no contact at the last evaluation";
-  const std::vector<CollisionGeometry>& g = contact.model().collisions;
-  return FormatString(
-      "; the deepest contact at the last evaluation: '%s' (%s) against '%s' (%s), %g m deep, "
-      "normal force %g N (a stiff contact needs an implicit method, bdf or dirk, or a lower "
-      "contact.stiffness_n_per_m)",
-      g[deepest->geometry_a].link.c_str(), g[deepest->geometry_a].name.c_str(),
-      g[deepest->geometry_b].link.c_str(), g[deepest->geometry_b].name.c_str(), deepest->depth,
-      deepest->normal_force);
-}
 
 // The integration's state as the frame loop drives it. Frames 0 .. prefix_frames - 1 are
 // a prefix's (run_prefix.h), whose integration this run has taken over: their states and
@@ -176,31 +159,13 @@ void RunJointSpace(const Model& model, const RunConfig& config, const PilotLink&
   result.stats.integrator = live->integrator->name();
   result.stats.continued_from_s = prefix_frames > 0 ? times[prefix_frames - 1] : 0.0;
   // Why contact is on or off (docs/contact.md), after the formulation's reason.
-  if (live->contact != nullptr) {
-    result.stats.formulation_reason += FormatString(
-        "; contact on: %d geometry pair(s) may touch (compliant point contact), adaptive steps "
-        "at most %g s",
-        live->contact->num_allowed_pairs(), options.max_step);
-  } else if (!model.collisions.empty()) {
-    result.stats.formulation_reason +=
-        config.contact.enabled ? "; contact off: no pair of the model's collision geometries may "
-                                 "touch (same or adjacent bodies, bitmasks, filter)"
-                               : "; contact off (contact.enabled false)";
-  }
-  if (live->contact != nullptr) {
-    result.contacts.Start(*live->contact);
-    result.contacts.keep_records = sink == nullptr || !sink->KeepsFrames();
-  }
+  AddContactReason(model, config.contact, live->contact.get(), options.max_step, &result.stats);
+  StartContactLog(live->contact.get(), sink, &result.contacts);
   JointSpaceSource source(*live, result.has_torques || result.has_energy, budget,
                           pilot.prefix.get(), prefix_frames,
                           live->contact != nullptr ? &result.contacts : nullptr);
   RunFrames(times, source, recorder, result, sink, cancel);
-  if (result.contacts.active) {
-    result.stats.contact = result.contacts.Stats();
-  }
-  if (const std::string deep = result.contacts.DeepContactWarning(); !deep.empty()) {
-    result.stats.warnings.push_back(deep);
-  }
+  FinishContactLog(result.contacts, &result.stats);
   result.stats.solver = StatsSince(live->integrator->stats(), live->before);
   if (pilot.keep_integration && result.stats.status == RunStatus::kFinished) {
     result.integration = std::move(live);

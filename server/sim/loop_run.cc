@@ -27,6 +27,7 @@
 #include "server/sim/joint_integration.h"
 #include "server/sim/loop_plan.h"
 #include "server/sim/run_budget.h"
+#include "server/sim/run_contact.h"
 #include "server/sim/run_stop.h"
 #include "server/sim/run_trust.h"
 #include "server/sim/run_validation.h"
@@ -423,27 +424,13 @@ void RunLoopOde(const Model& model, const std::vector<LoopClosure>& loops, const
   stats.integrator =
       std::string(integrator->name()) + (config.method == Method::kBdf ? " with projection" : "");
   ContactLog& log = frames.result.contacts;
-  if (contact != nullptr) {
-    frames.recorder.UseIntegratedWork();
-    stats.formulation_reason += FormatString(
-        "; contact on: %d geometry pair(s) may touch (compliant point contact), adaptive steps "
-        "at most %g s",
-        contact->num_allowed_pairs(), options.max_step);
-    log.Start(*contact);
-    log.keep_records = frames.sink == nullptr || !frames.sink->KeepsFrames();
-  } else if (!model.collisions.empty()) {
-    stats.formulation_reason +=
-        config.contact.enabled ? "; contact off: no pair of the model's collision geometries may "
-                                 "touch (same or adjacent bodies, bitmasks, filter)"
-                               : "; contact off (contact.enabled false)";
-  }
+  if (contact != nullptr) frames.recorder.UseIntegratedWork();
+  AddContactReason(model, config.contact, contact.get(), options.max_step, &stats);
+  StartContactLog(contact.get(), frames.sink, &log);
   ClosedLoopSource source(ode, *integrator, y, frames.budget, frames.reactions, &stats,
                           contact != nullptr ? &log : nullptr);
   RunFrames(frames.times, source, frames.recorder, frames.result, frames.sink, frames.cancel);
-  if (log.active) stats.contact = log.Stats();
-  if (const std::string deep = log.DeepContactWarning(); !deep.empty()) {
-    stats.warnings.push_back(deep);
-  }
+  FinishContactLog(log, &stats);
   stats.solver = integrator->stats();
 }
 

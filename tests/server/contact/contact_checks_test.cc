@@ -299,10 +299,10 @@ TEST(ContactChecksTest, AbsurdOrNonFiniteSettingsAreRefusedByName) {
       "contact.collision_filter: 'nothing'");
   refused(
       [](RunConfig* c) {
-        c->formulation = Formulation::kBodyBaumgarte;
+        c->formulation = Formulation::kBodyIndex2;
         c->contact.filter.clear();
       },
-      "formulation body-baumgarte");
+      "formulation body-index2");
 }
 
 }  // namespace
