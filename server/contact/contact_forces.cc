@@ -292,13 +292,17 @@ bool ContactForces::AddForces(ContactBodies& bodies) {
   if (!active_) return true;
   UpdatePoses(bodies);
   Candidates();
-  // Each pair's points, and the share of the pair's stiffness each takes: delta_i / sum delta.
+  // Each pair's points, and the share of the pair's stiffness each takes: w_i delta_i over the
+  // sum of w delta (w the point's weight, 1 but for a tilting cylinder's rim).
   for (const auto& [a, b] : pairs_) {
     const size_t first = contacts_.size();
     narrow_.Collide(a, X_W_[a], b, X_W_[b], &contacts_);
     double sum = 0.0;
-    for (size_t k = first; k < contacts_.size(); ++k) sum += contacts_[k].depth;
-    for (size_t k = first; k < contacts_.size(); ++k) contacts_[k].share = contacts_[k].depth / sum;
+    for (size_t k = first; k < contacts_.size(); ++k)
+      sum += contacts_[k].weight * contacts_[k].depth;
+    for (size_t k = first; k < contacts_.size(); ++k) {
+      contacts_[k].share = contacts_[k].weight * contacts_[k].depth / sum;
+    }
   }
   const double v_s = settings_.stiction_tolerance;
   bool finite = true;

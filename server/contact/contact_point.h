@@ -11,9 +11,12 @@ struct ContactPoint {
   Vector3d point = Vector3d::Zero();    // m: midway between the two surfaces
   Vector3d normal = Vector3d::UnitZ();  // unit, from b toward a: the direction that pushes a off b
   double depth = 0.0;                   // m: the penetration (> 0 when the surfaces overlap)
-  // The share of the pair's stiffness this point takes: its depth over the sum of the depths of
-  // the pair's points (1 for a pair with one point; 1/4 each for a box resting flat).
+  // The share of the pair's stiffness this point takes: its weight times its depth over the
+  // sum over the pair's points (1 for a pair with one point; 1/4 each for a box resting flat).
   double share = 1.0;
+  // How much the point stands for the surface (1 but for a cylinder's rim as it tilts:
+  // narrow_phase.cc, RimCornerWeight).
+  double weight = 1.0;
   double normal_force = 0.0;  // N, >= 0: the normal force on a (b gets the opposite)
   Vector3d friction_force = Vector3d::Zero();  // N: the friction force on a (b: the opposite)
 

@@ -1,6 +1,7 @@
 #include "server/contact/narrow_phase.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -52,48 +53,73 @@ std::shared_ptr<fcl::CollisionGeometryd> FclShape(const CollisionShape& s) {
 }
 
 // A point of a shape at depth `depth` below the plane (normal n, world): the contact midway.
-void AddPlanePoint(int a, int b, const Vector3d& x, const Vector3d& n, double depth,
+// The corners of a cylinder's rim as the narrow phase sees it (fixed in the cylinder): against
+// a plane or a face, and a cap's outline against another cap (NarrowPhase::CapContacts).
+constexpr int kRimCorners = 16;
+
+// A rim corner's weight against a plane of normal n, from c = |n . axis| (1: the cap flat on
+// the plane, 0: the cylinder lying): 1 above cos 8.1 deg (the rim's corners stand for the cap),
+// 0 below cos 25.8 deg (the rim's exact deepest point alone, as for a cylinder lying or rolling),
+// a smoothstep between. The deepest point takes 1 - weight. Each point's share of the pair's
+// stiffness is its weight times its depth over the sum (ContactForces::AddForces), so the
+// force is continuous as the cylinder tilts: the deepest point's direction is undefined when
+// the cap lies flat, and switching to it at a threshold made a can standing under an
+// off-centre load stall BDF at the start.
+double RimCornerWeight(double c) {
+  constexpr double kFlat = 0.99, kTilted = 0.9;
+  const double x = std::clamp((c - kTilted) / (kFlat - kTilted), 0.0, 1.0);
+  return x * x * (3.0 - 2.0 * x);
+}
+
+void AddPlanePoint(int a, int b, const Vector3d& x, const Vector3d& n, double depth, double weight,
                    std::vector<ContactPoint>* out) {
-  if (depth > 0.0) out->push_back(ContactPoint::UnderFace(a, b, x, n, 1.0, depth));
+  if (depth > 0.0) {
+    out->push_back(ContactPoint::UnderFace(a, b, x, n, 1.0, depth));
+    out->back().weight = weight;
+  }
 }
 
 // The points of shape a (pose X_WA) that a plane (pose X_WP, normal its z) tests: calls
-// point(x) for each candidate surface point x (world). Returns how many.
+// point(x, weight) for each candidate surface point x (world) with its weight (1 but for a
+// cylinder's rim: RimCornerWeight).
 template <typename PointFn>
 void PlaneCandidates(const CollisionShape& s, const Pose& X_WA, const Vector3d& n, PointFn point) {
   switch (s.type) {
     case ShapeType::kSphere:
-      point(X_WA.p - s.radius * n);
+      point(X_WA.p - s.radius * n, 1.0);
       return;
     case ShapeType::kBox:
       for (int k = 0; k < 8; ++k) {
         const Vector3d corner(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, k & 4 ? 0.5 : -0.5);
-        point(X_WA.Apply(corner.cwiseProduct(s.size)));
+        point(X_WA.Apply(corner.cwiseProduct(s.size)), 1.0);
       }
       return;
     case ShapeType::kCapsule:
       for (const double e : {-0.5, 0.5}) {
-        point(X_WA.Apply(Vector3d(0, 0, e * s.length)) - s.radius * n);
+        point(X_WA.Apply(Vector3d(0, 0, e * s.length)) - s.radius * n, 1.0);
       }
       return;
     case ShapeType::kCylinder: {
       const Vector3d axis = X_WA.R.col(2);
       const Vector3d radial = n - n.dot(axis) * axis;  // toward the plane's outside, in the cap
       const double norm = radial.norm();
+      const double corners = RimCornerWeight(std::abs(n.dot(axis)));
       for (const double e : {-0.5, 0.5}) {
         const Vector3d centre = X_WA.Apply(Vector3d(0, 0, e * s.length));
-        if (norm > 1e-9) {
-          point(centre - s.radius * radial / norm);
-        } else {  // the cap parallel to the plane: four rim points
-          for (int k = 0; k < 4; ++k) {
-            point(centre + s.radius * X_WA.R.col(k % 2) * (k < 2 ? 1.0 : -1.0));
+        if (corners < 1.0 && norm > 1e-9) point(centre - s.radius * radial / norm, 1.0 - corners);
+        if (corners > 0.0) {
+          for (int k = 0; k < kRimCorners; ++k) {
+            const double angle = 2.0 * M_PI * k / kRimCorners;
+            point(centre + s.radius *
+                               (std::cos(angle) * X_WA.R.col(0) + std::sin(angle) * X_WA.R.col(1)),
+                  corners);
           }
         }
       }
       return;
     }
     case ShapeType::kConvex:  // each vertex, as a box's corners
-      for (const Vector3d& v : *s.convex.vertices) point(X_WA.Apply(v));
+      for (const Vector3d& v : *s.convex.vertices) point(X_WA.Apply(v), 1.0);
       return;
     case ShapeType::kPlane:
       return;
@@ -185,6 +211,34 @@ double DeepestPlane(const Vector3d& p, const std::vector<Eigen::Vector4d>& plane
   return highest;
 }
 
+// Whether boxes [lower_a, upper_a] at X_WA and [lower_b, upper_b] at X_WB (each in its own
+// frame) are apart: the separating-axis test of two oriented boxes (Gottschalk's 15 axes),
+// with a relative margin against round-off on parallel edges.
+bool BoxesApart(const Vector3d& lower_a, const Vector3d& upper_a, const Pose& X_WA,
+                const Vector3d& lower_b, const Vector3d& upper_b, const Pose& X_WB) {
+  const Vector3d ha = 0.5 * (upper_a - lower_a), hb = 0.5 * (upper_b - lower_b);
+  const Matrix3d R = X_WA.R.transpose() * X_WB.R;  // b's axes in a's frame
+  const Matrix3d A = R.cwiseAbs().array() + 1e-12;
+  // b's centre from a's, in a's frame
+  const Vector3d t = X_WA.R.transpose() * (X_WB.Apply(0.5 * (lower_b + upper_b)) -
+                                           X_WA.Apply(0.5 * (lower_a + upper_a)));
+  for (int k = 0; k < 3; ++k) {
+    if (std::abs(t(k)) > ha(k) + A.row(k).dot(hb)) return true;
+    if (std::abs(R.col(k).dot(t)) > A.col(k).dot(ha) + hb(k)) return true;
+  }
+  for (int k = 0; k < 3; ++k) {  // a's axis k crossed with b's axis l
+    const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+    for (int l = 0; l < 3; ++l) {
+      const int l1 = (l + 1) % 3, l2 = (l + 2) % 3;
+      const double along = std::abs(t(k2) * R(k1, l) - t(k1) * R(k2, l));
+      const double ra = ha(k1) * A(k2, l) + ha(k2) * A(k1, l);
+      const double rb = hb(l1) * A(k, l2) + hb(l2) * A(k, l1);
+      if (along > ra + rb) return true;
+    }
+  }
+  return false;
+}
+
 // A sphere about the shape: centre (in its frame) and radius.
 Eigen::Vector4d BoundingSphere(const CollisionShape& s) {
   switch (s.type) {
@@ -222,6 +276,8 @@ struct NarrowPhase::Fcl {
   // A box's or convex polytope's faces and edges (polytope_clip.h); else empty.
   std::vector<PolytopeFaces> faces;
   PolytopeClip clip;
+  // Per shape (null for planes): the CollisionObject GJK/EPA is called with, posed per call.
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;
   std::vector<fcl::ContactPointd> points;
   fcl::CollisionRequestd request{8, true};
   fcl::CollisionResultd result;
@@ -231,6 +287,9 @@ NarrowPhase::NarrowPhase(const std::vector<CollisionGeometry>& geometries)
     : geometries_(geometries), fcl_(std::make_unique<Fcl>()) {
   for (const CollisionGeometry& g : geometries) {
     fcl_->shapes.push_back(FclShape(g.shape));
+    fcl_->objects.push_back(fcl_->shapes.back() != nullptr
+                                ? std::make_unique<fcl::CollisionObjectd>(fcl_->shapes.back())
+                                : nullptr);
     const ShapeType type = g.shape.type;
     fcl_->planes.push_back(type == ShapeType::kConvex ? FacePlanes(g.shape.convex)
                            : type == ShapeType::kBox  ? BoxPlanes(g.shape.size)
@@ -272,8 +331,13 @@ void NarrowPhase::Collide(int a, const Pose& X_WA, int b, const Pose& X_WB,
   const bool round_convex = round_i && tb == ShapeType::kConvex;
   if (tb == ShapeType::kPlane) {
     const Vector3d n = X_WJ.R.col(2);
-    PlaneCandidates(geometries_[i].shape, X_WI, n,
-                    [&](const Vector3d& x) { AddPlanePoint(i, j, x, n, -n.dot(x - X_WJ.p), out); });
+    // Its bounding sphere above the plane: no point of it is below (a hull's vertices are not
+    // walked, most of a robot's links at every evaluation).
+    if (PlaneClearance(i, X_WI, n, X_WJ.p) <= 0.0) {
+      PlaneCandidates(geometries_[i].shape, X_WI, n, [&](const Vector3d& x, double weight) {
+        AddPlanePoint(i, j, x, n, -n.dot(x - X_WJ.p), weight, out);
+      });
+    }
   } else if (ta == ShapeType::kCapsule && tb == ShapeType::kCapsule) {
     const CollisionShape& si = geometries_[i].shape;
     const CollisionShape& sj = geometries_[j].shape;
@@ -295,6 +359,9 @@ void NarrowPhase::Collide(int a, const Pose& X_WA, int b, const Pose& X_WB,
       c.point = cj + (sj.radius - 0.5 * depth) * c.normal;
       out->push_back(c);
     }
+  } else if (ta == ShapeType::kCylinder && tb == ShapeType::kCylinder &&
+             CapContacts(i, X_WI, j, X_WJ, out)) {
+    // cap on cap: each rim's points under the other's cap; or apart along a cap's axis
   } else if ((ta == ShapeType::kBox || ta == ShapeType::kConvex) && tb == ShapeType::kConvex &&
              PolytopeContacts(i, X_WI, j, X_WJ, out)) {
     // a face on a face: the overlap's corners; apart; or edges crossing with a vertex inside
@@ -344,7 +411,14 @@ void NarrowPhase::Collide(int a, const Pose& X_WA, int b, const Pose& X_WB,
       boxBox2(static_cast<const fcl::Boxd&>(gi).side, Ti, static_cast<const fcl::Boxd&>(gj).side,
               Tj, normal, &depth, &code, 8, points);
     } else {  // GJK/EPA (libccd): allocates
-      const fcl::CollisionObjectd oi(fcl_->shapes[i], Ti), oj(fcl_->shapes[j], Tj);
+      // The geometries' own objects, posed: a CollisionObject made for the call would compute
+      // its shape's local bounding box again (a hull's every vertex, each call).
+      fcl::CollisionObjectd& oi = *fcl_->objects[i];
+      fcl::CollisionObjectd& oj = *fcl_->objects[j];
+      oi.setTransform(Ti);
+      oi.computeAABB();
+      oj.setTransform(Tj);
+      oj.computeAABB();
       fcl_->result.clear();
       fcl::collide(&oi, &oj, fcl_->request, fcl_->result);
       for (size_t k = 0; k < fcl_->result.numContacts(); ++k) {
@@ -373,8 +447,124 @@ void NarrowPhase::Collide(int a, const Pose& X_WA, int b, const Pose& X_WB,
   }
 }
 
+namespace {
+
+// Cylinder P's cap that faces cylinder Q: its outward unit normal n (world), the cap's height
+// h = n.x on it, and how far Q reaches past it along n (> 0: overlap; <= 0: apart along n).
+struct Cap {
+  Vector3d n = Vector3d::UnitZ();
+  double h = 0.0, overlap = 0.0;
+};
+Cap FacingCap(const CollisionShape& p, const Pose& X_WP, const CollisionShape& q,
+              const Pose& X_WQ) {
+  const Vector3d a = X_WP.R.col(2);
+  Cap cap;
+  cap.n = a.dot(X_WQ.p - X_WP.p) >= 0.0 ? a : Vector3d(-a);
+  cap.h = cap.n.dot(X_WP.p) + 0.5 * p.length;
+  const double along = cap.n.dot(X_WQ.R.col(2));
+  const double lowest = cap.n.dot(X_WQ.p) - 0.5 * q.length * std::abs(along) -
+                        q.radius * std::sqrt(std::max(0.0, 1.0 - along * along));
+  cap.overlap = cap.h - lowest;
+  return cap;
+}
+
+}  // namespace
+
+bool NarrowPhase::CapContacts(int i, const Pose& X_WI, int j, const Pose& X_WJ,
+                              std::vector<ContactPoint>* out) {
+  const CollisionShape& si = geometries_[i].shape;
+  const CollisionShape& sj = geometries_[j].shape;
+  const Cap cap_i = FacingCap(si, X_WI, sj, X_WJ);
+  const Cap cap_j = FacingCap(sj, X_WJ, si, X_WI);
+  if (!(cap_i.overlap > 0.0) || !(cap_j.overlap > 0.0)) return true;  // apart along an axis
+  // Side on side (the axes' segments closer than the radii by less than the caps overlap):
+  // not a cap contact.
+  const Vector3d hi = 0.5 * si.length * X_WI.R.col(2), hj = 0.5 * sj.length * X_WJ.R.col(2);
+  double s = 0.0, t = 0.0;
+  Vector3d ci, cj;
+  fcl::detail::closestPtSegmentSegment<double>(X_WI.p - hi, X_WI.p + hi, X_WJ.p - hj, X_WJ.p + hj,
+                                               &s, &t, &ci, &cj);
+  const double side = si.radius + sj.radius - (ci - cj).norm();
+  if (!(std::min(cap_i.overlap, cap_j.overlap) < side)) return false;
+  // The reference cap: j's, unless i's overlaps less by more than 5 % (a resting pair keeps
+  // it, as polytopes keep theirs).
+  const bool on_j = cap_j.overlap <= 1.05 * cap_i.overlap;
+  const CollisionShape& sp = on_j ? sj : si;  // the reference's cylinder P, the other Q
+  const CollisionShape& sq = on_j ? si : sj;
+  const Pose& X_WP = on_j ? X_WJ : X_WI;
+  const Pose& X_WQ = on_j ? X_WI : X_WJ;
+  const Vector3d n = on_j ? cap_j.n : cap_i.n;  // P's cap's outward normal, toward Q
+  const double sign = on_j ? 1.0 : -1.0;        // the normal from j toward i
+  // In P's cap plane (origin its centre, axes P's x and y): P's rim as a polygon of kRimCorners
+  // corners, and Q's facing rim, as many corners fixed in Q, seen along n; Q's clipped to P's
+  // (Sutherland-Hodgman), whose corners move with the poses (a corner enters or leaves at an
+  // edge crossing, not at a jump).
+  const Vector3d centre_p = X_WP.p + 0.5 * sp.length * n;
+  const Vector3d u = X_WP.R.col(0), v = X_WP.R.col(1);
+  const Vector3d a_q = X_WQ.R.col(2);
+  const Vector3d centre_q = X_WQ.p - (n.dot(a_q) >= 0.0 ? 0.5 : -0.5) * sq.length * a_q;
+  using Polygon = std::array<Eigen::Vector2d, 2 * kRimCorners + 1>;
+  Polygon rim_p, polygon, clipped;
+  int count = kRimCorners;
+  for (int k = 0; k < kRimCorners; ++k) {
+    const double angle = 2.0 * M_PI * k / kRimCorners;
+    rim_p[k] = sp.radius * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    const Vector3d x =
+        centre_q + sq.radius * (std::cos(angle) * X_WQ.R.col(0) + std::sin(angle) * X_WQ.R.col(1));
+    polygon[k] = Eigen::Vector2d(u.dot(x - centre_p), v.dot(x - centre_p));
+  }
+  // Q's rim runs counter-clockwise about Q's axis: seen along n, clockwise when n and a_q
+  // oppose (the usual stack). Clipping needs both counter-clockwise about P's z.
+  const bool q_flipped = n.dot(a_q) * n.dot(X_WP.R.col(2)) < 0.0;
+  if (q_flipped) std::reverse(polygon.begin(), polygon.begin() + count);
+  for (int e = 0; e < kRimCorners && count > 0; ++e) {
+    const Eigen::Vector2d& e0 = rim_p[e];
+    const Eigen::Vector2d edge = rim_p[(e + 1) % kRimCorners] - e0;
+    const auto side = [&](const Eigen::Vector2d& x) {  // > 0 inside (left of the edge)
+      const Eigen::Vector2d r = x - e0;
+      return edge.x() * r.y() - edge.y() * r.x();
+    };
+    int kept = 0;
+    for (int k = 0; k < count; ++k) {
+      const Eigen::Vector2d& x0 = polygon[k];
+      const Eigen::Vector2d& x1 = polygon[(k + 1) % count];
+      const double s0 = side(x0), s1 = side(x1);
+      if (s0 >= 0.0) clipped[kept++] = x0;
+      if ((s0 >= 0.0) != (s1 >= 0.0) && kept < static_cast<int>(clipped.size())) {
+        clipped[kept++] = x0 + (s0 / (s0 - s1)) * (x1 - x0);
+      }
+      if (kept >= static_cast<int>(clipped.size())) break;
+    }
+    std::copy(clipped.begin(), clipped.begin() + kept, polygon.begin());
+    count = kept;
+  }
+  // Each corner on Q's cap plane along n: a point where it is below P's cap.
+  const double across = a_q.dot(n);
+  if (std::abs(across) < 1e-9) return false;  // Q's cap seen edge on: not a cap contact
+  int added = 0;
+  for (int k = 0; k < count; ++k) {
+    const Vector3d y = centre_p + polygon[k].x() * u + polygon[k].y() * v;  // on P's cap
+    const double along = a_q.dot(centre_q - y) / across;  // y + along n is on Q's cap
+    const double depth = -along;
+    if (!(depth > 0.0)) continue;
+    out->push_back(ContactPoint::UnderFace(i, j, y + along * n, n, sign, depth));
+    ++added;
+  }
+  return added > 0;
+}
+
+double NarrowPhase::PlaneClearance(int g, const Pose& X_WG, const Vector3d& n,
+                                   const Vector3d& on_plane) const {
+  const Eigen::Vector4d& bound = fcl_->bounds[static_cast<size_t>(g)];
+  return n.dot(X_WG.Apply(bound.head<3>()) - on_plane) - bound(3);
+}
+
 bool NarrowPhase::PolytopeContacts(int i, const Pose& X_WI, int j, const Pose& X_WJ,
                                    std::vector<ContactPoint>* out) {
+  // Their bounding boxes apart (the separating-axis test of two oriented boxes): so are they.
+  if (BoxesApart(fcl_->lower[i], fcl_->upper[i], X_WI, fcl_->lower[j], fcl_->upper[j], X_WJ)) {
+    return true;
+  }
   const PolytopeFaces& I = fcl_->faces[static_cast<size_t>(i)];
   const PolytopeFaces& J = fcl_->faces[static_cast<size_t>(j)];
   if (PolytopeClip::Affordable(I, J) &&
@@ -394,7 +584,14 @@ int NarrowPhase::VertexContacts(int i, const Pose& X_WI, int j, const Pose& X_WJ
     const Vector3d p_TF = X_WT.R.transpose() * (X_WF.p - X_WT.p);
     const Vector3d& lower = fcl_->lower[into];
     const Vector3d& upper = fcl_->upper[into];
+    // `into`'s bounding box seen from `from`'s frame, boxed again: a vertex outside it is
+    // outside `into`, found without transforming it (most of a large hull's vertices).
+    const Vector3d centre_F = R_TF.transpose() * (0.5 * (lower + upper) - p_TF);
+    const Vector3d half_F = R_TF.transpose().cwiseAbs() * (0.5 * (upper - lower));
+    const Eigen::Array3d lower_F = (centre_F - half_F).array(),
+                         upper_F = (centre_F + half_F).array();
     for (const Vector3d& v : fcl_->vertices[from]) {
+      if ((v.array() < lower_F).any() || (v.array() > upper_F).any()) continue;
       const Vector3d v_T = R_TF * v + p_TF;
       // outside `into`'s bounding box: not inside (the faces' test costs O(faces))
       if ((v_T.array() <= lower.array()).any() || (v_T.array() >= upper.array()).any()) continue;
@@ -446,7 +643,7 @@ bool NarrowPhase::FaceContacts(int i, int j, int round, const Pose& X_WR, int po
   const double h = n.dot(X_WP.p) + planes[static_cast<size_t>(face)](3);
   const double sign = round == i ? 1.0 : -1.0;  // the normal from j toward i
   int added = 0;
-  PlaneCandidates(s, X_WR, n, [&](const Vector3d& x) {
+  PlaneCandidates(s, X_WR, n, [&](const Vector3d& x, double weight) {
     const double depth = h - n.dot(x);
     if (!(depth > 0.0)) return;
     const Vector3d x_P = X_WP.R.transpose() * (x - X_WP.p);
@@ -454,6 +651,7 @@ bool NarrowPhase::FaceContacts(int i, int j, int round, const Pose& X_WR, int po
       if (static_cast<int>(g) != face && planes[g].head<3>().dot(x_P) - planes[g](3) > 0.0) return;
     }
     out->push_back(ContactPoint::UnderFace(i, j, x, n, sign, depth));
+    out->back().weight = weight;
     ++added;
   });
   return added > 0;
@@ -471,9 +669,15 @@ double NarrowPhase::SignedDistance(int a, const Pose& X_WA, int b, const Pose& X
   }
   if (tb == ShapeType::kPlane) {
     const Vector3d n = X_WB.R.col(2);
+    // Its bounding sphere above the plane: that height, a lower bound of the distance, is
+    // positive as the distance is (a root function needs the sign; it is exact from contact on).
+    if (const double clearance = PlaneClearance(a, X_WA, n, X_WB.p); clearance > 0.0) {
+      return clearance;
+    }
     double lowest = std::numeric_limits<double>::infinity();
-    PlaneCandidates(geometries_[a].shape, X_WA, n,
-                    [&](const Vector3d& x) { lowest = std::min(lowest, n.dot(x - X_WB.p)); });
+    PlaneCandidates(geometries_[a].shape, X_WA, n, [&](const Vector3d& x, double) {
+      lowest = std::min(lowest, n.dot(x - X_WB.p));
+    });
     return lowest;
   }
   const CollisionShape& sa = geometries_[a].shape;
@@ -508,6 +712,12 @@ double NarrowPhase::SignedDistance(int a, const Pose& X_WA, int b, const Pose& X
     return PointConvexDistance(X_WB.R.transpose() * (X_WA.p - X_WB.p), sb.convex, fcl_->planes[b],
                                &n_B) -
            sa.radius;
+  }
+  if (ta == ShapeType::kCylinder && tb == ShapeType::kCylinder) {
+    // Apart along a cap's axis: that gap, a lower bound of the distance.
+    const double gap =
+        -std::min(FacingCap(sa, X_WA, sb, X_WB).overlap, FacingCap(sb, X_WB, sa, X_WA).overlap);
+    if (gap > 0.0) return std::min(margin, gap);
   }
   // No distance routine for the pair: apart when their bounding spheres are (the common case
   // of a robot's many root pairs: no narrow phase, no libccd); two polytopes: the separating

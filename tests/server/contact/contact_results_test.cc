@@ -82,6 +82,36 @@ TEST_F(ContactResultsTest, ContactsCsvAndSummaryFromBothWriters) {
   EXPECT_NE(Read(dir_ / "stream" / "stats.json").find("\"contacts_peak\": 4"), std::string::npos);
 }
 
+// Formulation body-baumgarte (server/body/body_contact.h) logs its frames' contacts as the
+// joint formulation does: the pendulum's tip on the floor, in both writers, byte for byte.
+TEST_F(ContactResultsTest, BodyBaumgarteWritesItsContactsFromBothWriters) {
+  const Model model =
+      ImportSdfFile(std::string(MBSTREAM_SOURCE_DIR) + "/tests/data/contact/pendulum_on_floor.sdf")
+          .model;
+  RunConfig config;
+  config.formulation = Formulation::kBodyBaumgarte;
+  config.duration = 1.0;
+  config.output_interval = 0.05;
+  config.drives.resize(static_cast<size_t>(model.nv()));
+  config.contact.dissipation = 2.0;
+  ValidateRun(model, config);
+  const RunResult result = Simulate(model, config);
+  ASSERT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
+  ASSERT_TRUE(result.contacts.active);
+  EXPECT_EQ(result.contacts.count_peak, 1);
+  ASSERT_FALSE(result.contacts.records.empty());
+  WriteResultsDirectory(result, {"pendulum_on_floor", "pendulum_on_floor.sdf", "", "", ""},
+                        (dir_ / "whole").string());
+  const std::string csv = Read(dir_ / "whole" / "contacts.csv");
+  EXPECT_NE(csv.find(",ground::floor,plane,pendulum::arm,tip,"), std::string::npos) << csv;
+  EXPECT_NE(Read(dir_ / "whole" / "stats.json").find("\"dissipated_work_j\""), std::string::npos);
+
+  ResultsStreamWriter writer((dir_ / "stream").string());
+  const RunResult streamed = Simulate(model, config, &writer);
+  writer.Finish(streamed, {"pendulum_on_floor", "pendulum_on_floor.sdf", "", "", ""});
+  EXPECT_EQ(Read(dir_ / "stream" / "contacts.csv"), csv);
+}
+
 TEST_F(ContactResultsTest, NoContactsCsvWithoutGeometry) {
   ModelBuilder builder("pendulum", "world");
   Joint joint;

@@ -102,7 +102,7 @@ TEST(HullPairsTest, TheHullTouchesEveryShapeAsTheBoxDoes) {
         EXPECT_EQ(out.size(), 4u);  // the face's four corners
       }
       if (c.other == 4) {
-        EXPECT_EQ(out.size(), 4u);  // the standing cylinder's four rim points
+        EXPECT_EQ(out.size(), 16u);  // the standing cylinder's rim corners
       }
       if (c.other == 5) {
         EXPECT_EQ(out.size(), 1u);  // the capsule's end sphere
