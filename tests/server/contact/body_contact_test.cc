@@ -19,6 +19,7 @@ namespace mbstream {
 namespace {
 
 using contact_testing::Config;
+using contact_testing::NormalForce;
 using contact_testing::Scene;
 
 constexpr double kG = 9.81;
@@ -48,15 +49,6 @@ RunResult RunIn(const Model& model, RunConfig config, Formulation formulation) {
   RunResult result = Simulate(model, config);
   EXPECT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
   return result;
-}
-
-// The total normal force of frame f's contacts (N).
-double NormalForce(const RunResult& r, size_t frame) {
-  double force = 0.0;
-  for (const ContactRecord& c : r.contacts.records) {
-    if (c.t == r.t[frame]) force += c.normal_force;
-  }
-  return force;
 }
 
 // The deepest contact of the last frame (m).

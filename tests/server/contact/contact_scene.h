@@ -50,4 +50,13 @@ inline double Qd(const RunResult& r, size_t frame, int k) {
   return r.qd[frame * static_cast<size_t>(r.num_dofs) + static_cast<size_t>(k)];
 }
 
+// The total normal force of output frame `frame`'s contacts (N; every frame's records kept).
+inline double NormalForce(const RunResult& r, size_t frame) {
+  double force = 0.0;
+  for (const ContactRecord& c : r.contacts.records) {
+    if (c.t == r.t[frame]) force += c.normal_force;
+  }
+  return force;
+}
+
 }  // namespace mbstream::contact_testing

@@ -28,6 +28,7 @@ namespace mbstream {
 namespace {
 
 using contact_testing::Config;
+using contact_testing::NormalForce;
 using contact_testing::Qd;
 using contact_testing::RunScene;
 using contact_testing::Scene;
@@ -63,15 +64,6 @@ RunResult RunLoops(const SdfImport& sdf, RunConfig config) {
   RunResult result = SimulateLoops(sdf.model, sdf.loops, config);
   EXPECT_EQ(result.stats.status, RunStatus::kFinished) << result.stats.message;
   return result;
-}
-
-// The total normal force of frame f's contacts (N).
-double NormalForce(const RunResult& r, size_t frame) {
-  double force = 0.0;
-  for (const ContactRecord& c : r.contacts.records) {
-    if (c.t == r.t[frame]) force += c.normal_force;
-  }
-  return force;
 }
 
 TEST(LoopContactTest, TheTwinSlidersAreOneLoopClosedByTheCutWeld) {
