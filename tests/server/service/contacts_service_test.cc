@@ -124,6 +124,40 @@ TEST_F(ContactsServiceTest, SubscribersThatAskGetEachFramesContactsAndTheOthersN
   EXPECT_EQ(result.contacts.link, (std::vector<std::string>{"ground::floor", "box::body"}));
 }
 
+// Formulation body-baumgarte (server/body/body_contact.h) through the server: its frames carry
+// their contacts into the store as the joint formulation's do. A frictionless pendulum comes to
+// rest on its tip: the floor carries half its weight (the moments about the hinge).
+TEST_F(ContactsServiceTest, ABodyBaumgarteRunStoresItsContacts) {
+  const std::string pendulum =
+      SubmitOk(ReadModelBundle(
+                   std::string(MBSTREAM_SOURCE_DIR) + "/tests/data/contact/pendulum_on_floor.sdf",
+                   "", {}, ""))
+          .id();
+  v1::RunSpec spec;
+  spec.set_duration_s(5.0);
+  spec.set_output_interval_s(0.1);
+  spec.set_formulation("body-baumgarte");
+  spec.mutable_contact()->set_dissipation_s_per_m(2.0);
+  spec.mutable_contact()->set_mu_static(0.0);
+  spec.mutable_contact()->set_mu_dynamic(0.0);
+  const v1::RunInfo run = StartRunOk(pendulum, spec);
+  const v1::RunInfo ended = WaitForEnd(run.id());
+  ASSERT_EQ(ended.state(), v1::FINISHED) << ended.message();
+  EXPECT_EQ(ended.stats().formulation(), "body-baumgarte");
+  EXPECT_THAT(ended.stats().formulation_reason(), ::testing::HasSubstr("contact on"));
+  ASSERT_TRUE(ended.stats().has_contact());
+  EXPECT_EQ(ended.stats().contact().contacts_peak(), 1);
+  v1::RunInfo info;
+  std::vector<v1::Frame> stored;
+  ASSERT_TRUE(Result(run.id(), &info, &stored, nullptr).ok());
+  ASSERT_EQ(stored.size(), 51u);
+  ASSERT_EQ(stored.back().contacts_size(), 1);
+  const v1::FrameContact& tip = stored.back().contacts(0);
+  EXPECT_EQ(tip.link_a(), "ground::floor");
+  EXPECT_EQ(tip.link_b(), "pendulum::arm");
+  EXPECT_NEAR(NormalForceSum(stored.back()), 0.5 * 9.81, 1e-3 * 9.81);
+}
+
 TEST_F(ContactsServiceTest, AReplayCarriesTheStoredContactsWhenAsked) {
   const v1::RunInfo run = StartRunOk(model_, spec_);
   ASSERT_EQ(WaitForEnd(run.id()).state(), v1::FINISHED);
